@@ -1,0 +1,20 @@
+"""A publish/subscribe bus with ROS 2 semantics, in-process: nodes, topics, timers, an executor."""
+
+from .clock import Clock, ManualClock, RosTime, SystemClock
+from .endpoints import Publisher, Subscription, Timer
+from .errors import (
+    BusError, DestroyedError, InvalidNameError, InvalidQoSError, NoBusError, TopicTypeError,
+    UnknownNodeError, UnknownTopicError,
+)  # fmt: skip
+from .executor import Executor
+from .graph import INTERNAL_TOPICS, Bus, NodeOverrides, Topic, current_bus
+from .names import is_hidden, resolve_topic_name, validate_namespace, validate_node_name, validate_topic_name
+from .node import Node, Parameter
+
+__all__ = [
+    "INTERNAL_TOPICS", "Bus", "BusError", "Clock", "DestroyedError", "Executor", "InvalidNameError",
+    "InvalidQoSError", "ManualClock", "NoBusError", "Node", "NodeOverrides", "Parameter", "Publisher",
+    "RosTime", "Subscription", "SystemClock", "Timer", "Topic", "TopicTypeError", "UnknownNodeError",
+    "UnknownTopicError", "current_bus", "is_hidden", "resolve_topic_name", "validate_namespace",
+    "validate_node_name", "validate_topic_name",
+]  # fmt: skip

@@ -1,0 +1,131 @@
+"""Publishers, subscriptions and timers: what a node creates on the bus."""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from ..msgs import Message
+from .errors import DestroyedError, InvalidQoSError, TopicTypeError
+
+if TYPE_CHECKING:
+    from .graph import Topic
+    from .node import Node
+
+MAX_DEPTH = 10_000
+
+
+def qos_depth(qos: Any) -> int:
+    """A queue depth from an int or a QoS-profile-like object with ``depth``."""
+    depth = getattr(qos, "depth", qos)
+    if isinstance(depth, bool) or not isinstance(depth, int):
+        raise InvalidQoSError(f"queue depth must be an integer, got {depth!r}")
+    if not 1 <= depth <= MAX_DEPTH:
+        raise InvalidQoSError(f"queue depth must be in 1..{MAX_DEPTH}, got {depth}")
+    return depth
+
+
+class Publisher:
+    """Sends messages of one type on one topic; ``publish`` never runs a callback itself."""
+
+    def __init__(self, node: Node, topic: Topic, msg_type: type[Message], depth: int) -> None:
+        self.node = node
+        self.topic = topic
+        self.msg_type = msg_type
+        self.depth = depth
+        self.destroyed = False
+
+    @property
+    def topic_name(self) -> str:
+        return self.topic.name
+
+    def publish(self, msg: Message) -> int:
+        """Queue ``msg`` for every live subscription; returns how many it reached."""
+        if self.destroyed:
+            raise DestroyedError(f"publisher on {self.topic.name} was destroyed")
+        if type(msg) is not self.msg_type:
+            raise TopicTypeError(
+                f"{self.topic.name} carries {self.msg_type.TYPE}; cannot publish {type(msg).__name__}"
+                f" ({getattr(msg, 'TYPE', type(msg).__name__)})"
+            )
+        return self.topic.deliver(msg, self)
+
+    def get_subscription_count(self) -> int:
+        return sum(1 for s in self.topic.subscriptions if s.active)
+
+    def destroy(self) -> None:
+        self.node.destroy_publisher(self)
+
+
+class Subscription:
+    """Receives a topic's messages into a keep-last queue of ``depth``; the executor runs the callback."""
+
+    def __init__(
+        self, node: Node, topic: Topic, msg_type: type[Message], callback: Callable[[Any], Any], depth: int
+    ) -> None:
+        if topic.msg_type is not msg_type:
+            raise TopicTypeError(f"{topic.name} carries {topic.msg_type.TYPE}, not {msg_type.TYPE}")
+        self.node = node
+        self.topic = topic
+        self.msg_type = msg_type
+        self.callback = callback
+        self.depth = depth
+        self.queue: deque[Message] = deque(maxlen=depth)
+        self.dropped = 0
+        self.destroyed = False
+
+    @property
+    def topic_name(self) -> str:
+        return self.topic.name
+
+    @property
+    def active(self) -> bool:
+        return not self.destroyed and self.node.state == "active"
+
+    def destroy(self) -> None:
+        self.node.destroy_subscription(self)
+
+
+class Timer:
+    """Calls ``callback`` every ``period_s`` on the bus clock, keeping phase (missed calls are skipped)."""
+
+    LATENESS_SAMPLES = 2000
+
+    def __init__(self, node: Node, period_s: float, callback: Callable[[], Any], start_s: float) -> None:
+        if not (isinstance(period_s, (int, float)) and 0 < period_s < 1e7):
+            raise ValueError(f"timer period must be a positive number of seconds, got {period_s!r}")
+        self.node = node
+        self.period_s = float(period_s)
+        self.callback = callback
+        self._start_s = start_s
+        self._n = 1
+        self.cancelled = False
+        self.call_count = 0
+        self.lateness_s: deque[float] = deque(maxlen=self.LATENESS_SAMPLES)
+
+    @property
+    def next_deadline_s(self) -> float:
+        return self._start_s + self._n * self.period_s
+
+    def advance_past(self, now_s: float) -> None:
+        self.lateness_s.append(now_s - self.next_deadline_s)
+        self._n = max(self._n + 1, int((now_s - self._start_s) / self.period_s) + 1)
+        while self.next_deadline_s <= now_s:
+            self._n += 1
+
+    def cancel(self) -> None:
+        self.cancelled = True
+
+    def is_canceled(self) -> bool:
+        return self.cancelled
+
+    def reset(self) -> None:
+        """Restart the period from now, as rclpy's ``Timer.reset``."""
+        self.cancelled = False
+        self._start_s = self.node.bus.clock.now()
+        self._n = 1
+        self.node.bus.schedule(self)
+
+    def destroy(self) -> None:
+        self.node.destroy_timer(self)

@@ -1,0 +1,184 @@
+"""The bus: topics, nodes and the queues the executor drains. One per app (or per test)."""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import logging
+from collections import deque
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from ..msgs import Message
+from .clock import Clock, SystemClock
+from .errors import NoBusError, TopicTypeError, UnknownNodeError, UnknownTopicError
+from .names import is_hidden
+
+if TYPE_CHECKING:
+    from .endpoints import Publisher, Subscription, Timer
+    from .node import Node
+
+log = logging.getLogger("bus")
+INTERNAL_TOPICS = frozenset({"/rosout", "/parameter_events"})
+_current_bus: ContextVar[Bus | None] = ContextVar("current_bus", default=None)
+
+
+@dataclass(frozen=True)
+class NodeOverrides:
+    """What a launch says about a node it starts: rclpy's ``--ros-args`` in data form."""
+
+    name: str | None = None
+    namespace: str | None = None
+    parameters: dict[str, Any] = field(default_factory=dict)
+    remappings: dict[str, str] = field(default_factory=dict)
+
+
+_overrides: ContextVar[NodeOverrides | None] = ContextVar("node_overrides", default=None)
+
+
+def current_bus() -> Bus:
+    bus = _current_bus.get()
+    if bus is None:
+        raise NoBusError("no bus to join: create nodes inside a launch, or inside `with bus.activate():`")
+    return bus
+
+
+def current_overrides() -> NodeOverrides | None:
+    return _overrides.get()
+
+
+class Topic:
+    """A named, typed channel; exists while some node publishes or subscribes to it."""
+
+    def __init__(self, bus: Bus, name: str, msg_type: type[Message]) -> None:
+        self.bus = bus
+        self.name = name
+        self.msg_type = msg_type
+        self.publishers: list[Publisher] = []
+        self.subscriptions: list[Subscription] = []
+        self.latest: Message | None = None
+        self.latest_time_s: float | None = None
+        self.publish_count = 0
+        self.taps: list[Callable[[Topic, Message, float], None]] = []
+
+    @property
+    def hidden(self) -> bool:
+        return self.name in INTERNAL_TOPICS or is_hidden(self.name)
+
+    def deliver(self, msg: Message, publisher: Publisher | None) -> int:
+        now = self.bus.clock.now()
+        self.latest = msg.copy()
+        self.latest_time_s = now
+        self.publish_count += 1
+        delivered = 0
+        for sub in self.subscriptions:
+            if not sub.active:
+                continue
+            if len(sub.queue) == sub.depth:
+                sub.dropped += 1
+            sub.queue.append(msg.copy())
+            self.bus._ready.append(sub)
+            delivered += 1
+        for tap in self.taps:
+            tap(self, self.latest, now)
+        if delivered:
+            self.bus._wake()
+        return delivered
+
+
+class Bus:
+    """The graph of nodes and topics, plus the ready queue and timer heap an Executor drains."""
+
+    def __init__(self, clock: Clock | None = None) -> None:
+        self.clock: Clock = clock or SystemClock()
+        self.topics: dict[str, Topic] = {}
+        self.nodes: list[Node] = []
+        self.graph_version = 0
+        self.crash_handlers: list[Callable[[Node, BaseException], None]] = []
+        self._ready: deque[Subscription] = deque()
+        self._timers: list[tuple[float, int, Timer]] = []
+        self._seq = itertools.count()
+        self._wakers: list[Callable[[], None]] = []
+
+    # -- membership ------------------------------------------------------
+    @contextmanager
+    def activate(self, overrides: NodeOverrides | None = None) -> Iterator[Bus]:
+        """Nodes created inside this block join this bus (with ``overrides`` from a launch)."""
+        token = _current_bus.set(self)
+        otoken = _overrides.set(overrides)
+        try:
+            yield self
+        finally:
+            _overrides.reset(otoken)
+            _current_bus.reset(token)
+
+    def add_node(self, node: Node) -> None:
+        if any(n.fully_qualified_name == node.fully_qualified_name for n in self.nodes):
+            log.warning("a node named %s already exists; ROS allows this but tools will be confused",
+                        node.fully_qualified_name)
+        self.nodes.append(node)
+        self.graph_changed()
+
+    def remove_node(self, node: Node) -> None:
+        if node in self.nodes:
+            self.nodes.remove(node)
+            self.graph_changed()
+
+    def get_node(self, name: str) -> Node:
+        fq = name if name.startswith("/") else "/" + name
+        for node in self.nodes:
+            if node.fully_qualified_name == fq:
+                return node
+        raise UnknownNodeError(name)
+
+    def graph_changed(self) -> None:
+        self.graph_version += 1
+
+    # -- topics ----------------------------------------------------------
+    def topic(self, name: str, msg_type: type[Message]) -> Topic:
+        """The topic of that name, created with ``msg_type`` if new; a type conflict is an error."""
+        topic = self.topics.get(name)
+        if topic is None:
+            topic = self.topics[name] = Topic(self, name, msg_type)
+            self.graph_changed()
+        elif topic.msg_type is not msg_type:
+            raise TopicTypeError(f"{name} carries {topic.msg_type.TYPE}; {msg_type.TYPE} conflicts with it")
+        return topic
+
+    def get_topic(self, name: str) -> Topic:
+        try:
+            return self.topics[name]
+        except KeyError:
+            raise UnknownTopicError(name) from None
+
+    def drop_topic_if_unused(self, topic: Topic) -> None:
+        if not topic.publishers and not topic.subscriptions and self.topics.get(topic.name) is topic:
+            del self.topics[topic.name]
+            self.graph_changed()
+
+    # -- scheduling ------------------------------------------------------
+    def schedule(self, timer: Timer) -> None:
+        heapq.heappush(self._timers, (timer.next_deadline_s, next(self._seq), timer))
+        self._wake()
+
+    def add_waker(self, waker: Callable[[], None]) -> None:
+        self._wakers.append(waker)
+
+    def remove_waker(self, waker: Callable[[], None]) -> None:
+        if waker in self._wakers:
+            self._wakers.remove(waker)
+
+    def _wake(self) -> None:
+        for waker in self._wakers:
+            waker()
+
+    def node_crashed(self, node: Node, exc: BaseException) -> None:
+        self.graph_changed()
+        for handler in list(self.crash_handlers):
+            try:
+                handler(node, exc)
+            except Exception:  # a broken handler must not take the executor down
+                log.exception("crash handler failed for %s", node.fully_qualified_name)

@@ -1,0 +1,229 @@
+"""``Node``: rclpy's API shape on this bus (create_publisher, create_subscription, create_timer ...)."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, Literal
+
+from ..msgs import Log, Message
+from .clock import NodeClock
+from .endpoints import Publisher, Subscription, Timer, qos_depth
+from .errors import DestroyedError
+from .graph import Bus, current_bus, current_overrides
+from .names import resolve_topic_name, validate_namespace, validate_node_name
+
+NodeState = Literal["active", "crashed", "destroyed"]
+_LEVELS = {"debug": 10, "info": 20, "warn": 30, "error": 40, "fatal": 50}
+
+
+@dataclass
+class Parameter:
+    """rclpy's Parameter, reduced to what lab nodes use: a name and a value."""
+
+    name: str
+    value: Any
+
+
+class NodeLogger:
+    """``node.get_logger()``: Python logging under the node's name, echoed on /rosout."""
+
+    def __init__(self, node: Node) -> None:
+        self._node = node
+        self._py = logging.getLogger(f"node{node.fully_qualified_name.replace('/', '.')}")
+
+    def _log(self, level: str, msg: Any) -> None:
+        text = str(msg)
+        self._py.log(_LEVELS[level], "[%s] %s", self._node.get_name(), text)
+        self._node._emit_log(_LEVELS[level], text)
+
+    def debug(self, msg: Any) -> None:
+        self._log("debug", msg)
+
+    def info(self, msg: Any) -> None:
+        self._log("info", msg)
+
+    def warning(self, msg: Any) -> None:
+        self._log("warn", msg)
+
+    warn = warning
+
+    def error(self, msg: Any) -> None:
+        self._log("error", msg)
+
+    def fatal(self, msg: Any) -> None:
+        self._log("fatal", msg)
+
+
+class Node:
+    """A participant in the graph. Subclass it as in rclpy: ``super().__init__('MyNode')``."""
+
+    def __init__(
+        self,
+        node_name: str,
+        *,
+        namespace: str | None = None,
+        context: Bus | None = None,
+        parameter_overrides: dict[str, Any] | None = None,
+        **_ignored: Any,
+    ) -> None:
+        overrides = current_overrides()
+        self.bus = context if context is not None else current_bus()
+        self._name = validate_node_name(overrides.name if overrides and overrides.name else node_name)
+        ns = overrides.namespace if overrides and overrides.namespace else namespace
+        self._namespace = validate_namespace(ns or "/")
+        self._remap = dict(overrides.remappings) if overrides else {}
+        self._param_overrides = dict(parameter_overrides or {})
+        if overrides:
+            self._param_overrides.update(overrides.parameters)
+        self._parameters: dict[str, Parameter] = {}
+        self.publishers: list[Publisher] = []
+        self.subscriptions: list[Subscription] = []
+        self.timers: list[Timer] = []
+        self.state: NodeState = "active"
+        self.crash_reason: str | None = None
+        self._clock = NodeClock(self.bus.clock)
+        self._logger = NodeLogger(self)
+        self._rosout: Publisher | None = None
+        self.bus.add_node(self)
+        self._rosout = self.create_publisher(Log, "/rosout", 1000)
+
+    # -- identity --------------------------------------------------------
+    def get_name(self) -> str:
+        return self._name
+
+    def get_namespace(self) -> str:
+        return self._namespace
+
+    @property
+    def fully_qualified_name(self) -> str:
+        return self._namespace.rstrip("/") + "/" + self._name
+
+    def get_fully_qualified_name(self) -> str:
+        return self.fully_qualified_name
+
+    def get_logger(self) -> NodeLogger:
+        return self._logger
+
+    def get_clock(self) -> NodeClock:
+        return self._clock
+
+    def resolve_topic_name(self, topic: str) -> str:
+        return resolve_topic_name(topic, self._name, self._namespace, self._remap)
+
+    # -- endpoints -------------------------------------------------------
+    def _check_alive(self) -> None:
+        if self.state == "destroyed":
+            raise DestroyedError(f"node {self.fully_qualified_name} was destroyed")
+
+    def create_publisher(self, msg_type: type[Message], topic: str, qos_profile: Any) -> Publisher:
+        self._check_alive()
+        depth = qos_depth(qos_profile)
+        t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
+        pub = Publisher(self, t, msg_type, depth)
+        t.publishers.append(pub)
+        self.publishers.append(pub)
+        self.bus.graph_changed()
+        return pub
+
+    def create_subscription(
+        self, msg_type: type[Message], topic: str, callback: Callable[[Any], Any], qos_profile: Any
+    ) -> Subscription:
+        self._check_alive()
+        depth = qos_depth(qos_profile)
+        t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
+        sub = Subscription(self, t, msg_type, callback, depth)
+        t.subscriptions.append(sub)
+        self.subscriptions.append(sub)
+        self.bus.graph_changed()
+        return sub
+
+    def create_timer(self, timer_period_sec: float, callback: Callable[[], Any]) -> Timer:
+        self._check_alive()
+        timer = Timer(self, timer_period_sec, callback, self.bus.clock.now())
+        self.timers.append(timer)
+        self.bus.schedule(timer)
+        return timer
+
+    def destroy_publisher(self, pub: Publisher) -> bool:
+        if pub.destroyed:
+            return False
+        pub.destroyed = True
+        pub.topic.publishers.remove(pub)
+        self.publishers.remove(pub)
+        self.bus.drop_topic_if_unused(pub.topic)
+        self.bus.graph_changed()
+        return True
+
+    def destroy_subscription(self, sub: Subscription) -> bool:
+        if sub.destroyed:
+            return False
+        sub.destroyed = True
+        sub.queue.clear()
+        sub.topic.subscriptions.remove(sub)
+        self.subscriptions.remove(sub)
+        self.bus.drop_topic_if_unused(sub.topic)
+        self.bus.graph_changed()
+        return True
+
+    def destroy_timer(self, timer: Timer) -> bool:
+        timer.cancel()
+        if timer in self.timers:
+            self.timers.remove(timer)
+            return True
+        return False
+
+    def destroy_node(self) -> bool:
+        if self.state == "destroyed":
+            return False
+        for timer in list(self.timers):
+            self.destroy_timer(timer)
+        for sub in list(self.subscriptions):
+            self.destroy_subscription(sub)
+        for pub in list(self.publishers):
+            self.destroy_publisher(pub)
+        self.state = "destroyed"
+        self.bus.remove_node(self)
+        return True
+
+    # -- parameters ------------------------------------------------------
+    def declare_parameter(self, name: str, value: Any = None, *_: Any, **__: Any) -> Parameter:
+        param = Parameter(name, self._param_overrides.get(name, value))
+        self._parameters[name] = param
+        return param
+
+    def get_parameter(self, name: str) -> Parameter:
+        try:
+            return self._parameters[name]
+        except KeyError:
+            raise LookupError(f"parameter {name!r} of {self.fully_qualified_name} was not declared") from None
+
+    def has_parameter(self, name: str) -> bool:
+        return name in self._parameters
+
+    def get_parameters_dict(self) -> dict[str, Any]:
+        return {name: p.value for name, p in self._parameters.items()}
+
+    # -- faults ----------------------------------------------------------
+    def mark_crashed(self, exc: BaseException) -> None:
+        """Stop this node's callbacks (its process died) but keep it visible, as crashed."""
+        if self.state != "active":
+            return
+        self.state = "crashed"
+        self.crash_reason = f"{type(exc).__name__}: {exc}"
+        for timer in self.timers:
+            timer.cancel()
+        for sub in self.subscriptions:
+            sub.queue.clear()
+        self.bus.node_crashed(self, exc)
+
+    def _emit_log(self, level: int, text: str) -> None:
+        if self._rosout is None or self._rosout.destroyed:
+            return
+        now = self.bus.clock.now()
+        sec = int(now)
+        msg = Log(level=level, name=self.fully_qualified_name.lstrip("/"), msg=text[:4096])
+        object.__setattr__(msg.stamp, "sec", sec)
+        object.__setattr__(msg.stamp, "nanosec", min(int((now - sec) * 1e9), 999_999_999))
+        self._rosout.publish(msg)
