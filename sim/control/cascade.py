@@ -1,0 +1,160 @@
+"""The 2022 lab's controller cascade, retuned: position -> velocity -> angle -> rateThrust.
+
+Each controller keeps its latest setpoint (as the ROS node keeps the latest message) and
+is ticked with update(..., dt_s) at its own rate. Angles are Euler 'sxyz' (rad), world
+frame z up, body x forward / y left. See docs/physics.md for the gains and why.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from sim.control.pid import PID
+from sim.quadrotor.rotation import wrap_angle
+from sim.quadrotor.state import RateThrustCommand, as_finite_floats
+
+DEFAULT_POSITION_SETPOINT_M = (0.0, 0.0, 3.0)
+
+
+@dataclass(frozen=True)
+class PositionGains:
+    """Position error (m) -> velocity setpoint (m/s), then speed limits."""
+
+    kp_xy_1_s: float = 1.0
+    kp_z_1_s: float = 1.0
+    max_speed_xy_m_s: float = 4.0
+    """Limit on the horizontal speed (norm of x, y), keeping the direction."""
+    max_speed_z_m_s: float = 3.0
+
+
+@dataclass(frozen=True)
+class VelocityGains:
+    """Velocity error (m/s) -> acceleration command (m/s^2) -> tilt and thrust."""
+
+    kp_xy_1_s: float = 2.0
+    ki_xy_1_s2: float = 0.0
+    kp_z_1_s: float = 4.0
+    ki_z_1_s2: float = 1.0
+    integral_limit_m_s: float = 2.0
+    min_thrust_n: float = 0.0
+    max_thrust_n: float = 20.0
+    """The lab clamps thrust to [0, 20] N."""
+
+
+@dataclass(frozen=True)
+class AngleGains:
+    """Euler-angle error (rad) -> body-rate command (rad/s)."""
+
+    kp_roll_pitch_1_s: float = 3.0
+    kp_yaw_1_s: float = 2.0
+    max_tilt_rad: float = 0.5
+    """Roll and pitch setpoints are clamped to +-this, as in the lab."""
+
+
+@dataclass(frozen=True)
+class AttitudeThrustSetpoint:
+    """Output of the velocity controller: /uav/input/attitude (rad) and /uav/input/thrust (N)."""
+
+    roll_rad: float
+    pitch_rad: float
+    yaw_rad: float
+    thrust_n: float
+
+
+class PositionController:
+    """P control on position with separate horizontal and vertical speed limits."""
+
+    def __init__(self, gains: PositionGains | None = None, setpoint_m: Sequence[float] = DEFAULT_POSITION_SETPOINT_M):
+        self.gains = gains if gains is not None else PositionGains()
+        self.setpoint_m = as_finite_floats("setpoint_m", setpoint_m, 3)
+
+    def set_setpoint(self, setpoint_m: Sequence[float]) -> None:
+        self.setpoint_m = as_finite_floats("setpoint_m", setpoint_m, 3)
+
+    def update(self, measured_position_m: Sequence[float], dt_s: float) -> tuple[float, float, float]:
+        """Velocity setpoint (m/s, world). dt_s is unused by a P law but kept for a uniform API."""
+        g = self.gains
+        px, py, pz = as_finite_floats("measured_position_m", measured_position_m, 3)
+        sx, sy, sz = self.setpoint_m
+        vx, vy = g.kp_xy_1_s * (sx - px), g.kp_xy_1_s * (sy - py)
+        speed = math.hypot(vx, vy)
+        if speed > g.max_speed_xy_m_s:
+            vx, vy = vx * g.max_speed_xy_m_s / speed, vy * g.max_speed_xy_m_s / speed
+        vz = min(max(g.kp_z_1_s * (sz - pz), -g.max_speed_z_m_s), g.max_speed_z_m_s)
+        return vx, vy, vz
+
+
+class VelocityController:
+    """PI on world velocity -> desired acceleration -> roll/pitch setpoint and collective thrust.
+
+    The tilt points the thrust along the desired acceleration plus gravity, rotated into the
+    heading frame; at yaw 0 and small angles this is the lab's corrected sign chain
+    roll_sp = -u_y, pitch_sp = +u_x (with u = a/g). Thrust is m(g + a_z) divided by the measured
+    tilt cosine, so climbing rate does not sag while the vehicle leans.
+    """
+
+    def __init__(self, mass_kg: float, gravity_m_s2: float = 9.81, gains: VelocityGains | None = None):
+        self.gains = gains if gains is not None else VelocityGains()
+        self.mass_kg, self.gravity_m_s2 = mass_kg, gravity_m_s2
+        g = self.gains
+        limit = g.integral_limit_m_s
+        self.pids = (
+            PID(g.kp_xy_1_s, g.ki_xy_1_s2, integral_limit=limit),
+            PID(g.kp_xy_1_s, g.ki_xy_1_s2, integral_limit=limit),
+            PID(g.kp_z_1_s, g.ki_z_1_s2, integral_limit=limit),
+        )
+        self.setpoint_m_s = (0.0, 0.0, 0.0)
+        self.yaw_setpoint_rad = 0.0
+
+    def set_setpoint(self, velocity_m_s: Sequence[float], yaw_rad: float = 0.0) -> None:
+        self.setpoint_m_s = as_finite_floats("velocity_m_s", velocity_m_s, 3)
+        (self.yaw_setpoint_rad,) = as_finite_floats("yaw_rad", (yaw_rad,), 1)
+
+    def update(
+        self, measured_velocity_m_s: Sequence[float], measured_euler_rad: Sequence[float], dt_s: float
+    ) -> AttitudeThrustSetpoint:
+        measured = as_finite_floats("measured_velocity_m_s", measured_velocity_m_s, 3)
+        roll, pitch, yaw = as_finite_floats("measured_euler_rad", measured_euler_rad, 3)
+        ax, ay, az = (pid.update(sp, m, dt_s) for pid, sp, m in zip(self.pids, self.setpoint_m_s, measured))
+        g = self.gravity_m_s2
+        # Specific force to produce, in the heading frame (x forward, y left, z up).
+        c, s = math.cos(yaw), math.sin(yaw)
+        fx, fy = c * ax + s * ay, -s * ax + c * ay
+        fz = max(g + az, 0.2 * g)  # never ask to point the thrust downwards
+        pitch_sp = math.atan2(fx, fz)
+        roll_sp = math.atan2(-fy, math.hypot(fx, fz))
+        tilt_cos = max(math.cos(roll) * math.cos(pitch), 0.5)
+        thrust = self.mass_kg * max(g + az, 0.0) / tilt_cos
+        thrust = min(max(thrust, self.gains.min_thrust_n), self.gains.max_thrust_n)
+        return AttitudeThrustSetpoint(roll_sp, pitch_sp, self.yaw_setpoint_rad, thrust)
+
+
+class AngleController:
+    """P control on Euler angles, converted from Euler-angle rates to body rates."""
+
+    def __init__(self, gains: AngleGains | None = None):
+        self.gains = gains if gains is not None else AngleGains()
+        self.setpoint = AttitudeThrustSetpoint(0.0, 0.0, 0.0, 0.0)
+
+    def set_setpoint(self, setpoint: AttitudeThrustSetpoint) -> None:
+        self.setpoint = setpoint
+
+    def update(self, measured_euler_rad: Sequence[float], dt_s: float) -> RateThrustCommand:
+        """The rateThrust command for the measured attitude (dt_s unused by a P law)."""
+        g, sp = self.gains, self.setpoint
+        roll, pitch, yaw = as_finite_floats("measured_euler_rad", measured_euler_rad, 3)
+        tilt = g.max_tilt_rad
+        roll_sp = min(max(sp.roll_rad, -tilt), tilt)
+        pitch_sp = min(max(sp.pitch_rad, -tilt), tilt)
+        roll_dot = g.kp_roll_pitch_1_s * (roll_sp - roll)
+        pitch_dot = g.kp_roll_pitch_1_s * (pitch_sp - pitch)
+        yaw_dot = g.kp_yaw_1_s * wrap_angle(sp.yaw_rad - yaw)
+        # Euler-angle rates -> body rates for R = Rz(yaw) Ry(pitch) Rx(roll).
+        sr, cr = math.sin(roll), math.cos(roll)
+        sp_, cp = math.sin(pitch), math.cos(pitch)
+        p = roll_dot - sp_ * yaw_dot
+        q = cr * pitch_dot + sr * cp * yaw_dot
+        r = -sr * pitch_dot + cr * cp * yaw_dot
+        return RateThrustCommand((p, q, r), sp.thrust_n)
