@@ -1,0 +1,88 @@
+"""What a launch file describes, as plain typed data: the nodes to start and the arguments used.
+
+The parser (``xml_parser``) produces these values; the launcher executes them. Nothing here
+runs a node or touches the bus.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+ParamScalar = bool | int | float | str
+"""A scalar ROS parameter value. ``bool`` is checked before ``int`` (Python's bool is an int)."""
+
+ParamValue = ParamScalar | list[bool] | list[int] | list[float] | list[str]
+"""A ROS parameter value: a scalar or a uniform list, as ``rclpy`` accepts them."""
+
+
+class LaunchFileError(Exception):
+    """A launch file is malformed, or asks for something that cannot be resolved.
+
+    ``line`` is 1-based; 0 means the file as a whole (not found, too large, an argument given
+    on the command line that the file does not declare).
+    """
+
+    def __init__(self, file: str, line: int, problem: str) -> None:
+        super().__init__(file, line, problem)
+        self.file = file
+        self.line = line
+        self.problem = problem
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}: {self.problem}"
+
+
+@dataclass(frozen=True)
+class SourceLocation:
+    """Where an action was written: the launch file's path and the 1-based line of its element."""
+
+    file: str
+    line: int
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}"
+
+
+@dataclass(frozen=True)
+class NodeAction:
+    """One ``<node>`` to start, with every substitution already performed.
+
+    - ``exec``: the executable name inside ``pkg`` (``type`` in ROS 1 files).
+    - ``name``: the node-name override, or ``None`` to keep the name the executable gives itself.
+    - ``namespace``: the namespace after any enclosing ``<push-ros-namespace>``, or ``None`` when
+      neither the node nor a group sets one. Not validated here; the bus validates names.
+    - ``output``: ``"screen"``, ``"log"``, ``"both"``, ``"own_log"``, ``"full"`` or ``None``.
+    - ``respawn_delay_s``: seconds to wait before restarting a node that exited (with ``respawn``).
+    - ``parameters``: ``(name, value)`` in document order; nested ``<param>`` names joined by ``.``.
+    - ``remappings``: ``(from, to)`` in document order.
+    - ``shutdown_on_exit``: ``on_exit="shutdown"``: when this node exits, the whole launch ends.
+    """
+
+    pkg: str
+    exec: str
+    name: str | None
+    namespace: str | None
+    output: str | None
+    respawn: bool
+    respawn_delay_s: float
+    parameters: tuple[tuple[str, ParamValue], ...]
+    remappings: tuple[tuple[str, str], ...]
+    location: SourceLocation
+    shutdown_on_exit: bool = False
+
+
+@dataclass(frozen=True)
+class LaunchDescription:
+    """A launch file with its includes flattened.
+
+    - ``nodes``: every node that survived its ``if``/``unless`` conditions, in document order,
+      included files expanded in place.
+    - ``args``: the top-level file's declared arguments with their final values (read-only).
+    - ``files``: every file read, the top-level one first, each once, in the order first read.
+    """
+
+    nodes: tuple[NodeAction, ...]
+    args: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    files: tuple[str, ...] = ()
