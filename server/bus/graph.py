@@ -102,6 +102,7 @@ class Bus:
         self._timers: list[tuple[float, int, Timer]] = []
         self._seq = itertools.count()
         self._wakers: list[Callable[[], None]] = []
+        self.devices: dict[str, Any] = {}  # hardware the nodes may use: 'keyboard', 'display'
 
     # -- membership ------------------------------------------------------
     @contextmanager

@@ -1,0 +1,12 @@
+"""The HTTP and WebSocket API, one router per resource, gathered here."""
+
+from fastapi import APIRouter
+
+from . import lab_routes, topics, ws_keys, ws_topics
+
+
+def build_router() -> APIRouter:
+    router = APIRouter()
+    for module in (lab_routes, topics, ws_topics, ws_keys):
+        router.include_router(module.router)
+    return router

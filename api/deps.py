@@ -1,0 +1,21 @@
+"""What route handlers take from the running app."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from fastapi import Depends, Request, WebSocket
+
+from server.lab import Lab
+
+
+def _lab(request: Request) -> Lab:
+    return request.app.state.lab
+
+
+def _ws_lab(websocket: WebSocket) -> Lab:
+    return websocket.app.state.lab
+
+
+LabDep = Annotated[Lab, Depends(_lab)]
+WsLabDep = Annotated[Lab, Depends(_ws_lab)]

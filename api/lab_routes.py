@@ -1,0 +1,31 @@
+"""REST: health and the lab's own controls (reset the rocket)."""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+from fastapi import APIRouter
+
+from .deps import LabDep
+from .schemas import Health
+
+router = APIRouter(prefix="/api", tags=["lab"])
+
+
+@router.get("/health", response_model=Health)
+def health(lab: LabDep) -> dict[str, Any]:
+    return {
+        "status": "ok",
+        "launch": lab.settings.launch,
+        "nodes": len(lab.bus.nodes),
+        "topics": len(lab.bus.topics),
+        "uptime_s": round(time.monotonic() - lab.started_at, 3),
+    }
+
+
+@router.post("/rocket/reset")
+def reset_rocket(lab: LabDep) -> dict[str, str]:
+    """Put the rocket back on the pad and restart the countdown (the rocket's nodes restart)."""
+    lab.reset_rocket()
+    return {"status": "reset"}

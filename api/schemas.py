@@ -1,0 +1,44 @@
+"""Request and response bodies of the REST API (pydantic at the boundary only)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field
+
+
+class TopicSummary(BaseModel):
+    name: str = Field(examples=["/countdown"])
+    type: str = Field(examples=["std_msgs/msg/Int64"])
+    publishers: list[str] = Field(description="fully qualified names of the publishing nodes")
+    subscribers: list[str] = Field(description="fully qualified names of the subscribing nodes")
+
+
+class TopicDetail(TopicSummary):
+    latest: dict[str, Any] | None = Field(description="the last message published, or null")
+    latest_time: float | None = Field(description="when it was published (s, Unix epoch)")
+    publish_count: int
+    publisher_depths: list[int] = Field(description="QoS depth (keep-last) of each publisher")
+    subscriber_depths: list[int] = Field(description="QoS depth (keep-last) of each subscription")
+
+
+class PublishRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    topic: str = Field(examples=["/abort_takeoff"])
+    msg: dict[str, Any] = Field(default_factory=dict, examples=[{"data": True}])
+    type: str | None = Field(default=None, description="needed only when the topic does not exist yet",
+                             examples=["std_msgs/msg/Bool"])
+
+
+class PublishResult(BaseModel):
+    topic: str
+    type: str
+    subscribers: int = Field(description="how many subscriptions received the message")
+
+
+class Health(BaseModel):
+    status: str
+    launch: str
+    nodes: int
+    topics: int
+    uptime_s: float

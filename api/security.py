@@ -1,0 +1,102 @@
+"""Safe by default: only this machine's host names, no cross-site writes, bounded bodies.
+
+A page on another site must never be able to fly the drone: WebSockets and state-changing
+requests carrying another site's Origin are refused, and a Host header that is not a name of
+this machine (DNS rebinding) is refused outright.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable
+from urllib.parse import urlsplit
+
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
+
+SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
+
+
+def _host_name(host_header: str) -> str:
+    host = host_header.strip().lower()
+    if host.startswith("["):  # [::1]:8000
+        return host[1:].split("]", 1)[0]
+    return host.rsplit(":", 1)[0] if host.count(":") == 1 else host
+
+
+def host_allowed(host_header: str | None, accepted: Iterable[str]) -> bool:
+    return host_header is not None and _host_name(host_header) in set(accepted)
+
+
+def origin_allowed(origin: str | None, host_header: str | None, allowed_origins: Iterable[str]) -> bool:
+    """No Origin (a non-browser client) or the page's own origin; anything else must be listed."""
+    if origin is None:
+        return True
+    if origin in set(allowed_origins):
+        return True
+    parts = urlsplit(origin)
+    if parts.scheme not in ("http", "https") or not parts.netloc or host_header is None:
+        return False
+    return parts.netloc.lower() == host_header.strip().lower()
+
+
+def _header(scope: Scope, name: bytes) -> str | None:
+    for key, value in scope.get("headers", []):
+        if key == name:
+            return value.decode("latin-1")
+    return None
+
+
+class GuardMiddleware:
+    """Host check for everything; Origin check for WebSockets and writes; a cap on body size."""
+
+    def __init__(self, app: ASGIApp, accepted_hosts: Iterable[str], allowed_origins: Iterable[str],
+                 max_body_bytes: int) -> None:
+        self.app = app
+        self.accepted_hosts = frozenset(accepted_hosts)
+        self.allowed_origins = frozenset(allowed_origins)
+        self.max_body_bytes = max_body_bytes
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] not in ("http", "websocket"):
+            return await self.app(scope, receive, send)
+        host = _header(scope, b"host")
+        if not host_allowed(host, self.accepted_hosts):
+            return await self._refuse(scope, send, 421, f"host {host!r} is not a name of this server")
+        cross_site = not origin_allowed(_header(scope, b"origin"), host, self.allowed_origins)
+        if cross_site and (scope["type"] == "websocket" or scope["method"] not in SAFE_METHODS):
+            return await self._refuse(scope, send, 403, "cross-site origin refused")
+        if scope["type"] == "http" and scope["method"] not in SAFE_METHODS:
+            length = _header(scope, b"content-length")
+            if length is not None and length.isdigit() and int(length) > self.max_body_bytes:
+                return await self._refuse(scope, send, 413, f"body larger than {self.max_body_bytes} bytes")
+            receive = self._bounded(receive)
+        await self.app(scope, receive, send)
+
+    def _bounded(self, receive: Receive) -> Receive:
+        seen = 0
+
+        async def bounded() -> Message:
+            nonlocal seen
+            message = await receive()
+            seen += len(message.get("body", b""))
+            if seen > self.max_body_bytes:
+                raise BodyTooLarge(self.max_body_bytes)
+            return message
+
+        return bounded
+
+    async def _refuse(self, scope: Scope, send: Send, status: int, detail: str) -> None:
+        if scope["type"] == "websocket":
+            # Closing before accepting makes the server answer the handshake with 403.
+            await send({"type": "websocket.close", "code": 1008, "reason": detail})
+            return
+        body = json.dumps({"detail": detail}).encode()
+        await send({"type": "http.response.start", "status": status,
+                    "headers": [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())]})
+        await send({"type": "http.response.body", "body": body})
+
+
+class BodyTooLarge(Exception):
+    def __init__(self, limit: int) -> None:
+        self.limit = limit
+        super().__init__(f"body larger than {limit} bytes")

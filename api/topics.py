@@ -1,0 +1,72 @@
+"""REST: topics (like ``ros2 topic list/info/echo --once``) and one-shot publishing."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from fastapi import APIRouter
+
+from server.bus import Topic, validate_topic_name
+
+from .deps import LabDep
+from .errors import http_error
+from .schemas import PublishRequest, PublishResult, TopicDetail, TopicSummary
+
+router = APIRouter(prefix="/api", tags=["topics"])
+
+
+def summary(topic: Topic) -> dict[str, Any]:
+    return {
+        "name": topic.name,
+        "type": topic.msg_type.TYPE,
+        "publishers": [p.node.fully_qualified_name for p in topic.publishers],
+        "subscribers": [s.node.fully_qualified_name for s in topic.subscriptions],
+    }
+
+
+def _reject_non_finite(value: Any, path: str = "msg") -> None:
+    """JSON from Python may carry NaN or Infinity; no lab topic wants them."""
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError(f"{path}: {value} is not a finite number")
+    if isinstance(value, dict):
+        for k, v in value.items():
+            _reject_non_finite(v, f"{path}.{k}")
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            _reject_non_finite(v, f"{path}[{i}]")
+
+
+@router.get("/topics", response_model=list[TopicSummary])
+def list_topics(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
+    """Every topic with its type, publishers and subscribers (``hidden=true`` adds /rosout and the like)."""
+    topics = sorted(lab.bus.topics.values(), key=lambda t: t.name)
+    return [summary(t) for t in topics if hidden or not t.hidden]
+
+
+@router.get("/topics/{name:path}", response_model=TopicDetail)
+def topic_info(name: str, lab: LabDep) -> dict[str, Any]:
+    """One topic (its name without the leading slash), with its latest message."""
+    try:
+        topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
+    except Exception as exc:
+        raise http_error(exc) from exc
+    return {
+        **summary(topic),
+        "latest": topic.latest.to_dict() if topic.latest is not None else None,
+        "latest_time": topic.latest_time_s,
+        "publish_count": topic.publish_count,
+        "publisher_depths": [p.depth for p in topic.publishers],
+        "subscriber_depths": [s.depth for s in topic.subscriptions],
+    }
+
+
+@router.post("/publish", response_model=PublishResult)
+def publish(body: PublishRequest, lab: LabDep) -> dict[str, Any]:
+    """Publish one message, as ``ros2 topic pub --once``; give ``type`` to create a new topic."""
+    try:
+        _reject_non_finite(body.msg)
+        name, type_name, count = lab.publish(body.topic, body.msg, body.type)
+    except Exception as exc:
+        raise http_error(exc) from exc
+    return {"topic": name, "type": type_name, "subscribers": count}

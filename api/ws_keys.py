@@ -1,0 +1,107 @@
+"""WebSocket key channel: ``/ws/keys`` turns browser key events into keyboard_msgs/Key messages.
+
+Frames: ``{"type": "keydown"|"keyup", "key": <KeyboardEvent.key>}`` with optional ``code`` and
+``location`` (as the browser reports them), ``repeat``, and modifier flags (``shift``, ``ctrl``,
+``alt``, ``meta``, or sided: ``lshift``, ``rshift`` ...). ``{"type": "release_all"}`` releases
+every key this connection holds (the page sends it on blur); ``{"type": "heartbeat"}`` keeps the
+channel alive. Garbage closes the channel with a named code; an unknown key only gets an error
+frame. When the channel closes, its held keys are released.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+from typing import Any
+
+from fastapi import APIRouter, WebSocket, WebSocketDisconnect
+
+from server.devices.keymap import MODIFIER_FLAG_NAMES, UnknownKeyError, modifier_bits, sdl_code
+
+from .deps import WsLabDep
+from .errors import CloseCode
+
+router = APIRouter(tags=["websockets"])
+_ids = itertools.count(1)
+FRAME_FIELDS = frozenset({"type", "key", "code", "location", "repeat", "t", *MODIFIER_FLAG_NAMES})
+MAX_KEY_CHARS = 32
+
+
+class BadFrame(ValueError):
+    """A frame that is not a key-channel frame at all."""
+
+
+def parse_frame(text: str) -> dict[str, Any]:
+    try:
+        frame = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise BadFrame(f"malformed JSON: {exc.msg} at char {exc.pos}") from None
+    if not isinstance(frame, dict):
+        raise BadFrame("a frame must be a JSON object")
+    unknown = set(frame) - FRAME_FIELDS
+    if unknown:
+        raise BadFrame(f"unknown field(s): {', '.join(sorted(unknown))}")
+    kind = frame.get("type")
+    if kind not in ("keydown", "keyup", "release_all", "heartbeat"):
+        raise BadFrame(f"type must be keydown, keyup, release_all or heartbeat, got {kind!r}")
+    if kind in ("keydown", "keyup"):
+        key = frame.get("key")
+        if not isinstance(key, str) or not 0 < len(key) <= MAX_KEY_CHARS:
+            raise BadFrame("key must be a KeyboardEvent.key string")
+        if not isinstance(frame.get("code", ""), str):
+            raise BadFrame("code must be a KeyboardEvent.code string")
+        location = frame.get("location", 0)
+        if isinstance(location, bool) or not isinstance(location, int) or not 0 <= location <= 3:
+            raise BadFrame("location must be 0, 1, 2 or 3")
+    return frame
+
+
+@router.websocket("/ws/keys")
+async def keys(websocket: WebSocket, lab: WsLabDep) -> None:
+    await websocket.accept()
+    source = f"ws-keys-{next(_ids)}"
+    limit = lab.settings.max_ws_frame_bytes
+    try:
+        while True:
+            message = await websocket.receive()
+            if message["type"] == "websocket.disconnect":
+                return
+            text = message.get("text")
+            if text is None:
+                await websocket.close(CloseCode.UNSUPPORTED_DATA, "the key channel takes JSON text frames")
+                return
+            if len(text) > limit:
+                await websocket.close(CloseCode.MESSAGE_TOO_BIG, f"frame larger than {limit} bytes")
+                return
+            try:
+                frame = parse_frame(text)
+            except BadFrame as exc:
+                await websocket.close(CloseCode.INVALID_PAYLOAD, str(exc)[:120])
+                return
+            error = handle_frame(lab, source, frame)
+            if error is not None:
+                await websocket.send_json({"type": "error", "error": error})
+    except WebSocketDisconnect:
+        return
+    finally:
+        lab.keyboard.release_all(source)
+
+
+def handle_frame(lab: Any, source: str, frame: dict[str, Any]) -> str | None:
+    """Apply one valid frame; returns an error for the client, or None."""
+    kind = frame["type"]
+    if kind == "heartbeat":
+        return None
+    if kind == "release_all":
+        lab.keyboard.release_all(source)
+        return None
+    try:
+        code = sdl_code(frame["key"], frame.get("code"), frame.get("location"))
+        mods = modifier_bits({k: v for k, v in frame.items() if k in MODIFIER_FLAG_NAMES})
+    except (UnknownKeyError, ValueError) as exc:
+        return str(exc)
+    if kind == "keydown":
+        lab.keyboard.key_down(code, mods, source)
+    else:
+        lab.keyboard.key_up(code, mods, source)
+    return None

@@ -1,0 +1,56 @@
+"""The app factory: FastAPI with a lifespan that owns the lab (bus, sim loop, viser)."""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator
+from contextlib import asynccontextmanager
+from pathlib import Path
+
+from fastapi import FastAPI, Request
+from fastapi.responses import JSONResponse
+from fastapi.staticfiles import StaticFiles
+
+from api import build_router
+from api.security import BodyTooLarge, GuardMiddleware
+from server.bus import Clock
+from server.lab import Lab
+from server.settings import Settings
+from server.viewer.page import router as page_router
+
+STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
+
+
+def create_app(settings: Settings | None = None, clock: Clock | None = None) -> FastAPI:
+    settings = settings or Settings()
+
+    @asynccontextmanager
+    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        lab = Lab(settings, clock)
+        app.state.lab = lab
+        await lab.start()
+        try:
+            yield
+        finally:
+            await lab.stop()
+
+    app = FastAPI(
+        title="Teleop lab",
+        summary="ROS 2 Lab 2 in the browser: topics, nodes, a rocket and a quadrotor.",
+        version="0.1.0",
+        lifespan=lifespan,
+    )
+    app.include_router(build_router())
+    app.include_router(page_router)
+    app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
+    app.add_middleware(
+        GuardMiddleware,
+        accepted_hosts=settings.accepted_hosts,
+        allowed_origins=settings.allowed_origins,
+        max_body_bytes=settings.max_body_bytes,
+    )
+
+    @app.exception_handler(BodyTooLarge)
+    async def too_large(_request: Request, exc: BodyTooLarge) -> JSONResponse:
+        return JSONResponse({"detail": str(exc)}, status_code=413)
+
+    return app

@@ -1,0 +1,1 @@
+"""Devices the app attaches to the bus: the browser keyboard, the 3D display."""

@@ -1,0 +1,123 @@
+"""The running lab: bus, executor, devices, launched nodes and views, wired in one place.
+
+``create_app`` owns one Lab for its lifetime; tests can build one with a ManualClock and no
+display, and step it by hand.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import time
+from pathlib import Path
+from typing import Any
+
+from server.bus import Bus, Clock, Executor, Node, Publisher, SystemClock
+from server.devices.keyboard import KeyboardDevice
+from server.launch.launcher import Launcher
+from server.msgs import Message, get_type
+from server.packages import PackageIndex
+from server.settings import Settings
+
+log = logging.getLogger("lab")
+
+LAUNCH_ALIASES = {
+    "rocket": ("rocketship", "rocket.launch"),
+    "fly": ("flightcontroller", "fly.launch"),
+    "all": ("lab", "all.launch"),
+}
+
+
+class ApiNode(Node):
+    """Hidden node ``_rest_api`` that owns the publishers REST calls use (like rqt's publisher)."""
+
+    def __init__(self, max_topics: int) -> None:
+        super().__init__("_rest_api")
+        self.max_topics = max_topics
+        self.pubs: dict[str, Publisher] = {}
+
+    def publisher_for(self, topic: str, msg_type: type[Message]) -> Publisher:
+        pub = self.pubs.get(topic)
+        if pub is not None and pub.msg_type is msg_type:
+            return pub
+        if pub is None and len(self.pubs) >= self.max_topics:
+            raise ValueError(f"the API already publishes on {self.max_topics} topics; no more may be created")
+        pub = self.create_publisher(msg_type, topic, 10)
+        self.pubs[topic] = pub
+        return pub
+
+
+class Lab:
+    def __init__(self, settings: Settings, clock: Clock | None = None) -> None:
+        self.settings = settings
+        self.bus = Bus(clock or SystemClock())
+        self.executor = Executor(self.bus)
+        self.packages = PackageIndex()
+        self.launcher = Launcher(self.bus, self.packages)
+        self.keyboard = KeyboardDevice()
+        self.bus.devices["keyboard"] = self.keyboard
+        self.display: Any = None
+        self.rocket_view: Any = None
+        self.started_at = time.monotonic()
+        self._spin_task: asyncio.Task[None] | None = None
+        with self.bus.activate():
+            self.api_node = ApiNode(settings.max_api_topics)
+
+    # -- life ----------------------------------------------------------------
+    def launch_path(self, launch: str) -> Path:
+        if launch in LAUNCH_ALIASES:
+            pkg, file = LAUNCH_ALIASES[launch]
+            return self.packages.share_dir(pkg) / "launch" / file
+        return Path(launch)
+
+    def start_nodes(self) -> None:
+        """Launch the configured launch file and the tool nodes (views); no event loop needed."""
+        self.launcher.launch_file(self.launch_path(self.settings.launch), self.settings.launch_args)
+        from server.viewer.rocket_view import RocketViewNode
+
+        with self.bus.activate():
+            self.rocket_view = RocketViewNode(self.display, self.reset_rocket)
+
+    async def start(self) -> None:
+        if self.settings.viewer:
+            from server.viewer.display import Display
+
+            self.display = Display(asyncio.get_running_loop())
+            self.bus.devices["display"] = self.display
+        self.start_nodes()
+        self._spin_task = asyncio.create_task(self.executor.spin(), name="executor")
+
+    async def stop(self) -> None:
+        self.executor.stop()
+        if self._spin_task is not None:
+            await self._spin_task
+        self.launcher.shutdown()
+        for node in list(self.bus.nodes):
+            node.destroy_node()
+        if self.display is not None:
+            self.display.stop()
+
+    # -- actions -------------------------------------------------------------
+    def publish(self, topic: str, msg: dict[str, Any], type_name: str | None) -> tuple[str, str, int]:
+        """Publish one message from JSON; returns (topic, type, subscriptions reached)."""
+        name = self.api_node.resolve_topic_name(topic)
+        existing = self.bus.topics.get(name)
+        if existing is None and type_name is None:
+            from server.bus import UnknownTopicError
+
+            raise UnknownTopicError(name)
+        msg_type = get_type(type_name) if type_name is not None else existing.msg_type
+        if existing is not None and existing.msg_type is not msg_type:
+            from server.bus import TopicTypeError
+
+            raise TopicTypeError(f"{name} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
+        message = msg_type.from_dict(msg)
+        pub = self.api_node.publisher_for(name, msg_type)
+        return name, msg_type.TYPE, pub.publish(message)
+
+    def reset_rocket(self) -> None:
+        """Put the rocket back on the pad: restart the rocket launch's nodes, as a student would."""
+        self.launcher.restart(lambda e: Path(e.file).name == "rocket.launch" and e.action.pkg == "rocketship")
+        if self.rocket_view is not None:
+            self.rocket_view.reset()
+        log.info("rocket reset: back on the pad, countdown restarted")

@@ -1,0 +1,72 @@
+"""The lab's ROS packages, resolved to this project's nodes: ``(pkg, exec)`` → a Node class.
+
+Each package is a folder here; its ``launch/`` folder is what ``$(find-pkg-share PKG)`` names.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from server.bus import Node
+
+HERE = Path(__file__).resolve().parent
+
+# exec name → "module:Class", per package, with the lab's executable names.
+BUILTIN: dict[str, dict[str, str]] = {
+    "rocketship": {
+        "countdown": "server.packages.rocketship.countdown:CountDownNode",
+        "main_controller": "server.packages.rocketship.main_controller:MainControllerNode",
+        "rocket_engine.py": "server.packages.rocketship.rocket_engine:RocketEngineNode",
+        "keyboard_manager.py": "server.packages.rocketship.keyboard_manager:KeyboardManager",
+    },
+    "keyboard": {"keyboard": "server.packages.keyboard.keyboard:KeyboardNode"},
+    "lab": {},
+}
+
+
+class PackageNotFoundError(LookupError):
+    def __init__(self, pkg: str, known: list[str]) -> None:
+        self.pkg = pkg
+        super().__init__(f"package {pkg!r} not found (known: {', '.join(known)})")
+
+
+class ExecutableNotFoundError(LookupError):
+    def __init__(self, pkg: str, exe: str, known: list[str]) -> None:
+        self.pkg, self.exe = pkg, exe
+        super().__init__(f"package {pkg!r} has no executable {exe!r} (it has: {', '.join(known) or 'none'})")
+
+
+@dataclass
+class PackageIndex:
+    """The packages a launch can name; students' packages are added at run time."""
+
+    executables: dict[str, dict[str, str | Callable[[], Node]]] = field(
+        default_factory=lambda: {pkg: dict(exes) for pkg, exes in BUILTIN.items()}
+    )
+    share_dirs: dict[str, Path] = field(default_factory=dict)
+
+    def share_dir(self, pkg: str) -> Path:
+        if pkg in self.share_dirs:
+            return self.share_dirs[pkg]
+        if pkg in self.executables:
+            return HERE / pkg
+        raise PackageNotFoundError(pkg, sorted(self.executables))
+
+    def factory(self, pkg: str, exe: str) -> Callable[[], Node]:
+        if pkg not in self.executables:
+            raise PackageNotFoundError(pkg, sorted(self.executables))
+        target = self.executables[pkg].get(exe)
+        if target is None:
+            raise ExecutableNotFoundError(pkg, exe, sorted(self.executables[pkg]))
+        if callable(target):
+            return target
+        module, _, attr = target.partition(":")
+        return getattr(importlib.import_module(module), attr)
+
+    def add_executable(self, pkg: str, exe: str, target: str | Callable[[], Node], share_dir: Path | None = None) -> None:
+        self.executables.setdefault(pkg, {})[exe] = target
+        if share_dir is not None:
+            self.share_dirs[pkg] = share_dir

@@ -1,0 +1,1 @@
+"""The lab's rocketship package: countdown, main controller, engine, and the keyboard manager."""

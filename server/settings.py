@@ -1,0 +1,35 @@
+"""Settings for one app instance: where it listens, what it launches, what it lets in."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
+
+
+@dataclass(frozen=True)
+class Settings:
+    host: str = "127.0.0.1"
+    port: int = 8000
+    launch: str = "all"  # rocket | fly | all | a path to a launch file
+    launch_args: dict[str, str] = field(default_factory=dict)
+    viewer: bool = True  # start viser (tests of the API alone may switch it off)
+    # Extra Host names and Origins to accept besides this machine's loopback names.
+    allowed_hosts: tuple[str, ...] = ()
+    allowed_origins: tuple[str, ...] = ()
+    max_body_bytes: int = 64 * 1024
+    max_ws_frame_bytes: int = 16 * 1024
+    max_api_topics: int = 256  # topics the REST API may create, so a loop of typos cannot grow memory
+
+    def __post_init__(self) -> None:
+        if not 0 <= self.port <= 65535:
+            raise ValueError(f"port must be in 0..65535, got {self.port}")
+        if self.max_body_bytes < 1024 or self.max_ws_frame_bytes < 256:
+            raise ValueError("size limits are too small to carry a message")
+
+    @property
+    def accepted_hosts(self) -> frozenset[str]:
+        hosts = set(LOOPBACK_HOSTS) | set(self.allowed_hosts)
+        if self.host not in ("0.0.0.0", "::"):
+            hosts.add(self.host)
+        return frozenset(h.lower() for h in hosts)
