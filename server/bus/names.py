@@ -80,16 +80,28 @@ def validate_topic_name(name: str) -> str:
 def resolve_topic_name(
     name: str, node_name: str = "", namespace: str = "/", remappings: Mapping[str, str] | None = None
 ) -> str:
-    """Resolve to a fully qualified name (``/ns/topic``), then apply remapping rules."""
-    validate_topic_name(name)
+    """Resolve to a fully qualified name (``/ns/topic``), then apply remapping rules.
+
+    As in ROS 2, both sides of a rule are expanded like the name itself, so ``cmd:=vel`` in
+    namespace ``/ns`` means ``/ns/cmd:=/ns/vel``.
+    """
     ns = validate_namespace(namespace)
+    full = _expand(name, node_name, ns)
+    for match, replacement in (remappings or {}).items():
+        if _expand(match, node_name, ns) == full:
+            return _expand(replacement, node_name, ns)
+    return full
+
+
+def _expand(name: str, node_name: str, ns: str) -> str:
+    validate_topic_name(name)
 
     def subst(match: re.Match[str]) -> str:
         key = match.group(1)
         if key == "node" and node_name:
             return node_name
-        if key == "ns":
-            return ns.strip("/")
+        if key in ("ns", "namespace"):
+            return ns  # with its leading '/', as rcl does: "{ns}/x" is absolute
         raise InvalidNameError("topic", name, f"unknown substitution {{{key}}}")
 
     expanded = _SUBST.sub(subst, name)
@@ -104,8 +116,6 @@ def resolve_topic_name(
         full = ns.rstrip("/") + "/" + expanded
     full = "/" + "/".join(t for t in full.split("/") if t)
     validate_topic_name(full)
-    if remappings:
-        full = remappings.get(full, full)
     return full
 
 

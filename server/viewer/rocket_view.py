@@ -7,7 +7,6 @@ is the commanded velocity integrated, since the lab's rocket has no position mod
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -77,9 +76,15 @@ class RocketTracker:
         return "Ready for countdown"
 
 
+DISPLAY_CEILING_M = 12.0  # scene height the rocket approaches but never leaves the view past
+DISPLAY_HALF_M = 30.0  # true altitude shown at half the ceiling
+
+
 def display_height(altitude_m: float) -> float:
-    """Scene height for a true altitude: linear near the pad, logarithmic above, so it stays in view."""
-    return 4.0 * math.log1p(max(altitude_m, 0.0) / 2.0)
+    """Scene height for a true altitude: near-linear off the pad, then squeezed under a ceiling,
+    so a rocket at 100 km is still in the picture (the label gives the true altitude)."""
+    h = max(altitude_m, 0.0)
+    return DISPLAY_CEILING_M * h / (h + DISPLAY_HALF_M)
 
 
 def _cone(radius: float, height: float, segments: int = 24) -> tuple[np.ndarray, np.ndarray]:
@@ -98,6 +103,7 @@ class RocketScene:
     def __init__(self, display: Display, on_reset: Callable[[], None]) -> None:
         scene, gui = display.scene, display.gui
         x, y = PAD_XY
+        display.add_view("Rocket", (x + 17.0, y - 17.0, 9.0), (x, y, 7.0), initial=True)
         scene.add_grid("/rocket_lab/ground", width=30, height=30, cell_size=1.0, position=(x, y, 0))
         scene.add_box("/rocket_lab/pad", color=(110, 110, 120), dimensions=(3.0, 3.0, 0.3), position=(x, y, 0.15))
         scene.add_box("/rocket_lab/tower", color=(170, 60, 40), dimensions=(0.3, 0.3, 6.0), position=(x + 1.2, y, 3.0))
