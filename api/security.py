@@ -11,6 +11,7 @@ import json
 from collections.abc import Iterable
 from urllib.parse import urlsplit
 
+from starlette.exceptions import HTTPException
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
@@ -96,7 +97,13 @@ class GuardMiddleware:
         await send({"type": "http.response.body", "body": body})
 
 
-class BodyTooLarge(Exception):
+class BodyTooLarge(HTTPException):
+    """Raised while a body without Content-Length is read; an HTTPException so that FastAPI's
+    body parser re-raises it (any other exception there becomes a 400 "error parsing the body")."""
+
     def __init__(self, limit: int) -> None:
         self.limit = limit
-        super().__init__(f"body larger than {limit} bytes")
+        super().__init__(413, f"body larger than {limit} bytes")
+
+    def __str__(self) -> str:
+        return str(self.detail)
