@@ -12,6 +12,7 @@ from sim.control.cascade import (
 from sim.control.closed_loop import CascadeGains, ClosedLoop
 from sim.control.lab_position import LAB_PID_DT_S, LabPositionController
 from sim.control.pid import PID
+from sim.control.simple_loop import SimpleModeLoop
 
 __all__ = [
     "LAB_PID_DT_S",
@@ -24,6 +25,7 @@ __all__ = [
     "LabPositionController",
     "PositionController",
     "PositionGains",
+    "SimpleModeLoop",
     "VelocityController",
     "VelocityGains",
 ]

@@ -22,7 +22,7 @@ DEFAULT_POSITION_SETPOINT_M = (0.0, 0.0, 3.0)
 class PositionGains:
     """Position error (m) -> velocity setpoint (m/s), then speed limits."""
 
-    kp_xy_1_s: float = 1.0
+    kp_xy_1_s: float = 0.8
     kp_z_1_s: float = 1.0
     max_speed_xy_m_s: float = 4.0
     """Limit on the horizontal speed (norm of x, y), keeping the direction."""
@@ -31,12 +31,18 @@ class PositionGains:
 
 @dataclass(frozen=True)
 class VelocityGains:
-    """Velocity error (m/s) -> acceleration command (m/s^2) -> tilt and thrust."""
+    """Velocity error (m/s) -> acceleration command (m/s^2) -> tilt and thrust.
 
-    kp_xy_1_s: float = 2.0
+    The kd terms act on the measured acceleration (the derivative of the measured velocity),
+    not on the error, so a step in the velocity setpoint causes no kick.
+    """
+
+    kp_xy_1_s: float = 2.5
     ki_xy_1_s2: float = 0.0
+    kd_xy_s: float = 0.3
     kp_z_1_s: float = 4.0
-    ki_z_1_s2: float = 1.0
+    ki_z_1_s2: float = 0.3
+    kd_z_s: float = 0.0
     integral_limit_m_s: float = 2.0
     min_thrust_n: float = 0.0
     max_thrust_n: float = 20.0
@@ -92,12 +98,20 @@ class VelocityController:
     The tilt points the thrust along the desired acceleration plus gravity, rotated into the
     heading frame; at yaw 0 and small angles this is the lab's corrected sign chain
     roll_sp = -u_y, pitch_sp = +u_x (with u = a/g). Thrust is m(g + a_z) divided by the measured
-    tilt cosine, so climbing rate does not sag while the vehicle leans.
+    tilt cosine, so climbing rate does not sag while the vehicle leans. The vehicle's known
+    quadratic drag at the setpoint velocity is fed forward, so steady flight needs no integral.
     """
 
-    def __init__(self, mass_kg: float, gravity_m_s2: float = 9.81, gains: VelocityGains | None = None):
+    def __init__(
+        self,
+        mass_kg: float,
+        gravity_m_s2: float = 9.81,
+        gains: VelocityGains | None = None,
+        drag_coeff_n_per_m_s2: float = 0.0,
+    ):
         self.gains = gains if gains is not None else VelocityGains()
         self.mass_kg, self.gravity_m_s2 = mass_kg, gravity_m_s2
+        self.drag_per_mass = drag_coeff_n_per_m_s2 / mass_kg
         g = self.gains
         limit = g.integral_limit_m_s
         self.pids = (
@@ -107,6 +121,7 @@ class VelocityController:
         )
         self.setpoint_m_s = (0.0, 0.0, 0.0)
         self.yaw_setpoint_rad = 0.0
+        self._prev_velocity: tuple[float, ...] | None = None
 
     def set_setpoint(self, velocity_m_s: Sequence[float], yaw_rad: float = 0.0) -> None:
         self.setpoint_m_s = as_finite_floats("velocity_m_s", velocity_m_s, 3)
@@ -118,6 +133,14 @@ class VelocityController:
         measured = as_finite_floats("measured_velocity_m_s", measured_velocity_m_s, 3)
         roll, pitch, yaw = as_finite_floats("measured_euler_rad", measured_euler_rad, 3)
         ax, ay, az = (pid.update(sp, m, dt_s) for pid, sp, m in zip(self.pids, self.setpoint_m_s, measured))
+        prev = self._prev_velocity if self._prev_velocity is not None else measured
+        self._prev_velocity = measured
+        kd_xy, kd_z = self.gains.kd_xy_s / dt_s, self.gains.kd_z_s / dt_s
+        sx, sy, sz = self.setpoint_m_s
+        drag = self.drag_per_mass * math.sqrt(sx * sx + sy * sy + sz * sz)
+        ax += drag * sx - kd_xy * (measured[0] - prev[0])
+        ay += drag * sy - kd_xy * (measured[1] - prev[1])
+        az += drag * sz - kd_z * (measured[2] - prev[2])
         g = self.gravity_m_s2
         # Specific force to produce, in the heading frame (x forward, y left, z up).
         c, s = math.cos(yaw), math.sin(yaw)

@@ -41,18 +41,22 @@ class ClosedLoop:
         self.sim = sim
         self.control_dt_s = 1.0 / control_rate_hz
         self.position = PositionController(gains.position)
-        self.velocity = VelocityController(sim.params.mass_kg, sim.params.gravity_m_s2, gains.velocity)
+        p = sim.params
+        self.velocity = VelocityController(p.mass_kg, p.gravity_m_s2, gains.velocity, p.drag_coeff_n_per_m_s2)
         self.angle = AngleController(gains.angle)
         self._velocity_mode = False
+        self._yaw_rad = 0.0
 
-    def set_position_setpoint(self, position_m: Sequence[float]) -> None:
-        """Fly to position_m (m, world); the position controller drives the velocity setpoint."""
+    def set_position_setpoint(self, position_m: Sequence[float], yaw_rad: float = 0.0) -> None:
+        """Fly to position_m (m, world) facing yaw_rad; the position controller drives the velocity."""
+        (yaw,) = as_finite_floats("yaw_rad", (yaw_rad,), 1)
         self.position.set_setpoint(position_m)
+        self._yaw_rad = yaw
         self._velocity_mode = False
 
-    def set_velocity_setpoint(self, velocity_m_s: Sequence[float]) -> None:
+    def set_velocity_setpoint(self, velocity_m_s: Sequence[float], yaw_rad: float = 0.0) -> None:
         """Track velocity_m_s (m/s, world) directly, bypassing the position controller."""
-        self.velocity.set_setpoint(as_finite_floats("velocity_m_s", velocity_m_s, 3))
+        self.velocity.set_setpoint(velocity_m_s, yaw_rad)
         self._velocity_mode = True
 
     def tick(self) -> QuadrotorState:
@@ -60,7 +64,7 @@ class ClosedLoop:
         state = self.sim.state
         dt = self.control_dt_s
         if not self._velocity_mode:
-            self.velocity.set_setpoint(self.position.update(state.position_m, dt))
+            self.velocity.set_setpoint(self.position.update(state.position_m, dt), self._yaw_rad)
         self.angle.set_setpoint(self.velocity.update(state.velocity_m_s, state.euler_sxyz_rad, dt))
         self.sim.set_command(self.angle.update(state.euler_sxyz_rad, dt))
         self.sim.advance(dt)
