@@ -73,10 +73,11 @@ class Lab:
     def start_nodes(self) -> None:
         """Launch the configured launch file and the tool nodes (views); no event loop needed."""
         self.launcher.launch_file(self.launch_path(self.settings.launch), self.settings.launch_args)
-        from server.viewer.rocket_view import RocketViewNode
+        if any(e.action.pkg == "rocketship" for e in self.launcher.launched):
+            from server.viewer.rocket_view import RocketViewNode
 
-        with self.bus.activate():
-            self.rocket_view = RocketViewNode(self.display, self.reset_rocket)
+            with self.bus.activate():
+                self.rocket_view = RocketViewNode(self.display, self.reset_rocket)
 
     async def start(self) -> None:
         if self.settings.viewer:

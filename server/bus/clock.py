@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from typing import Protocol
@@ -51,7 +52,9 @@ class RosTime:
 
     @classmethod
     def from_seconds(cls, t_s: float) -> RosTime:
-        return cls(int(round(t_s * 1e9)))
+        # Split first: epoch seconds * 1e9 needs more than a double's 53 bits and would lose nanoseconds.
+        sec = math.floor(t_s)
+        return cls(sec * 1_000_000_000 + round((t_s - sec) * 1e9))
 
     def to_msg(self) -> TimeMsg:
         sec, nanosec = divmod(self.nanoseconds, 1_000_000_000)

@@ -62,20 +62,24 @@ class Executor:
             self.bus.schedule(timer)
             timer.call_count += 1
             self._run(timer.node, timer.callback)
-            ran += 1
+            # Deliver what it published before the next timer due at the same instant runs, so
+            # a chain of nodes ticking together sees fresh data, not last period's.
+            ran += 1 + self._drain()
+        return ran
+
+    def _drain(self) -> int:
+        ready = self.bus._ready
+        ran = 0
+        while ready and ran < MAX_CALLBACKS_PER_PASS:
+            if self._run_subscription(ready.popleft()):
+                ran += 1
         return ran
 
     # -- stepping ----------------------------------------------------------
     def spin_some(self) -> int:
         """Run every due timer, then every queued message; returns how many callbacks ran."""
-        ran = self._run_due_timers(self.bus.clock.now())
-        ready = self.bus._ready
-        budget = MAX_CALLBACKS_PER_PASS
-        while ready and budget > 0:
-            if self._run_subscription(ready.popleft()):
-                ran += 1
-                budget -= 1
-        return ran
+        ran = self._drain()
+        return ran + self._run_due_timers(self.bus.clock.now())
 
     def next_deadline_s(self) -> float:
         heap = self.bus._timers

@@ -23,6 +23,16 @@ BUILTIN: dict[str, dict[str, str]] = {
         "keyboard_manager.py": "server.packages.rocketship.keyboard_manager:KeyboardManager",
     },
     "keyboard": {"keyboard": "server.packages.keyboard.keyboard:KeyboardNode"},
+    "flightcontroller": {
+        "position_controller.py": "server.packages.flightcontroller.position_controller:PositionControllerNode",
+        "velocity_controller.py": "server.packages.flightcontroller.velocity_controller:VelocityControllerNode",
+        "angle_controller.py": "server.packages.flightcontroller.angle_controller:AngleControllerNode",
+    },
+    "flightgoggles": {"flightgoggles_uav_dynamics": "server.packages.flightgoggles.uav_dynamics:UavDynamicsNode"},
+    "simple_sim": {"simple_sim_node": "server.packages.simple_sim.simple_sim_node:SimpleSimNode"},
+    "simple_control": {"keyboard_manager": "server.packages.simple_control.keyboard_manager:KeyboardManager"},
+    "visualizer": {"gui_controller.py": "server.packages.visualizer.gui_controller:GUIControllerNode"},
+    "sensor_simulation": {"pressure.py": "server.packages.sensor_simulation.pressure:PressureSensorNode"},
     "lab": {},
 }
 

@@ -1,0 +1,1 @@
+"""The lab's flightcontroller package: position, velocity and angle controllers as nodes."""

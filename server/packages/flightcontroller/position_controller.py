@@ -1,0 +1,78 @@
+"""position_controller_node: /uav/input/position (Vector3) + /uav/sensors/gps → /uav/input/velocity.
+
+Two modes, chosen by the ``mode`` parameter:
+- ``cascade`` (default): the retuned P law with speed limits, 50 Hz, feeding the velocity controller;
+- ``lab``: the Fall 2025 node exactly: three PIDs (Kp=1, Ki=0, Kd=0) at 100 Hz, unsaturated,
+  feeding simple_sim.
+Setpoints that are NaN, infinite or absurd are dropped with a warning; setpoints outside the
+arena are clamped to it with a warning.
+"""
+
+from __future__ import annotations
+
+from server.bus import Node
+from server.msgs import PoseStamped, Vector3
+from sim.control import LAB_PID_DT_S, LabPositionController, PositionController
+
+from .setpoints import SetpointError, check_finite, clamp_to_arena
+
+DEFAULT_SETPOINT_M = (0.0, 0.0, 3.0)
+CASCADE_RATE_HZ = 50.0
+
+
+class PositionControllerNode(Node):
+    def __init__(self) -> None:
+        super().__init__("PositionControllerNode")
+        self.mode = self.declare_parameter("mode", "cascade").value
+        if self.mode not in ("cascade", "lab"):
+            raise ValueError(f"mode must be 'cascade' or 'lab', got {self.mode!r}")
+        start_delay_s = float(self.declare_parameter("start_delay_s", 0.0).value)
+        if self.mode == "lab":
+            kp = float(self.declare_parameter("gains.p", 1.0).value)
+            ki = float(self.declare_parameter("gains.i", 0.0).value)
+            kd = float(self.declare_parameter("gains.d", 0.0).value)
+            self.controller: LabPositionController | PositionController = LabPositionController(kp, ki, kd)
+            self.period_s = LAB_PID_DT_S
+        else:
+            self.controller = PositionController(setpoint_m=DEFAULT_SETPOINT_M)
+            self.period_s = 1.0 / CASCADE_RATE_HZ
+        self.position: tuple[float, float, float] | None = None
+        self.vel_pub = self.create_publisher(Vector3, "/uav/input/velocity", 1)
+        self.create_subscription(Vector3, "/uav/input/position", self.on_setpoint, 10)
+        self.create_subscription(PoseStamped, "/uav/sensors/gps", self.on_gps, 1)
+        self.timer = None
+        if start_delay_s > 0:  # the lab's node sleeps 5 s before it starts
+            self._delay = self.create_timer(start_delay_s, self.start)
+        else:
+            self.start()
+
+    @property
+    def setpoint_m(self) -> tuple[float, ...]:
+        return tuple(self.controller.setpoint_m)
+
+    def start(self) -> None:
+        if getattr(self, "_delay", None) is not None:
+            self._delay.cancel()
+        if self.timer is None:
+            self.timer = self.create_timer(self.period_s, self.tick)
+
+    def on_setpoint(self, msg: Vector3) -> None:
+        try:
+            target = check_finite((msg.x, msg.y, msg.z), "/uav/input/position")
+        except SetpointError as exc:
+            self.get_logger().warning(f"setpoint dropped: {exc}")
+            return
+        clamped, was_outside = clamp_to_arena(target)
+        if was_outside:
+            self.get_logger().warning(f"setpoint {target} is outside the arena; clamped to {clamped}")
+        self.controller.set_setpoint(clamped)
+
+    def on_gps(self, msg: PoseStamped) -> None:
+        p = msg.pose.position
+        self.position = (p.x, p.y, p.z)
+
+    def tick(self) -> None:
+        if self.position is None:
+            return
+        vx, vy, vz = self.controller.update(self.position, self.period_s)
+        self.vel_pub.publish(Vector3(x=vx, y=vy, z=vz))

@@ -1,0 +1,1 @@
+"""The quadrotor's rotor physics as a node (after FlightGoggles' uav_dynamics)."""

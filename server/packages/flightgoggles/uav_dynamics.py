@@ -1,0 +1,68 @@
+"""flightgoggles_uav_dynamics: rotor physics behind the lab's topics.
+
+In: /uav/input/rateThrust (TwistStamped: angular = body rates rad/s, linear.z = thrust N).
+Out, at ``publish_rate_hz`` (100 by default): /uav/sensors/gps (PoseStamped, frame ``world``),
+/uav/sensors/velocity (TwistStamped: linear = world velocity m/s, angular = body rates rad/s),
+/uav/sensors/attitude (Vector3: roll, pitch, yaw rad). The physics steps at
+``physics_rate_hz`` (1000) and follows the bus clock, so sim time is real time.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from server.bus import Node
+from server.msgs import PoseStamped, TwistStamped, Vector3
+from sim.quadrotor import QuadrotorSim, QuadrotorState, RateThrustCommand
+
+MAX_CATCH_UP_S = 0.1  # after a stall, the sim skips ahead rather than running a burst of steps
+
+
+class UavDynamicsNode(Node):
+    def __init__(self) -> None:
+        super().__init__("flightgoggles_uav_dynamics")
+        rate_hz = float(self.declare_parameter("publish_rate_hz", 100.0).value)
+        physics_hz = float(self.declare_parameter("physics_rate_hz", 1000.0).value)
+        noise = bool(self.declare_parameter("noise", True).value)
+        seed = int(self.declare_parameter("seed", 0).value)
+        if not 10.0 <= rate_hz <= 1000.0:
+            raise ValueError(f"publish_rate_hz must be in 10..1000, got {rate_hz}")
+        self.sim = QuadrotorSim(rng=np.random.default_rng(seed), noise=noise, physics_rate_hz=physics_hz)
+        self.gps_pub = self.create_publisher(PoseStamped, "/uav/sensors/gps", 10)
+        self.vel_pub = self.create_publisher(TwistStamped, "/uav/sensors/velocity", 10)
+        self.att_pub = self.create_publisher(Vector3, "/uav/sensors/attitude", 10)
+        self.create_subscription(TwistStamped, "/uav/input/rateThrust", self.on_command, 1)
+        self._last_s = self.bus.clock.now()
+        self.create_timer(1.0 / rate_hz, self.tick)
+        self.publish_state(self.sim.state)
+
+    def on_command(self, msg: TwistStamped) -> None:
+        a = msg.twist.angular
+        try:
+            self.sim.set_command(RateThrustCommand((a.x, a.y, a.z), msg.twist.linear.z))
+        except ValueError as exc:
+            self.get_logger().warning(f"rateThrust dropped: {exc}")
+
+    def tick(self) -> None:
+        now = self.bus.clock.now()
+        self.sim.advance(min(max(now - self._last_s, 0.0), MAX_CATCH_UP_S))
+        self._last_s = now
+        self.publish_state(self.sim.state)
+
+    def publish_state(self, s: QuadrotorState) -> None:
+        stamp = self.get_clock().now().to_msg()
+        gps = PoseStamped()
+        gps.header.stamp, gps.header.frame_id = stamp, "world"
+        p, q = gps.pose.position, gps.pose.orientation
+        p.x, p.y, p.z = (float(v) for v in s.position_m)
+        q.w, q.x, q.y, q.z = (float(v) for v in s.attitude_wxyz)
+        self.gps_pub.publish(gps)
+        vel = TwistStamped()
+        vel.header.stamp, vel.header.frame_id = stamp, "world"
+        lin, ang = vel.twist.linear, vel.twist.angular
+        lin.x, lin.y, lin.z = (float(v) for v in s.velocity_m_s)
+        ang.x, ang.y, ang.z = (float(v) for v in s.body_rates_rad_s)
+        self.vel_pub.publish(vel)
+        roll, pitch, yaw = s.euler_sxyz_rad
+        self.att_pub.publish(Vector3(x=roll, y=pitch, z=yaw))
+

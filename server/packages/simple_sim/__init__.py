@@ -1,0 +1,1 @@
+"""The Fall 2025 lab's kinematic simulator."""

@@ -1,0 +1,123 @@
+"""GUIControllerNode: draws the quadrotor as the lab's GUI does (green hub, blue arm along body x,
+red arm along body y, L = 1 m) at its true (x, y, z), in the lab's arena, at 30 Hz rather than
+the lab's 2 Hz; plus the setpoint marker, a short trail and a telemetry panel.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+
+import numpy as np
+
+from server.bus import Node
+from server.msgs import PoseStamped, TwistStamped, Vector3
+from server.packages.flightcontroller.setpoints import ARENA_MAX_M, ARENA_MIN_M
+
+ARM_M = 1.0  # the lab draws each arm 1 m from the hub
+TRAIL_POINTS = 150
+HUB_GREEN, ARM_X_BLUE, ARM_Y_RED = (0, 200, 0), (30, 60, 255), (230, 30, 30)
+CAMERA_POSITION, CAMERA_LOOK_AT = (0.0, -24.0, 14.0), (0.0, 0.0, 4.0)  # from -y: right = +x, up = +y
+
+
+def _arena_edges() -> np.ndarray:
+    (x0, y0, z0), (x1, y1, z1) = ARENA_MIN_M, ARENA_MAX_M
+    corners = np.array([[x, y, z] for z in (z0, z1) for y in (y0, y1) for x in (x0, x1)], dtype=np.float32)
+    pairs = [(0, 1), (2, 3), (0, 2), (1, 3), (4, 5), (6, 7), (4, 6), (5, 7), (0, 4), (1, 5), (2, 6), (3, 7)]
+    return np.stack([corners[[a, b]] for a, b in pairs])
+
+
+def euler_deg(w: float, x: float, y: float, z: float) -> tuple[float, float, float]:
+    roll = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
+    pitch = math.asin(max(-1.0, min(1.0, 2 * (w * y - z * x))))
+    yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+    return math.degrees(roll), math.degrees(pitch), math.degrees(yaw)
+
+
+class DroneScene:
+    def __init__(self, display: object) -> None:
+        scene, gui = display.scene, display.gui  # type: ignore[attr-defined]
+        display.add_view("Quadrotor", CAMERA_POSITION, CAMERA_LOOK_AT)  # type: ignore[attr-defined]
+        scene.add_grid("/drone_lab/ground", width=20, height=20, cell_size=1.0, section_size=5.0)
+        scene.add_line_segments("/drone_lab/bounds", _arena_edges(), colors=(150, 150, 160), thickness=0.03)
+        self.drone = scene.add_frame("/drone_lab/drone", show_axes=False)
+        scene.add_icosphere("/drone_lab/drone/hub", radius=0.18, color=HUB_GREEN)
+        arms = np.array([[[-ARM_M, 0, 0], [ARM_M, 0, 0]], [[0, -ARM_M, 0], [0, ARM_M, 0]]], dtype=np.float32)
+        colors = np.array([[ARM_X_BLUE] * 2, [ARM_Y_RED] * 2], dtype=np.uint8)
+        scene.add_line_segments("/drone_lab/drone/arms", arms, colors=colors, thickness=0.08)
+        self.setpoint = scene.add_icosphere("/drone_lab/setpoint", radius=0.15, color=(255, 150, 0), opacity=0.6,
+                                            position=(0.0, 0.0, 3.0))
+        self.trail = scene.add_line_segments("/drone_lab/trail", np.zeros((1, 2, 3), np.float32),
+                                             colors=(90, 160, 90), thickness=0.03)
+        with gui.add_folder("Quadrotor"):
+            self.telemetry = gui.add_markdown("waiting for /uav/sensors/gps ...")
+            gui.add_markdown("Arrow keys move the setpoint 1 m: **→** +x, **←** −x, **↑** +y (away), **↓** −y.")
+        self._display = display
+
+    def draw(self, pos: tuple[float, float, float], wxyz: tuple[float, float, float, float],
+             setpoint: tuple[float, float, float] | None, trail: np.ndarray, text: str) -> None:
+        with self._display.server.atomic():  # type: ignore[attr-defined]
+            self.drone.position = pos
+            self.drone.wxyz = wxyz
+            if setpoint is not None:
+                self.setpoint.position = setpoint
+            if len(trail) >= 2:
+                self.trail.points = np.stack([trail[:-1], trail[1:]], axis=1)
+        self.telemetry.content = text
+
+
+class GUIControllerNode(Node):
+    def __init__(self) -> None:
+        super().__init__("GUIControllerNode")
+        redraw_hz = float(self.declare_parameter("redraw_hz", 30.0).value)
+        if not 1.0 <= redraw_hz <= 60.0:
+            raise ValueError(f"redraw_hz must be in 1..60, got {redraw_hz}")
+        display = self.bus.devices.get("display")
+        self.scene = DroneScene(display) if display is not None else None
+        self.pose: tuple[tuple[float, float, float], tuple[float, float, float, float]] | None = None
+        self.velocity: tuple[float, float, float] | None = None
+        self.setpoint: tuple[float, float, float] | None = None
+        self.trail: deque[tuple[float, float, float]] = deque(maxlen=TRAIL_POINTS)
+        self.frames_drawn = 0
+        self._dirty = False
+        self.create_subscription(PoseStamped, "uav/sensors/gps", self.on_gps, 10)
+        self.create_subscription(TwistStamped, "uav/sensors/velocity", self.on_velocity, 1)
+        self.create_subscription(Vector3, "uav/input/position", self.on_setpoint, 10)
+        self.create_timer(1.0 / redraw_hz, self.redraw)
+
+    def on_gps(self, msg: PoseStamped) -> None:
+        p, q = msg.pose.position, msg.pose.orientation
+        self.pose = ((p.x, p.y, p.z), (q.w, q.x, q.y, q.z))
+        self._dirty = True
+
+    def on_velocity(self, msg: TwistStamped) -> None:
+        v = msg.twist.linear
+        self.velocity = (v.x, v.y, v.z)
+
+    def on_setpoint(self, msg: Vector3) -> None:
+        self.setpoint = (msg.x, msg.y, msg.z)
+        self._dirty = True
+
+    def redraw(self) -> None:
+        if not self._dirty or self.pose is None:
+            return
+        self._dirty = False
+        pos, wxyz = self.pose
+        self.trail.append(pos)
+        self.frames_drawn += 1
+        if self.scene is not None:
+            self.scene.draw(pos, wxyz, self.setpoint, np.array(self.trail, dtype=np.float32), self.telemetry_text())
+
+    def telemetry_text(self) -> str:
+        assert self.pose is not None
+        (x, y, z), wxyz = self.pose
+        roll, pitch, yaw = euler_deg(*wxyz)
+        lines = [f"**Position** ({x:6.2f}, {y:6.2f}, {z:6.2f}) m"]
+        if self.velocity is not None:
+            vx, vy, vz = self.velocity
+            lines.append(f"**Velocity** ({vx:5.2f}, {vy:5.2f}, {vz:5.2f}) m/s")
+        lines.append(f"**Attitude** roll {roll:5.1f}°, pitch {pitch:5.1f}°, yaw {yaw:5.1f}°")
+        if self.setpoint is not None:
+            sx, sy, sz = self.setpoint
+            lines.append(f"**Setpoint** ({sx:.2f}, {sy:.2f}, {sz:.2f}) m")
+        return "  \n".join(lines)
