@@ -36,7 +36,7 @@ def http_error(exc: Exception) -> HTTPException:
     if isinstance(exc, TopicTypeError):
         return HTTPException(status.HTTP_409_CONFLICT, str(exc))
     if isinstance(exc, (InvalidNameError, InvalidQoSError, MessageError, UnknownTypeError, ValueError)):
-        return HTTPException(status.HTTP_422_UNPROCESSABLE_ENTITY, str(exc))
+        return HTTPException(status.HTTP_422_UNPROCESSABLE_CONTENT, str(exc))
     if isinstance(exc, (DestroyedError, BusError)):
         return HTTPException(status.HTTP_409_CONFLICT, str(exc))
     return HTTPException(status.HTTP_500_INTERNAL_SERVER_ERROR, f"{type(exc).__name__}: {exc}")

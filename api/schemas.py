@@ -42,3 +42,29 @@ class Health(BaseModel):
     nodes: int
     topics: int
     uptime_s: float
+
+
+class RatePublisherRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    topic: str = Field(examples=["/uav/input/position"])
+    msg: dict[str, Any] = Field(default_factory=dict, examples=[{"x": 5.0, "y": 5.0, "z": 10.0}])
+    type: str | None = Field(default=None, description="needed only when the topic does not exist yet")
+    rate_hz: float = Field(gt=0, le=1000, examples=[1.0], description="publishing rate, more than 0 and at most 1000 Hz")
+    enabled: bool = True
+
+
+class RatePublisherUpdate(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    msg: dict[str, Any] | None = None
+    rate_hz: float | None = Field(default=None, gt=0, le=1000)
+    enabled: bool | None = None
+
+
+class RatePublisherInfo(BaseModel):
+    id: str
+    topic: str
+    type: str
+    msg: dict[str, Any]
+    rate_hz: float
+    enabled: bool
+    count: int = Field(description="messages published so far")

@@ -25,16 +25,16 @@ def summary(topic: Topic) -> dict[str, Any]:
     }
 
 
-def _reject_non_finite(value: Any, path: str = "msg") -> None:
+def reject_non_finite(value: Any, path: str = "msg") -> None:
     """JSON from Python may carry NaN or Infinity; no lab topic wants them."""
     if isinstance(value, float) and not math.isfinite(value):
         raise ValueError(f"{path}: {value} is not a finite number")
     if isinstance(value, dict):
         for k, v in value.items():
-            _reject_non_finite(v, f"{path}.{k}")
+            reject_non_finite(v, f"{path}.{k}")
     elif isinstance(value, list):
         for i, v in enumerate(value):
-            _reject_non_finite(v, f"{path}[{i}]")
+            reject_non_finite(v, f"{path}[{i}]")
 
 
 @router.get("/topics", response_model=list[TopicSummary])
@@ -65,7 +65,7 @@ def topic_info(name: str, lab: LabDep) -> dict[str, Any]:
 def publish(body: PublishRequest, lab: LabDep) -> dict[str, Any]:
     """Publish one message, as ``ros2 topic pub --once``; give ``type`` to create a new topic."""
     try:
-        _reject_non_finite(body.msg)
+        reject_non_finite(body.msg)
         name, type_name, count = lab.publish(body.topic, body.msg, body.type)
     except Exception as exc:
         raise http_error(exc) from exc

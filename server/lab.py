@@ -12,11 +12,13 @@ import time
 from pathlib import Path
 from typing import Any
 
-from server.bus import Bus, Clock, Executor, Node, Publisher, SystemClock
+from server.bus import Bus, Clock, Executor, Node, Publisher, SystemClock, TopicTypeError, UnknownTopicError
 from server.devices.keyboard import KeyboardDevice
 from server.launch.launcher import Launcher
-from server.msgs import Message, get_type
+from server.msgs import Message, Vector3, get_type
+from server.packages.flightcontroller.setpoints import check_finite
 from server.packages import PackageIndex
+from server.publishers import PublisherManager
 from server.settings import Settings
 
 log = logging.getLogger("lab")
@@ -25,6 +27,21 @@ LAUNCH_ALIASES = {
     "rocket": ("rocketship", "rocket.launch"),
     "fly": ("flightcontroller", "fly.launch"),
     "all": ("lab", "all.launch"),
+}
+
+
+
+def _vector_guard(what: str) -> Any:
+    def guard(msg: Any) -> None:
+        check_finite((msg.x, msg.y, msg.z), what)  # NaN, infinity, 1e9: a 422, not a crash
+
+    return guard
+
+
+# Checks on what the API may publish, beyond the message types' own (topic → (type, check)).
+TOPIC_GUARDS: dict[str, tuple[type[Message], Any]] = {
+    "/uav/input/position": (Vector3, _vector_guard("msg")),
+    "/uav/input/velocity": (Vector3, _vector_guard("msg")),
 }
 
 
@@ -62,6 +79,7 @@ class Lab:
         self._spin_task: asyncio.Task[None] | None = None
         with self.bus.activate():
             self.api_node = ApiNode(settings.max_api_topics)
+        self.publishers = PublisherManager(self)
 
     # -- life ----------------------------------------------------------------
     def launch_path(self, launch: str) -> Path:
@@ -92,6 +110,7 @@ class Lab:
         self.executor.stop()
         if self._spin_task is not None:
             await self._spin_task
+        self.publishers.stop_all()
         self.launcher.shutdown()
         for node in list(self.bus.nodes):
             node.destroy_node()
@@ -99,22 +118,26 @@ class Lab:
             self.display.stop()
 
     # -- actions -------------------------------------------------------------
-    def publish(self, topic: str, msg: dict[str, Any], type_name: str | None) -> tuple[str, str, int]:
-        """Publish one message from JSON; returns (topic, type, subscriptions reached)."""
+    def prepare(self, topic: str, msg: dict[str, Any], type_name: str | None) -> tuple[str, Message]:
+        """Resolve the topic and build the message from JSON, refusing what no node should get."""
         name = self.api_node.resolve_topic_name(topic)
         existing = self.bus.topics.get(name)
         if existing is None and type_name is None:
-            from server.bus import UnknownTopicError
-
             raise UnknownTopicError(name)
         msg_type = get_type(type_name) if type_name is not None else existing.msg_type
         if existing is not None and existing.msg_type is not msg_type:
-            from server.bus import TopicTypeError
-
             raise TopicTypeError(f"{name} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
         message = msg_type.from_dict(msg)
-        pub = self.api_node.publisher_for(name, msg_type)
-        return name, msg_type.TYPE, pub.publish(message)
+        guard = TOPIC_GUARDS.get(name)
+        if guard is not None and guard[0] is msg_type:
+            guard[1](message)
+        return name, message
+
+    def publish(self, topic: str, msg: dict[str, Any], type_name: str | None) -> tuple[str, str, int]:
+        """Publish one message from JSON; returns (topic, type, subscriptions reached)."""
+        name, message = self.prepare(topic, msg, type_name)
+        pub = self.api_node.publisher_for(name, type(message))
+        return name, message.TYPE, pub.publish(message)
 
     def reset_rocket(self) -> None:
         """Put the rocket back on the pad: restart the rocket launch's nodes, as a student would."""

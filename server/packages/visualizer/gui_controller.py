@@ -17,7 +17,7 @@ from server.packages.flightcontroller.setpoints import ARENA_MAX_M, ARENA_MIN_M
 ARM_M = 1.0  # the lab draws each arm 1 m from the hub
 TRAIL_POINTS = 150
 HUB_GREEN, ARM_X_BLUE, ARM_Y_RED = (0, 200, 0), (30, 60, 255), (230, 30, 30)
-CAMERA_POSITION, CAMERA_LOOK_AT = (0.0, -24.0, 14.0), (0.0, 0.0, 4.0)  # from -y: right = +x, up = +y
+CAMERA_POSITION, CAMERA_LOOK_AT = (0.0, -23.0, 15.0), (0.0, 0.0, 5.0)  # from -y: right = +x, up = +y
 
 
 def _arena_edges() -> np.ndarray:
@@ -41,10 +41,10 @@ class DroneScene:
         scene.add_grid("/drone_lab/ground", width=20, height=20, cell_size=1.0, section_size=5.0)
         scene.add_line_segments("/drone_lab/bounds", _arena_edges(), colors=(150, 150, 160), thickness=0.03)
         self.drone = scene.add_frame("/drone_lab/drone", show_axes=False)
-        scene.add_icosphere("/drone_lab/drone/hub", radius=0.18, color=HUB_GREEN)
+        scene.add_icosphere("/drone_lab/drone/hub", radius=0.3, color=HUB_GREEN)
         arms = np.array([[[-ARM_M, 0, 0], [ARM_M, 0, 0]], [[0, -ARM_M, 0], [0, ARM_M, 0]]], dtype=np.float32)
         colors = np.array([[ARM_X_BLUE] * 2, [ARM_Y_RED] * 2], dtype=np.uint8)
-        scene.add_line_segments("/drone_lab/drone/arms", arms, colors=colors, thickness=0.08)
+        scene.add_line_segments("/drone_lab/drone/arms", arms, colors=colors, thickness=0.15)
         self.setpoint = scene.add_icosphere("/drone_lab/setpoint", radius=0.15, color=(255, 150, 0), opacity=0.6,
                                             position=(0.0, 0.0, 3.0))
         self.trail = scene.add_line_segments("/drone_lab/trail", np.zeros((1, 2, 3), np.float32),
