@@ -8,12 +8,12 @@ frame z up, body x forward / y left. See docs/physics.md for the gains and why.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 from sim.control.pid import PID
 from sim.quadrotor.rotation import wrap_angle
 from sim.quadrotor.state import RateThrustCommand, as_finite_floats
+from sim.types import FloatsLike
 
 DEFAULT_POSITION_SETPOINT_M = (0.0, 0.0, 3.0)
 
@@ -72,14 +72,16 @@ class AttitudeThrustSetpoint:
 class PositionController:
     """P control on position with separate horizontal and vertical speed limits."""
 
-    def __init__(self, gains: PositionGains | None = None, setpoint_m: Sequence[float] = DEFAULT_POSITION_SETPOINT_M):
+    def __init__(
+        self, gains: PositionGains | None = None, setpoint_m: FloatsLike = DEFAULT_POSITION_SETPOINT_M
+    ):
         self.gains = gains if gains is not None else PositionGains()
         self.setpoint_m = as_finite_floats("setpoint_m", setpoint_m, 3)
 
-    def set_setpoint(self, setpoint_m: Sequence[float]) -> None:
+    def set_setpoint(self, setpoint_m: FloatsLike) -> None:
         self.setpoint_m = as_finite_floats("setpoint_m", setpoint_m, 3)
 
-    def update(self, measured_position_m: Sequence[float], dt_s: float) -> tuple[float, float, float]:
+    def update(self, measured_position_m: FloatsLike, dt_s: float) -> tuple[float, float, float]:
         """Velocity setpoint (m/s, world). dt_s is unused by a P law but kept for a uniform API."""
         g = self.gains
         px, py, pz = as_finite_floats("measured_position_m", measured_position_m, 3)
@@ -119,16 +121,16 @@ class VelocityController:
             PID(g.kp_xy_1_s, g.ki_xy_1_s2, integral_limit=limit),
             PID(g.kp_z_1_s, g.ki_z_1_s2, integral_limit=limit),
         )
-        self.setpoint_m_s = (0.0, 0.0, 0.0)
+        self.setpoint_m_s: tuple[float, ...] = (0.0, 0.0, 0.0)
         self.yaw_setpoint_rad = 0.0
-        self._prev_velocity: tuple[float, ...] | None = None
+        self._prev_velocity: tuple[float, ...] | None = None  # for the acceleration (kd) term
 
-    def set_setpoint(self, velocity_m_s: Sequence[float], yaw_rad: float = 0.0) -> None:
+    def set_setpoint(self, velocity_m_s: FloatsLike, yaw_rad: float = 0.0) -> None:
         self.setpoint_m_s = as_finite_floats("velocity_m_s", velocity_m_s, 3)
         (self.yaw_setpoint_rad,) = as_finite_floats("yaw_rad", (yaw_rad,), 1)
 
     def update(
-        self, measured_velocity_m_s: Sequence[float], measured_euler_rad: Sequence[float], dt_s: float
+        self, measured_velocity_m_s: FloatsLike, measured_euler_rad: FloatsLike, dt_s: float
     ) -> AttitudeThrustSetpoint:
         measured = as_finite_floats("measured_velocity_m_s", measured_velocity_m_s, 3)
         roll, pitch, yaw = as_finite_floats("measured_euler_rad", measured_euler_rad, 3)
@@ -164,7 +166,7 @@ class AngleController:
     def set_setpoint(self, setpoint: AttitudeThrustSetpoint) -> None:
         self.setpoint = setpoint
 
-    def update(self, measured_euler_rad: Sequence[float], dt_s: float) -> RateThrustCommand:
+    def update(self, measured_euler_rad: FloatsLike, dt_s: float) -> RateThrustCommand:
         """The rateThrust command for the measured attitude (dt_s unused by a P law)."""
         g, sp = self.gains, self.setpoint
         roll, pitch, yaw = as_finite_floats("measured_euler_rad", measured_euler_rad, 3)

@@ -7,8 +7,7 @@ command for the whole tick while the physics steps at its own rate.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from sim.control.cascade import (
     AngleController,
@@ -20,15 +19,16 @@ from sim.control.cascade import (
 )
 from sim.quadrotor.sim import QuadrotorSim
 from sim.quadrotor.state import QuadrotorState, as_finite_floats
+from sim.types import FloatsLike
 
 
 @dataclass(frozen=True)
 class CascadeGains:
     """Gains of the three controllers; the defaults are the shipped tuning."""
 
-    position: PositionGains = PositionGains()
-    velocity: VelocityGains = VelocityGains()
-    angle: AngleGains = AngleGains()
+    position: PositionGains = field(default_factory=PositionGains)
+    velocity: VelocityGains = field(default_factory=VelocityGains)
+    angle: AngleGains = field(default_factory=AngleGains)
 
 
 class ClosedLoop:
@@ -47,14 +47,14 @@ class ClosedLoop:
         self._velocity_mode = False
         self._yaw_rad = 0.0
 
-    def set_position_setpoint(self, position_m: Sequence[float], yaw_rad: float = 0.0) -> None:
+    def set_position_setpoint(self, position_m: FloatsLike, yaw_rad: float = 0.0) -> None:
         """Fly to position_m (m, world) facing yaw_rad; the position controller drives the velocity."""
         (yaw,) = as_finite_floats("yaw_rad", (yaw_rad,), 1)
         self.position.set_setpoint(position_m)
         self._yaw_rad = yaw
         self._velocity_mode = False
 
-    def set_velocity_setpoint(self, velocity_m_s: Sequence[float], yaw_rad: float = 0.0) -> None:
+    def set_velocity_setpoint(self, velocity_m_s: FloatsLike, yaw_rad: float = 0.0) -> None:
         """Track velocity_m_s (m/s, world) directly, bypassing the position controller."""
         self.velocity.set_setpoint(velocity_m_s, yaw_rad)
         self._velocity_mode = True
@@ -72,7 +72,7 @@ class ClosedLoop:
 
     def run(self, duration_s: float) -> list[QuadrotorState]:
         """Tick for duration_s (rounded to whole control periods); returns the state after each tick."""
-        ticks = int(round(duration_s / self.control_dt_s))
+        ticks = round(duration_s / self.control_dt_s)
         samples = []
         for _ in range(ticks):
             self.tick()

@@ -6,10 +6,9 @@ The controller acts on the latest GPS reading, as the node does; its timer may s
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 from sim.control.lab_position import LAB_PID_DT_S, LabPositionController
 from sim.quadrotor.simple_sim import SimpleSim, SimpleSimState
+from sim.types import FloatsLike
 
 
 class SimpleModeLoop:
@@ -35,7 +34,7 @@ class SimpleModeLoop:
     def time_s(self) -> float:
         return self._tick * self.controller_period_s
 
-    def set_setpoint(self, position_m: Sequence[float]) -> None:
+    def set_setpoint(self, position_m: FloatsLike) -> None:
         """A /uav/input/position message."""
         self.controller.set_setpoint(position_m)
 

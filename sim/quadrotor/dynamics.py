@@ -23,9 +23,17 @@ class RigidBodyModel:
     """Per-vehicle constants the derivative needs, pre-combined once."""
 
     __slots__ = (
-        "g", "thrust_per_mass", "roll_gain", "pitch_gain", "yaw_gain",
-        "gyro_x", "gyro_y", "gyro_z", "drag_per_mass", "motor_rate",
-    )  # fmt: skip
+        "drag_per_mass",
+        "g",
+        "gyro_x",
+        "gyro_y",
+        "gyro_z",
+        "motor_rate",
+        "pitch_gain",
+        "roll_gain",
+        "thrust_per_mass",
+        "yaw_gain",
+    )
 
     def __init__(self, p: QuadrotorParams) -> None:
         ix, iy, iz = p.inertia_kg_m2
@@ -45,7 +53,9 @@ class RigidBodyModel:
         self.motor_rate = 1.0 / p.motor_time_constant_s
 
 
-def derivative(s: Sequence[float], rotor_cmd: Sequence[float], m: RigidBodyModel, noise: Sequence[float]) -> Vector:
+def derivative(
+    s: Sequence[float], rotor_cmd: Sequence[float], m: RigidBodyModel, noise: Sequence[float]
+) -> Vector:
     """d(state)/dt for constant rotor-speed commands and constant process noise.
 
     noise is (linear accel x, y, z in m/s^2, angular accel x, y, z in rad/s^2).

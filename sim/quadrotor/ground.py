@@ -29,11 +29,11 @@ class GroundContact:
         if s[2] > 0.0:
             return False, False
         s[2] = 0.0
-        if s[5] < 0.0:
-            s[5] = 0.0
+        s[5] = max(s[5], 0.0)
         r1, r2, r3, r4 = s[13], s[14], s[15], s[16]
-        qw, qx, qy, qz = s[6], s[7], s[8], s[9]
-        lift = self._thrust_per_mass * (r1 * r1 + r2 * r2 + r3 * r3 + r4 * r4) * (1.0 - 2.0 * (qx * qx + qy * qy))
+        qx, qy = s[7], s[8]
+        body_z_up = 1.0 - 2.0 * (qx * qx + qy * qy)  # world-z component of the body z axis
+        lift = self._thrust_per_mass * (r1 * r1 + r2 * r2 + r3 * r3 + r4 * r4) * body_z_up
         normal_acc = self._g - lift
         if normal_acc <= 0.0:
             return True, False  # thrust carries the weight: lifting off, no friction

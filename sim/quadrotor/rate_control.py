@@ -54,7 +54,7 @@ class RateLoop:
         for axis in range(3):
             error = rates_cmd[axis] - f[axis]
             acc = integral[axis] + error * dt
-            integral[axis] = i_max if acc > i_max else -i_max if acc < -i_max else acc
+            integral[axis] = min(max(acc, -i_max), i_max)
             alpha[axis] = kp * error + ki * integral[axis] - kd * fd[axis]
         return self.mix(self._ix * alpha[0], self._iy * alpha[1], self._iz * alpha[2], thrust_n)
 
@@ -70,7 +70,7 @@ class RateLoop:
             base - roll - pitch + yaw,
         )
         # A rotor cannot spin backwards or past its limit; the clamp is where saturation happens.
-        c1, c2, c3, c4 = (math.sqrt(0.0 if v < 0.0 else top if v > top else v) for v in squares)
+        c1, c2, c3, c4 = (math.sqrt(min(max(v, 0.0), top)) for v in squares)
         return c1, c2, c3, c4
 
     def _filter(self, rates: list[float], dt: float) -> None:

@@ -7,9 +7,10 @@ R = Rz(yaw) @ Ry(pitch) @ Rx(roll), the convention of the lab's visualiser.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 
 import numpy as np
+
+from sim.types import FloatArray, FloatsLike
 
 Quaternion = tuple[float, float, float, float]
 
@@ -27,7 +28,7 @@ def euler_sxyz_to_quat(roll_rad: float, pitch_rad: float, yaw_rad: float) -> Qua
     )
 
 
-def quat_to_euler_sxyz(q: Sequence[float]) -> tuple[float, float, float]:
+def quat_to_euler_sxyz(q: FloatsLike) -> tuple[float, float, float]:
     """(roll, pitch, yaw) in rad of a unit quaternion (w, x, y, z); pitch in [-pi/2, pi/2]."""
     w, x, y, z = (float(c) for c in q)
     roll = math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
@@ -42,7 +43,7 @@ def quat_yaw(w: float, x: float, y: float, z: float) -> float:
     return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
 
 
-def quat_to_matrix(q: Sequence[float]) -> np.ndarray:
+def quat_to_matrix(q: FloatsLike) -> FloatArray:
     """3x3 rotation matrix taking body-frame vectors to the world frame."""
     w, x, y, z = (float(c) for c in q)
     return np.array(

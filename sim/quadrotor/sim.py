@@ -13,6 +13,7 @@ from sim.quadrotor.params import QuadrotorParams
 from sim.quadrotor.rate_control import RateLoop
 from sim.quadrotor.rotation import euler_sxyz_to_quat
 from sim.quadrotor.state import Command, MotorSpeedCommand, QuadrotorState, RateThrustCommand
+from sim.types import FloatsLike
 
 MIN_PHYSICS_RATE_HZ = 500.0
 _NOISE_BATCH = 1024  # steps of process noise drawn per generator call
@@ -34,7 +35,7 @@ class QuadrotorSim:
         rng: np.random.Generator | None = None,
         noise: bool = True,
         physics_rate_hz: float = 1000.0,
-        initial_position_m: Sequence[float] = (0.0, 0.0, 0.0),
+        initial_position_m: FloatsLike = (0.0, 0.0, 0.0),
         initial_yaw_rad: float = 0.0,
         rotors_at_hover: bool = False,
     ) -> None:
@@ -59,7 +60,7 @@ class QuadrotorSim:
 
     def reset(
         self,
-        position_m: Sequence[float] = (0.0, 0.0, 0.0),
+        position_m: FloatsLike = (0.0, 0.0, 0.0),
         yaw_rad: float = 0.0,
         rotors_at_hover: bool = False,
     ) -> None:
@@ -89,11 +90,11 @@ class QuadrotorSim:
         s = self._s
         return QuadrotorState(
             time_s=self.time_s,
-            position_m=s[0:3],
-            velocity_m_s=s[3:6],
-            attitude_wxyz=s[6:10],
-            body_rates_rad_s=s[10:13],
-            rotor_speeds_rad_s=s[13:17],
+            position_m=np.array(s[0:3]),
+            velocity_m_s=np.array(s[3:6]),
+            attitude_wxyz=np.array(s[6:10]),
+            body_rates_rad_s=np.array(s[10:13]),
+            rotor_speeds_rad_s=np.array(s[13:17]),
             on_ground=self._on_ground,
         )
 
@@ -121,7 +122,7 @@ class QuadrotorSim:
             raise ValueError(f"duration_s must be finite and >= 0, got {duration_s}")
         total = self._remainder_s + duration_s
         # The epsilon absorbs rounding so that 0.02 s at 1 kHz is 20 steps, not 19.
-        n = int(math.floor(total * self.physics_rate_hz + 1e-6))
+        n = math.floor(total * self.physics_rate_hz + 1e-6)
         self._remainder_s = max(0.0, total - n * self.dt_s)
         for _ in range(n):
             self.step()

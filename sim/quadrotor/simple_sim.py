@@ -9,7 +9,6 @@ sigma = wobble_tilt/10 as a later student fork does).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -17,6 +16,7 @@ import numpy as np
 
 from sim.quadrotor.rotation import euler_sxyz_to_quat
 from sim.quadrotor.state import as_finite_floats
+from sim.types import FloatsLike
 
 WobbleNoise = Literal["lab", "fixed"]
 
@@ -43,7 +43,9 @@ class SimpleSimParams:
         if not (math.isfinite(self.gps_noise_m) and self.gps_noise_m >= 0):
             raise ValueError(f"SimpleSimParams.gps_noise_m must be >= 0, got {self.gps_noise_m}")
         if self.wobble_noise not in ("lab", "fixed"):
-            raise ValueError(f"SimpleSimParams.wobble_noise must be 'lab' or 'fixed', got {self.wobble_noise!r}")
+            raise ValueError(
+                f"SimpleSimParams.wobble_noise must be 'lab' or 'fixed', got {self.wobble_noise!r}"
+            )
 
 
 @dataclass(frozen=True)
@@ -70,7 +72,11 @@ class SimpleSim:
     """SimpleSimNode without ROS: set_velocity_command() then tick() at rate_hz (or advance())."""
 
     def __init__(
-        self, params: SimpleSimParams | None = None, *, rng: np.random.Generator | None = None, noise: bool = True
+        self,
+        params: SimpleSimParams | None = None,
+        *,
+        rng: np.random.Generator | None = None,
+        noise: bool = True,
     ) -> None:
         if noise and rng is None:
             raise ValueError("noise=True needs a seeded numpy.random.Generator as rng")
@@ -97,7 +103,7 @@ class SimpleSim:
         p, v = self._pos, self._vel
         return SimpleSimState(self.time_s, (p[0], p[1], p[2]), (v[0], v[1], v[2]), self._att, self._wobble)
 
-    def set_velocity_command(self, velocity_m_s: Sequence[float]) -> None:
+    def set_velocity_command(self, velocity_m_s: FloatsLike) -> None:
         """The latest /uav/input/velocity (m/s, world). ValueError on non-finite input."""
         vx, vy, vz = as_finite_floats("velocity_m_s", velocity_m_s, 3)
         self._cmd = (vx, vy, vz)
@@ -107,7 +113,7 @@ class SimpleSim:
         if not (math.isfinite(duration_s) and duration_s >= 0.0):
             raise ValueError(f"duration_s must be finite and >= 0, got {duration_s}")
         total = self._remainder_s + duration_s
-        n = int(math.floor(total * self.params.rate_hz + 1e-6))
+        n = math.floor(total * self.params.rate_hz + 1e-6)
         self._remainder_s = max(0.0, total - n * self.dt_s)
         return [self.tick() for _ in range(n)]
 

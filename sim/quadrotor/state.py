@@ -3,15 +3,15 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from sim.quadrotor.rotation import quat_to_euler_sxyz
+from sim.types import FloatArray, FloatsLike
 
 
-def as_finite_floats(name: str, values: Sequence[float], length: int) -> tuple[float, ...]:
+def as_finite_floats(name: str, values: FloatsLike, length: int) -> tuple[float, ...]:
     """The values as a tuple of floats, or ValueError naming the field."""
     try:
         floats = tuple(float(v) for v in values)
@@ -55,7 +55,7 @@ class MotorSpeedCommand:
 Command = RateThrustCommand | MotorSpeedCommand
 
 
-def _frozen_array(values: Sequence[float]) -> np.ndarray:
+def _frozen_array(values: FloatsLike) -> FloatArray:
     array = np.array(values, dtype=float)
     array.flags.writeable = False
     return array
@@ -70,11 +70,11 @@ class QuadrotorState:
     """
 
     time_s: float
-    position_m: np.ndarray
-    velocity_m_s: np.ndarray
-    attitude_wxyz: np.ndarray
-    body_rates_rad_s: np.ndarray
-    rotor_speeds_rad_s: np.ndarray
+    position_m: FloatArray
+    velocity_m_s: FloatArray
+    attitude_wxyz: FloatArray
+    body_rates_rad_s: FloatArray
+    rotor_speeds_rad_s: FloatArray
     on_ground: bool
     euler_sxyz_rad: tuple[float, float, float] = field(init=False)
 

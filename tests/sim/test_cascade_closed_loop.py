@@ -68,7 +68,9 @@ def test_step_5_5_10_overshoot_below_half_metre(step_to_5_5_10: list[QuadrotorSt
 
 
 def test_step_5_5_10_respects_tilt_and_speed_limits(step_to_5_5_10: list[QuadrotorState]) -> None:
-    tilts = [math.acos(max(-1.0, min(1.0, math.cos(s.roll_rad) * math.cos(s.pitch_rad)))) for s in step_to_5_5_10]
+    tilts = [
+        math.acos(max(-1.0, min(1.0, math.cos(s.roll_rad) * math.cos(s.pitch_rad)))) for s in step_to_5_5_10
+    ]
     assert max(tilts) < 0.5 * math.sqrt(2) + 0.05
     speeds_xy = [float(np.hypot(*s.velocity_m_s[:2])) for s in step_to_5_5_10]
     assert max(speeds_xy) < 4.0 * 1.05
@@ -92,14 +94,22 @@ def test_yaw_setpoint_turns_heading_and_still_holds_position() -> None:
 
 
 def test_hover_with_process_noise_stays_near_setpoint() -> None:
-    sim = QuadrotorSim(rng=np.random.default_rng(11), initial_position_m=(0.0, 0.0, 3.0), rotors_at_hover=True)
+    sim = QuadrotorSim(
+        rng=np.random.default_rng(11), initial_position_m=(0.0, 0.0, 3.0), rotors_at_hover=True
+    )
     positions = _positions(ClosedLoop(sim).run(8.0))
     assert np.all(np.abs(positions - [0.0, 0.0, 3.0]) < 0.1)
 
 
 def _assert_physical(state: QuadrotorState) -> None:
     values = np.concatenate(
-        [state.position_m, state.velocity_m_s, state.attitude_wxyz, state.body_rates_rad_s, state.rotor_speeds_rad_s]
+        [
+            state.position_m,
+            state.velocity_m_s,
+            state.attitude_wxyz,
+            state.body_rates_rad_s,
+            state.rotor_speeds_rad_s,
+        ]
     )
     assert np.all(np.isfinite(values))
     assert state.position_m[2] >= 0.0
@@ -124,7 +134,9 @@ def test_wild_setpoints_every_tick_for_60s_stay_physical() -> None:
 
 def test_wild_raw_rate_thrust_commands_stay_physical() -> None:
     rng = np.random.default_rng(99)
-    sim = QuadrotorSim(rng=np.random.default_rng(6), initial_position_m=(0.0, 0.0, 20.0), rotors_at_hover=True)
+    sim = QuadrotorSim(
+        rng=np.random.default_rng(6), initial_position_m=(0.0, 0.0, 20.0), rotors_at_hover=True
+    )
     max_rate = 0.0
     for _ in range(1000):
         rates = tuple(rng.uniform(-1e6, 1e6, 3))

@@ -109,7 +109,7 @@ def test_rate_command_step_body_rate_tracks_command(axis: int) -> None:
     sim = QuadrotorSim(noise=False, initial_position_m=(0.0, 0.0, 50.0), rotors_at_hover=True)
     rates = [0.0, 0.0, 0.0]
     rates[axis] = 1.0
-    sim.set_command(RateThrustCommand(tuple(rates), 9.81))
+    sim.set_command(RateThrustCommand((rates[0], rates[1], rates[2]), 9.81))
     sim.advance(1.5)
     measured = sim.state.body_rates_rad_s
     assert measured[axis] == pytest.approx(1.0, abs=0.05)
@@ -130,7 +130,7 @@ def test_advance_fractional_durations_carry_the_remainder() -> None:
     [
         (lambda: RateThrustCommand((math.nan, 0.0, 0.0), 9.8), "body_rates_rad_s"),
         (lambda: RateThrustCommand((0.0, 0.0, 0.0), math.inf), "thrust_n"),
-        (lambda: RateThrustCommand((0.0, 0.0), 9.8), "body_rates_rad_s"),
+        (lambda: RateThrustCommand((0.0, 0.0), 9.8), "body_rates_rad_s"),  # type: ignore[arg-type]
         (lambda: MotorSpeedCommand((0.0, -math.inf, 0.0, 0.0)), "rotor_speeds_rad_s"),
     ],
 )
@@ -156,7 +156,9 @@ def test_set_command_forced_nan_raises_and_keeps_previous_command() -> None:
 
 def test_noise_same_seed_replays_and_other_seed_differs() -> None:
     def run(seed: int) -> np.ndarray:
-        sim = QuadrotorSim(rng=np.random.default_rng(seed), initial_position_m=(0, 0, 3), rotors_at_hover=True)
+        sim = QuadrotorSim(
+            rng=np.random.default_rng(seed), initial_position_m=(0, 0, 3), rotors_at_hover=True
+        )
         sim.advance(0.3)
         sim.advance(0.2)
         return sim.state.position_m
@@ -186,7 +188,7 @@ def test_params_defaults_are_the_flightgoggles_drone() -> None:
 @pytest.mark.parametrize("field", ["mass_kg", "motor_time_constant_s", "max_rotor_speed_rad_s"])
 def test_params_non_positive_value_raises(field: str) -> None:
     with pytest.raises(ValueError, match=field):
-        dataclasses.replace(QuadrotorParams(), **{field: 0.0})
+        dataclasses.replace(QuadrotorParams(), **{field: 0.0})  # type: ignore[arg-type]
 
 
 def test_params_negative_inertia_raises() -> None:
@@ -206,7 +208,9 @@ def test_state_arrays_are_read_only_copies() -> None:
 
 def test_quaternion_long_tumbling_flight_stays_unit() -> None:
     rng = np.random.default_rng(123)
-    sim = QuadrotorSim(rng=np.random.default_rng(4), initial_position_m=(0.0, 0.0, 500.0), rotors_at_hover=True)
+    sim = QuadrotorSim(
+        rng=np.random.default_rng(4), initial_position_m=(0.0, 0.0, 500.0), rotors_at_hover=True
+    )
     worst = 0.0
     for _ in range(600):  # 30 s, a new random command every 50 ms
         sim.set_command(RateThrustCommand(tuple(rng.uniform(-10.0, 10.0, 3)), float(rng.uniform(5.0, 15.0))))

@@ -9,6 +9,7 @@ import pytest
 
 from sim.control import LabPositionController, SimpleModeLoop
 from sim.quadrotor import SimpleSim, SimpleSimParams, quat_to_euler_sxyz
+from sim.quadrotor.simple_sim import WobbleNoise
 
 DT = 0.05  # the sim's 20 Hz tick
 
@@ -92,7 +93,7 @@ def test_simple_sim_wobble_tilt_bounded_by_pi_over_16() -> None:
 
 
 @pytest.mark.parametrize(("mode", "low", "high"), [("lab", 0.1, math.inf), ("fixed", 0.0, 0.01)])
-def test_simple_sim_wobble_noise_lab_bug_grows_with_phase(mode: str, low: float, high: float) -> None:
+def test_simple_sim_wobble_noise_lab_bug_grows_with_phase(mode: WobbleNoise, low: float, high: float) -> None:
     sim = SimpleSim(SimpleSimParams(wobble_noise=mode), rng=np.random.default_rng(5))
     phases = []
     for _ in range(2000):
