@@ -44,6 +44,10 @@ class QuadrotorParams:
     rate_filter_damping: float = math.sqrt(0.5)
     max_rate_command_rad_s: float = 10.0
     """Body-rate commands are clamped to this magnitude per axis (not in FlightGoggles)."""
+    max_body_rate_rad_s: float = 60.0
+    """Body rates are clamped per axis after each step (not in FlightGoggles). The model has no
+    rotational drag, so differential motor commands could spin it up without bound; real frames
+    top out near 35 rad/s, and the clamp keeps |w| dt far inside RK4's stability region."""
     gyroscopic_enabled: bool = True
     """Include -omega x (I omega) in the rigid-body equation (FlightGoggles omits it)."""
     ground_friction_coeff: float = 0.5

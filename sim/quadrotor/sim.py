@@ -56,6 +56,7 @@ class QuadrotorSim:
         self._model = RigidBodyModel(self.params)
         self._ground = GroundContact(self.params, self.dt_s)
         self._rate_loop = RateLoop(self.params)
+        self._max_rate = self.params.max_body_rate_rad_s
         self.reset(initial_position_m, initial_yaw_rad, rotors_at_hover)
 
     def reset(
@@ -137,6 +138,8 @@ class QuadrotorSim:
             rotor_cmd = self._rate_loop.rotor_commands(s[10:13], self._rates_cmd, self._thrust_cmd, dt)
         new = rk4_step(s, rotor_cmd, self._model, self._next_noise(), dt)
         normalize_quaternion(new)
+        top = self._max_rate
+        new[10], new[11], new[12] = (min(max(w, -top), top) for w in new[10:13])
         contact, resting = self._ground.apply(new)
         if resting:
             self._rate_loop.reset_integral()

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from sim.control import ClosedLoop
-from sim.quadrotor import QuadrotorSim, QuadrotorState, RateThrustCommand
+from sim.quadrotor import MotorSpeedCommand, QuadrotorSim, QuadrotorState, RateThrustCommand
 
 HOVER_ROTOR_RAD_S = math.sqrt(1.0 * 9.81 / (4 * 1.91e-6))  # sqrt(m g / (4 k_T)), about 1133
 
@@ -156,3 +156,16 @@ def test_closed_loop_non_finite_setpoint_raises_and_keeps_flying_to_old_one() ->
     with pytest.raises(ValueError, match="velocity_m_s"):
         loop.set_velocity_setpoint((math.inf, 0.0, 0.0))
     assert loop.run(3.0)[-1].position_m == pytest.approx([0.0, 0.0, 3.0], abs=0.02)
+
+
+def test_wild_motor_speed_commands_stay_physical_and_spin_is_capped() -> None:
+    rng = np.random.default_rng(17)
+    sim = QuadrotorSim(rng=np.random.default_rng(8), initial_position_m=(0.0, 0.0, 50.0))
+    sim.set_command(MotorSpeedCommand((2200.0, 0.0, 2200.0, 0.0)))  # pure yaw torque, nothing resists it
+    sim.advance(5.0)
+    assert abs(sim.state.body_rates_rad_s[2]) == 60.0
+    for _ in range(1000):
+        sim.set_command(MotorSpeedCommand(tuple(rng.uniform(-1e5, 1e5, 4))))
+        sim.advance(0.02)
+        _assert_physical(sim.state)
+        assert np.all(np.abs(sim.state.body_rates_rad_s) <= 60.0)
