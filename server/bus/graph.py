@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from .node import Node
 
 log = logging.getLogger("bus")
+HZ_WINDOW_MAX = 10_000
 INTERNAL_TOPICS = frozenset({"/rosout", "/parameter_events"})
 _current_bus: ContextVar[Bus | None] = ContextVar("current_bus", default=None)
 
@@ -62,6 +63,8 @@ class Topic:
         self.latest: Message | None = None
         self.latest_time_s: float | None = None
         self.publish_count = 0
+        # Publish times for `ros2 topic hz`-style rates, kept always: one deque append per message.
+        self.publish_times_s: deque[float] = deque(maxlen=HZ_WINDOW_MAX)
         self.taps: list[Callable[[Topic, Message, float], None]] = []
 
     @property
@@ -73,6 +76,7 @@ class Topic:
         self.latest = msg.copy()
         self.latest_time_s = now
         self.publish_count += 1
+        self.publish_times_s.append(now)
         delivered = 0
         for sub in self.subscriptions:
             if not sub.active:

@@ -78,6 +78,8 @@ class Node:
         if overrides:
             self._param_overrides.update(overrides.parameters)
         self._parameters: dict[str, Parameter] = {}
+        self._param_callbacks: list[Callable[[list[Parameter]], Any]] = []
+        self.origin: dict[str, str] = {}  # package, executable, launch file: set by the launcher
         self.publishers: list[Publisher] = []
         self.subscriptions: list[Subscription] = []
         self.timers: list[Timer] = []
@@ -204,6 +206,30 @@ class Node:
 
     def get_parameters_dict(self) -> dict[str, Any]:
         return {name: p.value for name, p in self._parameters.items()}
+
+    def add_on_set_parameters_callback(self, callback: Callable[[list[Parameter]], Any]) -> None:
+        """``callback(params)`` may refuse a change by returning a falsy result (or one with
+        ``successful = False`` and a ``reason``), as rclpy's SetParametersResult does."""
+        self._param_callbacks.append(callback)
+
+    def set_parameters(self, params: list[Parameter]) -> None:
+        """Set declared parameters; raises ValueError (changing nothing) if one is refused."""
+        for param in params:
+            current = self.get_parameter(param.name)
+            if current.value is not None and param.value is not None and type(current.value) is not type(param.value):
+                if not (isinstance(current.value, float) and isinstance(param.value, int)
+                        and not isinstance(param.value, bool)):
+                    raise ValueError(f"parameter {param.name!r} is a {type(current.value).__name__}, "
+                                     f"not a {type(param.value).__name__}")
+                param = Parameter(param.name, float(param.value))
+        for callback in self._param_callbacks:
+            result = callback(params)
+            if result is not None and not getattr(result, "successful", bool(result)):
+                raise ValueError(getattr(result, "reason", "") or "parameter change refused by the node")
+        for param in params:
+            current = self._parameters[param.name]
+            current.value = float(param.value) if isinstance(current.value, float) and isinstance(param.value, int) \
+                else param.value
 
     # -- faults ----------------------------------------------------------
     def mark_crashed(self, exc: BaseException) -> None:

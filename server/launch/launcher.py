@@ -72,6 +72,7 @@ class Launcher:
             log.error("%s: node %s (%s %s) failed to start: %s", action.location,
                       action.name or action.exec, action.pkg, action.exec, entry.error)
             return entry
+        node.origin = {"package": action.pkg, "executable": action.exec, "launch_file": str(action.location)}
         entry.node, entry.error = node, None
         return entry
 
