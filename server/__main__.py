@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import logging
 import sys
+from pathlib import Path
 
 from server.settings import Settings
 
@@ -23,20 +24,41 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--launch", default="all", help="rocket, fly, all (default) or a launch file's path")
     parser.add_argument("launch_args", nargs="*", type=parse_launch_arg, metavar="NAME:=VALUE",
                         help="launch arguments, as ros2 launch takes them (e.g. start_delay:=2.0)")
+    parser.add_argument("--workspace", default="workspace",
+                        help="folder of your own packages (src/<pkg>/...), default ./workspace")
     parser.add_argument("--allow-host", action="append", default=[], help="another Host name to accept")
     parser.add_argument("--allow-origin", action="append", default=[], help="another page origin to accept")
     parser.add_argument("--log-level", default="info", choices=["debug", "info", "warning", "error"])
     return parser
 
 
+def check_launch(settings: Settings) -> str | None:
+    """Parse the launch file before anything starts, so a mistake is one clear line."""
+    from server.lab import resolve_launch
+    from server.launch.description import LaunchFileError
+    from server.launch.launcher import parse_launch
+    from server.packages import PackageIndex
+
+    packages = PackageIndex(workspace=settings.workspace)
+    try:
+        parse_launch(resolve_launch(settings.launch, packages), settings.launch_args, packages)
+    except LaunchFileError as exc:
+        return str(exc)
+    return None
+
+
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     settings = Settings(
         host=args.host, port=args.port, launch=args.launch, launch_args=dict(args.launch_args),
-        allowed_hosts=tuple(args.allow_host), allowed_origins=tuple(args.allow_origin),
+        workspace=Path(args.workspace), allowed_hosts=tuple(args.allow_host), allowed_origins=tuple(args.allow_origin),
     )  # fmt: skip
     logging.basicConfig(level=args.log_level.upper(), format="%(asctime)s %(levelname)s %(name)s: %(message)s",
                         datefmt="%H:%M:%S")
+    error = check_launch(settings)
+    if error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
     import uvicorn
 
     from server.app import create_app

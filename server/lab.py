@@ -7,14 +7,17 @@ display, and step it by hand.
 from __future__ import annotations
 
 import asyncio
+import itertools
 import logging
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from server.bus import Bus, Clock, Executor, Node, Publisher, SystemClock, TopicTypeError, UnknownTopicError
 from server.devices.keyboard import KeyboardDevice
-from server.launch.launcher import Launcher
+from server.launch.description import NodeAction, SourceLocation
+from server.launch.launcher import LaunchedNode, Launcher
 from server.msgs import Message, Vector3, get_type
 from server.packages.flightcontroller.setpoints import check_finite
 from server.packages import PackageIndex
@@ -29,6 +32,14 @@ LAUNCH_ALIASES = {
     "all": ("lab", "all.launch"),
 }
 
+
+
+def resolve_launch(launch: str, packages: PackageIndex) -> Path:
+    """``rocket``, ``fly``, ``all`` or a path → the launch file's path."""
+    if launch in LAUNCH_ALIASES:
+        pkg, file = LAUNCH_ALIASES[launch]
+        return packages.share_dir(pkg) / "launch" / file
+    return Path(launch)
 
 
 def _vector_guard(what: str) -> Any:
@@ -64,12 +75,32 @@ class ApiNode(Node):
         return pub
 
 
+@dataclass
+class LaunchGroup:
+    """Nodes started together by one launch or run request, stopped together."""
+
+    id: str
+    source: str
+    entries: list[LaunchedNode]
+
+    def describe(self) -> dict[str, Any]:
+        return {
+            "id": self.id,
+            "file": self.source,
+            "nodes": [
+                {"name": e.node.fully_qualified_name if e.node else (e.action.name or e.action.exec),
+                 "pkg": e.action.pkg, "exec": e.action.exec, "error": e.error}
+                for e in self.entries
+            ],
+        }
+
+
 class Lab:
     def __init__(self, settings: Settings, clock: Clock | None = None) -> None:
         self.settings = settings
         self.bus = Bus(clock or SystemClock())
         self.executor = Executor(self.bus)
-        self.packages = PackageIndex()
+        self.packages = PackageIndex(workspace=settings.workspace)
         self.launcher = Launcher(self.bus, self.packages)
         self.keyboard = KeyboardDevice()
         self.bus.devices["keyboard"] = self.keyboard
@@ -80,13 +111,12 @@ class Lab:
         with self.bus.activate():
             self.api_node = ApiNode(settings.max_api_topics)
         self.publishers = PublisherManager(self)
+        self.launch_groups: dict[str, LaunchGroup] = {}
+        self._group_ids = itertools.count(1)
 
     # -- life ----------------------------------------------------------------
     def launch_path(self, launch: str) -> Path:
-        if launch in LAUNCH_ALIASES:
-            pkg, file = LAUNCH_ALIASES[launch]
-            return self.packages.share_dir(pkg) / "launch" / file
-        return Path(launch)
+        return resolve_launch(launch, self.packages)
 
     def start_nodes(self) -> None:
         """Launch the configured launch file and the tool nodes (views); no event loop needed."""
@@ -138,6 +168,35 @@ class Lab:
         name, message = self.prepare(topic, msg, type_name)
         pub = self.api_node.publisher_for(name, type(message))
         return name, message.TYPE, pub.publish(message)
+
+    def launch_group(self, path: Path, args: dict[str, str]) -> LaunchGroup:
+        """Launch a file into the running graph, as ``ros2 launch`` does; LaunchFileError if it is bad."""
+        entries = self.launcher.launch_file(path, args)
+        return self._group("launch", str(path), entries)
+
+    def run_node(self, pkg: str, exe: str, name: str | None = None, parameters: dict[str, Any] | None = None,
+                 remappings: dict[str, str] | None = None) -> LaunchGroup:
+        """Start one node, as ``ros2 run PKG EXEC --ros-args ...`` does."""
+        self.packages.factory(pkg, exe)  # an unknown package or executable is an error, not a failed node
+        action = NodeAction(pkg=pkg, exec=exe, name=name, namespace=None, output="screen", respawn=False,
+                            respawn_delay_s=0.0, parameters=tuple((parameters or {}).items()),
+                            remappings=tuple((remappings or {}).items()),
+                            location=SourceLocation(f"<run {pkg} {exe}>", 0))
+        entry = self.launcher.start(action)
+        self.launcher.launched.append(entry)
+        return self._group("run", f"{pkg} {exe}", [entry])
+
+    def _group(self, kind: str, source: str, entries: list[LaunchedNode]) -> LaunchGroup:
+        group = LaunchGroup(f"{kind}{next(self._group_ids)}", source, entries)
+        self.launch_groups[group.id] = group
+        return group
+
+    def stop_group(self, group_id: str) -> LaunchGroup:
+        group = self.launch_groups.pop(group_id, None)
+        if group is None:
+            raise LookupError(f"no launch or run with id {group_id!r}")
+        self.launcher.stop_all(group.entries)
+        return group
 
     def reset_rocket(self) -> None:
         """Put the rocket back on the pad: restart the rocket launch's nodes, as a student would."""

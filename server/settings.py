@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
 
@@ -13,6 +14,7 @@ class Settings:
     port: int = 8000
     launch: str = "all"  # rocket | fly | all | a path to a launch file
     launch_args: dict[str, str] = field(default_factory=dict)
+    workspace: Path | None = Path("workspace")  # students' packages (src/<pkg>/...); may not exist
     viewer: bool = True  # start viser (tests of the API alone may switch it off)
     # Extra Host names and Origins to accept besides this machine's loopback names.
     allowed_hosts: tuple[str, ...] = ()

@@ -11,8 +11,14 @@ from server.bus import Bus, Node, NodeOverrides
 from server.packages import PackageIndex
 
 from .description import LaunchDescription, NodeAction
+from .xml_parser import parse_launch_file
 
 log = logging.getLogger("launch")
+
+
+def parse_launch(path: str | Path, args: Mapping[str, str] | None, packages: PackageIndex) -> LaunchDescription:
+    """Read a launch file, resolving ``$(find-pkg-share PKG)`` through ``packages``."""
+    return parse_launch_file(Path(path), args=dict(args or {}), find_package_share=packages.share_dir)
 
 
 @dataclass
@@ -38,9 +44,7 @@ class Launcher:
         bus.crash_handlers.append(self._on_crash)
 
     def parse(self, path: str | Path, args: Mapping[str, str] | None = None) -> LaunchDescription:
-        from .xml_parser import parse_launch_file
-
-        return parse_launch_file(Path(path), args=dict(args or {}), find_package_share=self.packages.share_dir)
+        return parse_launch(path, args, self.packages)
 
     def launch_file(self, path: str | Path, args: Mapping[str, str] | None = None) -> list[LaunchedNode]:
         return self.launch(self.parse(path, args))
@@ -80,6 +84,12 @@ class Launcher:
         if entry.node is not None:
             entry.node.destroy_node()
             entry.node = None
+
+    def stop_all(self, entries: list[LaunchedNode]) -> None:
+        """Stop these nodes and forget them (a launch ended with Ctrl-C)."""
+        for entry in reversed(entries):
+            self.stop(entry)
+        self.launched = [e for e in self.launched if e not in entries]
 
     def restart(self, predicate: Callable[[LaunchedNode], bool]) -> list[LaunchedNode]:
         """Stop and start again every launched node that ``predicate`` picks, in launch order."""

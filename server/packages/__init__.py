@@ -51,32 +51,46 @@ class ExecutableNotFoundError(LookupError):
 
 @dataclass
 class PackageIndex:
-    """The packages a launch can name; students' packages are added at run time."""
+    """The packages a launch can name: the built-in ones, overlaid by a student workspace."""
 
+    workspace: Path | None = None
     executables: dict[str, dict[str, str | Callable[[], Node]]] = field(
         default_factory=lambda: {pkg: dict(exes) for pkg, exes in BUILTIN.items()}
     )
-    share_dirs: dict[str, Path] = field(default_factory=dict)
+
+    def _workspace_packages(self) -> dict[str, Path]:
+        from .workspace import packages_in
+
+        return packages_in(self.workspace) if self.workspace is not None else {}
+
+    def names(self) -> list[str]:
+        return sorted(set(self.executables) | set(self._workspace_packages()))
 
     def share_dir(self, pkg: str) -> Path:
-        if pkg in self.share_dirs:
-            return self.share_dirs[pkg]
+        student = self._workspace_packages().get(pkg)
+        if student is not None and ((student / "launch").is_dir() or pkg not in self.executables):
+            return student
         if pkg in self.executables:
             return HERE / pkg
-        raise PackageNotFoundError(pkg, sorted(self.executables))
+        raise PackageNotFoundError(pkg, self.names())
+
+    def executables_of(self, pkg: str) -> dict[str, str | Callable[[], Node]]:
+        from .workspace import executables_in, node_factory
+
+        exes: dict[str, str | Callable[[], Node]] = dict(self.executables.get(pkg, {}))
+        student = self._workspace_packages().get(pkg)
+        if student is not None:
+            exes.update({name: node_factory(path) for name, path in executables_in(student).items()})
+        elif pkg not in self.executables:
+            raise PackageNotFoundError(pkg, self.names())
+        return exes
 
     def factory(self, pkg: str, exe: str) -> Callable[[], Node]:
-        if pkg not in self.executables:
-            raise PackageNotFoundError(pkg, sorted(self.executables))
-        target = self.executables[pkg].get(exe)
+        exes = self.executables_of(pkg)
+        target = exes.get(exe)
         if target is None:
-            raise ExecutableNotFoundError(pkg, exe, sorted(self.executables[pkg]))
+            raise ExecutableNotFoundError(pkg, exe, sorted(exes))
         if callable(target):
             return target
         module, _, attr = target.partition(":")
         return getattr(importlib.import_module(module), attr)
-
-    def add_executable(self, pkg: str, exe: str, target: str | Callable[[], Node], share_dir: Path | None = None) -> None:
-        self.executables.setdefault(pkg, {})[exe] = target
-        if share_dir is not None:
-            self.share_dirs[pkg] = share_dir

@@ -1,0 +1,3 @@
+from server.msgs import Time
+
+__all__ = ["Time"]

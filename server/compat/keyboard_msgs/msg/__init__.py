@@ -1,0 +1,3 @@
+from server.msgs import Key
+
+__all__ = ["Key"]

@@ -1,0 +1,3 @@
+from server.msgs import Log
+
+__all__ = ["Log"]

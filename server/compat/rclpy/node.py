@@ -1,0 +1,3 @@
+from server.bus import Node, Parameter
+
+__all__ = ["Node", "Parameter"]

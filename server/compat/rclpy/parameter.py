@@ -1,0 +1,3 @@
+from server.bus import Parameter
+
+__all__ = ["Parameter"]

@@ -1,0 +1,3 @@
+from server.bus import RosTime as Time
+
+__all__ = ["Time"]
