@@ -43,7 +43,8 @@ class VelocityGains:
     kp_z_1_s: float = 4.0
     ki_z_1_s2: float = 0.3
     kd_z_s: float = 0.0
-    integral_limit_m_s: float = 2.0
+    max_integral_accel_m_s2: float = 4.0
+    """Anti-windup: bound on the integral term's contribution |ki * I| per axis (m/s^2)."""
     min_thrust_n: float = 0.0
     max_thrust_n: float = 20.0
     """The lab clamps thrust to [0, 20] N."""
@@ -115,11 +116,13 @@ class VelocityController:
         self.mass_kg, self.gravity_m_s2 = mass_kg, gravity_m_s2
         self.drag_per_mass = drag_coeff_n_per_m_s2 / mass_kg
         g = self.gains
-        limit = g.integral_limit_m_s
-        self.pids = (
-            PID(g.kp_xy_1_s, g.ki_xy_1_s2, integral_limit=limit),
-            PID(g.kp_xy_1_s, g.ki_xy_1_s2, integral_limit=limit),
-            PID(g.kp_z_1_s, g.ki_z_1_s2, integral_limit=limit),
+        self.pids = tuple(
+            PID(kp, ki, integral_limit=g.max_integral_accel_m_s2 / ki if ki > 0 else None)
+            for kp, ki in (
+                (g.kp_xy_1_s, g.ki_xy_1_s2),
+                (g.kp_xy_1_s, g.ki_xy_1_s2),
+                (g.kp_z_1_s, g.ki_z_1_s2),
+            )
         )
         self.setpoint_m_s: tuple[float, ...] = (0.0, 0.0, 0.0)
         self.yaw_setpoint_rad = 0.0
