@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from itertools import islice
+from itertools import islice, pairwise
 from typing import Any, Literal
 
 from server.bus import Bus, Node, Timer, is_hidden
@@ -42,7 +42,7 @@ def rate_stats(times_s: Sequence[float], window: int) -> RateStats:
         raise ValueError(f"window must be at least 1 period, got {window}")
     start = max(0, len(times_s) - (window + 1))
     recent = list(islice(times_s, start, None))
-    periods = [b - a for a, b in zip(recent, recent[1:])]
+    periods = [b - a for a, b in pairwise(recent)]
     if not periods:
         return RateStats(window=0)
     mean = sum(periods) / len(periods)
@@ -137,7 +137,9 @@ def node_info(node: Node) -> dict[str, Any]:
         "namespace": node.get_namespace(),
         "state": node.state,
         "crash_reason": node.crash_reason,
-        "publishers": [{"topic": p.topic_name, "type": p.msg_type.TYPE, "depth": p.depth} for p in node.publishers],
+        "publishers": [
+            {"topic": p.topic_name, "type": p.msg_type.TYPE, "depth": p.depth} for p in node.publishers
+        ],
         "subscribers": [
             {"topic": s.topic_name, "type": s.msg_type.TYPE, "depth": s.depth} for s in node.subscriptions
         ],
