@@ -1,0 +1,158 @@
+"""REST: the ROS tools' view of the graph: ``rqt_graph``, ``ros2 node list/info``, ``ros2 topic hz``,
+``ros2 interface list/show`` (as JSON Schema) and ``ros2 interface proto`` (the default message)."""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from fastapi import APIRouter, HTTPException, Query, status
+from pydantic import BaseModel, ConfigDict, Field
+
+from server.bus import is_hidden, validate_topic_name
+from server.bus.graph import HZ_WINDOW_MAX
+from server.introspection import graph_snapshot, node_info, rate_stats, type_schema
+from server.msgs import Message, UnknownTypeError, get_type, type_names
+
+from .deps import LabDep
+from .errors import http_error
+
+router = APIRouter(prefix="/api", tags=["introspection"])
+HZ_WINDOW_DEFAULT = 100
+
+
+class GraphNodeOut(BaseModel):
+    name: str = Field(examples=["/CountDownNode"])
+    state: Literal["active", "crashed"]
+    hidden: bool = Field(description="a name token starts with '_'")
+
+
+class GraphTopicOut(BaseModel):
+    name: str = Field(examples=["/countdown"])
+    type: str = Field(examples=["std_msgs/msg/Int64"])
+    hidden: bool = Field(description="an internal topic (/rosout, /parameter_events) or a '_' token")
+
+
+class GraphEdgeOut(BaseModel):
+    model_config = ConfigDict(populate_by_name=True)
+    from_: str = Field(alias="from", description="the publishing node, or the topic a node subscribes to")
+    to: str = Field(description="the topic published on, or the subscribing node")
+    kind: Literal["publish", "subscribe"]
+
+
+class GraphOut(BaseModel):
+    version: int = Field(
+        description="changes whenever a node, topic or endpoint comes or goes, or a node crashes"
+    )
+    nodes: list[GraphNodeOut]
+    topics: list[GraphTopicOut]
+    edges: list[GraphEdgeOut]
+
+
+class NodeSummaryOut(BaseModel):
+    name: str = Field(examples=["/CountDownNode"])
+    namespace: str = Field(examples=["/"])
+    state: Literal["active", "crashed"]
+
+
+class EndpointOut(BaseModel):
+    topic: str
+    type: str
+    depth: int = Field(description="QoS depth (keep-last)")
+
+
+class TimerOut(BaseModel):
+    period_s: float
+    calls: int
+    lateness_p50_ms: float | None = Field(description="median delay of a call past its deadline (ms)")
+    lateness_p99_ms: float | None
+
+
+class NodeDetailOut(NodeSummaryOut):
+    crash_reason: str | None
+    publishers: list[EndpointOut]
+    subscribers: list[EndpointOut]
+    timers: list[TimerOut]
+    parameters: dict[str, Any]
+    origin: dict[str, str] = Field(description="package, executable and launch file, when launched")
+
+
+class RateOut(BaseModel):
+    topic: str
+    window: int = Field(description="how many periods between messages the statistics use")
+    rate_hz: float | None = Field(description="1 / mean period; null with fewer than 2 messages")
+    min_s: float | None
+    max_s: float | None
+    std_dev_s: float | None
+    count: int = Field(description="messages published on the topic so far")
+
+
+@router.get("/graph", response_model=GraphOut)
+def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
+    """The computation graph, as rqt_graph draws it; ``hidden=true`` adds debug nodes and /rosout."""
+    snap = graph_snapshot(lab.bus, include_hidden=hidden)
+    return {
+        "version": snap.version,
+        "nodes": [vars(n) for n in snap.nodes],
+        "topics": [vars(t) for t in snap.topics],
+        "edges": [{"from": e.source, "to": e.target, "kind": e.kind} for e in snap.edges],
+    }
+
+
+@router.get("/nodes", response_model=list[NodeSummaryOut])
+def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
+    """Every node, as ``ros2 node list`` (``hidden=true`` adds the '_' ones, as ``--all``)."""
+    nodes = [n for n in lab.bus.nodes if hidden or not is_hidden(n.fully_qualified_name)]
+    return sorted(
+        ({"name": n.fully_qualified_name, "namespace": n.get_namespace(), "state": n.state} for n in nodes),
+        key=lambda n: n["name"],
+    )
+
+
+@router.get("/nodes/{name:path}", response_model=NodeDetailOut)
+def get_node(name: str, lab: LabDep) -> dict[str, Any]:
+    """One node (its name without the leading slash), as ``ros2 node info``."""
+    try:
+        return node_info(lab.bus.get_node(name))
+    except Exception as exc:
+        raise http_error(exc) from exc
+
+
+@router.get("/hz/{name:path}", response_model=RateOut)
+def topic_hz(
+    name: str,
+    lab: LabDep,
+    window: int = Query(HZ_WINDOW_DEFAULT, ge=2, le=HZ_WINDOW_MAX, description="periods"),
+) -> dict[str, Any]:
+    """A topic's publishing rate over its last ``window`` periods, as ``ros2 topic hz``."""
+    try:
+        topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
+    except Exception as exc:
+        raise http_error(exc) from exc
+    stats = rate_stats(topic.publish_times_s, window)
+    return {"topic": topic.name, **vars(stats), "count": topic.publish_count}
+
+
+def _type(name: str) -> type[Message]:
+    try:
+        return get_type(name)
+    except UnknownTypeError as exc:
+        raise HTTPException(status.HTTP_404_NOT_FOUND, str(exc)) from exc
+
+
+@router.get("/types", response_model=list[str])
+def list_types() -> list[str]:
+    """Every message type the lab knows, as ``ros2 interface list -m``."""
+    return type_names()
+
+
+# Declared before /types/{type} so that the path parameter does not swallow "/default".
+@router.get("/types/{type_name:path}/default")
+def type_default(type_name: str) -> dict[str, Any]:
+    """The message with every field at its default, as ``ros2 interface proto``."""
+    return _type(type_name)().to_dict()
+
+
+@router.get("/types/{type_name:path}")
+def type_info(type_name: str) -> dict[str, Any]:
+    """A JSON Schema (draft 2020-12) of the type's JSON form, with ROS integer ranges and defaults."""
+    return type_schema(_type(type_name))
