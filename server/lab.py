@@ -126,6 +126,10 @@ class Lab:
 
             with self.bus.activate():
                 self.rocket_view = RocketViewNode(self.display, self.reset_rocket)
+        if self.display is not None:
+            from server.viewer.publisher_panel import PageToolsNode
+
+            self.page_tools = PageToolsNode(self)
 
     async def start(self) -> None:
         if self.settings.viewer:
