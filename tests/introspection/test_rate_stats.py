@@ -23,7 +23,8 @@ def test_rate_stats_uneven_periods_match_hand_computed_values() -> None:
 def test_rate_stats_window_2_uses_only_the_last_three_times() -> None:
     # Last three times 1, 3, 4: periods 2 and 1, mean 1.5 s, std 0.5 s.
     stats = rate_stats([0.0, 1.0, 3.0, 4.0], window=2)
-    assert stats == RateStats(window=2, rate_hz=pytest.approx(2 / 3), min_s=1.0, max_s=2.0, std_dev_s=0.5)
+    assert stats.rate_hz == pytest.approx(2 / 3)
+    assert (stats.window, stats.min_s, stats.max_s, stats.std_dev_s) == (2, 1.0, 2.0, 0.5)
 
 
 @pytest.mark.parametrize("times", [[], [5.0]])

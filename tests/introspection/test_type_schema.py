@@ -10,7 +10,7 @@ from server.introspection import JSON_SCHEMA_DIALECT, type_schema
 from server.msgs import Key, Vector3, get_type, type_names
 from server.msgs._base import Field, define
 
-_JSON_TYPES: dict[str, tuple[type, ...]] = {
+_JSON_TYPES: dict[str, Any] = {
     "object": (dict,), "integer": (int,), "number": (int, float), "boolean": (bool,), "string": (str,),
 }  # fmt: skip
 
