@@ -4,14 +4,18 @@ Frames: ``{"type": "keydown"|"keyup", "key": <KeyboardEvent.key>}`` with optiona
 ``location`` (as the browser reports them), ``repeat``, and modifier flags (``shift``, ``ctrl``,
 ``alt``, ``meta``, or sided: ``lshift``, ``rshift`` ...). ``{"type": "release_all"}`` releases
 every key this connection holds (the page sends it on blur); ``{"type": "heartbeat"}`` keeps the
-channel alive. Garbage closes the channel with a named code; an unknown key only gets an error
+channel alive: if it is silent for ``deadman_s`` (500 ms) while keys are held, the server
+releases them itself. Garbage closes the channel with a named code; an unknown key only gets an error
 frame. When the channel closes, its held keys are released.
 """
 
 from __future__ import annotations
 
+import asyncio
 import itertools
 import json
+import logging
+import time
 from typing import Any
 
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect
@@ -22,6 +26,7 @@ from .deps import WsLabDep
 from .errors import CloseCode
 
 router = APIRouter(tags=["websockets"])
+log = logging.getLogger("api.keys")
 _ids = itertools.count(1)
 FRAME_FIELDS = frozenset({"type", "key", "code", "location", "repeat", "t", *MODIFIER_FLAG_NAMES})
 MAX_KEY_CHARS = 32
@@ -61,9 +66,12 @@ async def keys(websocket: WebSocket, lab: WsLabDep) -> None:
     await websocket.accept()
     source = f"ws-keys-{next(_ids)}"
     limit = lab.settings.max_ws_frame_bytes
+    last_frame_s = [time.monotonic()]
+    watchdog = asyncio.create_task(_dead_man(lab, source, last_frame_s, lab.settings.deadman_s))
     try:
         while True:
             message = await websocket.receive()
+            last_frame_s[0] = time.monotonic()
             if message["type"] == "websocket.disconnect":
                 return
             text = message.get("text")
@@ -84,7 +92,19 @@ async def keys(websocket: WebSocket, lab: WsLabDep) -> None:
     except WebSocketDisconnect:
         return
     finally:
+        watchdog.cancel()
         lab.keyboard.release_all(source)
+
+
+async def _dead_man(lab: Any, source: str, last_frame_s: list[float], timeout_s: float) -> None:
+    """Release this channel's keys when it goes silent while holding them (the page sends a
+    heartbeat every 200 ms; a frozen tab or a dead link stops it)."""
+    while True:
+        await asyncio.sleep(timeout_s / 5)
+        if lab.keyboard.held(source) and time.monotonic() - last_frame_s[0] > timeout_s:
+            log.warning("key channel %s silent for over %.0f ms with keys held: releasing them",
+                        source, timeout_s * 1000)
+            lab.keyboard.release_all(source)
 
 
 def handle_frame(lab: Any, source: str, frame: dict[str, Any]) -> str | None:

@@ -21,6 +21,7 @@ class Settings:
     allowed_origins: tuple[str, ...] = ()
     max_body_bytes: int = 64 * 1024
     max_ws_frame_bytes: int = 16 * 1024
+    deadman_s: float = 0.5  # a key channel silent this long with keys held has them released
     max_api_topics: int = 256  # topics the REST API may create, so a loop of typos cannot grow memory
 
     def __post_init__(self) -> None:

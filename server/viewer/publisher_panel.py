@@ -182,7 +182,12 @@ class PageToolsNode:
     def __init__(self, lab: Any) -> None:
         from server.bus import Node
 
+        from .teleop_panel import TeleopPanel, find_teleop_node
+
         with lab.bus.activate():
             self.node = Node("_page_tools")
         self.panel = PublisherPanel(lab)
+        self.teleop = None
+        if find_teleop_node(lab.bus.nodes) is not None:
+            self.teleop = TeleopPanel(lab)
         self.node.create_timer(1.0, self.panel.refresh_topics)

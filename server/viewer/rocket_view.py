@@ -16,6 +16,7 @@ from server.bus import Node
 from server.msgs import Bool, Float64, Int64
 
 from .display import Display
+from .plots import TimePlot
 
 CMD_PERIOD_S = 0.1  # MainControllerNode publishes /cmd_vel at 10 Hz
 PAD_XY = (60.0, 0.0)  # the rocket stands apart from the quadrotor's arena
@@ -127,6 +128,9 @@ class RocketScene:
             self.altitude = gui.add_number("Altitude (m)", 0.0, disabled=True, step=0.1)
             gui.add_markdown("Press **a** in this page during the countdown to abort.")
             reset = gui.add_button("Reset rocket", color="blue", hint="Back on the pad; the countdown starts again")
+        with gui.add_folder("Rocket plot", expand_by_default=False):
+            self.plot = TimePlot(gui, "/cmd_vel vs /sensor_vel (m/s)", ("/cmd_vel/data", "/sensor_vel/data"),
+                                 ("#1f5fd6", "#d62728"), max_points=4000)
         reset.on_click(lambda _event: display.call_in_app(on_reset))
         self._display = display
 
@@ -154,12 +158,24 @@ class RocketViewNode(Node):
         self.create_subscription(Int64, "/countdown", lambda m: self.tracker.on_countdown(m.data), 100)
         self.create_subscription(Bool, "/abort_takeoff", lambda m: self.tracker.on_abort(m.data), 100)
         self.create_subscription(Float64, "/cmd_vel", lambda m: self.tracker.on_cmd_vel(m.data), 100)
-        self.create_subscription(Float64, "/sensor_vel", lambda m: self.tracker.on_sensor_vel(m.data), 100)
+        self.create_subscription(Float64, "/sensor_vel", self.on_sensor_vel, 100)
         self.create_timer(1.0 / REDRAW_HZ, self.redraw)
+        self._t0 = self.bus.clock.now()
+        if self.scene is not None:
+            self.create_timer(0.25, self.scene.plot.flush)
+
+    def on_sensor_vel(self, msg: Float64) -> None:
+        """Track it, and plot both velocities as /sensor_vel arrives (10 Hz), like the lab's rqt_plot."""
+        self.tracker.on_sensor_vel(msg.data)
+        if self.scene is not None and self.tracker.phase != "ready":
+            self.scene.plot.append(self.bus.clock.now() - self._t0, self.tracker.cmd_vel_m_s, msg.data)
 
     def reset(self) -> None:
         self.tracker = RocketTracker()
         self._drawn = -1
+        self._t0 = self.bus.clock.now()
+        if self.scene is not None:
+            self.scene.plot.clear()
 
     def redraw(self) -> None:
         if self.scene is None or self.tracker.version == self._drawn:

@@ -13,9 +13,13 @@ import numpy as np
 from server.bus import Node
 from server.msgs import PoseStamped, TwistStamped, Vector3
 from server.packages.flightcontroller.setpoints import ARENA_MAX_M, ARENA_MIN_M
+from server.viewer.plots import TimePlot
 
 ARM_M = 1.0  # the lab draws each arm 1 m from the hub
 TRAIL_POINTS = 150
+PLOT_WINDOW_S = 20.0
+PLOT_SAMPLE_HZ = 10.0
+PLOT_FLUSH_HZ = 4.0
 HUB_GREEN, ARM_X_BLUE, ARM_Y_RED = (0, 200, 0), (30, 60, 255), (230, 30, 30)
 CAMERA_POSITION, CAMERA_LOOK_AT = (0.0, -23.0, 15.0), (0.0, 0.0, 5.0)  # from -y: right = +x, up = +y
 
@@ -51,8 +55,24 @@ class DroneScene:
                                              colors=(90, 160, 90), thickness=0.03)
         with gui.add_folder("Quadrotor"):
             self.telemetry = gui.add_markdown("waiting for /uav/sensors/gps ...")
-            gui.add_markdown("Arrow keys move the setpoint 1 m: **→** +x, **←** −x, **↑** +y (away), **↓** −y.")
+            gui.add_markdown("Arrow keys move the setpoint: **→** +x, **←** −x, **↑** +y (away), **↓** −y; "
+                             "**PgUp/W** up, **PgDn/S** down.")
+        with gui.add_folder("Quadrotor plots", expand_by_default=False):
+            self.plots = tuple(
+                TimePlot(gui, f"{axis} (m): drone vs setpoint", (axis, f"{axis} setpoint"), ("#2a6", "#e80"),
+                         window_s=PLOT_WINDOW_S)
+                for axis in "xyz"
+            )
         self._display = display
+
+    def plot(self, t_s: float, pos: tuple[float, float, float], setpoint: tuple[float, float, float] | None) -> None:
+        sp = setpoint if setpoint is not None else (float("nan"),) * 3
+        for plot, value, target in zip(self.plots, pos, sp):
+            plot.append(t_s, value, target)
+
+    def flush_plots(self) -> None:
+        for plot in self.plots:
+            plot.flush()
 
     def draw(self, pos: tuple[float, float, float], wxyz: tuple[float, float, float, float],
              setpoint: tuple[float, float, float] | None, trail: np.ndarray, text: str) -> None:
@@ -84,6 +104,10 @@ class GUIControllerNode(Node):
         self.create_subscription(TwistStamped, "uav/sensors/velocity", self.on_velocity, 1)
         self.create_subscription(Vector3, "uav/input/position", self.on_setpoint, 10)
         self.create_timer(1.0 / redraw_hz, self.redraw)
+        if self.scene is not None:
+            self.create_timer(1.0 / PLOT_SAMPLE_HZ, self.sample_plots)
+            self.create_timer(1.0 / PLOT_FLUSH_HZ, self.scene.flush_plots)
+        self._t0 = self.bus.clock.now()
 
     def on_gps(self, msg: PoseStamped) -> None:
         p, q = msg.pose.position, msg.pose.orientation
@@ -107,6 +131,10 @@ class GUIControllerNode(Node):
         self.frames_drawn += 1
         if self.scene is not None:
             self.scene.draw(pos, wxyz, self.setpoint, np.array(self.trail, dtype=np.float32), self.telemetry_text())
+
+    def sample_plots(self) -> None:
+        if self.pose is not None and self.scene is not None:
+            self.scene.plot(self.bus.clock.now() - self._t0, self.pose[0], self.setpoint)
 
     def telemetry_text(self) -> str:
         assert self.pose is not None

@@ -1,0 +1,140 @@
+"""The lab server's HTTP and WebSocket API as the CLI sees it, with its failures as one-line errors."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator, Mapping
+from typing import Any
+from urllib.parse import urlencode, urlsplit, urlunsplit
+
+import httpx
+from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus
+from websockets.sync.client import connect
+
+DEFAULT_URL = "http://127.0.0.1:8000"
+URL_ENV = "TELEOP_URL"
+TIMEOUT_S = 10.0
+# The app's own close code for "no such topic" (api.errors.CloseCode.UNKNOWN_TOPIC; a test keeps them equal).
+CLOSE_UNKNOWN_TOPIC = 4404
+# What FastAPI answers for a path no route serves: an older server than this CLI.
+NO_ROUTE_DETAIL = "Not Found"
+
+
+class CliError(Exception):
+    """A failure the CLI reports as one line on stderr, then exits with ``exit_code``."""
+
+    exit_code = 1
+
+
+class NoServerError(CliError):
+    """Nothing listens at the URL (connection refused, unknown host)."""
+
+    exit_code = 2
+
+    def __init__(self, url: str) -> None:
+        super().__init__(f"no lab server at {url} (start it with: bash scripts/run.sh)")
+
+
+class ApiError(CliError):
+    """The server answered with an error status; ``detail`` is its explanation."""
+
+    def __init__(self, status: int, detail: str, method: str, path: str) -> None:
+        self.status, self.detail, self.method, self.path = status, detail, method, path
+        if status in (404, 409, 422) and not self.no_route:
+            super().__init__(detail)
+        else:
+            super().__init__(f"{method} {path}: HTTP {status}: {detail}")
+
+    @property
+    def no_route(self) -> bool:
+        """True when the server has no such endpoint at all (as opposed to no such topic or node)."""
+        return self.status == 404 and self.detail == NO_ROUTE_DETAIL
+
+
+class UnknownTopicError(CliError):
+    """The echo channel was closed because the topic does not exist (and no type was given)."""
+
+
+def describe_detail(detail: Any) -> str:
+    """FastAPI's ``detail``: a string, or a list of validation errors with ``loc`` and ``msg``."""
+    if isinstance(detail, list):
+        parts = []
+        for item in detail:
+            if isinstance(item, Mapping):
+                loc = ".".join(str(p) for p in item.get("loc", ()) if p != "body")
+                parts.append(f"{loc}: {item.get('msg', '')}" if loc else str(item.get("msg", "")))
+            else:
+                parts.append(str(item))
+        return "; ".join(parts)
+    return str(detail)
+
+
+class LabClient:
+    """A session with one lab server. ``transport`` lets tests answer without a server."""
+
+    def __init__(self, base_url: str, transport: httpx.BaseTransport | None = None) -> None:
+        self.base_url = base_url.rstrip("/")
+        self._http = httpx.Client(base_url=self.base_url, timeout=TIMEOUT_S, transport=transport)
+
+    def __enter__(self) -> LabClient:
+        return self
+
+    def __exit__(self, *_: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        self._http.close()
+
+    def get(self, path: str, params: Mapping[str, Any] | None = None) -> Any:
+        return self._request("GET", path, params=dict(params or {}))
+
+    def post(self, path: str, body: Mapping[str, Any]) -> Any:
+        return self._request("POST", path, json=dict(body))
+
+    def delete(self, path: str) -> Any:
+        return self._request("DELETE", path)
+
+    def _request(self, method: str, path: str, **kwargs: Any) -> Any:
+        try:
+            response = self._http.request(method, path, **kwargs)
+        except httpx.ConnectError:
+            raise NoServerError(self.base_url) from None
+        except httpx.HTTPError as exc:
+            raise CliError(f"{method} {path}: {type(exc).__name__}: {exc}") from None
+        if response.is_success:
+            return response.json() if response.content else None
+        try:
+            detail = describe_detail(response.json().get("detail", response.text))
+        except (ValueError, AttributeError):
+            detail = response.text.strip() or response.reason_phrase
+        raise ApiError(response.status_code, detail, method, path)
+
+    def ws_url(self, path: str, params: Mapping[str, Any]) -> str:
+        parts = urlsplit(self.base_url)
+        scheme = "wss" if parts.scheme == "https" else "ws"
+        return urlunsplit((scheme, parts.netloc, parts.path + path, urlencode(params), ""))
+
+    def subscribe(self, topic: str, params: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
+        """Frames ``{topic, type, msg, received}`` of ``WS /ws/topics/{topic}``, as they come."""
+        url = self.ws_url("/ws/topics/" + topic.lstrip("/"), params)
+        try:
+            with connect(url, open_timeout=TIMEOUT_S, max_size=None) as ws:
+                for frame in ws:
+                    yield json.loads(frame)
+        except ConnectionClosed as exc:
+            raise _closed_error(exc, topic) from None
+        except InvalidStatus as exc:
+            raise CliError(f"the lab server refused the echo channel: HTTP {exc.response.status_code}") from None
+        except InvalidHandshake as exc:
+            raise CliError(f"the lab server refused the echo channel: {exc}") from None
+        except OSError:
+            raise NoServerError(self.base_url) from None
+        raise CliError("the lab server closed the echo channel (is it shutting down?)")
+
+
+def _closed_error(exc: ConnectionClosed, topic: str) -> CliError:
+    if exc.rcvd is None:
+        return CliError("lost the connection to the lab server")
+    if exc.rcvd.code == CLOSE_UNKNOWN_TOPIC:
+        return UnknownTopicError(exc.rcvd.reason or f"unknown topic {topic}")
+    return CliError(f"the lab server closed the echo channel: {exc.rcvd.reason or exc.rcvd.code}")
