@@ -99,15 +99,15 @@ class Flight:
         self.lab.executor.spin_until(self.END_S)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def fly_flight() -> Iterator[Flight]:
-    """The default launch (process noise on), flown once per module."""
+    """The default launch (process noise on), flown once per test session; tests only read it."""
     flight = Flight()
     yield flight
     flight.lab.launcher.shutdown()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def quiet_flight() -> Iterator[Flight]:
     """The same flight with the dynamics node's noise off (a launch file sets its ``noise`` param)."""
     flight = Flight(FLY_NO_NOISE)
