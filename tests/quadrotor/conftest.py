@@ -54,14 +54,20 @@ class Probe:
 
     def positions(self, after_s: float = -np.inf, until_s: float = np.inf) -> np.ndarray:
         """GPS samples as rows (t_s, x_m, y_m, z_m)."""
-        rows = [(t, m.pose.position.x, m.pose.position.y, m.pose.position.z)
-                for t, m in self.got["/uav/sensors/gps"] if after_s <= t <= until_s]
+        rows = [
+            (t, m.pose.position.x, m.pose.position.y, m.pose.position.z)
+            for t, m in self.got["/uav/sensors/gps"]
+            if after_s <= t <= until_s
+        ]
         return np.array(rows).reshape(-1, 4)
 
     def velocities(self, after_s: float = -np.inf, until_s: float = np.inf) -> np.ndarray:
         """Velocity samples as rows (t_s, vx, vy, vz) in m/s, world frame."""
-        rows = [(t, m.twist.linear.x, m.twist.linear.y, m.twist.linear.z)
-                for t, m in self.got["/uav/sensors/velocity"] if after_s <= t <= until_s]
+        rows = [
+            (t, m.twist.linear.x, m.twist.linear.y, m.twist.linear.z)
+            for t, m in self.got["/uav/sensors/velocity"]
+            if after_s <= t <= until_s
+        ]
         return np.array(rows).reshape(-1, 4)
 
     def vectors(self, topic: str, after_s: float = -np.inf) -> list[tuple[float, float, float]]:

@@ -82,4 +82,3 @@ def test_fly_launch_simple_true_runs_simple_sim_and_lab_pid(simple: str) -> None
     assert pc.mode == "lab"
     assert pc.period_s == pytest.approx(0.01)
     assert _ends(lab, "/uav/input/velocity") == ({"position_controller_node"}, {"SimpleSimNode"})
-

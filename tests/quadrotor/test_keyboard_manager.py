@@ -53,8 +53,14 @@ def test_keyboard_arrows_move_setpoint_1m_in_the_documented_directions(adopt: tu
     for code in (Key.KEY_RIGHT, Key.KEY_UP, Key.KEY_LEFT, Key.KEY_LEFT, Key.KEY_DOWN, Key.KEY_DOWN):
         _press(lab, code)
         seen.append(_setpoints(probe)[-1])
-    assert seen == [(1.0, 0.0, 3.0), (1.0, 1.0, 3.0), (0.0, 1.0, 3.0), (-1.0, 1.0, 3.0), (-1.0, 0.0, 3.0),
-                    (-1.0, -1.0, 3.0)]
+    assert seen == [
+        (1.0, 0.0, 3.0),
+        (1.0, 1.0, 3.0),
+        (0.0, 1.0, 3.0),
+        (-1.0, 1.0, 3.0),
+        (-1.0, 0.0, 3.0),
+        (-1.0, -1.0, 3.0),
+    ]
     assert node(lab, "position_controller_node").setpoint_m == (-1.0, -1.0, 3.0)
 
 
@@ -66,7 +72,9 @@ def test_keyboard_arrows_drone_flies_to_the_new_setpoint(adopt: tuple[Lab, Probe
     assert np.abs(probe.positions(after_s=8.0)[:, 1:] - (1.0, 1.0, 3.0)).max() < 0.1
 
 
-def test_keyboard_adopt_mode_moves_from_a_setpoint_published_by_someone_else(adopt: tuple[Lab, Probe]) -> None:
+def test_keyboard_adopt_mode_moves_from_a_setpoint_published_by_someone_else(
+    adopt: tuple[Lab, Probe],
+) -> None:
     lab, probe = adopt
     lab.publish(POSITION, {"x": 5.0, "y": 5.0, "z": 10.0}, None)
     lab.executor.spin_until(2.0)

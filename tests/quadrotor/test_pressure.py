@@ -12,8 +12,12 @@ from .conftest import GROUNDED_SENSORS, Flight, make_lab, start
 PRESSURE = "/uav/sensors/pressure"
 
 
-@pytest.mark.parametrize(("altitude_m", "expected_mbar"), [(0.0, 1013.250), (3.0, 1012.889), (10.0, 1012.049)])
-def test_pressure_formula_at_the_labs_altitudes_matches_its_values(altitude_m: float, expected_mbar: float) -> None:
+@pytest.mark.parametrize(
+    ("altitude_m", "expected_mbar"), [(0.0, 1013.250), (3.0, 1012.889), (10.0, 1012.049)]
+)
+def test_pressure_formula_at_the_labs_altitudes_matches_its_values(
+    altitude_m: float, expected_mbar: float
+) -> None:
     assert pressure_mbar(altitude_m) == pytest.approx(expected_mbar, abs=1e-3)
 
 

@@ -136,8 +136,12 @@ def test_wild_setpoints_every_tick_for_60s_state_stays_finite_above_ground_and_b
     v = probe.velocities()[:, 1:]
     assert np.all(np.isfinite(v))
     assert np.linalg.norm(v, axis=1).max() < 30.0
-    q = np.array([(m.pose.orientation.w, m.pose.orientation.x, m.pose.orientation.y, m.pose.orientation.z)
-                  for _, m in probe.got["/uav/sensors/gps"]])
+    q = np.array(
+        [
+            (m.pose.orientation.w, m.pose.orientation.x, m.pose.orientation.y, m.pose.orientation.z)
+            for _, m in probe.got["/uav/sensors/gps"]
+        ]
+    )
     assert np.abs(np.linalg.norm(q, axis=1) - 1.0).max() < 1e-6
     attitude = np.array(probe.vectors("/uav/sensors/attitude"))
     assert np.all(np.isfinite(attitude))
