@@ -1,4 +1,5 @@
-"""``python -m server``: start the lab's app (``--host``, ``--port``, ``--launch``)."""
+"""``python -m server``: start the lab's app (``--host``, ``--port``, ``--launch``); ``python -m server
+topic list`` and the other ros2 verbs run the command-line tools against a running one (server.cli)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,7 @@ import logging
 import sys
 from pathlib import Path
 
+from server import cli
 from server.settings import Settings
 
 
@@ -18,7 +20,10 @@ def parse_launch_arg(text: str) -> tuple[str, str]:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="python -m server", description="Run the teleop lab app.")
+    parser = argparse.ArgumentParser(
+        prog="python -m server", description="Run the teleop lab app.",
+        epilog=f"With a first argument of {', '.join(cli.VERBS)}: ros2's command-line tools against a "
+               "running app (python -m server topic --help; also installed as ros2lab).")
     parser.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)")
     parser.add_argument("--port", type=int, default=8000, help="port (default 8000)")
     parser.add_argument("--launch", default="all", help="rocket, fly, all (default) or a launch file's path")
@@ -48,6 +53,9 @@ def check_launch(settings: Settings) -> str | None:
 
 
 def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if argv and (argv[0] in cli.VERBS or argv[0].startswith("--url")):
+        return cli.main(argv)  # ros2's verbs, against a running server
     args = build_parser().parse_args(argv)
     settings = Settings(
         host=args.host, port=args.port, launch=args.launch, launch_args=dict(args.launch_args),

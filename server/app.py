@@ -16,6 +16,7 @@ from server.bus import Clock
 from server.lab import Lab
 from server.settings import Settings
 from server.viewer.page import router as page_router
+from server.viewer.tools_page import router as tools_router
 
 STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 
@@ -41,6 +42,7 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
     )
     app.include_router(build_router())
     app.include_router(page_router)
+    app.include_router(tools_router)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     app.add_middleware(
         GuardMiddleware,

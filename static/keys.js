@@ -8,7 +8,8 @@
     " ", "PageUp", "PageDown"]);
   const SIDED = { Shift: ["lshift", "rshift"], Control: ["lctrl", "rctrl"], Alt: ["lalt", "ralt"], Meta: ["lmeta", "rmeta"] };
   const HEARTBEAT_MS = 200;
-  const state = { connected: false, held: new Set(), sent: 0, errors: [] };
+  // listeners: other page scripts (the HUD) see each key here, since this script stops the event.
+  const state = { connected: false, held: new Set(), sent: 0, errors: [], listeners: [] };
   window.__teleopKeys = state;
   const mods = { lshift: false, rshift: false, lctrl: false, rctrl: false, lalt: false, ralt: false, lmeta: false, rmeta: false };
   let ws = null;
@@ -47,6 +48,7 @@
     if (e.repeat) frame.repeat = true;
     send(frame);
     render();
+    for (const listener of state.listeners) { try { listener(e, k); } catch (err) { console.error(err); } }
   };
   const releaseAll = () => {
     if (state.held.size) send({ type: "release_all" });

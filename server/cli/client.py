@@ -40,7 +40,9 @@ class ApiError(CliError):
 
     def __init__(self, status: int, detail: str, method: str, path: str) -> None:
         self.status, self.detail, self.method, self.path = status, detail, method, path
-        if status in (404, 409, 422) and not self.no_route:
+        if self.no_route:
+            super().__init__(f"{method} {path}: HTTP 404: the server has no such endpoint (older than this CLI?)")
+        elif status in (404, 409, 422):
             super().__init__(detail)
         else:
             super().__init__(f"{method} {path}: HTTP {status}: {detail}")

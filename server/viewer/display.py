@@ -30,8 +30,7 @@ class Display:
     def __init__(self, loop: asyncio.AbstractEventLoop | None = None) -> None:
         # Loopback and an ephemeral port: the browser only ever reaches it through the app.
         self.server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
-        self.server.gui.configure_theme(show_share_button=False, control_layout="collapsible",
-                                        control_width="medium", dark_mode=False)
+        self.set_theme(dark=False)
         self.server.scene.set_up_direction("+z")
         self._loop = loop
         self.views: dict[str, CameraView] = {}
@@ -58,6 +57,11 @@ class Display:
             event.client.camera.position = view.position
             event.client.camera.look_at = view.look_at
             event.client.camera.up_direction = (0.0, 0.0, 1.0)
+
+    def set_theme(self, *, dark: bool) -> None:
+        # The share button would reach an outside tunnel host: never offer it.
+        self.server.gui.configure_theme(show_share_button=False, control_layout="collapsible",
+                                        control_width="medium", dark_mode=dark)
 
     @property
     def port(self) -> int:

@@ -15,7 +15,11 @@ from fastapi.responses import HTMLResponse
 
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
-INJECT = '<link rel="stylesheet" href="/static/page.css"><script src="/static/keys.js"></script>'
+INJECT_STYLES = ("page.css",)
+INJECT_SCRIPTS = ("keys.js", "hud.js")  # key capture first: it must see keys before viser does
+INJECT = "".join(f'<link rel="stylesheet" href="/static/{name}">' for name in INJECT_STYLES) + "".join(
+    f'<script src="/static/{name}"></script>' for name in INJECT_SCRIPTS
+)
 PROXY_MAX_FRAME_BYTES = 1 << 20  # browser → viser: camera moves and GUI clicks, all small
 
 

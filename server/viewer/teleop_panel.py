@@ -35,7 +35,9 @@ class TeleopPanel:
             self.mode = gui.add_dropdown("Key mode", list(MODE_LABELS.values()), initial_value=MODE_LABELS[mode])
             self.speed = gui.add_slider("Hold speed (m/s)", min=0.5, max=5.0, step=0.25, initial_value=speed)
             self.status = gui.add_markdown("")
+            self.dark = gui.add_checkbox("Dark theme", False)
             gui.add_markdown(KEYS_HELP)
+        self.dark.on_update(lambda _e: lab.display.set_theme(dark=bool(self.dark.value)))
         self.mode.on_update(lambda _e: lab.display.call_in_app(self.apply))
         self.speed.on_update(lambda _e: lab.display.call_in_app(self.apply))
 

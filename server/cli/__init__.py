@@ -1,0 +1,61 @@
+"""``ros2lab``: ros2's command-line verbs against a running lab server (``topic``, ``node``, ``launch``,
+``run``, ``interface``), with ros2's options and output, over the server's HTTP/WebSocket API.
+
+It imports nothing of the server: everything goes over the wire, so it works against any lab
+server it can reach (``--url``, or ``TELEOP_URL``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import sys
+from types import FrameType
+
+from . import interface, launch, node, topic
+from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
+
+VERBS = ("topic", "node", "launch", "run", "interface")
+
+__all__ = ["VERBS", "build_parser", "main"]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="ros2lab", description="ros2's command-line tools for the teleop lab's running server.")
+    url_help = f"the lab server (default: ${URL_ENV}, else {DEFAULT_URL})"
+    parser.add_argument("--url", default=None, help=url_help)
+    # --url is accepted after the verb too; SUPPRESS keeps it from overwriting one given before.
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("--url", default=argparse.SUPPRESS, help=url_help)
+    verbs = parser.add_subparsers(dest="verb", required=True, metavar="VERB")
+    topic.add_parser(verbs, common)
+    node.add_parser(verbs, common)
+    launch.add_parsers(verbs, common)
+    interface.add_parser(verbs, common)
+    return parser
+
+
+def _interrupt(_signum: int, _frame: FrameType | None) -> None:
+    raise KeyboardInterrupt
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run one command; 0 on success or Ctrl-C, 1 when it failed, 2 on bad usage or no server."""
+    args = build_parser().parse_args(argv)
+    url = args.url or os.environ.get(URL_ENV) or DEFAULT_URL
+    # SIGTERM cleans up as Ctrl-C does: a launch's nodes and a periodic publisher are stopped.
+    signal.signal(signal.SIGTERM, _interrupt)
+    try:
+        with LabClient(url) as client:
+            return int(args.handler(args, client))
+    except KeyboardInterrupt:
+        return 0
+    except CliError as exc:
+        sys.stdout.flush()
+        print(f"error: {exc}", file=sys.stderr)
+        return exc.exit_code
+    except BrokenPipeError:  # the output went to `head` or the like, which has seen enough
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0

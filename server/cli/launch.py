@@ -1,0 +1,135 @@
+"""``launch`` and ``run``: start nodes in the server's graph, keep them until Ctrl-C, then stop them."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+import yaml
+
+from .client import ApiError, CliError, LabClient
+
+Sleep = Callable[[float], None]
+CHECK_PERIOD_S = 2.0  # how often to check that the launch still exists on the server
+NODE_NAME_REMAPS = ("__node", "__name")
+
+
+def split_assignment(text: str, what: str) -> tuple[str, str]:
+    name, sep, value = text.partition(":=")
+    if not sep or not name:
+        raise CliError(f"{what} are NAME:=VALUE, got {text!r}")
+    return name, value
+
+
+def launch_request(tokens: Sequence[str], cwd: str | None = None) -> dict[str, Any]:
+    """``FILE [a:=b ...]`` or ``PKG FILE [a:=b ...]`` → the body of ``POST /api/launch``."""
+    args = dict(split_assignment(t, "launch arguments") for t in tokens if ":=" in t)
+    positional = [t for t in tokens if ":=" not in t]
+    if len(positional) == 1:
+        return {"file": os.path.abspath(os.path.join(cwd or os.getcwd(), positional[0])), "args": args}
+    if len(positional) == 2:
+        return {"package": positional[0], "file": positional[1], "args": args}
+    raise CliError("launch takes FILE or PACKAGE FILE, then NAME:=VALUE arguments")
+
+
+def parse_ros_args(argv: Sequence[str]) -> dict[str, Any]:
+    """``--ros-args -p NAME:=VALUE -r FROM:=TO`` → name, parameters and remappings.
+
+    Parameter values are YAML, as ROS reads them (``2.0`` a float, ``true`` a bool); remapping
+    ``__node`` renames the node.
+    """
+    out: dict[str, Any] = {"name": None, "parameters": {}, "remappings": {}}
+    tokens = list(argv)
+    if tokens and tokens[0] == "--ros-args":
+        tokens.pop(0)
+    elif tokens:
+        raise CliError(f"unexpected arguments {' '.join(tokens)!r}; node options go after --ros-args")
+    while tokens:
+        flag = tokens.pop(0)
+        if flag in ("--", "--ros-args"):
+            continue
+        if flag not in ("-p", "--param", "-r", "--remap") or not tokens:
+            raise CliError(f"--ros-args takes -p NAME:=VALUE and -r FROM:=TO, got {flag!r}")
+        if flag in ("-p", "--param"):
+            name, value = split_assignment(tokens.pop(0), "parameters")
+            out["parameters"][name] = yaml.safe_load(value) if value else ""
+        else:
+            source, target = split_assignment(tokens.pop(0), "remappings")
+            if source in NODE_NAME_REMAPS:
+                out["name"] = target
+            else:
+                out["remappings"][source] = target
+    return out
+
+
+def _node_label(node: Mapping[str, Any]) -> str:
+    name = str(node.get("name") or node.get("exec"))
+    return name if name.startswith("/") else "/" + name
+
+
+def report_started(group: Mapping[str, Any]) -> int:
+    """ros2 launch's lines for each node; returns how many started."""
+    started = 0
+    for node in group.get("nodes", []):
+        what = f"{_node_label(node)} ({node.get('pkg')} {node.get('exec')})"
+        if node.get("error"):
+            print(f"[ERROR] [launch]: {what} failed: {node['error']}", flush=True)
+        else:
+            print(f"[INFO] [launch]: process started: {what}", flush=True)
+            started += 1
+    return started
+
+
+def hold_until_interrupted(client: LabClient, group: Mapping[str, Any], sleep: Sleep = time.sleep) -> int:
+    """Keep the nodes until Ctrl-C, then stop them, as ros2 launch does with its processes."""
+    try:
+        if report_started(group) == 0 and group.get("nodes"):
+            client.delete(f"/api/launches/{group['id']}")
+            print("[ERROR] [launch]: no node started", flush=True)
+            return 1
+        while True:
+            sleep(CHECK_PERIOD_S)
+            if not any(g.get("id") == group["id"] for g in client.get("/api/launches")):
+                print("[INFO] [launch]: the nodes were stopped by someone else", flush=True)
+                return 0
+    except KeyboardInterrupt:
+        print("[WARNING] [launch]: user interrupted with ctrl-c (SIGINT)", flush=True)
+    try:
+        client.delete(f"/api/launches/{group['id']}")
+    except ApiError as exc:
+        if exc.status != 404:
+            raise
+    for node in group.get("nodes", []):
+        if not node.get("error"):
+            print(f"[INFO] [launch]: process has finished cleanly: {_node_label(node)}", flush=True)
+    return 0
+
+
+def launch(args: argparse.Namespace, client: LabClient) -> int:
+    group = client.post("/api/launch", launch_request(args.launch_arguments))
+    return hold_until_interrupted(client, group)
+
+
+def run(args: argparse.Namespace, client: LabClient) -> int:
+    options = parse_ros_args(args.argv)
+    body: dict[str, Any] = {"package": args.package_name, "executable": args.executable_name,
+                            "parameters": options["parameters"], "remappings": options["remappings"]}
+    if options["name"] is not None:
+        body["name"] = options["name"]
+    return hold_until_interrupted(client, client.post("/api/run", body))
+
+
+def add_parsers(verbs: Any, common: argparse.ArgumentParser) -> None:
+    p = verbs.add_parser("launch", parents=[common], help="Run a launch file")
+    p.add_argument("launch_arguments", nargs="+", metavar="ARG",
+                   help="FILE, or PACKAGE FILE, then launch arguments as NAME:=VALUE")
+    p.set_defaults(handler=launch)
+
+    p = verbs.add_parser("run", parents=[common], help="Run a package specific executable")
+    p.add_argument("package_name", help="Name of the ROS package")
+    p.add_argument("executable_name", help="Name of the executable")
+    p.add_argument("argv", nargs=argparse.REMAINDER, help="--ros-args -p NAME:=VALUE -r FROM:=TO")
+    p.set_defaults(handler=run)

@@ -1,0 +1,447 @@
+// The tools page, like rqt: the computation graph (rqt_graph), node and topic info, a topic's
+// rate (ros2 topic hz) and a live echo (ros2 topic echo), plus topic and node lists.
+// It polls /api/graph once a second and rebuilds the drawing only when the graph's version
+// changes (and what is shown changed with it). Plain DOM and SVG; the layout is tools.layout.js.
+(() => {
+  "use strict";
+  const POLL_MS = 1000;
+  const ECHO_RETRY_MS = 2000;
+  const FONT = "12px system-ui, -apple-system, 'Segoe UI', sans-serif";
+  const NODE_H = 30;  // px, ellipse height
+  const TOPIC_H = 26;  // px, box height
+  const PAD = 24;  // px around the drawing
+  const SVG_NS = "http://www.w3.org/2000/svg";
+
+  const $ = (sel) => document.querySelector(sel);
+  const svg = $("#graph");
+  const state = {
+    graph: null, key: null, signature: null, redraws: 0, mode: $("#mode").value,
+    hideDebug: $("#hide-debug").checked, selected: null, bounds: null, userView: false,
+    echo: null, echoPaused: false, echoFrames: 0,
+  };
+  window.__tools = state;  // for tests and the curious
+
+  // -- small helpers -------------------------------------------------------------------------
+  function el(tag, attrs = {}, ...children) {
+    const node = document.createElement(tag);
+    for (const [k, v] of Object.entries(attrs)) {
+      if (k === "class") node.className = v;
+      else if (k.startsWith("on")) node.addEventListener(k.slice(2), v);
+      else node.setAttribute(k, v);
+    }
+    for (const c of children) node.append(c instanceof Node ? c : String(c));
+    return node;
+  }
+  function sv(tag, attrs = {}) {
+    const node = document.createElementNS(SVG_NS, tag);
+    for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, v);
+    return node;
+  }
+  const path = (name) => name.replace(/^\/+/, "").split("/").map(encodeURIComponent).join("/");
+  async function getJSON(url) {
+    const response = await fetch(url, { cache: "no-store" });
+    if (!response.ok) {
+      const error = new Error(`${response.status} ${url}`);
+      error.status = response.status;
+      throw error;
+    }
+    return response.json();
+  }
+  const canvas = document.createElement("canvas").getContext("2d");
+  function textWidth(text) { canvas.font = FONT; return canvas.measureText(text).width; }
+  const fmt = (x, digits = 3) => (x === null || x === undefined ? "–" : Number(x).toFixed(digits));
+  const link = (kind, name) => el("a", { class: "link", href: "#", onclick: (e) => { e.preventDefault(); select(kind, name); } }, name);
+
+  // -- what to draw --------------------------------------------------------------------------
+  function viewOf(graph, mode) {
+    const nodes = graph.nodes.map((n) => ({ id: n.name, kind: "node", state: n.state, hidden: n.hidden }));
+    if (mode === "all") {
+      const topics = graph.topics.map((t) => ({ id: t.name, kind: "topic", type: t.type, hidden: t.hidden }));
+      return { vertices: [...nodes, ...topics], edges: graph.edges.map((e) => ({ from: e.from, to: e.to, kind: e.kind })) };
+    }
+    // Nodes only: publisher → subscriber, one arrow per pair, labelled with the topics it carries.
+    const subs = new Map();
+    for (const e of graph.edges) if (e.kind === "subscribe") subs.set(e.from, [...(subs.get(e.from) || []), e.to]);
+    const pairs = new Map();
+    for (const e of graph.edges) {
+      if (e.kind !== "publish") continue;
+      for (const to of subs.get(e.to) || []) {
+        const key = `${e.from}\n${to}`;
+        if (!pairs.has(key)) pairs.set(key, { from: e.from, to, kind: "flow", topics: [] });
+        pairs.get(key).topics.push(e.to);
+      }
+    }
+    const edges = [...pairs.values()].map((p) => ({ ...p, label: p.topics.join(", ") }));
+    return { vertices: nodes, edges };
+  }
+
+  // -- drawing -------------------------------------------------------------------------------
+  function boundary(box, kind, toward) {
+    const dx = toward.x - box.x;
+    const dy = toward.y - box.y;
+    if (!dx && !dy) return { x: box.x, y: box.y };
+    const t = kind === "node"
+      ? 1 / Math.hypot(dx / (box.w / 2), dy / (box.h / 2))
+      : Math.min(dx ? box.w / 2 / Math.abs(dx) : Infinity, dy ? box.h / 2 / Math.abs(dy) : Infinity);
+    return { x: box.x + dx * t, y: box.y + dy * t };
+  }
+
+  function curve(points, bow) {
+    let d = `M${points[0].x},${points[0].y}`;
+    for (let i = 1; i < points.length; i++) {
+      const a = points[i - 1];
+      const b = points[i];
+      const dx = (b.x - a.x) / 2;
+      d += ` C${a.x + dx},${a.y + bow} ${b.x - dx},${b.y + bow} ${b.x},${b.y}`;
+    }
+    return d;
+  }
+
+  function drawEdge(route, boxes, kinds) {
+    const e = route.edge;
+    const g = sv("g", { class: "graph-edge", "data-from": e.from, "data-to": e.to, "data-kind": e.kind });
+    const line = sv("path", { "marker-end": "url(#arrowhead)" });
+    let labelAt;
+    if (route.loop) {
+      const b = boxes.get(e.from);
+      const top = b.y - b.h / 2;
+      line.setAttribute("d", `M${b.x - 14},${top + 2} C${b.x - 34},${top - 36} ${b.x + 34},${top - 36} ${b.x + 14},${top + 1}`);
+      labelAt = { x: b.x, y: top - 30 };
+    } else {
+      const pts = route.points.map((p) => ({ ...p }));
+      pts[0] = boundary(boxes.get(e.from), kinds.get(e.from), pts[1]);
+      pts[pts.length - 1] = boundary(boxes.get(e.to), kinds.get(e.to), pts[pts.length - 2]);
+      line.setAttribute("d", curve(pts, route.reversed ? 16 : 0));  // bowed, to miss its forward twin
+    }
+    g.append(sv("title"), line);
+    g.firstChild.textContent = e.label ? `${e.from} → ${e.to}: ${e.label}` : `${e.from} → ${e.to}`;
+    return { g, line, labelAt, label: e.label };
+  }
+
+  function drawVertex(v, box) {
+    const cls = [v.kind === "node" ? "graph-node" : "graph-topic", v.hidden ? "debug" : "", v.state === "crashed" ? "crashed" : ""];
+    const g = sv("g", { class: cls.join(" ").trim(), "data-name": v.id, tabindex: "0", role: "button",
+      "aria-label": `${v.kind} ${v.id}${v.state === "crashed" ? " (crashed)" : ""}` });
+    if (v.state) g.setAttribute("data-state", v.state);
+    const title = sv("title");
+    title.textContent = v.kind === "topic" ? `${v.id}\n${v.type}` : `${v.id}${v.state === "crashed" ? " (crashed)" : ""}`;
+    const shape = v.kind === "node"
+      ? sv("ellipse", { cx: box.x, cy: box.y, rx: box.w / 2, ry: box.h / 2 })
+      : sv("rect", { x: box.x - box.w / 2, y: box.y - box.h / 2, width: box.w, height: box.h, rx: 3 });
+    const text = sv("text", { x: box.x, y: box.y });
+    text.textContent = v.id;
+    g.append(title, shape, text);
+    return g;
+  }
+
+  function draw(view) {
+    const vertices = view.vertices.map((v) => ({
+      ...v, w: textWidth(v.id) + (v.kind === "node" ? 36 : 18), h: v.kind === "node" ? NODE_H : TOPIC_H,
+    }));
+    const { boxes, routes, width, height } = window.ToolsLayout.layout(vertices, view.edges);
+    const kinds = new Map(vertices.map((v) => [v.id, v.kind]));
+    const defs = sv("defs");
+    const marker = sv("marker", { id: "arrowhead", viewBox: "0 0 10 10", refX: "10", refY: "5",
+      markerWidth: "9", markerHeight: "9", markerUnits: "userSpaceOnUse", orient: "auto" });
+    marker.append(sv("path", { d: "M0,0 L10,5 L0,10 z" }));
+    defs.append(marker);
+    const edgeLayer = sv("g", { class: "edges" });
+    const vertexLayer = sv("g", { class: "vertices" });
+    svg.replaceChildren(defs, edgeLayer, vertexLayer);
+    const hasLoop = routes.some((r) => r.loop);
+    for (const route of routes) {
+      const { g, line, labelAt, label } = drawEdge(route, boxes, kinds);
+      edgeLayer.append(g);
+      if (label) {  // placed once the path is in the document and can be measured
+        const at = labelAt || line.getPointAtLength(line.getTotalLength() / 2);
+        const text = sv("text", { x: at.x, y: at.y - 4 });
+        text.textContent = label;
+        g.append(text);
+      }
+    }
+    for (const v of vertices) vertexLayer.append(drawVertex(v, boxes.get(v.id)));
+    const top = hasLoop ? 44 : 0;
+    state.bounds = { x: -PAD, y: -PAD - top, w: width + 2 * PAD, h: height + 2 * PAD + top };
+    if (!state.userView) setViewBox(state.bounds);
+    $("#graph-empty").hidden = vertices.length > 0;
+    state.redraws++;
+    svg.dataset.redraws = String(state.redraws);
+    markSelection();
+  }
+
+  function render() {
+    if (!state.graph) return;
+    const view = viewOf(state.graph, state.mode);
+    const signature = JSON.stringify([state.mode, view]);
+    if (signature === state.signature) return;  // a new version that changed nothing shown here
+    state.signature = signature;
+    draw(view);
+  }
+
+  // -- pan and zoom --------------------------------------------------------------------------
+  function setViewBox(v) {
+    state.view = v;
+    svg.setAttribute("viewBox", `${v.x} ${v.y} ${v.w} ${v.h}`);
+  }
+  function toUser(clientX, clientY) {
+    const m = svg.getScreenCTM();
+    return m ? new DOMPoint(clientX, clientY).matrixTransform(m.inverse()) : { x: 0, y: 0 };
+  }
+  svg.addEventListener("wheel", (e) => {
+    if (!state.view) return;
+    e.preventDefault();
+    const p = toUser(e.clientX, e.clientY);
+    const k = Math.min(4, Math.max(0.25, Math.exp(e.deltaY * 0.0015)));
+    const v = state.view;
+    state.userView = true;
+    setViewBox({ x: p.x - (p.x - v.x) * k, y: p.y - (p.y - v.y) * k, w: v.w * k, h: v.h * k });
+  }, { passive: false });
+  let drag = null;
+  svg.addEventListener("pointerdown", (e) => {
+    if (!state.view || e.button !== 0) return;
+    drag = { x: e.clientX, y: e.clientY, view: state.view, moved: false, id: e.pointerId };
+  });
+  svg.addEventListener("pointermove", (e) => {
+    if (!drag || e.pointerId !== drag.id) return;
+    const dx = e.clientX - drag.x;
+    const dy = e.clientY - drag.y;
+    if (!drag.moved && Math.hypot(dx, dy) < 4) return;
+    if (!drag.moved) { drag.moved = true; svg.setPointerCapture(e.pointerId); svg.classList.add("panning"); }
+    const m = svg.getScreenCTM();
+    const scale = m ? 1 / m.a : 1;
+    state.userView = true;
+    setViewBox({ ...drag.view, x: drag.view.x - dx * scale, y: drag.view.y - dy * scale });
+  });
+  const endDrag = () => { svg.classList.remove("panning"); setTimeout(() => { drag = null; }, 0); };
+  svg.addEventListener("pointerup", endDrag);
+  svg.addEventListener("pointercancel", endDrag);
+  $("#fit").addEventListener("click", () => { state.userView = false; if (state.bounds) setViewBox(state.bounds); });
+
+  // -- selection -----------------------------------------------------------------------------
+  function itemAt(target) {
+    const g = target.closest && target.closest("g.graph-node, g.graph-topic");
+    return g ? { kind: g.classList.contains("graph-node") ? "node" : "topic", name: g.dataset.name } : null;
+  }
+  svg.addEventListener("click", (e) => {
+    if (drag && drag.moved) return;
+    const item = itemAt(e.target);
+    if (item) select(item.kind, item.name);
+  });
+  svg.addEventListener("keydown", (e) => {
+    const item = itemAt(e.target);
+    if (item && (e.key === "Enter" || e.key === " ")) { e.preventDefault(); select(item.kind, item.name); }
+  });
+
+  function markSelection() {
+    const sel = state.selected;
+    const is = (kind, name) => sel && sel.kind === kind && sel.name === name;
+    for (const g of svg.querySelectorAll("g.graph-node, g.graph-topic")) {
+      g.classList.toggle("selected", is(g.classList.contains("graph-node") ? "node" : "topic", g.dataset.name));
+    }
+    for (const g of svg.querySelectorAll("g.graph-edge")) {
+      g.classList.toggle("active", !!sel && (g.dataset.from === sel.name || g.dataset.to === sel.name));
+    }
+    for (const tr of document.querySelectorAll("#topics-table tbody tr")) tr.classList.toggle("selected", is("topic", tr.dataset.name));
+    for (const li of document.querySelectorAll("#nodes-list li")) li.classList.toggle("selected", is("node", li.dataset.name));
+  }
+
+  function select(kind, name) {
+    const same = state.selected && state.selected.kind === kind && state.selected.name === name;
+    if (!same) {
+      closeEcho();
+      state.selected = { kind, name };
+      $("#details-hint").hidden = true;
+      $("#node-info").hidden = kind !== "node";
+      $("#topic-info").hidden = kind !== "topic";
+      markSelection();
+    }
+    if (kind === "node") refreshNode();
+    else {
+      refreshTopic();
+      refreshHz();
+      if (!state.echo) openEcho(name);
+    }
+  }
+
+  // -- node info -----------------------------------------------------------------------------
+  function fillTable(table, headers, rows, empty) {
+    const head = el("tr", {}, ...headers.map((h) => el("th", { class: h.num ? "num" : "" }, h.label)));
+    const body = rows.length
+      ? rows.map((cells) => el("tr", {}, ...cells.map((c, i) => el("td", { class: headers[i].num ? "num" : "" }, c))))
+      : [el("tr", {}, el("td", { class: "empty", colspan: String(headers.length) }, empty))];
+    table.replaceChildren(el("thead", {}, head), el("tbody", {}, ...body));
+  }
+
+  function showNode(info) {
+    const box = $("#node-info");
+    box.querySelector(".title").textContent = info.name;
+    const badge = box.querySelector(".state");
+    badge.textContent = info.state;
+    badge.className = `badge state ${info.state}`;
+    const reason = box.querySelector(".crash-reason");
+    reason.hidden = !info.crash_reason;
+    reason.textContent = info.crash_reason || "";
+    const origin = info.origin || {};
+    const facts = [["namespace", info.namespace], ["package", origin.package], ["executable", origin.executable],
+      ["launch file", origin.launch_file]].filter(([, v]) => v);
+    box.querySelector(".facts").replaceChildren(...facts.flatMap(([k, v]) => [el("dt", {}, k), el("dd", {}, v)]));
+    const endpoint = (ep) => [link("topic", ep.topic), ep.type, String(ep.depth)];
+    const cols = [{ label: "topic" }, { label: "type" }, { label: "depth", num: true }];
+    fillTable(box.querySelector(".publishers"), cols, info.publishers.map(endpoint), "none");
+    fillTable(box.querySelector(".subscribers"), cols, info.subscribers.map(endpoint), "none");
+    fillTable(box.querySelector(".timers"),
+      [{ label: "period s", num: true }, { label: "calls", num: true }, { label: "late p50 ms", num: true }, { label: "p99 ms", num: true }],
+      info.timers.map((t) => [fmt(t.period_s), String(t.calls), fmt(t.lateness_p50_ms, 2), fmt(t.lateness_p99_ms, 2)]), "none");
+    fillTable(box.querySelector(".parameters"), [{ label: "name" }, { label: "value" }],
+      Object.entries(info.parameters).map(([k, v]) => [k, el("span", { class: "mono" }, JSON.stringify(v))]), "none");
+  }
+
+  async function refreshNode() {
+    const sel = state.selected;
+    try {
+      const info = await getJSON(`/api/nodes/${path(sel.name)}`);
+      if (state.selected === sel) showNode(info);
+    } catch (err) {
+      if (state.selected !== sel || err.status !== 404) return;
+      $("#node-info .state").textContent = "gone";
+      $("#node-info .state").className = "badge state";
+    }
+  }
+
+  // -- topic info, rate and echo ---------------------------------------------------------------
+  async function refreshTopic() {
+    const sel = state.selected;
+    const box = $("#topic-info");
+    box.querySelector(".title").textContent = sel.name;
+    let info;
+    try {
+      info = await getJSON(`/api/topics/${path(sel.name)}`);
+    } catch (err) {
+      if (state.selected === sel && err.status === 404) box.querySelector(".facts").replaceChildren(el("dt", {}, "gone"), el("dd", {}, "no node uses this topic any more"));
+      return;
+    }
+    if (state.selected !== sel) return;
+    const names = (list, kind) => (list.length ? list.flatMap((n, i) => (i ? [", ", link(kind, n)] : [link(kind, n)])) : ["none"]);
+    box.querySelector(".facts").replaceChildren(
+      el("dt", {}, "type"), el("dd", { class: "mono" }, info.type),
+      el("dt", {}, "publishers"), el("dd", {}, ...names(info.publishers, "node")),
+      el("dt", {}, "subscribers"), el("dd", {}, ...names(info.subscribers, "node")),
+      el("dt", {}, "messages"), el("dd", {}, String(info.publish_count)),
+    );
+    if (!state.echoFrames && info.latest) {
+      $("#echo").textContent = JSON.stringify(info.latest, null, 2);
+      $("#echo-meta").textContent = "last message published before this echo began";
+    }
+  }
+
+  async function refreshHz() {
+    const sel = state.selected;
+    try {
+      const hz = await getJSON(`/api/hz/${path(sel.name)}`);
+      if (state.selected !== sel) return;
+      $("#topic-hz").textContent = hz.rate_hz === null
+        ? `no rate yet (${hz.count} message${hz.count === 1 ? "" : "s"})`
+        : `average rate: ${fmt(hz.rate_hz)} Hz\nmin ${fmt(hz.min_s)} s  max ${fmt(hz.max_s)} s  std dev ${fmt(hz.std_dev_s, 5)} s  window ${hz.window}`;
+    } catch (err) {
+      if (state.selected === sel) $("#topic-hz").textContent = err.status === 404 ? "topic gone" : "rate unavailable";
+    }
+  }
+
+  function openEcho(topic) {
+    const scheme = location.protocol === "https:" ? "wss" : "ws";
+    // queue_length=1: with a throttle slower than the topic, show the newest message, not a backlog.
+    const ws = new WebSocket(`${scheme}://${location.host}/ws/topics/${path(topic)}?throttle_rate=200&queue_length=1`);
+    state.echo = ws;
+    state.echoFrames = 0;
+    const pre = $("#echo");
+    pre.textContent = "";
+    pre.dataset.frames = "0";
+    $("#echo-meta").textContent = "waiting for a message…";
+    ws.onmessage = (ev) => {
+      if (state.echo !== ws) return;
+      const frame = JSON.parse(ev.data);
+      state.echoFrames++;
+      if (state.echoPaused) return;
+      pre.textContent = JSON.stringify(frame.msg, null, 2);
+      pre.dataset.frames = String(state.echoFrames);
+      const at = new Date(frame.received * 1000).toLocaleTimeString([], { hour12: false });
+      $("#echo-meta").textContent = `${frame.type} · ${state.echoFrames} received · last at ${at}` +
+        (frame.dropped ? ` · ${frame.dropped} dropped` : "");
+    };
+    ws.onclose = (ev) => {
+      if (state.echo !== ws) return;
+      state.echo = null;
+      $("#echo-meta").textContent = `echo closed${ev.reason ? `: ${ev.reason}` : ""}; retrying…`;
+      setTimeout(() => {
+        const sel = state.selected;
+        if (!state.echo && sel && sel.kind === "topic" && sel.name === topic) openEcho(topic);
+      }, ECHO_RETRY_MS);
+    };
+  }
+
+  function closeEcho() {
+    const ws = state.echo;
+    state.echo = null;
+    state.echoFrames = 0;
+    if (ws) ws.close(1000);
+  }
+
+  $("#echo-pause").addEventListener("click", () => {
+    state.echoPaused = !state.echoPaused;
+    $("#echo-pause").textContent = state.echoPaused ? "Resume" : "Pause";
+  });
+
+  // -- lists ---------------------------------------------------------------------------------
+  async function refreshLists(hidden) {
+    const [topics, nodes] = await Promise.all([getJSON(`/api/topics?hidden=${hidden}`), getJSON(`/api/nodes?hidden=${hidden}`)]);
+    $("#topics-table tbody").replaceChildren(...topics.map((t) => el("tr", { "data-name": t.name, onclick: () => select("topic", t.name) },
+      el("td", { class: "mono" }, t.name), el("td", { class: "mono" }, t.type),
+      el("td", { class: "num" }, String(t.publishers.length)), el("td", { class: "num" }, String(t.subscribers.length)))));
+    $("#nodes-list").replaceChildren(...nodes.map((n) => el("li", { "data-name": n.name, onclick: () => select("node", n.name) },
+      el("span", { class: "mono" }, n.name), el("span", { class: `badge ${n.state}` }, n.state))));
+    markSelection();
+  }
+
+  // -- polling -------------------------------------------------------------------------------
+  function setStatus(live, text) {
+    const status = $("#status");
+    status.textContent = text;
+    status.className = `status ${live ? "live" : "offline"}`;
+  }
+
+  let timer = null;
+  let polling = false;
+  async function poll() {
+    clearTimeout(timer);
+    if (polling) return;
+    polling = true;
+    try {
+      if (!document.hidden) {
+        const hidden = !state.hideDebug;
+        const graph = await getJSON(`/api/graph?hidden=${hidden}`);
+        setStatus(true, `live · graph v${graph.version}`);
+        const key = `${graph.version}:${hidden}`;
+        if (key !== state.key) {
+          state.key = key;
+          state.graph = graph;
+          svg.dataset.version = String(graph.version);
+          render();
+          await refreshLists(hidden);
+          if (state.selected && state.selected.kind === "topic") refreshTopic();
+        }
+        if (state.selected && state.selected.kind === "node") refreshNode();
+        if (state.selected && state.selected.kind === "topic") refreshHz();
+      }
+    } catch (err) {
+      setStatus(false, "server unreachable — retrying");
+    } finally {
+      polling = false;
+      timer = setTimeout(poll, POLL_MS);
+    }
+  }
+
+  $("#mode").addEventListener("change", (e) => { state.mode = e.target.value; state.userView = false; render(); });
+  $("#hide-debug").addEventListener("change", (e) => { state.hideDebug = e.target.checked; state.userView = false; poll(); });
+  document.addEventListener("visibilitychange", () => { if (!document.hidden) poll(); });
+  poll();
+})();

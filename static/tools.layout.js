@@ -1,0 +1,187 @@
+// Layered left-to-right graph layout for the tools page, as rqt_graph's dot draws it, in brief:
+// cycles broken by reversing DFS back edges; longest-path layers, then vertices with no more
+// inputs than outputs pulled up to their successors; long edges split by invisible dummy
+// vertices; barycenter ordering sweeps, keeping the order with the fewest crossings; then y
+// pulled toward the neighbours without overlap.
+// Pure: sizes in, coordinates out; window.ToolsLayout.layout(vertices, edges).
+(() => {
+  "use strict";
+  const LAYER_GAP = 44;  // px between the widest boxes of two layers, room for arrowheads
+  const ROW_GAP = 18;  // px between boxes in one layer
+  const DUMMY_H = 6;  // px a long edge takes where it crosses a layer
+  const SWEEPS = 16;
+
+  // Indices of the edges to reverse so that the graph has no cycle (DFS back edges).
+  function backEdges(ids, edges) {
+    const out = new Map(ids.map((id) => [id, []]));
+    const indeg = new Map(ids.map((id) => [id, 0]));
+    edges.forEach((e, i) => { out.get(e.from).push(i); indeg.set(e.to, indeg.get(e.to) + 1); });
+    const seen = new Map();  // 1: on the DFS stack, 2: finished
+    const back = new Set();
+    const visit = (v) => {
+      seen.set(v, 1);
+      for (const i of out.get(v)) {
+        const w = edges[i].to;
+        if (seen.get(w) === 1) back.add(i);
+        else if (!seen.has(w)) visit(w);
+      }
+      seen.set(v, 2);
+    };
+    const starts = [...ids].sort((a, b) => indeg.get(a) - indeg.get(b));
+    for (const v of starts) if (!seen.has(v)) visit(v);
+    return back;
+  }
+
+  function assignLayers(ids, dag) {
+    const preds = new Map(ids.map((id) => [id, []]));
+    const succs = new Map(ids.map((id) => [id, []]));
+    for (const [u, v] of dag) { succs.get(u).push(v); preds.get(v).push(u); }
+    const layer = new Map();
+    const waiting = new Map(ids.map((id) => [id, preds.get(id).length]));
+    const queue = ids.filter((id) => waiting.get(id) === 0);
+    for (let k = 0; k < queue.length; k++) {
+      const v = queue[k];
+      layer.set(v, Math.max(0, ...preds.get(v).map((p) => layer.get(p) + 1)));
+      for (const w of succs.get(v)) {
+        waiting.set(w, waiting.get(w) - 1);
+        if (waiting.get(w) === 0) queue.push(w);
+      }
+    }
+    // Longest path packs everything to the left. Moving a vertex right by one shortens its
+    // outgoing edges and lengthens its incoming ones, so, sinks first, move each vertex with no
+    // more inputs than outputs up against its nearest successor (a source always qualifies).
+    for (let k = queue.length - 1; k >= 0; k--) {
+      const v = queue[k];
+      if (succs.get(v).length && preds.get(v).length <= succs.get(v).length) {
+        layer.set(v, Math.min(...succs.get(v).map((s) => layer.get(s))) - 1);
+      }
+    }
+    return layer;
+  }
+
+  function crossings(upper, lower, down) {
+    const pos = new Map(lower.map((v, i) => [v, i]));
+    const segs = [];
+    upper.forEach((u, i) => { for (const w of down.get(u) || []) segs.push([i, pos.get(w)]); });
+    let n = 0;
+    for (let a = 0; a < segs.length; a++) {
+      for (let b = a + 1; b < segs.length; b++) {
+        if ((segs[a][0] - segs[b][0]) * (segs[a][1] - segs[b][1]) < 0) n++;
+      }
+    }
+    return n;
+  }
+
+  function totalCrossings(layers, down) {
+    let n = 0;
+    for (let l = 0; l + 1 < layers.length; l++) n += crossings(layers[l], layers[l + 1], down);
+    return n;
+  }
+
+  function reorder(layer, fixed, neighbours) {
+    const pos = new Map(fixed.map((v, i) => [v, i]));
+    const key = new Map(layer.map((v, i) => {
+      const ns = (neighbours.get(v) || []).filter((w) => pos.has(w));
+      return [v, ns.length ? ns.reduce((s, w) => s + pos.get(w), 0) / ns.length : i * fixed.length / Math.max(1, layer.length)];
+    }));
+    return layer.map((v, i) => [v, i]).sort((a, b) => key.get(a[0]) - key.get(b[0]) || a[1] - b[1]).map((a) => a[0]);
+  }
+
+  function order(layers, up, down) {
+    let best = layers.map((l) => [...l]);
+    let bestCount = totalCrossings(best, down);
+    let cur = best.map((l) => [...l]);
+    for (let s = 0; s < SWEEPS && bestCount > 0; s++) {
+      if (s % 2 === 0) for (let l = 1; l < cur.length; l++) cur[l] = reorder(cur[l], cur[l - 1], up);
+      else for (let l = cur.length - 2; l >= 0; l--) cur[l] = reorder(cur[l], cur[l + 1], down);
+      const count = totalCrossings(cur, down);
+      if (count < bestCount) { best = cur.map((l) => [...l]); bestCount = count; }
+    }
+    return best;
+  }
+
+  // y of each box: centred layers first, then pulled toward the mean y of their neighbours.
+  function placeY(layers, size, up, down) {
+    const y = new Map();
+    const heights = layers.map((l) => l.reduce((s, v) => s + size.get(v).h, 0) + ROW_GAP * (l.length - 1));
+    const tallest = Math.max(0, ...heights);
+    layers.forEach((l, i) => {
+      let top = (tallest - heights[i]) / 2;
+      for (const v of l) { y.set(v, top + size.get(v).h / 2); top += size.get(v).h + ROW_GAP; }
+    });
+    for (let pass = 0; pass < 6; pass++) {
+      for (const l of layers) {
+        const want = l.map((v) => {
+          const ns = [...(up.get(v) || []), ...(down.get(v) || [])];
+          return ns.length ? ns.reduce((s, w) => s + y.get(w), 0) / ns.length : y.get(v);
+        });
+        // Push down from the top, push up from the bottom, and take the mean: both keep the
+        // spacing, so their mean does too, and neither side is favoured.
+        const gap = (i) => size.get(l[i]).h / 2 + ROW_GAP + size.get(l[i + 1]).h / 2;
+        const pushed = [...want];
+        for (let i = 1; i < l.length; i++) pushed[i] = Math.max(want[i], pushed[i - 1] + gap(i - 1));
+        const pulled = [...want];
+        for (let i = l.length - 2; i >= 0; i--) pulled[i] = Math.min(want[i], pulled[i + 1] - gap(i));
+        const placed = pushed.map((d, i) => (d + pulled[i]) / 2);
+        l.forEach((v, i) => y.set(v, placed[i]));
+      }
+    }
+    const top = Math.min(...[...y].map(([v, c]) => c - size.get(v).h / 2));
+    for (const [v, c] of y) y.set(v, c - top);
+    return y;
+  }
+
+  // vertices: [{id, w, h}]; edges: [{from, to}]. Returns {boxes: Map id → {x, y, w, h} (centres),
+  // routes: [{edge, points: [{x, y}, ...] from edge.from to edge.to} | {edge, loop: true}], width, height}.
+  function layout(vertices, edges) {
+    const ids = vertices.map((v) => v.id);
+    const size = new Map(vertices.map((v) => [v.id, { w: v.w, h: v.h }]));
+    const plain = edges.map((e, i) => [e, i]).filter(([e]) => e.from !== e.to && size.has(e.from) && size.has(e.to));
+    const back = backEdges(ids, plain.map(([e]) => e));
+    const dag = plain.map(([e], k) => (back.has(k) ? [e.to, e.from] : [e.from, e.to]));
+    const layer = assignLayers(ids, dag);
+    const up = new Map();
+    const down = new Map();
+    const link = (a, b) => {
+      if (!down.has(a)) down.set(a, []);
+      if (!up.has(b)) up.set(b, []);
+      down.get(a).push(b);
+      up.get(b).push(a);
+    };
+    const chains = dag.map(([u, v], k) => {
+      const chain = [u];
+      for (let l = layer.get(u) + 1; l < layer.get(v); l++) {
+        const d = `\u0000dummy${k}:${l}`;
+        layer.set(d, l);
+        size.set(d, { w: 0, h: DUMMY_H });
+        chain.push(d);
+      }
+      chain.push(v);
+      for (let i = 0; i + 1 < chain.length; i++) link(chain[i], chain[i + 1]);
+      return chain;
+    });
+    const count = Math.max(0, ...[...layer.values()]) + 1;
+    const layers = Array.from({ length: ids.length ? count : 0 }, () => []);
+    for (const [v, l] of layer) layers[l].push(v);
+    const ordered = order(layers, up, down);
+    const y = placeY(ordered, size, up, down);
+    const boxes = new Map();
+    let left = 0;
+    for (const l of ordered) {
+      const w = Math.max(0, ...l.map((v) => size.get(v).w));
+      for (const v of l) boxes.set(v, { x: left + w / 2, y: y.get(v), ...size.get(v) });
+      left += w + LAYER_GAP;
+    }
+    const routes = edges.map((e) => ({ edge: e, loop: e.from === e.to, points: [] }));
+    plain.forEach(([, i], k) => {
+      const pts = chains[k].map((v) => ({ x: boxes.get(v).x, y: boxes.get(v).y }));
+      routes[i].points = back.has(k) ? pts.reverse() : pts;
+      routes[i].reversed = back.has(k);
+    });
+    for (const id of [...boxes.keys()]) if (id.startsWith("\u0000")) boxes.delete(id);
+    const height = Math.max(0, ...[...boxes.values()].map((b) => b.y + b.h / 2));
+    return { boxes, routes, width: Math.max(0, left - LAYER_GAP), height };
+  }
+
+  window.ToolsLayout = { layout, backEdges, assignLayers, crossings };
+})();
