@@ -10,11 +10,13 @@ from fastapi import APIRouter
 from .deps import LabDep
 from .schemas import Health
 
+# Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
+# handler would run in a worker thread and race the executor (timer heap, wake-up future).
 router = APIRouter(prefix="/api", tags=["lab"])
 
 
 @router.get("/health", response_model=Health)
-def health(lab: LabDep) -> dict[str, Any]:
+async def health(lab: LabDep) -> dict[str, Any]:
     return {
         "status": "ok",
         "launch": lab.settings.launch,
@@ -25,7 +27,7 @@ def health(lab: LabDep) -> dict[str, Any]:
 
 
 @router.post("/rocket/reset")
-def reset_rocket(lab: LabDep) -> dict[str, str]:
+async def reset_rocket(lab: LabDep) -> dict[str, str]:
     """Put the rocket back on the pad and restart the countdown (the rocket's nodes restart)."""
     lab.reset_rocket()
     return {"status": "reset"}

@@ -13,6 +13,8 @@ from .deps import LabDep
 from .errors import http_error
 from .schemas import PublishRequest, PublishResult, TopicDetail, TopicSummary
 
+# Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
+# handler would run in a worker thread and race the executor (timer heap, wake-up future).
 router = APIRouter(prefix="/api", tags=["topics"])
 
 
@@ -38,14 +40,14 @@ def reject_non_finite(value: Any, path: str = "msg") -> None:
 
 
 @router.get("/topics", response_model=list[TopicSummary])
-def list_topics(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
+async def list_topics(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
     """Every topic with its type, publishers and subscribers (``hidden=true`` adds /rosout and the like)."""
     topics = sorted(lab.bus.topics.values(), key=lambda t: t.name)
     return [summary(t) for t in topics if hidden or not t.hidden]
 
 
 @router.get("/topics/{name:path}", response_model=TopicDetail)
-def topic_info(name: str, lab: LabDep) -> dict[str, Any]:
+async def topic_info(name: str, lab: LabDep) -> dict[str, Any]:
     """One topic (its name without the leading slash), with its latest message."""
     try:
         topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
@@ -62,7 +64,7 @@ def topic_info(name: str, lab: LabDep) -> dict[str, Any]:
 
 
 @router.post("/publish", response_model=PublishResult)
-def publish(body: PublishRequest, lab: LabDep) -> dict[str, Any]:
+async def publish(body: PublishRequest, lab: LabDep) -> dict[str, Any]:
     """Publish one message, as ``ros2 topic pub --once``; give ``type`` to create a new topic."""
     try:
         reject_non_finite(body.msg)
