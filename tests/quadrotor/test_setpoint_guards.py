@@ -121,7 +121,10 @@ def _wild_setpoints(lab: Lab, rng: np.random.Generator, rate_hz: float) -> None:
 
 
 @pytest.mark.parametrize("launch", ["fly", FLY_NO_NOISE], ids=["noise", "no_noise"])
-def test_wild_setpoints_every_tick_for_60s_state_stays_finite_above_ground_and_bounded(launch: str) -> None:
+def test_wild_setpoints_every_tick_for_60s_state_stays_finite_above_ground_and_bounded(
+    launch: str, caplog: pytest.LogCaptureFixture
+) -> None:
+    caplog.set_level(logging.ERROR, logger="node")  # 50 clamp warnings a second: tested above, costly here
     lab = make_lab(launch)
     probe = start(lab)
     _wild_setpoints(lab, np.random.default_rng(20251), rate_hz=50.0)
@@ -148,7 +151,8 @@ def test_wild_setpoints_every_tick_for_60s_state_stays_finite_above_ground_and_b
     assert _all_nodes_active(lab)
 
 
-def test_wild_setpoints_recovers_to_hover_once_they_stop() -> None:
+def test_wild_setpoints_recovers_to_hover_once_they_stop(caplog: pytest.LogCaptureFixture) -> None:
+    caplog.set_level(logging.ERROR, logger="node")
     lab = make_lab(FLY_NO_NOISE)
     probe: Probe = start(lab)
     _wild_setpoints(lab, np.random.default_rng(7), rate_hz=50.0)
