@@ -16,6 +16,8 @@ from server.msgs import Message, UnknownTypeError, get_type, type_names
 from .deps import LabDep
 from .errors import http_error
 
+# Handlers are ``async def`` so that they read the bus on the event loop that owns it, never
+# from a worker thread while the executor changes it.
 router = APIRouter(prefix="/api", tags=["introspection"])
 HZ_WINDOW_DEFAULT = 100
 
@@ -87,7 +89,7 @@ class RateOut(BaseModel):
 
 
 @router.get("/graph", response_model=GraphOut)
-def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
+async def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
     """The computation graph, as rqt_graph draws it; ``hidden=true`` adds debug nodes and /rosout."""
     snap = graph_snapshot(lab.bus, include_hidden=hidden)
     return {
@@ -99,7 +101,7 @@ def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
 
 
 @router.get("/nodes", response_model=list[NodeSummaryOut])
-def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
+async def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
     """Every node, as ``ros2 node list`` (``hidden=true`` adds the '_' ones, as ``--all``)."""
     nodes = [n for n in lab.bus.nodes if hidden or not is_hidden(n.fully_qualified_name)]
     return sorted(
@@ -109,7 +111,7 @@ def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
 
 
 @router.get("/nodes/{name:path}", response_model=NodeDetailOut)
-def get_node(name: str, lab: LabDep) -> dict[str, Any]:
+async def get_node(name: str, lab: LabDep) -> dict[str, Any]:
     """One node (its name without the leading slash), as ``ros2 node info``."""
     try:
         return node_info(lab.bus.get_node(name))
@@ -118,7 +120,7 @@ def get_node(name: str, lab: LabDep) -> dict[str, Any]:
 
 
 @router.get("/hz/{name:path}", response_model=RateOut)
-def topic_hz(
+async def topic_hz(
     name: str,
     lab: LabDep,
     window: int = Query(HZ_WINDOW_DEFAULT, ge=2, le=HZ_WINDOW_MAX, description="periods"),
@@ -140,19 +142,19 @@ def _type(name: str) -> type[Message]:
 
 
 @router.get("/types", response_model=list[str])
-def list_types() -> list[str]:
+async def list_types() -> list[str]:
     """Every message type the lab knows, as ``ros2 interface list -m``."""
     return type_names()
 
 
 # Declared before /types/{type} so that the path parameter does not swallow "/default".
 @router.get("/types/{type_name:path}/default")
-def type_default(type_name: str) -> dict[str, Any]:
+async def type_default(type_name: str) -> dict[str, Any]:
     """The message with every field at its default, as ``ros2 interface proto``."""
     return _type(type_name)().to_dict()
 
 
 @router.get("/types/{type_name:path}")
-def type_info(type_name: str) -> dict[str, Any]:
+async def type_info(type_name: str) -> dict[str, Any]:
     """A JSON Schema (draft 2020-12) of the type's JSON form, with ROS integer ranges and defaults."""
     return type_schema(_type(type_name))
