@@ -10,6 +10,8 @@
   const NODE_H = 30;  // px, ellipse height
   const TOPIC_H = 26;  // px, box height
   const PAD = 24;  // px around the drawing
+  const MAX_FIT_SCALE = 1.5;  // a small graph is not blown up past this
+  const MIN_PANEL_H = 180;  // px; the panel grows with the drawing's height up to 42% of the window
   const SVG_NS = "http://www.w3.org/2000/svg";
 
   const $ = (sel) => document.querySelector(sel);
@@ -37,6 +39,7 @@
     for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, v);
     return node;
   }
+  const isHidden = (name) => name.split("/").some((t) => t.startsWith("_"));
   const path = (name) => name.replace(/^\/+/, "").split("/").map(encodeURIComponent).join("/");
   async function getJSON(url) {
     const response = await fetch(url, { cache: "no-store" });
@@ -162,7 +165,7 @@
     for (const v of vertices) vertexLayer.append(drawVertex(v, boxes.get(v.id)));
     const top = hasLoop ? 44 : 0;
     state.bounds = { x: -PAD, y: -PAD - top, w: width + 2 * PAD, h: height + 2 * PAD + top };
-    if (!state.userView) setViewBox(state.bounds);
+    fitPanel();
     $("#graph-empty").hidden = vertices.length > 0;
     state.redraws++;
     svg.dataset.redraws = String(state.redraws);
@@ -182,6 +185,24 @@
   function setViewBox(v) {
     state.view = v;
     svg.setAttribute("viewBox", `${v.x} ${v.y} ${v.w} ${v.h}`);
+  }
+  // Size the panel to the drawing (a wide, short graph needs little height), then show it all.
+  function fitPanel() {
+    const panel = $("#graph-panel");
+    const b = state.bounds;
+    if (!b) return;
+    const want = panel.clientWidth * Math.min(b.h / b.w, 1 / 1.2) + 2;
+    panel.style.height = `${Math.round(Math.min(Math.max(want, MIN_PANEL_H), 0.42 * innerHeight))}px`;
+    if (!state.userView) fit();
+  }
+  function fit() {
+    const b = state.bounds;
+    const cw = svg.clientWidth || 1;
+    const ch = svg.clientHeight || 1;
+    const scale = Math.min(cw / b.w, ch / b.h, MAX_FIT_SCALE);
+    const w = cw / scale;
+    const h = ch / scale;
+    setViewBox({ x: b.x - (w - b.w) / 2, y: b.y - (h - b.h) / 2, w, h });
   }
   function toUser(clientX, clientY) {
     const m = svg.getScreenCTM();
@@ -215,7 +236,9 @@
   const endDrag = () => { svg.classList.remove("panning"); setTimeout(() => { drag = null; }, 0); };
   svg.addEventListener("pointerup", endDrag);
   svg.addEventListener("pointercancel", endDrag);
-  $("#fit").addEventListener("click", () => { state.userView = false; if (state.bounds) setViewBox(state.bounds); });
+  $("#fit").addEventListener("click", () => { state.userView = false; fitPanel(); });
+  new ResizeObserver(() => { if (!state.userView && state.bounds) fit(); }).observe(svg);
+  addEventListener("resize", fitPanel);
 
   // -- selection -----------------------------------------------------------------------------
   function itemAt(target) {
@@ -321,12 +344,13 @@
       return;
     }
     if (state.selected !== sel) return;
+    const shown = (list) => (state.hideDebug ? list.filter((n) => !isHidden(n)) : list);
     const names = (list, kind) => (list.length ? list.flatMap((n, i) => (i ? [", ", link(kind, n)] : [link(kind, n)])) : ["none"]);
     box.querySelector(".facts").replaceChildren(
       el("dt", {}, "type"), el("dd", { class: "mono" }, info.type),
-      el("dt", {}, "publishers"), el("dd", {}, ...names(info.publishers, "node")),
-      el("dt", {}, "subscribers"), el("dd", {}, ...names(info.subscribers, "node")),
-      el("dt", {}, "messages"), el("dd", {}, String(info.publish_count)),
+      el("dt", {}, "publishers"), el("dd", {}, ...names(shown(info.publishers), "node")),
+      el("dt", {}, "subscribers"), el("dd", {}, ...names(shown(info.subscribers), "node")),
+      el("dt", {}, "messages"), el("dd", { id: "topic-count" }, String(info.publish_count)),
     );
     if (!state.echoFrames && info.latest) {
       $("#echo").textContent = JSON.stringify(info.latest, null, 2);
@@ -339,6 +363,8 @@
     try {
       const hz = await getJSON(`/api/hz/${path(sel.name)}`);
       if (state.selected !== sel) return;
+      const count = $("#topic-count");
+      if (count) count.textContent = String(hz.count);
       $("#topic-hz").textContent = hz.rate_hz === null
         ? `no rate yet (${hz.count} message${hz.count === 1 ? "" : "s"})`
         : `average rate: ${fmt(hz.rate_hz)} Hz\nmin ${fmt(hz.min_s)} s  max ${fmt(hz.max_s)} s  std dev ${fmt(hz.std_dev_s, 5)} s  window ${hz.window}`;
@@ -393,10 +419,11 @@
 
   // -- lists ---------------------------------------------------------------------------------
   async function refreshLists(hidden) {
+    const count = (names) => (hidden ? names : names.filter((n) => !isHidden(n))).length;
     const [topics, nodes] = await Promise.all([getJSON(`/api/topics?hidden=${hidden}`), getJSON(`/api/nodes?hidden=${hidden}`)]);
     $("#topics-table tbody").replaceChildren(...topics.map((t) => el("tr", { "data-name": t.name, onclick: () => select("topic", t.name) },
       el("td", { class: "mono" }, t.name), el("td", { class: "mono" }, t.type),
-      el("td", { class: "num" }, String(t.publishers.length)), el("td", { class: "num" }, String(t.subscribers.length)))));
+      el("td", { class: "num" }, String(count(t.publishers))), el("td", { class: "num" }, String(count(t.subscribers))))));
     $("#nodes-list").replaceChildren(...nodes.map((n) => el("li", { "data-name": n.name, onclick: () => select("node", n.name) },
       el("span", { class: "mono" }, n.name), el("span", { class: `badge ${n.state}` }, n.state))));
     markSelection();

@@ -178,8 +178,8 @@
       routes[i].points = back.has(k) ? pts.reverse() : pts;
       routes[i].reversed = back.has(k);
     });
+    const height = Math.max(0, ...[...boxes.values()].map((b) => b.y + b.h / 2));  // dummies too
     for (const id of [...boxes.keys()]) if (id.startsWith("\u0000")) boxes.delete(id);
-    const height = Math.max(0, ...[...boxes.values()].map((b) => b.y + b.h / 2));
     return { boxes, routes, width: Math.max(0, left - LAYER_GAP), height };
   }
 
