@@ -16,7 +16,7 @@ from fastapi.responses import HTMLResponse
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
 INJECT_STYLES = ("page.css",)
-INJECT_SCRIPTS = ("keys.js", "hud.js")  # key capture first: it must see keys before viser does
+INJECT_SCRIPTS = ("keys.js", "hud.js", "nav.js")  # key capture first: it must see keys before viser does
 INJECT = "".join(f'<link rel="stylesheet" href="/static/{name}">' for name in INJECT_STYLES) + "".join(
     f'<script src="/static/{name}"></script>' for name in INJECT_SCRIPTS
 )
