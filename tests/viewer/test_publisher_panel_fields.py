@@ -1,0 +1,22 @@
+"""The Message Publisher panel's form: the fields it offers for a type, and the JSON it builds."""
+
+from __future__ import annotations
+
+from server.msgs import Key, PoseStamped, Vector3
+from server.viewer.publisher_panel import leaf_fields, nest
+
+
+def test_leaf_fields_of_vector3_are_x_y_z() -> None:
+    assert [path for path, _ in leaf_fields(Vector3)] == ["x", "y", "z"]
+
+
+def test_leaf_fields_flatten_nested_types_and_skip_the_stamp() -> None:
+    paths = [path for path, _ in leaf_fields(PoseStamped)]
+    assert paths == ["header.frame_id", "pose.position.x", "pose.position.y", "pose.position.z",
+                     "pose.orientation.x", "pose.orientation.y", "pose.orientation.z", "pose.orientation.w"]
+
+
+def test_nest_builds_a_message_the_type_accepts() -> None:
+    values = {path: (5 if field.kind == "uint16" else field.default) for path, field in leaf_fields(Key)}
+    msg = Key.from_dict(nest(values))
+    assert msg.code == 5 and msg.modifiers == 5 and msg.header.frame_id == ""
