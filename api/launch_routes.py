@@ -1,4 +1,7 @@
-"""REST: launch files and single nodes into the running graph (``ros2 launch``, ``ros2 run``)."""
+"""REST: launch files and single nodes into the running graph (``ros2 launch``, ``ros2 run``).
+
+Handlers are ``async def`` so they run on the loop that owns the bus, never in a worker thread.
+"""
 
 from __future__ import annotations
 
@@ -39,7 +42,7 @@ def _bad(exc: Exception) -> HTTPException:
 
 
 @router.post("/launch", status_code=status.HTTP_201_CREATED)
-def launch(body: LaunchRequest, lab: LabDep) -> dict[str, Any]:
+async def launch(body: LaunchRequest, lab: LabDep) -> dict[str, Any]:
     """Start a launch file's nodes; a node that fails to start is reported, the others run."""
     try:
         path = lab.packages.share_dir(body.package) / "launch" / body.file if body.package else Path(body.file)
@@ -51,7 +54,7 @@ def launch(body: LaunchRequest, lab: LabDep) -> dict[str, Any]:
 
 
 @router.post("/run", status_code=status.HTTP_201_CREATED)
-def run(body: RunRequest, lab: LabDep) -> dict[str, Any]:
+async def run(body: RunRequest, lab: LabDep) -> dict[str, Any]:
     """Start one node from a package, as ``ros2 run`` (``--ros-args -p`` / ``-r`` as fields)."""
     try:
         return lab.run_node(body.package, body.executable, body.name, body.parameters, body.remappings).describe()
@@ -60,12 +63,12 @@ def run(body: RunRequest, lab: LabDep) -> dict[str, Any]:
 
 
 @router.get("/launches")
-def launches(lab: LabDep) -> list[dict[str, Any]]:
+async def launches(lab: LabDep) -> list[dict[str, Any]]:
     return [g.describe() for g in lab.launch_groups.values()]
 
 
 @router.delete("/launches/{group_id}")
-def stop(group_id: str, lab: LabDep) -> dict[str, Any]:
+async def stop(group_id: str, lab: LabDep) -> dict[str, Any]:
     """Stop the nodes of one launch or run, as Ctrl-C on ``ros2 launch`` does."""
     try:
         return lab.stop_group(group_id).describe()
