@@ -13,6 +13,8 @@ from .errors import http_error
 from .schemas import RatePublisherInfo, RatePublisherRequest, RatePublisherUpdate
 from .topics import reject_non_finite
 
+# Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
+# handler would run in a worker thread and race the executor (timer heap, wake-up future).
 router = APIRouter(prefix="/api/publishers", tags=["publishers"])
 
 
@@ -23,7 +25,7 @@ def _error(exc: Exception) -> HTTPException:
 
 
 @router.post("", response_model=RatePublisherInfo, status_code=status.HTTP_201_CREATED)
-def start(body: RatePublisherRequest, lab: LabDep) -> dict[str, Any]:
+async def start(body: RatePublisherRequest, lab: LabDep) -> dict[str, Any]:
     """Publish ``msg`` on ``topic`` every 1/rate_hz s (the first one at once); returns its id."""
     try:
         reject_non_finite(body.msg)
@@ -33,12 +35,12 @@ def start(body: RatePublisherRequest, lab: LabDep) -> dict[str, Any]:
 
 
 @router.get("", response_model=list[RatePublisherInfo])
-def list_publishers(lab: LabDep) -> list[dict[str, Any]]:
+async def list_publishers(lab: LabDep) -> list[dict[str, Any]]:
     return [item.describe() for item in lab.publishers.items.values()]
 
 
 @router.get("/{publisher_id}", response_model=RatePublisherInfo)
-def get_publisher(publisher_id: str, lab: LabDep) -> dict[str, Any]:
+async def get_publisher(publisher_id: str, lab: LabDep) -> dict[str, Any]:
     try:
         return lab.publishers.get(publisher_id).describe()
     except Exception as exc:
@@ -46,7 +48,7 @@ def get_publisher(publisher_id: str, lab: LabDep) -> dict[str, Any]:
 
 
 @router.patch("/{publisher_id}", response_model=RatePublisherInfo)
-def update(publisher_id: str, body: RatePublisherUpdate, lab: LabDep) -> dict[str, Any]:
+async def update(publisher_id: str, body: RatePublisherUpdate, lab: LabDep) -> dict[str, Any]:
     """Enable, disable, or change the rate or the message of a running publisher."""
     try:
         if body.msg is not None:
@@ -57,7 +59,7 @@ def update(publisher_id: str, body: RatePublisherUpdate, lab: LabDep) -> dict[st
 
 
 @router.delete("/{publisher_id}", response_model=RatePublisherInfo)
-def stop(publisher_id: str, lab: LabDep) -> dict[str, Any]:
+async def stop(publisher_id: str, lab: LabDep) -> dict[str, Any]:
     try:
         return lab.publishers.stop(publisher_id).describe()
     except Exception as exc:
