@@ -1,0 +1,37 @@
+"""Fixtures for the API tests: the rocket lab behind a TestClient, its lifespan entered."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from contextlib import ExitStack
+from typing import Any
+
+import pytest
+from fastapi.testclient import TestClient
+from labclient import QUIET_START_DELAY, LabClient, rocket_settings
+
+from server.app import create_app
+
+
+@pytest.fixture
+def make_lab() -> Iterator[Callable[..., LabClient]]:
+    """Start a rocket lab (``start_delay`` in s as the launch takes it, Settings overrides)."""
+    with ExitStack() as stack:
+
+        def make(start_delay: str = QUIET_START_DELAY, **overrides: Any) -> LabClient:
+            app = create_app(rocket_settings(start_delay, **overrides))
+            return LabClient(stack.enter_context(TestClient(app)))
+
+        yield make
+
+
+@pytest.fixture
+def rocket_lab(make_lab: Callable[..., LabClient]) -> LabClient:
+    """The rocket lab with a countdown that does not start during the test: its topics stay still."""
+    return make_lab()
+
+
+@pytest.fixture
+def counting_lab(make_lab: Callable[..., LabClient]) -> LabClient:
+    """The rocket lab counting down from the start (10 at once, then 1 Hz)."""
+    return make_lab(start_delay="0")
