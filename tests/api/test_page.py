@@ -1,0 +1,78 @@
+"""The page: viser's own client with the key script injected, and the WebSocket proxy to viser."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import viser
+from labclient import LabClient, receive_within, refused
+from starlette.testclient import WebSocketTestSession
+
+from server.viewer.page import PROXY_MAX_FRAME_BYTES
+
+
+def test_index_serves_viser_page_with_key_script_injected(make_lab: Callable[..., LabClient]) -> None:
+    lab = make_lab(viewer=True)
+
+    response = lab.http.get("/")
+
+    assert response.status_code == 200
+    assert response.headers["content-type"].startswith("text/html")
+    html = response.text
+    head, _, body = html.partition("</head>")
+    assert '<script src="/static/keys.js"></script>' in head
+    assert '<div id="root"></div>' in body  # viser's client mounts here
+    script = lab.http.get("/static/keys.js")
+    assert script.status_code == 200
+    assert "window.__teleopKeys" in script.text
+
+
+def test_viser_proxy_with_viser_subprotocol_receives_scene(make_lab: Callable[..., LabClient]) -> None:
+    lab = make_lab(viewer=True)
+    subprotocol = f"viser-v{viser.__version__}"
+
+    with lab.http.websocket_connect("/", subprotocols=[subprotocol]) as ws:
+        first = receive_within(ws)
+
+    assert ws.accepted_subprotocol == subprotocol
+    assert first["type"] == "websocket.send"
+    assert first.get("bytes")  # viser's msgpack messages
+
+
+def test_viser_proxy_without_viewer_refused_try_again_later(rocket_lab: LabClient) -> None:
+    refusal = refused(rocket_lab.http, "/", subprotocols=[f"viser-v{viser.__version__}"])
+
+    assert refusal.code == 1013  # TRY_AGAIN_LATER
+    assert "not running" in refusal.reason
+
+
+def _close_after_scene(ws: WebSocketTestSession, max_messages: int = 10_000) -> tuple[int, str]:
+    """Skip viser's scene messages until the close; (code, reason)."""
+    for _ in range(max_messages):
+        message = receive_within(ws)
+        if message["type"] == "websocket.close":
+            return int(message.get("code", 1000)), str(message.get("reason", ""))
+    raise AssertionError(f"no close within {max_messages} messages")
+
+
+def test_viser_proxy_wrong_subprotocol_closed_with_viser_reason(make_lab: Callable[..., LabClient]) -> None:
+    lab = make_lab(viewer=True)
+
+    with lab.http.websocket_connect("/", subprotocols=["viser-v0.0.1"]) as ws:
+        code, reason = _close_after_scene(ws)
+
+    assert code == 1002  # viser's own: protocol error
+    assert "Version mismatch" in reason
+    assert lab.healthy()
+
+
+def test_viser_proxy_oversized_frame_closed_1009(make_lab: Callable[..., LabClient]) -> None:
+    lab = make_lab(viewer=True)
+
+    with lab.http.websocket_connect("/", subprotocols=[f"viser-v{viser.__version__}"]) as ws:
+        ws.send_bytes(b"\x00" * (PROXY_MAX_FRAME_BYTES + 1))
+        code, reason = _close_after_scene(ws)
+
+    assert code == 1009
+    assert f"larger than {PROXY_MAX_FRAME_BYTES} bytes" in reason
+    assert lab.healthy()
