@@ -10,9 +10,9 @@ from pathlib import Path
 
 import viser
 import websockets
-from websockets.asyncio.client import ClientConnection
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect, status
 from fastapi.responses import HTMLResponse
+from websockets.asyncio.client import ClientConnection
 
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
