@@ -184,3 +184,40 @@ def test_main_page_nav_link_opens_tools_in_new_tab_without_taking_focus(page: Pa
     new_tab.value.wait_for_load_state()
     assert new_tab.value.url == f"{server_url}/tools"
     assert page.evaluate("document.activeElement && document.activeElement.id") != "teleop-nav-tools"
+
+
+LAYOUT_CASE = """() => {
+  const vertices = ["a", "b", "c", "d", "e"].map((id) => ({ id, w: 40 + 10 * id.charCodeAt(0) % 3, h: 20 }));
+  const edges = [["a", "b"], ["b", "c"], ["c", "a"], ["a", "d"], ["d", "e"], ["a", "e"], ["d", "d"]]
+    .map(([from, to]) => ({ from, to }));
+  const out = window.ToolsLayout.layout(vertices, edges);
+  return { boxes: Object.fromEntries(out.boxes), routes: out.routes, width: out.width, height: out.height };
+}"""
+
+
+def test_tools_layout_cycle_long_edge_and_self_loop_gives_a_clean_drawing(
+    page: Page, server_url: str
+) -> None:
+    open_tools(page, server_url)
+    out = page.evaluate(LAYOUT_CASE)
+    boxes = out["boxes"]
+    assert sorted(boxes) == ["a", "b", "c", "d", "e"]
+    for i, p in enumerate(boxes.values()):  # no two boxes overlap
+        for q in list(boxes.values())[i + 1 :]:
+            apart_x = abs(p["x"] - q["x"]) >= (p["w"] + q["w"]) / 2
+            apart_y = abs(p["y"] - q["y"]) >= (p["h"] + q["h"]) / 2
+            assert apart_x or apart_y, (p, q)
+    assert all(0 <= b["x"] - b["w"] / 2 and b["x"] + b["w"] / 2 <= out["width"] for b in boxes.values())
+    routes = {(r["edge"]["from"], r["edge"]["to"]): r for r in out["routes"]}
+    assert routes[("d", "d")]["loop"] is True
+    cycle = [routes[e] for e in [("a", "b"), ("b", "c"), ("c", "a")]]
+    assert sum(bool(r.get("reversed")) for r in cycle) == 1  # one edge turned back breaks the cycle
+    for (source, target), route in routes.items():
+        if source == target:
+            continue
+        first, last = route["points"][0], route["points"][-1]
+        assert (first["x"], first["y"]) == (boxes[source]["x"], boxes[source]["y"])
+        assert (last["x"], last["y"]) == (boxes[target]["x"], boxes[target]["y"])
+        if not route.get("reversed"):
+            assert boxes[source]["x"] < boxes[target]["x"]  # left to right
+    assert len(routes[("a", "e")]["points"]) > 2  # a long edge bends through its dummy vertices
