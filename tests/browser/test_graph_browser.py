@@ -1,107 +1,37 @@
 """The tools page in a real headless Chromium against a real server: graph, selection, echo, nav link.
 
-The server is ``python -m server --launch rocket`` on a free loopback port, started once for
-the module; every wait is bounded (Playwright's own waits, or a polled deadline).
+Chromium and the server (``python -m server --launch rocket`` on a free loopback port, started
+once for the module) come from conftest.py; every wait is bounded (Playwright's own waits).
 """
 
 from __future__ import annotations
 
-import os
-import shutil
-import socket
-import subprocess
-import sys
-import time
 from collections.abc import Iterator
-from pathlib import Path
 
 import httpx
 import pytest
-from playwright.sync_api import Browser, ConsoleMessage, Page, Playwright, sync_playwright
+from labserver import LabServer
+from playwright.sync_api import Browser, ConsoleMessage, Page, expect
 
 pytestmark = pytest.mark.browser
 
-REPO = Path(__file__).resolve().parents[2]
-CHROMIUM_FLAGS = [
-    "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-    "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic",
-]  # fmt: skip
-SERVER_START_S = 30.0
 LAB_NODES = ["/CountDownNode", "/MainControllerNode", "/RocketEngineNode", "/KeyboardManager", "/keyboard"]
 LAB_TOPICS = ["/countdown", "/cmd_vel", "/sensor_vel", "/abort_takeoff", "/keydown", "/keyup"]
-COUNTDOWN_DELAY_S = 1.0  # the launch's start_delay: after a reset, the first /countdown comes this late
-ECHO_WAIT_MS = 15_000
-
-
-def chromium_path() -> str:
-    """Debian's chromium; skipped when missing, except in CI (CI=true), where that is a failure."""
-    path = shutil.which("chromium") or ("/usr/bin/chromium" if Path("/usr/bin/chromium").exists() else None)
-    if path is None:
-        message = "no chromium on PATH (install Debian's 'chromium' to run the browser tests)"
-        if os.environ.get("CI") == "true":
-            pytest.fail(message)
-        pytest.skip(message)
-    return path
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
-
-
-@pytest.fixture(scope="module")
-def server_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
-    port = free_port()
-    url = f"http://127.0.0.1:{port}"
-    log_path = tmp_path_factory.mktemp("server") / "server.log"
-    with log_path.open("w") as log:
-        proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "--launch", "rocket", "--port", str(port), "--host", "127.0.0.1",
-             f"start_delay:={COUNTDOWN_DELAY_S}"],
-            cwd=REPO, stdout=log, stderr=subprocess.STDOUT,
-        )  # fmt: skip
-        try:
-            deadline = time.monotonic() + SERVER_START_S
-            while not _healthy(url):
-                if proc.poll() is not None or time.monotonic() > deadline:
-                    pytest.fail(f"the server did not come up:\n{log_path.read_text()[-3000:]}")
-                time.sleep(0.1)
-            yield url
-        finally:
-            proc.terminate()
-            try:
-                proc.wait(timeout=15)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait(timeout=5)
-
-
-def _healthy(url: str) -> bool:
-    try:
-        return httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200
-    except httpx.HTTPError:
-        return False
-
-
-@pytest.fixture(scope="module")
-def playwright() -> Iterator[Playwright]:
-    with sync_playwright() as pw:
-        yield pw
-
-
-@pytest.fixture(scope="module")
-def browser(playwright: Playwright) -> Iterator[Browser]:
-    browser = playwright.chromium.launch(executable_path=chromium_path(), args=CHROMIUM_FLAGS)
-    yield browser
-    browser.close()
+PAGE_WAIT_MS = 30_000  # SwiftShader on 2 cores can keep the main page's thread busy for seconds
+ECHO_WAIT_MS = 15_000  # after a reset, the countdown's first message comes start_delay (2 s) later
 
 
 @pytest.fixture
-def page(browser: Browser) -> Iterator[Page]:
+def server_url(rocket_server: LabServer) -> str:
+    return rocket_server.url
+
+
+@pytest.fixture
+def page(chromium: Browser) -> Iterator[Page]:
     """An 800x600 page; page errors and console errors fail the test."""
-    context = browser.new_context(viewport={"width": 800, "height": 600})
+    context = chromium.new_context(viewport={"width": 800, "height": 600})
     page = context.new_page()
+    page.set_default_timeout(PAGE_WAIT_MS)
     errors: list[str] = []
     page.on("pageerror", lambda exc: errors.append(f"page error: {exc}"))
     page.on("console", lambda msg: _console_error(msg, errors))
@@ -131,8 +61,9 @@ def test_tools_page_graph_shows_lab_nodes_topics_and_edges(page: Page, server_ur
     # "Hide debug" is on by default: no hidden nodes, no /rosout.
     assert page.locator('g.graph-topic[data-name="/rosout"]').count() == 0
     assert page.locator('g.graph-node[data-name="/_rocket_view"]').count() == 0
-    assert page.locator("#topics-table tbody tr").count() == len(LAB_TOPICS)
-    assert page.locator("#nodes-list li").count() == len(LAB_NODES)
+    # The lists are filled just after the drawing: expect() waits for them.
+    expect(page.locator("#topics-table tbody tr")).to_have_count(len(LAB_TOPICS))
+    expect(page.locator("#nodes-list li")).to_have_count(len(LAB_NODES))
 
 
 def test_tools_page_hide_debug_off_shows_rosout_and_nodes_only_mode_labels_arrows(
@@ -180,7 +111,7 @@ def test_main_page_nav_link_opens_tools_in_new_tab_without_taking_focus(page: Pa
         "/tools", "_blank", "-1",
     )  # fmt: skip
     with page.context.expect_page() as new_tab:
-        link.click(timeout=60_000)  # the 3D view can keep a software-GL main thread busy for seconds
+        link.click()
     new_tab.value.wait_for_load_state()
     assert new_tab.value.url == f"{server_url}/tools"
     assert page.evaluate("document.activeElement && document.activeElement.id") != "teleop-nav-tools"
