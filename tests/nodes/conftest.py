@@ -1,4 +1,4 @@
-"""A bus on a manual clock, its executor, and a probe node that records topics as rqt would."""
+"""A probe node that records topics as rqt would (the bus and clock fixtures are in tests/conftest.py)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from typing import Any
 
 import pytest
 
-from server.bus import Bus, Executor, ManualClock, Node
+from server.bus import Bus, Node
 from server.msgs import Log, Message
 
 
@@ -38,21 +38,6 @@ class Recorder:
 
     def log_times(self, node_name: str, text: str) -> list[float]:
         return [t for t, m in self.got["/rosout"] if m.name == node_name and text in m.msg]
-
-
-@pytest.fixture
-def clock() -> ManualClock:
-    return ManualClock()
-
-
-@pytest.fixture
-def bus(clock: ManualClock) -> Bus:
-    return Bus(clock)
-
-
-@pytest.fixture
-def executor(bus: Bus) -> Executor:
-    return Executor(bus)
 
 
 @pytest.fixture

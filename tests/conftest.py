@@ -1,4 +1,7 @@
-"""A bus on a manual clock and its executor: time moves only when a test moves it."""
+"""Fixtures shared by the unit tests: a bus on a manual clock, and its executor.
+
+Time moves only when a test moves it (``executor.spin_until`` / ``spin_for``).
+"""
 
 from __future__ import annotations
 
