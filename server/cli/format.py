@@ -61,8 +61,9 @@ def _convert(value: Any, truncate_length: int | None, no_arr: bool) -> Any:
 def message_to_yaml(msg: Mapping[str, Any], *, truncate_length: int | None = DEFAULT_TRUNCATE_LENGTH,
                     no_arr: bool = False) -> str:
     """A message as ``ros2 topic echo`` prints it: block YAML, fields in order, nested ones indented."""
-    return yaml.dump(_convert(msg, truncate_length, no_arr), allow_unicode=True, width=sys.maxsize,
-                     default_flow_style=False, sort_keys=False)
+    text: str = yaml.dump(_convert(msg, truncate_length, no_arr), allow_unicode=True, width=sys.maxsize,
+                          default_flow_style=False, sort_keys=False)
+    return text
 
 
 def echo_text(msg: Mapping[str, Any], field: Sequence[str] | None = None, *,

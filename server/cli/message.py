@@ -47,6 +47,21 @@ def _check_plain(value: Any, path: str) -> None:
         raise MessageTextError(f"{where}: {value!r} is not a number, text or bool (quote it for text)")
 
 
+def filled_message(default: dict[str, Any], given: dict[str, Any]) -> dict[str, Any]:
+    """``given`` over the type's ``default`` message, as the publisher sends it: every field, and an
+    integer in a float field as a float (``{x: 5}`` is published as ``x=5.0``)."""
+    out = dict(default)
+    for name, value in given.items():
+        base = default.get(name)
+        if isinstance(base, dict) and isinstance(value, dict):
+            out[name] = filled_message(base, value)
+        elif isinstance(base, float) and isinstance(value, int) and not isinstance(value, bool):
+            out[name] = float(value)
+        else:
+            out[name] = value
+    return out
+
+
 def python_type_name(type_name: str) -> str:
     """``geometry_msgs/msg/Vector3`` (or ``geometry_msgs/Vector3``) → ``geometry_msgs.msg.Vector3``."""
     parts = type_name.strip("/").split("/")

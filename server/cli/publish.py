@@ -14,7 +14,7 @@ from collections.abc import Callable
 from typing import Any
 
 from .client import ApiError, LabClient
-from .message import message_repr, parse_message
+from .message import filled_message, message_repr, parse_message
 
 Sleep = Callable[[float], None]
 Clock = Callable[[], float]
@@ -41,8 +41,18 @@ def publish_times(client: LabClient, body: dict[str, Any], times: int, rate_hz: 
         result = client.post("/api/publish", body)
         if number == 1:
             print("publisher: beginning loop", flush=True)
-        _print_publishing(number, result["type"], body["msg"])
+            shown = _as_published(client, result["type"], body["msg"])
+        _print_publishing(number, result["type"], shown)
     return 0
+
+
+def _as_published(client: LabClient, type_name: str, msg: dict[str, Any]) -> dict[str, Any]:
+    """The message with the type's defaults filled in, as ros2 prints it; as given if the server
+    cannot say (an older one without ``/api/types/{type}/default``)."""
+    try:
+        return filled_message(client.get(f"/api/types/{type_name}/default"), msg)
+    except ApiError:
+        return msg
 
 
 def publish_until_interrupted(client: LabClient, body: dict[str, Any], rate_hz: float,
