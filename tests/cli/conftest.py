@@ -1,0 +1,198 @@
+"""A live lab server for the CLI's end-to-end tests, and the CLI run as a user runs it.
+
+The server is ``python -m server --launch rocket`` in a subprocess on a free loopback port, one
+for the session; each CLI call is ``python -m server <verb> ...`` in its own subprocess.
+"""
+
+from __future__ import annotations
+
+import os
+import queue
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import IO, Any
+
+import httpx
+import pytest
+
+SERVER_READY_S = 30.0
+SERVER_STOP_S = 10.0
+CLI_TIMEOUT_S = 30.0
+READ_TIMEOUT_S = 10.0
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])
+
+
+@dataclass
+class LiveServer:
+    url: str
+    proc: subprocess.Popen[bytes]
+    log_path: Path
+
+    def log_tail(self, lines: int = 40) -> str:
+        return "\n".join(self.log_path.read_text(errors="replace").splitlines()[-lines:])
+
+    def get(self, path: str) -> Any:
+        response = httpx.get(self.url + path, timeout=5.0)
+        response.raise_for_status()
+        return response.json()
+
+    def post(self, path: str, body: dict[str, Any] | None = None) -> Any:
+        response = httpx.post(self.url + path, json=body or {}, timeout=5.0)
+        response.raise_for_status()
+        return response.json()
+
+    def wait_until(self, condition: Callable[[], bool], what: str, timeout_s: float = READ_TIMEOUT_S) -> None:
+        """Poll the server until ``condition`` holds (a subprocess offers nothing to await)."""
+        deadline = time.monotonic() + timeout_s
+        while not condition():
+            if time.monotonic() > deadline:
+                pytest.fail(f"timed out after {timeout_s} s waiting for {what}")
+            time.sleep(0.05)
+
+
+def _healthy(url: str) -> bool:
+    try:
+        return httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200
+    except httpx.HTTPError:
+        return False
+
+
+def _stop(proc: subprocess.Popen[bytes]) -> None:
+    """Ctrl-C, as a person would; killed if it does not stop in time."""
+    if proc.poll() is None:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(timeout=SERVER_STOP_S)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+
+
+@pytest.fixture(scope="session")
+def live_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LiveServer]:
+    workdir = tmp_path_factory.mktemp("cli_server")
+    port = free_port()
+    log_path = workdir / "server.log"
+    with log_path.open("wb") as log:
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(port), "--launch", "rocket",
+             "start_delay:=0.5"],
+            cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
+        )  # fmt: skip
+    server = LiveServer(f"http://127.0.0.1:{port}", proc, log_path)
+    try:
+        deadline = time.monotonic() + SERVER_READY_S
+        while not _healthy(server.url):
+            if proc.poll() is not None or time.monotonic() > deadline:
+                pytest.fail(f"the lab server did not come up within {SERVER_READY_S} s:\n{server.log_tail()}")
+            time.sleep(0.1)
+        yield server
+    finally:
+        _stop(proc)
+
+
+@dataclass
+class Result:
+    code: int
+    out: str
+    err: str
+
+
+def cli_command(*args: str) -> list[str]:
+    return [sys.executable, "-m", "server", *args]
+
+
+def cli_env(url: str) -> dict[str, str]:
+    return {**os.environ, "TELEOP_URL": url, "PYTHONUNBUFFERED": "1"}
+
+
+@pytest.fixture
+def ros2lab(live_server: LiveServer) -> Callable[..., Result]:
+    """Run one CLI command against the live server (its URL from TELEOP_URL) to completion."""
+
+    def run(*args: str, timeout_s: float = CLI_TIMEOUT_S) -> Result:
+        done = subprocess.run(cli_command(*args), env=cli_env(live_server.url), capture_output=True, text=True,
+                              timeout=timeout_s, check=False)
+        return Result(done.returncode, done.stdout, done.stderr)
+
+    return run
+
+
+class Running:
+    """A CLI command left running (echo, pub at a rate, launch), read line by line with a timeout."""
+
+    def __init__(self, args: tuple[str, ...], url: str) -> None:
+        self.proc = subprocess.Popen(cli_command(*args), env=cli_env(url), stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, text=True)
+        self.lines: queue.Queue[str | None] = queue.Queue()
+        self.seen: list[str] = []
+        threading.Thread(target=self._pump, args=(self.proc.stdout,), daemon=True).start()
+
+    def _pump(self, stream: IO[str] | None) -> None:
+        assert stream is not None
+        for line in stream:
+            self.lines.put(line.rstrip("\n"))
+        self.lines.put(None)
+
+    def read_until(self, predicate: Callable[[str], bool], timeout_s: float = READ_TIMEOUT_S) -> str:
+        """The first output line for which ``predicate`` holds; fails on timeout or end of output."""
+        deadline = time.monotonic() + timeout_s
+        while True:
+            try:
+                line = self.lines.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                pytest.fail(f"no matching line within {timeout_s} s; got {self.seen[-20:]}")
+            if line is None:
+                pytest.fail(f"output ended without a matching line; got {self.seen[-20:]}")
+            self.seen.append(line)
+            if predicate(line):
+                return line
+
+    def interrupt(self, timeout_s: float = READ_TIMEOUT_S) -> tuple[int, str]:
+        """Ctrl-C; returns the exit code and stderr."""
+        self.proc.send_signal(signal.SIGINT)
+        try:
+            self.proc.wait(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
+            pytest.fail(f"the command did not stop within {timeout_s} s of Ctrl-C")
+        assert self.proc.stderr is not None
+        return self.proc.returncode, self.proc.stderr.read()
+
+    def stop(self) -> None:
+        """Ctrl-C, so that what it started on the server is stopped too; killed if it hangs."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGINT)
+            try:
+                self.proc.wait(timeout=READ_TIMEOUT_S)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+
+
+@pytest.fixture
+def start(live_server: LiveServer) -> Iterator[Callable[..., Running]]:
+    """Start CLI commands that keep running; any still running at the end of the test is stopped."""
+    started: list[Running] = []
+
+    def launch(*args: str) -> Running:
+        running = Running(args, live_server.url)
+        started.append(running)
+        return running
+
+    yield launch
+    for running in started:
+        running.stop()
