@@ -1,0 +1,41 @@
+"""Fixtures for the browser tests: Chromium through Playwright's sync API, and the rocket lab server."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from labserver import CHROMIUM_ARGS, LabServer, find_chromium
+from playwright.sync_api import Browser, sync_playwright
+
+
+@pytest.fixture(scope="module")
+def rocket_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LabServer]:
+    """The rocket lab, countdown 2 s after a (re)start, as `python -m server` runs it."""
+    server = LabServer(["--launch", "rocket", "start_delay:=2"], tmp_path_factory.mktemp("server") / "server.log")
+    try:
+        server.wait_ready()
+        yield server
+    finally:
+        server.stop()
+
+
+@pytest.fixture(scope="module")
+def chromium() -> Iterator[Browser]:
+    executable = find_chromium()
+    with sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=executable, args=CHROMIUM_ARGS)
+        try:
+            yield browser
+        finally:
+            browser.close()
+
+
+@pytest.fixture
+def screenshot_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """Where screenshots go: $TELEOP_SCREENSHOTS, or artifacts/ under pytest's temporary folder."""
+    folder = Path(os.environ.get("TELEOP_SCREENSHOTS") or tmp_path_factory.getbasetemp() / "artifacts")
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder

@@ -1,0 +1,130 @@
+"""Lab 2 checkpoint 1 in a real headless Chromium: press "a" on the page during the countdown
+and the rocket stays on the pad.
+
+The key goes page → static/keys.js → /ws/keys → keyboard node → /keydown → KeyboardManager →
+/abort_takeoff → MainControllerNode, which must then never publish /cmd_vel. Every wait is
+bounded: Playwright's own waits, or a polled deadline on the server's topics.
+
+The server's first countdown starts before any page could be ready: on SwiftShader viser's page
+stalls its main thread for seconds after connecting. That countdown is aborted through the API at
+once, so /cmd_vel stays silent for the whole run; the reset then puts a fresh, un-aborted rocket
+on the pad, and only the page's key can stop it.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import httpx
+import pytest
+from labserver import LabServer
+from playwright.sync_api import Browser, Page
+
+pytestmark = pytest.mark.browser
+
+KEY_A = 97
+WAIT_S = 15.0  # SwiftShader on 2 cores is slow; a passing test returns as soon as it can
+COUNTDOWN_S = 20.0  # start_delay 2 s + 10 … 0 at 1 Hz, with room
+SENSOR_TICKS_AFTER_ZERO = 15  # /sensor_vel at 10 Hz: 1.5 s of the lab running after T-0
+PAGE_WAIT_MS = 30_000
+RESPONSIVE_S = 2.0  # the page must answer promptly for this long before the countdown starts
+PROMPT_S = 0.5
+
+
+def wait_until(check: Callable[[], Any], what: str, timeout_s: float = WAIT_S) -> Any:
+    deadline = time.monotonic() + timeout_s
+    while not (value := check()):
+        if time.monotonic() > deadline:
+            pytest.fail(f"gave up after {timeout_s} s waiting for {what} (last: {value!r})")
+        time.sleep(0.05)
+    return value
+
+
+def topic(server: LabServer, name: str) -> dict[str, Any]:
+    response = httpx.get(f"{server.url}/api/topics/{name.lstrip('/')}", timeout=5.0)
+    response.raise_for_status()
+    return response.json()
+
+
+@pytest.fixture
+def page(chromium: Browser) -> Iterator[Page]:
+    context = chromium.new_context(viewport={"width": 1280, "height": 800})
+    page = context.new_page()
+    page.set_default_timeout(PAGE_WAIT_MS)
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    yield page
+    context.close()
+    assert errors == [], f"uncaught errors in the page: {errors}"
+
+
+def wait_responsive(page: Page) -> None:
+    """Wait until the page's main thread has answered within PROMPT_S for RESPONSIVE_S in a row
+    (viser's first frames on SwiftShader block it for seconds; a key pressed then waits too)."""
+    deadline = time.monotonic() + PAGE_WAIT_MS / 1000
+    calm_since = time.monotonic()
+    while time.monotonic() - calm_since < RESPONSIVE_S:
+        asked = time.monotonic()
+        page.evaluate("() => new Promise(r => requestAnimationFrame(() => r(true)))")
+        if time.monotonic() - asked > PROMPT_S:
+            calm_since = time.monotonic()
+        if time.monotonic() > deadline:
+            pytest.fail(f"the page never answered within {PROMPT_S} s for {RESPONSIVE_S} s running")
+        time.sleep(0.05)
+
+
+def open_lab_page(page: Page, server: LabServer) -> None:
+    """Load the page, wait for viser and the key channel, and close viser's notifications."""
+    page.goto(server.url + "/")
+    page.wait_for_function("() => document.body.innerText.includes('Connected')")
+    page.wait_for_function("() => window.__teleopKeys !== undefined && window.__teleopKeys.connected")
+    # Clicked from the page's script: they slide in, so Playwright's click waits for them to hold still.
+    close_all = "() => document.querySelectorAll('.mantine-Notification-closeButton').forEach(b => b.click())"
+    page.evaluate(close_all)
+    page.wait_for_function(f"() => ({close_all})() || !document.querySelector('.mantine-Notification-closeButton')",
+                           polling=250)  # fmt: skip
+
+
+def test_press_a_during_countdown_aborts_and_rocket_stays_on_pad(
+    page: Page, rocket_server: LabServer, screenshot_dir: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    hold = httpx.post(f"{rocket_server.url}/api/publish", json={"topic": "/abort_takeoff", "msg": {"data": True}})
+    assert hold.status_code == 200, hold.text
+    open_lab_page(page, rocket_server)
+    wait_responsive(page)
+    countdown_before = topic(rocket_server, "/countdown")["publish_count"]
+    assert httpx.post(f"{rocket_server.url}/api/rocket/reset", timeout=5.0).status_code == 200
+    wait_until(lambda: (topic(rocket_server, "/abort_takeoff")["latest"] or {}).get("data") is False,
+               "the fresh KeyboardManager's /abort_takeoff false")  # fmt: skip
+
+    def new_countdown(done: Callable[[int], bool]) -> Callable[[], bool]:
+        def check() -> bool:
+            countdown = topic(rocket_server, "/countdown")
+            latest = countdown["latest"]
+            return countdown["publish_count"] > countdown_before and latest is not None and done(latest["data"])
+
+        return check
+
+    wait_until(new_countdown(lambda n: 3 <= n <= 9), "the restarted countdown between T-9 and T-3")
+    page.keyboard.press("a")
+
+    wait_until(lambda: (topic(rocket_server, "/abort_takeoff")["latest"] or {}).get("data") is True,
+               "/abort_takeoff true")  # fmt: skip
+    assert topic(rocket_server, "/keydown")["latest"]["code"] == KEY_A  # the camera did not take the key
+    wait_until(new_countdown(lambda n: n == 0), "the countdown to reach 0 (it counts on after an abort)",
+               COUNTDOWN_S)  # fmt: skip
+    sensor_at_zero = topic(rocket_server, "/sensor_vel")["publish_count"]
+    wait_until(lambda: topic(rocket_server, "/sensor_vel")["publish_count"] >= sensor_at_zero + SENSOR_TICKS_AFTER_ZERO,
+               "1.5 s of the lab running after T-0")  # fmt: skip
+
+    cmd_vel = topic(rocket_server, "/cmd_vel")
+    assert cmd_vel["publish_count"] == 0
+    assert cmd_vel["latest"] is None
+    page.wait_for_function("() => document.body.innerText.includes('Aborted')")
+    shot = screenshot_dir / "rocket_aborted.png"
+    page.screenshot(path=str(shot))
+    with capsys.disabled():
+        print(f"\nscreenshot of the aborted rocket: {shot} (folder {screenshot_dir})")
