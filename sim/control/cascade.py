@@ -154,9 +154,19 @@ class VelocityController:
         pitch_sp = math.atan2(fx, fz)
         roll_sp = math.atan2(-fy, math.hypot(fx, fz))
         tilt_cos = max(math.cos(roll) * math.cos(pitch), 0.5)
-        thrust = self.mass_kg * max(g + az, 0.0) / tilt_cos
-        thrust = min(max(thrust, self.gains.min_thrust_n), self.gains.max_thrust_n)
+        raw_thrust = self.mass_kg * max(g + az, 0.0) / tilt_cos
+        thrust = min(max(raw_thrust, self.gains.min_thrust_n), self.gains.max_thrust_n)
+        self._stop_windup(raw_thrust, thrust, g + az, sz - measured[2], dt_s)
         return AttitudeThrustSetpoint(roll_sp, pitch_sp, self.yaw_setpoint_rad, thrust)
+
+    def _stop_windup(self, raw_thrust: float, thrust: float, lift_m_s2: float, error_z: float, dt_s: float) -> None:
+        """Conditional integration: while thrust is pinned at a limit (or asked to be negative),
+        take back this tick's z integration if it pushed further into that limit; otherwise a long
+        saturation leaves an integral that holds the drone off its altitude for many seconds."""
+        pushing_up = raw_thrust > thrust and error_z > 0
+        pushing_down = (raw_thrust < thrust or lift_m_s2 <= 0.0) and error_z < 0
+        if pushing_up or pushing_down:
+            self.pids[2].integral -= error_z * dt_s
 
 
 class AngleController:

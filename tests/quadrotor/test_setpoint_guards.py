@@ -176,24 +176,8 @@ def test_wild_setpoints_every_tick_for_60s_state_stays_finite_above_ground_and_b
     assert wild.all_active_after_wild
 
 
-def test_wild_setpoints_recovers_to_hover_once_they_stop(wild: WildRun) -> None:
-    calm = wild.WILD_UNTIL_S
-    assert np.abs(wild.probe.positions(after_s=calm + 10.0)[:, 1:3]).max() < 0.1
-    # z comes back slowly: see the xfail below.
-    z_error = [
-        np.abs(wild.probe.positions(after_s=calm + t, until_s=calm + t + 1.0)[:, 3] - 3.0).max()
-        for t in (10.0, 20.0, 29.0)
-    ]
-    assert z_error[0] < 0.6
-    assert z_error[2] < z_error[1] < z_error[0] and z_error[2] < 0.5 * z_error[0]
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason="velocity loop z integral winds up to its bound (4 m/s^2) while thrust saturates, then bleeds "
-    "off with tau = kp_z / ki_z, about 13 s: the drone hovers about 0.5 m high 10 s after the wild "
-    "setpoints stop (sim/control/cascade.py VelocityController: no conditional integration)",
-)
-def test_wild_setpoints_altitude_back_within_10cm_10s_after_they_stop(wild: WildRun) -> None:
-    z = wild.probe.positions(after_s=wild.WILD_UNTIL_S + 10.0)[:, 3]
-    assert np.abs(z - 3.0).max() < 0.1
+def test_wild_setpoints_recovers_to_hover_within_10cm_10s_after_they_stop(wild: WildRun) -> None:
+    """Thrust sat at its limits for much of the wild minute: the z integral must not have wound up."""
+    after = wild.probe.positions(after_s=wild.WILD_UNTIL_S + 10.0)
+    assert np.abs(after[:, 1:3]).max() < 0.1
+    assert np.abs(after[:, 3] - 3.0).max() < 0.1

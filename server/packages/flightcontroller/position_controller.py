@@ -37,6 +37,7 @@ class PositionControllerNode(Node):
             self.controller = PositionController(setpoint_m=DEFAULT_SETPOINT_M)
             self.period_s = 1.0 / CASCADE_RATE_HZ
         self.position: tuple[float, float, float] | None = None
+        self._last_clamped: tuple[float, float, float] | None = None
         self.vel_pub = self.create_publisher(Vector3, "/uav/input/velocity", 1)
         self.create_subscription(Vector3, "/uav/input/position", self.on_setpoint, 10)
         self.create_subscription(PoseStamped, "/uav/sensors/gps", self.on_gps, 1)
@@ -63,8 +64,9 @@ class PositionControllerNode(Node):
             self.get_logger().warning(f"setpoint dropped: {exc}")
             return
         clamped, was_outside = clamp_to_arena(target)
-        if was_outside:
+        if was_outside and clamped != self._last_clamped:  # once per new setpoint, not at 50 Hz
             self.get_logger().warning(f"setpoint {target} is outside the arena; clamped to {clamped}")
+        self._last_clamped = clamped
         self.controller.set_setpoint(clamped)
         if self.mode == "cascade" and self.timer is not None:
             # A P law has no state to disturb: answer a new setpoint now rather than at the next
