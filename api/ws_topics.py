@@ -41,17 +41,32 @@ class EchoNode(Node):
         self.ready.set()
 
 
+def _int_param(name: str, text: str | None, default: int, low: int, high: int) -> int:
+    """A query value checked here, after the handshake, so a browser sees the reason too."""
+    if text is None:
+        return default
+    try:
+        value = int(text)
+    except ValueError:
+        raise ValueError(f"{name} must be an integer, got {text!r}") from None
+    if not low <= value <= high:
+        raise ValueError(f"{name} must be in {low}..{high}, got {value}")
+    return value
+
+
 @router.websocket("/ws/topics/{name:path}")
 async def echo(
     websocket: WebSocket,
     name: str,
     lab: WsLabDep,
-    throttle_rate: int = Query(0, ge=0, le=60_000, description="minimum ms between frames (rosbridge's name)"),
-    queue_length: int = Query(100, ge=1, le=MAX_QUEUE, description="messages kept for a slow client"),
+    throttle_rate: str | None = Query(None, description="minimum ms between frames, 0..60000 (rosbridge's name)"),
+    queue_length: str | None = Query(None, description=f"messages kept for a slow client, 1..{MAX_QUEUE} (100)"),
     type: str | None = Query(None, description="message type, to echo a topic that does not exist yet"),
 ) -> None:
     await websocket.accept()
     try:
+        throttle_ms = _int_param("throttle_rate", throttle_rate, 0, 0, 60_000)
+        depth = _int_param("queue_length", queue_length, 100, 1, MAX_QUEUE)
         topic = "/" + validate_topic_name(name).lstrip("/")
         existing = lab.bus.topics.get(topic)
         if existing is None and type is None:
@@ -59,11 +74,11 @@ async def echo(
             return
         msg_type = existing.msg_type if type is None else get_type(type)
         with lab.bus.activate():
-            node = EchoNode(topic, msg_type, queue_length)
+            node = EchoNode(topic, msg_type, depth)
     except Exception as exc:
         await websocket.close(close_code(exc), str(exc)[:120])
         return
-    sender = asyncio.create_task(_send_loop(websocket, node, topic, throttle_rate / 1000.0))
+    sender = asyncio.create_task(_send_loop(websocket, node, topic, throttle_ms / 1000.0))
     try:
         await _receive_until_closed(websocket, lab.settings.max_ws_frame_bytes)
     finally:

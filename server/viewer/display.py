@@ -60,8 +60,7 @@ class Display:
 
     def set_theme(self, *, dark: bool) -> None:
         # The share button would reach an outside tunnel host: never offer it.
-        self.server.gui.configure_theme(show_share_button=False, control_layout="collapsible",
-                                        control_width="medium", dark_mode=dark)
+        self.server.gui.configure_theme(show_share_button=False, control_width="medium", dark_mode=dark)
 
     @property
     def port(self) -> int:
