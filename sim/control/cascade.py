@@ -44,6 +44,9 @@ class VelocityGains:
     ki_z_1_s2: float = 0.3
     kd_z_s: float = 0.0
     max_integral_accel_m_s2: float = 4.0
+    integral_band_m_s: float = 0.05
+    """The z integral integrates only while the measured vertical speed is within this band (m/s):
+    a steady bias (a heavier drone, rotor noise) shows at rest; climbs and their approach do not."""
     """Anti-windup: bound on the integral term's contribution |ki * I| per axis (m/s^2)."""
     min_thrust_n: float = 0.0
     max_thrust_n: float = 20.0
@@ -156,16 +159,21 @@ class VelocityController:
         tilt_cos = max(math.cos(roll) * math.cos(pitch), 0.5)
         raw_thrust = self.mass_kg * max(g + az, 0.0) / tilt_cos
         thrust = min(max(raw_thrust, self.gains.min_thrust_n), self.gains.max_thrust_n)
-        self._stop_windup(raw_thrust, thrust, g + az, sz - measured[2], dt_s)
+        self._stop_windup(raw_thrust, thrust, g + az, sz - measured[2], measured[2], dt_s)
         return AttitudeThrustSetpoint(roll_sp, pitch_sp, self.yaw_setpoint_rad, thrust)
 
-    def _stop_windup(self, raw_thrust: float, thrust: float, lift_m_s2: float, error_z: float, dt_s: float) -> None:
-        """Conditional integration: while thrust is pinned at a limit (or asked to be negative),
-        take back this tick's z integration if it pushed further into that limit; otherwise a long
-        saturation leaves an integral that holds the drone off its altitude for many seconds."""
+    def _stop_windup(
+        self, raw_thrust: float, thrust: float, lift_m_s2: float, error_z: float, measured_vz: float, dt_s: float
+    ) -> None:
+        """Conditional integration: take back this tick's z integration while thrust is pinned at a
+        limit (or asked to be negative) and the error pushes further into it, and while the drone
+        climbs or sinks (vertical speed beyond a small band), where the loop's lag would otherwise
+        be integrated as if it were a steady bias. The integral is there for steady model mismatch; left to
+        integrate transients it holds the drone off its altitude for many seconds afterwards."""
         pushing_up = raw_thrust > thrust and error_z > 0
         pushing_down = (raw_thrust < thrust or lift_m_s2 <= 0.0) and error_z < 0
-        if pushing_up or pushing_down:
+        transient = abs(measured_vz) > self.gains.integral_band_m_s
+        if pushing_up or pushing_down or transient:
             self.pids[2].integral -= error_z * dt_s
 
 
