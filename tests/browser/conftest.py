@@ -7,7 +7,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from labserver import CHROMIUM_ARGS, LabServer, find_chromium
+from labserver import CHROMIUM_ARGS, REPO, LabServer, find_chromium
 from playwright.sync_api import Browser, sync_playwright
 
 
@@ -34,8 +34,9 @@ def chromium() -> Iterator[Browser]:
 
 
 @pytest.fixture
-def screenshot_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """Where screenshots go: $TELEOP_SCREENSHOTS, or artifacts/ under pytest's temporary folder."""
-    folder = Path(os.environ.get("TELEOP_SCREENSHOTS") or tmp_path_factory.getbasetemp() / "artifacts")
+def screenshot_dir() -> Path:
+    """Where screenshots go: $TELEOP_SCREENSHOTS, or artifacts/screenshots in the repository (git-ignored),
+    where a person looks for them after a run."""
+    folder = Path(os.environ.get("TELEOP_SCREENSHOTS") or REPO / "artifacts" / "screenshots")
     folder.mkdir(parents=True, exist_ok=True)
     return folder
