@@ -18,7 +18,10 @@
     if (axis === 1) return -Math.atan2(2 * (q.w * q.x + q.y * q.z), 1 - 2 * (q.x * q.x + q.y * q.y));
     return 0;
   };
-  const hud = { setpoint: null, pose: null, quat: null, poseTimes: [], latencies: [], pending: null, poseRate: 0 };
+  const STILL_M_S = 0.1;  // a press made while the drone still moves is not timed: it may already be
+  // swinging the key's way (an overshoot's return) and would look answered at once
+  const hud = { setpoint: null, pose: null, quat: null, speed: 0, poseTimes: [], latencies: [], skipped: 0,
+    pending: null, poseRate: 0 };
   window.__teleopHud = hud;
 
   const el = document.createElement("div");
@@ -60,6 +63,11 @@
   echo("uav/input/position", (m) => { hud.setpoint = [m.x, m.y, m.z]; });
   echo("uav/sensors/gps", (m, now) => {
     const p = m.pose.position;
+    const stamp = m.header.stamp.sec + m.header.stamp.nanosec * 1e-9;  // sim time: no network jitter
+    if (hud.pose && hud.stamp !== undefined && stamp > hud.stamp) {
+      hud.speed = Math.hypot(p.x - hud.pose[0], p.y - hud.pose[1], p.z - hud.pose[2]) / (stamp - hud.stamp);
+    }
+    hud.stamp = stamp;
     hud.pose = [p.x, p.y, p.z];
     hud.quat = m.pose.orientation;
     hud.poseTimes.push(now);
@@ -76,6 +84,7 @@
     if (e.type !== "keydown") return;
     if (e.key === "?") { help.hidden = !help.hidden; return; }
     if (e.repeat || !MOVE[k]) return;
+    if (hud.speed > STILL_M_S) { hud.skipped++; hud.pending = null; return; }
     const axis = MOVE[k][0];
     hud.pending = { t0: e.timeStamp, axis, sign: MOVE[k][1], start: hud.pose && [...hud.pose],
       tilt0: hud.quat ? tiltToward(hud.quat, axis) : 0 };
