@@ -9,8 +9,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import platform
 import statistics
 import sys
 import time
@@ -21,6 +19,8 @@ import numpy as np
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO_ROOT))
+
+from machine import machine_info  # noqa: E402  (bench/ is on sys.path when run as a script)
 
 from sim.control import ClosedLoop
 from sim.quadrotor import QuadrotorSim, RateThrustCommand
@@ -113,27 +113,6 @@ def median_rate(bench: Callable[[int], float], steps: int, runs: int) -> dict[st
     bench(max(steps // 10, CONTROL_EVERY))  # warm-up: imports, caches
     rates = [bench(steps) for _ in range(runs)]
     return {"median_steps_per_s": statistics.median(rates), "runs_steps_per_s": rates, "steps_per_run": steps}
-
-
-def machine_info() -> dict[str, object]:
-    cpu_model = "unknown"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu_model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    affinity = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    return {
-        "nproc": affinity,
-        "cpu_count": os.cpu_count(),
-        "cpu_model": cpu_model,
-        "python": platform.python_version(),
-        "implementation": platform.python_implementation(),
-        "platform": platform.platform(),
-        "numpy": np.__version__,
-    }
 
 
 def main() -> None:

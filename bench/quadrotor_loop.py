@@ -19,7 +19,6 @@ import argparse
 import asyncio
 import json
 import os
-import platform
 import socket
 import statistics
 import subprocess
@@ -36,16 +35,13 @@ import numpy as np
 REPO_ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO_ROOT))
 
+from machine import machine_info  # noqa: E402  (bench/ is on sys.path when run as a script)
+
 from server.bus import ManualClock, SystemClock
 from server.lab import Lab
 from server.settings import Settings
 
-CHROMIUM = "/usr/bin/chromium"
-CHROMIUM_FLAGS = [
-    "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-    "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic",
-    "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-]  # fmt: skip
+from machine import CHROMIUM, CHROMIUM_ARGS as CHROMIUM_FLAGS  # noqa: E402
 CLK_TCK = os.sysconf("SC_CLK_TCK")
 SETTLE_S = 3.0  # after start-up (or page load) before measuring
 TIMED_NODES = ("flightgoggles_uav_dynamics", "position_controller_node", "velocity_controller_node",
@@ -53,27 +49,6 @@ TIMED_NODES = ("flightgoggles_uav_dynamics", "position_controller_node", "veloci
 
 
 # -- machine -------------------------------------------------------------------------------------
-def machine_info() -> dict[str, object]:
-    cpu_model = "unknown"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu_model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return {
-        "nproc": len(os.sched_getaffinity(0)),
-        "cpu_count": os.cpu_count(),
-        "cpu_model": cpu_model,
-        "python": platform.python_version(),
-        "implementation": platform.python_implementation(),
-        "platform": platform.platform(),
-        "numpy": np.__version__,
-        "load_average_at_start": os.getloadavg(),
-    }
-
-
 # -- 1. in-process, as fast as it goes -----------------------------------------------------------
 def manual_clock_run(sim_seconds: float) -> tuple[float, int]:
     """One fly launch stepped to ``sim_seconds``; returns (sim s per wall s, callbacks run)."""

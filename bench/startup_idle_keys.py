@@ -36,7 +36,6 @@ import argparse
 import asyncio
 import json
 import os
-import platform
 import signal
 import socket
 import statistics
@@ -54,6 +53,8 @@ import httpx
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))  # run as a script from anywhere: the app's packages live at the root
 
+from machine import machine_info  # noqa: E402  (bench/ is on sys.path when run as a script)
+
 RESULTS = REPO / "bench" / "results"
 READY_TIMEOUT_S = 60.0
 STOP_TIMEOUT_S = 10.0
@@ -62,21 +63,6 @@ AIMS = {"idle_cpu_pct": 5.0, "rss_mb": 150.0, "key_p99_ms": 2.0}  # from the iss
 
 
 # -- the machine -----------------------------------------------------------------------------
-def machine_info() -> dict[str, Any]:
-    model = "unknown"
-    with open("/proc/cpuinfo") as cpuinfo:
-        for line in cpuinfo:
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    return {
-        "nproc": len(os.sched_getaffinity(0)),
-        "cpu_model": model,
-        "python": platform.python_version(),
-        "platform": platform.platform(),
-    }
-
-
 def free_port() -> int:
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))

@@ -49,15 +49,11 @@ import numpy as np
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))  # the app's packages live at the root
 
-from startup_idle_keys import ServerProcess, cpu_seconds, free_port, machine_info
+from machine import machine_info
+from startup_idle_keys import ServerProcess, cpu_seconds, free_port
 
 RESULTS = REPO / "bench" / "results"
-CHROMIUM = "/usr/bin/chromium"
-CHROMIUM_ARGS = [
-    "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-    "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic",
-    "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-]  # fmt: skip
+from machine import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
 VIEWPORT = {"width": 1000, "height": 650}
 KEYS = ("ArrowRight", "ArrowLeft")
 HOLD_S = {"lab": 0.0, "hold": 0.3}
