@@ -14,7 +14,7 @@ import traceback
 from collections.abc import Callable
 from typing import Any
 
-from .endpoints import Subscription, Timer
+from .endpoints import Subscription
 from .graph import Bus
 from .node import Node
 
