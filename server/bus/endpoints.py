@@ -49,7 +49,7 @@ class Publisher:
                 f"{self.topic.name} carries {self.msg_type.TYPE}; cannot publish {type(msg).__name__}"
                 f" ({getattr(msg, 'TYPE', type(msg).__name__)})"
             )
-        return self.topic.deliver(msg, self)
+        return self.topic.deliver(msg)
 
     def get_subscription_count(self) -> int:
         return sum(1 for s in self.topic.subscriptions if s.active)

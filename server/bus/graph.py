@@ -65,13 +65,12 @@ class Topic:
         self.publish_count = 0
         # Publish times for `ros2 topic hz`-style rates, kept always: one deque append per message.
         self.publish_times_s: deque[float] = deque(maxlen=HZ_WINDOW_MAX)
-        self.taps: list[Callable[[Topic, Message, float], None]] = []
 
     @property
     def hidden(self) -> bool:
         return self.name in INTERNAL_TOPICS or is_hidden(self.name)
 
-    def deliver(self, msg: Message, publisher: Publisher | None) -> int:
+    def deliver(self, msg: Message) -> int:
         now = self.bus.clock.now()
         self.latest = msg.copy()
         self.latest_time_s = now
@@ -86,8 +85,6 @@ class Topic:
             sub.queue.append(msg.copy())
             self.bus._ready.append(sub)
             delivered += 1
-        for tap in self.taps:
-            tap(self, self.latest, now)
         if delivered:
             self.bus._wake()
         return delivered
