@@ -7,7 +7,12 @@ from enum import IntEnum
 from fastapi import HTTPException, status
 
 from server.bus import (
-    BusError, DestroyedError, InvalidNameError, InvalidQoSError, TopicTypeError, UnknownNodeError,
+    BusError,
+    DestroyedError,
+    InvalidNameError,
+    InvalidQoSError,
+    TopicTypeError,
+    UnknownNodeError,
     UnknownTopicError,
 )  # fmt: skip
 from server.msgs import MessageError, UnknownTypeError

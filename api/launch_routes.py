@@ -21,7 +21,9 @@ router = APIRouter(prefix="/api", tags=["launch"])
 
 class LaunchRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    file: str = Field(description="a launch file's path, or its name inside `package`", examples=["rocket.launch"])
+    file: str = Field(
+        description="a launch file's path, or its name inside `package`", examples=["rocket.launch"]
+    )
     package: str | None = Field(default=None, examples=["rocketship"])
     args: dict[str, str] = Field(default_factory=dict, examples=[{"start_delay": "2.0"}])
 
@@ -45,7 +47,9 @@ def _bad(exc: Exception) -> HTTPException:
 async def launch(body: LaunchRequest, lab: LabDep) -> dict[str, Any]:
     """Start a launch file's nodes; a node that fails to start is reported, the others run."""
     try:
-        path = lab.packages.share_dir(body.package) / "launch" / body.file if body.package else Path(body.file)
+        path = (
+            lab.packages.share_dir(body.package) / "launch" / body.file if body.package else Path(body.file)
+        )
         return lab.launch_group(path, body.args).describe()
     except LaunchFileError as exc:
         raise HTTPException(status.HTTP_422_UNPROCESSABLE_CONTENT, str(exc)) from exc
@@ -57,7 +61,9 @@ async def launch(body: LaunchRequest, lab: LabDep) -> dict[str, Any]:
 async def run(body: RunRequest, lab: LabDep) -> dict[str, Any]:
     """Start one node from a package, as ``ros2 run`` (``--ros-args -p`` / ``-r`` as fields)."""
     try:
-        return lab.run_node(body.package, body.executable, body.name, body.parameters, body.remappings).describe()
+        return lab.run_node(
+            body.package, body.executable, body.name, body.parameters, body.remappings
+        ).describe()
     except Exception as exc:
         raise _bad(exc) from exc
 

@@ -53,7 +53,9 @@ async def update(publisher_id: str, body: RatePublisherUpdate, lab: LabDep) -> d
     try:
         if body.msg is not None:
             reject_non_finite(body.msg)
-        return lab.publishers.update(publisher_id, enabled=body.enabled, rate_hz=body.rate_hz, msg=body.msg).describe()
+        return lab.publishers.update(
+            publisher_id, enabled=body.enabled, rate_hz=body.rate_hz, msg=body.msg
+        ).describe()
     except Exception as exc:
         raise _error(exc) from exc
 

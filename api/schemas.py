@@ -26,8 +26,11 @@ class PublishRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     topic: str = Field(examples=["/abort_takeoff"])
     msg: dict[str, Any] = Field(default_factory=dict, examples=[{"data": True}])
-    type: str | None = Field(default=None, description="needed only when the topic does not exist yet",
-                             examples=["std_msgs/msg/Bool"])
+    type: str | None = Field(
+        default=None,
+        description="needed only when the topic does not exist yet",
+        examples=["std_msgs/msg/Bool"],
+    )
 
 
 class PublishResult(BaseModel):
@@ -49,7 +52,9 @@ class RatePublisherRequest(BaseModel):
     topic: str = Field(examples=["/uav/input/position"])
     msg: dict[str, Any] = Field(default_factory=dict, examples=[{"x": 5.0, "y": 5.0, "z": 10.0}])
     type: str | None = Field(default=None, description="needed only when the topic does not exist yet")
-    rate_hz: float = Field(gt=0, le=1000, examples=[1.0], description="publishing rate, more than 0 and at most 1000 Hz")
+    rate_hz: float = Field(
+        gt=0, le=1000, examples=[1.0], description="publishing rate, more than 0 and at most 1000 Hz"
+    )
     enabled: bool = True
 
 

@@ -50,8 +50,9 @@ def _header(scope: Scope, name: bytes) -> str | None:
 class GuardMiddleware:
     """Host check for everything; Origin check for WebSockets and writes; a cap on body size."""
 
-    def __init__(self, app: ASGIApp, accepted_hosts: Iterable[str], allowed_origins: Iterable[str],
-                 max_body_bytes: int) -> None:
+    def __init__(
+        self, app: ASGIApp, accepted_hosts: Iterable[str], allowed_origins: Iterable[str], max_body_bytes: int
+    ) -> None:
         self.app = app
         self.accepted_hosts = frozenset(accepted_hosts)
         self.allowed_origins = frozenset(allowed_origins)
@@ -92,8 +93,16 @@ class GuardMiddleware:
             await send({"type": "websocket.close", "code": 1008, "reason": detail})
             return
         body = json.dumps({"detail": detail}).encode()
-        await send({"type": "http.response.start", "status": status,
-                    "headers": [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())]})
+        await send(
+            {
+                "type": "http.response.start",
+                "status": status,
+                "headers": [
+                    (b"content-type", b"application/json"),
+                    (b"content-length", str(len(body)).encode()),
+                ],
+            }
+        )
         await send({"type": "http.response.body", "body": body})
 
 

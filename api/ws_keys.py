@@ -102,8 +102,11 @@ async def _dead_man(lab: Any, source: str, last_frame_s: list[float], timeout_s:
     while True:
         await asyncio.sleep(timeout_s / 5)
         if lab.keyboard.held(source) and time.monotonic() - last_frame_s[0] > timeout_s:
-            log.warning("key channel %s silent for over %.0f ms with keys held: releasing them",
-                        source, timeout_s * 1000)
+            log.warning(
+                "key channel %s silent for over %.0f ms with keys held: releasing them",
+                source,
+                timeout_s * 1000,
+            )
             lab.keyboard.release_all(source)
 
 

@@ -59,8 +59,12 @@ async def echo(
     websocket: WebSocket,
     name: str,
     lab: WsLabDep,
-    throttle_rate: str | None = Query(None, description="minimum ms between frames, 0..60000 (rosbridge's name)"),
-    queue_length: str | None = Query(None, description=f"messages kept for a slow client, 1..{MAX_QUEUE} (100)"),
+    throttle_rate: str | None = Query(
+        None, description="minimum ms between frames, 0..60000 (rosbridge's name)"
+    ),
+    queue_length: str | None = Query(
+        None, description=f"messages kept for a slow client, 1..{MAX_QUEUE} (100)"
+    ),
     type: str | None = Query(None, description="message type, to echo a topic that does not exist yet"),
 ) -> None:
     await websocket.accept()
@@ -70,7 +74,9 @@ async def echo(
         topic = "/" + validate_topic_name(name).lstrip("/")
         existing = lab.bus.topics.get(topic)
         if existing is None and type is None:
-            await websocket.close(CloseCode.UNKNOWN_TOPIC, f"unknown topic {topic}; pass ?type= to wait for it")
+            await websocket.close(
+                CloseCode.UNKNOWN_TOPIC, f"unknown topic {topic}; pass ?type= to wait for it"
+            )
             return
         msg_type = existing.msg_type if type is None else get_type(type)
         with lab.bus.activate():
@@ -94,7 +100,12 @@ async def _send_loop(websocket: WebSocket, node: EchoNode, topic: str, throttle_
             node.ready.clear()
             while node.outbox:
                 msg, received = node.outbox.popleft()
-                frame: dict[str, Any] = {"topic": topic, "type": type_name, "msg": msg.to_dict(), "received": received}
+                frame: dict[str, Any] = {
+                    "topic": topic,
+                    "type": type_name,
+                    "msg": msg.to_dict(),
+                    "received": received,
+                }
                 if node.dropped:
                     frame["dropped"] = node.dropped
                 await websocket.send_json(frame)

@@ -20,7 +20,7 @@ import numpy as np
 REPO_ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO_ROOT))
 
-from machine import machine_info  # noqa: E402  (bench/ is on sys.path when run as a script)
+from machine import machine_info
 
 from sim.control import ClosedLoop
 from sim.quadrotor import QuadrotorSim, RateThrustCommand

@@ -35,13 +35,16 @@ import numpy as np
 REPO_ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO_ROOT))
 
-from machine import machine_info  # noqa: E402  (bench/ is on sys.path when run as a script)
+from machine import (
+    CHROMIUM,
+    machine_info,
+)
+from machine import CHROMIUM_ARGS as CHROMIUM_FLAGS
 
 from server.bus import ManualClock, SystemClock
 from server.lab import Lab
 from server.settings import Settings
 
-from machine import CHROMIUM, CHROMIUM_ARGS as CHROMIUM_FLAGS  # noqa: E402
 CLK_TCK = os.sysconf("SC_CLK_TCK")
 SETTLE_S = 3.0  # after start-up (or page load) before measuring
 TIMED_NODES = ("flightgoggles_uav_dynamics", "position_controller_node", "velocity_controller_node",

@@ -44,7 +44,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -53,7 +53,7 @@ import httpx
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))  # run as a script from anywhere: the app's packages live at the root
 
-from machine import machine_info  # noqa: E402  (bench/ is on sys.path when run as a script)
+from machine import machine_info
 
 RESULTS = REPO / "bench" / "results"
 READY_TIMEOUT_S = 60.0
@@ -109,7 +109,9 @@ class ServerProcess:
                     pass
                 if self.proc.poll() is not None or time.monotonic() > deadline:
                     self.stop()
-                    raise RuntimeError(f"server not ready:\n{self.proc.stderr.read() if self.proc.stderr else ''}")
+                    raise RuntimeError(
+                        f"server not ready:\n{self.proc.stderr.read() if self.proc.stderr else ''}"
+                    )
                 time.sleep(0.01)
 
     def stop(self) -> None:
@@ -269,7 +271,7 @@ def report(results: dict[str, Any]) -> str:
     s, i, k = results["startup"], results["idle"], results["keys"]
     rss = max(i["rss_after_start_mb"], i["rss_after_idle_mb"])
     rows = [
-        ("start-up to ready (median of %d)" % len(s["startup_s"]), f"{s['startup_median_s']:.2f} s",
+        (f"start-up to ready (median of {len(s['startup_s'])})", f"{s['startup_median_s']:.2f} s",
          "  ".join(f"{t:.2f}" for t in s["startup_s"])),
         (f"idle CPU over {i['idle_window_s']:.0f} s, no browser", f"{i['idle_cpu_pct']:.2f} % of a core",
          f"aim < {AIMS['idle_cpu_pct']:.0f} %: {'met' if i['idle_cpu_pct'] < AIMS['idle_cpu_pct'] else 'MISSED'}"),
@@ -298,7 +300,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--warmup", type=int, default=50)
     args = parser.parse_args(argv)
 
-    results: dict[str, Any] = {"when": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+    results: dict[str, Any] = {"when": datetime.now(UTC).isoformat(timespec="seconds"),
                                "machine": machine_info()}  # fmt: skip
     results["startup"] = bench_startup(args.starts)
     results["idle"] = bench_idle(args.idle_s)

@@ -53,7 +53,10 @@ from machine import machine_info
 from startup_idle_keys import ServerProcess, cpu_seconds, free_port
 
 RESULTS = REPO / "bench" / "results"
-from machine import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
+import contextlib
+
+from machine import CHROMIUM, CHROMIUM_ARGS
+
 VIEWPORT = {"width": 1000, "height": 650}
 KEYS = ("ArrowRight", "ArrowLeft")
 HOLD_S = {"lab": 0.0, "hold": 0.3}
@@ -199,10 +202,8 @@ def bench_browser(mode: str, presses: int) -> dict[str, Any]:
                 except PlaywrightError:
                     print(f"  [{mode}] the page never drew steadily for 2 s; measuring anyway", flush=True)
                 for button in page.locator(".mantine-Notification-closeButton").all():
-                    try:
+                    with contextlib.suppress(PlaywrightError):
                         button.click(timeout=2_000)
-                    except PlaywrightError:
-                        pass
                 page.evaluate(DRONE_SETTLED_JS, SETTLE_TIMEOUT_MS)
                 result = _press_loop(page, server, mode, presses, PlaywrightError)
                 result["echo_without_page_ms"] = percentiles(echo_leg_ms(server))  # the page still open

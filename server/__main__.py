@@ -4,6 +4,7 @@ topic list`` and the other ros2 verbs run the command-line tools against a runni
 from __future__ import annotations
 
 import argparse
+import contextlib
 import logging
 import sys
 from pathlib import Path
@@ -21,16 +22,28 @@ def parse_launch_arg(text: str) -> tuple[str, str]:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="python -m server", description="Run the teleop lab app.",
+        prog="python -m server",
+        description="Run the teleop lab app.",
         epilog=f"With a first argument of {', '.join(cli.VERBS)}: ros2's command-line tools against a "
-               "running app (python -m server topic --help; also installed as ros2lab).")
-    parser.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)")
+        "running app (python -m server topic --help; also installed as ros2lab).",
+    )
+    parser.add_argument(
+        "--host", default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)"
+    )
     parser.add_argument("--port", type=int, default=8000, help="port (default 8000)")
     parser.add_argument("--launch", default="all", help="rocket, fly, all (default) or a launch file's path")
-    parser.add_argument("launch_args", nargs="*", type=parse_launch_arg, metavar="NAME:=VALUE",
-                        help="launch arguments, as ros2 launch takes them (e.g. start_delay:=2.0)")
-    parser.add_argument("--workspace", default="workspace",
-                        help="folder of your own packages (src/<pkg>/...), default ./workspace")
+    parser.add_argument(
+        "launch_args",
+        nargs="*",
+        type=parse_launch_arg,
+        metavar="NAME:=VALUE",
+        help="launch arguments, as ros2 launch takes them (e.g. start_delay:=2.0)",
+    )
+    parser.add_argument(
+        "--workspace",
+        default="workspace",
+        help="folder of your own packages (src/<pkg>/...), default ./workspace",
+    )
     parser.add_argument("--allow-host", action="append", default=[], help="another Host name to accept")
     parser.add_argument("--allow-origin", action="append", default=[], help="another page origin to accept")
     parser.add_argument("--log-level", default="info", choices=["debug", "info", "warning", "error"])
@@ -61,8 +74,11 @@ def main(argv: list[str] | None = None) -> int:
         host=args.host, port=args.port, launch=args.launch, launch_args=dict(args.launch_args),
         workspace=Path(args.workspace), allowed_hosts=tuple(args.allow_host), allowed_origins=tuple(args.allow_origin),
     )  # fmt: skip
-    logging.basicConfig(level=args.log_level.upper(), format="%(asctime)s %(levelname)s %(name)s: %(message)s",
-                        datefmt="%H:%M:%S")
+    logging.basicConfig(
+        level=args.log_level.upper(),
+        format="%(asctime)s %(levelname)s %(name)s: %(message)s",
+        datefmt="%H:%M:%S",
+    )
     error = check_launch(settings)
     if error:
         print(f"error: {error}", file=sys.stderr)
@@ -71,15 +87,22 @@ def main(argv: list[str] | None = None) -> int:
 
     from server.app import create_app
 
-    print(f"Teleop lab on http://{'127.0.0.1' if args.host in ('0.0.0.0', '::') else args.host}:{args.port}/ "
-          f"(launch: {args.launch}); Ctrl-C to stop", flush=True)
-    config = uvicorn.Config(create_app(settings), host=args.host, port=args.port, log_level=args.log_level,
-                            ws_max_size=settings.max_ws_frame_bytes * 64, timeout_graceful_shutdown=1,
-                            lifespan="on")
-    try:
+    print(
+        f"Teleop lab on http://{'127.0.0.1' if args.host in ('0.0.0.0', '::') else args.host}:{args.port}/ "
+        f"(launch: {args.launch}); Ctrl-C to stop",
+        flush=True,
+    )
+    config = uvicorn.Config(
+        create_app(settings),
+        host=args.host,
+        port=args.port,
+        log_level=args.log_level,
+        ws_max_size=settings.max_ws_frame_bytes * 64,
+        timeout_graceful_shutdown=1,
+        lifespan="on",
+    )
+    with contextlib.suppress(KeyboardInterrupt):
         uvicorn.Server(config).run()
-    except KeyboardInterrupt:
-        pass
     return 0
 
 

@@ -19,8 +19,8 @@ from server.devices.keyboard import KeyboardDevice
 from server.launch.description import NodeAction, SourceLocation
 from server.launch.launcher import LaunchedNode, Launcher
 from server.msgs import Message, Vector3, get_type
-from server.packages.flightcontroller.setpoints import check_finite
 from server.packages import PackageIndex
+from server.packages.flightcontroller.setpoints import check_finite
 from server.publishers import PublisherManager
 from server.settings import Settings
 
@@ -31,7 +31,6 @@ LAUNCH_ALIASES = {
     "fly": ("flightcontroller", "fly.launch"),
     "all": ("lab", "all.launch"),
 }
-
 
 
 def resolve_launch(launch: str, packages: PackageIndex) -> Path:
@@ -88,8 +87,12 @@ class LaunchGroup:
             "id": self.id,
             "file": self.source,
             "nodes": [
-                {"name": e.node.fully_qualified_name if e.node else (e.action.name or e.action.exec),
-                 "pkg": e.action.pkg, "exec": e.action.exec, "error": e.error}
+                {
+                    "name": e.node.fully_qualified_name if e.node else (e.action.name or e.action.exec),
+                    "pkg": e.action.pkg,
+                    "exec": e.action.exec,
+                    "error": e.error,
+                }
                 for e in self.entries
             ],
         }
@@ -178,14 +181,28 @@ class Lab:
         entries = self.launcher.launch_file(path, args)
         return self._group("launch", str(path), entries)
 
-    def run_node(self, pkg: str, exe: str, name: str | None = None, parameters: dict[str, Any] | None = None,
-                 remappings: dict[str, str] | None = None) -> LaunchGroup:
+    def run_node(
+        self,
+        pkg: str,
+        exe: str,
+        name: str | None = None,
+        parameters: dict[str, Any] | None = None,
+        remappings: dict[str, str] | None = None,
+    ) -> LaunchGroup:
         """Start one node, as ``ros2 run PKG EXEC --ros-args ...`` does."""
         self.packages.factory(pkg, exe)  # an unknown package or executable is an error, not a failed node
-        action = NodeAction(pkg=pkg, exec=exe, name=name, namespace=None, output="screen", respawn=False,
-                            respawn_delay_s=0.0, parameters=tuple((parameters or {}).items()),
-                            remappings=tuple((remappings or {}).items()),
-                            location=SourceLocation(f"<run {pkg} {exe}>", 0))
+        action = NodeAction(
+            pkg=pkg,
+            exec=exe,
+            name=name,
+            namespace=None,
+            output="screen",
+            respawn=False,
+            respawn_delay_s=0.0,
+            parameters=tuple((parameters or {}).items()),
+            remappings=tuple((remappings or {}).items()),
+            location=SourceLocation(f"<run {pkg} {exe}>", 0),
+        )
         entry = self.launcher.start(action)
         self.launcher.launched.append(entry)
         return self._group("run", f"{pkg} {exe}", [entry])

@@ -34,8 +34,15 @@ class RatePublisher:
         self.count += 1
 
     def describe(self) -> dict[str, Any]:
-        return {"id": self.id, "topic": self.topic, "type": self.message.TYPE, "msg": self.message.to_dict(),
-                "rate_hz": self.rate_hz, "enabled": self.enabled, "count": self.count}
+        return {
+            "id": self.id,
+            "topic": self.topic,
+            "type": self.message.TYPE,
+            "msg": self.message.to_dict(),
+            "rate_hz": self.rate_hz,
+            "enabled": self.enabled,
+            "count": self.count,
+        }
 
 
 def check_rate(rate_hz: float) -> float:
@@ -53,8 +60,9 @@ class PublisherManager:
         self.items: dict[str, RatePublisher] = {}
         self._ids = itertools.count(1)
 
-    def start(self, topic: str, msg: dict[str, Any], type_name: str | None, rate_hz: float,
-              enabled: bool = True) -> RatePublisher:
+    def start(
+        self, topic: str, msg: dict[str, Any], type_name: str | None, rate_hz: float, enabled: bool = True
+    ) -> RatePublisher:
         rate = check_rate(rate_hz)
         if len(self.items) >= self.max_publishers:
             raise ValueError(f"at most {self.max_publishers} periodic publishers may run at once")
@@ -81,8 +89,14 @@ class PublisherManager:
         except KeyError:
             raise UnknownPublisherError(publisher_id) from None
 
-    def update(self, publisher_id: str, *, enabled: bool | None = None, rate_hz: float | None = None,
-               msg: dict[str, Any] | None = None) -> RatePublisher:
+    def update(
+        self,
+        publisher_id: str,
+        *,
+        enabled: bool | None = None,
+        rate_hz: float | None = None,
+        msg: dict[str, Any] | None = None,
+    ) -> RatePublisher:
         """Change a running publisher; everything is checked before anything changes."""
         item = self.get(publisher_id)
         rate = check_rate(rate_hz) if rate_hz is not None else item.rate_hz

@@ -3,8 +3,14 @@
 from .clock import Clock, ManualClock, RosTime, SystemClock
 from .endpoints import Publisher, Subscription, Timer
 from .errors import (
-    BusError, DestroyedError, InvalidNameError, InvalidQoSError, NoBusError, TopicTypeError,
-    UnknownNodeError, UnknownTopicError,
+    BusError,
+    DestroyedError,
+    InvalidNameError,
+    InvalidQoSError,
+    NoBusError,
+    TopicTypeError,
+    UnknownNodeError,
+    UnknownTopicError,
 )  # fmt: skip
 from .executor import Executor
 from .graph import INTERNAL_TOPICS, Bus, NodeOverrides, Topic, current_bus

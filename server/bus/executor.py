@@ -7,6 +7,7 @@ with the node's name and marks that node crashed; every other node keeps running
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import heapq
 import logging
 import math
@@ -36,12 +37,14 @@ class Executor:
         try:
             fn(*args)
         except Exception as exc:  # the lab's point: a fault stays inside its node
-            log.error("node %s crashed in %s:\n%s", node.fully_qualified_name,
-                      getattr(fn, "__qualname__", fn), traceback.format_exc())
-            try:
+            log.error(
+                "node %s crashed in %s:\n%s",
+                node.fully_qualified_name,
+                getattr(fn, "__qualname__", fn),
+                traceback.format_exc(),
+            )
+            with contextlib.suppress(Exception):
                 node.get_logger().fatal(f"crashed: {type(exc).__name__}: {exc}")
-            except Exception:
-                pass
             node.mark_crashed(exc)
         self.callbacks_run += 1
 
@@ -83,8 +86,11 @@ class Executor:
 
     def next_deadline_s(self) -> float:
         heap = self.bus._timers
-        while heap and (heap[0][2].cancelled or heap[0][2].node.state != "active"
-                        or heap[0][0] != heap[0][2].next_deadline_s):
+        while heap and (
+            heap[0][2].cancelled
+            or heap[0][2].node.state != "active"
+            or heap[0][0] != heap[0][2].next_deadline_s
+        ):
             heapq.heappop(heap)
         return heap[0][0] if heap else math.inf
 

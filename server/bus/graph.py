@@ -119,8 +119,10 @@ class Bus:
 
     def add_node(self, node: Node) -> None:
         if any(n.fully_qualified_name == node.fully_qualified_name for n in self.nodes):
-            log.warning("a node named %s already exists; ROS allows this but tools will be confused",
-                        node.fully_qualified_name)
+            log.warning(
+                "a node named %s already exists; ROS allows this but tools will be confused",
+                node.fully_qualified_name,
+            )
         self.nodes.append(node)
         self.graph_changed()
 

@@ -49,7 +49,9 @@ def _check_token(kind: str, name: str, token: str) -> None:
     if token[0].isdigit():
         raise InvalidNameError(kind, name, f"token {token!r} must not start with a digit")
     if not _TOKEN.match(token):
-        raise InvalidNameError(kind, name, f"token {token!r} may contain only letters, digits and underscores")
+        raise InvalidNameError(
+            kind, name, f"token {token!r} may contain only letters, digits and underscores"
+        )
 
 
 def validate_topic_name(name: str) -> str:

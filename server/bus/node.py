@@ -216,11 +216,20 @@ class Node:
         """Set declared parameters; raises ValueError (changing nothing) if one is refused."""
         for param in params:
             current = self.get_parameter(param.name)
-            if current.value is not None and param.value is not None and type(current.value) is not type(param.value):
-                if not (isinstance(current.value, float) and isinstance(param.value, int)
-                        and not isinstance(param.value, bool)):
-                    raise ValueError(f"parameter {param.name!r} is a {type(current.value).__name__}, "
-                                     f"not a {type(param.value).__name__}")
+            if (
+                current.value is not None
+                and param.value is not None
+                and type(current.value) is not type(param.value)
+            ):
+                if not (
+                    isinstance(current.value, float)
+                    and isinstance(param.value, int)
+                    and not isinstance(param.value, bool)
+                ):
+                    raise ValueError(
+                        f"parameter {param.name!r} is a {type(current.value).__name__}, "
+                        f"not a {type(param.value).__name__}"
+                    )
                 param = Parameter(param.name, float(param.value))
         for callback in self._param_callbacks:
             result = callback(params)
@@ -228,8 +237,11 @@ class Node:
                 raise ValueError(getattr(result, "reason", "") or "parameter change refused by the node")
         for param in params:
             current = self._parameters[param.name]
-            current.value = float(param.value) if isinstance(current.value, float) and isinstance(param.value, int) \
+            current.value = (
+                float(param.value)
+                if isinstance(current.value, float) and isinstance(param.value, int)
                 else param.value
+            )
 
     # -- faults ----------------------------------------------------------
     def mark_crashed(self, exc: BaseException) -> None:

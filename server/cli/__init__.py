@@ -23,7 +23,8 @@ __all__ = ["VERBS", "build_parser", "main"]
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="ros2lab", description="ros2's command-line tools for the teleop lab's running server.")
+        prog="ros2lab", description="ros2's command-line tools for the teleop lab's running server."
+    )
     url_help = f"the lab server (default: ${URL_ENV}, else {DEFAULT_URL})"
     parser.add_argument("--url", default=None, help=url_help)
     # --url is accepted after the verb too; SUPPRESS keeps it from overwriting one given before.

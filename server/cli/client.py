@@ -41,7 +41,9 @@ class ApiError(CliError):
     def __init__(self, status: int, detail: str, method: str, path: str) -> None:
         self.status, self.detail, self.method, self.path = status, detail, method, path
         if self.no_route:
-            super().__init__(f"{method} {path}: HTTP 404: the server has no such endpoint (older than this CLI?)")
+            super().__init__(
+                f"{method} {path}: HTTP 404: the server has no such endpoint (older than this CLI?)"
+            )
         elif status in (404, 409, 422):
             super().__init__(detail)
         else:
@@ -126,7 +128,9 @@ class LabClient:
         except ConnectionClosed as exc:
             raise _closed_error(exc, topic) from None
         except InvalidStatus as exc:
-            raise CliError(f"the lab server refused the echo channel: HTTP {exc.response.status_code}") from None
+            raise CliError(
+                f"the lab server refused the echo channel: HTTP {exc.response.status_code}"
+            ) from None
         except InvalidHandshake as exc:
             raise CliError(f"the lab server refused the echo channel: {exc}") from None
         except OSError:

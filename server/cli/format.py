@@ -51,23 +51,34 @@ def _convert(value: Any, truncate_length: int | None, no_arr: bool) -> Any:
             return f"<sequence length: {len(value)}>"
         items = [_convert(v, truncate_length, no_arr) for v in value]
         if truncate_length is not None and len(items) > truncate_length:
-            return items[:truncate_length] + ["..."]
+            return [*items[:truncate_length], "..."]
         return items
     if isinstance(value, str) and truncate_length is not None and len(value) > truncate_length:
         return value[:truncate_length] + "..."
     return value
 
 
-def message_to_yaml(msg: Mapping[str, Any], *, truncate_length: int | None = DEFAULT_TRUNCATE_LENGTH,
-                    no_arr: bool = False) -> str:
+def message_to_yaml(
+    msg: Mapping[str, Any], *, truncate_length: int | None = DEFAULT_TRUNCATE_LENGTH, no_arr: bool = False
+) -> str:
     """A message as ``ros2 topic echo`` prints it: block YAML, fields in order, nested ones indented."""
-    text: str = yaml.dump(_convert(msg, truncate_length, no_arr), allow_unicode=True, width=sys.maxsize,
-                          default_flow_style=False, sort_keys=False)
+    text: str = yaml.dump(
+        _convert(msg, truncate_length, no_arr),
+        allow_unicode=True,
+        width=sys.maxsize,
+        default_flow_style=False,
+        sort_keys=False,
+    )
     return text
 
 
-def echo_text(msg: Mapping[str, Any], field: Sequence[str] | None = None, *,
-              truncate_length: int | None = DEFAULT_TRUNCATE_LENGTH, no_arr: bool = False) -> str:
+def echo_text(
+    msg: Mapping[str, Any],
+    field: Sequence[str] | None = None,
+    *,
+    truncate_length: int | None = DEFAULT_TRUNCATE_LENGTH,
+    no_arr: bool = False,
+) -> str:
     """One message of ``ros2 topic echo`` with its ``---`` line; a primitive field prints bare."""
     value = select_field(msg, field) if field else msg
     if isinstance(value, Mapping):
@@ -77,6 +88,8 @@ def echo_text(msg: Mapping[str, Any], field: Sequence[str] | None = None, *,
 
 def hz_report(stats: Mapping[str, Any]) -> str:
     """``ros2 topic hz``'s two lines. Its ``window`` counts messages, one more than the periods."""
-    return (f"average rate: {stats['rate_hz']:.3f}\n"
-            f"\tmin: {stats['min_s']:.3f}s max: {stats['max_s']:.3f}s "
-            f"std dev: {stats['std_dev_s']:.5f}s window: {stats['window'] + 1}")
+    return (
+        f"average rate: {stats['rate_hz']:.3f}\n"
+        f"\tmin: {stats['min_s']:.3f}s max: {stats['max_s']:.3f}s "
+        f"std dev: {stats['std_dev_s']:.5f}s window: {stats['window'] + 1}"
+    )

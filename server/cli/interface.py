@@ -55,7 +55,9 @@ def _field_type(schema: Mapping[str, Any], root: Mapping[str, Any], parent_pkg: 
     return JSON_TO_ROS.get(str(schema.get("type")), str(schema.get("type", "?")))
 
 
-def schema_lines(schema: Mapping[str, Any], root: Mapping[str, Any] | None = None, depth: int = 0) -> list[str]:
+def schema_lines(
+    schema: Mapping[str, Any], root: Mapping[str, Any] | None = None, depth: int = 0
+) -> list[str]:
     """``float64 x`` per field; a nested message's fields follow it, one tab further in."""
     root = root if root is not None else schema
     schema = _resolve(schema, root)

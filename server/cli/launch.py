@@ -115,8 +115,12 @@ def launch(args: argparse.Namespace, client: LabClient) -> int:
 
 def run(args: argparse.Namespace, client: LabClient) -> int:
     options = parse_ros_args(args.argv)
-    body: dict[str, Any] = {"package": args.package_name, "executable": args.executable_name,
-                            "parameters": options["parameters"], "remappings": options["remappings"]}
+    body: dict[str, Any] = {
+        "package": args.package_name,
+        "executable": args.executable_name,
+        "parameters": options["parameters"],
+        "remappings": options["remappings"],
+    }
     if options["name"] is not None:
         body["name"] = options["name"]
     return hold_until_interrupted(client, client.post("/api/run", body))
@@ -124,8 +128,12 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
 
 def add_parsers(verbs: Any, common: argparse.ArgumentParser) -> None:
     p = verbs.add_parser("launch", parents=[common], help="Run a launch file")
-    p.add_argument("launch_arguments", nargs="+", metavar="ARG",
-                   help="FILE, or PACKAGE FILE, then launch arguments as NAME:=VALUE")
+    p.add_argument(
+        "launch_arguments",
+        nargs="+",
+        metavar="ARG",
+        help="FILE, or PACKAGE FILE, then launch arguments as NAME:=VALUE",
+    )
     p.set_defaults(handler=launch)
 
     p = verbs.add_parser("run", parents=[common], help="Run a package specific executable")

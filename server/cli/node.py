@@ -28,8 +28,10 @@ def _ms(value: float | None) -> str:
 
 
 def _timer_line(timer: Mapping[str, Any]) -> str:
-    return (f"    every {timer['period_s']:.3f} s: {timer['calls']} calls, lateness "
-            f"p50 {_ms(timer.get('lateness_p50_ms'))}, p99 {_ms(timer.get('lateness_p99_ms'))}")
+    return (
+        f"    every {timer['period_s']:.3f} s: {timer['calls']} calls, lateness "
+        f"p50 {_ms(timer.get('lateness_p50_ms'))}, p99 {_ms(timer.get('lateness_p99_ms'))}"
+    )
 
 
 def format_node_info(info: Mapping[str, Any]) -> str:

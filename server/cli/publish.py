@@ -31,8 +31,14 @@ def _body(args: argparse.Namespace) -> dict[str, Any]:
     return {"topic": topic, "msg": parse_message(args.values), "type": args.message_type}
 
 
-def publish_times(client: LabClient, body: dict[str, Any], times: int, rate_hz: float,
-                  sleep: Sleep = time.sleep, clock: Clock = time.monotonic) -> int:
+def publish_times(
+    client: LabClient,
+    body: dict[str, Any],
+    times: int,
+    rate_hz: float,
+    sleep: Sleep = time.sleep,
+    clock: Clock = time.monotonic,
+) -> int:
     """Publish ``times`` messages, the first at once and then every 1/rate_hz s."""
     start = clock()
     for number in range(1, times + 1):
@@ -55,8 +61,9 @@ def _as_published(client: LabClient, type_name: str, msg: dict[str, Any]) -> dic
         return msg
 
 
-def publish_until_interrupted(client: LabClient, body: dict[str, Any], rate_hz: float,
-                              sleep: Sleep = time.sleep) -> int:
+def publish_until_interrupted(
+    client: LabClient, body: dict[str, Any], rate_hz: float, sleep: Sleep = time.sleep
+) -> int:
     """Start a periodic publisher on the server, report its count every second, stop it on Ctrl-C."""
     info = client.post("/api/publishers", {**body, "rate_hz": rate_hz})
     path = f"/api/publishers/{info['id']}"
@@ -106,11 +113,20 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
     p = sub.add_parser("pub", parents=[common], help="Publish a message to a topic")
     p.add_argument("topic_name", help="Name of the ROS topic to publish to (e.g. '/chatter')")
     p.add_argument("message_type", help="Type of the ROS message (e.g. 'std_msgs/String')")
-    p.add_argument("values", nargs="?", default="{}",
-                   help="Values to fill the message with in YAML format (e.g. 'data: Hello World'), "
-                        "otherwise the message will be published with default values")
-    p.add_argument("-r", "--rate", type=_positive_rate, default=DEFAULT_RATE_HZ,
-                   help="Publishing rate in Hz (default: 1)")
+    p.add_argument(
+        "values",
+        nargs="?",
+        default="{}",
+        help="Values to fill the message with in YAML format (e.g. 'data: Hello World'), "
+        "otherwise the message will be published with default values",
+    )
+    p.add_argument(
+        "-r",
+        "--rate",
+        type=_positive_rate,
+        default=DEFAULT_RATE_HZ,
+        help="Publishing rate in Hz (default: 1)",
+    )
     p.add_argument("-1", "--once", action="store_true", help="Publish one message and exit")
     p.add_argument("-t", "--times", type=_positive_int, help="Publish this number of times and then exit")
     p.set_defaults(handler=topic_pub)

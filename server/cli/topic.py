@@ -34,10 +34,17 @@ def topic_list(args: argparse.Namespace, client: LabClient) -> int:
 
 def _endpoints(kind: str, names: list[str], depths: list[int], type_name: str) -> list[str]:
     lines = [f"{kind.title()} count: {len(names)}", ""]
-    for name, depth in zip(names, depths, strict=False):
+    for name, depth in zip(names, depths, strict=True):
         namespace, _, node = name.rpartition("/")
-        lines += [f"Node name: {node}", f"Node namespace: {namespace or '/'}", f"Topic type: {type_name}",
-                  f"Endpoint type: {kind.upper()}", "QoS profile:", f"  History (Depth): KEEP_LAST ({depth})", ""]
+        lines += [
+            f"Node name: {node}",
+            f"Node namespace: {namespace or '/'}",
+            f"Topic type: {type_name}",
+            f"Endpoint type: {kind.upper()}",
+            "QoS profile:",
+            f"  History (Depth): KEEP_LAST ({depth})",
+            "",
+        ]
     return lines
 
 
@@ -51,8 +58,10 @@ def topic_info(args: argparse.Namespace, client: LabClient) -> int:
             return 1
         raise
     if not args.verbose:
-        print(f"Type: {info['type']}\nPublisher count: {len(info['publishers'])}\n"
-              f"Subscription count: {len(info['subscribers'])}")
+        print(
+            f"Type: {info['type']}\nPublisher count: {len(info['publishers'])}\n"
+            f"Subscription count: {len(info['subscribers'])}"
+        )
         return 0
     lines = [f"Type: {info['type']}", ""]
     lines += _endpoints("publisher", info["publishers"], info.get("publisher_depths", []), info["type"])
@@ -131,7 +140,9 @@ def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
 
     p = sub.add_parser("info", parents=[common], help="Print information about a topic")
     p.add_argument("topic_name", help="Name of the ROS topic to get info (e.g. '/chatter')")
-    p.add_argument("-v", "--verbose", action="store_true", help="Prints detailed information like the node name")
+    p.add_argument(
+        "-v", "--verbose", action="store_true", help="Prints detailed information like the node name"
+    )
     p.set_defaults(handler=topic_info)
 
     p = sub.add_parser("echo", parents=[common], help="Output messages from a topic")
@@ -142,14 +153,23 @@ def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
     p.add_argument("--field", help="Echo a selected field of a message (e.g. 'pose.position')")
     p.add_argument("--no-arr", action="store_true", help="Don't print array fields of messages")
     p.add_argument("--qos-depth", type=_positive, help="Queue size: messages kept for a slow terminal")
-    p.add_argument("-l", "--truncate-length", type=_non_negative, default=DEFAULT_TRUNCATE_LENGTH,
-                   help=f"Length to truncate arrays and strings to (default: {DEFAULT_TRUNCATE_LENGTH})")
-    p.add_argument("-f", "--full-length", action="store_true", help="Output all elements of arrays and strings")
+    p.add_argument(
+        "-l",
+        "--truncate-length",
+        type=_non_negative,
+        default=DEFAULT_TRUNCATE_LENGTH,
+        help=f"Length to truncate arrays and strings to (default: {DEFAULT_TRUNCATE_LENGTH})",
+    )
+    p.add_argument(
+        "-f", "--full-length", action="store_true", help="Output all elements of arrays and strings"
+    )
     p.set_defaults(handler=topic_echo)
 
     p = sub.add_parser("hz", parents=[common], help="Print the average publishing rate to screen")
     p.add_argument("topic_name", help="Name of the ROS topic to listen to (e.g. '/chatter')")
-    p.add_argument("-w", "--window", type=_positive, help="window size, in # of messages, for calculating rate")
+    p.add_argument(
+        "-w", "--window", type=_positive, help="window size, in # of messages, for calculating rate"
+    )
     p.add_argument("--count", type=_positive, help="exit after this many reports")
     p.set_defaults(handler=topic_hz)
 

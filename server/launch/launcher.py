@@ -16,7 +16,9 @@ from .xml_parser import parse_launch_file
 log = logging.getLogger("launch")
 
 
-def parse_launch(path: str | Path, args: Mapping[str, str] | None, packages: PackageIndex) -> LaunchDescription:
+def parse_launch(
+    path: str | Path, args: Mapping[str, str] | None, packages: PackageIndex
+) -> LaunchDescription:
     """Read a launch file, resolving ``$(find-pkg-share PKG)`` through ``packages``."""
     return parse_launch_file(Path(path), args=dict(args or {}), find_package_share=packages.share_dir)
 
@@ -73,8 +75,14 @@ class Launcher:
             for orphan in [n for n in self.bus.nodes if n not in before]:
                 orphan.destroy_node()  # half-built: drop what its constructor registered
             entry.node, entry.error = None, f"{type(exc).__name__}: {exc}"
-            log.error("%s: node %s (%s %s) failed to start: %s", action.location,
-                      action.name or action.exec, action.pkg, action.exec, entry.error)
+            log.error(
+                "%s: node %s (%s %s) failed to start: %s",
+                action.location,
+                action.name or action.exec,
+                action.pkg,
+                action.exec,
+                entry.error,
+            )
             return entry
         node.origin = {"package": action.pkg, "executable": action.exec, "launch_file": str(action.location)}
         entry.node, entry.error = node, None

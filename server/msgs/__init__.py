@@ -3,8 +3,22 @@
 from ._base import Field, Message, MessageError
 from .registry import UnknownTypeError, get_type, normalize_type_name, type_names
 from .types import (
-    KEY_CONSTANTS, Bool, Float64, Header, Int64, Key, Log, Point, Pose, PoseStamped, Quaternion,
-    String, Time, Twist, TwistStamped, Vector3,
+    KEY_CONSTANTS,
+    Bool,
+    Float64,
+    Header,
+    Int64,
+    Key,
+    Log,
+    Point,
+    Pose,
+    PoseStamped,
+    Quaternion,
+    String,
+    Time,
+    Twist,
+    TwistStamped,
+    Vector3,
 )  # fmt: skip
 
 __all__ = [

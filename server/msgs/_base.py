@@ -7,8 +7,9 @@ message when it is published, so a subscriber never sees a later change made by 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, ClassVar, Mapping
+from typing import Any, ClassVar
 
 INT_RANGES: dict[str, tuple[int, int]] = {
     "int8": (-(2**7), 2**7 - 1),
@@ -157,6 +158,10 @@ class Message:
 
 def define(type_name: str, fields: list[Field], namespace: dict[str, Any] | None = None) -> type[Message]:
     """Create a message class with slots for its fields (and optional constants)."""
-    attrs: dict[str, Any] = {"TYPE": type_name, "FIELDS": tuple(fields), "__slots__": tuple(f.name for f in fields)}
+    attrs: dict[str, Any] = {
+        "TYPE": type_name,
+        "FIELDS": tuple(fields),
+        "__slots__": tuple(f.name for f in fields),
+    }
     attrs.update(namespace or {})
     return type(type_name.rsplit("/", 1)[1], (Message,), attrs)

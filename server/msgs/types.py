@@ -16,7 +16,12 @@ Vector3 = define("geometry_msgs/msg/Vector3", [Field(n, "float64", 0.0) for n in
 Point = define("geometry_msgs/msg/Point", [Field(n, "float64", 0.0) for n in "xyz"])
 Quaternion = define(
     "geometry_msgs/msg/Quaternion",
-    [Field("x", "float64", 0.0), Field("y", "float64", 0.0), Field("z", "float64", 0.0), Field("w", "float64", 1.0)],
+    [
+        Field("x", "float64", 0.0),
+        Field("y", "float64", 0.0),
+        Field("z", "float64", 0.0),
+        Field("w", "float64", 1.0),
+    ],
 )
 Pose = define("geometry_msgs/msg/Pose", [Field("position", Point), Field("orientation", Quaternion)])
 PoseStamped = define("geometry_msgs/msg/PoseStamped", [Field("header", Header), Field("pose", Pose)])

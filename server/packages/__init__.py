@@ -28,7 +28,9 @@ BUILTIN: dict[str, dict[str, str]] = {
         "velocity_controller.py": "server.packages.flightcontroller.velocity_controller:VelocityControllerNode",
         "angle_controller.py": "server.packages.flightcontroller.angle_controller:AngleControllerNode",
     },
-    "flightgoggles": {"flightgoggles_uav_dynamics": "server.packages.flightgoggles.uav_dynamics:UavDynamicsNode"},
+    "flightgoggles": {
+        "flightgoggles_uav_dynamics": "server.packages.flightgoggles.uav_dynamics:UavDynamicsNode"
+    },
     "simple_sim": {"simple_sim_node": "server.packages.simple_sim.simple_sim_node:SimpleSimNode"},
     "simple_control": {"keyboard_manager": "server.packages.simple_control.keyboard_manager:KeyboardManager"},
     "visualizer": {"gui_controller.py": "server.packages.visualizer.gui_controller:GUIControllerNode"},

@@ -45,7 +45,9 @@ def executables_in(package_dir: Path) -> dict[str, Path]:
     exes: dict[str, Path] = {}
     for path in sorted(package_dir.rglob("*.py")):
         parts = path.relative_to(package_dir).parts
-        if path.name in SKIP_FILES or any(p == "launch" or p.startswith(("test", ".", "_")) for p in parts[:-1]):
+        if path.name in SKIP_FILES or any(
+            p == "launch" or p.startswith(("test", ".", "_")) for p in parts[:-1]
+        ):
             continue
         exes.setdefault(path.name, path)
         exes.setdefault(path.stem, path)
@@ -66,8 +68,11 @@ class _CooperativeTime:
         return getattr(time, name)
 
     def sleep(self, seconds: float) -> None:
-        log.warning("%s: time.sleep(%s) skipped: it would block every node (use create_timer to wait)",
-                    self._where, seconds)
+        log.warning(
+            "%s: time.sleep(%s) skipped: it would block every node (use create_timer to wait)",
+            self._where,
+            seconds,
+        )
 
 
 def _location_in(path: Path, exc: BaseException) -> str:
@@ -103,15 +108,19 @@ def node_factory(path: Path) -> Callable[[], Node]:
 
     def make() -> Node:
         module = load_module(path)
-        classes = [v for v in vars(module).values()
-                   if isinstance(v, type) and issubclass(v, Node) and v.__module__ == module.__name__]
+        classes = [
+            v
+            for v in vars(module).values()
+            if isinstance(v, type) and issubclass(v, Node) and v.__module__ == module.__name__
+        ]
         if len(classes) != 1:
             found = ", ".join(c.__name__ for c in classes) or "none"
             raise NodeFileError(f"{path}: a node file must define exactly one Node subclass (found: {found})")
         try:
             return classes[0]()
         except Exception as exc:
-            raise NodeFileError(f"{_location_in(path, exc)}: {classes[0].__name__}() raised "
-                                f"{type(exc).__name__}: {exc}") from exc
+            raise NodeFileError(
+                f"{_location_in(path, exc)}: {classes[0].__name__}() raised {type(exc).__name__}: {exc}"
+            ) from exc
 
     return make

@@ -45,8 +45,9 @@ class Display:
             self.server.initial_camera.up = (0.0, 0.0, 1.0)
         if self._view_switch is not None:
             self._view_switch.remove()
-        self._view_switch = self.server.gui.add_button_group("View", list(self.views), order=-10.0,
-                                                             hint="Point the camera at this lab")
+        self._view_switch = self.server.gui.add_button_group(
+            "View", list(self.views), order=-10.0, hint="Point the camera at this lab"
+        )
         self._view_switch.on_click(self._on_view)
 
     def _on_view(self, event: Any) -> None:

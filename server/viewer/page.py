@@ -50,7 +50,9 @@ async def viser_proxy(websocket: WebSocket) -> None:
         )
     except (OSError, TimeoutError, ValueError, websockets.exceptions.WebSocketException) as exc:
         # viser refuses a client without its subprotocol (HTTP 400): refuse the browser in turn.
-        await websocket.close(status.WS_1008_POLICY_VIOLATION, f"the 3D view refused the connection: {exc}"[:120])
+        await websocket.close(
+            status.WS_1008_POLICY_VIOLATION, f"the 3D view refused the connection: {exc}"[:120]
+        )
         return
     async with upstream:
         await websocket.accept(subprotocol=upstream.subprotocol)

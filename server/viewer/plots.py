@@ -12,16 +12,29 @@ from viser import uplot
 class TimePlot:
     """One uPlot chart; ``append`` is cheap, ``flush`` sends the data (call it a few times a second)."""
 
-    def __init__(self, gui: Any, title: str, labels: tuple[str, ...], colors: tuple[str, ...],
-                 window_s: float | None = None, max_points: int = 2000) -> None:
+    def __init__(
+        self,
+        gui: Any,
+        title: str,
+        labels: tuple[str, ...],
+        colors: tuple[str, ...],
+        window_s: float | None = None,
+        max_points: int = 2000,
+    ) -> None:
         self.window_s = window_s
         self._rows: deque[tuple[float, ...]] = deque(maxlen=max_points)
         self._dirty = False
-        series = (uplot.Series(label="t (s)"),
-                  *(uplot.Series(label=label, stroke=color, width=2) for label, color in zip(labels, colors)))
+        series = (
+            uplot.Series(label="t (s)"),
+            *(
+                uplot.Series(label=label, stroke=color, width=2)
+                for label, color in zip(labels, colors, strict=True)
+            ),
+        )
         empty = tuple(np.zeros(1) for _ in range(len(labels) + 1))
-        self.handle = gui.add_uplot(empty, series, title=title, aspect=2.0,
-                                    scales={"x": uplot.Scale(time=False)})
+        self.handle = gui.add_uplot(
+            empty, series, title=title, aspect=2.0, scales={"x": uplot.Scale(time=False)}
+        )
 
     def append(self, t_s: float, *values: float) -> None:
         self._rows.append((t_s, *values))

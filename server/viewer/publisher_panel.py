@@ -53,11 +53,17 @@ class PublisherPanel:
         self._graph_version = -1
         self.folder = gui.add_folder("Message Publisher", expand_by_default=False, order=50.0)
         with self.folder:
-            self.topic = gui.add_dropdown("Topic", [NEW_TOPIC], hint="an existing topic, or a new one", order=1.0)
+            self.topic = gui.add_dropdown(
+                "Topic", [NEW_TOPIC], hint="an existing topic, or a new one", order=1.0
+            )
             self.new_topic = gui.add_text("New topic", "/my_topic", visible=False, order=2.0)
-            self.type = gui.add_dropdown("Type", type_names(), initial_value="geometry_msgs/msg/Vector3", order=3.0)
+            self.type = gui.add_dropdown(
+                "Type", type_names(), initial_value="geometry_msgs/msg/Vector3", order=3.0
+            )
             self.rate = gui.add_number("Rate (Hz)", 1.0, min=0.1, max=1000.0, step=0.1, order=5.0)
-            self.enabled = gui.add_checkbox("Enabled", False, hint="publish at the rate while checked", order=6.0)
+            self.enabled = gui.add_checkbox(
+                "Enabled", False, hint="publish at the rate while checked", order=6.0
+            )
             self.once = gui.add_button("Publish once", order=7.0)
             self.status = gui.add_markdown("", order=8.0)
         self.fields_folder: Any = None
@@ -81,7 +87,7 @@ class PublisherPanel:
         names = sorted(t.name for t in self.lab.bus.topics.values() if not t.hidden)
         current = self.topic.value
         self.topic.options = [*names, NEW_TOPIC]
-        if current in names or current == NEW_TOPIC and self.publisher_id is not None:
+        if current in names or (current == NEW_TOPIC and self.publisher_id is not None):
             self.topic.value = current
         elif DEFAULT_TOPIC in names and current == NEW_TOPIC and self.publisher_id is None:
             self.topic.value = DEFAULT_TOPIC

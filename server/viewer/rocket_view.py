@@ -106,19 +106,34 @@ class RocketScene:
         x, y = PAD_XY
         display.add_view("Rocket", (x + 17.0, y - 17.0, 9.0), (x, y, 7.0), initial=True)
         scene.add_grid("/rocket_lab/ground", width=30, height=30, cell_size=1.0, position=(x, y, 0))
-        scene.add_box("/rocket_lab/pad", color=(110, 110, 120), dimensions=(3.0, 3.0, 0.3), position=(x, y, 0.15))
-        scene.add_box("/rocket_lab/tower", color=(170, 60, 40), dimensions=(0.3, 0.3, 6.0), position=(x + 1.2, y, 3.0))
+        scene.add_box(
+            "/rocket_lab/pad", color=(110, 110, 120), dimensions=(3.0, 3.0, 0.3), position=(x, y, 0.15)
+        )
+        scene.add_box(
+            "/rocket_lab/tower", color=(170, 60, 40), dimensions=(0.3, 0.3, 6.0), position=(x + 1.2, y, 3.0)
+        )
         self.rocket = scene.add_frame("/rocket_lab/rocket", show_axes=False, position=(x, y, 0.3))
-        scene.add_cylinder("/rocket_lab/rocket/body", radius=0.35, height=4.0, color=(235, 235, 240),
-                           wxyz=(1.0, 0.0, 0.0, 0.0), position=(0, 0, 2.0))
+        scene.add_cylinder(
+            "/rocket_lab/rocket/body",
+            radius=0.35,
+            height=4.0,
+            color=(235, 235, 240),
+            wxyz=(1.0, 0.0, 0.0, 0.0),
+            position=(0, 0, 2.0),
+        )
         nose_v, nose_f = _cone(0.35, 1.2)
-        scene.add_mesh_simple("/rocket_lab/rocket/nose", nose_v, nose_f, color=(200, 30, 30), position=(0, 0, 4.0))
+        scene.add_mesh_simple(
+            "/rocket_lab/rocket/nose", nose_v, nose_f, color=(200, 30, 30), position=(0, 0, 4.0)
+        )
         for i, (fx, fy) in enumerate(((0.45, 0), (-0.45, 0), (0, 0.45), (0, -0.45))):
             dims = (0.5, 0.06, 0.8) if fy == 0 else (0.06, 0.5, 0.8)
-            scene.add_box(f"/rocket_lab/rocket/fin{i}", color=(200, 30, 30), dimensions=dims, position=(fx, fy, 0.4))
+            scene.add_box(
+                f"/rocket_lab/rocket/fin{i}", color=(200, 30, 30), dimensions=dims, position=(fx, fy, 0.4)
+            )
         flame_v, flame_f = _cone(0.3, -1.8)
-        self.flame = scene.add_mesh_simple("/rocket_lab/rocket/flame", flame_v, flame_f, color=(255, 150, 20),
-                                           visible=False, side="double")
+        self.flame = scene.add_mesh_simple(
+            "/rocket_lab/rocket/flame", flame_v, flame_f, color=(255, 150, 20), visible=False, side="double"
+        )
         self.label = scene.add_label("/rocket_lab/rocket/label", "Ready", position=(0.8, 0, 5.5))
         with gui.add_folder("Rocket lab"):
             self.status = gui.add_markdown("**Ready for countdown**")
@@ -127,10 +142,17 @@ class RocketScene:
             self.sensor_vel = gui.add_number("/sensor_vel (m/s)", 0.0, disabled=True, step=0.001)
             self.altitude = gui.add_number("Altitude (m)", 0.0, disabled=True, step=0.1)
             gui.add_markdown("Press **a** in this page during the countdown to abort.")
-            reset = gui.add_button("Reset rocket", color="blue", hint="Back on the pad; the countdown starts again")
+            reset = gui.add_button(
+                "Reset rocket", color="blue", hint="Back on the pad; the countdown starts again"
+            )
         with gui.add_folder("Rocket plot", expand_by_default=False):
-            self.plot = TimePlot(gui, "/cmd_vel vs /sensor_vel (m/s)", ("/cmd_vel/data", "/sensor_vel/data"),
-                                 ("#1f5fd6", "#d62728"), max_points=4000)
+            self.plot = TimePlot(
+                gui,
+                "/cmd_vel vs /sensor_vel (m/s)",
+                ("/cmd_vel/data", "/sensor_vel/data"),
+                ("#1f5fd6", "#d62728"),
+                max_points=4000,
+            )
         reset.on_click(lambda _event: display.call_in_app(on_reset))
         self._display = display
 

@@ -7,8 +7,11 @@ from typing import Any
 
 from server.bus import Node, Parameter
 
-MODE_LABELS = {"lab": "lab: 1 m per press, 20 Hz (handout)", "adopt": "adopt: 1 m per press",
-               "hold": "hold: hold to move"}
+MODE_LABELS = {
+    "lab": "lab: 1 m per press, 20 Hz (handout)",
+    "adopt": "adopt: 1 m per press",
+    "hold": "hold: hold to move",
+}
 KEYS_HELP = (
     "**Keys** (click the 3D view first)  \n"
     "**a**: abort the rocket during the countdown  \n"
@@ -32,7 +35,9 @@ class TeleopPanel:
         mode = str(node.get_parameter("mode").value) if node else "adopt"
         speed = float(node.get_parameter("hold_speed_m_s").value) if node else 2.0
         with gui.add_folder("Teleop", order=40.0):
-            self.mode = gui.add_dropdown("Key mode", list(MODE_LABELS.values()), initial_value=MODE_LABELS[mode])
+            self.mode = gui.add_dropdown(
+                "Key mode", list(MODE_LABELS.values()), initial_value=MODE_LABELS[mode]
+            )
             self.speed = gui.add_slider("Hold speed (m/s)", min=0.5, max=5.0, step=0.25, initial_value=speed)
             self.status = gui.add_markdown("")
             self.dark = gui.add_checkbox("Dark theme", False)
@@ -48,7 +53,11 @@ class TeleopPanel:
             return
         mode = next(k for k, v in MODE_LABELS.items() if v == self.mode.value)
         try:
-            node.set_parameters([Parameter("mode", mode), Parameter("hold_speed_m_s", float(self.speed.value))])
-            self.status.content = f"`{node.fully_qualified_name}`: mode {mode}, hold speed {self.speed.value:g} m/s"
+            node.set_parameters(
+                [Parameter("mode", mode), Parameter("hold_speed_m_s", float(self.speed.value))]
+            )
+            self.status.content = (
+                f"`{node.fully_qualified_name}`: mode {mode}, hold speed {self.speed.value:g} m/s"
+            )
         except ValueError as exc:
             self.status.content = f"**error:** {exc}"

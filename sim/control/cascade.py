@@ -140,7 +140,9 @@ class VelocityController:
     ) -> AttitudeThrustSetpoint:
         measured = as_finite_floats("measured_velocity_m_s", measured_velocity_m_s, 3)
         roll, pitch, yaw = as_finite_floats("measured_euler_rad", measured_euler_rad, 3)
-        ax, ay, az = (pid.update(sp, m, dt_s) for pid, sp, m in zip(self.pids, self.setpoint_m_s, measured))
+        ax, ay, az = (
+            pid.update(sp, m, dt_s) for pid, sp, m in zip(self.pids, self.setpoint_m_s, measured, strict=True)
+        )
         prev = self._prev_velocity if self._prev_velocity is not None else measured
         self._prev_velocity = measured
         kd_xy, kd_z = self.gains.kd_xy_s / dt_s, self.gains.kd_z_s / dt_s
@@ -163,7 +165,13 @@ class VelocityController:
         return AttitudeThrustSetpoint(roll_sp, pitch_sp, self.yaw_setpoint_rad, thrust)
 
     def _stop_windup(
-        self, raw_thrust: float, thrust: float, lift_m_s2: float, error_z: float, measured_vz: float, dt_s: float
+        self,
+        raw_thrust: float,
+        thrust: float,
+        lift_m_s2: float,
+        error_z: float,
+        measured_vz: float,
+        dt_s: float,
     ) -> None:
         """Conditional integration: take back this tick's z integration while thrust is pinned at a
         limit (or asked to be negative) and the error pushes further into it, and while the drone

@@ -31,7 +31,7 @@ class LabPositionController:
     def set_setpoint(self, setpoint_m: FloatsLike) -> None:
         """A /uav/input/position message: if any axis moved by > 1e-6 m, reset all PIDs and take it."""
         new = as_finite_floats("setpoint_m", setpoint_m, 3)
-        if any(abs(a - b) > SETPOINT_CHANGE_THRESHOLD_M for a, b in zip(new, self.setpoint_m)):
+        if any(abs(a - b) > SETPOINT_CHANGE_THRESHOLD_M for a, b in zip(new, self.setpoint_m, strict=True)):
             for pid in self.pids:
                 pid.reset()
             self.setpoint_m = new
@@ -41,5 +41,7 @@ class LabPositionController:
     ) -> tuple[float, float, float]:
         """One timer tick: the velocity command (m/s) for the latest GPS position."""
         measured = as_finite_floats("measured_position_m", measured_position_m, 3)
-        vx, vy, vz = (pid.update(sp, m, dt_s) for pid, sp, m in zip(self.pids, self.setpoint_m, measured))
+        vx, vy, vz = (
+            pid.update(sp, m, dt_s) for pid, sp, m in zip(self.pids, self.setpoint_m, measured, strict=True)
+        )
         return vx, vy, vz

@@ -98,11 +98,11 @@ def rk4_step(
     """One classic fourth-order Runge-Kutta step of length h (s), inputs held constant."""
     half = 0.5 * h
     k1 = derivative(s, rotor_cmd, m, noise)
-    k2 = derivative([a + half * b for a, b in zip(s, k1)], rotor_cmd, m, noise)
-    k3 = derivative([a + half * b for a, b in zip(s, k2)], rotor_cmd, m, noise)
-    k4 = derivative([a + h * b for a, b in zip(s, k3)], rotor_cmd, m, noise)
+    k2 = derivative([a + half * b for a, b in zip(s, k1, strict=True)], rotor_cmd, m, noise)
+    k3 = derivative([a + half * b for a, b in zip(s, k2, strict=True)], rotor_cmd, m, noise)
+    k4 = derivative([a + h * b for a, b in zip(s, k3, strict=True)], rotor_cmd, m, noise)
     sixth = h / 6.0
-    return [a + sixth * (b + 2.0 * (c + d) + e) for a, b, c, d, e in zip(s, k1, k2, k3, k4)]
+    return [a + sixth * (b + 2.0 * (c + d) + e) for a, b, c, d, e in zip(s, k1, k2, k3, k4, strict=True)]
 
 
 def normalize_quaternion(s: Vector) -> None:

@@ -76,7 +76,7 @@ class RateLoop:
     def _filter(self, rates: list[float], dt: float) -> None:
         if not self._p.rate_filter_enabled:
             prev = self._filtered
-            self._filtered_dot = [(r - p) / dt for r, p in zip(rates, prev)]
+            self._filtered_dot = [(r - p) / dt for r, p in zip(rates, prev, strict=True)]
             self._filtered = [rates[0], rates[1], rates[2]]
             return
         # Backward-Euler step of x'' = P (u - x) - Q x': unconditionally stable at any dt.

@@ -121,13 +121,13 @@ class SimpleSim:
         """One 1/rate_hz step of the lab's timer callback; returns the published GPS reading."""
         p, dt = self.params, self.dt_s
         cap = p.max_velocity_step_m_s
-        steps = [c - v for c, v in zip(self._cmd, self._vel)]
+        steps = [c - v for c, v in zip(self._cmd, self._vel, strict=True)]
         steps = [d if abs(d) <= cap else d * (cap / abs(d)) for d in steps]
         self._wobble += dt * (p.wobble_speed + self._normal(self._wobble_sigma()))
         tilt = p.wobble_tilt_rad
         self._att = euler_sxyz_to_quat(tilt * math.cos(self._wobble), tilt * math.sin(self._wobble), 0.0)
-        self._vel = [v + d for v, d in zip(self._vel, steps)]
-        self._pos = [x + v * dt for x, v in zip(self._pos, self._vel)]
+        self._vel = [v + d for v, d in zip(self._vel, steps, strict=True)]
+        self._pos = [x + v * dt for x, v in zip(self._pos, self._vel, strict=True)]
         self._ticks += 1
         gps = [x + self._normal(p.gps_noise_m) for x in self._pos]
         self.gps = GpsReading(self.time_s, (gps[0], gps[1], gps[2]), self._att)

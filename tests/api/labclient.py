@@ -135,7 +135,6 @@ def close_within(ws: WebSocketTestSession, timeout_s: float = WAIT_S) -> tuple[i
 
 def refused(client: TestClient, url: str, **kwargs: Any) -> WebSocketDisconnect:
     """Open ``url`` expecting the server to refuse the handshake; returns the refusal."""
-    with pytest.raises(WebSocketDisconnect) as refusal:
-        with client.websocket_connect(url, **kwargs):
-            pass
+    with pytest.raises(WebSocketDisconnect) as refusal, client.websocket_connect(url, **kwargs):
+        pass
     return refusal.value

@@ -14,7 +14,9 @@ def test_health_rocket_lab_running_reports_ok_with_its_graph(rocket_lab: LabClie
     health = response.json()
     assert health["status"] == "ok"
     assert health["launch"] == "rocket"
-    assert health["nodes"] >= 5  # CountDownNode, MainControllerNode, RocketEngineNode, keyboard, KeyboardManager
+    assert (
+        health["nodes"] >= 5
+    )  # CountDownNode, MainControllerNode, RocketEngineNode, keyboard, KeyboardManager
     assert health["topics"] >= 6
     assert health["uptime_s"] >= 0
 

@@ -75,7 +75,9 @@ def test_topic_detail_nothing_published_yet_latest_is_null(rocket_lab: LabClient
     ("path", "status", "named"),
     [("nowhere", 404, "/nowhere"), ("bad%20name", 422, "invalid topic name"), ("2fast", 422, "digit")],
 )
-def test_topic_detail_bad_name_refused_naming_it(rocket_lab: LabClient, path: str, status: int, named: str) -> None:
+def test_topic_detail_bad_name_refused_naming_it(
+    rocket_lab: LabClient, path: str, status: int, named: str
+) -> None:
     response = rocket_lab.http.get(f"/api/topics/{path}")
 
     assert response.status_code == status
@@ -90,7 +92,9 @@ def test_publish_abort_before_launch_cmd_vel_never_published(make_lab: Callable[
     result = aborted.publish("/abort_takeoff", {"data": True})
 
     assert result == {"topic": "/abort_takeoff", "type": "std_msgs/msg/Bool", "subscribers": 2}
-    aborted.wait_latest("/countdown", lambda m: m["data"] == 0, "reached 0", COUNTDOWN_END_S)  # it counts on after an abort
+    aborted.wait_latest(
+        "/countdown", lambda m: m["data"] == 0, "reached 0", COUNTDOWN_END_S
+    )  # it counts on after an abort
     wait_until(lambda: control.publish_count("/cmd_vel") >= 3, "the control rocket's /cmd_vel",
                timeout_s=COUNTDOWN_END_S)  # fmt: skip
     cmd_vel = aborted.topic("/cmd_vel")

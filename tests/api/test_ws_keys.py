@@ -70,7 +70,9 @@ def test_shift_flags_set_modifier_bits(rocket_lab: LabClient, frame: dict[str, A
                                        modifiers: int) -> None:  # fmt: skip
     with rocket_lab.http.websocket_connect("/ws/keys") as ws:
         ws.send_json(frame)
-        rocket_lab.wait_latest("/keydown", is_key(code, modifiers), f"carries {code} with modifiers {modifiers}")
+        rocket_lab.wait_latest(
+            "/keydown", is_key(code, modifiers), f"carries {code} with modifiers {modifiers}"
+        )
 
 
 def test_keydown_held_key_again_is_not_republished(rocket_lab: LabClient) -> None:

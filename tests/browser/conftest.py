@@ -14,7 +14,9 @@ from playwright.sync_api import Browser, sync_playwright
 @pytest.fixture(scope="module")
 def rocket_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LabServer]:
     """The rocket lab, countdown 2 s after a (re)start, as `python -m server` runs it."""
-    server = LabServer(["--launch", "rocket", "start_delay:=2"], tmp_path_factory.mktemp("server") / "server.log")
+    server = LabServer(
+        ["--launch", "rocket", "start_delay:=2"], tmp_path_factory.mktemp("server") / "server.log"
+    )
     try:
         server.wait_ready()
         yield server

@@ -138,7 +138,7 @@ def test_tools_layout_cycle_long_edge_and_self_loop_gives_a_clean_drawing(
             apart_x = abs(p["x"] - q["x"]) >= (p["w"] + q["w"]) / 2
             apart_y = abs(p["y"] - q["y"]) >= (p["h"] + q["h"]) / 2
             assert apart_x or apart_y, (p, q)
-    assert all(0 <= b["x"] - b["w"] / 2 and b["x"] + b["w"] / 2 <= out["width"] for b in boxes.values())
+    assert all(b["x"] - b["w"] / 2 >= 0 and b["x"] + b["w"] / 2 <= out["width"] for b in boxes.values())
     routes = {(r["edge"]["from"], r["edge"]["to"]): r for r in out["routes"]}
     assert routes[("d", "d")]["loop"] is True
     cycle = [routes[e] for e in [("a", "b"), ("b", "c"), ("c", "a")]]

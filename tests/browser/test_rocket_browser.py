@@ -91,7 +91,9 @@ def open_lab_page(page: Page, server: LabServer) -> None:
 def test_press_a_during_countdown_aborts_and_rocket_stays_on_pad(
     page: Page, rocket_server: LabServer, screenshot_dir: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    hold = httpx.post(f"{rocket_server.url}/api/publish", json={"topic": "/abort_takeoff", "msg": {"data": True}})
+    hold = httpx.post(
+        f"{rocket_server.url}/api/publish", json={"topic": "/abort_takeoff", "msg": {"data": True}}
+    )
     assert hold.status_code == 200, hold.text
     open_lab_page(page, rocket_server)
     wait_responsive(page)
@@ -104,7 +106,9 @@ def test_press_a_during_countdown_aborts_and_rocket_stays_on_pad(
         def check() -> bool:
             countdown = topic(rocket_server, "/countdown")
             latest = countdown["latest"]
-            return countdown["publish_count"] > countdown_before and latest is not None and done(latest["data"])
+            return (
+                countdown["publish_count"] > countdown_before and latest is not None and done(latest["data"])
+            )
 
         return check
 

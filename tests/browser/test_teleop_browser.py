@@ -118,7 +118,7 @@ def wait_stopped(server: LabServer, timeout_s: float = STOP_WAIT_S) -> tuple[flo
 
 def fly_home(server: LabServer) -> tuple[float, float, float]:
     """Publish the start setpoint (every keyboard mode but lab adopts it) and wait until it is held."""
-    body = {"topic": "/uav/input/position", "msg": dict(zip("xyz", HOME_M))}
+    body = {"topic": "/uav/input/position", "msg": dict(zip("xyz", HOME_M, strict=True))}
     assert httpx.post(f"{server.url}/api/publish", json=body, timeout=5.0).status_code == 200
     wait_until(lambda: math.dist(position(server), HOME_M) < 0.15, "the drone back at (0, 0, 3)", HOME_WAIT_S)
     return wait_stopped(server)
@@ -284,7 +284,7 @@ def pad_grey(r: np.ndarray, g: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def largest_blob(mask: np.ndarray) -> np.ndarray:
     """The (row, column) pixels of the largest 8-connected region of ``mask``."""
-    left = {(int(r), int(c)) for r, c in zip(*np.nonzero(mask))}
+    left = {(int(r), int(c)) for r, c in zip(*np.nonzero(mask), strict=True)}
     best: list[tuple[int, int]] = []
     while left:
         stack, blob = [left.pop()], []

@@ -123,8 +123,14 @@ def ros2lab(live_server: LiveServer) -> Callable[..., Result]:
     """Run one CLI command against the live server (its URL from TELEOP_URL) to completion."""
 
     def run(*args: str, timeout_s: float = CLI_TIMEOUT_S) -> Result:
-        done = subprocess.run(cli_command(*args), env=cli_env(live_server.url), capture_output=True, text=True,
-                              timeout=timeout_s, check=False)
+        done = subprocess.run(
+            cli_command(*args),
+            env=cli_env(live_server.url),
+            capture_output=True,
+            text=True,
+            timeout=timeout_s,
+            check=False,
+        )
         return Result(done.returncode, done.stdout, done.stderr)
 
     return run
@@ -134,8 +140,9 @@ class Running:
     """A CLI command left running (echo, pub at a rate, launch), read line by line with a timeout."""
 
     def __init__(self, args: tuple[str, ...], url: str) -> None:
-        self.proc = subprocess.Popen(cli_command(*args), env=cli_env(url), stdout=subprocess.PIPE,
-                                     stderr=subprocess.PIPE, text=True)
+        self.proc = subprocess.Popen(
+            cli_command(*args), env=cli_env(url), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        )
         self.lines: queue.Queue[str | None] = queue.Queue()
         self.seen: list[str] = []
         threading.Thread(target=self._pump, args=(self.proc.stdout,), daemon=True).start()

@@ -39,7 +39,9 @@ def test_get_success_returns_json() -> None:
 @pytest.mark.parametrize("status", [404, 409, 422])
 def test_request_api_error_reports_the_servers_detail_alone(status: int) -> None:
     with pytest.raises(ApiError) as caught:
-        client_answering(status, {"detail": "data: std_msgs/msg/Bool has no field 'dta'"}).post("/api/publish", {})
+        client_answering(status, {"detail": "data: std_msgs/msg/Bool has no field 'dta'"}).post(
+            "/api/publish", {}
+        )
     assert str(caught.value) == "data: std_msgs/msg/Bool has no field 'dta'"
     assert caught.value.status == status
     assert caught.value.exit_code == 1
@@ -59,8 +61,10 @@ def test_request_missing_route_says_the_server_has_no_such_endpoint() -> None:
 
 
 def test_describe_detail_validation_errors_joined_with_their_fields() -> None:
-    detail = [{"loc": ["body", "rate_hz"], "msg": "Input should be greater than 0", "type": "greater_than"},
-              {"loc": ["body"], "msg": "Field required"}]
+    detail = [
+        {"loc": ["body", "rate_hz"], "msg": "Input should be greater than 0", "type": "greater_than"},
+        {"loc": ["body"], "msg": "Field required"},
+    ]
     assert describe_detail(detail) == "rate_hz: Input should be greater than 0; Field required"
 
 

@@ -10,7 +10,11 @@ from .conftest import Result
 
 VECTOR3 = {"title": "geometry_msgs/msg/Vector3", "type": "object",
            "properties": {n: {"type": "number", "description": "float64"} for n in "xyz"}}  # fmt: skip
-TWIST = {"title": "geometry_msgs/msg/Twist", "type": "object", "properties": {"linear": VECTOR3, "angular": VECTOR3}}
+TWIST = {
+    "title": "geometry_msgs/msg/Twist",
+    "type": "object",
+    "properties": {"linear": VECTOR3, "angular": VECTOR3},
+}
 
 
 def test_schema_lines_nested_fields_indented_by_tabs_same_package_short_name() -> None:
@@ -48,7 +52,9 @@ def test_interface_list_messages_with_ros_names(ros2lab: Callable[..., Result]) 
     assert result.code == 0, result.err
     lines = result.out.splitlines()
     assert lines[0] == "Messages:"
-    assert {"    geometry_msgs/msg/Vector3", "    std_msgs/msg/Int64", "    keyboard_msgs/msg/Key"} <= set(lines)
+    assert {"    geometry_msgs/msg/Vector3", "    std_msgs/msg/Int64", "    keyboard_msgs/msg/Key"} <= set(
+        lines
+    )
 
 
 def test_interface_show_twist_as_a_msg_file(ros2lab: Callable[..., Result]) -> None:

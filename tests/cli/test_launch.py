@@ -31,8 +31,21 @@ def test_launch_request_wrong_shape_refused(tokens: list[str]) -> None:
 
 
 def test_parse_ros_args_parameters_as_yaml_remappings_and_node_name() -> None:
-    options = parse_ros_args(["--ros-args", "-p", "start_delay_s:=2.0", "--param", "on:=true", "-p", "s:=hi",
-                              "-r", "/countdown:=/cd", "--remap", "__node:=Mine"])
+    options = parse_ros_args(
+        [
+            "--ros-args",
+            "-p",
+            "start_delay_s:=2.0",
+            "--param",
+            "on:=true",
+            "-p",
+            "s:=hi",
+            "-r",
+            "/countdown:=/cd",
+            "--remap",
+            "__node:=Mine",
+        ]
+    )
     assert options == {
         "name": "Mine",
         "parameters": {"start_delay_s": 2.0, "on": True, "s": "hi"},
@@ -58,8 +71,9 @@ def node_names(server: LiveServer) -> set[str]:
     return {n["name"] for n in server.get("/api/nodes?hidden=true")}
 
 
-def test_launch_file_nodes_run_until_ctrl_c_then_stop(live_server: LiveServer, tmp_path: Path,
-                                                       start: Callable[..., Running]) -> None:
+def test_launch_file_nodes_run_until_ctrl_c_then_stop(
+    live_server: LiveServer, tmp_path: Path, start: Callable[..., Running]
+) -> None:
     launch_file = tmp_path / "cli_test.launch"
     launch_file.write_text(
         '<launch>\n  <arg name="delay" default="5.0"/>\n'
@@ -68,7 +82,9 @@ def test_launch_file_nodes_run_until_ctrl_c_then_stop(live_server: LiveServer, t
         '    <remap from="/countdown" to="/cli_countdown"/>\n  </node>\n</launch>\n'
     )
     launching = start("launch", str(launch_file), "delay:=0.1")
-    launching.read_until(lambda line: line == "[INFO] [launch]: process started: /CliCountDown (rocketship countdown)")
+    launching.read_until(
+        lambda line: line == "[INFO] [launch]: process started: /CliCountDown (rocketship countdown)"
+    )
     assert "/CliCountDown" in node_names(live_server)
     code, err = launching.interrupt()
     assert (code, err) == (0, "")
@@ -76,8 +92,9 @@ def test_launch_file_nodes_run_until_ctrl_c_then_stop(live_server: LiveServer, t
     assert not [g for g in live_server.get("/api/launches") if "cli_test.launch" in g["file"]]
 
 
-def test_launch_package_file_error_is_one_line_with_file_and_line(tmp_path: Path,
-                                                                   ros2lab: Callable[..., Result]) -> None:
+def test_launch_package_file_error_is_one_line_with_file_and_line(
+    tmp_path: Path, ros2lab: Callable[..., Result]
+) -> None:
     bad = tmp_path / "bad.launch"
     bad.write_text('<launch>\n  <node pkg="rocketship" exec="countdown" colour="red"/>\n</launch>\n')
     result = ros2lab("launch", str(bad))
@@ -87,12 +104,25 @@ def test_launch_package_file_error_is_one_line_with_file_and_line(tmp_path: Path
     assert "bad.launch:2" in result.err
 
 
-def test_run_node_with_ros_args_runs_until_ctrl_c(live_server: LiveServer, start: Callable[..., Running]) -> None:
-    running = start("run", "rocketship", "countdown", "--ros-args", "-r", "__node:=RunCountDown",
-                    "-p", "start_delay_s:=0.1", "-r", "/countdown:=/run_countdown")
+def test_run_node_with_ros_args_runs_until_ctrl_c(
+    live_server: LiveServer, start: Callable[..., Running]
+) -> None:
+    running = start(
+        "run",
+        "rocketship",
+        "countdown",
+        "--ros-args",
+        "-r",
+        "__node:=RunCountDown",
+        "-p",
+        "start_delay_s:=0.1",
+        "-r",
+        "/countdown:=/run_countdown",
+    )
     running.read_until(lambda line: line.startswith("[INFO] [launch]: process started: /RunCountDown"))
-    live_server.wait_until(lambda: "/run_countdown" in {t["name"] for t in live_server.get("/api/topics")},
-                           "the remapped topic")
+    live_server.wait_until(
+        lambda: "/run_countdown" in {t["name"] for t in live_server.get("/api/topics")}, "the remapped topic"
+    )
     code, _ = running.interrupt()
     assert code == 0
     assert "/RunCountDown" not in node_names(live_server)

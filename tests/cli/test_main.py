@@ -19,7 +19,9 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def run_cli(*args: str, env: dict[str, str] | None = None) -> Result:
-    done = subprocess.run(cli_command(*args), capture_output=True, text=True, timeout=30, env=env, check=False)
+    done = subprocess.run(
+        cli_command(*args), capture_output=True, text=True, timeout=30, env=env, check=False
+    )
     return Result(done.returncode, done.stdout, done.stderr)
 
 

@@ -60,8 +60,8 @@ def test_node_info_main_controller_subscribers_and_publishers(ros2lab: Callable[
     assert result.code == 0, result.err
     lines = result.out.splitlines()
     assert lines[0] == "/MainControllerNode"
-    subscribers = lines[lines.index("  Subscribers:") + 1:lines.index("  Publishers:")]
-    publishers = lines[lines.index("  Publishers:") + 1:lines.index("  Timers:")]
+    subscribers = lines[lines.index("  Subscribers:") + 1 : lines.index("  Publishers:")]
+    publishers = lines[lines.index("  Publishers:") + 1 : lines.index("  Timers:")]
     assert {"    /countdown: std_msgs/msg/Int64", "    /abort_takeoff: std_msgs/msg/Bool"} <= set(subscribers)
     assert "    /cmd_vel: std_msgs/msg/Float64" in publishers
 

@@ -32,7 +32,9 @@ def recording_client(clock: FakeClock, published: list[tuple[float, Any]]) -> La
     def handler(request: httpx.Request) -> httpx.Response:
         if request.method == "POST":
             published.append((clock.now, json.loads(request.content)))
-            return httpx.Response(200, json={"topic": "/x", "type": "geometry_msgs/msg/Vector3", "subscribers": 0})
+            return httpx.Response(
+                200, json={"topic": "/x", "type": "geometry_msgs/msg/Vector3", "subscribers": 0}
+            )
         return httpx.Response(200, json={"x": 0.0, "y": 0.0, "z": 0.0})  # the type's default message
 
     return LabClient("http://lab.test", transport=httpx.MockTransport(handler))
@@ -54,7 +56,8 @@ def test_publish_times_exactly_times_messages_at_the_rate(capsys: pytest.Capture
 
 # -- against the live server ------------------------------------------------------------------
 def test_pub_once_publishes_through_the_rest_node_and_echo_sees_it(
-        live_server: LiveServer, ros2lab: Callable[..., Result], start: Callable[..., Running]) -> None:
+    live_server: LiveServer, ros2lab: Callable[..., Result], start: Callable[..., Running]
+) -> None:
     echo = start("topic", "echo", "/abort_takeoff")
     echo.read_until(lambda line: line == "---")  # subscribed: the keyboard manager's false arrived
     result = ros2lab("topic", "pub", "-1", "/abort_takeoff", "std_msgs/msg/Bool", "{data: true}")
@@ -66,9 +69,19 @@ def test_pub_once_publishes_through_the_rest_node_and_echo_sees_it(
 
 
 def test_pub_rate_times_publishes_exactly_times_and_leaves_no_publisher(
-        live_server: LiveServer, ros2lab: Callable[..., Result]) -> None:
-    result = ros2lab("topic", "pub", "-r", "5", "-t", "3", "/cli_times", "geometry_msgs/msg/Vector3",
-                     "{x: 5.0, y: 5.0, z: 10.0}")
+    live_server: LiveServer, ros2lab: Callable[..., Result]
+) -> None:
+    result = ros2lab(
+        "topic",
+        "pub",
+        "-r",
+        "5",
+        "-t",
+        "3",
+        "/cli_times",
+        "geometry_msgs/msg/Vector3",
+        "{x: 5.0, y: 5.0, z: 10.0}",
+    )
     assert result.code == 0, result.err
     assert result.out.splitlines()[0] == "publisher: beginning loop"
     assert [line for line in result.out.splitlines() if line.startswith("publishing")] == [
@@ -79,7 +92,8 @@ def test_pub_rate_times_publishes_exactly_times_and_leaves_no_publisher(
 
 
 def test_pub_rate_runs_a_server_publisher_until_ctrl_c_then_deletes_it(
-        live_server: LiveServer, start: Callable[..., Running]) -> None:
+    live_server: LiveServer, start: Callable[..., Running]
+) -> None:
     pub = start("topic", "pub", "-r", "20", "/cli_rate", "std_msgs/msg/Int64", "{data: 7}")
     pub.read_until(lambda line: line == "publishing #2: std_msgs.msg.Int64(data=7)")
     assert [p["topic"] for p in live_server.get("/api/publishers")] == ["/cli_rate"]
@@ -97,7 +111,8 @@ def test_pub_rate_runs_a_server_publisher_until_ctrl_c_then_deletes_it(
      (["/abort_takeoff", "std_msgs/msg/Bool", "[true]"], "dictionary in YAML format")],
 )  # fmt: skip
 def test_pub_bad_input_exits_1_with_one_line_from_the_server(
-        ros2lab: Callable[..., Result], args: list[str], message: str) -> None:
+    ros2lab: Callable[..., Result], args: list[str], message: str
+) -> None:
     result = ros2lab("topic", "pub", "-1", *args)
     assert result.code == 1
     assert result.out == ""
@@ -105,7 +120,9 @@ def test_pub_bad_input_exits_1_with_one_line_from_the_server(
     assert message in result.err
 
 
-def test_pub_at_a_rate_bad_message_starts_nothing(live_server: LiveServer, ros2lab: Callable[..., Result]) -> None:
+def test_pub_at_a_rate_bad_message_starts_nothing(
+    live_server: LiveServer, ros2lab: Callable[..., Result]
+) -> None:
     result = ros2lab("topic", "pub", "-r", "10", "/abort_takeoff", "std_msgs/msg/Bool", "{data: 3}")
     assert result.code == 1
     assert "expected a bool" in result.err

@@ -33,13 +33,18 @@ def test_topic_info_type_and_counts(live_server: LiveServer, ros2lab: Callable[.
     info = live_server.get("/api/topics/countdown")
     result = ros2lab("topic", "info", "/countdown")
     assert result.code == 0, result.err
-    assert result.out == (f"Type: std_msgs/msg/Int64\nPublisher count: {len(info['publishers'])}\n"
-                          f"Subscription count: {len(info['subscribers'])}\n")
+    assert result.out == (
+        f"Type: std_msgs/msg/Int64\nPublisher count: {len(info['publishers'])}\n"
+        f"Subscription count: {len(info['subscribers'])}\n"
+    )
 
 
 def test_topic_info_verbose_names_nodes_and_depths(ros2lab: Callable[..., Result]) -> None:
     out = ros2lab("topic", "info", "-v", "countdown").out
-    assert "Node name: CountDownNode\nNode namespace: /\nTopic type: std_msgs/msg/Int64\nEndpoint type: PUBLISHER" in out
+    assert (
+        "Node name: CountDownNode\nNode namespace: /\nTopic type: std_msgs/msg/Int64\nEndpoint type: PUBLISHER"
+        in out
+    )
     assert "Node name: MainControllerNode" in out
     assert "  History (Depth): KEEP_LAST (1000)" in out
 
@@ -50,8 +55,9 @@ def test_topic_info_unknown_topic_exits_1(ros2lab: Callable[..., Result]) -> Non
     assert "/no_such_topic" in result.err
 
 
-def test_topic_echo_once_prints_one_countdown_message(live_server: LiveServer,
-                                                      ros2lab: Callable[..., Result]) -> None:
+def test_topic_echo_once_prints_one_countdown_message(
+    live_server: LiveServer, ros2lab: Callable[..., Result]
+) -> None:
     live_server.post("/api/rocket/reset")  # the countdown runs for 11 s after each (re)start
     result = ros2lab("topic", "echo", "--once", "/countdown")
     assert result.code == 0, result.err
@@ -67,13 +73,29 @@ def test_topic_echo_field_prints_the_bare_value(ros2lab: Callable[..., Result]) 
 
 
 def test_topic_echo_type_waits_for_a_new_topic_and_field_selects_nested(
-        live_server: LiveServer, ros2lab: Callable[..., Result], start: Callable[..., Running]) -> None:
-    echo = start("topic", "echo", "--once", "--field", "pose.position", "/cli_pose",
-                 "--type", "geometry_msgs/msg/PoseStamped")
-    live_server.wait_until(lambda: "/cli_pose" in {t["name"] for t in live_server.get("/api/topics")},
-                           "the echo to subscribe")
-    published = ros2lab("topic", "pub", "-1", "/cli_pose", "geometry_msgs/msg/PoseStamped",
-                        "{pose: {position: {x: 1.5, y: 2, z: -3.0}}}")
+    live_server: LiveServer, ros2lab: Callable[..., Result], start: Callable[..., Running]
+) -> None:
+    echo = start(
+        "topic",
+        "echo",
+        "--once",
+        "--field",
+        "pose.position",
+        "/cli_pose",
+        "--type",
+        "geometry_msgs/msg/PoseStamped",
+    )
+    live_server.wait_until(
+        lambda: "/cli_pose" in {t["name"] for t in live_server.get("/api/topics")}, "the echo to subscribe"
+    )
+    published = ros2lab(
+        "topic",
+        "pub",
+        "-1",
+        "/cli_pose",
+        "geometry_msgs/msg/PoseStamped",
+        "{pose: {position: {x: 1.5, y: 2, z: -3.0}}}",
+    )
     assert published.code == 0, published.err
     assert echo.read_until(lambda line: line.startswith("x:")) == "x: 1.5"
     assert echo.read_until(lambda line: True) == "y: 2.0"
@@ -108,7 +130,9 @@ def test_topic_hz_reports_the_sensor_rate(ros2lab: Callable[..., Result]) -> Non
     for rate_line, stats_line in zip(lines[::2], lines[1::2], strict=True):
         rate = float(re.fullmatch(r"average rate: (\d+\.\d{3})", rate_line).group(1))  # type: ignore[union-attr]
         assert 8.0 <= rate <= 12.0
-        assert re.fullmatch(r"\tmin: \d+\.\d{3}s max: \d+\.\d{3}s std dev: \d+\.\d{5}s window: \d+", stats_line)
+        assert re.fullmatch(
+            r"\tmin: \d+\.\d{3}s max: \d+\.\d{3}s std dev: \d+\.\d{5}s window: \d+", stats_line
+        )
 
 
 def test_topic_hz_window_bounds_the_statistics(ros2lab: Callable[..., Result]) -> None:

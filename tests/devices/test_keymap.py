@@ -84,7 +84,7 @@ def test_sdl_code_every_result_is_a_key_constant() -> None:
 
 def test_modifier_bits_no_flags_is_zero() -> None:
     assert modifier_bits({}) == 0
-    assert modifier_bits({name: False for name in MODIFIER_FLAG_NAMES}) == 0
+    assert modifier_bits(dict.fromkeys(MODIFIER_FLAG_NAMES, False)) == 0
 
 
 @pytest.mark.parametrize(

@@ -11,8 +11,13 @@ from server.app import create_app
 from server.msgs import Key
 from server.settings import Settings
 
-SETTINGS = Settings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False,
-                    allowed_hosts=("testserver",), deadman_s=0.3)
+SETTINGS = Settings(
+    launch="rocket",
+    launch_args={"start_delay": "3600"},
+    viewer=False,
+    allowed_hosts=("testserver",),
+    deadman_s=0.3,
+)
 
 
 def wait_for(check, timeout_s: float = 5.0) -> bool:

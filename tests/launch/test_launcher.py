@@ -36,7 +36,13 @@ def names(lab: Lab) -> set[str]:
 
 def test_rocket_launch_starts_the_labs_nodes_by_their_lab_names() -> None:
     lab = lab_for("rocket")
-    assert names(lab) == {"/RocketEngineNode", "/MainControllerNode", "/CountDownNode", "/keyboard", "/KeyboardManager"}
+    assert names(lab) == {
+        "/RocketEngineNode",
+        "/MainControllerNode",
+        "/CountDownNode",
+        "/keyboard",
+        "/KeyboardManager",
+    }
     assert all(e.error is None for e in lab.launcher.launched)
 
 
@@ -53,8 +59,14 @@ def test_handout_fly_launch_snippet_parses_and_launches(tmp_path: Path) -> None:
     lab = lab_for("rocket")
     group = lab.launch_group(path, {})
     started = {n["name"] for n in group.describe()["nodes"]}
-    assert {"/GUI_Controller_Node", "/position_controller_node", "/pressure_node", "/SimpleSimNode",
-            "/keyboard_manager_node", "/keyboard"} <= started
+    assert {
+        "/GUI_Controller_Node",
+        "/position_controller_node",
+        "/pressure_node",
+        "/SimpleSimNode",
+        "/keyboard_manager_node",
+        "/keyboard",
+    } <= started
     assert all(n["error"] is None for n in group.describe()["nodes"])
     lab.executor.spin_until(12.0)  # the lab's position controller waits 5 s, then climbs to 3 m
     assert lab.bus.topics["/uav/sensors/gps"].latest.pose.position.z == pytest.approx(3.0, abs=0.1)
@@ -62,7 +74,9 @@ def test_handout_fly_launch_snippet_parses_and_launches(tmp_path: Path) -> None:
 
 def test_launch_error_names_file_line_and_problem_and_changes_nothing(tmp_path: Path) -> None:
     path = tmp_path / "broken.launch"
-    path.write_text('<launch>\n  <node pkg="rocketship" exec="countdown"/>\n  <node pkg="rocketship" exe="x"/>\n</launch>\n')
+    path.write_text(
+        '<launch>\n  <node pkg="rocketship" exec="countdown"/>\n  <node pkg="rocketship" exe="x"/>\n</launch>\n'
+    )
     lab = lab_for("rocket")
     before = names(lab)
     with pytest.raises(LaunchFileError) as info:
@@ -73,8 +87,10 @@ def test_launch_error_names_file_line_and_problem_and_changes_nothing(tmp_path: 
 
 def test_launch_with_unknown_executable_reports_that_node_and_starts_the_rest(tmp_path: Path) -> None:
     path = tmp_path / "partial.launch"
-    path.write_text('<launch>\n  <node pkg="rocketship" exec="nope" name="ghost"/>\n'
-                    '  <node pkg="sensor_simulation" exec="pressure.py" name="baro"/>\n</launch>\n')
+    path.write_text(
+        '<launch>\n  <node pkg="rocketship" exec="nope" name="ghost"/>\n'
+        '  <node pkg="sensor_simulation" exec="pressure.py" name="baro"/>\n</launch>\n'
+    )
     lab = lab_for("rocket")
     nodes = lab.launch_group(path, {}).describe()["nodes"]
     assert nodes[0]["error"] is not None and "no executable 'nope'" in nodes[0]["error"]

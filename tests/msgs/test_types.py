@@ -92,7 +92,7 @@ MODIFIER_VALUES = {
 
 @pytest.mark.parametrize(("cls", "name"), ROS_NAMES, ids=[n for _, n in ROS_NAMES])
 def test_message_type_ros_name_is_verbatim(cls: type[Message], name: str) -> None:
-    assert cls.TYPE == name
+    assert name == cls.TYPE
 
 
 @pytest.mark.parametrize(("cls", "fields"), FIELDS, ids=[c.TYPE for c, _ in FIELDS])

@@ -101,7 +101,7 @@ class Flight:
         self.lab = make_lab(launch)
         self.probe = start(self.lab)
         self.lab.executor.spin_until(self.STEP_AT_S)
-        self.lab.publish("/uav/input/position", dict(zip("xyz", self.TARGET_M)), None)
+        self.lab.publish("/uav/input/position", dict(zip("xyz", self.TARGET_M, strict=True)), None)
         self.lab.executor.spin_until(self.END_S)
 
 

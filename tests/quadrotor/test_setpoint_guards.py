@@ -41,7 +41,7 @@ def test_setpoint_outside_arena_clamped_drone_settles_at_the_bound_with_warning(
     probe = start(lab)
     lab.executor.spin_until(5.0)
     with caplog.at_level(logging.WARNING):
-        lab.publish(POSITION, dict(zip("xyz", asked)), None)
+        lab.publish(POSITION, dict(zip("xyz", asked, strict=True)), None)
         lab.executor.spin_until(5.1)
     warnings = [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING]
     assert any("outside the arena" in w and "position_controller_node" in w for w in warnings)

@@ -32,7 +32,7 @@ class SimpleFlight:
             lambda _msg: self.true.append((self.lab.bus.clock.now(), *sim.state.position_m)), 10_000,
         )  # fmt: skip
         self.lab.executor.spin_until(STEP_AT_S)
-        self.lab.publish("/uav/input/position", dict(zip("xyz", TARGET_M)), None)
+        self.lab.publish("/uav/input/position", dict(zip("xyz", TARGET_M, strict=True)), None)
         self.lab.executor.spin_until(30.0)
 
     def true_at(self, t_s: float) -> np.ndarray:

@@ -16,7 +16,7 @@ def test_velocity_setpoint_without_position_controller_moves_at_that_velocity(no
     probe = start(lab)
     lab.executor.spin_until(6.0)  # hovering at (0, 0, 3)
     node(lab, "position_controller_node").destroy_node()
-    lab.publish("/uav/input/velocity", dict(zip("xyz", COMMAND_M_S)), None)
+    lab.publish("/uav/input/velocity", dict(zip("xyz", COMMAND_M_S, strict=True)), None)
     lab.executor.spin_until(14.0)
 
     publishers = {p.node.get_name() for p in lab.bus.get_topic("/uav/input/velocity").publishers}

@@ -42,7 +42,7 @@ def test_hover_default_setpoint_holds_altitude_within_2cm(takeoff_and_hover: lis
 
 def test_hover_rotor_speeds_match_weight_balance(takeoff_and_hover: list[QuadrotorState]) -> None:
     rotors = takeoff_and_hover[-1].rotor_speeds_rad_s
-    assert HOVER_ROTOR_RAD_S == pytest.approx(1133.15, abs=0.01)
+    assert pytest.approx(1133.15, abs=0.01) == HOVER_ROTOR_RAD_S
     assert np.all(np.abs(rotors / HOVER_ROTOR_RAD_S - 1.0) < 0.01)
 
 
@@ -173,8 +173,9 @@ def test_wild_motor_speed_commands_stay_physical_and_spin_is_capped() -> None:
 
 def test_cascade_heavier_drone_than_modelled_recovers_altitude_by_integral() -> None:
     """A 20 % mass mismatch sags the hover; the z integral (which only integrates near rest) brings it back."""
-    sim = QuadrotorSim(QuadrotorParams(mass_kg=1.2), noise=False, initial_position_m=(0.0, 0.0, 3.0),
-                       rotors_at_hover=True)
+    sim = QuadrotorSim(
+        QuadrotorParams(mass_kg=1.2), noise=False, initial_position_m=(0.0, 0.0, 3.0), rotors_at_hover=True
+    )
     loop = ClosedLoop(sim)
     loop.velocity.mass_kg = 1.0  # the controller's hover feed-forward believes the nominal 1 kg
     loop.set_position_setpoint((0.0, 0.0, 3.0))

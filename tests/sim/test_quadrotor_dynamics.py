@@ -30,7 +30,7 @@ def _torque_free_error(h: float, duration_s: float = 1.0) -> float:
     # Ixx = Iyy: w_z stays put and (w_x, w_y) turns at lam = (Izz - Ixx) / Ixx * w_z.
     lam = (0.0069 - 0.0049) / 0.0049 * 5.0
     expected = (math.cos(lam * duration_s), math.sin(lam * duration_s), 5.0)
-    return max(abs(a - b) for a, b in zip(s[10:13], expected))
+    return max(abs(a - b) for a, b in zip(s[10:13], expected, strict=True))
 
 
 def test_rk4_torque_free_spin_matches_closed_form_with_fourth_order_convergence() -> None:

@@ -12,8 +12,16 @@ def test_leaf_fields_of_vector3_are_x_y_z() -> None:
 
 def test_leaf_fields_flatten_nested_types_and_skip_the_stamp() -> None:
     paths = [path for path, _ in leaf_fields(PoseStamped)]
-    assert paths == ["header.frame_id", "pose.position.x", "pose.position.y", "pose.position.z",
-                     "pose.orientation.x", "pose.orientation.y", "pose.orientation.z", "pose.orientation.w"]
+    assert paths == [
+        "header.frame_id",
+        "pose.position.x",
+        "pose.position.y",
+        "pose.position.z",
+        "pose.orientation.x",
+        "pose.orientation.y",
+        "pose.orientation.z",
+        "pose.orientation.w",
+    ]
 
 
 def test_nest_builds_a_message_the_type_accepts() -> None:

@@ -54,7 +54,11 @@ def test_example_drone_manager_runs_with_its_sleep_skipped(caplog: pytest.LogCap
 
 
 def test_student_node_file_joins_graph_with_its_topics(tmp_path: Path) -> None:
-    write_pkg(tmp_path, "my_pkg", {"my_pkg/talker.py": """
+    write_pkg(
+        tmp_path,
+        "my_pkg",
+        {
+            "my_pkg/talker.py": """
         import rclpy
         from rclpy.node import Node
         from std_msgs.msg import String
@@ -64,7 +68,9 @@ def test_student_node_file_joins_graph_with_its_topics(tmp_path: Path) -> None:
                 super().__init__('talker')
                 self.pub = self.create_publisher(String, 'chatter', 10)
                 self.create_timer(0.5, lambda: self.pub.publish(String(data='hello')))
-        """})
+        """
+        },
+    )
     lab = make_lab(tmp_path)
     group = lab.run_node("my_pkg", "talker")
     lab.executor.spin_until(2.0)
@@ -76,7 +82,11 @@ def test_student_node_file_joins_graph_with_its_topics(tmp_path: Path) -> None:
 
 
 def test_student_node_that_raises_in_a_callback_is_crashed_and_others_run(tmp_path: Path) -> None:
-    write_pkg(tmp_path, "my_pkg", {"bad.py": """
+    write_pkg(
+        tmp_path,
+        "my_pkg",
+        {
+            "bad.py": """
         from rclpy.node import Node
 
         class Bad(Node):
@@ -86,7 +96,9 @@ def test_student_node_that_raises_in_a_callback_is_crashed_and_others_run(tmp_pa
 
             def tick(self):
                 raise ZeroDivisionError('oops')
-        """})
+        """
+        },
+    )
     lab = make_lab(tmp_path, start_delay="0")
     lab.run_node("my_pkg", "bad.py")
     lab.executor.spin_until(3.0)
@@ -100,12 +112,17 @@ def test_student_node_that_raises_in_a_callback_is_crashed_and_others_run(tmp_pa
     [
         ("x = (\n", "bad.py:1: SyntaxError"),
         ("import no_such_module_here\n", "bad.py:1: ModuleNotFoundError"),
-        ("from rclpy.node import Node\nclass A(Node):\n    def __init__(self):\n"
-         "        super().__init__('a')\n        raise RuntimeError('no')\n", "bad.py:5: A() raised RuntimeError: no"),
+        (
+            "from rclpy.node import Node\nclass A(Node):\n    def __init__(self):\n"
+            "        super().__init__('a')\n        raise RuntimeError('no')\n",
+            "bad.py:5: A() raised RuntimeError: no",
+        ),
         ("x = 1\n", "exactly one Node subclass (found: none)"),
     ],
 )
-def test_student_node_that_fails_to_load_names_file_and_line(tmp_path: Path, source: str, expected: str) -> None:
+def test_student_node_that_fails_to_load_names_file_and_line(
+    tmp_path: Path, source: str, expected: str
+) -> None:
     write_pkg(tmp_path, "my_pkg", {"bad.py": source})
     lab = make_lab(tmp_path, start_delay="0")
     before = {n.fully_qualified_name for n in lab.bus.nodes}
@@ -118,8 +135,11 @@ def test_student_node_that_fails_to_load_names_file_and_line(tmp_path: Path, sou
 
 
 def test_student_node_with_respawn_restarts_after_crash(tmp_path: Path) -> None:
-    write_pkg(tmp_path, "my_pkg", {
-        "flaky.py": """
+    write_pkg(
+        tmp_path,
+        "my_pkg",
+        {
+            "flaky.py": """
             from rclpy.node import Node
 
             class Flaky(Node):
@@ -130,12 +150,13 @@ def test_student_node_with_respawn_restarts_after_crash(tmp_path: Path) -> None:
                 def tick(self):
                     raise RuntimeError('crash every second')
             """,
-        "launch/flaky.launch": """
+            "launch/flaky.launch": """
             <launch>
               <node pkg="my_pkg" exec="flaky" name="flaky" respawn="true" respawn_delay="0.5"/>
             </launch>
             """,
-    })
+        },
+    )
     lab = make_lab(tmp_path)
     lab.launch_group(lab.packages.share_dir("my_pkg") / "launch" / "flaky.launch", {})
     entry = next(e for e in lab.launcher.launched if e.action.exec == "flaky")
@@ -151,6 +172,8 @@ def test_workspace_overlay_keeps_builtin_executables_and_reports_unknown(tmp_pat
     index = PackageIndex(workspace=tmp_path)
     exes = index.executables_of("rocketship")
     assert {"countdown", "main_controller", "my_manager.py", "my_manager"} <= set(exes)
-    assert index.share_dir("rocketship").name == "rocketship" and "server" in index.share_dir("rocketship").parts
+    assert (
+        index.share_dir("rocketship").name == "rocketship" and "server" in index.share_dir("rocketship").parts
+    )
     with pytest.raises(ExecutableNotFoundError, match="no executable 'nope'"):
         index.factory("rocketship", "nope")

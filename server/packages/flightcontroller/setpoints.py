@@ -17,7 +17,7 @@ class SetpointError(ValueError):
 
 def check_finite(values: Sequence[float], what: str, limit: float = ABSURD_M) -> tuple[float, float, float]:
     x, y, z = (float(v) for v in values)
-    for axis, v in zip("xyz", (x, y, z)):
+    for axis, v in zip("xyz", (x, y, z), strict=True):
         if not math.isfinite(v):
             raise SetpointError(f"{what}.{axis} is {v}: not a finite number")
         if abs(v) > limit:
@@ -27,5 +27,7 @@ def check_finite(values: Sequence[float], what: str, limit: float = ABSURD_M) ->
 
 def clamp_to_arena(position_m: Sequence[float]) -> tuple[tuple[float, float, float], bool]:
     """The position clamped into the arena, and whether it had to be."""
-    clamped = tuple(min(max(v, lo), hi) for v, lo, hi in zip(position_m, ARENA_MIN_M, ARENA_MAX_M))
+    clamped = tuple(
+        min(max(v, lo), hi) for v, lo, hi in zip(position_m, ARENA_MIN_M, ARENA_MAX_M, strict=True)
+    )
     return (clamped[0], clamped[1], clamped[2]), clamped != tuple(position_m)

@@ -21,7 +21,9 @@ class VelocityControllerNode(Node):
     def __init__(self) -> None:
         super().__init__("VelocityControllerNode")
         p = QuadrotorParams()
-        self.controller = VelocityController(p.mass_kg, p.gravity_m_s2, drag_coeff_n_per_m_s2=p.drag_coeff_n_per_m_s2)
+        self.controller = VelocityController(
+            p.mass_kg, p.gravity_m_s2, drag_coeff_n_per_m_s2=p.drag_coeff_n_per_m_s2
+        )
         self.velocity: tuple[float, float, float] | None = None
         self.euler: tuple[float, float, float] | None = None
         self.att_pub = self.create_publisher(Vector3, "/uav/input/attitude", 1)

@@ -65,4 +65,3 @@ class UavDynamicsNode(Node):
         self.vel_pub.publish(vel)
         roll, pitch, yaw = s.euler_sxyz_rad
         self.att_pub.publish(Vector3(x=roll, y=pitch, z=yaw))
-

@@ -12,8 +12,14 @@ class CountDownNode(Node):
     def __init__(self) -> None:
         super().__init__("CountDownNode")
         delay = self.declare_parameter("start_delay_s", 5.0).value
-        if isinstance(delay, bool) or not isinstance(delay, (int, float)) or not 0 <= delay <= MAX_START_DELAY_S:
-            raise ValueError(f"start_delay_s must be a number of seconds in 0..{MAX_START_DELAY_S}, got {delay!r}")
+        if (
+            isinstance(delay, bool)
+            or not isinstance(delay, (int, float))
+            or not 0 <= delay <= MAX_START_DELAY_S
+        ):
+            raise ValueError(
+                f"start_delay_s must be a number of seconds in 0..{MAX_START_DELAY_S}, got {delay!r}"
+            )
         self.countdown_pub = self.create_publisher(Int64, "/countdown", 1000)
         self.remaining = 10
         self.timer = None

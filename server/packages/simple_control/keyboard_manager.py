@@ -81,8 +81,13 @@ class KeyboardManager(Node):
     def _check(values: dict[str, Any]) -> None:
         if values.get("mode", "adopt") not in MODES:
             raise ValueError(f"mode must be one of {', '.join(MODES)}, got {values['mode']!r}")
-        limits = {"step_m": (0.01, 10.0), "rate_hz": (0.1, 1000.0), "hold_speed_m_s": (0.1, 10.0),
-                  "lead_s": (0.05, 5.0), "brake_s": (0.0, 2.0)}
+        limits = {
+            "step_m": (0.01, 10.0),
+            "rate_hz": (0.1, 1000.0),
+            "hold_speed_m_s": (0.1, 10.0),
+            "lead_s": (0.05, 5.0),
+            "brake_s": (0.0, 2.0),
+        }
         for name, (lo, hi) in limits.items():
             if name in values and not lo <= float(values[name]) <= hi:
                 raise ValueError(f"{name} must be in {lo:g}..{hi:g}, got {values[name]!r}")
@@ -154,7 +159,7 @@ class KeyboardManager(Node):
             self._stop_timer()
         if was_holding and self.drone_m is not None:
             brake = self.param("brake_s")
-            stop = tuple(p + v * brake for p, v in zip(self.drone_m, self.drone_v))
+            stop = tuple(p + v * brake for p, v in zip(self.drone_m, self.drone_v, strict=True))
             self._set(stop)
             self.position_pub.publish(self.pos)
 

@@ -15,7 +15,9 @@ class SimpleSimNode(Node):
         seed = int(self.declare_parameter("seed", 0).value)
         noise = bool(self.declare_parameter("noise", True).value)
         wobble = str(self.declare_parameter("wobble_noise", "lab").value)
-        self.sim = SimpleSim(SimpleSimParams(wobble_noise=wobble), rng=np.random.default_rng(seed), noise=noise)  # type: ignore[arg-type]
+        self.sim = SimpleSim(
+            SimpleSimParams(wobble_noise=wobble), rng=np.random.default_rng(seed), noise=noise
+        )  # type: ignore[arg-type]
         self.gps_pub = self.create_publisher(PoseStamped, "/uav/sensors/gps", 10)
         self.create_subscription(Vector3, "/uav/input/velocity", self.on_velocity, 10)
         self.create_timer(self.sim.dt_s, self.tick)

@@ -49,33 +49,50 @@ class DroneScene:
         arms = np.array([[[-ARM_M, 0, 0], [ARM_M, 0, 0]], [[0, -ARM_M, 0], [0, ARM_M, 0]]], dtype=np.float32)
         colors = np.array([[ARM_X_BLUE] * 2, [ARM_Y_RED] * 2], dtype=np.uint8)
         scene.add_line_segments("/drone_lab/drone/arms", arms, colors=colors, thickness=0.15)
-        self.setpoint = scene.add_icosphere("/drone_lab/setpoint", radius=0.15, color=(255, 150, 0), opacity=0.6,
-                                            position=(0.0, 0.0, 3.0))
-        self.trail = scene.add_line_segments("/drone_lab/trail", np.zeros((1, 2, 3), np.float32),
-                                             colors=(90, 160, 90), thickness=0.03)
+        self.setpoint = scene.add_icosphere(
+            "/drone_lab/setpoint", radius=0.15, color=(255, 150, 0), opacity=0.6, position=(0.0, 0.0, 3.0)
+        )
+        self.trail = scene.add_line_segments(
+            "/drone_lab/trail", np.zeros((1, 2, 3), np.float32), colors=(90, 160, 90), thickness=0.03
+        )
         with gui.add_folder("Quadrotor"):
             self.telemetry = gui.add_markdown("waiting for /uav/sensors/gps ...")
-            gui.add_markdown("Arrow keys move the setpoint: **→** +x, **←** −x, **↑** +y (away), **↓** −y; "
-                             "**PgUp/W** up, **PgDn/S** down.")
+            gui.add_markdown(
+                "Arrow keys move the setpoint: **→** +x, **←** −x, **↑** +y (away), **↓** −y; "
+                "**PgUp/W** up, **PgDn/S** down."
+            )
         with gui.add_folder("Quadrotor plots", expand_by_default=False):
             self.plots = tuple(
-                TimePlot(gui, f"{axis} (m): drone vs setpoint", (axis, f"{axis} setpoint"), ("#2a6", "#e80"),
-                         window_s=PLOT_WINDOW_S)
+                TimePlot(
+                    gui,
+                    f"{axis} (m): drone vs setpoint",
+                    (axis, f"{axis} setpoint"),
+                    ("#2a6", "#e80"),
+                    window_s=PLOT_WINDOW_S,
+                )
                 for axis in "xyz"
             )
         self._display = display
 
-    def plot(self, t_s: float, pos: tuple[float, float, float], setpoint: tuple[float, float, float] | None) -> None:
+    def plot(
+        self, t_s: float, pos: tuple[float, float, float], setpoint: tuple[float, float, float] | None
+    ) -> None:
         sp = setpoint if setpoint is not None else (float("nan"),) * 3
-        for plot, value, target in zip(self.plots, pos, sp):
+        for plot, value, target in zip(self.plots, pos, sp, strict=True):
             plot.append(t_s, value, target)
 
     def flush_plots(self) -> None:
         for plot in self.plots:
             plot.flush()
 
-    def draw(self, pos: tuple[float, float, float], wxyz: tuple[float, float, float, float],
-             setpoint: tuple[float, float, float] | None, trail: np.ndarray, text: str) -> None:
+    def draw(
+        self,
+        pos: tuple[float, float, float],
+        wxyz: tuple[float, float, float, float],
+        setpoint: tuple[float, float, float] | None,
+        trail: np.ndarray,
+        text: str,
+    ) -> None:
         with self._display.server.atomic():  # type: ignore[attr-defined]
             self.drone.position = pos
             self.drone.wxyz = wxyz
@@ -130,7 +147,9 @@ class GUIControllerNode(Node):
         self.trail.append(pos)
         self.frames_drawn += 1
         if self.scene is not None:
-            self.scene.draw(pos, wxyz, self.setpoint, np.array(self.trail, dtype=np.float32), self.telemetry_text())
+            self.scene.draw(
+                pos, wxyz, self.setpoint, np.array(self.trail, dtype=np.float32), self.telemetry_text()
+            )
 
     def sample_plots(self) -> None:
         if self.pose is not None and self.scene is not None:

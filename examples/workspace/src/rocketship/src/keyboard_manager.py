@@ -10,9 +10,9 @@ from std_msgs.msg import Bool
 
 class KeyboardManager(Node):
     def __init__(self):
-        super().__init__('KeyboardManagerNode')
-        self.abort_pub = self.create_publisher(Bool, '/abort_takeoff', 1)
-        self.key_sub = self.create_subscription(Key, '/keydown', self.get_key, 1)
+        super().__init__("KeyboardManagerNode")
+        self.abort_pub = self.create_publisher(Bool, "/abort_takeoff", 1)
+        self.key_sub = self.create_subscription(Key, "/keydown", self.get_key, 1)
         self.abort = Bool()
         self.key_code = -1
         self.timer = self.create_timer(1 / 10, self.process_key_code)  # 10 Hz
@@ -23,13 +23,13 @@ class KeyboardManager(Node):
 
     def process_key_code(self):
         if self.key_code == Key.KEY_A:
-            self.get_logger().info('a key was pressed!')
+            self.get_logger().info("a key was pressed!")
             self.abort.data = True
         self.abort_pub.publish(self.abort)
         self.key_code = -1
 
 
-if __name__ == '__main__':
+if __name__ == "__main__":
     rclpy.init()
     try:
         rclpy.spin(KeyboardManager())

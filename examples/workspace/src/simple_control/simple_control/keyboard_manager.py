@@ -11,9 +11,9 @@ from rclpy.node import Node
 
 class KeyboardManager(Node):
     def __init__(self):
-        super().__init__('KeyboardManagerNode')
-        self.position_pub = self.create_publisher(Vector3, '/uav/input/position', 1)
-        self.keyboard_sub = self.create_subscription(Key, '/keydown', self.get_key, 1)
+        super().__init__("KeyboardManagerNode")
+        self.position_pub = self.create_publisher(Vector3, "/uav/input/position", 1)
+        self.keyboard_sub = self.create_subscription(Key, "/keydown", self.get_key, 1)
         self.pos = Vector3()
         self.pos.x, self.pos.y, self.pos.z = 0.0, 0.0, 3.0  # hover over the centre
         self.key_code = -1
@@ -47,5 +47,5 @@ def main():
         rclpy.try_shutdown()
 
 
-if __name__ == '__main__':
+if __name__ == "__main__":
     main()
