@@ -1,3 +1,2 @@
-from server.msgs import Point, Pose, PoseStamped, Quaternion, Twist, TwistStamped, Vector3
-
-__all__ = ["Point", "Pose", "PoseStamped", "Quaternion", "Twist", "TwistStamped", "Vector3"]
+from server.msgs.generated.geometry_msgs import *  # noqa: F403
+from server.msgs.generated.geometry_msgs import __all__ as __all__

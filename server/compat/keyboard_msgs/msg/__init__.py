@@ -1,3 +1,2 @@
-from server.msgs import Key
-
-__all__ = ["Key"]
+from server.msgs.generated.keyboard_msgs import *  # noqa: F403
+from server.msgs.generated.keyboard_msgs import __all__ as __all__

@@ -1,3 +1,2 @@
-from server.msgs import Bool, Float64, Header, Int64, String
-
-__all__ = ["Bool", "Float64", "Header", "Int64", "String"]
+from server.msgs.generated.std_msgs import *  # noqa: F403
+from server.msgs.generated.std_msgs import __all__ as __all__
