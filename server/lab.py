@@ -10,6 +10,7 @@ import asyncio
 import itertools
 import logging
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -18,13 +19,14 @@ from server.bus import Bus, Clock, Executor, Node, Publisher, SystemClock, Topic
 from server.devices.keyboard import KeyboardDevice
 from server.launch.description import NodeAction, SourceLocation
 from server.launch.launcher import LaunchedNode, Launcher
-from server.msgs import Message, Vector3, get_type
+from server.msgs import Message, Vector3, get_service_type, get_type
 from server.packages import PackageIndex
 from server.packages.flightcontroller.setpoints import check_finite
 from server.publishers import PublisherManager
 from server.settings import Settings
 
 log = logging.getLogger("lab")
+Trigger = get_service_type("std_srvs/srv/Trigger")
 
 LAUNCH_ALIASES = {
     "rocket": ("rocketship", "rocket.launch"),
@@ -55,13 +57,24 @@ TOPIC_GUARDS: dict[str, tuple[type[Message], Any]] = {
 }
 
 
-class ApiNode(Node):
-    """Hidden node ``_rest_api`` that owns the publishers REST calls use (like rqt's publisher)."""
+RESET_SERVICE = "/rocket/reset"
 
-    def __init__(self, max_topics: int) -> None:
+
+class ApiNode(Node):
+    """Hidden node ``_rest_api`` that owns the publishers REST calls use (like rqt's publisher),
+    and serves the lab's own controls as ROS services (``/rocket/reset``)."""
+
+    def __init__(self, max_topics: int, reset_rocket: Callable[[], bool]) -> None:
         super().__init__("_rest_api")
         self.max_topics = max_topics
         self.pubs: dict[str, Publisher] = {}
+        self._reset_rocket = reset_rocket
+        self.create_service(Trigger, RESET_SERVICE, self._on_reset)
+
+    def _on_reset(self, request: Any, response: Any) -> Any:
+        response.success = self._reset_rocket()
+        response.message = "rocket back on the pad" if response.success else "no rocket in this launch"
+        return response
 
     def publisher_for(self, topic: str, msg_type: type[Message]) -> Publisher:
         pub = self.pubs.get(topic)
@@ -112,7 +125,7 @@ class Lab:
         self.started_at = time.monotonic()
         self._spin_task: asyncio.Task[None] | None = None
         with self.bus.activate():
-            self.api_node = ApiNode(settings.max_api_topics)
+            self.api_node = ApiNode(settings.max_api_topics, self.reset_rocket)
         self.publishers = PublisherManager(self)
         self.launch_groups: dict[str, LaunchGroup] = {}
         self._group_ids = itertools.count(1)
@@ -219,9 +232,13 @@ class Lab:
         self.launcher.stop_all(group.entries)
         return group
 
-    def reset_rocket(self) -> None:
-        """Put the rocket back on the pad: restart the rocket launch's nodes, as a student would."""
-        self.launcher.restart(lambda e: Path(e.file).name == "rocket.launch" and e.action.pkg == "rocketship")
+    def reset_rocket(self) -> bool:
+        """Put the rocket back on the pad: restart the rocket launch's nodes, as a student would.
+        Returns whether there was a rocket to reset."""
+        restarted = self.launcher.restart(
+            lambda e: Path(e.file).name == "rocket.launch" and e.action.pkg == "rocketship"
+        )
         if self.rocket_view is not None:
             self.rocket_view.reset()
         log.info("rocket reset: back on the pad, countdown restarted")
+        return bool(restarted)

@@ -15,9 +15,11 @@ import traceback
 from collections.abc import Callable
 from typing import Any
 
+from ..msgs import Message
 from .endpoints import Subscription
 from .graph import Bus
 from .node import Node
+from .services import PendingCall
 
 log = logging.getLogger("bus.executor")
 MAX_CALLBACKS_PER_PASS = 10_000  # bounds a node that keeps re-triggering itself
@@ -70,11 +72,23 @@ class Executor:
             ran += 1 + self._drain()
         return ran
 
+    def _run_call(self, call: PendingCall) -> bool:
+        server = call.server
+        if not server.active:
+            return False  # the server went away: the client keeps waiting, as in ROS 2
+        outcome: list[Message] = []
+        self._run(server.node, lambda: outcome.append(server.handle(call.request)))
+        if outcome:
+            call.future.set_result(outcome[0])
+        return True
+
     def _drain(self) -> int:
-        ready = self.bus._ready
+        ready, calls = self.bus._ready, self.bus._calls
         ran = 0
-        while ready and ran < MAX_CALLBACKS_PER_PASS:
-            if self._run_subscription(ready.popleft()):
+        while (ready or calls) and ran < MAX_CALLBACKS_PER_PASS:
+            if ready and self._run_subscription(ready.popleft()):
+                ran += 1
+            if calls and self._run_call(calls.popleft()):
                 ran += 1
         return ran
 
@@ -126,7 +140,7 @@ class Executor:
         try:
             while not self._stopping:
                 self.spin_some()
-                if self.bus._ready:
+                if self.bus._ready or self.bus._calls:
                     await asyncio.sleep(0)  # let the API and WebSockets in between bursts
                     continue
                 delay = self.next_deadline_s() - self.bus.clock.now()

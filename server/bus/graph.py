@@ -10,16 +10,26 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
-from ..msgs import Message
+from ..msgs import Message, Service
 from .clock import Clock, SystemClock
 from .errors import NoBusError, TopicTypeError, UnknownNodeError, UnknownTopicError
 from .names import is_hidden
+from .services import Future, PendingCall, ServiceChannel, ServiceClient, check_service_type
 
 if TYPE_CHECKING:
     from .endpoints import Publisher, Subscription, Timer
     from .node import Node
+
+
+class RemoteServices(Protocol):
+    """Where calls go that no node of this process serves (the Zenoh transport)."""
+
+    def has_server(self, name: str, srv_type: type[Service]) -> bool: ...
+
+    def call(self, client: ServiceClient, request: Message, future: Future[Message]) -> None: ...
+
 
 log = logging.getLogger("bus")
 HZ_WINDOW_MAX = 10_000
@@ -96,10 +106,13 @@ class Bus:
     def __init__(self, clock: Clock | None = None) -> None:
         self.clock: Clock = clock or SystemClock()
         self.topics: dict[str, Topic] = {}
+        self.services: dict[str, ServiceChannel] = {}
+        self.remote_services: RemoteServices | None = None
         self.nodes: list[Node] = []
         self.graph_version = 0
         self.crash_handlers: list[Callable[[Node, BaseException], None]] = []
         self._ready: deque[Subscription] = deque()
+        self._calls: deque[PendingCall] = deque()
         self._timers: list[tuple[float, int, Timer]] = []
         self._seq = itertools.count()
         self._wakers: list[Callable[[], None]] = []
@@ -162,6 +175,27 @@ class Bus:
         if not topic.publishers and not topic.subscriptions and self.topics.get(topic.name) is topic:
             del self.topics[topic.name]
             self.graph_changed()
+
+    # -- services --------------------------------------------------------
+    def service(self, name: str, srv_type: type[Service]) -> ServiceChannel:
+        """The service of that name, created with ``srv_type`` if new; a type conflict is an error."""
+        channel = self.services.get(name)
+        if channel is None:
+            channel = self.services[name] = ServiceChannel(self, name, srv_type)
+            self.graph_changed()
+        else:
+            check_service_type(channel, srv_type)
+        return channel
+
+    def drop_service_if_unused(self, channel: ServiceChannel) -> None:
+        if not channel.servers and not channel.clients and self.services.get(channel.name) is channel:
+            del self.services[channel.name]
+            self.graph_changed()
+
+    def queue_call(self, call: PendingCall) -> None:
+        """A request for a server of this bus; the executor runs its callback."""
+        self._calls.append(call)
+        self._wake()
 
     # -- scheduling ------------------------------------------------------
     def schedule(self, timer: Timer) -> None:

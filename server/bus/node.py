@@ -7,12 +7,13 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from ..msgs import Log, Message
+from ..msgs import Log, Message, Service
 from .clock import NodeClock
 from .endpoints import Publisher, Subscription, Timer, qos_depth
 from .errors import DestroyedError
 from .graph import Bus, current_bus, current_overrides
 from .names import resolve_topic_name, validate_namespace, validate_node_name
+from .services import ServiceCallback, ServiceClient, ServiceServer
 
 NodeState = Literal["active", "crashed", "destroyed"]
 _LEVELS = {"debug": 10, "info": 20, "warn": 30, "error": 40, "fatal": 50}
@@ -83,6 +84,8 @@ class Node:
         self.publishers: list[Publisher] = []
         self.subscriptions: list[Subscription] = []
         self.timers: list[Timer] = []
+        self.services: list[ServiceServer] = []
+        self.clients: list[ServiceClient] = []
         self.state: NodeState = "active"
         self.crash_reason: str | None = None
         self._clock = NodeClock(self.bus.clock)
@@ -148,6 +151,47 @@ class Node:
         self.bus.schedule(timer)
         return timer
 
+    def create_service(
+        self, srv_type: type[Service], srv_name: str, callback: ServiceCallback, **_qos: Any
+    ) -> ServiceServer:
+        """Serve ``srv_name``: ``callback(request, response)`` fills and returns the response."""
+        self._check_alive()
+        channel = self.bus.service(self.resolve_topic_name(srv_name), srv_type)
+        server = ServiceServer(self, channel, callback)
+        channel.servers.append(server)
+        self.services.append(server)
+        self.bus.graph_changed()
+        return server
+
+    def create_client(self, srv_type: type[Service], srv_name: str, **_qos: Any) -> ServiceClient:
+        self._check_alive()
+        channel = self.bus.service(self.resolve_topic_name(srv_name), srv_type)
+        client = ServiceClient(self, channel)
+        channel.clients.append(client)
+        self.clients.append(client)
+        self.bus.graph_changed()
+        return client
+
+    def destroy_service(self, server: ServiceServer) -> bool:
+        if server.destroyed:
+            return False
+        server.destroyed = True
+        server.channel.servers.remove(server)
+        self.services.remove(server)
+        self.bus.drop_service_if_unused(server.channel)
+        self.bus.graph_changed()
+        return True
+
+    def destroy_client(self, client: ServiceClient) -> bool:
+        if client.destroyed:
+            return False
+        client.destroyed = True
+        client.channel.clients.remove(client)
+        self.clients.remove(client)
+        self.bus.drop_service_if_unused(client.channel)
+        self.bus.graph_changed()
+        return True
+
     def destroy_publisher(self, pub: Publisher) -> bool:
         if pub.destroyed:
             return False
@@ -185,6 +229,10 @@ class Node:
             self.destroy_subscription(sub)
         for pub in list(self.publishers):
             self.destroy_publisher(pub)
+        for server in list(self.services):
+            self.destroy_service(server)
+        for client in list(self.clients):
+            self.destroy_client(client)
         self.state = "destroyed"
         self.bus.remove_node(self)
         return True

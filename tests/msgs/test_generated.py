@@ -22,6 +22,6 @@ def test_generated_module_matches_the_definitions(path) -> None:  # type: ignore
 def test_generated_class_annotates_every_field_and_constant(name: str) -> None:
     cls: type[Message] = get_type(name)
     hints = typing.get_type_hints(cls)
-    assert [f.name for f in cls.FIELDS] == [n for n in cls.__slots__]
+    assert [f.name for f in cls.FIELDS] == list(cls.__slots__)
     assert all(f.name in hints for f in cls.FIELDS)
     assert all(c.name in hints and getattr(cls, c.name) == c.value for c in cls.SPEC.constants)
