@@ -101,7 +101,7 @@ def _cone(radius: float, height: float, segments: int = 24) -> tuple[np.ndarray,
 class RocketScene:
     """The viser objects: pad, rocket, flame, label and the GUI readouts."""
 
-    def __init__(self, display: Display, on_reset: Callable[[], None]) -> None:
+    def __init__(self, display: Display, on_reset: Callable[[], object]) -> None:
         scene, gui = display.scene, display.gui
         x, y = PAD_XY
         display.add_view("Rocket", (x + 17.0, y - 17.0, 9.0), (x, y, 7.0), initial=True)
@@ -172,7 +172,7 @@ class RocketScene:
 class RocketViewNode(Node):
     """Hidden tool node ``_rocket_view``: subscribes to the rocket's topics and redraws at 30 Hz."""
 
-    def __init__(self, display: Display | None, on_reset: Callable[[], None]) -> None:
+    def __init__(self, display: Display | None, on_reset: Callable[[], object]) -> None:
         super().__init__("_rocket_view")
         self.tracker = RocketTracker()
         self.scene = RocketScene(display, on_reset) if display is not None else None
