@@ -124,6 +124,8 @@ class Lab:
         self.rocket_view: Any = None
         self.started_at = time.monotonic()
         self._spin_task: asyncio.Task[None] | None = None
+        self.zenoh: Any = None  # server.transport.link.ZenohLink while the graph is on Zenoh
+        self.zenoh_error: str | None = None
         with self.bus.activate():
             self.api_node = ApiNode(settings.max_api_topics, self.reset_rocket)
         self.publishers = PublisherManager(self)
@@ -148,6 +150,10 @@ class Lab:
             self.page_tools = PageToolsNode(self)
 
     async def start(self) -> None:
+        if self.settings.zenoh is not None:
+            from server.transport.link import open_link
+
+            self.zenoh, self.zenoh_error = await open_link(self.bus, self.settings.zenoh)
         if self.settings.viewer:
             from server.viewer.display import Display
 
@@ -164,6 +170,9 @@ class Lab:
         self.launcher.shutdown()
         for node in list(self.bus.nodes):
             node.destroy_node()
+        if self.zenoh is not None:
+            self.zenoh.close()
+            self.zenoh = None
         if self.display is not None:
             self.display.stop()
 

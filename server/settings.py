@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from server.transport.config import ZenohSettings
+
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
 
 
@@ -23,6 +25,9 @@ class Settings:
     max_ws_frame_bytes: int = 16 * 1024
     deadman_s: float = 0.5  # a key channel silent this long with keys held has them released
     max_api_topics: int = 256  # topics the REST API may create, so a loop of typos cannot grow memory
+    # The graph on Zenoh (rmw_zenoh's wire format); None keeps every node in this process. The
+    # command line turns it on (a router on tcp/127.0.0.1:7447); tests that need it say so.
+    zenoh: ZenohSettings | None = None
 
     def __post_init__(self) -> None:
         if not 0 <= self.port <= 65535:

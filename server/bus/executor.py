@@ -94,7 +94,10 @@ class Executor:
 
     # -- stepping ----------------------------------------------------------
     def spin_some(self) -> int:
-        """Run every due timer, then every queued message; returns how many callbacks ran."""
+        """Take what other threads handed in, run every queued message, then every due timer;
+        returns how many callbacks ran."""
+        for poll in self.bus.pollers:
+            poll()
         ran = self._drain()
         return ran + self._run_due_timers(self.bus.clock.now())
 
@@ -137,6 +140,12 @@ class Executor:
         loop = asyncio.get_running_loop()
         self._stopping = False
         self.bus.add_waker(self._wake)
+
+        def wake_from_thread() -> None:
+            with contextlib.suppress(RuntimeError):  # the loop closed while another thread had news
+                loop.call_soon_threadsafe(self._wake)
+
+        self.bus.threadsafe_waker = wake_from_thread
         try:
             while not self._stopping:
                 self.spin_some()
@@ -157,6 +166,7 @@ class Executor:
                         handle.cancel()
         finally:
             self.bus.remove_waker(self._wake)
+            self.bus.threadsafe_waker = None
 
     def stop(self) -> None:
         self._stopping = True

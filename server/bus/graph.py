@@ -23,6 +23,18 @@ if TYPE_CHECKING:
     from .node import Node
 
 
+class GraphObserver(Protocol):
+    """Told of every node and endpoint as it comes and goes (the transport declares them outside)."""
+
+    def node_added(self, node: Node) -> None: ...
+
+    def node_removed(self, node: Node) -> None: ...
+
+    def endpoint_added(self, endpoint: object) -> None: ...
+
+    def endpoint_removed(self, endpoint: object) -> None: ...
+
+
 class RemoteServices(Protocol):
     """Where calls go that no node of this process serves (the Zenoh transport)."""
 
@@ -116,6 +128,11 @@ class Bus:
         self._timers: list[tuple[float, int, Timer]] = []
         self._seq = itertools.count()
         self._wakers: list[Callable[[], None]] = []
+        self.observers: list[GraphObserver] = []
+        # Called at the start of every executor pass, on the executor's thread (the transport's inbox).
+        self.pollers: list[Callable[[], None]] = []
+        # Set by a running executor: wakes it from another thread.
+        self.threadsafe_waker: Callable[[], None] | None = None
         self.devices: dict[str, Any] = {}  # hardware the nodes may use: 'keyboard', 'display'
 
     # -- membership ------------------------------------------------------
@@ -138,11 +155,25 @@ class Bus:
             )
         self.nodes.append(node)
         self.graph_changed()
+        for observer in self.observers:
+            observer.node_added(node)
 
     def remove_node(self, node: Node) -> None:
         if node in self.nodes:
             self.nodes.remove(node)
             self.graph_changed()
+            for observer in self.observers:
+                observer.node_removed(node)
+
+    def endpoint_added(self, endpoint: object) -> None:
+        self.graph_changed()
+        for observer in self.observers:
+            observer.endpoint_added(endpoint)
+
+    def endpoint_removed(self, endpoint: object) -> None:
+        self.graph_changed()
+        for observer in self.observers:
+            observer.endpoint_removed(endpoint)
 
     def get_node(self, name: str) -> Node:
         fq = name if name.startswith("/") else "/" + name
@@ -211,6 +242,12 @@ class Bus:
 
     def _wake(self) -> None:
         for waker in self._wakers:
+            waker()
+
+    def wake_threadsafe(self) -> None:
+        """From any thread: have the executor run a pass soon (its pollers first)."""
+        waker = self.threadsafe_waker
+        if waker is not None:
             waker()
 
     def node_crashed(self, node: Node, exc: BaseException) -> None:

@@ -88,7 +88,7 @@ def live_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LiveServer
     with log_path.open("wb") as log:
         proc = subprocess.Popen(
             [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(port), "--launch", "rocket",
-             "start_delay:=0.5"],
+             "--zenoh-listen", f"tcp/127.0.0.1:{free_port()}", "start_delay:=0.5"],
             cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
         )  # fmt: skip
     server = LiveServer(f"http://127.0.0.1:{port}", proc, log_path)
