@@ -11,8 +11,10 @@ from server.bus import (
     DestroyedError,
     InvalidNameError,
     InvalidQoSError,
+    ServiceTimeoutError,
     TopicTypeError,
     UnknownNodeError,
+    UnknownServiceError,
     UnknownTopicError,
 )  # fmt: skip
 from server.msgs import MessageError, UnknownTypeError
@@ -36,8 +38,10 @@ class CloseCode(IntEnum):
 
 def http_error(exc: Exception) -> HTTPException:
     """The HTTP error for an exception from the bus or the message layer."""
-    if isinstance(exc, (UnknownTopicError, UnknownNodeError)):
+    if isinstance(exc, (UnknownTopicError, UnknownNodeError, UnknownServiceError)):
         return HTTPException(status.HTTP_404_NOT_FOUND, str(exc))
+    if isinstance(exc, ServiceTimeoutError):
+        return HTTPException(status.HTTP_504_GATEWAY_TIMEOUT, str(exc))
     if isinstance(exc, TopicTypeError):
         return HTTPException(status.HTTP_409_CONFLICT, str(exc))
     if isinstance(exc, (InvalidNameError, InvalidQoSError, MessageError, UnknownTypeError, ValueError)):

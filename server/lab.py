@@ -23,7 +23,9 @@ from server.msgs import Message, Vector3, get_service_type, get_type
 from server.packages import PackageIndex
 from server.packages.flightcontroller.setpoints import check_finite
 from server.publishers import PublisherManager
+from server.service_calls import ServiceCaller
 from server.settings import Settings
+from server.transport.remote_graph import RemoteGraph
 
 log = logging.getLogger("lab")
 Trigger = get_service_type("std_srvs/srv/Trigger")
@@ -129,6 +131,7 @@ class Lab:
         with self.bus.activate():
             self.api_node = ApiNode(settings.max_api_topics, self.reset_rocket)
         self.publishers = PublisherManager(self)
+        self.service_caller = ServiceCaller(self.api_node)
         self.launch_groups: dict[str, LaunchGroup] = {}
         self._group_ids = itertools.count(1)
 
@@ -175,6 +178,10 @@ class Lab:
             self.zenoh = None
         if self.display is not None:
             self.display.stop()
+
+    def remote_graph(self) -> RemoteGraph | None:
+        """Nodes and endpoints of other processes, while the graph is on Zenoh."""
+        return self.zenoh.bridge.remote if self.zenoh is not None else None
 
     # -- actions -------------------------------------------------------------
     def prepare(self, topic: str, msg: dict[str, Any], type_name: str | None) -> tuple[str, Message]:
