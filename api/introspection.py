@@ -14,11 +14,12 @@ from server.introspection import graph_snapshot, node_info, rate_stats, type_sch
 from server.msgs import Message, UnknownTypeError, get_type, type_names
 
 from .deps import LabDep
-from .errors import http_error
+from .responses import NOT_FOUND, responses
 
 # Handlers are ``async def`` so that they read the bus on the event loop that owns it, never
 # from a worker thread while the executor changes it.
-router = APIRouter(prefix="/api", tags=["introspection"])
+# Errors are mapped in api/errors.py; handlers do not catch.
+router = APIRouter(prefix="/api", tags=["introspection"], responses=responses())
 HZ_WINDOW_DEFAULT = 100
 
 
@@ -110,26 +111,20 @@ async def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
     )
 
 
-@router.get("/nodes/{name:path}", response_model=NodeDetailOut)
+@router.get("/nodes/{name:path}", response_model=NodeDetailOut, responses=responses(NOT_FOUND, 422))
 async def get_node(name: str, lab: LabDep) -> dict[str, Any]:
     """One node (its name without the leading slash), as ``ros2 node info``."""
-    try:
-        return node_info(lab.bus.get_node(name))
-    except Exception as exc:
-        raise http_error(exc) from exc
+    return node_info(lab.bus.get_node(name))
 
 
-@router.get("/hz/{name:path}", response_model=RateOut)
+@router.get("/hz/{name:path}", response_model=RateOut, responses=responses(NOT_FOUND, 422))
 async def topic_hz(
     name: str,
     lab: LabDep,
     window: int = Query(HZ_WINDOW_DEFAULT, ge=2, le=HZ_WINDOW_MAX, description="periods"),
 ) -> dict[str, Any]:
     """A topic's publishing rate over its last ``window`` periods, as ``ros2 topic hz``."""
-    try:
-        topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
-    except Exception as exc:
-        raise http_error(exc) from exc
+    topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
     stats = rate_stats(topic.publish_times_s, window)
     return {"topic": topic.name, **vars(stats), "count": topic.publish_count}
 
@@ -148,13 +143,13 @@ async def list_types() -> list[str]:
 
 
 # Declared before /types/{type} so that the path parameter does not swallow "/default".
-@router.get("/types/{type_name:path}/default")
+@router.get("/types/{type_name:path}/default", responses=responses(NOT_FOUND))
 async def type_default(type_name: str) -> dict[str, Any]:
     """The message with every field at its default, as ``ros2 interface proto``."""
     return _type(type_name)().to_dict()
 
 
-@router.get("/types/{type_name:path}")
+@router.get("/types/{type_name:path}", responses=responses(NOT_FOUND))
 async def type_info(type_name: str) -> dict[str, Any]:
     """A JSON Schema (draft 2020-12) of the type's JSON form, with ROS integer ranges and defaults."""
     return type_schema(_type(type_name))

@@ -23,6 +23,10 @@ class Settings:
     max_ws_frame_bytes: int = 16 * 1024
     deadman_s: float = 0.5  # a key channel silent this long with keys held has them released
     max_api_topics: int = 256  # topics the REST API may create, so a loop of typos cannot grow memory
+    max_publishers: int = 64  # periodic publishers running at once
+    max_echo_sockets: int = 64  # /ws/topics clients at once
+    max_launch_groups: int = 32  # launches and runs started through the API, at once
+    max_nodes_per_launch: int = 64
 
     def __post_init__(self) -> None:
         if not 0 <= self.port <= 65535:

@@ -43,6 +43,8 @@ def parse_launch_file(
         raise LaunchFileError(file, 0, "launch file not found") from None
     except OSError as err:
         raise LaunchFileError(file, 0, f"cannot read launch file: {err.strerror}") from None
+    except ValueError as err:  # a NUL byte in the path
+        raise LaunchFileError(file[:200], 0, f"not a file path: {err}") from None
     return evaluate(load_tree(data, file), file, args, find_package_share, environ)
 
 
