@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from server.bus import Bus, Clock, Executor, Node, Publisher, SystemClock, TopicTypeError, UnknownTopicError
+from server.devices.deadman import KeyDeadMan
 from server.devices.keyboard import KeyboardDevice
 from server.launch.description import NodeAction, SourceLocation
 from server.launch.launcher import LaunchedNode, Launcher
@@ -98,6 +99,7 @@ class Lab:
         self.launcher = Launcher(self.bus, self.packages)
         self.keyboard = KeyboardDevice()
         self.bus.devices["keyboard"] = self.keyboard
+        self.key_deadman = KeyDeadMan(self.keyboard, self.bus, settings.deadman_s)
         self.display: Any = None
         self.rocket_view: Any = None
         self.started_at = time.monotonic()
