@@ -8,9 +8,10 @@ from typing import Any, Literal
 from fastapi import APIRouter, HTTPException, Query, status
 from pydantic import BaseModel, ConfigDict, Field
 
-from server.bus import is_hidden, validate_topic_name
+from server.bus import Node, is_hidden, validate_topic_name
 from server.bus.graph import HZ_WINDOW_MAX
 from server.introspection import graph_snapshot, node_info, rate_stats, type_schema
+from server.lab import Lab
 from server.msgs import Message, UnknownTypeError, get_type, type_names
 
 from .deps import LabDep
@@ -51,10 +52,20 @@ class GraphOut(BaseModel):
     edges: list[GraphEdgeOut]
 
 
+class RespawnOut(BaseModel):
+    state: Literal["running", "waiting", "gave up"]
+    respawns: int = Field(description="restarts so far")
+    fast_failures: int = Field(description="crashes in a row soon after starting (the backoff doubles each)")
+    next_in_s: float | None = Field(description="seconds until the next restart, while waiting")
+
+
 class NodeSummaryOut(BaseModel):
     name: str = Field(examples=["/CountDownNode"])
     namespace: str = Field(examples=["/"])
     state: Literal["active", "crashed"]
+    respawn: RespawnOut | None = Field(
+        default=None, description='only for nodes launched with respawn="true"'
+    )
 
 
 class EndpointOut(BaseModel):
@@ -105,16 +116,24 @@ async def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
 async def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
     """Every node, as ``ros2 node list`` (``hidden=true`` adds the '_' ones, as ``--all``)."""
     nodes = [n for n in lab.bus.nodes if hidden or not is_hidden(n.fully_qualified_name)]
-    return sorted(
-        ({"name": n.fully_qualified_name, "namespace": n.get_namespace(), "state": n.state} for n in nodes),
-        key=lambda n: n["name"],
-    )
+    return sorted((_summary(lab, n) for n in nodes), key=lambda n: n["name"])
+
+
+def _summary(lab: Lab, node: Node) -> dict[str, Any]:
+    respawn = lab.launcher.respawn_of(node)
+    return {
+        "name": node.fully_qualified_name,
+        "namespace": node.get_namespace(),
+        "state": node.state,
+        "respawn": None if respawn is None else respawn.describe(),
+    }
 
 
 @router.get("/nodes/{name:path}", response_model=NodeDetailOut, responses=responses(NOT_FOUND, 422))
 async def get_node(name: str, lab: LabDep) -> dict[str, Any]:
     """One node (its name without the leading slash), as ``ros2 node info``."""
-    return node_info(lab.bus.get_node(name))
+    node = lab.bus.get_node(name)
+    return {**node_info(node), "respawn": _summary(lab, node)["respawn"]}
 
 
 @router.get("/hz/{name:path}", response_model=RateOut, responses=responses(NOT_FOUND, 422))
