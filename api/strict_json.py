@@ -108,7 +108,7 @@ def _is_json(scope: Scope) -> bool:
     """What FastAPI would parse as JSON: no content type, or application/json or */*+json."""
     for key, value in scope.get("headers", []):
         if key == b"content-type":
-            media = value.decode("latin-1").split(";", 1)[0].strip().lower()
+            media = str(value, "latin-1").split(";", 1)[0].strip().lower()
             return media == "application/json" or (
                 media.startswith("application/") and media.endswith("+json")
             )

@@ -153,9 +153,12 @@ class Lab:
         check_finite_json(msg)
         name = self.api_node.resolve_topic_name(topic)
         existing = self.bus.topics.get(name)
-        if existing is None and type_name is None:
+        if type_name is not None:
+            msg_type = get_type(type_name)
+        elif existing is not None:
+            msg_type = existing.msg_type
+        else:
             raise UnknownTopicError(name)
-        msg_type = get_type(type_name) if type_name is not None else existing.msg_type
         if existing is not None and existing.msg_type is not msg_type:
             raise TopicTypeError(f"{name} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
         message = msg_type.from_dict(msg)
