@@ -8,17 +8,19 @@ from typing import Any, Literal
 from fastapi import APIRouter, HTTPException, Query, status
 from pydantic import BaseModel, ConfigDict, Field
 
-from server.bus import is_hidden, validate_topic_name
+from server.bus import Node, is_hidden, validate_topic_name
 from server.bus.graph import HZ_WINDOW_MAX
 from server.introspection import graph_snapshot, node_info, rate_stats, type_schema
+from server.lab import Lab
 from server.msgs import Message, UnknownTypeError, get_type, type_names
 
 from .deps import LabDep
-from .errors import http_error
+from .responses import NOT_FOUND, responses
 
 # Handlers are ``async def`` so that they read the bus on the event loop that owns it, never
 # from a worker thread while the executor changes it.
-router = APIRouter(prefix="/api", tags=["introspection"])
+# Errors are mapped in api/errors.py; handlers do not catch.
+router = APIRouter(prefix="/api", tags=["introspection"], responses=responses())
 HZ_WINDOW_DEFAULT = 100
 
 
@@ -50,10 +52,20 @@ class GraphOut(BaseModel):
     edges: list[GraphEdgeOut]
 
 
+class RespawnOut(BaseModel):
+    state: Literal["running", "waiting", "gave up"]
+    respawns: int = Field(description="restarts so far")
+    fast_failures: int = Field(description="crashes in a row soon after starting (the backoff doubles each)")
+    next_in_s: float | None = Field(description="seconds until the next restart, while waiting")
+
+
 class NodeSummaryOut(BaseModel):
     name: str = Field(examples=["/CountDownNode"])
     namespace: str = Field(examples=["/"])
     state: Literal["active", "crashed"]
+    respawn: RespawnOut | None = Field(
+        default=None, description='only for nodes launched with respawn="true"'
+    )
 
 
 class EndpointOut(BaseModel):
@@ -104,32 +116,34 @@ async def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
 async def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
     """Every node, as ``ros2 node list`` (``hidden=true`` adds the '_' ones, as ``--all``)."""
     nodes = [n for n in lab.bus.nodes if hidden or not is_hidden(n.fully_qualified_name)]
-    return sorted(
-        ({"name": n.fully_qualified_name, "namespace": n.get_namespace(), "state": n.state} for n in nodes),
-        key=lambda n: n["name"],
-    )
+    return sorted((_summary(lab, n) for n in nodes), key=lambda n: n["name"])
 
 
-@router.get("/nodes/{name:path}", response_model=NodeDetailOut)
+def _summary(lab: Lab, node: Node) -> dict[str, Any]:
+    respawn = lab.launcher.respawn_of(node)
+    return {
+        "name": node.fully_qualified_name,
+        "namespace": node.get_namespace(),
+        "state": node.state,
+        "respawn": None if respawn is None else respawn.describe(),
+    }
+
+
+@router.get("/nodes/{name:path}", response_model=NodeDetailOut, responses=responses(NOT_FOUND, 422))
 async def get_node(name: str, lab: LabDep) -> dict[str, Any]:
     """One node (its name without the leading slash), as ``ros2 node info``."""
-    try:
-        return node_info(lab.bus.get_node(name))
-    except Exception as exc:
-        raise http_error(exc) from exc
+    node = lab.bus.get_node(name)
+    return {**node_info(node), "respawn": _summary(lab, node)["respawn"]}
 
 
-@router.get("/hz/{name:path}", response_model=RateOut)
+@router.get("/hz/{name:path}", response_model=RateOut, responses=responses(NOT_FOUND, 422))
 async def topic_hz(
     name: str,
     lab: LabDep,
     window: int = Query(HZ_WINDOW_DEFAULT, ge=2, le=HZ_WINDOW_MAX, description="periods"),
 ) -> dict[str, Any]:
     """A topic's publishing rate over its last ``window`` periods, as ``ros2 topic hz``."""
-    try:
-        topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
-    except Exception as exc:
-        raise http_error(exc) from exc
+    topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
     stats = rate_stats(topic.publish_times_s, window)
     return {"topic": topic.name, **vars(stats), "count": topic.publish_count}
 
@@ -148,13 +162,13 @@ async def list_types() -> list[str]:
 
 
 # Declared before /types/{type} so that the path parameter does not swallow "/default".
-@router.get("/types/{type_name:path}/default")
+@router.get("/types/{type_name:path}/default", responses=responses(NOT_FOUND))
 async def type_default(type_name: str) -> dict[str, Any]:
     """The message with every field at its default, as ``ros2 interface proto``."""
     return _type(type_name)().to_dict()
 
 
-@router.get("/types/{type_name:path}")
+@router.get("/types/{type_name:path}", responses=responses(NOT_FOUND))
 async def type_info(type_name: str) -> dict[str, Any]:
     """A JSON Schema (draft 2020-12) of the type's JSON form, with ROS integer ranges and defaults."""
     return type_schema(_type(type_name))

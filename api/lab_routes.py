@@ -8,11 +8,12 @@ from typing import Any
 from fastapi import APIRouter
 
 from .deps import LabDep
+from .responses import responses
 from .schemas import Health
 
 # Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
 # handler would run in a worker thread and race the executor (timer heap, wake-up future).
-router = APIRouter(prefix="/api", tags=["lab"])
+router = APIRouter(prefix="/api", tags=["lab"], responses=responses())
 
 
 @router.get("/health", response_model=Health)
@@ -26,7 +27,7 @@ async def health(lab: LabDep) -> dict[str, Any]:
     }
 
 
-@router.post("/rocket/reset")
+@router.post("/rocket/reset", responses=responses(403))
 async def reset_rocket(lab: LabDep) -> dict[str, str]:
     """Put the rocket back on the pad and restart the countdown (the rocket's nodes restart)."""
     lab.reset_rocket()

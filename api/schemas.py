@@ -6,6 +6,10 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from server.publishers import MAX_RATE_HZ, MIN_RATE_HZ
+
+MAX_NAME_CHARS = 256  # topic and type names
+
 
 class TopicSummary(BaseModel):
     name: str = Field(examples=["/countdown"])
@@ -24,10 +28,11 @@ class TopicDetail(TopicSummary):
 
 class PublishRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    topic: str = Field(examples=["/abort_takeoff"])
+    topic: str = Field(max_length=MAX_NAME_CHARS, examples=["/abort_takeoff"])
     msg: dict[str, Any] = Field(default_factory=dict, examples=[{"data": True}])
     type: str | None = Field(
         default=None,
+        max_length=MAX_NAME_CHARS,
         description="needed only when the topic does not exist yet",
         examples=["std_msgs/msg/Bool"],
     )
@@ -49,11 +54,13 @@ class Health(BaseModel):
 
 class RatePublisherRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    topic: str = Field(examples=["/uav/input/position"])
+    topic: str = Field(max_length=MAX_NAME_CHARS, examples=["/uav/input/position"])
     msg: dict[str, Any] = Field(default_factory=dict, examples=[{"x": 5.0, "y": 5.0, "z": 10.0}])
-    type: str | None = Field(default=None, description="needed only when the topic does not exist yet")
+    type: str | None = Field(
+        default=None, max_length=MAX_NAME_CHARS, description="needed only when the topic does not exist yet"
+    )
     rate_hz: float = Field(
-        gt=0, le=1000, examples=[1.0], description="publishing rate, more than 0 and at most 1000 Hz"
+        ge=MIN_RATE_HZ, le=MAX_RATE_HZ, examples=[1.0], description="publishing rate, 0.01 to 1000 Hz"
     )
     enabled: bool = True
 
@@ -61,7 +68,7 @@ class RatePublisherRequest(BaseModel):
 class RatePublisherUpdate(BaseModel):
     model_config = ConfigDict(extra="forbid")
     msg: dict[str, Any] | None = None
-    rate_hz: float | None = Field(default=None, gt=0, le=1000)
+    rate_hz: float | None = Field(default=None, ge=MIN_RATE_HZ, le=MAX_RATE_HZ)
     enabled: bool | None = None
 
 

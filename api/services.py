@@ -10,10 +10,10 @@ from pydantic import BaseModel, ConfigDict, Field
 from server.transport.keys import EntityKind
 
 from .deps import LabDep
-from .errors import http_error
+from .responses import NO_ANSWER, NOT_FOUND, TYPE_CONFLICT, responses
 
 # Handlers are ``async def``: the bus belongs to the event loop (see api/topics.py).
-router = APIRouter(prefix="/api", tags=["services"])
+router = APIRouter(prefix="/api", tags=["services"], responses=responses())
 MAX_TIMEOUT_S = 60.0
 
 
@@ -59,15 +59,16 @@ async def list_services(lab: LabDep) -> list[dict[str, Any]]:
     return [{"name": name, "type": type_name, **entry} for (name, type_name), entry in sorted(found.items())]
 
 
-@router.post("/services/{name:path}", response_model=ServiceCallResult)
+@router.post(
+    "/services/{name:path}",
+    response_model=ServiceCallResult,
+    responses=responses(NOT_FOUND, TYPE_CONFLICT, NO_ANSWER, body=True),
+)
 async def call_service(name: str, body: ServiceCallRequest, lab: LabDep) -> dict[str, Any]:
     """Call a service (its name without the leading slash) and wait for the answer, as
     ``ros2 service call``; a call nobody answers in ``timeout_s`` is a 504."""
-    try:
-        service, srv_type, request = lab.service_caller.prepare(
-            "/" + name.lstrip("/"), body.request, body.type, lab.remote_graph()
-        )
-        response = await lab.service_caller.call(service, srv_type, request, body.timeout_s)
-    except Exception as exc:
-        raise http_error(exc) from exc
+    service, srv_type, request = lab.service_caller.prepare(
+        "/" + name.lstrip("/"), body.request, body.type, lab.remote_graph()
+    )
+    response = await lab.service_caller.call(service, srv_type, request, body.timeout_s)
     return {"service": service, "type": srv_type.TYPE, "response": response.to_dict()}

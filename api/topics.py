@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from fastapi import APIRouter
@@ -10,12 +9,13 @@ from fastapi import APIRouter
 from server.bus import Topic, validate_topic_name
 
 from .deps import LabDep
-from .errors import http_error
+from .responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, responses
 from .schemas import PublishRequest, PublishResult, TopicDetail, TopicSummary
 
 # Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
 # handler would run in a worker thread and race the executor (timer heap, wake-up future).
-router = APIRouter(prefix="/api", tags=["topics"])
+# Errors are mapped in api/errors.py; handlers do not catch.
+router = APIRouter(prefix="/api", tags=["topics"], responses=responses())
 
 
 def summary(topic: Topic) -> dict[str, Any]:
@@ -27,18 +27,6 @@ def summary(topic: Topic) -> dict[str, Any]:
     }
 
 
-def reject_non_finite(value: Any, path: str = "msg") -> None:
-    """JSON from Python may carry NaN or Infinity; no lab topic wants them."""
-    if isinstance(value, float) and not math.isfinite(value):
-        raise ValueError(f"{path}: {value} is not a finite number")
-    if isinstance(value, dict):
-        for k, v in value.items():
-            reject_non_finite(v, f"{path}.{k}")
-    elif isinstance(value, list):
-        for i, v in enumerate(value):
-            reject_non_finite(v, f"{path}[{i}]")
-
-
 @router.get("/topics", response_model=list[TopicSummary])
 async def list_topics(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
     """Every topic with its type, publishers and subscribers (``hidden=true`` adds /rosout and the like)."""
@@ -46,13 +34,10 @@ async def list_topics(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]
     return [summary(t) for t in topics if hidden or not t.hidden]
 
 
-@router.get("/topics/{name:path}", response_model=TopicDetail)
+@router.get("/topics/{name:path}", response_model=TopicDetail, responses=responses(NOT_FOUND, 422))
 async def topic_info(name: str, lab: LabDep) -> dict[str, Any]:
     """One topic (its name without the leading slash), with its latest message."""
-    try:
-        topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
-    except Exception as exc:
-        raise http_error(exc) from exc
+    topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
     return {
         **summary(topic),
         "latest": topic.latest.to_dict() if topic.latest is not None else None,
@@ -63,12 +48,12 @@ async def topic_info(name: str, lab: LabDep) -> dict[str, Any]:
     }
 
 
-@router.post("/publish", response_model=PublishResult)
+@router.post(
+    "/publish",
+    response_model=PublishResult,
+    responses=responses(NOT_FOUND, TYPE_CONFLICT, TOO_MANY, body=True),
+)
 async def publish(body: PublishRequest, lab: LabDep) -> dict[str, Any]:
     """Publish one message, as ``ros2 topic pub --once``; give ``type`` to create a new topic."""
-    try:
-        reject_non_finite(body.msg)
-        name, type_name, count = lab.publish(body.topic, body.msg, body.type)
-    except Exception as exc:
-        raise http_error(exc) from exc
+    name, type_name, count = lab.publish(body.topic, body.msg, body.type)
     return {"topic": name, "type": type_name, "subscribers": count}

@@ -17,6 +17,7 @@ from typing import Any
 
 from ..msgs import Message
 from .endpoints import Subscription
+from .faults import is_node_fault
 from .graph import Bus
 from .node import Node
 from .services import PendingCall
@@ -38,7 +39,9 @@ class Executor:
     def _run(self, node: Node, fn: Callable[..., Any], *args: Any) -> None:
         try:
             fn(*args)
-        except Exception as exc:  # the lab's point: a fault stays inside its node
+        except BaseException as exc:  # the lab's point: a fault stays inside its node
+            if not is_node_fault(exc):
+                raise
             log.error(
                 "node %s crashed in %s:\n%s",
                 node.fully_qualified_name,

@@ -8,9 +8,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from server.bus import Bus, Node, NodeOverrides
+from server.bus.faults import is_node_fault
 from server.packages import PackageIndex
 
 from .description import LaunchDescription, NodeAction
+from .respawn import RespawnBackoff, RespawnPolicy
 from .xml_parser import parse_launch_file
 
 log = logging.getLogger("launch")
@@ -31,6 +33,7 @@ class LaunchedNode:
     node: Node | None = None
     error: str | None = None
     starts: int = 0
+    respawn: RespawnBackoff | None = None  # only for respawn="true"
 
     @property
     def file(self) -> str:
@@ -38,9 +41,10 @@ class LaunchedNode:
 
 
 class Launcher:
-    def __init__(self, bus: Bus, packages: PackageIndex) -> None:
+    def __init__(self, bus: Bus, packages: PackageIndex, respawn_policy: RespawnPolicy | None = None) -> None:
         self.bus = bus
         self.packages = packages
+        self.respawn_policy = respawn_policy or RespawnPolicy()
         self.launched: list[LaunchedNode] = []
         self._respawner: Node | None = None
         bus.crash_handlers.append(self._on_crash)
@@ -71,7 +75,9 @@ class Launcher:
                 node = factory()
             if not isinstance(node, Node):
                 raise TypeError(f"{action.pkg}/{action.exec} made a {type(node).__name__}, not a Node")
-        except Exception as exc:
+        except BaseException as exc:  # SystemExit from a constructor included
+            if not is_node_fault(exc):
+                raise
             for orphan in [n for n in self.bus.nodes if n not in before]:
                 orphan.destroy_node()  # half-built: drop what its constructor registered
             entry.node, entry.error = None, f"{type(exc).__name__}: {exc}"
@@ -86,7 +92,14 @@ class Launcher:
             return entry
         node.origin = {"package": action.pkg, "executable": action.exec, "launch_file": str(action.location)}
         entry.node, entry.error = node, None
+        if action.respawn:
+            entry.respawn = entry.respawn or RespawnBackoff(self.respawn_policy, self.bus.clock)
+            entry.respawn.started()
         return entry
+
+    def respawn_of(self, node: Node) -> RespawnBackoff | None:
+        """The respawn state of a launched node, for the node list."""
+        return next((e.respawn for e in self.launched if e.node is node), None)
 
     def stop(self, entry: LaunchedNode) -> None:
         if entry.node is not None:
@@ -120,10 +133,16 @@ class Launcher:
         entry = next((e for e in self.launched if e.node is node), None)
         if entry is None or not entry.action.respawn:
             return
+        if entry.respawn is None:
+            entry.respawn = RespawnBackoff(self.respawn_policy, self.bus.clock)
+        delay = entry.respawn.crashed(entry.action.respawn_delay_s)
+        if delay is None:
+            log.error("%s crashed %d times soon after starting; no more respawns", node.fully_qualified_name,
+                      entry.respawn.fast_failures - 1)  # fmt: skip
+            return
         if self._respawner is None:
             with self.bus.activate():
                 self._respawner = Node("_launch_respawner")
-        delay = max(entry.action.respawn_delay_s, 0.01)
         log.warning("%s crashed; respawning in %.2f s", node.fully_qualified_name, delay)
 
         def respawn() -> None:

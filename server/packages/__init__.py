@@ -95,4 +95,5 @@ class PackageIndex:
         if callable(target):
             return target
         module, _, attr = target.partition(":")
-        return getattr(importlib.import_module(module), attr)
+        factory: Callable[[], Node] = getattr(importlib.import_module(module), attr)
+        return factory

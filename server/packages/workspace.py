@@ -19,7 +19,7 @@ import traceback
 from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
-from typing import Any
+from typing import Any, cast
 
 from server.bus import Node
 
@@ -117,7 +117,7 @@ def node_factory(path: Path) -> Callable[[], Node]:
             found = ", ".join(c.__name__ for c in classes) or "none"
             raise NodeFileError(f"{path}: a node file must define exactly one Node subclass (found: {found})")
         try:
-            return classes[0]()
+            return cast(Callable[[], Node], classes[0])()  # a lab node takes no arguments
         except Exception as exc:
             raise NodeFileError(
                 f"{_location_in(path, exc)}: {classes[0].__name__}() raised {type(exc).__name__}: {exc}"

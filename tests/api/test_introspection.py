@@ -109,7 +109,7 @@ def test_graph_and_nodes_node_crashing_in_its_timer_shows_crashed(client: TestCl
         return node
 
     on_loop(client, start_fragile)
-    crashed = {"name": "/Fragile", "namespace": "/", "state": "crashed"}
+    crashed = {"name": "/Fragile", "namespace": "/", "state": "crashed", "respawn": None}
     nodes = poll(lambda: client.get("/api/nodes").json(), lambda ns: crashed in ns)
     assert crashed in nodes
     graph = client.get("/api/graph").json()
