@@ -103,8 +103,12 @@ class JsonProcess:
         self.events: queue.Queue[dict[str, Any] | None] = queue.Queue()
         self.seen: list[dict[str, Any]] = []
         self.stderr: list[str] = []
-        threading.Thread(target=self._pump, args=(self.proc.stdout,), daemon=True).start()
-        threading.Thread(target=self._errors, args=(self.proc.stderr,), daemon=True).start()
+        self._readers = [
+            threading.Thread(target=self._pump, args=(self.proc.stdout,), daemon=True),
+            threading.Thread(target=self._errors, args=(self.proc.stderr,), daemon=True),
+        ]
+        for reader in self._readers:
+            reader.start()
 
     def _pump(self, stream: IO[str] | None) -> None:
         assert stream is not None
@@ -148,6 +152,17 @@ class JsonProcess:
             if predicate(event):
                 return event
 
+    def newest(self, predicate: Callable[[dict[str, Any]], bool]) -> dict[str, Any] | None:
+        """The newest event so far for which ``predicate`` holds (what has queued up is read first)."""
+        while True:
+            try:
+                event = self.events.get_nowait()
+            except queue.Empty:
+                break
+            if event is not None:
+                self.seen.append(event)
+        return next((e for e in reversed(self.seen) if predicate(e)), None)
+
     def kill(self) -> None:
         if self.proc.poll() is None:
             self.proc.kill()
@@ -160,6 +175,11 @@ class JsonProcess:
                 self.proc.wait(timeout=5)
             except (BrokenPipeError, subprocess.TimeoutExpired):
                 self.kill()
+        for reader in self._readers:  # they end at the pipes' end of file, once the process is gone
+            reader.join(timeout=5)
+        for stream in (self.proc.stdin, self.proc.stdout, self.proc.stderr):
+            if stream is not None:
+                stream.close()
 
 
 def definitions(*types: str) -> dict[str, str]:
