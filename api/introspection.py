@@ -8,9 +8,10 @@ from typing import Any, Literal
 from fastapi import APIRouter, HTTPException, Query, status
 from pydantic import BaseModel, ConfigDict, Field
 
-from server.bus import Node, is_hidden, validate_topic_name
+from server.bus import Node, UnknownNodeError, is_hidden, validate_topic_name
 from server.bus.graph import HZ_WINDOW_MAX
 from server.introspection import graph_snapshot, node_info, rate_stats, type_schema
+from server.introspection.merged import remote_node_endpoints
 from server.lab import Lab
 from server.msgs import Message, UnknownTypeError, get_type, type_names
 
@@ -24,16 +25,27 @@ router = APIRouter(prefix="/api", tags=["introspection"], responses=responses())
 HZ_WINDOW_DEFAULT = 100
 
 
+LOCATION = Field(
+    default="app",
+    description="where the node runs: 'app' (the lab's own process) or 'zenoh:<session>' (another process)",
+    examples=["app", "zenoh:3ca7751b"],
+)
+
+
 class GraphNodeOut(BaseModel):
     name: str = Field(examples=["/CountDownNode"])
     state: Literal["active", "crashed"]
     hidden: bool = Field(description="a name token starts with '_'")
+    location: str = LOCATION
 
 
 class GraphTopicOut(BaseModel):
     name: str = Field(examples=["/countdown"])
     type: str = Field(examples=["std_msgs/msg/Int64"])
     hidden: bool = Field(description="an internal topic (/rosout, /parameter_events) or a '_' token")
+    type_conflict: bool = Field(
+        default=False, description="endpoints on this name disagree on its type: one box per type"
+    )
 
 
 class GraphEdgeOut(BaseModel):
@@ -63,6 +75,7 @@ class NodeSummaryOut(BaseModel):
     name: str = Field(examples=["/CountDownNode"])
     namespace: str = Field(examples=["/"])
     state: Literal["active", "crashed"]
+    location: str = LOCATION
     respawn: RespawnOut | None = Field(
         default=None, description='only for nodes launched with respawn="true"'
     )
@@ -103,7 +116,7 @@ class RateOut(BaseModel):
 @router.get("/graph", response_model=GraphOut)
 async def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
     """The computation graph, as rqt_graph draws it; ``hidden=true`` adds debug nodes and /rosout."""
-    snap = graph_snapshot(lab.bus, include_hidden=hidden)
+    snap = graph_snapshot(lab.bus, include_hidden=hidden, remote=lab.remote_graph())
     return {
         "version": snap.version,
         "nodes": [vars(n) for n in snap.nodes],
@@ -116,7 +129,14 @@ async def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
 async def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
     """Every node, as ``ros2 node list`` (``hidden=true`` adds the '_' ones, as ``--all``)."""
     nodes = [n for n in lab.bus.nodes if hidden or not is_hidden(n.fully_qualified_name)]
-    return sorted((_summary(lab, n) for n in nodes), key=lambda n: n["name"])
+    local = [_summary(lab, n) for n in nodes]
+    remote = lab.remote_graph()
+    others = [
+        {"name": n.name, "namespace": n.namespace, "state": "active", "location": n.location, "respawn": None}
+        for n in (remote.nodes() if remote is not None else [])
+        if hidden or not is_hidden(n.name)
+    ]
+    return sorted(local + others, key=lambda n: (n["name"], n["location"]))
 
 
 def _summary(lab: Lab, node: Node) -> dict[str, Any]:
@@ -125,15 +145,30 @@ def _summary(lab: Lab, node: Node) -> dict[str, Any]:
         "name": node.fully_qualified_name,
         "namespace": node.get_namespace(),
         "state": node.state,
+        "location": "app",
         "respawn": None if respawn is None else respawn.describe(),
     }
 
 
 @router.get("/nodes/{name:path}", response_model=NodeDetailOut, responses=responses(NOT_FOUND, 422))
 async def get_node(name: str, lab: LabDep) -> dict[str, Any]:
-    """One node (its name without the leading slash), as ``ros2 node info``."""
-    node = lab.bus.get_node(name)
-    return {**node_info(node), "respawn": _summary(lab, node)["respawn"]}
+    """One node (its name without the leading slash), as ``ros2 node info``; a node of another
+    process shows what its tokens tell (endpoints; no timers or parameters)."""
+    try:
+        node = lab.bus.get_node(name)
+    except UnknownNodeError:
+        remote = lab.remote_graph()
+        fq = "/" + name.lstrip("/")
+        found = next((n for n in remote.nodes() if n.name == fq), None) if remote is not None else None
+        if remote is None or found is None:
+            raise
+        endpoints = remote_node_endpoints(remote, fq)
+        return {
+            "name": fq, "namespace": found.namespace, "state": "active", "location": found.location,
+            "respawn": None, "crash_reason": None, "publishers": endpoints["publishers"],
+            "subscribers": endpoints["subscribers"], "timers": [], "parameters": {}, "origin": {},
+        }  # fmt: skip
+    return {**node_info(node), **_summary(lab, node)}
 
 
 @router.get("/hz/{name:path}", response_model=RateOut, responses=responses(NOT_FOUND, 422))

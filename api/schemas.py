@@ -16,9 +16,24 @@ class TopicSummary(BaseModel):
     type: str = Field(examples=["std_msgs/msg/Int64"])
     publishers: list[str] = Field(description="fully qualified names of the publishing nodes")
     subscribers: list[str] = Field(description="fully qualified names of the subscribing nodes")
+    type_conflict: bool = Field(
+        default=False, description="endpoints on this name disagree on its type (each type is listed)"
+    )
+
+
+class EndpointDetail(BaseModel):
+    node: str = Field(examples=["/CountDownNode"])
+    kind: str = Field(examples=["publisher"], description="publisher or subscriber")
+    depth: int = Field(description="QoS depth (keep-last)")
+    location: str = Field(
+        examples=["app"], description="'app' (the lab's own process) or 'zenoh:<session>' (another process)"
+    )
 
 
 class TopicDetail(TopicSummary):
+    endpoints: list[EndpointDetail] = Field(
+        default_factory=list, description="who publishes and subscribes, where"
+    )
     latest: dict[str, Any] | None = Field(description="the last message published, or null")
     latest_time: float | None = Field(description="when it was published (s, Unix epoch)")
     publish_count: int

@@ -16,10 +16,10 @@ from typing import Any
 
 from fastapi import APIRouter, Query, WebSocket, WebSocketDisconnect
 
-from server.bus import Bus, Node, TopicTypeError, UnknownTopicError, validate_topic_name
+from server.bus import Bus, Node, UnknownTopicError, validate_topic_name
 from server.lab import Lab
 from server.limits import LimitExceededError
-from server.msgs import Message, get_type
+from server.msgs import Message
 
 from .deps import WsLabDep
 from .errors import CloseCode, close_code, close_reason
@@ -72,12 +72,7 @@ def _echo_nodes(bus: Bus) -> list[EchoNode]:
 def open_echo(lab: Lab, name: str, type_name: str | None, depth: int) -> EchoNode:
     """Check the request against the bus and the app's limit, then make the node (or nothing)."""
     topic = "/" + validate_topic_name(name).lstrip("/")
-    existing = lab.bus.topics.get(topic)
-    if existing is None and type_name is None:
-        raise UnknownTopicError(topic)
-    msg_type = existing.msg_type if existing is not None and type_name is None else get_type(str(type_name))
-    if existing is not None and existing.msg_type is not msg_type:
-        raise TopicTypeError(f"{topic} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
+    msg_type = lab.topic_type(topic, type_name)
     taken = {n.number for n in _echo_nodes(lab.bus)}
     if len(taken) >= lab.settings.max_echo_sockets:
         raise LimitExceededError("echo sockets", lab.settings.max_echo_sockets)

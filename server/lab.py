@@ -18,6 +18,7 @@ from typing import Any
 from server.bus import Bus, Clock, Executor, Node, Publisher, SystemClock, TopicTypeError, UnknownTopicError
 from server.devices.deadman import KeyDeadMan
 from server.devices.keyboard import KeyboardDevice
+from server.introspection.merged import topic_views
 from server.launch.description import NodeAction, SourceLocation
 from server.launch.launcher import LaunchedNode, Launcher
 from server.limits import LimitExceededError, check_finite_json, check_topic_limits
@@ -176,20 +177,31 @@ class Lab:
         """Nodes and endpoints of other processes, while the graph is on Zenoh."""
         return self.zenoh.bridge.remote if self.zenoh is not None else None
 
+    def topic_type(self, name: str, type_name: str | None) -> type[Message]:
+        """The type ``name`` carries: ``type_name`` if given (it must agree with the graph), else the
+        type this process or another process uses on it. UnknownTopicError if none does."""
+        existing = self.bus.topics.get(name)
+        if existing is not None:
+            known = {existing.msg_type.TYPE}
+        else:
+            known = {v.type for v in topic_views(self.bus, self.remote_graph()) if v.name == name}
+        if type_name is not None:
+            msg_type = get_type(type_name)
+            if existing is not None and existing.msg_type is not msg_type:
+                raise TopicTypeError(f"{name} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
+            return msg_type
+        if not known:
+            raise UnknownTopicError(name)
+        if len(known) > 1:
+            raise TopicTypeError(f"{name} carries several types ({', '.join(sorted(known))}): name one")
+        return get_type(known.pop())
+
     # -- actions -------------------------------------------------------------
     def prepare(self, topic: str, msg: dict[str, Any], type_name: str | None) -> tuple[str, Message]:
         """Resolve the topic and build the message from JSON, refusing what no node should get."""
         check_finite_json(msg)
         name = self.api_node.resolve_topic_name(topic)
-        existing = self.bus.topics.get(name)
-        if type_name is not None:
-            msg_type = get_type(type_name)
-        elif existing is not None:
-            msg_type = existing.msg_type
-        else:
-            raise UnknownTopicError(name)
-        if existing is not None and existing.msg_type is not msg_type:
-            raise TopicTypeError(f"{name} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
+        msg_type = self.topic_type(name, type_name)
         message = msg_type.from_dict(msg)
         check_topic_limits(name, message)
         return name, message

@@ -1,11 +1,15 @@
-"""rqt_graph's view of a bus: nodes, topics and publish/subscribe edges, as plain data."""
+"""rqt_graph's view of the graph: nodes, topics and publish/subscribe edges, as plain data, with the
+nodes of other processes (server.introspection.merged) beside this process's own."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Literal
 
-from server.bus import Bus, is_hidden
+from server.bus import Bus
+from server.transport.remote_graph import RemoteGraph
+
+from .merged import node_views, topic_views
 
 EdgeKind = Literal["publish", "subscribe"]
 
@@ -15,6 +19,7 @@ class GraphNode:
     name: str
     state: str
     hidden: bool
+    location: str = "app"
 
 
 @dataclass(frozen=True)
@@ -22,6 +27,7 @@ class GraphTopic:
     name: str
     type: str
     hidden: bool
+    type_conflict: bool = False
 
 
 @dataclass(frozen=True)
@@ -41,22 +47,31 @@ class GraphSnapshot:
     edges: list[GraphEdge]
 
 
-def graph_snapshot(bus: Bus, include_hidden: bool = False) -> GraphSnapshot:
-    """The computation graph, sorted by name; hidden nodes, internal topics and their edges
-    are left out unless ``include_hidden``. A node with two endpoints on one topic gives one edge."""
-    nodes = [GraphNode(n.fully_qualified_name, n.state, is_hidden(n.fully_qualified_name)) for n in bus.nodes]
-    nodes = sorted((n for n in nodes if include_hidden or not n.hidden), key=lambda n: n.name)
+def graph_snapshot(
+    bus: Bus, include_hidden: bool = False, remote: RemoteGraph | None = None
+) -> GraphSnapshot:
+    """The computation graph, sorted by name; hidden nodes, internal topics and their edges are left
+    out unless ``include_hidden``. A node with two endpoints on one topic gives one edge. A topic
+    whose endpoints disagree on its type is one box per type (the other types' boxes are named
+    ``/topic [pkg/msg/Type]``)."""
+    nodes = [
+        GraphNode(n.name, n.state, n.hidden, n.location)
+        for n in node_views(bus, remote)
+        if include_hidden or not n.hidden
+    ]
     shown = {n.name for n in nodes}
     topics: list[GraphTopic] = []
     edges: dict[GraphEdge, None] = {}  # an ordered set
-    for topic in sorted(bus.topics.values(), key=lambda t: t.name):
+    for topic in topic_views(bus, remote):
         if topic.hidden and not include_hidden:
             continue
-        topics.append(GraphTopic(topic.name, topic.msg_type.TYPE, topic.hidden))
+        box = topic.graph_id
+        topics.append(GraphTopic(box, topic.type, topic.hidden, topic.type_conflict))
         for pub in topic.publishers:
-            if pub.node.fully_qualified_name in shown:
-                edges[GraphEdge(pub.node.fully_qualified_name, topic.name, "publish")] = None
-        for sub in topic.subscriptions:
-            if sub.node.fully_qualified_name in shown:
-                edges[GraphEdge(topic.name, sub.node.fully_qualified_name, "subscribe")] = None
-    return GraphSnapshot(bus.graph_version, nodes, topics, list(edges))
+            if pub.node in shown:
+                edges[GraphEdge(pub.node, box, "publish")] = None
+        for sub in topic.subscribers:
+            if sub.node in shown:
+                edges[GraphEdge(box, sub.node, "subscribe")] = None
+    version = bus.graph_version + (remote.version if remote is not None else 0)
+    return GraphSnapshot(version, nodes, topics, list(edges))

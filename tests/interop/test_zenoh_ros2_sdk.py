@@ -3,7 +3,10 @@ real rmw_zenoh) in its own process: topics both ways, the graph both ways, servi
 
 from __future__ import annotations
 
+import json
+
 from ros_reference import ROS_REFERENCE_HASHES
+from websockets.sync.client import connect
 
 from .conftest import App, JsonProcess, definitions, service_text
 
@@ -87,3 +90,79 @@ def test_app_calls_a_service_the_sdk_serves(app: App, sdk_peer: JsonProcess) -> 
     assert answer.json() == {
         "service": "/peer/add_two_ints", "type": "example_interfaces/srv/AddTwoInts", "response": {"sum": 42},
     }  # fmt: skip
+
+
+def test_our_graph_lists_the_sdk_node_and_drops_it_when_its_process_is_killed(
+    app: App, sdk_peer: JsonProcess
+) -> None:
+    sdk_peer.send(cmd="define", types=definitions("std_msgs/msg/String"))
+    sdk_peer.send(cmd="publish", topic="/sdk_chatter", type="std_msgs/msg/String", hash=rihs("std_msgs/msg/String"),
+                  msg={"data": "hello"}, node="sdk_talker")  # fmt: skip
+
+    def talker() -> list[dict[str, object]]:
+        return [n for n in app.get("/api/nodes") if n["name"] == "/sdk_talker"]
+
+    app.wait_for(lambda: bool(talker()), "/sdk_talker in our node list")
+    assert str(talker()[0]["location"]).startswith("zenoh:")
+    topic = app.get("/api/topics/sdk_chatter")
+    assert (topic["type"], topic["publishers"]) == ("std_msgs/msg/String", ["/sdk_talker"])
+    assert topic["endpoints"][0]["location"] == talker()[0]["location"]
+    sdk_peer.kill()
+    app.wait_for(lambda: not talker(), "/sdk_talker to leave our node list", timeout_s=5.0)
+    assert all(t["name"] != "/sdk_chatter" for t in app.get("/api/topics"))
+
+
+def test_a_topic_only_another_process_uses_can_be_echoed_and_published_to(
+    app: App, sdk_peer: JsonProcess
+) -> None:
+    sdk_peer.send(cmd="define", types=definitions("std_msgs/msg/String"))
+    sdk_peer.send(
+        cmd="subscribe", topic="/sdk_inbox", type="std_msgs/msg/String", hash=rihs("std_msgs/msg/String")
+    )
+    app.wait_for(
+        lambda: any(t["name"] == "/sdk_inbox" for t in app.get("/api/topics")), "/sdk_inbox in our graph"
+    )
+
+    def delivered() -> bool:
+        # No type given: the app learns it from the other process's subscription.
+        answer = app.post("/api/publish", {"topic": "/sdk_inbox", "msg": {"data": "from the app"}})
+        assert answer.status_code == 200, answer.text
+        return sdk_peer.newest(lambda e: e.get("topic") == "/sdk_inbox") is not None
+
+    app.wait_for(delivered, "the peer to receive the app's message")
+    assert sdk_peer.newest(lambda e: e.get("topic") == "/sdk_inbox")["msg"] == {"data": "from the app"}  # type: ignore[index]
+
+    with connect(f"ws://127.0.0.1:{app.port}/ws/topics/sdk_echoed?type=std_msgs/msg/String") as echo:
+        for i in range(50):  # the first samples may precede the route, as for any new subscription
+            sdk_peer.send(cmd="publish", topic="/sdk_echoed", type="std_msgs/msg/String",
+                          hash=rihs("std_msgs/msg/String"), msg={"data": f"n{i}"}, node="sdk_echo_src")  # fmt: skip
+            try:
+                frame = json.loads(echo.recv(timeout=0.5))
+                break
+            except TimeoutError:
+                continue
+        else:
+            raise AssertionError("the echo socket got none of 50 messages the other process published")
+    assert frame["topic"] == "/sdk_echoed" and frame["msg"]["data"].startswith("n")
+
+
+def test_a_publisher_of_another_type_on_our_topic_is_shown_apart_not_merged(
+    app: App, sdk_peer: JsonProcess
+) -> None:
+    sdk_peer.send(cmd="define", types=definitions("std_msgs/msg/String"))
+    sdk_peer.send(cmd="publish", topic="/countdown", type="std_msgs/msg/String", hash=rihs("std_msgs/msg/String"),
+                  msg={"data": "ten"}, node="sdk_confused")  # fmt: skip
+
+    def entries() -> list[dict[str, object]]:
+        return [t for t in app.get("/api/topics") if t["name"] == "/countdown"]
+
+    app.wait_for(lambda: len(entries()) == 2, "two /countdown entries")
+    by_type = {t["type"]: t for t in entries()}
+    assert set(by_type) == {"std_msgs/msg/Int64", "std_msgs/msg/String"}
+    assert all(t["type_conflict"] for t in by_type.values())
+    assert by_type["std_msgs/msg/String"]["publishers"] == ["/sdk_confused"]
+    assert "/sdk_confused" not in by_type["std_msgs/msg/Int64"]["publishers"]
+    graph = app.get("/api/graph")
+    assert any(
+        t["name"] == "/countdown [std_msgs/msg/String]" and t["type_conflict"] for t in graph["topics"]
+    )
