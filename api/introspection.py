@@ -34,7 +34,7 @@ LOCATION = Field(
 
 class GraphNodeOut(BaseModel):
     name: str = Field(examples=["/CountDownNode"])
-    state: Literal["active", "crashed"]
+    state: Literal["active", "crashed", "died"]
     hidden: bool = Field(description="a name token starts with '_'")
     location: str = LOCATION
 
@@ -74,8 +74,11 @@ class RespawnOut(BaseModel):
 class NodeSummaryOut(BaseModel):
     name: str = Field(examples=["/CountDownNode"])
     namespace: str = Field(examples=["/"])
-    state: Literal["active", "crashed"]
+    state: Literal["active", "crashed", "died"] = Field(
+        description="crashed: a node inside the app whose callback raised; died: a node process that ended"
+    )
     location: str = LOCATION
+    exit_code: int | None = Field(default=None, description="a died process's exit code")
     respawn: RespawnOut | None = Field(
         default=None, description='only for nodes launched with respawn="true"'
     )
@@ -117,9 +120,15 @@ class RateOut(BaseModel):
 async def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
     """The computation graph, as rqt_graph draws it; ``hidden=true`` adds debug nodes and /rosout."""
     snap = graph_snapshot(lab.bus, include_hidden=hidden, remote=lab.remote_graph())
+    shown = {n.name for n in snap.nodes}
+    died = [
+        {"name": n["name"], "state": "died", "hidden": is_hidden(n["name"]), "location": n["location"]}
+        for n in lab.died_nodes()
+        if n["name"] not in shown and (hidden or not is_hidden(n["name"]))
+    ]
     return {
-        "version": snap.version,
-        "nodes": [vars(n) for n in snap.nodes],
+        "version": snap.version + len(died),
+        "nodes": [vars(n) for n in snap.nodes] + died,
         "topics": [vars(t) for t in snap.topics],
         "edges": [{"from": e.source, "to": e.target, "kind": e.kind} for e in snap.edges],
     }
@@ -136,7 +145,8 @@ async def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
         for n in (remote.nodes() if remote is not None else [])
         if hidden or not is_hidden(n.name)
     ]
-    return sorted(local + others, key=lambda n: (n["name"], n["location"]))
+    died = [n for n in lab.died_nodes() if hidden or not is_hidden(n["name"])]
+    return sorted(local + others + died, key=lambda n: (n["name"], n["location"]))
 
 
 def _summary(lab: Lab, node: Node) -> dict[str, Any]:

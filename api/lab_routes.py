@@ -24,6 +24,8 @@ async def health(lab: LabDep) -> dict[str, Any]:
         "nodes": len(lab.bus.nodes),
         "topics": len(lab.bus.topics),
         "uptime_s": round(time.monotonic() - lab.started_at, 3),
+        "zenoh": lab.zenoh.status() if lab.zenoh is not None else None,
+        "zenoh_error": lab.zenoh_error,
     }
 
 

@@ -59,12 +59,27 @@ class PublishResult(BaseModel):
     subscribers: int = Field(description="how many subscriptions received the message")
 
 
+class ZenohStatus(BaseModel):
+    mode: str = Field(examples=["router"], description="router (the app is the graph's router) or peer")
+    router: str = Field(examples=["tcp/127.0.0.1:7447"], description="where node processes connect")
+    listen: list[str] = Field(description="where the app's router listens")
+    connect: list[str] = Field(description="the router the app joined, in peer mode")
+    domain_id: int
+    zid: str = Field(description="the app's Zenoh session id")
+    processes: int = Field(description="other processes in the graph now")
+    sent: int = Field(description="samples the app put on Zenoh")
+    received: int = Field(description="samples the app took from Zenoh")
+    dropped_without_attachment: int = Field(description="samples refused: no rmw_zenoh attachment")
+
+
 class Health(BaseModel):
     status: str
     launch: str
     nodes: int
     topics: int
     uptime_s: float
+    zenoh: ZenohStatus | None = Field(default=None, description="null when the graph stays in the app")
+    zenoh_error: str | None = Field(default=None, description="why Zenoh is off, when it was asked for")
 
 
 class RatePublisherRequest(BaseModel):

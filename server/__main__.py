@@ -67,6 +67,11 @@ def build_parser() -> argparse.ArgumentParser:
         "--zenoh-config", type=Path, metavar="FILE", help="a Zenoh JSON5 config (TLS, user/password)"
     )
     zenoh.add_argument("--no-zenoh", action="store_true", help="keep every node in this process (no Zenoh)")
+    parser.add_argument(
+        "--node-processes", choices=["student", "all"], default="student",
+        help="which nodes run as their own processes: your own files (default), or every node but the two "
+             "that drive the page (keyboard, view), so the lesson shows in ps",
+    )  # fmt: skip
     return parser
 
 
@@ -114,7 +119,7 @@ def main(argv: list[str] | None = None) -> int:
     settings = Settings(
         host=args.host, port=args.port, launch=args.launch, launch_args=dict(args.launch_args),
         workspace=Path(args.workspace), allowed_hosts=tuple(args.allow_host), allowed_origins=tuple(args.allow_origin),
-        zenoh=zenoh,
+        zenoh=zenoh, node_processes=args.node_processes,
     )  # fmt: skip
     logging.basicConfig(
         level=args.log_level.upper(),

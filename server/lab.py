@@ -20,7 +20,7 @@ from server.devices.deadman import KeyDeadMan
 from server.devices.keyboard import KeyboardDevice
 from server.introspection.merged import topic_views
 from server.launch.description import NodeAction, SourceLocation
-from server.launch.launcher import LaunchedNode, Launcher
+from server.launch.launcher import LaunchedNode, Launcher, ProcessTransport
 from server.limits import LimitExceededError, check_finite_json, check_topic_limits
 from server.msgs import Message, get_service_type, get_type
 from server.packages import PackageIndex
@@ -113,6 +113,7 @@ class Lab:
         self.executor = Executor(self.bus)
         self.packages = PackageIndex(workspace=settings.workspace)
         self.launcher = Launcher(self.bus, self.packages)
+        self.launcher.all_processes = settings.node_processes == "all"
         self.keyboard = KeyboardDevice()
         self.bus.devices["keyboard"] = self.keyboard
         self.key_deadman = KeyDeadMan(self.keyboard, self.bus, settings.deadman_s)
@@ -151,6 +152,14 @@ class Lab:
             from server.transport.link import open_link
 
             self.zenoh, self.zenoh_error = await open_link(self.bus, self.settings.zenoh)
+            if self.zenoh is not None:
+                self.launcher.transport = ProcessTransport(
+                    self.zenoh.router_endpoint(), self.settings.zenoh.domain_id
+                )
+                remote = self.zenoh.bridge.remote
+                self.launcher.on_process_start.append(
+                    lambda p: remote.name_session(p.command.zid, f"process {p.pid}")
+                )
         if self.settings.viewer:
             from server.viewer.display import Display
 
@@ -176,6 +185,23 @@ class Lab:
     def remote_graph(self) -> RemoteGraph | None:
         """Nodes and endpoints of other processes, while the graph is on Zenoh."""
         return self.zenoh.bridge.remote if self.zenoh is not None else None
+
+    def died_nodes(self) -> list[dict[str, Any]]:
+        """Node processes that ended and are not running again (yet), for the node list."""
+        out = []
+        for entry in self.launcher.launched:
+            process = entry.process
+            if process is None or process.state != "died":
+                continue
+            action = entry.action
+            name = (action.name or Path(action.exec).stem).split("/")[-1]
+            namespace = action.namespace or "/"
+            out.append({
+                "name": namespace.rstrip("/") + "/" + name, "namespace": namespace, "state": "died",
+                "location": f"process {process.pid}", "exit_code": process.exit_code,
+                "respawn": None if entry.respawn is None else entry.respawn.describe(),
+            })  # fmt: skip
+        return out
 
     def topic_type(self, name: str, type_name: str | None) -> type[Message]:
         """The type ``name`` carries: ``type_name`` if given (it must agree with the graph), else the
@@ -231,7 +257,7 @@ class Lab:
     ) -> LaunchGroup:
         """Start one node, as ``ros2 run PKG EXEC --ros-args ...`` does."""
         self._check_group_limit()
-        self.packages.factory(pkg, exe)  # an unknown package or executable is an error, not a failed node
+        self.packages.resolve(pkg, exe)  # an unknown package or executable is an error, not a failed node
         action = NodeAction(
             pkg=pkg,
             exec=exe,

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Literal
 
 from server.transport.config import ZenohSettings
 
@@ -32,6 +33,9 @@ class Settings:
     # The graph on Zenoh (rmw_zenoh's wire format); None keeps every node in this process. The
     # command line turns it on (a router on tcp/127.0.0.1:7447); tests that need it say so.
     zenoh: ZenohSettings | None = None
+    # Which nodes run as their own processes: a student's files always; "all" adds every lab node
+    # but those that drive the app's devices (the page's keys, the 3D view).
+    node_processes: Literal["student", "all"] = "student"
 
     def __post_init__(self) -> None:
         if not 0 <= self.port <= 65535:

@@ -56,7 +56,12 @@ class Publisher:
                 f"{self.topic.name} carries {self.msg_type.TYPE}; cannot publish {type(msg).__name__}"
                 f" ({getattr(msg, 'TYPE', type(msg).__name__)})"
             )
-        reached = self.topic.deliver(msg)
+        lock = self.topic.bus.lock
+        if lock is None:
+            reached = self.topic.deliver(msg)
+        else:
+            with lock:
+                reached = self.topic.deliver(msg)
         if self.remote is not None:
             self.remote.put(msg)
         return reached

@@ -29,6 +29,9 @@ MAX_CALLBACKS_PER_PASS = 10_000  # bounds a node that keeps re-triggering itself
 class Executor:
     """Drains a bus: ``spin_some``/``spin_until`` for tests, ``await spin()`` for the app."""
 
+    # In the app a fault stays inside its node; a node process lets it end the process, as rclpy does.
+    propagate_faults = False
+
     def __init__(self, bus: Bus) -> None:
         self.bus = bus
         self._waiter: asyncio.Future[None] | None = None
@@ -40,7 +43,7 @@ class Executor:
         try:
             fn(*args)
         except BaseException as exc:  # the lab's point: a fault stays inside its node
-            if not is_node_fault(exc):
+            if self.propagate_faults or not is_node_fault(exc):
                 raise
             log.error(
                 "node %s crashed in %s:\n%s",
@@ -99,6 +102,13 @@ class Executor:
     def spin_some(self) -> int:
         """Take what other threads handed in, run every queued message, then every due timer;
         returns how many callbacks ran."""
+        lock = self.bus.lock
+        if lock is None:
+            return self._pass()
+        with lock:
+            return self._pass()
+
+    def _pass(self) -> int:
         for poll in self.bus.pollers:
             poll()
         ran = self._drain()

@@ -5,6 +5,7 @@ from __future__ import annotations
 import heapq
 import itertools
 import logging
+import threading
 from collections import deque
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -62,15 +63,31 @@ class NodeOverrides:
 _overrides: ContextVar[NodeOverrides | None] = ContextVar("node_overrides", default=None)
 
 
+# A node process (the rclpy client library) has one bus for the whole process, set by rclpy.init().
+_process_bus: Bus | None = None
+_process_overrides: NodeOverrides | None = None
+
+
+def set_process_bus(bus: Bus | None, overrides: NodeOverrides | None = None) -> None:
+    """Make ``bus`` the one every node of this process joins when no bus is active (rclpy.init)."""
+    global _process_bus, _process_overrides
+    _process_bus, _process_overrides = bus, overrides
+
+
 def current_bus() -> Bus:
-    bus = _current_bus.get()
+    bus = _current_bus.get() or _process_bus
     if bus is None:
-        raise NoBusError("no bus to join: create nodes inside a launch, or inside `with bus.activate():`")
+        raise NoBusError(
+            "no bus to join: call rclpy.init() first (or, in the app, create nodes inside a launch or "
+            "inside `with bus.activate():`)"
+        )
     return bus
 
 
 def current_overrides() -> NodeOverrides | None:
-    return _overrides.get()
+    if _current_bus.get() is not None:
+        return _overrides.get()
+    return _process_overrides
 
 
 class Topic:
@@ -133,6 +150,12 @@ class Bus:
         self.pollers: list[Callable[[], None]] = []
         # Set by a running executor: wakes it from another thread.
         self.threadsafe_waker: Callable[[], None] | None = None
+        # Held by every executor pass and every publish when nodes of this bus may run on several
+        # threads (a node process whose student spins in one thread and publishes from another);
+        # None in the app, where everything runs on the event loop's thread.
+        self.lock: threading.RLock | None = None
+        # Prints a node's log line (level, node name, text); the app logs through Python's logging.
+        self.console: Callable[[int, str, str], None] | None = None
         self.devices: dict[str, Any] = {}  # hardware the nodes may use: 'keyboard', 'display'
 
     # -- membership ------------------------------------------------------

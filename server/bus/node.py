@@ -36,7 +36,11 @@ class NodeLogger:
 
     def _log(self, level: str, msg: Any) -> None:
         text = str(msg)
-        self._py.log(_LEVELS[level], "[%s] %s", self._node.get_name(), text)
+        console = self._node.bus.console
+        if console is not None:
+            console(_LEVELS[level], self._node.get_name(), text)
+        else:
+            self._py.log(_LEVELS[level], "[%s] %s", self._node.get_name(), text)
         self._node._emit_log(_LEVELS[level], text)
 
     def debug(self, msg: Any) -> None:

@@ -13,7 +13,7 @@ import signal
 import sys
 from types import FrameType
 
-from . import interface, launch, node, service, topic
+from . import interface, launch, node, run, service, topic
 from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
 
 VERBS = ("topic", "node", "service", "launch", "run", "interface")
@@ -35,6 +35,7 @@ def build_parser() -> argparse.ArgumentParser:
     node.add_parser(verbs, common)
     service.add_parser(verbs, common)
     launch.add_parsers(verbs, common)
+    run.add_parser(verbs, common)
     interface.add_parser(verbs, common)
     return parser
 

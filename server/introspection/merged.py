@@ -72,7 +72,7 @@ def topic_views(bus: Bus, remote: RemoteGraph | None) -> list[TopicView]:
         for e in remote.endpoints([EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION]):
             view = views.setdefault((e.name, e.type_name), TopicView(e.name, e.type_name))
             side = view.publishers if e.kind is EntityKind.PUBLISHER else view.subscribers
-            side.append(EndpointView(e.node, e.depth, f"zenoh:{e.zid[:8]}"))
+            side.append(EndpointView(e.node, e.depth, remote.location(e.zid)))
     names: dict[str, int] = {}
     for name, _ in views:
         names[name] = names.get(name, 0) + 1

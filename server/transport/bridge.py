@@ -111,6 +111,13 @@ class ZenohBridge:
             liveliness_prefix(domain_id), self._on_token, history=True
         )
 
+    def settle_graph(self, timeout_s: float = 1.0) -> None:
+        """Fill the remote graph with what exists now (one liveliness query), so that a node made
+        right after can tell whether its name is taken. Blocks up to ``timeout_s``."""
+        for reply in self.session.liveliness().get(liveliness_prefix(self.domain_id), timeout=timeout_s):
+            if reply.ok is not None:
+                self.remote.apply(str(reply.ok.key_expr), True)
+
     # -- graph observer (executor's thread) ----------------------------------------------------
     def _node_token(self, node: Node, node_id: int) -> EntityToken:
         return EntityToken(

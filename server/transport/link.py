@@ -9,7 +9,7 @@ from typing import Any
 
 from ..bus import Bus
 from .bridge import ZenohBridge
-from .config import ZenohSettings
+from .config import ZenohSettings, endpoint_host
 from .session import TransportError, open_session
 
 log = logging.getLogger("transport")
@@ -27,6 +27,15 @@ class ZenohLink:
         session = await asyncio.to_thread(open_session, settings)
         return cls(settings, session, ZenohBridge(bus, session, settings.domain_id))
 
+    def router_endpoint(self) -> str:
+        """Where this app's node processes connect: its own router, or the one it joined."""
+        if self.settings.mode == "router":
+            proto, host, port = endpoint_host(self.settings.listen[0])
+            if host in ("0.0.0.0", "[::]", "::"):
+                host = "127.0.0.1"
+            return f"{proto}/{host}:{port}"
+        return self.settings.connect[0]
+
     def close(self) -> None:
         self.bridge.close()
         self.session.close()
@@ -34,6 +43,7 @@ class ZenohLink:
     def status(self) -> dict[str, Any]:
         return {
             "mode": self.settings.mode,
+            "router": self.router_endpoint(),
             "listen": list(self.settings.listen) if self.settings.mode == "router" else [],
             "connect": list(self.settings.connect),
             "domain_id": self.settings.domain_id,

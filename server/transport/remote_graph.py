@@ -19,10 +19,7 @@ class RemoteNode:
     name: str  # fully qualified, /ns/name
     namespace: str
     zid: str  # the Zenoh session (process) it runs in
-
-    @property
-    def location(self) -> str:
-        return f"zenoh:{self.zid[:8]}"
+    location: str  # "process <pid>" for a process the app started, else "zenoh:<session>"
 
 
 @dataclass(frozen=True)
@@ -45,6 +42,15 @@ class RemoteGraph:
         self._tokens: dict[str, EntityToken] = {}
         self.version = 0
         self.malformed = 0
+        self._labels: dict[str, str] = {}
+
+    def name_session(self, zid: str, label: str) -> None:
+        """Say where a session runs (``process 1234``), for the locations the graph shows."""
+        self._labels[zid] = label
+        self.version += 1
+
+    def location(self, zid: str) -> str:
+        return self._labels.get(zid) or f"zenoh:{zid[:8]}"
 
     def apply(self, key: str, alive: bool) -> bool:
         """A token appeared (``alive``) or went; returns whether the graph changed."""
@@ -74,7 +80,7 @@ class RemoteGraph:
     def nodes(self) -> list[RemoteNode]:
         return sorted(
             (
-                RemoteNode(t.node_fqn, t.namespace, t.zid)
+                RemoteNode(t.node_fqn, t.namespace, t.zid, self.location(t.zid))
                 for t in self._tokens.values()
                 if t.kind is EntityKind.NODE
             ),
