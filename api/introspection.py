@@ -187,8 +187,12 @@ async def topic_hz(
     lab: LabDep,
     window: int = Query(HZ_WINDOW_DEFAULT, ge=2, le=HZ_WINDOW_MAX, description="periods"),
 ) -> dict[str, Any]:
-    """A topic's publishing rate over its last ``window`` periods, as ``ros2 topic hz``."""
-    topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
+    """A topic's publishing rate over its last ``window`` periods, as ``ros2 topic hz``. For a topic
+    only other processes use, the first request starts listening (``window`` 0 until messages come)."""
+    full = "/" + validate_topic_name(name).lstrip("/")
+    if full not in lab.bus.topics or full in lab.topic_watch.watched():
+        lab.topic_watch.watch(full, lab.topic_type(full, None))
+    topic = lab.bus.get_topic(full)
     stats = rate_stats(topic.publish_times_s, window)
     return {"topic": topic.name, **vars(stats), "count": topic.publish_count}
 

@@ -27,6 +27,7 @@ from server.packages import PackageIndex
 from server.publishers import PublisherManager
 from server.service_calls import ServiceCaller
 from server.settings import Settings
+from server.topic_watch import TopicWatch
 from server.transport.remote_graph import RemoteGraph
 
 log = logging.getLogger("lab")
@@ -127,6 +128,7 @@ class Lab:
             self.api_node = ApiNode(settings.max_api_topics, self.reset_rocket)
         self.publishers = PublisherManager(self, settings.max_publishers)
         self.service_caller = ServiceCaller(self.api_node)
+        self.topic_watch = TopicWatch(self.bus)
         self.launch_groups: dict[str, LaunchGroup] = {}
         self._group_ids = itertools.count(1)
 
@@ -194,13 +196,16 @@ class Lab:
             if process is None or process.state != "died":
                 continue
             action = entry.action
-            name = (action.name or Path(action.exec).stem).split("/")[-1]
             namespace = action.namespace or "/"
-            out.append({
-                "name": namespace.rstrip("/") + "/" + name, "namespace": namespace, "state": "died",
-                "location": f"process {process.pid}", "exit_code": process.exit_code,
-                "respawn": None if entry.respawn is None else entry.respawn.describe(),
-            })  # fmt: skip
+            remote = self.remote_graph()
+            names = remote.names_seen(process.command.zid) if remote is not None else []
+            fallback = namespace.rstrip("/") + "/" + (action.name or Path(action.exec).stem).split("/")[-1]
+            for name in names or [fallback]:
+                out.append({
+                    "name": name, "namespace": name.rsplit("/", 1)[0] or "/", "state": "died",
+                    "location": f"process {process.pid}", "exit_code": process.exit_code,
+                    "respawn": None if entry.respawn is None else entry.respawn.describe(),
+                })  # fmt: skip
         return out
 
     def topic_type(self, name: str, type_name: str | None) -> type[Message]:

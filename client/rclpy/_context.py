@@ -7,13 +7,14 @@ listens on loopback only and never scouts by multicast.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import signal
 import sys
 import threading
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from server.bus import Bus, NodeOverrides, SystemClock
@@ -55,11 +56,14 @@ def open_peer_session(domain_id: int) -> Any:
     return zenoh.open(config)
 
 
-def _router_endpoints(session: Any) -> str:
-    try:
-        return ", ".join(json.loads(session.config.get_json("connect/endpoints"))) or DEFAULT_ROUTER_ENDPOINT
-    except Exception:  # only for the message
-        return DEFAULT_ROUTER_ENDPOINT
+def _router_endpoints(_session: Any) -> str:
+    """Where the session looks for the router (for a message): the override's, or the default."""
+    for part in os.environ.get("ZENOH_CONFIG_OVERRIDE", "").split(";"):
+        key, sep, value = part.partition("=")
+        if sep and key.strip() == "connect/endpoints":
+            with contextlib.suppress(ValueError):
+                return ", ".join(json.loads(value))
+    return DEFAULT_ROUTER_ENDPOINT
 
 
 def wait_for_router(session: Any) -> None:
@@ -123,11 +127,17 @@ class Context:
             self.bus = bus
             self._ok = True
             _install_sigterm()
+            _before_thread_join(self._close_at_exit)
 
     def require(self) -> tuple[Bus, BlockingExecutor]:
         if not self._ok or self.bus is None or self.executor is None:
             raise RCLError("rclpy.init() has not been called, or rclpy.shutdown() already was")
         return self.bus, self.executor
+
+    def _close_at_exit(self) -> None:
+        if self._ok:
+            with contextlib.suppress(Exception):  # the interpreter is going away; nobody to tell
+                self.shutdown()
 
     def shutdown(self) -> None:
         with self._lock:
@@ -146,6 +156,23 @@ class Context:
                 self.session.close()
             set_process_bus(None)
             self.bridge = self.session = None
+
+
+def _before_thread_join(hook: Callable[[], None]) -> None:
+    """Run ``hook`` when the interpreter starts to exit, before it waits for non-daemon threads.
+
+    Zenoh runs Python callbacks on threads of its own that are not daemons, so a script that ends
+    (or dies of an exception) without ``rclpy.shutdown()`` would wait for them for ever; rclpy's
+    scripts simply exit. ``atexit`` runs too late (after that wait): threading's own exit hooks run
+    first, as concurrent.futures uses them.
+    """
+    register = getattr(threading, "_register_atexit", None)
+    if register is not None:
+        register(hook)
+    else:  # a Python without the hook: at least close at exit
+        import atexit
+
+        atexit.register(hook)
 
 
 def _install_sigterm() -> None:

@@ -109,12 +109,14 @@ class Topic:
     def hidden(self) -> bool:
         return self.name in INTERNAL_TOPICS or is_hidden(self.name)
 
-    def deliver(self, msg: Message) -> int:
+    def deliver(self, msg: Message, published_s: float | None = None) -> int:
+        """Queue ``msg`` for every live subscription. ``published_s``: when another process published
+        it (its source timestamp), so rates are the publisher's, not this process's arrivals."""
         now = self.bus.clock.now()
         self.latest = msg.copy()
         self.latest_time_s = now
         self.publish_count += 1
-        self.publish_times_s.append(now)
+        self.publish_times_s.append(now if published_s is None else published_s)
         delivered = 0
         for sub in self.subscriptions:
             if not sub.active:

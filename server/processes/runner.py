@@ -15,6 +15,7 @@ outlives a killed app.
 from __future__ import annotations
 
 import ast
+import contextlib
 import importlib
 import os
 import runpy
@@ -94,9 +95,15 @@ def run_file(path: Path, args: list[str]) -> int:
         if any(Path(f.filename) == path for f in traceback.extract_tb(exc.__traceback__)):
             _say(_import_problem(path, exc))
             return EXIT_FAILED
-        raise
+        traceback.print_exc()
+        return EXIT_FAILED
     except KeyboardInterrupt:
         return 130  # Ctrl-C the file did not handle itself (the handout's nodes do)
+    except SystemExit as exc:
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else EXIT_FAILED)
+    except BaseException:
+        traceback.print_exc()  # as Python prints an uncaught exception, and ends with 1
+        return EXIT_FAILED
     return 0
 
 
@@ -126,5 +133,21 @@ def main(argv: list[str] | None = None) -> int:
     return run_file(Path(argv[0]).resolve(), argv[1:])
 
 
+def end(code: int) -> None:
+    """Leave with ``code``, the node's own exit code. Python's normal exit would turn a Ctrl-C that a
+    library call saw (and the node then handled) into death by SIGINT; so the graph is left and the
+    output flushed here, then the process ends at once."""
+    rclpy = sys.modules.get("rclpy")
+    if rclpy is not None:
+        try:
+            rclpy.try_shutdown()
+        except Exception:  # the node's own shutdown already failed; the exit code says the rest
+            traceback.print_exc()
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError):
+            stream.flush()
+    os._exit(code)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    end(main())

@@ -241,10 +241,13 @@ class ZenohBridge:
     def _on_sample(self, topic: str, sample: zenoh.Sample) -> None:
         attachment = sample.attachment
         raw = attachment.to_bytes() if attachment is not None else None
-        if Attachment.unpack(raw) is None:
+        att = Attachment.unpack(raw)
+        if att is None:
             self.stats.no_attachment += 1
             return
-        self.inbox.put_sample(topic, sample.payload.to_bytes(), self._keep.get(topic, 1))
+        self.inbox.put_sample(
+            topic, (sample.payload.to_bytes(), att.source_timestamp_ns), self._keep.get(topic, 1)
+        )
 
     def _on_token(self, sample: zenoh.Sample) -> None:
         self.inbox.post(("token", str(sample.key_expr), sample.kind == zenoh.SampleKind.PUT))
@@ -256,7 +259,10 @@ class ZenohBridge:
         for event in events:
             kind = event[0]
             if kind == "token":
-                graph_changed |= self.remote.apply(event[1], event[2])
+                changed = self.remote.apply(event[1], event[2])
+                graph_changed |= changed
+                if changed and event[2]:
+                    self._warn_on_same_name(event[1])
             elif kind == "query":
                 self._answer(event[1], event[2])
             elif kind == "reply":
@@ -267,7 +273,7 @@ class ZenohBridge:
             topic = self.bus.topics.get(name)
             if topic is None:
                 continue
-            for payload in payloads:
+            for payload, stamp_ns in payloads:
                 try:
                     msg = deserialize(topic.msg_type.TYPE, payload)
                 except WireError as exc:
@@ -275,7 +281,19 @@ class ZenohBridge:
                     log.debug("dropped a sample on %s: %s", name, exc)
                     continue
                 self.stats.received += 1
-                topic.deliver(msg)
+                topic.deliver(msg, stamp_ns / 1e9 if stamp_ns > 0 else None)
+
+    def _warn_on_same_name(self, key: str) -> None:
+        """A node of another process took the name of one of ours: say so, as ROS does."""
+        token = EntityToken.parse(key)
+        if token is None or token.kind is not EntityKind.NODE:
+            return
+        for node in self.bus.nodes:
+            if node.fully_qualified_name == token.node_fqn and not node.get_name().startswith("_"):
+                node.get_logger().warning(
+                    f"a node named {token.node_fqn} already exists in the graph (another process): ROS "
+                    "allows this, but tools and logs will mix the two up"
+                )
 
     # -- services ------------------------------------------------------------------------------
     def _answer(self, server: ServiceServer, query: Any) -> None:

@@ -7,6 +7,7 @@ given in ROS form (``std_msgs/msg/Bool``), or in DDS form when the name has anot
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -33,6 +34,9 @@ class RemoteEndpoint:
     zid: str
 
 
+MAX_SESSIONS_REMEMBERED = 1024
+
+
 class RemoteGraph:
     """Tokens of every session but ``own_zid``, by key."""
 
@@ -43,6 +47,8 @@ class RemoteGraph:
         self.version = 0
         self.malformed = 0
         self._labels: dict[str, str] = {}
+        # Node names each session has declared, kept after it is gone (a died process's nodes).
+        self._seen: OrderedDict[str, list[str]] = OrderedDict()
 
     def name_session(self, zid: str, label: str) -> None:
         """Say where a session runs (``process 1234``), for the locations the graph shows."""
@@ -66,6 +72,13 @@ class RemoteGraph:
         if token.zid == self.own_zid or token.domain_id != self.domain_id or key in self._tokens:
             return False
         self._tokens[key] = token
+        if token.kind is EntityKind.NODE:
+            names = self._seen.setdefault(token.zid, [])
+            if token.node_fqn not in names:
+                names.append(token.node_fqn)
+            self._seen.move_to_end(token.zid)
+            while len(self._seen) > MAX_SESSIONS_REMEMBERED:
+                self._seen.popitem(last=False)
         self.version += 1
         return True
 
@@ -111,6 +124,10 @@ class RemoteGraph:
             t.kind is EntityKind.SERVICE and t.topic == service and t.dds_type == dds_type
             for t in self._tokens.values()
         )
+
+    def names_seen(self, zid: str) -> list[str]:
+        """The nodes session ``zid`` declared, whether or not it is still there."""
+        return list(self._seen.get(zid, ()))
 
     def sessions(self) -> set[str]:
         return {t.zid for t in self._tokens.values()}

@@ -109,7 +109,14 @@ def test_graph_and_nodes_node_crashing_in_its_timer_shows_crashed(client: TestCl
         return node
 
     on_loop(client, start_fragile)
-    crashed = {"name": "/Fragile", "namespace": "/", "state": "crashed", "location": "app", "respawn": None}
+    crashed = {
+        "name": "/Fragile",
+        "namespace": "/",
+        "state": "crashed",
+        "location": "app",
+        "exit_code": None,
+        "respawn": None,
+    }
     nodes = poll(lambda: client.get("/api/nodes").json(), lambda ns: crashed in ns)
     assert crashed in nodes
     graph = client.get("/api/graph").json()

@@ -83,16 +83,28 @@ def test_run_node_with_ros_args_runs_until_ctrl_c(
         "-r",
         "/countdown:=/run_countdown",
     )
-    running.read_until(lambda line: line.startswith("[INFO] [launch]: process started: /RunCountDown"))
+    # A child process of this command, joined to the server's graph over Zenoh.
+    live_server.wait_until(
+        lambda: "/RunCountDown" in node_names(live_server), "the node in the server's graph"
+    )
     live_server.wait_until(
         lambda: "/run_countdown" in {t["name"] for t in live_server.get("/api/topics")}, "the remapped topic"
     )
+    node = next(n for n in live_server.get("/api/nodes") if n["name"] == "/RunCountDown")
+    assert node["location"] != "app"
     code, _ = running.interrupt()
     assert code == 0
-    assert "/RunCountDown" not in node_names(live_server)
+    live_server.wait_until(
+        lambda: "/RunCountDown" not in node_names(live_server), "the node to leave the graph"
+    )
 
 
-def test_run_unknown_executable_exits_1_with_the_servers_message(ros2lab: Callable[..., Result]) -> None:
+def test_run_unknown_executable_exits_1_naming_it(ros2lab: Callable[..., Result]) -> None:
     result = ros2lab("run", "rocketship", "no_such_exec")
     assert result.code == 1
-    assert "no_such_exec" in result.err
+    assert "no_such_exec" in result.err and len(result.err.splitlines()) == 1
+
+
+def test_run_unknown_package_exits_1_as_ros2_run_says(ros2lab: Callable[..., Result]) -> None:
+    result = ros2lab("run", "no_such_pkg", "x")
+    assert (result.code, result.err.strip()) == (1, "Package 'no_such_pkg' not found")

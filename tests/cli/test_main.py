@@ -80,9 +80,15 @@ def test_console_script_ros2lab_points_at_cli_main() -> None:
     assert scripts["teleop-lab"] == "server.__main__:main"
 
 
+LOCAL_VERBS = {"run.py"}  # ``run`` starts the executable here, as ros2 run does: it needs the packages
+
+
 def test_cli_imports_nothing_of_the_server_it_talks_to() -> None:
-    """The CLI reaches the lab only over the wire, so it works against any server it can reach."""
+    """The CLI reaches the lab only over the wire, so it works against any server it can reach;
+    ``run`` alone starts something on this machine, and uses the package index and the runner."""
     for path in (ROOT / "server" / "cli").rglob("*.py"):
+        if path.name in LOCAL_VERBS:
+            continue
         for node in ast.walk(ast.parse(path.read_text(), str(path))):
             if isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
                 names = [node.module]

@@ -6,9 +6,10 @@ from __future__ import annotations
 import json
 
 from ros_reference import ROS_REFERENCE_HASHES
+from support.app import App, JsonProcess
 from websockets.sync.client import connect
 
-from .conftest import App, JsonProcess, definitions, service_text
+from .conftest import definitions, service_text
 
 
 def rihs(type_name: str) -> str:

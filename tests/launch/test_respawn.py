@@ -3,12 +3,11 @@ healthy run resets them, the launcher gives up after N fast failures and the nod
 
 from __future__ import annotations
 
-import textwrap
 from pathlib import Path
 
 import pytest
 
-from server.bus import ManualClock
+from server.bus import ManualClock, Node
 from server.lab import Lab
 from server.launch.respawn import RespawnBackoff, RespawnPolicy
 from server.settings import Settings
@@ -69,29 +68,24 @@ def test_respawn_inconsistent_policy_refused(policy: dict[str, float]) -> None:
         RespawnPolicy(**policy)  # type: ignore[arg-type]
 
 
-CRASHES_AT_ONCE = """
-from rclpy.node import Node
-
 class Flaky(Node):
-    def __init__(self):
-        super().__init__('flaky')
+    """A lab node (inside the app) that raises at its first tick."""
+
+    def __init__(self) -> None:
+        super().__init__("flaky")
         self.create_timer(0.05, self.tick)
 
-    def tick(self):
-        raise RuntimeError('crash at once')
-"""
+    def tick(self) -> None:
+        raise RuntimeError("crash at once")
 
 
 def test_respawn_launcher_backs_off_and_gives_up_shown_in_the_node_list(tmp_path: Path) -> None:
-    pkg = tmp_path / "src" / "my_pkg"
-    (pkg / "launch").mkdir(parents=True)
-    (pkg / "flaky.py").write_text(textwrap.dedent(CRASHES_AT_ONCE))
-    (pkg / "launch" / "flaky.launch").write_text(
-        '<launch><node pkg="my_pkg" exec="flaky" name="flaky" respawn="true"/></launch>'
-    )
-    lab = Lab(Settings(launch="rocket", viewer=False, workspace=tmp_path), ManualClock(0.0))
+    launch = tmp_path / "flaky.launch"
+    launch.write_text('<launch><node pkg="my_pkg" exec="flaky" name="flaky" respawn="true"/></launch>')
+    lab = Lab(Settings(launch="rocket", viewer=False, workspace=None), ManualClock(0.0))
+    lab.packages.executables["my_pkg"] = {"flaky": Flaky}
     lab.start_nodes()
-    lab.launch_group(lab.packages.share_dir("my_pkg") / "launch" / "flaky.launch", {})
+    lab.launch_group(launch, {})
     entry = next(e for e in lab.launcher.launched if e.action.exec == "flaky")
 
     lab.executor.spin_until(20.0)
