@@ -24,7 +24,7 @@ ParamValue = Scalar | Annotated[list[Scalar], Field(max_length=256)]
 
 
 class LaunchRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)
     file: Value = Field(
         description="a launch file's path, or its name inside `package`", examples=["rocket.launch"]
     )
@@ -35,7 +35,7 @@ class LaunchRequest(BaseModel):
 
 
 class RunRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)
     package: Short = Field(examples=["rocketship"])
     executable: Short = Field(examples=["keyboard_manager.py"])
     name: Short | None = None

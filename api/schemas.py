@@ -42,7 +42,7 @@ class TopicDetail(TopicSummary):
 
 
 class PublishRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)
     topic: str = Field(max_length=MAX_NAME_CHARS, examples=["/abort_takeoff"])
     msg: dict[str, Any] = Field(default_factory=dict, examples=[{"data": True}])
     type: str | None = Field(
@@ -83,7 +83,7 @@ class Health(BaseModel):
 
 
 class RatePublisherRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)
     topic: str = Field(max_length=MAX_NAME_CHARS, examples=["/uav/input/position"])
     msg: dict[str, Any] = Field(default_factory=dict, examples=[{"x": 5.0, "y": 5.0, "z": 10.0}])
     type: str | None = Field(
@@ -96,7 +96,7 @@ class RatePublisherRequest(BaseModel):
 
 
 class RatePublisherUpdate(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)
     msg: dict[str, Any] | None = None
     rate_hz: float | None = Field(default=None, ge=MIN_RATE_HZ, le=MAX_RATE_HZ)
     enabled: bool | None = None

@@ -15,7 +15,17 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from server.bus import Bus, Clock, Executor, Node, Publisher, SystemClock, TopicTypeError, UnknownTopicError
+from server.bus import (
+    Bus,
+    Clock,
+    Executor,
+    Node,
+    Publisher,
+    SystemClock,
+    TopicTypeError,
+    UnknownTopicError,
+    validate_node_name,
+)
 from server.devices.deadman import KeyDeadMan
 from server.devices.keyboard import KeyboardDevice
 from server.introspection.merged import topic_views
@@ -262,6 +272,8 @@ class Lab:
     ) -> LaunchGroup:
         """Start one node, as ``ros2 run PKG EXEC --ros-args ...`` does."""
         self._check_group_limit()
+        if name is not None:
+            validate_node_name(name)
         self.packages.resolve(pkg, exe)  # an unknown package or executable is an error, not a failed node
         action = NodeAction(
             pkg=pkg,

@@ -19,7 +19,7 @@ import pytest
 HERE = Path(__file__).resolve().parent
 SCHEMATHESIS = Path(sys.executable).with_name("schemathesis")
 READY_S = 30.0
-RUN_CAP_S = 240  # schemathesis' own --max-time is below this
+RUN_CAP_S = 160  # schemathesis' own --max-time (100 s) is below this
 
 
 def _free_port() -> int:
@@ -31,11 +31,12 @@ def _free_port() -> int:
 @pytest.fixture(scope="module")
 def live_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     workdir = tmp_path_factory.mktemp("schemathesis_server")
-    port = _free_port()
+    port, zenoh_port = _free_port(), _free_port()
     url = f"http://127.0.0.1:{port}"
     log = (workdir / "server.log").open("wb")
     proc = subprocess.Popen(
-        [sys.executable, "-m", "server", "--port", str(port), "--launch", "rocket", "start_delay:=3600"],
+        [sys.executable, "-m", "server", "--port", str(port), "--zenoh-listen", f"tcp/127.0.0.1:{zenoh_port}",
+         "--launch", "rocket", "start_delay:=3600"],
         cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
     )  # fmt: skip
     try:
@@ -58,14 +59,17 @@ def live_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
             proc.kill()
             proc.wait()
         log.close()
-        errors = [line for line in (workdir / "server.log").read_text().splitlines() if " ERROR " in line]
-        assert not errors, f"the server logged errors under schemathesis: {errors[:5]}"
+        # A node that a /api/run request names may fail to start (logged, and reported in the
+        # answer); what must never appear is a bug: a traceback or the error net's entry.
+        text = (workdir / "server.log").read_text()
+        bugs = [line for line in text.splitlines() if "unexpected error" in line or "Traceback" in line]
+        assert not bugs, f"the server logged bugs under schemathesis: {bugs[:5]}"
 
 
 def test_openapi_schemathesis_checks_all_pass(live_url: str) -> None:
     command = [
         str(SCHEMATHESIS), "--config-file", str(HERE / "schemathesis.toml"), "--no-color",
-        "run", f"{live_url}/openapi.json", "--checks", "all", "--max-examples", "25",
+        "run", f"{live_url}/openapi.json", "--checks", "all", "--max-examples", "20",
         "--max-time", str(RUN_CAP_S - 60), "--workers", "1", "--seed", "20",
         "--request-timeout", "10",
     ]  # fmt: skip

@@ -1,5 +1,7 @@
 """``KeyDeadMan`` on a ManualClock: a silent source's keys are released ``timeout_s`` after its
-last frame, heartbeats keep them held, and nothing stays behind once no channel is watched."""
+last frame (at the first check after it, every ``timeout_s / 5``), heartbeats keep them held, a
+check that runs late after a stalled loop decides nothing, and nothing stays behind once no
+channel is watched."""
 
 from __future__ import annotations
 
@@ -56,7 +58,7 @@ def test_deadman_heartbeats_keep_a_held_key_held(
         deadman.feed("tab")
     assert keyboard.held("tab") == {KEY_A}
     assert released == []
-    executor.spin_for(TIMEOUT_S)  # then silence
+    executor.spin_for(TIMEOUT_S + deadman.check_period_s)  # then silence, noticed at the next check
     assert keyboard.held("tab") == set()
     assert len(released) == 1
 
@@ -84,6 +86,21 @@ def test_deadman_one_silent_source_does_not_release_anothers_keys(
         deadman.feed("alive")
     assert keyboard.held("frozen") == set()
     assert keyboard.held("alive") == {KEY_RIGHT}
+
+
+def test_deadman_late_check_after_a_stalled_loop_waits_for_the_queued_frames(
+    deadman: KeyDeadMan, keyboard: KeyboardDevice, clock: ManualClock, executor: Executor
+) -> None:
+    deadman.watch("tab")
+    keyboard.key_down(KEY_A, 0, "tab")
+    clock.set(0.9)  # the loop was stuck for 0.9 s: the checks due meanwhile run late, at once
+    executor.spin_some()
+    assert keyboard.held("tab") == {KEY_A}, "a late check decides nothing"
+    deadman.feed("tab")  # the heartbeat that waited behind the stall is read
+    executor.spin_for(0.4)
+    assert keyboard.held("tab") == {KEY_A}
+    executor.spin_for(0.1)  # now really silent for 0.5 s, checked on time
+    assert keyboard.held("tab") == set()
 
 
 def test_deadman_node_exists_only_while_a_source_is_watched(deadman: KeyDeadMan, bus: Bus) -> None:
