@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from server.bag.manager import BagManager
 from server.bus import Bus, Clock, Executor, Node, Publisher, SystemClock, TopicTypeError, UnknownTopicError
 from server.devices.keyboard import KeyboardDevice
 from server.launch.description import NodeAction, SourceLocation
@@ -127,6 +128,7 @@ class Lab:
         with self.bus.activate():
             self.api_node = ApiNode(settings.max_api_topics, self.reset_rocket)
         self.publishers = PublisherManager(self)
+        self.bags = BagManager(self.bus, settings.bag_dir)  # ros2 bag record / play (issue 12)
         self.launch_groups: dict[str, LaunchGroup] = {}
         self._group_ids = itertools.count(1)
 
@@ -161,6 +163,7 @@ class Lab:
         if self._spin_task is not None:
             await self._spin_task
         self.publishers.stop_all()
+        self.bags.stop_all()
         self.launcher.shutdown()
         for node in list(self.bus.nodes):
             node.destroy_node()

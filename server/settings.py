@@ -23,10 +23,16 @@ class Settings:
     max_ws_frame_bytes: int = 16 * 1024
     deadman_s: float = 0.5  # a key channel silent this long with keys held has them released
     max_api_topics: int = 256  # topics the REST API may create, so a loop of typos cannot grow memory
+    # -- tools robotics people use (issue 12) --
+    bag_dir: Path = Path("bags")  # where recordings go, one folder per bag, as ros2 bag writes them
+    foxglove_port: int | None = None  # Foxglove WebSocket server on host:port; None: off (the CLI's default is 8765)
+    rosbridge_port: int | None = None  # rosbridge on its own port too (rosbridge_server's is 9090); None: /rosbridge only
 
     def __post_init__(self) -> None:
-        if not 0 <= self.port <= 65535:
-            raise ValueError(f"port must be in 0..65535, got {self.port}")
+        for name in ("port", "foxglove_port", "rosbridge_port"):
+            port = getattr(self, name)
+            if port is not None and not 0 <= port <= 65535:
+                raise ValueError(f"{name} must be in 0..65535, got {port}")
         if self.max_body_bytes < 1024 or self.max_ws_frame_bytes < 256:
             raise ValueError("size limits are too small to carry a message")
 
