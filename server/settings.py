@@ -25,8 +25,10 @@ class Settings:
     max_api_topics: int = 256  # topics the REST API may create, so a loop of typos cannot grow memory
     # -- tools robotics people use (issue 12) --
     bag_dir: Path = Path("bags")  # where recordings go, one folder per bag, as ros2 bag writes them
-    foxglove_port: int | None = None  # Foxglove WebSocket server on host:port; None: off (the CLI's default is 8765)
-    rosbridge_port: int | None = None  # rosbridge on its own port too (rosbridge_server's is 9090); None: /rosbridge only
+    # The Foxglove WebSocket server's port on ``host``; None: off (``python -m server`` uses 8765).
+    foxglove_port: int | None = None
+    # rosbridge on a port of its own too, as rosbridge_server's 9090; None: only at /rosbridge.
+    rosbridge_port: int | None = None
 
     def __post_init__(self) -> None:
         for name in ("port", "foxglove_port", "rosbridge_port"):

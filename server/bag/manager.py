@@ -79,7 +79,9 @@ class BagManager:
         self._player_ids = itertools.count(1)
 
     # -- recording -------------------------------------------------------
-    def record(self, topics: Iterable[str] = (), *, all_topics: bool = False, name: str | None = None) -> Recording:
+    def record(
+        self, topics: Iterable[str] = (), *, all_topics: bool = False, name: str | None = None
+    ) -> Recording:
         """Start recording; the bag is written until ``stop_recording``."""
         topics = list(topics)
         if not all_topics and not topics:
@@ -108,7 +110,9 @@ class BagManager:
         recording = self.recordings.get(name)
         if recording is None:
             raise LookupError(f"no recording named {name!r}")
-        recording.node.destroy_node()
+        if recording.active:
+            recording.node.flush()
+            recording.node.destroy_node()
         return recording
 
     def stop_recording(self, name: str) -> Recording:
@@ -121,6 +125,8 @@ class BagManager:
         recording = self.recordings.get(check_name(name))
         if recording is not None and recording.active:
             raise BagLimitError(f"{name} is still being recorded; stop it first")
+        if not (self.folder / name).is_dir():
+            raise LookupError(f"no bag named {name!r}")
         return mcap_file(self.folder / name)
 
     def list_bags(self) -> list[dict[str, Any]]:
@@ -175,4 +181,6 @@ class BagManager:
 
     def _node_name(self, base: str) -> str:
         taken = {n.get_name() for n in self.bus.nodes}
-        return next(n for n in itertools.chain([base], (f"{base}_{i}" for i in itertools.count(2))) if n not in taken)
+        return next(
+            n for n in itertools.chain([base], (f"{base}_{i}" for i in itertools.count(2))) if n not in taken
+        )

@@ -60,7 +60,11 @@ def read_bag(path: Path) -> Generator[Recorded, None, None]:
     """The bag's CDR messages in log-time order, one at a time."""
     with path.open("rb") as f:
         for schema, channel, message in make_reader(f).iter_messages(log_time_order=True):
-            if schema is None or schema.encoding != SCHEMA_ENCODING or channel.message_encoding != MESSAGE_ENCODING:
+            if (
+                schema is None
+                or schema.encoding != SCHEMA_ENCODING
+                or channel.message_encoding != MESSAGE_ENCODING
+            ):
                 continue
             yield Recorded(channel.topic, schema.name, message.log_time, message.data)
 

@@ -48,6 +48,12 @@ class RecorderNode(Node):
     def recorded_topics(self) -> list[str]:
         return sorted(self._recorded)
 
+    def flush(self) -> None:
+        """Record what was delivered but not yet handled, so stopping loses nothing already heard."""
+        for sub in self.subscriptions:
+            while sub.active and sub.queue:
+                sub.callback(sub.queue.popleft())
+
     def _discover(self) -> None:
         """Subscribe to the topics that exist now and are wanted (all, with -a)."""
         if self.bus.graph_version == self._graph_version:

@@ -132,7 +132,7 @@ class BagWriter:
 
     def _finish(self) -> None:
         try:
-            self._writer.finish()
+            self._writer.finish()  # type: ignore[no-untyped-call]  # mcap leaves it unannotated
         finally:
             self._stream.close()
         (self.folder / "metadata.yaml").write_text(yaml.safe_dump(self.metadata(), sort_keys=False))

@@ -6,6 +6,7 @@ deadline, so the counts and intervals asserted here are the graph's own, not the
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -76,7 +77,9 @@ def flight(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Path, dic
     lab.launcher.shutdown()
 
 
-def test_recorded_flight_has_the_topics_at_their_rates_and_decodes(flight: tuple[Path, dict[str, int]]) -> None:
+def test_recorded_flight_has_the_topics_at_their_rates_and_decodes(
+    flight: tuple[Path, dict[str, int]],
+) -> None:
     folder, on_bus = flight
     counts: dict[str, int] = {}
     last_gps = None
@@ -161,7 +164,9 @@ def test_bag_play_republishes_in_order_with_the_recorded_timing(
     assert "rosbag2_player" not in {n.get_name() for n in lab.bus.nodes}
 
 
-def test_bag_play_at_double_rate_halves_the_intervals(flight: tuple[Path, dict[str, int]], tmp_path: Path) -> None:
+def test_bag_play_at_double_rate_halves_the_intervals(
+    flight: tuple[Path, dict[str, int]], tmp_path: Path
+) -> None:
     folder, _ = flight
     lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
     echo = Echo(lab, {"/uav/input/position": get_type("geometry_msgs/msg/Vector3")})
@@ -170,7 +175,7 @@ def test_bag_play_at_double_rate_halves_the_intervals(flight: tuple[Path, dict[s
     assert player.finished
     times = [t for t, _, _ in echo.got]
     assert len(times) == pytest.approx(FLIGHT_S, abs=1)
-    gaps = [b - a for a, b in zip(times, times[1:], strict=False)]
+    gaps = [b - a for a, b in itertools.pairwise(times)]
     assert all(g == pytest.approx(0.5, abs=1e-6) for g in gaps)
 
 
