@@ -12,6 +12,7 @@ from fastapi.staticfiles import StaticFiles
 
 from api import build_router
 from api.security import BodyTooLarge, GuardMiddleware
+from server.bridges.runner import run_bridges
 from server.bus import Clock
 from server.lab import Lab
 from server.settings import Settings
@@ -30,7 +31,9 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         app.state.lab = lab
         await lab.start()
         try:
-            yield
+            async with run_bridges(lab) as bridges:  # Foxglove, rosbridge's own port (issue 12)
+                app.state.bridges = bridges
+                yield
         finally:
             await lab.stop()
 
