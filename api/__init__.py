@@ -2,11 +2,21 @@
 
 from fastapi import APIRouter
 
-from . import bag, introspection, lab_routes, launch_routes, publishers, topics, ws_keys, ws_topics
+from . import bag, introspection, lab_routes, launch_routes, publishers, rosbridge, topics, ws_keys, ws_topics
 
 
 def build_router() -> APIRouter:
     router = APIRouter()
-    for module in (lab_routes, topics, publishers, launch_routes, introspection, ws_topics, ws_keys, bag):
+    for module in (
+        lab_routes,
+        topics,
+        publishers,
+        launch_routes,
+        introspection,
+        ws_topics,
+        ws_keys,
+        bag,
+        rosbridge,
+    ):
         router.include_router(module.router)
     return router

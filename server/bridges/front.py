@@ -73,8 +73,12 @@ class GuardedFront:
         upstream_port: int,
         accepted_hosts: Iterable[str],
         allowed_origins: Iterable[str],
+        upstream_path: str | None = None,
     ) -> None:
+        """``upstream_path``: the path every handshake is sent to upstream (rosbridge's port
+        serves at ``/``, the app at ``/rosbridge``); None keeps the client's."""
         self.host = host
+        self.upstream_path = upstream_path
         self.port = port
         self.upstream_port = upstream_port
         self.accepted_hosts = frozenset(accepted_hosts)
@@ -132,13 +136,19 @@ class GuardedFront:
         except OSError:
             await _refuse(writer, HandshakeRefused(502, "the server behind this port is not running"))
             return
-        up_writer.write(head)
+        up_writer.write(self._upstream_head(head, request_line))
         try:
             await _pipe_both(reader, writer, up_reader, up_writer)
         finally:
             up_writer.close()
             with contextlib.suppress(Exception):
                 await up_writer.wait_closed()
+
+    def _upstream_head(self, head: bytes, request_line: str) -> bytes:
+        if self.upstream_path is None:
+            return head
+        method, _, version = request_line.split(" ")
+        return f"{method} {self.upstream_path} {version}".encode("latin-1") + head[len(request_line) :]
 
 
 async def _refuse(writer: asyncio.StreamWriter, exc: HandshakeRefused) -> None:

@@ -3,25 +3,30 @@ rosbridge on its own port when one is asked for (it is always at /rosbridge on t
 
 from __future__ import annotations
 
+import asyncio
 import logging
 from collections.abc import AsyncIterator
 from contextlib import AsyncExitStack, asynccontextmanager
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from .front import GuardedFront
+from .rosapi import RosapiNode
+
 if TYPE_CHECKING:
     from server.lab import Lab
 
     from .foxglove import FoxgloveBridge
-    from .front import GuardedFront
 
 log = logging.getLogger("bridges")
 
 
 @dataclass
 class Bridges:
+    rosapi: RosapiNode | None = None
     foxglove: FoxgloveBridge | None = None
     foxglove_front: GuardedFront | None = None
+    rosbridge_front: GuardedFront | None = None
 
     @property
     def foxglove_port(self) -> int | None:
@@ -34,11 +39,11 @@ async def run_bridges(lab: Lab) -> AsyncIterator[Bridges]:
     settings = lab.settings
     bridges = Bridges()
     async with AsyncExitStack() as stack:
+        with lab.bus.activate():
+            bridges.rosapi = RosapiNode()  # what rosbridge clients ask the graph through
+        stack.callback(bridges.rosapi.destroy_node)
         if settings.foxglove_port is not None:
-            import asyncio
-
-            from .foxglove import FoxgloveBridge
-            from .front import GuardedFront
+            from .foxglove import FoxgloveBridge  # the SDK loads only when asked for
 
             foxglove = FoxgloveBridge(lab.bus, asyncio.get_running_loop())
             front = GuardedFront(
@@ -55,4 +60,18 @@ async def run_bridges(lab: Lab) -> AsyncIterator[Bridges]:
                 stack.callback(foxglove.stop)
                 stack.push_async_callback(front.stop)
                 log.info("Foxglove WebSocket server on ws://%s:%d", settings.host, front.port)
+        if settings.rosbridge_port is not None:
+            if settings.port == 0:
+                log.warning(
+                    "rosbridge's own port needs the app's port to be known (not 0); only /rosbridge serves"
+                )
+            else:
+                front = GuardedFront(
+                    settings.host, settings.rosbridge_port, settings.port,
+                    settings.accepted_hosts, settings.allowed_origins, upstream_path="/rosbridge",
+                )  # fmt: skip
+                await front.start()
+                bridges.rosbridge_front = front
+                stack.push_async_callback(front.stop)
+                log.info("rosbridge on ws://%s:%d (and at /rosbridge)", settings.host, front.port)
         yield bridges
