@@ -20,6 +20,7 @@ log = logging.getLogger("bridges.front")
 MAX_HEAD_BYTES = 16 * 1024
 HEAD_TIMEOUT_S = 10.0
 CHUNK_BYTES = 64 * 1024
+SINGLE_HEADERS = frozenset({"host", "origin", "upgrade"})
 
 
 class HandshakeRefused(Exception):
@@ -43,7 +44,10 @@ def parse_head(head: bytes) -> tuple[str, dict[str, str]]:
         name, sep, value = line.partition(":")
         if not sep:
             raise HandshakeRefused(400, "malformed header line")
-        headers[name.strip().lower()] = value.strip()
+        key = name.strip().lower()
+        if key in headers and key in SINGLE_HEADERS:  # two Hosts: which one would upstream believe?
+            raise HandshakeRefused(400, f"more than one {key} header")
+        headers[key] = value.strip()
     return request_line, headers
 
 

@@ -61,7 +61,9 @@ def test_call_without_server_waits_and_is_not_ready(bus: Bus, executor: Executor
     assert not future.done()
 
 
-def test_server_that_raises_crashes_its_node_and_leaves_the_call_pending(bus: Bus, executor: Executor) -> None:
+def test_server_that_raises_crashes_its_node_and_leaves_the_call_pending(
+    bus: Bus, executor: Executor
+) -> None:
     class Broken(Node):
         def __init__(self) -> None:
             super().__init__("broken", context=bus)
