@@ -2,7 +2,18 @@
 
 from fastapi import APIRouter
 
-from . import bag, introspection, lab_routes, launch_routes, publishers, rosbridge, topics, ws_keys, ws_topics
+from . import (
+    bag,
+    introspection,
+    lab_routes,
+    launch_routes,
+    publishers,
+    rosbridge,
+    services,
+    topics,
+    ws_keys,
+    ws_topics,
+)
 
 
 def build_router() -> APIRouter:
@@ -10,6 +21,7 @@ def build_router() -> APIRouter:
     for module in (
         lab_routes,
         topics,
+        services,
         publishers,
         launch_routes,
         introspection,

@@ -19,7 +19,6 @@ from server.bag.manager import BagLimitError
 from server.bag.player import MAX_RATE, MIN_RATE, BagError
 
 from .deps import LabDep
-from .errors import http_error
 
 # Handlers are ``async def``: the bus belongs to the event loop (see api/publishers.py).
 router = APIRouter(prefix="/api/bag", tags=["bag"])
@@ -43,14 +42,15 @@ class PlayRequest(BaseModel):
     loop: bool = False
 
 
-def _error(exc: Exception) -> HTTPException:
+def _error(exc: Exception) -> Exception:
+    """The bag's own errors as statuses; the rest (bad names, types) go to the app's error map."""
     if isinstance(exc, LookupError):
         return HTTPException(status.HTTP_404_NOT_FOUND, str(exc))
     if isinstance(exc, (FileExistsError, BagLimitError)):
         return HTTPException(status.HTTP_409_CONFLICT, str(exc))
-    if isinstance(exc, BagError):
+    if isinstance(exc, (BagError, ValueError)):
         return HTTPException(status.HTTP_422_UNPROCESSABLE_CONTENT, str(exc))
-    return http_error(exc)
+    return exc
 
 
 @router.post("/recordings", status_code=status.HTTP_201_CREATED)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Set up what the tests need (the app, pytest, Playwright, Debian's Chromium) and run the whole
-# suite. Extra arguments go to pytest. CI runs exactly this (.ci/run).
+# Set up what the tests need (the app, pytest, Playwright, Debian's Chromium, the linters) and run
+# the check gate (scripts/check: ruff, ruff format, mypy --strict, then the whole suite). Extra
+# arguments go to pytest. CI runs exactly this (.ci/run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/_venv.sh
@@ -30,4 +31,4 @@ else
   echo "No npm on PATH: the roslib test will be skipped (install Debian's 'nodejs' and 'npm')." >&2
 fi
 
-exec "$VENV/bin/python" -m pytest "$@"
+exec env TELEOP_VENV="$VENV" bash scripts/check "$@"

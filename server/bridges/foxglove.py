@@ -152,13 +152,15 @@ class FoxgloveBridgeNode(Node):
             msg_type = existing.msg_type
         if existing is not None and existing.msg_type is not msg_type:
             raise TopicTypeError(f"{topic} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
+        as_json = None
         if advertised.encoding == "cdr":
             message = deserialize(msg_type.TYPE, data)
         elif advertised.encoding == "json":
-            message = msg_type.from_dict(json.loads(data))
+            as_json = json.loads(data)
+            message = msg_type.from_dict(as_json)
         else:
             raise ValueError(f"encoding {advertised.encoding!r} is not supported (cdr, json)")
-        check_inbound(topic, message)
+        check_inbound(topic, message, as_json)
         self._publisher(topic, msg_type).publish(message)
 
     def _publisher(self, topic: str, msg_type: type[Message]) -> Publisher:

@@ -158,8 +158,9 @@ class RosbridgeSession:
                 )
             self._check_room(topic)
             pub = self.advertised[topic] = self.node.create_publisher(existing.msg_type, topic, 10)
-        message = pub.msg_type.from_dict(request.get("msg", {}))
-        check_inbound(topic, message)
+        as_json = request.get("msg", {})
+        message = pub.msg_type.from_dict(as_json)
+        check_inbound(topic, message, as_json)
         pub.publish(message)
 
     def _subscribe(self, request: dict[str, Any]) -> None:

@@ -17,6 +17,7 @@ from typing import Any
 
 from ..msgs import Message
 from .endpoints import Subscription
+from .faults import is_node_fault
 from .graph import Bus
 from .node import Node
 from .services import PendingCall
@@ -28,6 +29,9 @@ MAX_CALLBACKS_PER_PASS = 10_000  # bounds a node that keeps re-triggering itself
 class Executor:
     """Drains a bus: ``spin_some``/``spin_until`` for tests, ``await spin()`` for the app."""
 
+    # In the app a fault stays inside its node; a node process lets it end the process, as rclpy does.
+    propagate_faults = False
+
     def __init__(self, bus: Bus) -> None:
         self.bus = bus
         self._waiter: asyncio.Future[None] | None = None
@@ -38,7 +42,9 @@ class Executor:
     def _run(self, node: Node, fn: Callable[..., Any], *args: Any) -> None:
         try:
             fn(*args)
-        except Exception as exc:  # the lab's point: a fault stays inside its node
+        except BaseException as exc:  # the lab's point: a fault stays inside its node
+            if self.propagate_faults or not is_node_fault(exc):
+                raise
             log.error(
                 "node %s crashed in %s:\n%s",
                 node.fully_qualified_name,
@@ -94,7 +100,17 @@ class Executor:
 
     # -- stepping ----------------------------------------------------------
     def spin_some(self) -> int:
-        """Run every due timer, then every queued message; returns how many callbacks ran."""
+        """Take what other threads handed in, run every queued message, then every due timer;
+        returns how many callbacks ran."""
+        lock = self.bus.lock
+        if lock is None:
+            return self._pass()
+        with lock:
+            return self._pass()
+
+    def _pass(self) -> int:
+        for poll in self.bus.pollers:
+            poll()
         ran = self._drain()
         return ran + self._run_due_timers(self.bus.clock.now())
 
@@ -137,6 +153,12 @@ class Executor:
         loop = asyncio.get_running_loop()
         self._stopping = False
         self.bus.add_waker(self._wake)
+
+        def wake_from_thread() -> None:
+            with contextlib.suppress(RuntimeError):  # the loop closed while another thread had news
+                loop.call_soon_threadsafe(self._wake)
+
+        self.bus.threadsafe_waker = wake_from_thread
         try:
             while not self._stopping:
                 self.spin_some()
@@ -157,6 +179,7 @@ class Executor:
                         handle.cancel()
         finally:
             self.bus.remove_waker(self._wake)
+            self.bus.threadsafe_waker = None
 
     def stop(self) -> None:
         self._stopping = True

@@ -36,7 +36,11 @@ class NodeLogger:
 
     def _log(self, level: str, msg: Any) -> None:
         text = str(msg)
-        self._py.log(_LEVELS[level], "[%s] %s", self._node.get_name(), text)
+        console = self._node.bus.console
+        if console is not None:
+            console(_LEVELS[level], self._node.get_name(), text)
+        else:
+            self._py.log(_LEVELS[level], "[%s] %s", self._node.get_name(), text)
         self._node._emit_log(_LEVELS[level], text)
 
     def debug(self, msg: Any) -> None:
@@ -129,7 +133,7 @@ class Node:
         pub = Publisher(self, t, msg_type, depth)
         t.publishers.append(pub)
         self.publishers.append(pub)
-        self.bus.graph_changed()
+        self.bus.endpoint_added(pub)
         return pub
 
     def create_subscription(
@@ -141,7 +145,7 @@ class Node:
         sub = Subscription(self, t, msg_type, callback, depth)
         t.subscriptions.append(sub)
         self.subscriptions.append(sub)
-        self.bus.graph_changed()
+        self.bus.endpoint_added(sub)
         return sub
 
     def create_timer(self, timer_period_sec: float, callback: Callable[[], Any]) -> Timer:
@@ -160,7 +164,7 @@ class Node:
         server = ServiceServer(self, channel, callback)
         channel.servers.append(server)
         self.services.append(server)
-        self.bus.graph_changed()
+        self.bus.endpoint_added(server)
         return server
 
     def create_client(self, srv_type: type[Service], srv_name: str, **_qos: Any) -> ServiceClient:
@@ -169,7 +173,7 @@ class Node:
         client = ServiceClient(self, channel)
         channel.clients.append(client)
         self.clients.append(client)
-        self.bus.graph_changed()
+        self.bus.endpoint_added(client)
         return client
 
     def destroy_service(self, server: ServiceServer) -> bool:
@@ -179,7 +183,7 @@ class Node:
         server.channel.servers.remove(server)
         self.services.remove(server)
         self.bus.drop_service_if_unused(server.channel)
-        self.bus.graph_changed()
+        self.bus.endpoint_removed(server)
         return True
 
     def destroy_client(self, client: ServiceClient) -> bool:
@@ -189,7 +193,7 @@ class Node:
         client.channel.clients.remove(client)
         self.clients.remove(client)
         self.bus.drop_service_if_unused(client.channel)
-        self.bus.graph_changed()
+        self.bus.endpoint_removed(client)
         return True
 
     def destroy_publisher(self, pub: Publisher) -> bool:
@@ -199,7 +203,7 @@ class Node:
         pub.topic.publishers.remove(pub)
         self.publishers.remove(pub)
         self.bus.drop_topic_if_unused(pub.topic)
-        self.bus.graph_changed()
+        self.bus.endpoint_removed(pub)
         return True
 
     def destroy_subscription(self, sub: Subscription) -> bool:
@@ -210,7 +214,7 @@ class Node:
         sub.topic.subscriptions.remove(sub)
         self.subscriptions.remove(sub)
         self.bus.drop_topic_if_unused(sub.topic)
-        self.bus.graph_changed()
+        self.bus.endpoint_removed(sub)
         return True
 
     def destroy_timer(self, timer: Timer) -> bool:

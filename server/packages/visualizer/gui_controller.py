@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
+from typing import Any
 
 import numpy as np
 
@@ -39,9 +40,9 @@ def euler_deg(w: float, x: float, y: float, z: float) -> tuple[float, float, flo
 
 
 class DroneScene:
-    def __init__(self, display: object) -> None:
-        scene, gui = display.scene, display.gui  # type: ignore[attr-defined]
-        display.add_view("Quadrotor", CAMERA_POSITION, CAMERA_LOOK_AT)  # type: ignore[attr-defined]
+    def __init__(self, display: Any) -> None:
+        scene, gui = display.scene, display.gui
+        display.add_view("Quadrotor", CAMERA_POSITION, CAMERA_LOOK_AT)
         scene.add_grid("/drone_lab/ground", width=20, height=20, cell_size=1.0, section_size=5.0)
         scene.add_line_segments("/drone_lab/bounds", _arena_edges(), colors=(150, 150, 160), thickness=0.03)
         self.drone = scene.add_frame("/drone_lab/drone", show_axes=False)
@@ -93,7 +94,7 @@ class DroneScene:
         trail: np.ndarray,
         text: str,
     ) -> None:
-        with self._display.server.atomic():  # type: ignore[attr-defined]
+        with self._display.server.atomic():
             self.drone.position = pos
             self.drone.wxyz = wxyz
             if setpoint is not None:
