@@ -61,7 +61,7 @@ def rosbridge_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Rosbr
     with server.log_path.open("wb") as log:
         proc = subprocess.Popen(
             [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(server.port), "--launch", "rocket",
-             "--rosbridge-port", str(server.rosbridge_port), "--no-foxglove", "start_delay:=1"],
+             "--rosbridge-port", str(server.rosbridge_port), "--no-foxglove", "--no-zenoh", "start_delay:=1"],
             cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
         )  # fmt: skip
     try:
