@@ -148,6 +148,9 @@ class Lab:
             from server.viewer.publisher_panel import PageToolsNode
 
             self.page_tools = PageToolsNode(self)
+            from server.viewer.record_panel import RecordPanel  # issue 12: record, download
+
+            self.record_panel = RecordPanel(self)
 
     async def start(self) -> None:
         if self.settings.zenoh is not None:
