@@ -111,7 +111,7 @@ def serve_lab(mode: str, port_file: Path) -> None:
 
             if mode == "rate":
                 node.create_timer(0.01, publish)
-            port_file.write_text(str(bridges.foxglove_port))
+            await asyncio.to_thread(port_file.write_text, str(bridges.foxglove_port))
             stop = asyncio.Event()
             loop = asyncio.get_running_loop()
             for sig in (signal.SIGTERM, signal.SIGINT):
