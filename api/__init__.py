@@ -2,7 +2,18 @@
 
 from fastapi import APIRouter
 
-from . import introspection, lab_routes, launch_routes, publishers, services, topics, ws_keys, ws_topics
+from . import (
+    bag,
+    introspection,
+    lab_routes,
+    launch_routes,
+    publishers,
+    rosbridge,
+    services,
+    topics,
+    ws_keys,
+    ws_topics,
+)
 
 
 def build_router() -> APIRouter:
@@ -16,6 +27,8 @@ def build_router() -> APIRouter:
         introspection,
         ws_topics,
         ws_keys,
+        bag,
+        rosbridge,
     ):
         router.include_router(module.router)
     return router

@@ -18,4 +18,17 @@ if ! command -v chromium >/dev/null 2>&1; then
   fi
 fi
 
+# npm's roslib for the rosbridge client test (tests/js, pinned by its lock file).
+if ! command -v npm >/dev/null 2>&1 && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+  echo "Installing Debian's nodejs and npm for the roslib test ..."
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq nodejs npm >/dev/null
+fi
+if command -v npm >/dev/null 2>&1; then
+  npm ci --prefix tests/js --no-audit --no-fund --loglevel=error >/dev/null
+else
+  echo "No npm on PATH: the roslib test will be skipped (install Debian's 'nodejs' and 'npm')." >&2
+fi
+
 exec env TELEOP_VENV="$VENV" bash scripts/check "$@"

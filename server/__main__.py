@@ -72,6 +72,21 @@ def build_parser() -> argparse.ArgumentParser:
         help="which nodes run as their own processes: your own files (default), or every node but the two "
              "that drive the page (keyboard, view), so the lesson shows in ps",
     )  # fmt: skip
+    # -- tools robotics people use (issue 12) --
+    parser.add_argument(
+        "--foxglove-port",
+        type=int,
+        default=8765,
+        help="Foxglove WebSocket server's port on --host (default 8765)",
+    )
+    parser.add_argument(
+        "--no-foxglove", action="store_true", help="do not start the Foxglove WebSocket server"
+    )
+    parser.add_argument(
+        "--rosbridge-port", type=int, default=None,
+        help="serve rosbridge on this port too, as rosbridge_server does on 9090 (always at /rosbridge)",
+    )  # fmt: skip
+    parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
     return parser
 
 
@@ -120,6 +135,8 @@ def main(argv: list[str] | None = None) -> int:
         host=args.host, port=args.port, launch=args.launch, launch_args=dict(args.launch_args),
         workspace=Path(args.workspace), allowed_hosts=tuple(args.allow_host), allowed_origins=tuple(args.allow_origin),
         zenoh=zenoh, node_processes=args.node_processes,
+        foxglove_port=None if args.no_foxglove else args.foxglove_port, rosbridge_port=args.rosbridge_port,
+        bag_dir=Path(args.bag_dir),
     )  # fmt: skip
     logging.basicConfig(
         level=args.log_level.upper(),

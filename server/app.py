@@ -13,6 +13,7 @@ from api import build_router
 from api.errors import ErrorMiddleware, register_error_handlers
 from api.security import GuardMiddleware
 from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
+from server.bridges.runner import run_bridges
 from server.bus import Clock
 from server.lab import Lab
 from server.settings import Settings
@@ -31,7 +32,9 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         app.state.lab = lab
         await lab.start()
         try:
-            yield
+            async with run_bridges(lab) as bridges:  # Foxglove, rosbridge's own port (issue 12)
+                app.state.bridges = bridges
+                yield
         finally:
             await lab.stop()
 

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from server.bag.manager import BagManager
 from server.bus import (
     Bus,
     Clock,
@@ -139,6 +140,7 @@ class Lab:
         self.publishers = PublisherManager(self, settings.max_publishers)
         self.service_caller = ServiceCaller(self.api_node)
         self.topic_watch = TopicWatch(self.bus)
+        self.bags = BagManager(self.bus, settings.bag_dir)  # ros2 bag record / play (issue 12)
         self.launch_groups: dict[str, LaunchGroup] = {}
         self._group_ids = itertools.count(1)
 
@@ -158,6 +160,9 @@ class Lab:
             from server.viewer.publisher_panel import PageToolsNode
 
             self.page_tools = PageToolsNode(self)
+            from server.viewer.record_panel import RecordPanel  # issue 12: record, download
+
+            self.record_panel = RecordPanel(self)
 
     async def start(self) -> None:
         if self.settings.zenoh is not None:
@@ -185,6 +190,7 @@ class Lab:
         if self._spin_task is not None:
             await self._spin_task
         self.publishers.stop_all()
+        self.bags.stop_all()
         self.launcher.shutdown()
         for node in list(self.bus.nodes):
             node.destroy_node()

@@ -36,10 +36,18 @@ class Settings:
     # Which nodes run as their own processes: a student's files always; "all" adds every lab node
     # but those that drive the app's devices (the page's keys, the 3D view).
     node_processes: Literal["student", "all"] = "student"
+    # -- tools robotics people use (issue 12) --
+    bag_dir: Path = Path("bags")  # where recordings go, one folder per bag, as ros2 bag writes them
+    # The Foxglove WebSocket server's port on ``host``; None: off (``python -m server`` uses 8765).
+    foxglove_port: int | None = None
+    # rosbridge on a port of its own too, as rosbridge_server's 9090; None: only at /rosbridge.
+    rosbridge_port: int | None = None
 
     def __post_init__(self) -> None:
-        if not 0 <= self.port <= 65535:
-            raise ValueError(f"port must be in 0..65535, got {self.port}")
+        for name in ("port", "foxglove_port", "rosbridge_port"):
+            port = getattr(self, name)
+            if port is not None and not 0 <= port <= 65535:
+                raise ValueError(f"{name} must be in 0..65535, got {port}")
         if self.max_body_bytes < 1024 or self.max_ws_frame_bytes < 256:
             raise ValueError("size limits are too small to carry a message")
 

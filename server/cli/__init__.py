@@ -1,5 +1,5 @@
 """``ros2lab``: ros2's command-line verbs against a running lab server (``topic``, ``node``, ``service``,
-``launch``, ``run``, ``interface``), with ros2's options and output, over the server's HTTP/WebSocket API.
+``launch``, ``run``, ``interface``, ``bag``), with ros2's options and output, over the server's HTTP/WebSocket API.
 
 It imports nothing of the server: everything goes over the wire, so it works against any lab
 server it can reach (``--url``, or ``TELEOP_URL``).
@@ -13,10 +13,10 @@ import signal
 import sys
 from types import FrameType
 
-from . import interface, launch, node, run, service, topic
+from . import bag, interface, launch, node, run, service, topic
 from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
 
-VERBS = ("topic", "node", "service", "launch", "run", "interface")
+VERBS = ("topic", "node", "service", "launch", "run", "interface", "bag")
 
 __all__ = ["VERBS", "build_parser", "main"]
 
@@ -37,6 +37,7 @@ def build_parser() -> argparse.ArgumentParser:
     launch.add_parsers(verbs, common)
     run.add_parser(verbs, common)
     interface.add_parser(verbs, common)
+    bag.add_parser(verbs, common)
     return parser
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Iterator, Mapping
+from pathlib import Path
 from typing import Any, Self
 from urllib.parse import urlencode, urlsplit, urlunsplit
 
@@ -100,6 +101,23 @@ class LabClient:
     def delete(self, path: str) -> Any:
         return self._request("DELETE", path)
 
+    def download(self, path: str, dest: Path) -> int:
+        """GET ``path`` into the file ``dest``, streamed; returns the bytes written."""
+        written = 0
+        try:
+            with self._http.stream("GET", path) as response:
+                if not response.is_success:
+                    response.read()
+                    raise _api_error(response, "GET", path)
+                with dest.open("wb") as out:
+                    for chunk in response.iter_bytes():
+                        written += out.write(chunk)
+        except httpx.ConnectError:
+            raise NoServerError(self.base_url) from None
+        except httpx.HTTPError as exc:
+            raise CliError(f"GET {path}: {type(exc).__name__}: {exc}") from None
+        return written
+
     def _request(self, method: str, path: str, **kwargs: Any) -> Any:
         try:
             response = self._http.request(method, path, **kwargs)
@@ -109,11 +127,7 @@ class LabClient:
             raise CliError(f"{method} {path}: {type(exc).__name__}: {exc}") from None
         if response.is_success:
             return response.json() if response.content else None
-        try:
-            detail = describe_detail(response.json().get("detail", response.text))
-        except (ValueError, AttributeError):
-            detail = response.text.strip() or response.reason_phrase
-        raise ApiError(response.status_code, detail, method, path)
+        raise _api_error(response, method, path)
 
     def ws_url(self, path: str, params: Mapping[str, Any]) -> str:
         parts = urlsplit(self.base_url)
@@ -138,6 +152,14 @@ class LabClient:
         except OSError:
             raise NoServerError(self.base_url) from None
         raise CliError("the lab server closed the echo channel (is it shutting down?)")
+
+
+def _api_error(response: httpx.Response, method: str, path: str) -> ApiError:
+    try:
+        detail = describe_detail(response.json().get("detail", response.text))
+    except (ValueError, AttributeError):
+        detail = response.text.strip() or response.reason_phrase
+    return ApiError(response.status_code, detail, method, path)
 
 
 def _closed_error(exc: ConnectionClosed, topic: str) -> CliError:

@@ -2,15 +2,15 @@
 
 from __future__ import annotations
 
-from . import generated as _generated  # noqa: F401  (declares every class)
+from . import generated as _generated  # declares every class
 from ._base import Message, Service, message_classes
-from .generated import example_interfaces, std_srvs
 from .idl import lab_definitions
 
+# Every service any package declares (std_srvs, example_interfaces, rosapi_msgs ...).
 _SERVICES: dict[str, type[Service]] = {
     s.TYPE: s
-    for module in (std_srvs, example_interfaces)
-    for s in vars(module).values()
+    for module_name in _generated.__all__
+    for s in vars(getattr(_generated, module_name)).values()
     if isinstance(s, type) and issubclass(s, Service) and s is not Service
 }
 

@@ -3,7 +3,8 @@
 In: /uav/input/rateThrust (TwistStamped: angular = body rates rad/s, linear.z = thrust N).
 Out, at ``publish_rate_hz`` (100 by default): /uav/sensors/gps (PoseStamped, frame ``world``),
 /uav/sensors/velocity (TwistStamped: linear = world velocity m/s, angular = body rates rad/s),
-/uav/sensors/attitude (Vector3: roll, pitch, yaw rad). The physics steps at
+/uav/sensors/attitude (Vector3: roll, pitch, yaw rad), and the pose on /tf (``world`` →
+``uav/imu``, as FlightGoggles broadcasts it, for Foxglove's 3D panel). The physics steps at
 ``physics_rate_hz`` (1000) and follows the bus clock, so sim time is real time.
 """
 
@@ -12,9 +13,10 @@ from __future__ import annotations
 import numpy as np
 
 from server.bus import Node
-from server.msgs import PoseStamped, TwistStamped, Vector3
+from server.msgs import PoseStamped, TFMessage, TransformStamped, TwistStamped, Vector3
 from sim.quadrotor import QuadrotorSim, QuadrotorState, RateThrustCommand
 
+BODY_FRAME = "uav/imu"  # FlightGoggles' name for the body frame
 MAX_CATCH_UP_S = 0.1  # after a stall, the sim skips ahead rather than running a burst of steps
 
 
@@ -31,6 +33,7 @@ class UavDynamicsNode(Node):
         self.gps_pub = self.create_publisher(PoseStamped, "/uav/sensors/gps", 10)
         self.vel_pub = self.create_publisher(TwistStamped, "/uav/sensors/velocity", 10)
         self.att_pub = self.create_publisher(Vector3, "/uav/sensors/attitude", 10)
+        self.tf_pub = self.create_publisher(TFMessage, "/tf", 100)
         self.create_subscription(TwistStamped, "/uav/input/rateThrust", self.on_command, 1)
         self._last_s = self.bus.clock.now()
         self.create_timer(1.0 / rate_hz, self.tick)
@@ -65,3 +68,9 @@ class UavDynamicsNode(Node):
         self.vel_pub.publish(vel)
         roll, pitch, yaw = s.euler_sxyz_rad
         self.att_pub.publish(Vector3(x=roll, y=pitch, z=yaw))
+        tf = TransformStamped(child_frame_id=BODY_FRAME)
+        tf.header.stamp, tf.header.frame_id = stamp, "world"
+        t, r = tf.transform.translation, tf.transform.rotation
+        t.x, t.y, t.z = p.x, p.y, p.z
+        r.w, r.x, r.y, r.z = q.w, q.x, q.y, q.z
+        self.tf_pub.publish(TFMessage(transforms=[tf]))

@@ -1,0 +1,192 @@
+"""A guarded front door for a WebSocket server the app cannot configure (foxglove-sdk's).
+
+It listens where clients connect (127.0.0.1:8765 by default), reads the opening handshake,
+applies the app's own rules (api/security.py: a Host that names this machine, no Origin of
+another site) and only then joins the client to the upstream server on loopback, byte for
+byte in both directions. A refused handshake gets an HTTP 403 or 421 naming the reason, and
+never reaches upstream. Nothing here parses WebSocket frames, so the protocol stays the SDK's.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+from collections.abc import Iterable
+
+from api.security import host_allowed, origin_allowed
+
+log = logging.getLogger("bridges.front")
+MAX_HEAD_BYTES = 16 * 1024
+HEAD_TIMEOUT_S = 10.0
+CHUNK_BYTES = 64 * 1024
+SINGLE_HEADERS = frozenset({"host", "origin", "upgrade"})
+
+
+class HandshakeRefused(Exception):
+    def __init__(self, status: int, reason: str) -> None:
+        super().__init__(reason)
+        self.status = status
+        self.reason = reason
+
+
+def parse_head(head: bytes) -> tuple[str, dict[str, str]]:
+    """The request line and the headers (lower-cased names) of an HTTP/1.1 request head."""
+    try:
+        text = head.decode("latin-1")
+    except UnicodeDecodeError:  # pragma: no cover - latin-1 decodes any byte
+        raise HandshakeRefused(400, "unreadable request") from None
+    request_line, *lines = text.split("\r\n")
+    headers: dict[str, str] = {}
+    for line in lines:
+        if not line:
+            continue
+        name, sep, value = line.partition(":")
+        if not sep:
+            raise HandshakeRefused(400, "malformed header line")
+        key = name.strip().lower()
+        if key in headers and key in SINGLE_HEADERS:  # two Hosts: which one would upstream believe?
+            raise HandshakeRefused(400, f"more than one {key} header")
+        headers[key] = value.strip()
+    return request_line, headers
+
+
+def check_handshake(
+    request_line: str, headers: dict[str, str], accepted_hosts: Iterable[str], allowed_origins: Iterable[str]
+) -> None:
+    """The app's rules for a WebSocket handshake; HandshakeRefused says which one failed."""
+    parts = request_line.split(" ")
+    if len(parts) != 3 or parts[0] != "GET" or not parts[2].startswith("HTTP/1."):
+        raise HandshakeRefused(400, "only a WebSocket handshake (GET ... HTTP/1.1) is served here")
+    if headers.get("upgrade", "").lower() != "websocket":
+        raise HandshakeRefused(426, "this port speaks WebSocket only")
+    host = headers.get("host")
+    if not host_allowed(host, accepted_hosts):
+        raise HandshakeRefused(421, f"host {host!r} is not a name of this server")
+    if not origin_allowed(headers.get("origin"), host, allowed_origins):
+        raise HandshakeRefused(403, "cross-site origin refused")
+
+
+class GuardedFront:
+    """``await start()`` listens; each accepted connection is checked, then piped to upstream."""
+
+    def __init__(
+        self,
+        host: str,
+        port: int,
+        upstream_port: int,
+        accepted_hosts: Iterable[str],
+        allowed_origins: Iterable[str],
+        upstream_path: str | None = None,
+    ) -> None:
+        """``upstream_path``: the path every handshake is sent to upstream (rosbridge's port
+        serves at ``/``, the app at ``/rosbridge``); None keeps the client's."""
+        self.host = host
+        self.upstream_path = upstream_path
+        self.port = port
+        self.upstream_port = upstream_port
+        self.accepted_hosts = frozenset(accepted_hosts)
+        self.allowed_origins = frozenset(allowed_origins)
+        self.refused = 0
+        self._server: asyncio.Server | None = None
+        self._tasks: set[asyncio.Task[None]] = set()
+
+    async def start(self) -> int:
+        """Listen; returns the port (useful when asked for port 0)."""
+        self._server = await asyncio.start_server(self._serve, self.host, self.port)
+        self.port = int(self._server.sockets[0].getsockname()[1])
+        return self.port
+
+    async def stop(self) -> None:
+        if self._server is not None:
+            self._server.close()
+        for task in list(self._tasks):
+            task.cancel()
+        for task in list(self._tasks):
+            with contextlib.suppress(BaseException):
+                await task
+        if self._server is not None:
+            await self._server.wait_closed()
+
+    async def _serve(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        task = asyncio.current_task()
+        if task is not None:
+            self._tasks.add(task)
+        try:
+            await self._handle(reader, writer)
+        finally:
+            if task is not None:
+                self._tasks.discard(task)
+            writer.close()
+            with contextlib.suppress(Exception):
+                await writer.wait_closed()
+
+    async def _handle(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        try:
+            head = await asyncio.wait_for(reader.readuntil(b"\r\n\r\n"), HEAD_TIMEOUT_S)
+        except (asyncio.IncompleteReadError, asyncio.LimitOverrunError, TimeoutError, ConnectionError):
+            return
+        try:
+            if len(head) > MAX_HEAD_BYTES:
+                raise HandshakeRefused(431, "request head too large")
+            request_line, headers = parse_head(head[:-4])
+            check_handshake(request_line, headers, self.accepted_hosts, self.allowed_origins)
+        except HandshakeRefused as exc:
+            self.refused += 1
+            await _refuse(writer, exc)
+            return
+        try:
+            up_reader, up_writer = await asyncio.open_connection("127.0.0.1", self.upstream_port)
+        except OSError:
+            await _refuse(writer, HandshakeRefused(502, "the server behind this port is not running"))
+            return
+        up_writer.write(self._upstream_head(head, request_line))
+        try:
+            await _pipe_both(reader, writer, up_reader, up_writer)
+        finally:
+            up_writer.close()
+            with contextlib.suppress(Exception):
+                await up_writer.wait_closed()
+
+    def _upstream_head(self, head: bytes, request_line: str) -> bytes:
+        if self.upstream_path is None:
+            return head
+        method, _, version = request_line.split(" ")
+        return f"{method} {self.upstream_path} {version}".encode("latin-1") + head[len(request_line) :]
+
+
+async def _refuse(writer: asyncio.StreamWriter, exc: HandshakeRefused) -> None:
+    body = exc.reason.encode()
+    writer.write(
+        f"HTTP/1.1 {exc.status} Refused\r\nContent-Type: text/plain\r\nContent-Length: {len(body)}\r\n"
+        "Connection: close\r\n\r\n".encode()
+        + body
+    )
+    with contextlib.suppress(ConnectionError):
+        await writer.drain()
+
+
+async def _copy(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+    with contextlib.suppress(ConnectionError):
+        while data := await reader.read(CHUNK_BYTES):
+            writer.write(data)
+            await writer.drain()  # a slow reader slows this copy; the SDK drops its own backlog
+    with contextlib.suppress(OSError, RuntimeError):
+        writer.write_eof()
+
+
+async def _pipe_both(
+    reader: asyncio.StreamReader,
+    writer: asyncio.StreamWriter,
+    up_reader: asyncio.StreamReader,
+    up_writer: asyncio.StreamWriter,
+) -> None:
+    tasks = [asyncio.create_task(_copy(reader, up_writer)), asyncio.create_task(_copy(up_reader, writer))]
+    try:
+        await asyncio.wait(tasks, return_when=asyncio.FIRST_COMPLETED)
+    finally:
+        for task in tasks:
+            task.cancel()
+        for task in tasks:
+            with contextlib.suppress(BaseException):
+                await task

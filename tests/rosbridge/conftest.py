@@ -1,0 +1,88 @@
+"""A live lab server for the rosbridge client tests (roslibpy in process, npm's roslib under node).
+
+``python -m server --launch rocket start_delay:=1`` in a subprocess on free loopback ports, with
+rosbridge also on a port of its own (as rosbridge_server's 9090). Each test resets the rocket
+through the REST API first, so it sees a countdown from 10 and a rocket that has not aborted.
+"""
+
+from __future__ import annotations
+
+import signal
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import httpx
+import pytest
+
+READY_S = 30.0
+STOP_S = 10.0
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])
+
+
+@dataclass
+class RosbridgeServer:
+    port: int
+    rosbridge_port: int
+    log_path: Path
+
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+    @property
+    def urls(self) -> dict[str, str]:
+        """The two ways in: the app's /rosbridge, and rosbridge's own port at /."""
+        return {
+            "app": f"ws://127.0.0.1:{self.port}/rosbridge",
+            "port": f"ws://127.0.0.1:{self.rosbridge_port}",
+        }
+
+    def reset_rocket(self) -> None:
+        assert httpx.post(f"{self.url}/api/rocket/reset", timeout=5.0).status_code == 200
+
+    def log_tail(self) -> str:
+        return self.log_path.read_text(errors="replace")[-3000:]
+
+
+@pytest.fixture(scope="session")
+def rosbridge_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[RosbridgeServer]:
+    workdir = tmp_path_factory.mktemp("rosbridge_server")
+    server = RosbridgeServer(free_port(), free_port(), workdir / "server.log")
+    with server.log_path.open("wb") as log:
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(server.port), "--launch", "rocket",
+             "--rosbridge-port", str(server.rosbridge_port), "--no-foxglove", "--no-zenoh", "start_delay:=1"],
+            cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
+        )  # fmt: skip
+    try:
+        deadline = time.monotonic() + READY_S
+        while not _healthy(server.url):
+            if proc.poll() is not None or time.monotonic() > deadline:
+                pytest.fail(f"the lab server did not come up within {READY_S} s:\n{server.log_tail()}")
+            time.sleep(0.1)
+        yield server
+    finally:
+        if proc.poll() is None:
+            proc.send_signal(signal.SIGINT)
+            try:
+                proc.wait(timeout=STOP_S)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait()
+
+
+def _healthy(url: str) -> bool:
+    try:
+        return httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200
+    except httpx.HTTPError:
+        return False
