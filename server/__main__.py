@@ -65,6 +65,16 @@ def check_launch(settings: Settings) -> str | None:
     return None
 
 
+def banner(host: str, port: int, launch: str) -> str:
+    """The first lines a student reads: where to open the page, and which keys fly."""
+    shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
+    return (
+        f"Teleop lab: open http://{shown}:{port}/ in a browser (launch: {launch}; Ctrl-C stops it)\n"
+        "Keys, after a click in the 3D view: arrows fly the drone, PgUp/PgDn climb and sink, "
+        "a aborts the rocket, ? shows help"
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv and (argv[0] in cli.VERBS or argv[0].startswith("--url")):
@@ -83,15 +93,16 @@ def main(argv: list[str] | None = None) -> int:
     if error:
         print(f"error: {error}", file=sys.stderr)
         return 2
+    print(banner(args.host, args.port, args.launch), flush=True)
+    import rich
     import uvicorn
 
     from server.app import create_app
 
-    print(
-        f"Teleop lab on http://{'127.0.0.1' if args.host in ('0.0.0.0', '::') else args.host}:{args.port}/ "
-        f"(launch: {args.launch}); Ctrl-C to stop",
-        flush=True,
-    )
+    # viser prints a box with its own loopback port; the page is served on ours, so that box
+    # would send a student to a page without the lab's keys and HUD. The app prints nothing else
+    # through rich.
+    rich.get_console().quiet = True
     config = uvicorn.Config(
         create_app(settings),
         host=args.host,
