@@ -7,17 +7,23 @@ import asyncio
 import contextlib
 from functools import cache
 from pathlib import Path
+from typing import Any
 
 import viser
 import websockets
-from fastapi import APIRouter, WebSocket, WebSocketDisconnect, status
+from fastapi import APIRouter, Request, WebSocket, WebSocketDisconnect, status
 from fastapi.responses import HTMLResponse
 from websockets.asyncio.client import ClientConnection
 
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
 INJECT_STYLES = ("page.css",)
-INJECT_SCRIPTS = ("keys.js", "hud.js", "nav.js")  # key capture first: it must see keys before viser does
+# Key capture first: it must see keys before viser does. Then the pose stream, the setpoint
+# prediction, the scene driver (views, follow), the drawn answer to a key, the drawing quality,
+# the HUD, the tools link, and the layout of these overlays.
+INJECT_SCRIPTS = (
+    "keys.js", "poses.js", "predict.js", "scene.js", "answer.js", "quality.js", "hud.js", "nav.js", "layout.js",
+)  # fmt: skip
 INJECT = "".join(f'<link rel="stylesheet" href="/static/{name}">' for name in INJECT_STYLES) + "".join(
     f'<script src="/static/{name}"></script>' for name in INJECT_SCRIPTS
 )
@@ -35,6 +41,15 @@ def index_html() -> str:
 @router.get("/")
 async def index() -> HTMLResponse:
     return HTMLResponse(index_html(), headers={"Cache-Control": "no-cache"})
+
+
+@router.get("/page/views")
+async def views(request: Request) -> dict[str, Any]:
+    """The labs' camera views for the page, and the one a page with no remembered choice opens on."""
+    display = request.app.state.lab.display
+    if display is None:
+        return {"views": [], "suggested": None}
+    return display.views.to_json()
 
 
 @router.websocket("/")

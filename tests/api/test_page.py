@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import viser
-from labclient import LabClient, receive_within, refused
+from labclient import LabClient, receive_within, refused, wait_until
 from starlette.testclient import WebSocketTestSession
 
 from server.viewer.page import PROXY_MAX_FRAME_BYTES
@@ -76,3 +76,31 @@ def test_viser_proxy_oversized_frame_closed_1009(make_lab: Callable[..., LabClie
     assert code == 1009
     assert f"larger than {PROXY_MAX_FRAME_BYTES} bytes" in reason
     assert lab.healthy()
+
+
+def test_page_views_all_launch_opens_on_rocket_until_it_is_aborted_then_on_quadrotor(
+    make_lab: Callable[..., LabClient],
+) -> None:
+    lab = make_lab(viewer=True, launch="all")
+
+    before = lab.http.get("/page/views")
+    lab.publish("/abort_takeoff", {"data": True})
+    after = wait_until(
+        lambda: (r := lab.http.get("/page/views").json())["suggested"] == "Quadrotor" and r,
+        "the suggested view to move on from the aborted rocket",
+    )
+
+    assert before.status_code == 200
+    assert before.json()["suggested"] == "Rocket"  # counting down to a start an hour away: under way
+    views = {v["name"]: v for v in after["views"]}
+    assert set(views) == {"Rocket", "Quadrotor"}
+    assert views["Rocket"]["follow"] is None
+    follow = views["Quadrotor"]["follow"]
+    assert follow["node"] == "/drone_lab/drone" and follow["setpoint"] == "/drone_lab/setpoint"
+
+
+def test_page_views_without_viewer_lists_none(rocket_lab: LabClient) -> None:
+    response = rocket_lab.http.get("/page/views")
+
+    assert response.status_code == 200
+    assert response.json() == {"views": [], "suggested": None}

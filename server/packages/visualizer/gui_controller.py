@@ -1,6 +1,9 @@
 """GUIControllerNode: draws the quadrotor as the lab's GUI does (green hub, blue arm along body x,
 red arm along body y, L = 1 m) at its true (x, y, z), in the lab's arena, at 30 Hz rather than
 the lab's 2 Hz; plus the setpoint marker, a short trail and a telemetry panel.
+
+The page (static/scene.js) draws the drone between these updates from the pose stream, at the
+display's rate, and moves the setpoint marker itself the moment a key goes down.
 """
 
 from __future__ import annotations
@@ -14,14 +17,22 @@ from server.bus import Node
 from server.msgs import PoseStamped, TwistStamped, Vector3
 from server.packages.flightcontroller.setpoints import ARENA_MAX_M, ARENA_MIN_M
 from server.viewer.plots import TimePlot
+from server.viewer.views import Follow
 
 ARM_M = 1.0  # the lab draws each arm 1 m from the hub
 TRAIL_POINTS = 150
 PLOT_WINDOW_S = 20.0
 PLOT_SAMPLE_HZ = 10.0
 PLOT_FLUSH_HZ = 4.0
+TELEMETRY_HZ = 5.0  # text to read, not to watch move: each update costs the page a React render
 HUB_GREEN, ARM_X_BLUE, ARM_Y_RED = (0, 200, 0), (30, 60, 255), (230, 30, 30)
-CAMERA_POSITION, CAMERA_LOOK_AT = (0.0, -23.0, 15.0), (0.0, 0.0, 5.0)  # from -y: right = +x, up = +y
+DRONE_NODE, SETPOINT_NODE, TRAIL_NODE = "/drone_lab/drone", "/drone_lab/setpoint", "/drone_lab/trail"
+# Both cameras look from -y, so on screen right = +x and away = +y, as the arrow keys move it.
+# Fixed: the hover point (0, 0, 3) about 10 m away, the arms about a tenth of the view's height,
+# the arena's far side and ceiling in view. Follow: 5.5 m behind and above the drone, the arms
+# about a quarter of the view's height (viser's vertical field of view is 75 degrees).
+CAMERA_POSITION, CAMERA_LOOK_AT = (0.0, -10.0, 6.0), (0.0, 0.0, 4.0)
+FOLLOW_OFFSET_M = (0.0, -5.0, 2.2)
 
 
 def _arena_edges() -> np.ndarray:
@@ -41,19 +52,24 @@ def euler_deg(w: float, x: float, y: float, z: float) -> tuple[float, float, flo
 class DroneScene:
     def __init__(self, display: object) -> None:
         scene, gui = display.scene, display.gui  # type: ignore[attr-defined]
-        display.add_view("Quadrotor", CAMERA_POSITION, CAMERA_LOOK_AT)  # type: ignore[attr-defined]
+        display.add_view(  # type: ignore[attr-defined]
+            "Quadrotor",
+            CAMERA_POSITION,
+            CAMERA_LOOK_AT,
+            follow=Follow(DRONE_NODE, FOLLOW_OFFSET_M, SETPOINT_NODE, TRAIL_NODE),
+        )
         scene.add_grid("/drone_lab/ground", width=20, height=20, cell_size=1.0, section_size=5.0)
         scene.add_line_segments("/drone_lab/bounds", _arena_edges(), colors=(150, 150, 160), thickness=0.03)
-        self.drone = scene.add_frame("/drone_lab/drone", show_axes=False)
+        self.drone = scene.add_frame(DRONE_NODE, show_axes=False)
         scene.add_icosphere("/drone_lab/drone/hub", radius=0.3, color=HUB_GREEN)
         arms = np.array([[[-ARM_M, 0, 0], [ARM_M, 0, 0]], [[0, -ARM_M, 0], [0, ARM_M, 0]]], dtype=np.float32)
         colors = np.array([[ARM_X_BLUE] * 2, [ARM_Y_RED] * 2], dtype=np.uint8)
         scene.add_line_segments("/drone_lab/drone/arms", arms, colors=colors, thickness=0.15)
         self.setpoint = scene.add_icosphere(
-            "/drone_lab/setpoint", radius=0.15, color=(255, 150, 0), opacity=0.6, position=(0.0, 0.0, 3.0)
+            SETPOINT_NODE, radius=0.15, color=(255, 150, 0), opacity=0.6, position=(0.0, 0.0, 3.0)
         )
         self.trail = scene.add_line_segments(
-            "/drone_lab/trail", np.zeros((1, 2, 3), np.float32), colors=(90, 160, 90), thickness=0.03
+            TRAIL_NODE, np.zeros((1, 2, 3), np.float32), colors=(90, 160, 90), thickness=0.03
         )
         with gui.add_folder("Quadrotor"):
             self.telemetry = gui.add_markdown("waiting for /uav/sensors/gps ...")
@@ -91,7 +107,6 @@ class DroneScene:
         wxyz: tuple[float, float, float, float],
         setpoint: tuple[float, float, float] | None,
         trail: np.ndarray,
-        text: str,
     ) -> None:
         with self._display.server.atomic():  # type: ignore[attr-defined]
             self.drone.position = pos
@@ -99,8 +114,8 @@ class DroneScene:
             if setpoint is not None:
                 self.setpoint.position = setpoint
             if len(trail) >= 2:
-                self.trail.points = np.stack([trail[:-1], trail[1:]], axis=1)
-        self.telemetry.content = text
+                # Newest segment first: the page draws only the first N when it must save time.
+                self.trail.points = np.stack([trail[:0:-1], trail[-2::-1]], axis=1)
 
 
 class GUIControllerNode(Node):
@@ -122,6 +137,7 @@ class GUIControllerNode(Node):
         self.create_subscription(Vector3, "uav/input/position", self.on_setpoint, 10)
         self.create_timer(1.0 / redraw_hz, self.redraw)
         if self.scene is not None:
+            self.create_timer(1.0 / TELEMETRY_HZ, self.write_telemetry)
             self.create_timer(1.0 / PLOT_SAMPLE_HZ, self.sample_plots)
             self.create_timer(1.0 / PLOT_FLUSH_HZ, self.scene.flush_plots)
         self._t0 = self.bus.clock.now()
@@ -147,9 +163,11 @@ class GUIControllerNode(Node):
         self.trail.append(pos)
         self.frames_drawn += 1
         if self.scene is not None:
-            self.scene.draw(
-                pos, wxyz, self.setpoint, np.array(self.trail, dtype=np.float32), self.telemetry_text()
-            )
+            self.scene.draw(pos, wxyz, self.setpoint, np.array(self.trail, dtype=np.float32))
+
+    def write_telemetry(self) -> None:
+        if self.pose is not None and self.scene is not None:
+            self.scene.telemetry.content = self.telemetry_text()
 
     def sample_plots(self) -> None:
         if self.pose is not None and self.scene is not None:
