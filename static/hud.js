@@ -92,12 +92,13 @@
     conn.textContent = keys.connected ? "keys" : "keys offline";
     conn.className = "conn " + (keys.connected ? "on" : "off");
     const q = window.__teleopQuality;
-    const sp = poses.setpoint;
+    const predict = window.__teleopPredict;
+    const sp = predict ? predict.current() : poses.setpoint;
     el.querySelector(".figures").innerHTML =
       `<div><b>setpoint</b> ${sp ? "(" + fmt(sp) + ") m" : "–"}</div>` +
       figure("key → answer drawn", hud.drawn) + figure("key → drone moving", hud.latencies) +
       `<div class="dim">poses ${hud.poseRate}/s` + (q && q.fps !== null ? ` · ${q.fps.toFixed(0)} fps` : "") +
-      (q && q.frameMs ? ` · frame ${q.frameMs.toFixed(0)} ms` : "") + (q ? ` · detail ${4 - q.level}/4` : "") + "</div>";
+      (q && q.frameMs ? ` · frame ${q.frameMs.toFixed(0)} ms` : "") + (q ? ` · pixels ×${q.dpr}` : "") + "</div>";
   };
   const lightKeys = () => {
     const held = window.__teleopKeys ? window.__teleopKeys.held : new Set();

@@ -18,7 +18,7 @@
   const ROOM_MS = 8;  // ... below this, draw more
   const DOWN_AFTER = 2, UP_AFTER = 5;  // seconds in a row
   const MIN_FRAMES = 5;  // a second with fewer frames drawn is idle, not slow
-  const state = { level: 0, software: false, renderer: "", fps: null, frameMs: null, changes: 0, auto: true };
+  const state = { level: 0, dpr: null, software: false, renderer: "", fps: null, frameMs: null, changes: 0, auto: true };
   window.__teleopQuality = state;
 
   const detectSoftware = () => {
@@ -54,7 +54,8 @@
   const apply = () => {
     const l = LEVELS[state.level];
     const dev = window.__viserTestpoints && window.__viserTestpoints.devSettings;
-    if (dev) dev.set({ fixedDpr: Math.round(window.devicePixelRatio * l.dpr * 100) / 100 });
+    state.dpr = Math.round(window.devicePixelRatio * l.dpr * 100) / 100;
+    if (dev) dev.set({ fixedDpr: state.dpr });
     if (window.__teleopScene) window.__teleopScene.trailLimit = l.trail;
     throttlePlots(l.plotMs);
   };
