@@ -2,14 +2,21 @@
 // (sim-time stamped), learns how the sim's clock maps onto the page's, and answers "where is the
 // drone at this display time" by interpolating between poses, or extrapolating a little past the
 // newest one, so the drawn drone moves at the display's rate rather than in steps.
+//
+// The page is cross-origin isolated (server/viewer/page.py sends the headers), so the worker
+// writes poses into a shared ring and wakes the page with at most one message; the page reads
+// the ring then, and again at the start of every frame it draws (sync()). Without isolation the
+// worker posts each pose.
 (() => {
   "use strict";
   const KEEP = 64;
+  const RING = 64, SLOT = 9;  // as in static/poses.worker.js
+  const MARGIN = 4;  // ring slots the worker may be rewriting while the page reads
   const EXTRAPOLATE_MAX_S = 0.1;  // past this, the drone is drawn where it was last seen
   const OFFSET_BUCKET_MS = 1000;  // the clock offset is the least delay seen over the last 4 s
   const OFFSET_BUCKETS = 4;
   const state = { samples: [], setpoint: null, setpointAt: 0, listeners: [], batches: 0,
-    offsetMs: null, arrivals: [], worker: null };
+    offsetMs: null, arrivals: [], worker: null, shared: false, sync: () => {} };
   window.__teleopPoses = state;
   const nowEpochMs = () => performance.timeOrigin + performance.now();
   let buckets = [];  // [start epoch ms, least (arrival - stamp) in it]
@@ -23,9 +30,7 @@
     state.offsetMs = Math.min(...buckets.map((b) => b[1]));
   };
 
-  const onBatch = (ev) => {
-    const received = performance.now();
-    const { samples, setpoint } = ev.data;
+  const deliver = (samples, setpoint, received) => {
     for (const s of samples) {
       const prev = state.samples[state.samples.length - 1];
       if (prev && s.stamp <= prev.stamp) continue;  // a reconnect may repeat one
@@ -41,7 +46,34 @@
     for (const listener of state.listeners) {
       try { listener(samples, setpoint, received); } catch (err) { console.error(err); }
     }
-    state.worker.postMessage({ type: "pull" });  // ready for the next: never more than one queued
+  };
+
+  let ctl = null, data = null, readPoses = 0, readSetpoints = 0;
+  // Everything the worker wrote since the last read, now.
+  state.sync = () => {
+    if (!ctl) return;
+    const received = performance.now();
+    const written = Atomics.load(ctl, 0);
+    const fresh = [];
+    for (let n = Math.max(readPoses, written - RING + MARGIN); n < written; n++) {
+      const d = data.subarray((n % RING) * SLOT, (n % RING + 1) * SLOT);
+      fresh.push({ stamp: d[0], p: [d[1], d[2], d[3]], q: [d[4], d[5], d[6], d[7]], arrived: d[8] });
+    }
+    readPoses = written;
+    let setpoint = null;
+    const setpoints = Atomics.load(ctl, 1);
+    if (setpoints !== readSetpoints) {
+      readSetpoints = setpoints;
+      const d = data.subarray(RING * SLOT, RING * SLOT + 4);
+      setpoint = { p: [d[0], d[1], d[2]], arrived: d[3] };
+    }
+    if (fresh.length || setpoint) deliver(fresh, setpoint, received);
+  };
+  const onMessage = (ev) => {
+    const m = ev.data;
+    if (m.type === "wake") { Atomics.store(ctl, 2, 0); state.sync(); }  // clear first: a pose written now wakes again
+    else if (m.type === "pose") deliver([m.sample], null, performance.now());
+    else if (m.type === "setpoint") deliver([], m.setpoint, performance.now());
   };
 
   const lerp = (a, b, f) => a.map((v, i) => v + (b[i] - v) * f);
@@ -76,9 +108,15 @@
   state.nowEpochMs = nowEpochMs;
 
   try {
-    state.worker = new Worker("/static/poses.worker.js");
-    state.worker.onmessage = onBatch;
-    state.worker.postMessage({ type: "pull" });
+    state.worker = new Worker("/page/poses.worker.js");
+    state.worker.onmessage = onMessage;
+    state.shared = window.crossOriginIsolated === true && typeof SharedArrayBuffer === "function";
+    if (state.shared) {
+      const buffer = new SharedArrayBuffer(16 + (RING * SLOT + 4) * 8);
+      ctl = new Int32Array(buffer, 0, 4);
+      data = new Float64Array(buffer, 16);
+      state.worker.postMessage({ type: "shared", buffer });
+    }
   } catch (err) {
     console.error("teleop: no pose stream worker", err);
   }

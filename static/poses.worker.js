@@ -1,47 +1,53 @@
 // The drone's pose stream, off the page's main thread. This worker holds the topic echoes of
-// /uav/sensors/gps (100 Hz) and /uav/input/position, decodes every message as it arrives, and
-// hands the page one batch at a time, only when the page asks for the next: however long a frame
-// keeps the main thread busy, at most one batch waits for it (the latest pose, with the few
-// samples since the previous batch for interpolation), never a backlog of stale poses.
+// /uav/sensors/gps (100 Hz) and /uav/input/position and decodes every message as it arrives.
+//
+// When the page is cross-origin isolated it shares a ring of the last RING poses with the page
+// (a SharedArrayBuffer, see static/poses.js) and posts only a wake-up, and only when the page has
+// read the ring since the last one: however long a frame keeps the main thread busy, at most one
+// message waits for it, and when it runs it reads the ring as it is then, the newest pose
+// included. Otherwise it posts every message as it arrives.
 "use strict";
-const MAX_SAMPLES = 32;  // 0.32 s of poses at 100 Hz; older ones would only be dropped by the page
+const RING = 64;
+const SLOT = 9;  // stamp (s, sim time), x, y, z (m), w, qx, qy, qz, arrival here (epoch ms)
 const RETRY_MS = 1000;
 const base = (self.location.protocol === "https:" ? "wss://" : "ws://") + self.location.host + "/ws/topics/";
 const nowEpochMs = () => performance.timeOrigin + performance.now();
+let ctl = null, data = null;  // Int32Array [poses written, setpoints written, wake pending]; Float64Array
 
-let wanted = false;
-let samples = [];
-let setpoint = null;
-
-const flush = () => {
-  if (!wanted || (!samples.length && !setpoint)) return;
-  wanted = false;
-  self.postMessage({ samples, setpoint });
-  samples = [];
-  setpoint = null;
-};
+const wake = () => { if (Atomics.compareExchange(ctl, 2, 0, 1) === 0) self.postMessage({ type: "wake" }); };
 
 const echo = (topic, onMsg) => {
   const open = () => {
     const ws = new WebSocket(base + topic + "?queue_length=10");
     ws.onmessage = (ev) => {
-      try { onMsg(JSON.parse(ev.data).msg, nowEpochMs()); } catch (err) { return; }
-      flush();
+      let msg;
+      try { msg = JSON.parse(ev.data).msg; } catch (err) { return; }
+      onMsg(msg, nowEpochMs());
     };
     ws.onclose = () => setTimeout(open, RETRY_MS);
   };
   open();
 };
 
-// One pose: sim-time stamp (s), position (m), orientation (w, x, y, z), arrival here (epoch ms).
 echo("uav/sensors/gps", (m, arrived) => {
   const p = m.pose.position, q = m.pose.orientation;
-  samples.push({ stamp: m.header.stamp.sec + m.header.stamp.nanosec * 1e-9, p: [p.x, p.y, p.z],
-    q: [q.w, q.x, q.y, q.z], arrived });
-  if (samples.length > MAX_SAMPLES) samples.shift();
+  const stamp = m.header.stamp.sec + m.header.stamp.nanosec * 1e-9;
+  if (!ctl) { self.postMessage({ type: "pose", sample: { stamp, p: [p.x, p.y, p.z], q: [q.w, q.x, q.y, q.z], arrived } }); return; }
+  const at = (Atomics.load(ctl, 0) % RING) * SLOT;
+  data.set([stamp, p.x, p.y, p.z, q.w, q.x, q.y, q.z, arrived], at);
+  Atomics.add(ctl, 0, 1);  // after the slot is written: the page reads only whole poses
+  wake();
 });
-echo("uav/input/position", (m, arrived) => { setpoint = { p: [m.x, m.y, m.z], arrived }; });
+echo("uav/input/position", (m, arrived) => {
+  if (!ctl) { self.postMessage({ type: "setpoint", setpoint: { p: [m.x, m.y, m.z], arrived } }); return; }
+  data.set([m.x, m.y, m.z, arrived], RING * SLOT);
+  Atomics.add(ctl, 1, 1);
+  wake();
+});
 
 self.onmessage = (ev) => {
-  if (ev.data && ev.data.type === "pull") { wanted = true; flush(); }
+  if (ev.data && ev.data.type === "shared") {
+    ctl = new Int32Array(ev.data.buffer, 0, 4);
+    data = new Float64Array(ev.data.buffer, 16);
+  }
 };

@@ -90,6 +90,7 @@
     drawStart = performance.now();
     state.renderer = renderer;
     state.renders++;
+    poses.sync();  // the newest poses the worker has, for this frame
     const drone = ref(state.vehicle && state.vehicle.node);
     const latest = poses.latest();
     if (drone && latest && poses.nowEpochMs() - latest.arrived < POSE_STALE_MS) {

@@ -12,7 +12,7 @@ from typing import Any
 import viser
 import websockets
 from fastapi import APIRouter, Request, WebSocket, WebSocketDisconnect, status
-from fastapi.responses import HTMLResponse
+from fastapi.responses import HTMLResponse, Response
 from websockets.asyncio.client import ClientConnection
 
 router = APIRouter(include_in_schema=False)
@@ -28,6 +28,10 @@ INJECT = "".join(f'<link rel="stylesheet" href="/static/{name}">' for name in IN
     f'<script src="/static/{name}"></script>' for name in INJECT_SCRIPTS
 )
 PROXY_MAX_FRAME_BYTES = 1 << 20  # browser → viser: camera moves and GUI clicks, all small
+# Cross-origin isolation, so the page may share memory with its pose worker (static/poses.js):
+# everything the page loads comes from this origin, and it opens other pages only as new tabs.
+ISOLATED = {"Cross-Origin-Opener-Policy": "same-origin", "Cross-Origin-Embedder-Policy": "require-corp"}
+POSES_WORKER = Path(__file__).resolve().parents[2] / "static" / "poses.worker.js"
 
 
 @cache
@@ -40,7 +44,13 @@ def index_html() -> str:
 
 @router.get("/")
 async def index() -> HTMLResponse:
-    return HTMLResponse(index_html(), headers={"Cache-Control": "no-cache"})
+    return HTMLResponse(index_html(), headers={"Cache-Control": "no-cache", **ISOLATED})
+
+
+@router.get("/page/poses.worker.js")
+async def poses_worker() -> Response:
+    """The pose stream's worker, with the isolation its page has (a dedicated worker needs its own)."""
+    return Response(POSES_WORKER.read_bytes(), media_type="text/javascript", headers=ISOLATED)
 
 
 @router.get("/page/views")

@@ -27,6 +27,20 @@ def test_index_serves_viser_page_with_key_script_injected(make_lab: Callable[...
     assert "window.__teleopKeys" in script.text
 
 
+def test_index_and_pose_worker_are_cross_origin_isolated(make_lab: Callable[..., LabClient]) -> None:
+    """The page shares a ring of poses with its worker: that takes both headers, on both."""
+    lab = make_lab(viewer=True)
+
+    page, worker = lab.http.get("/"), lab.http.get("/page/poses.worker.js")
+
+    assert worker.status_code == 200
+    assert worker.headers["content-type"].startswith("text/javascript")
+    assert "SharedArrayBuffer" in lab.http.get("/static/poses.js").text
+    for response in (page, worker):
+        assert response.headers["cross-origin-opener-policy"] == "same-origin"
+        assert response.headers["cross-origin-embedder-policy"] == "require-corp"
+
+
 def test_viser_proxy_with_viser_subprotocol_receives_scene(make_lab: Callable[..., LabClient]) -> None:
     lab = make_lab(viewer=True)
     subprotocol = f"viser-v{viser.__version__}"

@@ -57,6 +57,7 @@ STRIP_MAX_PX = 60
 NARROW_PX = 1000  # static/layout.js: narrower than this, the panel starts as a strip
 ARRIVED_M = 0.15
 FLIGHT_WAIT_S = 40.0
+MIN_POSE_RATE_HZ = 20  # the dynamics publish at 100 Hz; a loaded machine delivers fewer, never none
 OVERLAYS_JS = """() => {
   const box = (e) => { const r = e.getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom]; };
   const shown = (e) => e && !e.hidden && e.getBoundingClientRect().width > 0;
@@ -233,6 +234,8 @@ def test_new_page_opens_on_lab_under_way_remembers_the_view_chosen_and_keys_fly_
     with lab_page(chromium) as page:
         open_lab_page(page, lab_server)
         first = page.evaluate("window.__teleopScene.view.name")  # the rocket waits on its pad: under way
+        isolated = page.evaluate("window.crossOriginIsolated && window.__teleopPoses.shared")
+        page.wait_for_function(f"() => window.__teleopHud.poseRate >= {MIN_POSE_RATE_HZ}")
         choose(page, "Quadrotor")
         page.reload()
         open_lab_page(page, lab_server)
@@ -259,6 +262,7 @@ def test_new_page_opens_on_lab_under_way_remembers_the_view_chosen_and_keys_fly_
         )
 
     assert first == "Rocket"
+    assert isolated is True  # the poses come through the shared ring
     assert (remembered, pressed) == ("Quadrotor", "true")
     assert key["code"] == KEY_LEFT
     assert (moved["y"], moved["z"]) == pytest.approx(HOME_M[1:])
