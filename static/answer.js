@@ -85,7 +85,6 @@
     const m = marker();
     const sp = predict.prediction ? predict.prediction.p : poses.setpoint;
     if (m && sp) { m.position.set(sp[0], sp[1], sp[2]); m.updateMatrixWorld(true); }
-    if (predict.prediction) scene.viser.requestRender();
     const r = scene.renderer;
     if (r && !r.__teleopRender) {  // the dom path's skipped frame: no drawing, so no read-back to wait for
       const render = r.render;

@@ -12,7 +12,11 @@
   const DISPLAY_DELAY_MS = 10;  // one pose period behind the stream: between two poses, not past them
   const POSE_STALE_MS = 1000;  // no pose for this long: leave the drone where the server drew it
   const FOLLOW_TAU_S = 0.15;  // the camera's lag behind the drone
-  const MOVING_M_S = 0.01;
+  const FOLLOW_SLACK_M = 0.01;  // and how far the drone may wander (hovering) before the camera moves
+  // Keep frames coming while the drone moves: more than 5 mm or 0.5 degrees in the last 0.1 s of
+  // the pose stream. A hovering drone's jitter (a millimetre or two, back and forth) is not worth
+  // a frame, nor the wait that a key pressed then would have behind it.
+  const MOTION_WINDOW_MS = 100, MOVED_M = 0.005, TURNED_RAD = (0.5 * Math.PI) / 180;
   const KEEP_FRAMES = 120;
   const state = { views: [], view: null, follow: localStorage.getItem(STORE_FOLLOW) !== "fixed", ready: false,
     listeners: [], beforeFrame: [], afterFrame: [], renders: 0, frameCosts: [], trailLimit: Infinity,
@@ -68,8 +72,8 @@
     const dt = Math.min(Math.max((now - lastFollow) / 1000, 0), 0.2);
     lastFollow = now;
     if (!followPoint) followPoint = cc.getTarget(new V3());
+    if (followPoint.distanceTo(goal) < FOLLOW_SLACK_M) return;
     followPoint.lerp(goal, 1 - Math.exp(-dt / FOLLOW_TAU_S));
-    if (cc.getTarget(new V3()).distanceToSquared(followPoint) < 1e-8) return;
     cc.moveTo(followPoint.x, followPoint.y, followPoint.z, false);
     cc.update(0);  // this frame, not the next: the camera and the drone move together
     viser.camera.updateMatrixWorld();
@@ -98,7 +102,10 @@
       drone.position.set(pose.p[0], pose.p[1], pose.p[2]);
       drone.quaternion.set(pose.q[1], pose.q[2], pose.q[3], pose.q[0]);
       drone.updateMatrixWorld(true);
-      if (Math.hypot(...pose.v) > MOVING_M_S) viser.requestRender();  // keep frames coming while it moves
+      const before = poses.poseAt(poses.nowEpochMs() - DISPLAY_DELAY_MS - MOTION_WINDOW_MS);
+      const moved = Math.hypot(...pose.p.map((v, i) => v - before.p[i]));
+      const dot = Math.min(1, Math.abs(pose.q.reduce((d, v, i) => d + v * before.q[i], 0)));
+      if (moved > MOVED_M || 2 * Math.acos(dot) > TURNED_RAD) viser.requestRender();
     }
     each(state.beforeFrame, now);
     if (drone && state.follow && state.view && state.view.follow) followCamera(drone, now);

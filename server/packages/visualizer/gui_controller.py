@@ -25,6 +25,13 @@ PLOT_WINDOW_S = 20.0
 PLOT_SAMPLE_HZ = 10.0
 PLOT_FLUSH_HZ = 4.0
 TELEMETRY_HZ = 5.0  # text to read, not to watch move: each update costs the page a React render
+# A hovering drone jitters by a few millimetres (process noise): drawn again only once it has
+# moved this far from where it was last drawn. Each drawing keeps the page rendering for a while
+# (viser renders for 0.25 s after any change), so a hover drawn at 30 Hz would keep a slow
+# machine's page always busy, and a key pressed then would wait behind a frame under way. The
+# page draws the drone itself between these drawings, from the pose stream, whenever it moves.
+REDRAW_MIN_M = 0.02
+REDRAW_MIN_RAD = math.radians(1.0)
 HUB_GREEN, ARM_X_BLUE, ARM_Y_RED = (0, 200, 0), (30, 60, 255), (230, 30, 30)
 DRONE_NODE, SETPOINT_NODE, TRAIL_NODE = "/drone_lab/drone", "/drone_lab/setpoint", "/drone_lab/trail"
 # Both cameras look from -y, so on screen right = +x and away = +y, as the arrow keys move it.
@@ -132,6 +139,7 @@ class GUIControllerNode(Node):
         self.trail: deque[tuple[float, float, float]] = deque(maxlen=TRAIL_POINTS)
         self.frames_drawn = 0
         self._dirty = False
+        self._drawn: tuple[tuple[float, float, float], tuple[float, float, float, float]] | None = None
         self.create_subscription(PoseStamped, "uav/sensors/gps", self.on_gps, 10)
         self.create_subscription(TwistStamped, "uav/sensors/velocity", self.on_velocity, 1)
         self.create_subscription(Vector3, "uav/input/position", self.on_setpoint, 10)
@@ -152,13 +160,26 @@ class GUIControllerNode(Node):
         self.velocity = (v.x, v.y, v.z)
 
     def on_setpoint(self, msg: Vector3) -> None:
+        if self.setpoint != (msg.x, msg.y, msg.z):
+            self._drawn = None  # draw the new setpoint, however still the drone
         self.setpoint = (msg.x, msg.y, msg.z)
         self._dirty = True
+
+    def moved_since_drawn(self) -> bool:
+        assert self.pose is not None
+        if self._drawn is None:
+            return True
+        (pos, wxyz), (pos0, wxyz0) = self.pose, self._drawn
+        dot = min(1.0, abs(sum(a * b for a, b in zip(wxyz, wxyz0, strict=True))))
+        return math.dist(pos, pos0) > REDRAW_MIN_M or 2 * math.acos(dot) > REDRAW_MIN_RAD
 
     def redraw(self) -> None:
         if not self._dirty or self.pose is None:
             return
         self._dirty = False
+        if not self.moved_since_drawn():
+            return
+        self._drawn = self.pose
         pos, wxyz = self.pose
         self.trail.append(pos)
         self.frames_drawn += 1
