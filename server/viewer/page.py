@@ -15,6 +15,8 @@ from fastapi import APIRouter, Request, WebSocket, WebSocketDisconnect, status
 from fastapi.responses import HTMLResponse, Response
 from websockets.asyncio.client import ClientConnection
 
+from .views import ViewRegistry
+
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
 INJECT_STYLES = ("page.css",)
@@ -59,7 +61,8 @@ async def views(request: Request) -> dict[str, Any]:
     display = request.app.state.lab.display
     if display is None:
         return {"views": [], "suggested": None}
-    return display.views.to_json()
+    views: ViewRegistry = display.views
+    return views.to_json()
 
 
 @router.websocket("/")
