@@ -2,11 +2,20 @@
 
 from fastapi import APIRouter
 
-from . import introspection, lab_routes, launch_routes, publishers, topics, ws_keys, ws_topics
+from . import introspection, lab_routes, launch_routes, publishers, services, topics, ws_keys, ws_topics
 
 
 def build_router() -> APIRouter:
     router = APIRouter()
-    for module in (lab_routes, topics, publishers, launch_routes, introspection, ws_topics, ws_keys):
+    for module in (
+        lab_routes,
+        topics,
+        services,
+        publishers,
+        launch_routes,
+        introspection,
+        ws_topics,
+        ws_keys,
+    ):
         router.include_router(module.router)
     return router

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, cast
 
 from fastapi import Depends, Request, WebSocket
 
@@ -10,11 +10,11 @@ from server.lab import Lab
 
 
 def _lab(request: Request) -> Lab:
-    return request.app.state.lab
+    return cast(Lab, request.app.state.lab)
 
 
 def _ws_lab(websocket: WebSocket) -> Lab:
-    return websocket.app.state.lab
+    return cast(Lab, websocket.app.state.lab)
 
 
 LabDep = Annotated[Lab, Depends(_lab)]

@@ -1,21 +1,43 @@
-"""One place that maps the bus's and the messages' errors to HTTP statuses and WebSocket close codes."""
+"""The one place where errors become HTTP statuses and WebSocket close codes.
+
+The bus's, the messages', the launcher's and the app's own error types are registered as
+exception handlers here, so route handlers only call the lab and never catch. Anything else is
+a bug: ``ErrorMiddleware`` answers it with a 500 (or closes a WebSocket with 1011) carrying a
+request id, logs it with its traceback under that id, and never sends its text to the client.
+"""
 
 from __future__ import annotations
 
+import logging
+import uuid
+from collections.abc import Awaitable, Callable
 from enum import IntEnum
 
-from fastapi import HTTPException, status
+from fastapi import FastAPI, Request, status
+from fastapi.exceptions import RequestValidationError
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from server.bus import (
-    BusError,
     DestroyedError,
     InvalidNameError,
     InvalidQoSError,
+    ServiceTimeoutError,
     TopicTypeError,
     UnknownNodeError,
+    UnknownServiceError,
     UnknownTopicError,
 )  # fmt: skip
+from server.lab import UnknownLaunchError
+from server.launch.description import LaunchFileError
+from server.limits import LimitExceededError, ValueLimitError
 from server.msgs import MessageError, UnknownTypeError
+from server.packages import ExecutableNotFoundError, PackageNotFoundError
+from server.publishers import PublisherError, UnknownPublisherError
+
+from .security import BodyTooLarge
+from .strict_json import SafeJSONResponse
+
+log = logging.getLogger("api.errors")
 
 
 class CloseCode(IntEnum):
@@ -34,22 +56,118 @@ class CloseCode(IntEnum):
     TYPE_CONFLICT = 4409
 
 
-def http_error(exc: Exception) -> HTTPException:
-    """The HTTP error for an exception from the bus or the message layer."""
-    if isinstance(exc, (UnknownTopicError, UnknownNodeError)):
-        return HTTPException(status.HTTP_404_NOT_FOUND, str(exc))
-    if isinstance(exc, TopicTypeError):
-        return HTTPException(status.HTTP_409_CONFLICT, str(exc))
-    if isinstance(exc, (InvalidNameError, InvalidQoSError, MessageError, UnknownTypeError, ValueError)):
-        return HTTPException(status.HTTP_422_UNPROCESSABLE_CONTENT, str(exc))
-    if isinstance(exc, (DestroyedError, BusError)):
-        return HTTPException(status.HTTP_409_CONFLICT, str(exc))
-    return HTTPException(status.HTTP_500_INTERNAL_SERVER_ERROR, f"{type(exc).__name__}: {exc}")
+# Checked in order, so a subclass must come before its base. Nothing broader than these.
+ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
+    (UnknownTopicError, status.HTTP_404_NOT_FOUND),
+    (UnknownNodeError, status.HTTP_404_NOT_FOUND),
+    (UnknownServiceError, status.HTTP_404_NOT_FOUND),
+    (UnknownPublisherError, status.HTTP_404_NOT_FOUND),
+    (UnknownLaunchError, status.HTTP_404_NOT_FOUND),
+    (PackageNotFoundError, status.HTTP_404_NOT_FOUND),
+    (ExecutableNotFoundError, status.HTTP_404_NOT_FOUND),
+    (TopicTypeError, status.HTTP_409_CONFLICT),
+    (DestroyedError, status.HTTP_409_CONFLICT),
+    (LimitExceededError, status.HTTP_429_TOO_MANY_REQUESTS),
+    (ServiceTimeoutError, status.HTTP_504_GATEWAY_TIMEOUT),
+    (BodyTooLarge, status.HTTP_413_CONTENT_TOO_LARGE),
+    (InvalidNameError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (InvalidQoSError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (MessageError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (UnknownTypeError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (LaunchFileError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (ValueLimitError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (PublisherError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+)
+_CLOSE_FOR_STATUS = {
+    status.HTTP_404_NOT_FOUND: CloseCode.UNKNOWN_TOPIC,
+    status.HTTP_409_CONFLICT: CloseCode.TYPE_CONFLICT,
+    status.HTTP_429_TOO_MANY_REQUESTS: CloseCode.TRY_AGAIN_LATER,
+    status.HTTP_504_GATEWAY_TIMEOUT: CloseCode.TRY_AGAIN_LATER,
+    status.HTTP_413_CONTENT_TOO_LARGE: CloseCode.MESSAGE_TOO_BIG,
+    status.HTTP_422_UNPROCESSABLE_CONTENT: CloseCode.BAD_REQUEST,
+}
+MAX_REASON_CHARS = 120  # a close frame's reason must fit in 123 bytes
 
 
-def close_code(exc: Exception) -> CloseCode:
-    if isinstance(exc, UnknownTopicError):
-        return CloseCode.UNKNOWN_TOPIC
-    if isinstance(exc, TopicTypeError):
-        return CloseCode.TYPE_CONFLICT
-    return CloseCode.BAD_REQUEST
+def status_for(exc: BaseException) -> int | None:
+    """The HTTP status of a known error type, or None for a bug."""
+    return next((code for kind, code in ERROR_STATUS if isinstance(exc, kind)), None)
+
+
+def close_code(exc: BaseException) -> CloseCode | None:
+    """The WebSocket close code of a known error type, or None for a bug."""
+    code = status_for(exc)
+    return None if code is None else _CLOSE_FOR_STATUS[code]
+
+
+def close_reason(text: str) -> str:
+    """A close reason that fits a close frame (123 bytes of UTF-8)."""
+    return text.encode("utf-8")[:MAX_REASON_CHARS].decode("utf-8", "ignore")
+
+
+def _handler(code: int) -> Callable[[Request, Exception], Awaitable[SafeJSONResponse]]:
+    async def handle(_request: Request, exc: Exception) -> SafeJSONResponse:
+        return SafeJSONResponse({"detail": str(exc)}, status_code=code)
+
+    return handle
+
+
+async def _validation_error(_request: Request, exc: Exception) -> SafeJSONResponse:
+    """FastAPI's 422, without echoing the input back (it may be huge, or not JSON-serialisable)."""
+    errors = exc.errors() if isinstance(exc, RequestValidationError) else []
+    detail = [{"type": e.get("type"), "loc": list(e.get("loc", ())), "msg": e.get("msg")} for e in errors]
+    return SafeJSONResponse({"detail": detail}, status_code=status.HTTP_422_UNPROCESSABLE_CONTENT)
+
+
+def register_error_handlers(app: FastAPI) -> None:
+    """Every known error type's status, and FastAPI's validation errors; bugs are ``ErrorMiddleware``'s."""
+    for kind, code in ERROR_STATUS:
+        app.add_exception_handler(kind, _handler(code))
+    app.add_exception_handler(RequestValidationError, _validation_error)
+
+
+class ErrorMiddleware:
+    """The last resort for bugs: a 500 or a 1011 close with a request id; the traceback goes to
+    the log under the same id, never to the client."""
+
+    def __init__(self, app: ASGIApp) -> None:
+        self.app = app
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] not in ("http", "websocket"):
+            return await self.app(scope, receive, send)
+        started = False
+
+        async def tracking_send(message: Message) -> None:
+            nonlocal started
+            if message["type"] in ("http.response.start", "websocket.accept", "websocket.close"):
+                started = True
+            await send(message)
+
+        try:
+            await self.app(scope, receive, tracking_send)
+        except Exception:
+            request_id = uuid.uuid4().hex[:12]
+            log.exception(
+                "unexpected error in %s %s (request id %s)", scope["type"], scope["path"], request_id
+            )
+            await _answer_bug(scope, send, request_id, started)
+
+
+async def _answer_bug(scope: Scope, send: Send, request_id: str, started: bool) -> None:
+    detail = f"internal error (request id {request_id})"
+    if scope["type"] == "websocket":
+        # Before the handshake this refuses it; after, it closes with 1011. Either way, a code.
+        try:
+            await send({"type": "websocket.close", "code": CloseCode.INTERNAL_ERROR, "reason": detail})
+        except (RuntimeError, OSError):  # the socket is already gone
+            return
+        return
+    if started:
+        return  # the response is half sent; the server drops the connection
+    response = SafeJSONResponse({"detail": detail, "request_id": request_id}, status_code=500)
+    await response({"type": "http"}, _never_receive, send)
+
+
+async def _never_receive() -> Message:
+    return {"type": "http.disconnect"}

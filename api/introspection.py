@@ -8,30 +8,44 @@ from typing import Any, Literal
 from fastapi import APIRouter, HTTPException, Query, status
 from pydantic import BaseModel, ConfigDict, Field
 
-from server.bus import is_hidden, validate_topic_name
+from server.bus import Node, UnknownNodeError, is_hidden, validate_topic_name
 from server.bus.graph import HZ_WINDOW_MAX
 from server.introspection import graph_snapshot, node_info, rate_stats, type_schema
+from server.introspection.merged import remote_node_endpoints
+from server.lab import Lab
 from server.msgs import Message, UnknownTypeError, get_type, type_names
 
 from .deps import LabDep
-from .errors import http_error
+from .responses import NOT_FOUND, responses
 
 # Handlers are ``async def`` so that they read the bus on the event loop that owns it, never
 # from a worker thread while the executor changes it.
-router = APIRouter(prefix="/api", tags=["introspection"])
+# Errors are mapped in api/errors.py; handlers do not catch.
+router = APIRouter(prefix="/api", tags=["introspection"], responses=responses())
 HZ_WINDOW_DEFAULT = 100
+
+
+LOCATION = Field(
+    default="app",
+    description="where the node runs: 'app' (the lab's own process) or 'zenoh:<session>' (another process)",
+    examples=["app", "zenoh:3ca7751b"],
+)
 
 
 class GraphNodeOut(BaseModel):
     name: str = Field(examples=["/CountDownNode"])
-    state: Literal["active", "crashed"]
+    state: Literal["active", "crashed", "died"]
     hidden: bool = Field(description="a name token starts with '_'")
+    location: str = LOCATION
 
 
 class GraphTopicOut(BaseModel):
     name: str = Field(examples=["/countdown"])
     type: str = Field(examples=["std_msgs/msg/Int64"])
     hidden: bool = Field(description="an internal topic (/rosout, /parameter_events) or a '_' token")
+    type_conflict: bool = Field(
+        default=False, description="endpoints on this name disagree on its type: one box per type"
+    )
 
 
 class GraphEdgeOut(BaseModel):
@@ -50,10 +64,24 @@ class GraphOut(BaseModel):
     edges: list[GraphEdgeOut]
 
 
+class RespawnOut(BaseModel):
+    state: Literal["running", "waiting", "gave up"]
+    respawns: int = Field(description="restarts so far")
+    fast_failures: int = Field(description="crashes in a row soon after starting (the backoff doubles each)")
+    next_in_s: float | None = Field(description="seconds until the next restart, while waiting")
+
+
 class NodeSummaryOut(BaseModel):
     name: str = Field(examples=["/CountDownNode"])
     namespace: str = Field(examples=["/"])
-    state: Literal["active", "crashed"]
+    state: Literal["active", "crashed", "died"] = Field(
+        description="crashed: a node inside the app whose callback raised; died: a node process that ended"
+    )
+    location: str = LOCATION
+    exit_code: int | None = Field(default=None, description="a died process's exit code")
+    respawn: RespawnOut | None = Field(
+        default=None, description='only for nodes launched with respawn="true"'
+    )
 
 
 class EndpointOut(BaseModel):
@@ -91,10 +119,16 @@ class RateOut(BaseModel):
 @router.get("/graph", response_model=GraphOut)
 async def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
     """The computation graph, as rqt_graph draws it; ``hidden=true`` adds debug nodes and /rosout."""
-    snap = graph_snapshot(lab.bus, include_hidden=hidden)
+    snap = graph_snapshot(lab.bus, include_hidden=hidden, remote=lab.remote_graph())
+    shown = {n.name for n in snap.nodes}
+    died = [
+        {"name": n["name"], "state": "died", "hidden": is_hidden(n["name"]), "location": n["location"]}
+        for n in lab.died_nodes()
+        if n["name"] not in shown and (hidden or not is_hidden(n["name"]))
+    ]
     return {
-        "version": snap.version,
-        "nodes": [vars(n) for n in snap.nodes],
+        "version": snap.version + len(died),
+        "nodes": [vars(n) for n in snap.nodes] + died,
         "topics": [vars(t) for t in snap.topics],
         "edges": [{"from": e.source, "to": e.target, "kind": e.kind} for e in snap.edges],
     }
@@ -104,32 +138,57 @@ async def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
 async def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
     """Every node, as ``ros2 node list`` (``hidden=true`` adds the '_' ones, as ``--all``)."""
     nodes = [n for n in lab.bus.nodes if hidden or not is_hidden(n.fully_qualified_name)]
-    return sorted(
-        ({"name": n.fully_qualified_name, "namespace": n.get_namespace(), "state": n.state} for n in nodes),
-        key=lambda n: n["name"],
-    )
+    local = [_summary(lab, n) for n in nodes]
+    remote = lab.remote_graph()
+    others = [
+        {"name": n.name, "namespace": n.namespace, "state": "active", "location": n.location, "respawn": None}
+        for n in (remote.nodes() if remote is not None else [])
+        if hidden or not is_hidden(n.name)
+    ]
+    died = [n for n in lab.died_nodes() if hidden or not is_hidden(n["name"])]
+    return sorted(local + others + died, key=lambda n: (n["name"], n["location"]))
 
 
-@router.get("/nodes/{name:path}", response_model=NodeDetailOut)
+def _summary(lab: Lab, node: Node) -> dict[str, Any]:
+    respawn = lab.launcher.respawn_of(node)
+    return {
+        "name": node.fully_qualified_name,
+        "namespace": node.get_namespace(),
+        "state": node.state,
+        "location": "app",
+        "respawn": None if respawn is None else respawn.describe(),
+    }
+
+
+@router.get("/nodes/{name:path}", response_model=NodeDetailOut, responses=responses(NOT_FOUND, 422))
 async def get_node(name: str, lab: LabDep) -> dict[str, Any]:
-    """One node (its name without the leading slash), as ``ros2 node info``."""
+    """One node (its name without the leading slash), as ``ros2 node info``; a node of another
+    process shows what its tokens tell (endpoints; no timers or parameters)."""
     try:
-        return node_info(lab.bus.get_node(name))
-    except Exception as exc:
-        raise http_error(exc) from exc
+        node = lab.bus.get_node(name)
+    except UnknownNodeError:
+        remote = lab.remote_graph()
+        fq = "/" + name.lstrip("/")
+        found = next((n for n in remote.nodes() if n.name == fq), None) if remote is not None else None
+        if remote is None or found is None:
+            raise
+        endpoints = remote_node_endpoints(remote, fq)
+        return {
+            "name": fq, "namespace": found.namespace, "state": "active", "location": found.location,
+            "respawn": None, "crash_reason": None, "publishers": endpoints["publishers"],
+            "subscribers": endpoints["subscribers"], "timers": [], "parameters": {}, "origin": {},
+        }  # fmt: skip
+    return {**node_info(node), **_summary(lab, node)}
 
 
-@router.get("/hz/{name:path}", response_model=RateOut)
+@router.get("/hz/{name:path}", response_model=RateOut, responses=responses(NOT_FOUND, 422))
 async def topic_hz(
     name: str,
     lab: LabDep,
     window: int = Query(HZ_WINDOW_DEFAULT, ge=2, le=HZ_WINDOW_MAX, description="periods"),
 ) -> dict[str, Any]:
     """A topic's publishing rate over its last ``window`` periods, as ``ros2 topic hz``."""
-    try:
-        topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
-    except Exception as exc:
-        raise http_error(exc) from exc
+    topic = lab.bus.get_topic("/" + validate_topic_name(name).lstrip("/"))
     stats = rate_stats(topic.publish_times_s, window)
     return {"topic": topic.name, **vars(stats), "count": topic.publish_count}
 
@@ -148,13 +207,13 @@ async def list_types() -> list[str]:
 
 
 # Declared before /types/{type} so that the path parameter does not swallow "/default".
-@router.get("/types/{type_name:path}/default")
+@router.get("/types/{type_name:path}/default", responses=responses(NOT_FOUND))
 async def type_default(type_name: str) -> dict[str, Any]:
     """The message with every field at its default, as ``ros2 interface proto``."""
     return _type(type_name)().to_dict()
 
 
-@router.get("/types/{type_name:path}")
+@router.get("/types/{type_name:path}", responses=responses(NOT_FOUND))
 async def type_info(type_name: str) -> dict[str, Any]:
     """A JSON Schema (draft 2020-12) of the type's JSON form, with ROS integer ranges and defaults."""
     return type_schema(_type(type_name))

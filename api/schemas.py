@@ -6,15 +6,34 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from server.publishers import MAX_RATE_HZ, MIN_RATE_HZ
+
+MAX_NAME_CHARS = 256  # topic and type names
+
 
 class TopicSummary(BaseModel):
     name: str = Field(examples=["/countdown"])
     type: str = Field(examples=["std_msgs/msg/Int64"])
     publishers: list[str] = Field(description="fully qualified names of the publishing nodes")
     subscribers: list[str] = Field(description="fully qualified names of the subscribing nodes")
+    type_conflict: bool = Field(
+        default=False, description="endpoints on this name disagree on its type (each type is listed)"
+    )
+
+
+class EndpointDetail(BaseModel):
+    node: str = Field(examples=["/CountDownNode"])
+    kind: str = Field(examples=["publisher"], description="publisher or subscriber")
+    depth: int = Field(description="QoS depth (keep-last)")
+    location: str = Field(
+        examples=["app"], description="'app' (the lab's own process) or 'zenoh:<session>' (another process)"
+    )
 
 
 class TopicDetail(TopicSummary):
+    endpoints: list[EndpointDetail] = Field(
+        default_factory=list, description="who publishes and subscribes, where"
+    )
     latest: dict[str, Any] | None = Field(description="the last message published, or null")
     latest_time: float | None = Field(description="when it was published (s, Unix epoch)")
     publish_count: int
@@ -24,10 +43,11 @@ class TopicDetail(TopicSummary):
 
 class PublishRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    topic: str = Field(examples=["/abort_takeoff"])
+    topic: str = Field(max_length=MAX_NAME_CHARS, examples=["/abort_takeoff"])
     msg: dict[str, Any] = Field(default_factory=dict, examples=[{"data": True}])
     type: str | None = Field(
         default=None,
+        max_length=MAX_NAME_CHARS,
         description="needed only when the topic does not exist yet",
         examples=["std_msgs/msg/Bool"],
     )
@@ -39,21 +59,38 @@ class PublishResult(BaseModel):
     subscribers: int = Field(description="how many subscriptions received the message")
 
 
+class ZenohStatus(BaseModel):
+    mode: str = Field(examples=["router"], description="router (the app is the graph's router) or peer")
+    router: str = Field(examples=["tcp/127.0.0.1:7447"], description="where node processes connect")
+    listen: list[str] = Field(description="where the app's router listens")
+    connect: list[str] = Field(description="the router the app joined, in peer mode")
+    domain_id: int
+    zid: str = Field(description="the app's Zenoh session id")
+    processes: int = Field(description="other processes in the graph now")
+    sent: int = Field(description="samples the app put on Zenoh")
+    received: int = Field(description="samples the app took from Zenoh")
+    dropped_without_attachment: int = Field(description="samples refused: no rmw_zenoh attachment")
+
+
 class Health(BaseModel):
     status: str
     launch: str
     nodes: int
     topics: int
     uptime_s: float
+    zenoh: ZenohStatus | None = Field(default=None, description="null when the graph stays in the app")
+    zenoh_error: str | None = Field(default=None, description="why Zenoh is off, when it was asked for")
 
 
 class RatePublisherRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    topic: str = Field(examples=["/uav/input/position"])
+    topic: str = Field(max_length=MAX_NAME_CHARS, examples=["/uav/input/position"])
     msg: dict[str, Any] = Field(default_factory=dict, examples=[{"x": 5.0, "y": 5.0, "z": 10.0}])
-    type: str | None = Field(default=None, description="needed only when the topic does not exist yet")
+    type: str | None = Field(
+        default=None, max_length=MAX_NAME_CHARS, description="needed only when the topic does not exist yet"
+    )
     rate_hz: float = Field(
-        gt=0, le=1000, examples=[1.0], description="publishing rate, more than 0 and at most 1000 Hz"
+        ge=MIN_RATE_HZ, le=MAX_RATE_HZ, examples=[1.0], description="publishing rate, 0.01 to 1000 Hz"
     )
     enabled: bool = True
 
@@ -61,7 +98,7 @@ class RatePublisherRequest(BaseModel):
 class RatePublisherUpdate(BaseModel):
     model_config = ConfigDict(extra="forbid")
     msg: dict[str, Any] | None = None
-    rate_hz: float | None = Field(default=None, gt=0, le=1000)
+    rate_hz: float | None = Field(default=None, ge=MIN_RATE_HZ, le=MAX_RATE_HZ)
     enabled: bool | None = None
 
 

@@ -43,7 +43,7 @@ def origin_allowed(origin: str | None, host_header: str | None, allowed_origins:
 def _header(scope: Scope, name: bytes) -> str | None:
     for key, value in scope.get("headers", []):
         if key == name:
-            return value.decode("latin-1")
+            return str(value, "latin-1")
     return None
 
 

@@ -5,17 +5,14 @@ Frames: ``{"type": "keydown"|"keyup", "key": <KeyboardEvent.key>}`` with optiona
 ``alt``, ``meta``, or sided: ``lshift``, ``rshift`` ...). ``{"type": "release_all"}`` releases
 every key this connection holds (the page sends it on blur); ``{"type": "heartbeat"}`` keeps the
 channel alive: if it is silent for ``deadman_s`` (500 ms) while keys are held, the server
-releases them itself. Garbage closes the channel with a named code; an unknown key only gets an error
-frame. When the channel closes, its held keys are released.
+releases them itself (server/devices/deadman.py, on the bus's clock). Garbage, including JSON
+nested deeper than a frame needs, closes the channel with a named code; an unknown key only
+gets an error frame. When the channel closes, its held keys are released.
 """
 
 from __future__ import annotations
 
-import asyncio
 import itertools
-import json
-import logging
-import time
 from typing import Any
 
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect
@@ -23,10 +20,11 @@ from fastapi import APIRouter, WebSocket, WebSocketDisconnect
 from server.devices.keymap import MODIFIER_FLAG_NAMES, UnknownKeyError, modifier_bits, sdl_code
 
 from .deps import WsLabDep
-from .errors import CloseCode
+from .errors import CloseCode, close_reason
+from .strict_json import JsonRejected, loads
 
 router = APIRouter(tags=["websockets"])
-log = logging.getLogger("api.keys")
+FRAME_MAX_DEPTH = 2  # a frame is one flat object
 _ids = itertools.count(1)
 FRAME_FIELDS = frozenset({"type", "key", "code", "location", "repeat", "t", *MODIFIER_FLAG_NAMES})
 MAX_KEY_CHARS = 32
@@ -38,9 +36,9 @@ class BadFrame(ValueError):
 
 def parse_frame(text: str) -> dict[str, Any]:
     try:
-        frame = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise BadFrame(f"malformed JSON: {exc.msg} at char {exc.pos}") from None
+        frame = loads(text, max_depth=FRAME_MAX_DEPTH)
+    except JsonRejected as exc:
+        raise BadFrame(str(exc)) from None
     if not isinstance(frame, dict):
         raise BadFrame("a frame must be a JSON object")
     unknown = set(frame) - FRAME_FIELDS
@@ -66,12 +64,11 @@ async def keys(websocket: WebSocket, lab: WsLabDep) -> None:
     await websocket.accept()
     source = f"ws-keys-{next(_ids)}"
     limit = lab.settings.max_ws_frame_bytes
-    last_frame_s = [time.monotonic()]
-    watchdog = asyncio.create_task(_dead_man(lab, source, last_frame_s, lab.settings.deadman_s))
+    lab.key_deadman.watch(source)
     try:
         while True:
             message = await websocket.receive()
-            last_frame_s[0] = time.monotonic()
+            lab.key_deadman.feed(source)
             if message["type"] == "websocket.disconnect":
                 return
             text = message.get("text")
@@ -84,7 +81,7 @@ async def keys(websocket: WebSocket, lab: WsLabDep) -> None:
             try:
                 frame = parse_frame(text)
             except BadFrame as exc:
-                await websocket.close(CloseCode.INVALID_PAYLOAD, str(exc)[:120])
+                await websocket.close(CloseCode.INVALID_PAYLOAD, close_reason(str(exc)))
                 return
             error = handle_frame(lab, source, frame)
             if error is not None:
@@ -92,22 +89,8 @@ async def keys(websocket: WebSocket, lab: WsLabDep) -> None:
     except WebSocketDisconnect:
         return
     finally:
-        watchdog.cancel()
+        lab.key_deadman.unwatch(source)
         lab.keyboard.release_all(source)
-
-
-async def _dead_man(lab: Any, source: str, last_frame_s: list[float], timeout_s: float) -> None:
-    """Release this channel's keys when it goes silent while holding them (the page sends a
-    heartbeat every 200 ms; a frozen tab or a dead link stops it)."""
-    while True:
-        await asyncio.sleep(timeout_s / 5)
-        if lab.keyboard.held(source) and time.monotonic() - last_frame_s[0] > timeout_s:
-            log.warning(
-                "key channel %s silent for over %.0f ms with keys held: releasing them",
-                source,
-                timeout_s * 1000,
-            )
-            lab.keyboard.release_all(source)
 
 
 def handle_frame(lab: Any, source: str, frame: dict[str, Any]) -> str | None:

@@ -2,33 +2,44 @@
 
 The subscription's callback only appends to a bounded deque; a separate task sends. A slow
 client loses the oldest messages (counted in ``dropped``), it never holds up the bus.
+
+Everything a request asks is checked before its node exists, and the node, its subscription
+and its sender task go when the socket goes, however it ends. Node names are recycled (the
+lowest free number), so churn does not leave a logger per connection behind either.
 """
 
 from __future__ import annotations
 
 import asyncio
-import itertools
 from collections import deque
 from typing import Any
 
 from fastapi import APIRouter, Query, WebSocket, WebSocketDisconnect
 
-from server.bus import Node, validate_topic_name
-from server.msgs import Message, get_type
+from server.bus import Bus, Node, UnknownTopicError, validate_topic_name
+from server.lab import Lab
+from server.limits import LimitExceededError
+from server.msgs import Message
 
 from .deps import WsLabDep
-from .errors import CloseCode, close_code
+from .errors import CloseCode, close_code, close_reason
+from .strict_json import dumps
 
 router = APIRouter(tags=["websockets"])
-_ids = itertools.count(1)
 MAX_QUEUE = 1000
+NODE_PREFIX = "_ws_echo_"
+
+
+class EchoRequestError(ValueError):
+    """A query value the echo channel cannot take (closed with 4400 and this text)."""
 
 
 class EchoNode(Node):
     """Hidden node ``_ws_echo_N``: one per WebSocket client, as ros2 topic echo makes one."""
 
-    def __init__(self, topic: str, msg_type: type[Message], queue_length: int) -> None:
-        super().__init__(f"_ws_echo_{next(_ids)}")
+    def __init__(self, number: int, topic: str, msg_type: type[Message], queue_length: int, bus: Bus) -> None:
+        super().__init__(f"{NODE_PREFIX}{number}", context=bus)
+        self.number = number
         self.outbox: deque[tuple[Message, float]] = deque(maxlen=queue_length)
         self.dropped = 0
         self.ready = asyncio.Event()
@@ -48,10 +59,36 @@ def _int_param(name: str, text: str | None, default: int, low: int, high: int) -
     try:
         value = int(text)
     except ValueError:
-        raise ValueError(f"{name} must be an integer, got {text!r}") from None
+        raise EchoRequestError(f"{name} must be an integer, got {text[:20]!r}") from None
     if not low <= value <= high:
-        raise ValueError(f"{name} must be in {low}..{high}, got {value}")
+        raise EchoRequestError(f"{name} must be in {low}..{high}, got {value}")
     return value
+
+
+def _echo_nodes(bus: Bus) -> list[EchoNode]:
+    return [n for n in bus.nodes if isinstance(n, EchoNode)]
+
+
+def open_echo(lab: Lab, name: str, type_name: str | None, depth: int) -> EchoNode:
+    """Check the request against the bus and the app's limit, then make the node (or nothing)."""
+    topic = "/" + validate_topic_name(name).lstrip("/")
+    msg_type = lab.topic_type(topic, type_name)
+    taken = {n.number for n in _echo_nodes(lab.bus)}
+    if len(taken) >= lab.settings.max_echo_sockets:
+        raise LimitExceededError("echo sockets", lab.settings.max_echo_sockets)
+    number = next(i for i in range(1, len(taken) + 2) if i not in taken)
+    return EchoNode(number, topic, msg_type, depth, lab.bus)
+
+
+def _refusal(exc: Exception, topic: str) -> tuple[int, str]:
+    if isinstance(exc, EchoRequestError):
+        return CloseCode.BAD_REQUEST, str(exc)
+    if isinstance(exc, UnknownTopicError):
+        return CloseCode.UNKNOWN_TOPIC, f"unknown topic {topic}; pass ?type= to wait for it"
+    code = close_code(exc)
+    if code is None:
+        raise exc  # a bug: ErrorMiddleware closes with 1011 and logs it
+    return code, str(exc)
 
 
 @router.websocket("/ws/topics/{name:path}")
@@ -71,29 +108,22 @@ async def echo(
     try:
         throttle_ms = _int_param("throttle_rate", throttle_rate, 0, 0, 60_000)
         depth = _int_param("queue_length", queue_length, 100, 1, MAX_QUEUE)
-        topic = "/" + validate_topic_name(name).lstrip("/")
-        existing = lab.bus.topics.get(topic)
-        if existing is None and type is None:
-            await websocket.close(
-                CloseCode.UNKNOWN_TOPIC, f"unknown topic {topic}; pass ?type= to wait for it"
-            )
-            return
-        msg_type = existing.msg_type if type is None else get_type(type)
-        with lab.bus.activate():
-            node = EchoNode(topic, msg_type, depth)
+        node = open_echo(lab, name, type, depth)
     except Exception as exc:
-        await websocket.close(close_code(exc), str(exc)[:120])
+        code, reason = _refusal(exc, "/" + name.lstrip("/"))
+        await websocket.close(code, close_reason(reason))
         return
-    sender = asyncio.create_task(_send_loop(websocket, node, topic, throttle_ms / 1000.0))
+    sender = asyncio.create_task(_send_loop(websocket, node, throttle_ms / 1000.0))
     try:
         await _receive_until_closed(websocket, lab.settings.max_ws_frame_bytes)
     finally:
         sender.cancel()
         node.destroy_node()
+        await asyncio.gather(sender, return_exceptions=True)
 
 
-async def _send_loop(websocket: WebSocket, node: EchoNode, topic: str, throttle_s: float) -> None:
-    type_name = node.sub.msg_type.TYPE
+async def _send_loop(websocket: WebSocket, node: EchoNode, throttle_s: float) -> None:
+    topic, type_name = node.sub.topic_name, node.sub.msg_type.TYPE
     try:
         while True:
             await node.ready.wait()
@@ -108,7 +138,7 @@ async def _send_loop(websocket: WebSocket, node: EchoNode, topic: str, throttle_
                 }
                 if node.dropped:
                     frame["dropped"] = node.dropped
-                await websocket.send_json(frame)
+                await websocket.send_text(dumps(frame))
                 if throttle_s:
                     await asyncio.sleep(throttle_s)
     except (WebSocketDisconnect, RuntimeError, asyncio.CancelledError):
@@ -118,15 +148,13 @@ async def _send_loop(websocket: WebSocket, node: EchoNode, topic: str, throttle_
 async def _receive_until_closed(websocket: WebSocket, max_frame_bytes: int) -> None:
     """The echo channel only sends; anything a client sends is refused with a named close code."""
     try:
-        while True:
-            frame = await websocket.receive()
-            if frame["type"] == "websocket.disconnect":
-                return
-            data = frame.get("text") or frame.get("bytes") or b""
-            if len(data) > max_frame_bytes:
-                await websocket.close(CloseCode.MESSAGE_TOO_BIG, f"frame larger than {max_frame_bytes} bytes")
-            else:
-                await websocket.close(CloseCode.UNSUPPORTED_DATA, "the echo channel takes no messages")
+        frame = await websocket.receive()
+        if frame["type"] == "websocket.disconnect":
             return
+        data = frame.get("text") or frame.get("bytes") or b""
+        if len(data) > max_frame_bytes:
+            await websocket.close(CloseCode.MESSAGE_TOO_BIG, f"frame larger than {max_frame_bytes} bytes")
+        else:
+            await websocket.close(CloseCode.UNSUPPORTED_DATA, "the echo channel takes no messages")
     except (WebSocketDisconnect, RuntimeError):
         return

@@ -119,7 +119,7 @@ class FlyServer(ServerProcess):
         self.spawned_at = time.perf_counter()
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "server", "--launch", "fly", f"keyboard_mode:={mode}", "--host", "127.0.0.1",
-             "--port", str(self.port), "--log-level", "warning"],
+             "--port", str(self.port), "--zenoh-listen", f"tcp/127.0.0.1:{free_port()}", "--log-level", "warning"],
             cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
         )  # fmt: skip
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Set up what the tests need (the app, pytest, Playwright, Debian's Chromium) and run the whole
-# suite. Extra arguments go to pytest. CI runs exactly this (.ci/run).
+# Set up what the tests need (the app, pytest, Playwright, Debian's Chromium, the linters) and run
+# the check gate (scripts/check: ruff, ruff format, mypy --strict, then the whole suite). Extra
+# arguments go to pytest. CI runs exactly this (.ci/run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/_venv.sh
@@ -17,4 +18,4 @@ if ! command -v chromium >/dev/null 2>&1; then
   fi
 fi
 
-exec "$VENV/bin/python" -m pytest "$@"
+exec env TELEOP_VENV="$VENV" bash scripts/check "$@"

@@ -11,6 +11,7 @@ from pathlib import Path
 
 from server import cli
 from server.settings import Settings
+from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env, is_loopback
 
 
 def parse_launch_arg(text: str) -> tuple[str, str]:
@@ -47,7 +48,47 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--allow-host", action="append", default=[], help="another Host name to accept")
     parser.add_argument("--allow-origin", action="append", default=[], help="another page origin to accept")
     parser.add_argument("--log-level", default="info", choices=["debug", "info", "warning", "error"])
+    zenoh = parser.add_argument_group(
+        "the graph on Zenoh (rmw_zenoh's wire format; ROS_DOMAIN_ID is read from the environment)"
+    )
+    zenoh.add_argument(
+        "--zenoh-listen", action="append", default=[], metavar="ENDPOINT",
+        help=f"where the app's Zenoh router listens (repeatable; default {DEFAULT_ROUTER_ENDPOINT}: this "
+             "machine only). An address beyond loopback lets other machines join the graph.",
+    )  # fmt: skip
+    zenoh.add_argument(
+        "--zenoh-connect",
+        action="append",
+        default=[],
+        metavar="ENDPOINT",
+        help="join an existing Zenoh router (e.g. rmw_zenohd's, or another lab's) instead of being one",
+    )
+    zenoh.add_argument(
+        "--zenoh-config", type=Path, metavar="FILE", help="a Zenoh JSON5 config (TLS, user/password)"
+    )
+    zenoh.add_argument("--no-zenoh", action="store_true", help="keep every node in this process (no Zenoh)")
+    parser.add_argument(
+        "--node-processes", choices=["student", "all"], default="student",
+        help="which nodes run as their own processes: your own files (default), or every node but the two "
+             "that drive the page (keyboard, view), so the lesson shows in ps",
+    )  # fmt: skip
     return parser
+
+
+def zenoh_settings(args: argparse.Namespace) -> ZenohSettings | None:
+    """The session the flags ask for; the HTTP --host never widens where Zenoh listens."""
+    if args.no_zenoh:
+        return None
+    domain_id = domain_id_from_env()
+    if args.zenoh_connect:
+        return ZenohSettings(
+            mode="peer", listen=tuple(args.zenoh_listen) or ("tcp/127.0.0.1:0",),
+            connect=tuple(args.zenoh_connect), domain_id=domain_id, config_file=args.zenoh_config,
+        )  # fmt: skip
+    return ZenohSettings(
+        mode="router", listen=tuple(args.zenoh_listen) or (DEFAULT_ROUTER_ENDPOINT,), domain_id=domain_id,
+        config_file=args.zenoh_config,
+    )  # fmt: skip
 
 
 def check_launch(settings: Settings) -> str | None:
@@ -79,10 +120,16 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv and (argv[0] in cli.VERBS or argv[0].startswith("--url")):
         return cli.main(argv)  # ros2's verbs, against a running server
-    args = build_parser().parse_args(argv)
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        zenoh = zenoh_settings(args)
+    except ValueError as exc:
+        parser.error(str(exc))
     settings = Settings(
         host=args.host, port=args.port, launch=args.launch, launch_args=dict(args.launch_args),
         workspace=Path(args.workspace), allowed_hosts=tuple(args.allow_host), allowed_origins=tuple(args.allow_origin),
+        zenoh=zenoh, node_processes=args.node_processes,
     )  # fmt: skip
     logging.basicConfig(
         level=args.log_level.upper(),
@@ -99,6 +146,13 @@ def main(argv: list[str] | None = None) -> int:
 
     from server.app import create_app
 
+    if zenoh is not None:
+        wide = [e for e in zenoh.listen if not is_loopback(e)] if zenoh.mode == "router" else []
+        where = ", ".join(zenoh.listen) if zenoh.mode == "router" else "router " + ", ".join(zenoh.connect)
+        print(f"ROS graph on Zenoh ({where}, domain {zenoh.domain_id})", flush=True)
+        if wide:
+            print(f"note: Zenoh listens on {', '.join(wide)}: other machines can join this graph "
+                  "(see the README on opening it to a classroom)", flush=True)  # fmt: skip
     # viser prints a box with its own loopback port; the page is served on ours, so that box
     # would send a student to a page without the lab's keys and HUD. The app prints nothing else
     # through rich.

@@ -6,12 +6,13 @@ from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from pathlib import Path
 
-from fastapi import FastAPI, Request
-from fastapi.responses import JSONResponse
+from fastapi import FastAPI
 from fastapi.staticfiles import StaticFiles
 
 from api import build_router
-from api.security import BodyTooLarge, GuardMiddleware
+from api.errors import ErrorMiddleware, register_error_handlers
+from api.security import GuardMiddleware
+from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
 from server.bus import Clock
 from server.lab import Lab
 from server.settings import Settings
@@ -39,20 +40,20 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         summary="ROS 2 Lab 2 in the browser: topics, nodes, a rocket and a quadrotor.",
         version="0.1.0",
         lifespan=lifespan,
+        default_response_class=SafeJSONResponse,
     )
     app.include_router(build_router())
     app.include_router(page_router)
     app.include_router(tools_router)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
+    register_error_handlers(app)
+    # Added innermost first: a request meets the error net, then the guard, then strict JSON.
+    app.add_middleware(StrictJsonMiddleware)
     app.add_middleware(
         GuardMiddleware,
         accepted_hosts=settings.accepted_hosts,
         allowed_origins=settings.allowed_origins,
         max_body_bytes=settings.max_body_bytes,
     )
-
-    @app.exception_handler(BodyTooLarge)
-    async def too_large(_request: Request, exc: BodyTooLarge) -> JSONResponse:
-        return JSONResponse({"detail": str(exc)}, status_code=413)
-
+    app.add_middleware(ErrorMiddleware)
     return app

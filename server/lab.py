@@ -10,21 +10,27 @@ import asyncio
 import itertools
 import logging
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from server.bus import Bus, Clock, Executor, Node, Publisher, SystemClock, TopicTypeError, UnknownTopicError
+from server.devices.deadman import KeyDeadMan
 from server.devices.keyboard import KeyboardDevice
+from server.introspection.merged import topic_views
 from server.launch.description import NodeAction, SourceLocation
-from server.launch.launcher import LaunchedNode, Launcher
-from server.msgs import Message, Vector3, get_type
+from server.launch.launcher import LaunchedNode, Launcher, ProcessTransport
+from server.limits import LimitExceededError, check_finite_json, check_topic_limits
+from server.msgs import Message, get_service_type, get_type
 from server.packages import PackageIndex
-from server.packages.flightcontroller.setpoints import check_finite
 from server.publishers import PublisherManager
+from server.service_calls import ServiceCaller
 from server.settings import Settings
+from server.transport.remote_graph import RemoteGraph
 
 log = logging.getLogger("lab")
+Trigger = get_service_type("std_srvs/srv/Trigger")
 
 LAUNCH_ALIASES = {
     "rocket": ("rocketship", "rocket.launch"),
@@ -41,37 +47,39 @@ def resolve_launch(launch: str, packages: PackageIndex) -> Path:
     return Path(launch)
 
 
-def _vector_guard(what: str) -> Any:
-    def guard(msg: Any) -> None:
-        check_finite((msg.x, msg.y, msg.z), what)  # NaN, infinity, 1e9: a 422, not a crash
-
-    return guard
-
-
-# Checks on what the API may publish, beyond the message types' own (topic → (type, check)).
-TOPIC_GUARDS: dict[str, tuple[type[Message], Any]] = {
-    "/uav/input/position": (Vector3, _vector_guard("msg")),
-    "/uav/input/velocity": (Vector3, _vector_guard("msg")),
-}
+RESET_SERVICE = "/rocket/reset"
 
 
 class ApiNode(Node):
-    """Hidden node ``_rest_api`` that owns the publishers REST calls use (like rqt's publisher)."""
+    """Hidden node ``_rest_api`` that owns the publishers REST calls use (like rqt's publisher),
+    and serves the lab's own controls as ROS services (``/rocket/reset``)."""
 
-    def __init__(self, max_topics: int) -> None:
+    def __init__(self, max_topics: int, reset_rocket: Callable[[], bool]) -> None:
         super().__init__("_rest_api")
         self.max_topics = max_topics
         self.pubs: dict[str, Publisher] = {}
+        self._reset_rocket = reset_rocket
+        self.create_service(Trigger, RESET_SERVICE, self._on_reset)
+
+    def _on_reset(self, request: Any, response: Any) -> Any:
+        response.success = self._reset_rocket()
+        response.message = "rocket back on the pad" if response.success else "no rocket in this launch"
+        return response
 
     def publisher_for(self, topic: str, msg_type: type[Message]) -> Publisher:
         pub = self.pubs.get(topic)
         if pub is not None and pub.msg_type is msg_type:
             return pub
         if pub is None and len(self.pubs) >= self.max_topics:
-            raise ValueError(f"the API already publishes on {self.max_topics} topics; no more may be created")
+            raise LimitExceededError("topics published by the API", self.max_topics)
         pub = self.create_publisher(msg_type, topic, 10)
         self.pubs[topic] = pub
         return pub
+
+
+class UnknownLaunchError(LookupError):
+    def __init__(self, group_id: str) -> None:
+        super().__init__(f"no launch or run with id {group_id!r}")
 
 
 @dataclass
@@ -105,15 +113,20 @@ class Lab:
         self.executor = Executor(self.bus)
         self.packages = PackageIndex(workspace=settings.workspace)
         self.launcher = Launcher(self.bus, self.packages)
+        self.launcher.all_processes = settings.node_processes == "all"
         self.keyboard = KeyboardDevice()
         self.bus.devices["keyboard"] = self.keyboard
+        self.key_deadman = KeyDeadMan(self.keyboard, self.bus, settings.deadman_s)
         self.display: Any = None
         self.rocket_view: Any = None
         self.started_at = time.monotonic()
         self._spin_task: asyncio.Task[None] | None = None
+        self.zenoh: Any = None  # server.transport.link.ZenohLink while the graph is on Zenoh
+        self.zenoh_error: str | None = None
         with self.bus.activate():
-            self.api_node = ApiNode(settings.max_api_topics)
-        self.publishers = PublisherManager(self)
+            self.api_node = ApiNode(settings.max_api_topics, self.reset_rocket)
+        self.publishers = PublisherManager(self, settings.max_publishers)
+        self.service_caller = ServiceCaller(self.api_node)
         self.launch_groups: dict[str, LaunchGroup] = {}
         self._group_ids = itertools.count(1)
 
@@ -135,6 +148,18 @@ class Lab:
             self.page_tools = PageToolsNode(self)
 
     async def start(self) -> None:
+        if self.settings.zenoh is not None:
+            from server.transport.link import open_link
+
+            self.zenoh, self.zenoh_error = await open_link(self.bus, self.settings.zenoh)
+            if self.zenoh is not None:
+                self.launcher.transport = ProcessTransport(
+                    self.zenoh.router_endpoint(), self.settings.zenoh.domain_id
+                )
+                remote = self.zenoh.bridge.remote
+                self.launcher.on_process_start.append(
+                    lambda p: remote.name_session(p.command.zid, f"process {p.pid}")
+                )
         if self.settings.viewer:
             from server.viewer.display import Display
 
@@ -151,23 +176,60 @@ class Lab:
         self.launcher.shutdown()
         for node in list(self.bus.nodes):
             node.destroy_node()
+        if self.zenoh is not None:
+            self.zenoh.close()
+            self.zenoh = None
         if self.display is not None:
             self.display.stop()
+
+    def remote_graph(self) -> RemoteGraph | None:
+        """Nodes and endpoints of other processes, while the graph is on Zenoh."""
+        return self.zenoh.bridge.remote if self.zenoh is not None else None
+
+    def died_nodes(self) -> list[dict[str, Any]]:
+        """Node processes that ended and are not running again (yet), for the node list."""
+        out = []
+        for entry in self.launcher.launched:
+            process = entry.process
+            if process is None or process.state != "died":
+                continue
+            action = entry.action
+            name = (action.name or Path(action.exec).stem).split("/")[-1]
+            namespace = action.namespace or "/"
+            out.append({
+                "name": namespace.rstrip("/") + "/" + name, "namespace": namespace, "state": "died",
+                "location": f"process {process.pid}", "exit_code": process.exit_code,
+                "respawn": None if entry.respawn is None else entry.respawn.describe(),
+            })  # fmt: skip
+        return out
+
+    def topic_type(self, name: str, type_name: str | None) -> type[Message]:
+        """The type ``name`` carries: ``type_name`` if given (it must agree with the graph), else the
+        type this process or another process uses on it. UnknownTopicError if none does."""
+        existing = self.bus.topics.get(name)
+        if existing is not None:
+            known = {existing.msg_type.TYPE}
+        else:
+            known = {v.type for v in topic_views(self.bus, self.remote_graph()) if v.name == name}
+        if type_name is not None:
+            msg_type = get_type(type_name)
+            if existing is not None and existing.msg_type is not msg_type:
+                raise TopicTypeError(f"{name} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
+            return msg_type
+        if not known:
+            raise UnknownTopicError(name)
+        if len(known) > 1:
+            raise TopicTypeError(f"{name} carries several types ({', '.join(sorted(known))}): name one")
+        return get_type(known.pop())
 
     # -- actions -------------------------------------------------------------
     def prepare(self, topic: str, msg: dict[str, Any], type_name: str | None) -> tuple[str, Message]:
         """Resolve the topic and build the message from JSON, refusing what no node should get."""
+        check_finite_json(msg)
         name = self.api_node.resolve_topic_name(topic)
-        existing = self.bus.topics.get(name)
-        if existing is None and type_name is None:
-            raise UnknownTopicError(name)
-        msg_type = get_type(type_name) if type_name is not None else existing.msg_type
-        if existing is not None and existing.msg_type is not msg_type:
-            raise TopicTypeError(f"{name} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
+        msg_type = self.topic_type(name, type_name)
         message = msg_type.from_dict(msg)
-        guard = TOPIC_GUARDS.get(name)
-        if guard is not None and guard[0] is msg_type:
-            guard[1](message)
+        check_topic_limits(name, message)
         return name, message
 
     def publish(self, topic: str, msg: dict[str, Any], type_name: str | None) -> tuple[str, str, int]:
@@ -177,9 +239,13 @@ class Lab:
         return name, message.TYPE, pub.publish(message)
 
     def launch_group(self, path: Path, args: dict[str, str]) -> LaunchGroup:
-        """Launch a file into the running graph, as ``ros2 launch`` does; LaunchFileError if it is bad."""
-        entries = self.launcher.launch_file(path, args)
-        return self._group("launch", str(path), entries)
+        """Launch a file into the running graph, as ``ros2 launch`` does; LaunchFileError if it is bad.
+        Everything is checked before the first node starts."""
+        self._check_group_limit()
+        description = self.launcher.parse(path, args)
+        if len(description.nodes) > self.settings.max_nodes_per_launch:
+            raise LimitExceededError("nodes in one launch", self.settings.max_nodes_per_launch)
+        return self._group("launch", str(path), self.launcher.launch(description))
 
     def run_node(
         self,
@@ -190,7 +256,8 @@ class Lab:
         remappings: dict[str, str] | None = None,
     ) -> LaunchGroup:
         """Start one node, as ``ros2 run PKG EXEC --ros-args ...`` does."""
-        self.packages.factory(pkg, exe)  # an unknown package or executable is an error, not a failed node
+        self._check_group_limit()
+        self.packages.resolve(pkg, exe)  # an unknown package or executable is an error, not a failed node
         action = NodeAction(
             pkg=pkg,
             exec=exe,
@@ -207,6 +274,10 @@ class Lab:
         self.launcher.launched.append(entry)
         return self._group("run", f"{pkg} {exe}", [entry])
 
+    def _check_group_limit(self) -> None:
+        if len(self.launch_groups) >= self.settings.max_launch_groups:
+            raise LimitExceededError("launches and runs", self.settings.max_launch_groups)
+
     def _group(self, kind: str, source: str, entries: list[LaunchedNode]) -> LaunchGroup:
         group = LaunchGroup(f"{kind}{next(self._group_ids)}", source, entries)
         self.launch_groups[group.id] = group
@@ -215,13 +286,17 @@ class Lab:
     def stop_group(self, group_id: str) -> LaunchGroup:
         group = self.launch_groups.pop(group_id, None)
         if group is None:
-            raise LookupError(f"no launch or run with id {group_id!r}")
+            raise UnknownLaunchError(group_id)
         self.launcher.stop_all(group.entries)
         return group
 
-    def reset_rocket(self) -> None:
-        """Put the rocket back on the pad: restart the rocket launch's nodes, as a student would."""
-        self.launcher.restart(lambda e: Path(e.file).name == "rocket.launch" and e.action.pkg == "rocketship")
+    def reset_rocket(self) -> bool:
+        """Put the rocket back on the pad: restart the rocket launch's nodes, as a student would.
+        Returns whether there was a rocket to reset."""
+        restarted = self.launcher.restart(
+            lambda e: Path(e.file).name == "rocket.launch" and e.action.pkg == "rocketship"
+        )
         if self.rocket_view is not None:
             self.rocket_view.reset()
         log.info("rocket reset: back on the pad, countdown restarted")
+        return bool(restarted)

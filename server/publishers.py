@@ -7,9 +7,15 @@ from dataclasses import dataclass
 from typing import Any
 
 from server.bus import Publisher, Timer
+from server.limits import LimitExceededError
 from server.msgs import Message
 
+MIN_RATE_HZ = 0.01  # one message every 100 s; slower is a mistake (and a timer period of years)
 MAX_RATE_HZ = 1000.0
+
+
+class PublisherError(ValueError):
+    """A periodic publisher cannot be started or changed as asked (its rate, for instance)."""
 
 
 class UnknownPublisherError(LookupError):
@@ -46,8 +52,9 @@ class RatePublisher:
 
 
 def check_rate(rate_hz: float) -> float:
-    if isinstance(rate_hz, bool) or not isinstance(rate_hz, (int, float)) or not 0 < rate_hz <= MAX_RATE_HZ:
-        raise ValueError(f"rate_hz must be more than 0 and at most {MAX_RATE_HZ:g}, got {rate_hz!r}")
+    ok = not isinstance(rate_hz, bool) and isinstance(rate_hz, (int, float))
+    if not (ok and MIN_RATE_HZ <= rate_hz <= MAX_RATE_HZ):  # NaN fails the comparison too
+        raise PublisherError(f"rate_hz must be in {MIN_RATE_HZ:g}..{MAX_RATE_HZ:g} Hz, got {rate_hz!r}")
     return float(rate_hz)
 
 
@@ -63,20 +70,21 @@ class PublisherManager:
     def start(
         self, topic: str, msg: dict[str, Any], type_name: str | None, rate_hz: float, enabled: bool = True
     ) -> RatePublisher:
+        """Check everything, then start: a refused request leaves nothing running."""
         rate = check_rate(rate_hz)
         if len(self.items) >= self.max_publishers:
-            raise ValueError(f"at most {self.max_publishers} periodic publishers may run at once")
+            raise LimitExceededError("periodic publishers", self.max_publishers)
         name, message = self.lab.prepare(topic, msg, type_name)
         pub = self.lab.api_node.publisher_for(name, type(message))
         item = RatePublisher(f"pub{next(self._ids)}", name, message, rate, pub, enabled=enabled)
-        self.items[item.id] = item
         if enabled:
             self._arm(item)
+        self.items[item.id] = item
         return item
 
     def _arm(self, item: RatePublisher) -> None:
-        item.fire()  # at once, then every period
         item.timer = self.lab.api_node.create_timer(1.0 / item.rate_hz, item.fire)
+        item.fire()  # at once, then every period
 
     def _disarm(self, item: RatePublisher) -> None:
         if item.timer is not None:

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Literal
+
+from server.transport.config import ZenohSettings
 
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
 
@@ -23,6 +26,16 @@ class Settings:
     max_ws_frame_bytes: int = 16 * 1024
     deadman_s: float = 0.5  # a key channel silent this long with keys held has them released
     max_api_topics: int = 256  # topics the REST API may create, so a loop of typos cannot grow memory
+    max_publishers: int = 64  # periodic publishers running at once
+    max_echo_sockets: int = 64  # /ws/topics clients at once
+    max_launch_groups: int = 32  # launches and runs started through the API, at once
+    max_nodes_per_launch: int = 64
+    # The graph on Zenoh (rmw_zenoh's wire format); None keeps every node in this process. The
+    # command line turns it on (a router on tcp/127.0.0.1:7447); tests that need it say so.
+    zenoh: ZenohSettings | None = None
+    # Which nodes run as their own processes: a student's files always; "all" adds every lab node
+    # but those that drive the app's devices (the page's keys, the 3D view).
+    node_processes: Literal["student", "all"] = "student"
 
     def __post_init__(self) -> None:
         if not 0 <= self.port <= 65535:

@@ -122,12 +122,12 @@
   }
 
   function drawVertex(v, box) {
-    const cls = [v.kind === "node" ? "graph-node" : "graph-topic", v.hidden ? "debug" : "", v.state === "crashed" ? "crashed" : ""];
+    const cls = [v.kind === "node" ? "graph-node" : "graph-topic", v.hidden ? "debug" : "", v.state === "crashed" || v.state === "died" ? "crashed" : ""];
     const g = sv("g", { class: cls.join(" ").trim(), "data-name": v.id, tabindex: "0", role: "button",
-      "aria-label": `${v.kind} ${v.id}${v.state === "crashed" ? " (crashed)" : ""}` });
+      "aria-label": `${v.kind} ${v.id}${v.state === "crashed" || v.state === "died" ? ` (${v.state})` : ""}` });
     if (v.state) g.setAttribute("data-state", v.state);
     const title = sv("title");
-    title.textContent = v.kind === "topic" ? `${v.id}\n${v.type}` : `${v.id}${v.state === "crashed" ? " (crashed)" : ""}`;
+    title.textContent = v.kind === "topic" ? `${v.id}\n${v.type}` : `${v.id}${v.state === "crashed" || v.state === "died" ? ` (${v.state})` : ""}`;
     const shape = v.kind === "node"
       ? sv("ellipse", { cx: box.x, cy: box.y, rx: box.w / 2, ry: box.h / 2 })
       : sv("rect", { x: box.x - box.w / 2, y: box.y - box.h / 2, width: box.w, height: box.h, rx: 3 });

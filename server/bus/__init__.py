@@ -8,19 +8,51 @@ from .errors import (
     InvalidNameError,
     InvalidQoSError,
     NoBusError,
+    ServiceTimeoutError,
     TopicTypeError,
     UnknownNodeError,
+    UnknownServiceError,
     UnknownTopicError,
-)  # fmt: skip
+)
 from .executor import Executor
 from .graph import INTERNAL_TOPICS, Bus, NodeOverrides, Topic, current_bus
 from .names import is_hidden, resolve_topic_name, validate_namespace, validate_node_name, validate_topic_name
 from .node import Node, Parameter
+from .services import Future, ServiceChannel, ServiceClient, ServiceServer
 
 __all__ = [
-    "INTERNAL_TOPICS", "Bus", "BusError", "Clock", "DestroyedError", "Executor", "InvalidNameError",
-    "InvalidQoSError", "ManualClock", "NoBusError", "Node", "NodeOverrides", "Parameter", "Publisher",
-    "RosTime", "Subscription", "SystemClock", "Timer", "Topic", "TopicTypeError", "UnknownNodeError",
-    "UnknownTopicError", "current_bus", "is_hidden", "resolve_topic_name", "validate_namespace",
-    "validate_node_name", "validate_topic_name",
-]  # fmt: skip
+    "INTERNAL_TOPICS",
+    "Bus",
+    "BusError",
+    "Clock",
+    "DestroyedError",
+    "Executor",
+    "Future",
+    "InvalidNameError",
+    "InvalidQoSError",
+    "ManualClock",
+    "NoBusError",
+    "Node",
+    "NodeOverrides",
+    "Parameter",
+    "Publisher",
+    "RosTime",
+    "ServiceChannel",
+    "ServiceClient",
+    "ServiceServer",
+    "ServiceTimeoutError",
+    "Subscription",
+    "SystemClock",
+    "Timer",
+    "Topic",
+    "TopicTypeError",
+    "UnknownNodeError",
+    "UnknownServiceError",
+    "UnknownTopicError",
+    "current_bus",
+    "is_hidden",
+    "resolve_topic_name",
+    "validate_namespace",
+    "validate_node_name",
+    "validate_topic_name",
+]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from ..msgs import Message
 from .errors import DestroyedError, InvalidQoSError, TopicTypeError
@@ -26,6 +26,12 @@ def qos_depth(qos: Any) -> int:
     return depth
 
 
+class RemoteOut(Protocol):
+    """Where a publisher's messages also go when another process subscribes (the transport)."""
+
+    def put(self, msg: Message) -> None: ...
+
+
 class Publisher:
     """Sends messages of one type on one topic; ``publish`` never runs a callback itself."""
 
@@ -35,6 +41,7 @@ class Publisher:
         self.msg_type = msg_type
         self.depth = depth
         self.destroyed = False
+        self.remote: RemoteOut | None = None
 
     @property
     def topic_name(self) -> str:
@@ -49,7 +56,15 @@ class Publisher:
                 f"{self.topic.name} carries {self.msg_type.TYPE}; cannot publish {type(msg).__name__}"
                 f" ({getattr(msg, 'TYPE', type(msg).__name__)})"
             )
-        return self.topic.deliver(msg)
+        lock = self.topic.bus.lock
+        if lock is None:
+            reached = self.topic.deliver(msg)
+        else:
+            with lock:
+                reached = self.topic.deliver(msg)
+        if self.remote is not None:
+            self.remote.put(msg)
+        return reached
 
     def get_subscription_count(self) -> int:
         return sum(1 for s in self.topic.subscriptions if s.active)

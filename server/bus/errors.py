@@ -27,6 +27,20 @@ class UnknownTopicError(BusError, LookupError):
         super().__init__(f"unknown topic {name!r}")
 
 
+class UnknownServiceError(BusError, LookupError):
+    def __init__(self, name: str) -> None:
+        self.name = name
+        super().__init__(f"unknown service {name!r}")
+
+
+class ServiceTimeoutError(BusError, TimeoutError):
+    """A service call that got no answer in time (the server is gone, busy, or crashed)."""
+
+    def __init__(self, name: str, timeout_s: float) -> None:
+        self.name = name
+        super().__init__(f"no answer from {name} within {timeout_s:g} s")
+
+
 class UnknownNodeError(BusError, LookupError):
     def __init__(self, name: str) -> None:
         self.name = name

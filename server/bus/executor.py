@@ -15,9 +15,12 @@ import traceback
 from collections.abc import Callable
 from typing import Any
 
+from ..msgs import Message
 from .endpoints import Subscription
+from .faults import is_node_fault
 from .graph import Bus
 from .node import Node
+from .services import PendingCall
 
 log = logging.getLogger("bus.executor")
 MAX_CALLBACKS_PER_PASS = 10_000  # bounds a node that keeps re-triggering itself
@@ -25,6 +28,9 @@ MAX_CALLBACKS_PER_PASS = 10_000  # bounds a node that keeps re-triggering itself
 
 class Executor:
     """Drains a bus: ``spin_some``/``spin_until`` for tests, ``await spin()`` for the app."""
+
+    # In the app a fault stays inside its node; a node process lets it end the process, as rclpy does.
+    propagate_faults = False
 
     def __init__(self, bus: Bus) -> None:
         self.bus = bus
@@ -36,7 +42,9 @@ class Executor:
     def _run(self, node: Node, fn: Callable[..., Any], *args: Any) -> None:
         try:
             fn(*args)
-        except Exception as exc:  # the lab's point: a fault stays inside its node
+        except BaseException as exc:  # the lab's point: a fault stays inside its node
+            if self.propagate_faults or not is_node_fault(exc):
+                raise
             log.error(
                 "node %s crashed in %s:\n%s",
                 node.fully_qualified_name,
@@ -70,17 +78,39 @@ class Executor:
             ran += 1 + self._drain()
         return ran
 
+    def _run_call(self, call: PendingCall) -> bool:
+        server = call.server
+        if not server.active:
+            return False  # the server went away: the client keeps waiting, as in ROS 2
+        outcome: list[Message] = []
+        self._run(server.node, lambda: outcome.append(server.handle(call.request)))
+        if outcome:
+            call.future.set_result(outcome[0])
+        return True
+
     def _drain(self) -> int:
-        ready = self.bus._ready
+        ready, calls = self.bus._ready, self.bus._calls
         ran = 0
-        while ready and ran < MAX_CALLBACKS_PER_PASS:
-            if self._run_subscription(ready.popleft()):
+        while (ready or calls) and ran < MAX_CALLBACKS_PER_PASS:
+            if ready and self._run_subscription(ready.popleft()):
+                ran += 1
+            if calls and self._run_call(calls.popleft()):
                 ran += 1
         return ran
 
     # -- stepping ----------------------------------------------------------
     def spin_some(self) -> int:
-        """Run every due timer, then every queued message; returns how many callbacks ran."""
+        """Take what other threads handed in, run every queued message, then every due timer;
+        returns how many callbacks ran."""
+        lock = self.bus.lock
+        if lock is None:
+            return self._pass()
+        with lock:
+            return self._pass()
+
+    def _pass(self) -> int:
+        for poll in self.bus.pollers:
+            poll()
         ran = self._drain()
         return ran + self._run_due_timers(self.bus.clock.now())
 
@@ -123,10 +153,16 @@ class Executor:
         loop = asyncio.get_running_loop()
         self._stopping = False
         self.bus.add_waker(self._wake)
+
+        def wake_from_thread() -> None:
+            with contextlib.suppress(RuntimeError):  # the loop closed while another thread had news
+                loop.call_soon_threadsafe(self._wake)
+
+        self.bus.threadsafe_waker = wake_from_thread
         try:
             while not self._stopping:
                 self.spin_some()
-                if self.bus._ready:
+                if self.bus._ready or self.bus._calls:
                     await asyncio.sleep(0)  # let the API and WebSockets in between bursts
                     continue
                 delay = self.next_deadline_s() - self.bus.clock.now()
@@ -143,6 +179,7 @@ class Executor:
                         handle.cancel()
         finally:
             self.bus.remove_waker(self._wake)
+            self.bus.threadsafe_waker = None
 
     def stop(self) -> None:
         self._stopping = True

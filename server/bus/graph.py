@@ -5,21 +5,44 @@ from __future__ import annotations
 import heapq
 import itertools
 import logging
+import threading
 from collections import deque
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
-from ..msgs import Message
+from ..msgs import Message, Service
 from .clock import Clock, SystemClock
 from .errors import NoBusError, TopicTypeError, UnknownNodeError, UnknownTopicError
 from .names import is_hidden
+from .services import Future, PendingCall, ServiceChannel, ServiceClient, check_service_type
 
 if TYPE_CHECKING:
     from .endpoints import Publisher, Subscription, Timer
     from .node import Node
+
+
+class GraphObserver(Protocol):
+    """Told of every node and endpoint as it comes and goes (the transport declares them outside)."""
+
+    def node_added(self, node: Node) -> None: ...
+
+    def node_removed(self, node: Node) -> None: ...
+
+    def endpoint_added(self, endpoint: object) -> None: ...
+
+    def endpoint_removed(self, endpoint: object) -> None: ...
+
+
+class RemoteServices(Protocol):
+    """Where calls go that no node of this process serves (the Zenoh transport)."""
+
+    def has_server(self, name: str, srv_type: type[Service]) -> bool: ...
+
+    def call(self, client: ServiceClient, request: Message, future: Future[Message]) -> None: ...
+
 
 log = logging.getLogger("bus")
 HZ_WINDOW_MAX = 10_000
@@ -40,15 +63,31 @@ class NodeOverrides:
 _overrides: ContextVar[NodeOverrides | None] = ContextVar("node_overrides", default=None)
 
 
+# A node process (the rclpy client library) has one bus for the whole process, set by rclpy.init().
+_process_bus: Bus | None = None
+_process_overrides: NodeOverrides | None = None
+
+
+def set_process_bus(bus: Bus | None, overrides: NodeOverrides | None = None) -> None:
+    """Make ``bus`` the one every node of this process joins when no bus is active (rclpy.init)."""
+    global _process_bus, _process_overrides
+    _process_bus, _process_overrides = bus, overrides
+
+
 def current_bus() -> Bus:
-    bus = _current_bus.get()
+    bus = _current_bus.get() or _process_bus
     if bus is None:
-        raise NoBusError("no bus to join: create nodes inside a launch, or inside `with bus.activate():`")
+        raise NoBusError(
+            "no bus to join: call rclpy.init() first (or, in the app, create nodes inside a launch or "
+            "inside `with bus.activate():`)"
+        )
     return bus
 
 
 def current_overrides() -> NodeOverrides | None:
-    return _overrides.get()
+    if _current_bus.get() is not None:
+        return _overrides.get()
+    return _process_overrides
 
 
 class Topic:
@@ -96,13 +135,27 @@ class Bus:
     def __init__(self, clock: Clock | None = None) -> None:
         self.clock: Clock = clock or SystemClock()
         self.topics: dict[str, Topic] = {}
+        self.services: dict[str, ServiceChannel] = {}
+        self.remote_services: RemoteServices | None = None
         self.nodes: list[Node] = []
         self.graph_version = 0
         self.crash_handlers: list[Callable[[Node, BaseException], None]] = []
         self._ready: deque[Subscription] = deque()
+        self._calls: deque[PendingCall] = deque()
         self._timers: list[tuple[float, int, Timer]] = []
         self._seq = itertools.count()
         self._wakers: list[Callable[[], None]] = []
+        self.observers: list[GraphObserver] = []
+        # Called at the start of every executor pass, on the executor's thread (the transport's inbox).
+        self.pollers: list[Callable[[], None]] = []
+        # Set by a running executor: wakes it from another thread.
+        self.threadsafe_waker: Callable[[], None] | None = None
+        # Held by every executor pass and every publish when nodes of this bus may run on several
+        # threads (a node process whose student spins in one thread and publishes from another);
+        # None in the app, where everything runs on the event loop's thread.
+        self.lock: threading.RLock | None = None
+        # Prints a node's log line (level, node name, text); the app logs through Python's logging.
+        self.console: Callable[[int, str, str], None] | None = None
         self.devices: dict[str, Any] = {}  # hardware the nodes may use: 'keyboard', 'display'
 
     # -- membership ------------------------------------------------------
@@ -125,11 +178,25 @@ class Bus:
             )
         self.nodes.append(node)
         self.graph_changed()
+        for observer in self.observers:
+            observer.node_added(node)
 
     def remove_node(self, node: Node) -> None:
         if node in self.nodes:
             self.nodes.remove(node)
             self.graph_changed()
+            for observer in self.observers:
+                observer.node_removed(node)
+
+    def endpoint_added(self, endpoint: object) -> None:
+        self.graph_changed()
+        for observer in self.observers:
+            observer.endpoint_added(endpoint)
+
+    def endpoint_removed(self, endpoint: object) -> None:
+        self.graph_changed()
+        for observer in self.observers:
+            observer.endpoint_removed(endpoint)
 
     def get_node(self, name: str) -> Node:
         fq = name if name.startswith("/") else "/" + name
@@ -163,6 +230,27 @@ class Bus:
             del self.topics[topic.name]
             self.graph_changed()
 
+    # -- services --------------------------------------------------------
+    def service(self, name: str, srv_type: type[Service]) -> ServiceChannel:
+        """The service of that name, created with ``srv_type`` if new; a type conflict is an error."""
+        channel = self.services.get(name)
+        if channel is None:
+            channel = self.services[name] = ServiceChannel(self, name, srv_type)
+            self.graph_changed()
+        else:
+            check_service_type(channel, srv_type)
+        return channel
+
+    def drop_service_if_unused(self, channel: ServiceChannel) -> None:
+        if not channel.servers and not channel.clients and self.services.get(channel.name) is channel:
+            del self.services[channel.name]
+            self.graph_changed()
+
+    def queue_call(self, call: PendingCall) -> None:
+        """A request for a server of this bus; the executor runs its callback."""
+        self._calls.append(call)
+        self._wake()
+
     # -- scheduling ------------------------------------------------------
     def schedule(self, timer: Timer) -> None:
         heapq.heappush(self._timers, (timer.next_deadline_s, next(self._seq), timer))
@@ -177,6 +265,12 @@ class Bus:
 
     def _wake(self) -> None:
         for waker in self._wakers:
+            waker()
+
+    def wake_threadsafe(self) -> None:
+        """From any thread: have the executor run a pass soon (its pollers first)."""
+        waker = self.threadsafe_waker
+        if waker is not None:
             waker()
 
     def node_crashed(self, node: Node, exc: BaseException) -> None:

@@ -7,12 +7,13 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from ..msgs import Log, Message
+from ..msgs import Log, Message, Service
 from .clock import NodeClock
 from .endpoints import Publisher, Subscription, Timer, qos_depth
 from .errors import DestroyedError
 from .graph import Bus, current_bus, current_overrides
 from .names import resolve_topic_name, validate_namespace, validate_node_name
+from .services import ServiceCallback, ServiceClient, ServiceServer
 
 NodeState = Literal["active", "crashed", "destroyed"]
 _LEVELS = {"debug": 10, "info": 20, "warn": 30, "error": 40, "fatal": 50}
@@ -35,7 +36,11 @@ class NodeLogger:
 
     def _log(self, level: str, msg: Any) -> None:
         text = str(msg)
-        self._py.log(_LEVELS[level], "[%s] %s", self._node.get_name(), text)
+        console = self._node.bus.console
+        if console is not None:
+            console(_LEVELS[level], self._node.get_name(), text)
+        else:
+            self._py.log(_LEVELS[level], "[%s] %s", self._node.get_name(), text)
         self._node._emit_log(_LEVELS[level], text)
 
     def debug(self, msg: Any) -> None:
@@ -83,6 +88,8 @@ class Node:
         self.publishers: list[Publisher] = []
         self.subscriptions: list[Subscription] = []
         self.timers: list[Timer] = []
+        self.services: list[ServiceServer] = []
+        self.clients: list[ServiceClient] = []
         self.state: NodeState = "active"
         self.crash_reason: str | None = None
         self._clock = NodeClock(self.bus.clock)
@@ -126,7 +133,7 @@ class Node:
         pub = Publisher(self, t, msg_type, depth)
         t.publishers.append(pub)
         self.publishers.append(pub)
-        self.bus.graph_changed()
+        self.bus.endpoint_added(pub)
         return pub
 
     def create_subscription(
@@ -138,7 +145,7 @@ class Node:
         sub = Subscription(self, t, msg_type, callback, depth)
         t.subscriptions.append(sub)
         self.subscriptions.append(sub)
-        self.bus.graph_changed()
+        self.bus.endpoint_added(sub)
         return sub
 
     def create_timer(self, timer_period_sec: float, callback: Callable[[], Any]) -> Timer:
@@ -148,6 +155,47 @@ class Node:
         self.bus.schedule(timer)
         return timer
 
+    def create_service(
+        self, srv_type: type[Service], srv_name: str, callback: ServiceCallback, **_qos: Any
+    ) -> ServiceServer:
+        """Serve ``srv_name``: ``callback(request, response)`` fills and returns the response."""
+        self._check_alive()
+        channel = self.bus.service(self.resolve_topic_name(srv_name), srv_type)
+        server = ServiceServer(self, channel, callback)
+        channel.servers.append(server)
+        self.services.append(server)
+        self.bus.endpoint_added(server)
+        return server
+
+    def create_client(self, srv_type: type[Service], srv_name: str, **_qos: Any) -> ServiceClient:
+        self._check_alive()
+        channel = self.bus.service(self.resolve_topic_name(srv_name), srv_type)
+        client = ServiceClient(self, channel)
+        channel.clients.append(client)
+        self.clients.append(client)
+        self.bus.endpoint_added(client)
+        return client
+
+    def destroy_service(self, server: ServiceServer) -> bool:
+        if server.destroyed:
+            return False
+        server.destroyed = True
+        server.channel.servers.remove(server)
+        self.services.remove(server)
+        self.bus.drop_service_if_unused(server.channel)
+        self.bus.endpoint_removed(server)
+        return True
+
+    def destroy_client(self, client: ServiceClient) -> bool:
+        if client.destroyed:
+            return False
+        client.destroyed = True
+        client.channel.clients.remove(client)
+        self.clients.remove(client)
+        self.bus.drop_service_if_unused(client.channel)
+        self.bus.endpoint_removed(client)
+        return True
+
     def destroy_publisher(self, pub: Publisher) -> bool:
         if pub.destroyed:
             return False
@@ -155,7 +203,7 @@ class Node:
         pub.topic.publishers.remove(pub)
         self.publishers.remove(pub)
         self.bus.drop_topic_if_unused(pub.topic)
-        self.bus.graph_changed()
+        self.bus.endpoint_removed(pub)
         return True
 
     def destroy_subscription(self, sub: Subscription) -> bool:
@@ -166,7 +214,7 @@ class Node:
         sub.topic.subscriptions.remove(sub)
         self.subscriptions.remove(sub)
         self.bus.drop_topic_if_unused(sub.topic)
-        self.bus.graph_changed()
+        self.bus.endpoint_removed(sub)
         return True
 
     def destroy_timer(self, timer: Timer) -> bool:
@@ -185,6 +233,10 @@ class Node:
             self.destroy_subscription(sub)
         for pub in list(self.publishers):
             self.destroy_publisher(pub)
+        for server in list(self.services):
+            self.destroy_service(server)
+        for client in list(self.clients):
+            self.destroy_client(client)
         self.state = "destroyed"
         self.bus.remove_node(self)
         return True

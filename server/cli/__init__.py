@@ -1,5 +1,5 @@
-"""``ros2lab``: ros2's command-line verbs against a running lab server (``topic``, ``node``, ``launch``,
-``run``, ``interface``), with ros2's options and output, over the server's HTTP/WebSocket API.
+"""``ros2lab``: ros2's command-line verbs against a running lab server (``topic``, ``node``, ``service``,
+``launch``, ``run``, ``interface``), with ros2's options and output, over the server's HTTP/WebSocket API.
 
 It imports nothing of the server: everything goes over the wire, so it works against any lab
 server it can reach (``--url``, or ``TELEOP_URL``).
@@ -13,10 +13,10 @@ import signal
 import sys
 from types import FrameType
 
-from . import interface, launch, node, topic
+from . import interface, launch, node, run, service, topic
 from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
 
-VERBS = ("topic", "node", "launch", "run", "interface")
+VERBS = ("topic", "node", "service", "launch", "run", "interface")
 
 __all__ = ["VERBS", "build_parser", "main"]
 
@@ -33,7 +33,9 @@ def build_parser() -> argparse.ArgumentParser:
     verbs = parser.add_subparsers(dest="verb", required=True, metavar="VERB")
     topic.add_parser(verbs, common)
     node.add_parser(verbs, common)
+    service.add_parser(verbs, common)
     launch.add_parsers(verbs, common)
+    run.add_parser(verbs, common)
     interface.add_parser(verbs, common)
     return parser
 

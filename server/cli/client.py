@@ -92,8 +92,10 @@ class LabClient:
     def get(self, path: str, params: Mapping[str, Any] | None = None) -> Any:
         return self._request("GET", path, params=dict(params or {}))
 
-    def post(self, path: str, body: Mapping[str, Any]) -> Any:
-        return self._request("POST", path, json=dict(body))
+    def post(self, path: str, body: Mapping[str, Any], timeout_s: float | None = None) -> Any:
+        """``timeout_s`` for a request the server itself may take a while to answer (a service call)."""
+        extra = {"timeout": timeout_s} if timeout_s is not None else {}
+        return self._request("POST", path, json=dict(body), **extra)
 
     def delete(self, path: str) -> Any:
         return self._request("DELETE", path)

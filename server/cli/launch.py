@@ -1,4 +1,4 @@
-"""``launch`` and ``run``: start nodes in the server's graph, keep them until Ctrl-C, then stop them."""
+"""``launch``: start a launch file's nodes in the server's graph, keep them until Ctrl-C, then stop them."""
 
 from __future__ import annotations
 
@@ -8,13 +8,10 @@ import time
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
-import yaml
-
 from .client import ApiError, CliError, LabClient
 
 Sleep = Callable[[float], None]
 CHECK_PERIOD_S = 2.0  # how often to check that the launch still exists on the server
-NODE_NAME_REMAPS = ("__node", "__name")
 
 
 def split_assignment(text: str, what: str) -> tuple[str, str]:
@@ -33,36 +30,6 @@ def launch_request(tokens: Sequence[str], cwd: str | None = None) -> dict[str, A
     if len(positional) == 2:
         return {"package": positional[0], "file": positional[1], "args": args}
     raise CliError("launch takes FILE or PACKAGE FILE, then NAME:=VALUE arguments")
-
-
-def parse_ros_args(argv: Sequence[str]) -> dict[str, Any]:
-    """``--ros-args -p NAME:=VALUE -r FROM:=TO`` → name, parameters and remappings.
-
-    Parameter values are YAML, as ROS reads them (``2.0`` a float, ``true`` a bool); remapping
-    ``__node`` renames the node.
-    """
-    out: dict[str, Any] = {"name": None, "parameters": {}, "remappings": {}}
-    tokens = list(argv)
-    if tokens and tokens[0] == "--ros-args":
-        tokens.pop(0)
-    elif tokens:
-        raise CliError(f"unexpected arguments {' '.join(tokens)!r}; node options go after --ros-args")
-    while tokens:
-        flag = tokens.pop(0)
-        if flag in ("--", "--ros-args"):
-            continue
-        if flag not in ("-p", "--param", "-r", "--remap") or not tokens:
-            raise CliError(f"--ros-args takes -p NAME:=VALUE and -r FROM:=TO, got {flag!r}")
-        if flag in ("-p", "--param"):
-            name, value = split_assignment(tokens.pop(0), "parameters")
-            out["parameters"][name] = yaml.safe_load(value) if value else ""
-        else:
-            source, target = split_assignment(tokens.pop(0), "remappings")
-            if source in NODE_NAME_REMAPS:
-                out["name"] = target
-            else:
-                out["remappings"][source] = target
-    return out
 
 
 def _node_label(node: Mapping[str, Any]) -> str:
@@ -113,19 +80,6 @@ def launch(args: argparse.Namespace, client: LabClient) -> int:
     return hold_until_interrupted(client, group)
 
 
-def run(args: argparse.Namespace, client: LabClient) -> int:
-    options = parse_ros_args(args.argv)
-    body: dict[str, Any] = {
-        "package": args.package_name,
-        "executable": args.executable_name,
-        "parameters": options["parameters"],
-        "remappings": options["remappings"],
-    }
-    if options["name"] is not None:
-        body["name"] = options["name"]
-    return hold_until_interrupted(client, client.post("/api/run", body))
-
-
 def add_parsers(verbs: Any, common: argparse.ArgumentParser) -> None:
     p = verbs.add_parser("launch", parents=[common], help="Run a launch file")
     p.add_argument(
@@ -135,9 +89,3 @@ def add_parsers(verbs: Any, common: argparse.ArgumentParser) -> None:
         help="FILE, or PACKAGE FILE, then launch arguments as NAME:=VALUE",
     )
     p.set_defaults(handler=launch)
-
-    p = verbs.add_parser("run", parents=[common], help="Run a package specific executable")
-    p.add_argument("package_name", help="Name of the ROS package")
-    p.add_argument("executable_name", help="Name of the executable")
-    p.add_argument("argv", nargs=argparse.REMAINDER, help="--ros-args -p NAME:=VALUE -r FROM:=TO")
-    p.set_defaults(handler=run)

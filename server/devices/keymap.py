@@ -52,10 +52,10 @@ class UnknownKeyError(ValueError):
 def sdl_code(key: str, code: str | None = None, location: int | None = None) -> int:
     """The SDL key code for ``KeyboardEvent.key`` (plus ``.code`` and ``.location`` where they tell more)."""
     if code in _KEYPAD and (location in (None, 3)):
-        return _KEYPAD[code]
+        return int(_KEYPAD[code])
     if key in _SIDED:
         left, right = _SIDED[key]
-        return right if location == 2 else left
+        return int(right if location == 2 else left)
     if key in _NAMED:
         return _NAMED[key]
     if len(key) == 1:

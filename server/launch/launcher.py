@@ -8,12 +8,37 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from server.bus import Bus, Node, NodeOverrides
-from server.packages import PackageIndex
+from server.bus.faults import is_node_fault
+from server.packages import Executable, PackageIndex
+from server.processes.command import node_command, ros_args
+from server.processes.supervisor import ProcessNode, Supervisor
 
 from .description import LaunchDescription, NodeAction
+from .respawn import RespawnBackoff, RespawnPolicy
 from .xml_parser import parse_launch_file
 
 log = logging.getLogger("launch")
+# Lab nodes that drive a device of the app (the page's keys, the 3D view) stay in its process.
+DEVICE_NODES = frozenset({("keyboard", "keyboard"), ("visualizer", "gui_controller.py")})
+SCREEN_OUTPUTS = (None, "screen", "both", "full")
+
+
+class NoGraphError(RuntimeError):
+    """A node that must run as its own process, with the graph kept inside the app (no Zenoh)."""
+
+    def __init__(self, what: str) -> None:
+        super().__init__(
+            f"{what} runs as its own process and joins the graph over Zenoh, which is off in this app "
+            "(started with --no-zenoh, or its port was taken: see the first lines the app printed)"
+        )
+
+
+@dataclass(frozen=True)
+class ProcessTransport:
+    """Where node processes find the graph: the app's Zenoh router, and the ROS domain."""
+
+    router: str
+    domain_id: int = 0
 
 
 def parse_launch(
@@ -31,19 +56,29 @@ class LaunchedNode:
     node: Node | None = None
     error: str | None = None
     starts: int = 0
+    respawn: RespawnBackoff | None = None  # only for respawn="true"
+    process: ProcessNode | None = None  # a node that runs as its own process
 
     @property
     def file(self) -> str:
         return self.action.location.file
 
+    def process_label(self) -> str:
+        return self.process.label if self.process is not None else self.action.exec
+
 
 class Launcher:
-    def __init__(self, bus: Bus, packages: PackageIndex) -> None:
+    def __init__(self, bus: Bus, packages: PackageIndex, respawn_policy: RespawnPolicy | None = None) -> None:
         self.bus = bus
         self.packages = packages
+        self.respawn_policy = respawn_policy or RespawnPolicy()
         self.launched: list[LaunchedNode] = []
         self._respawner: Node | None = None
         bus.crash_handlers.append(self._on_crash)
+        self.transport: ProcessTransport | None = None  # set once the app's graph is on Zenoh
+        self.all_processes = False  # every lab node in its own process too (but the device nodes)
+        self.supervisor = Supervisor(bus, self._on_process_exit)
+        self.on_process_start: list[Callable[[ProcessNode], None]] = []
 
     def parse(self, path: str | Path, args: Mapping[str, str] | None = None) -> LaunchDescription:
         return parse_launch(path, args, self.packages)
@@ -56,10 +91,42 @@ class Launcher:
         self.launched.extend(started)
         return started
 
+    def runs_as_process(self, exe: Executable) -> bool:
+        return exe.file is not None or (self.all_processes and (exe.pkg, exe.name) not in DEVICE_NODES)
+
+    def _start_process(self, action: NodeAction, exe: Executable, entry: LaunchedNode) -> LaunchedNode:
+        if self.transport is None:
+            raise NoGraphError(str(exe.file or f"{exe.pkg} {exe.name}"))
+        target = exe.file if exe.file is not None else str(exe.builtin)
+        command = node_command(
+            target, ros_args(action.name, action.namespace, action.parameters, action.remappings),
+            router=self.transport.router, domain_id=self.transport.domain_id,
+        )  # fmt: skip
+        entry.process = self.supervisor.start(
+            command, action.exec, screen=action.output in SCREEN_OUTPUTS, node_name=action.name
+        )
+        entry.node, entry.error = None, None
+        for hook in self.on_process_start:
+            hook(entry.process)
+        if action.respawn:
+            entry.respawn = entry.respawn or RespawnBackoff(self.respawn_policy, self.bus.clock)
+            entry.respawn.started()
+        return entry
+
     def start(self, action: NodeAction, entry: LaunchedNode | None = None) -> LaunchedNode:
-        """Construct the node; a failure is recorded and logged, and the rest of the graph runs on."""
+        """Start the node: inside the app, or as its own process (a student's file; every lab node
+        with ``all_processes``). A failure is recorded and logged, and the rest of the graph runs on."""
         entry = entry or LaunchedNode(action)
         entry.starts += 1
+        try:
+            exe = self.packages.resolve(action.pkg, action.exec)
+            if self.runs_as_process(exe):
+                return self._start_process(action, exe, entry)
+        except (LookupError, NoGraphError, OSError) as exc:
+            entry.node, entry.error = None, f"{type(exc).__name__}: {exc}"
+            log.error("%s: node %s (%s %s) failed to start: %s", action.location, action.name or action.exec,
+                      action.pkg, action.exec, entry.error)  # fmt: skip
+            return entry
         overrides = NodeOverrides(
             name=action.name, namespace=action.namespace,
             parameters=dict(action.parameters), remappings=dict(action.remappings),
@@ -71,7 +138,9 @@ class Launcher:
                 node = factory()
             if not isinstance(node, Node):
                 raise TypeError(f"{action.pkg}/{action.exec} made a {type(node).__name__}, not a Node")
-        except Exception as exc:
+        except BaseException as exc:  # SystemExit from a constructor included
+            if not is_node_fault(exc):
+                raise
             for orphan in [n for n in self.bus.nodes if n not in before]:
                 orphan.destroy_node()  # half-built: drop what its constructor registered
             entry.node, entry.error = None, f"{type(exc).__name__}: {exc}"
@@ -86,12 +155,23 @@ class Launcher:
             return entry
         node.origin = {"package": action.pkg, "executable": action.exec, "launch_file": str(action.location)}
         entry.node, entry.error = node, None
+        if action.respawn:
+            entry.respawn = entry.respawn or RespawnBackoff(self.respawn_policy, self.bus.clock)
+            entry.respawn.started()
         return entry
+
+    def respawn_of(self, node: Node) -> RespawnBackoff | None:
+        """The respawn state of a launched node, for the node list."""
+        return next((e.respawn for e in self.launched if e.node is node), None)
 
     def stop(self, entry: LaunchedNode) -> None:
         if entry.node is not None:
             entry.node.destroy_node()
             entry.node = None
+        if entry.process is not None:
+            self.supervisor.stop_soon(entry.process)
+            self.supervisor.forget(entry.process)
+            entry.process = None
 
     def stop_all(self, entries: list[LaunchedNode]) -> None:
         """Stop these nodes and forget them (a launch ended with Ctrl-C)."""
@@ -109,6 +189,7 @@ class Launcher:
         return chosen
 
     def shutdown(self) -> None:
+        self.supervisor.stop_all()  # every node process at once, and wait for them
         for entry in reversed(self.launched):
             self.stop(entry)
         self.launched.clear()
@@ -116,15 +197,32 @@ class Launcher:
             self._respawner.destroy_node()
             self._respawner = None
 
+    def _on_process_exit(self, process: ProcessNode) -> None:
+        entry = next((e for e in self.launched if e.process is process), None)
+        if entry is None:
+            return
+        entry.error = f"died (exit code {process.exit_code})"
+        if entry.action.respawn:
+            self._schedule_respawn(entry, entry.process_label())
+
     def _on_crash(self, node: Node, exc: BaseException) -> None:
         entry = next((e for e in self.launched if e.node is node), None)
         if entry is None or not entry.action.respawn:
             return
+        self._schedule_respawn(entry, node.fully_qualified_name)
+
+    def _schedule_respawn(self, entry: LaunchedNode, who: str) -> None:
+        if entry.respawn is None:
+            entry.respawn = RespawnBackoff(self.respawn_policy, self.bus.clock)
+        delay = entry.respawn.crashed(entry.action.respawn_delay_s)
+        if delay is None:
+            log.error("%s crashed %d times soon after starting; no more respawns", who,
+                      entry.respawn.fast_failures - 1)  # fmt: skip
+            return
         if self._respawner is None:
             with self.bus.activate():
                 self._respawner = Node("_launch_respawner")
-        delay = max(entry.action.respawn_delay_s, 0.01)
-        log.warning("%s crashed; respawning in %.2f s", node.fully_qualified_name, delay)
+        log.warning("%s crashed; respawning in %.2f s", who, delay)
 
         def respawn() -> None:
             timer.cancel()

@@ -1,28 +1,51 @@
-"""Message types with their ROS 2 names (``std_msgs/msg/Bool`` ...) and a registry to look them up."""
+"""Message and service types with their ROS 2 names (``std_msgs/msg/Bool`` ...), declared once in
+``.msg``/``.srv`` files (server/msgs/interfaces) and looked up by name."""
 
-from ._base import Field, Message, MessageError
-from .registry import UnknownTypeError, get_type, normalize_type_name, type_names
+from ._base import Field, Message, MessageError, Service
+from .registry import (
+    UnknownTypeError,
+    get_service_type,
+    get_type,
+    normalize_type_name,
+    service_names,
+    type_names,
+)  # fmt: skip
 from .types import (
+    ALL_TYPES,
     KEY_CONSTANTS,
     Bool,
+    ColorRGBA,
+    Duration,
+    Empty,
+    Float32,
     Float64,
     Header,
+    Imu,
+    Int32,
     Int64,
     Key,
     Log,
     Point,
+    PointStamped,
     Pose,
     PoseStamped,
     Quaternion,
     String,
+    TFMessage,
     Time,
+    Transform,
+    TransformStamped,
     Twist,
     TwistStamped,
     Vector3,
+    Vector3Stamped,
 )  # fmt: skip
 
 __all__ = [
-    "KEY_CONSTANTS", "Bool", "Field", "Float64", "Header", "Int64", "Key", "Log", "Message",
-    "MessageError", "Point", "Pose", "PoseStamped", "Quaternion", "String", "Time", "Twist",
-    "TwistStamped", "UnknownTypeError", "Vector3", "get_type", "normalize_type_name", "type_names",
+    "ALL_TYPES", "KEY_CONSTANTS", "Bool", "ColorRGBA", "Duration", "Empty", "Field", "Float32",
+    "Float64", "Header", "Imu", "Int32", "Int64", "Key", "Log", "Message", "MessageError", "Point",
+    "PointStamped", "Pose", "PoseStamped", "Quaternion", "Service", "String", "TFMessage", "Time",
+    "Transform", "TransformStamped", "Twist", "TwistStamped", "UnknownTypeError", "Vector3",
+    "Vector3Stamped", "get_service_type", "get_type", "normalize_type_name", "service_names",
+    "type_names",
 ]  # fmt: skip

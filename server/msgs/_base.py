@@ -1,28 +1,43 @@
 """Typed ROS 2 message values: fields checked on assignment, JSON in and out by ROS field names.
 
-Messages stay mutable like rclpy's (lab code does ``self.abort.data = True``); the bus copies a
-message when it is published, so a subscriber never sees a later change made by the publisher.
+A message class is declared by its ROS type name (``class Vector3(Message,
+type_name="geometry_msgs/msg/Vector3")``); its fields, defaults and constants come from the
+interface definition (server.msgs.idl), so the generated classes only add what mypy needs to
+see. Messages stay mutable like rclpy's (lab code does ``self.abort.data = True``); the bus
+copies a message when it is published, so a subscriber never sees a later change made by the
+publisher. Numeric arrays are numpy arrays (as rclpy's fixed-size arrays are); arrays of strings
+and of messages are lists.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
 from typing import Any, ClassVar
 
-INT_RANGES: dict[str, tuple[int, int]] = {
-    "int8": (-(2**7), 2**7 - 1),
-    "uint8": (0, 2**8 - 1),
-    "int16": (-(2**15), 2**15 - 1),
-    "uint16": (0, 2**16 - 1),
-    "int32": (-(2**31), 2**31 - 1),
-    "uint32": (0, 2**32 - 1),
-    "int64": (-(2**63), 2**63 - 1),
-    "uint64": (0, 2**64 - 1),
-}
-FLOAT_TYPES = ("float32", "float64")
+import numpy as np
+
+from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, FieldSpec, MessageSpec, lab_definitions
+
 MAX_STRING_CHARS = 65536
+MAX_ARRAY_ITEMS = 65536
+FLOAT32_MAX = 3.4028234663852886e38
+NUMPY_DTYPES: dict[str, type[np.generic]] = {
+    "bool": np.bool_,
+    "byte": np.uint8,
+    "char": np.uint8,
+    "int8": np.int8,
+    "uint8": np.uint8,
+    "int16": np.int16,
+    "uint16": np.uint16,
+    "int32": np.int32,
+    "uint32": np.uint32,
+    "int64": np.int64,
+    "uint64": np.uint64,
+    "float32": np.float32,
+    "float64": np.float64,
+}
+_CLASSES: dict[str, type[Message]] = {}
 
 
 class MessageError(ValueError):
@@ -34,67 +49,196 @@ class MessageError(ValueError):
         super().__init__(f"{path}: {problem}" if path else problem)
 
 
-@dataclass(frozen=True)
-class Field:
-    """One field: ``kind`` is a ROS primitive name (``float64``) or a message class."""
-
-    name: str
-    kind: str | type[Message]
-    default: Any = None
-
-    @property
-    def type_name(self) -> str:
-        return self.kind if isinstance(self.kind, str) else self.kind.TYPE
-
-
-def _check_primitive(kind: str, value: Any, path: str) -> Any:
+def check_primitive(kind: str, value: Any, path: str, bound: int | None = None) -> Any:
+    """``value`` as a field of ROS type ``kind`` holds it, or a MessageError naming ``path``."""
     if kind == "bool":
-        if not isinstance(value, bool):
+        if not isinstance(value, bool | np.bool_):
             raise MessageError(path, f"expected a bool, got {type(value).__name__}")
-        return value
+        return bool(value)
     if kind in INT_RANGES:
-        if isinstance(value, bool) or not isinstance(value, int):
+        if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
             raise MessageError(path, f"expected an integer ({kind}), got {type(value).__name__} {value!r}")
         lo, hi = INT_RANGES[kind]
         if not lo <= value <= hi:
             raise MessageError(path, f"{value} is out of range for {kind} ({lo}..{hi})")
-        return value
+        return int(value)
     if kind in FLOAT_TYPES:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
+        if isinstance(value, bool | np.bool_) or not isinstance(
+            value, int | float | np.integer | np.floating
+        ):
             raise MessageError(path, f"expected a number ({kind}), got {type(value).__name__}")
-        value = float(value)
-        if kind == "float32" and math.isfinite(value) and abs(value) > 3.4028234663852886e38:
-            raise MessageError(path, f"{value} is out of range for float32")
-        return value
-    if kind == "string":
+        try:
+            number = float(value)
+        except OverflowError:
+            raise MessageError(path, f"{value} is out of range for {kind}") from None
+        if kind == "float32" and math.isfinite(number) and abs(number) > FLOAT32_MAX:
+            raise MessageError(path, f"{number} is out of range for float32")
+        return number
+    if kind in STRING_TYPES:
         if not isinstance(value, str):
             raise MessageError(path, f"expected a string, got {type(value).__name__}")
-        if len(value) > MAX_STRING_CHARS:
-            raise MessageError(path, f"string longer than {MAX_STRING_CHARS} characters")
+        limit = MAX_STRING_CHARS if bound is None else bound
+        if len(value) > limit:
+            raise MessageError(path, f"string longer than {limit} characters")
         return value
     raise MessageError(path, f"unsupported field kind {kind}")
 
 
+class Field:
+    """One field of a message class: its spec, and ``kind``, the primitive name or message class
+    of one value (of one element, for an array)."""
+
+    __slots__ = ("array", "bound", "default", "kind", "name", "size", "spec", "string_bound")
+
+    def __init__(self, spec: FieldSpec, kind: str | type[Message]) -> None:
+        self.spec = spec
+        self.name = spec.name
+        self.kind = kind
+        self.array = spec.is_array
+        self.size = spec.array_size
+        self.bound = spec.array_bound
+        self.string_bound = spec.string_bound
+        if spec.default is not None:
+            self.default: Any = spec.default
+        elif isinstance(kind, str):
+            self.default = (
+                False if kind == "bool" else "" if kind in STRING_TYPES else 0.0 if kind in FLOAT_TYPES else 0
+            )
+        else:
+            self.default = None
+
+    @property
+    def type_name(self) -> str:
+        """The field's ROS type: ``float64``, ``std_msgs/msg/Header``, ``float64[9]``, ``int32[<=5]``."""
+        return self.spec.type_text
+
+    @property
+    def numeric_array(self) -> bool:
+        return self.array and isinstance(self.kind, str) and self.kind not in STRING_TYPES
+
+    def initial(self) -> Any:
+        """A fresh default value for a new message."""
+        if not self.array:
+            return self.default if isinstance(self.kind, str) else self.kind()
+        if self.numeric_array:
+            kind = str(self.kind)
+            if isinstance(self.default, list):
+                return np.array(self.default, dtype=NUMPY_DTYPES[kind])
+            return np.zeros(self.size or 0, dtype=NUMPY_DTYPES[kind])
+        if isinstance(self.kind, str):
+            return list(self.default) if isinstance(self.default, list) else [""] * (self.size or 0)
+        return [self.kind() for _ in range(self.size or 0)]
+
+    def check(self, value: Any, path: str) -> Any:
+        """``value`` as this field stores it (a MessageError naming ``path`` if it does not fit)."""
+        if not self.array:
+            if isinstance(self.kind, str):
+                return check_primitive(self.kind, value, path, self.string_bound)
+            if not isinstance(value, self.kind):
+                raise MessageError(path, f"expected {self.kind.TYPE}, got {type(value).__name__}")
+            return value
+        items = self._check_length(value, path)
+        if self.numeric_array:
+            return self._numeric_array(items, path)
+        kind = self.kind
+        if isinstance(kind, str):
+            return [check_primitive(kind, v, f"{path}[{i}]", self.string_bound) for i, v in enumerate(items)]
+        for i, item in enumerate(items):
+            if not isinstance(item, kind):
+                raise MessageError(f"{path}[{i}]", f"expected {kind.TYPE}, got {type(item).__name__}")
+        return list(items)
+
+    def _check_length(self, value: Any, path: str) -> Sequence[Any] | np.ndarray[Any, Any]:
+        if isinstance(value, str | bytes | Mapping) or not isinstance(value, Sequence | np.ndarray):
+            raise MessageError(path, f"expected an array ({self.type_name}), got {type(value).__name__}")
+        if isinstance(value, np.ndarray) and value.ndim != 1:
+            raise MessageError(path, f"expected a one-dimensional array, got shape {value.shape}")
+        n = len(value)
+        if self.size is not None and n != self.size:
+            raise MessageError(path, f"expected exactly {self.size} items, got {n}")
+        limit = self.bound if self.bound is not None else MAX_ARRAY_ITEMS
+        if n > limit:
+            raise MessageError(path, f"more than {limit} items ({n})")
+        return value
+
+    def _numeric_array(self, items: Sequence[Any] | np.ndarray[Any, Any], path: str) -> np.ndarray[Any, Any]:
+        kind = str(self.kind)
+        dtype = NUMPY_DTYPES[kind]
+        if isinstance(items, np.ndarray) and items.dtype == dtype:
+            return items.copy()
+        checked = [check_primitive(kind, v, f"{path}[{i}]") for i, v in enumerate(items)]
+        return np.array(checked, dtype=dtype)
+
+    def copy_value(self, value: Any) -> Any:
+        if not self.array:
+            return value if isinstance(self.kind, str) else value.copy()
+        if self.numeric_array:
+            return value.copy()
+        return list(value) if isinstance(self.kind, str) else [v.copy() for v in value]
+
+    def to_json(self, value: Any) -> Any:
+        if not self.array:
+            return value if isinstance(self.kind, str) else value.to_dict()
+        if self.numeric_array:
+            return value.tolist()
+        return list(value) if isinstance(self.kind, str) else [v.to_dict() for v in value]
+
+    def from_json(self, value: Any, path: str) -> Any:
+        if self.array and not isinstance(self.kind, str):
+            items = self._check_length(value, path)
+            return [self.kind.from_dict(v, f"{path}[{i}]") for i, v in enumerate(items)]
+        if not self.array and not isinstance(self.kind, str):
+            return self.kind.from_dict(value, path)
+        return self.check(value, path)
+
+    def equal(self, a: Any, b: Any) -> bool:
+        return bool(np.array_equal(a, b)) if self.numeric_array else bool(a == b)
+
+
 class Message:
-    """Base of every message type. Subclasses set ``TYPE`` and ``FIELDS``."""
+    """Base of every message type; a subclass names its type: ``class X(Message, type_name=...)``."""
 
     TYPE: ClassVar[str] = ""
+    SPEC: ClassVar[MessageSpec]
     FIELDS: ClassVar[tuple[Field, ...]] = ()
     _FIELD_MAP: ClassVar[dict[str, Field]] = {}
     __slots__ = ()
 
-    def __init_subclass__(cls, **kwargs: Any) -> None:
+    def __init_subclass__(
+        cls, type_name: str | None = None, spec: MessageSpec | None = None, **kwargs: Any
+    ) -> None:
         super().__init_subclass__(**kwargs)
-        cls._FIELD_MAP = {f.name: f for f in cls.FIELDS}
+        if type_name is None:
+            return
+        spec = spec or lab_definitions().message(type_name)
+        declared = tuple(getattr(cls, "__slots__", ()))
+        if declared != tuple(f.name for f in spec.fields):
+            raise TypeError(
+                f"{cls.__name__} declares fields {declared}; {type_name} has "
+                f"{tuple(f.name for f in spec.fields)} (regenerate: python -m server.msgs.generate)"
+            )
+        fields = []
+        for f in spec.fields:
+            if f.is_primitive:
+                fields.append(Field(f, f.base))
+            elif f.base in _CLASSES:
+                fields.append(Field(f, _CLASSES[f.base]))
+            else:
+                raise TypeError(f"{type_name}.{f.name}: {f.base} has no class yet (declare it first)")
+        cls.TYPE = type_name
+        cls.SPEC = spec
+        cls.FIELDS = tuple(fields)
+        cls._FIELD_MAP = {f.name: f for f in fields}
+        for constant in spec.constants:
+            setattr(cls, constant.name, constant.value)
+        _CLASSES[type_name] = cls
 
     def __init__(self, **kwargs: Any) -> None:
         for f in self.FIELDS:
             if f.name in kwargs:
                 setattr(self, f.name, kwargs.pop(f.name))
-            elif isinstance(f.kind, str):
-                object.__setattr__(self, f.name, f.default)
             else:
-                object.__setattr__(self, f.name, f.kind())
+                object.__setattr__(self, f.name, f.initial())
         if kwargs:
             raise TypeError(f"{self.TYPE} has no field(s) {', '.join(sorted(kwargs))}")
 
@@ -102,29 +246,20 @@ class Message:
         field = self._FIELD_MAP.get(name)
         if field is None:
             raise AttributeError(f"{self.TYPE} has no field {name!r}")
-        if isinstance(field.kind, str):
-            value = _check_primitive(field.kind, value, name)
-        elif not isinstance(value, field.kind):
-            raise MessageError(name, f"expected {field.kind.TYPE}, got {type(value).__name__}")
-        object.__setattr__(self, name, value)
+        object.__setattr__(self, name, field.check(value, name))
 
-    def copy(self) -> Message:
+    def copy(self) -> Any:
         """A deep copy that skips re-validation (the values are already checked)."""
         new = object.__new__(type(self))
         for f in self.FIELDS:
-            v = getattr(self, f.name)
-            object.__setattr__(new, f.name, v if isinstance(f.kind, str) else v.copy())
+            object.__setattr__(new, f.name, f.copy_value(getattr(self, f.name)))
         return new
 
     def to_dict(self) -> dict[str, Any]:
-        out: dict[str, Any] = {}
-        for f in self.FIELDS:
-            v = getattr(self, f.name)
-            out[f.name] = v if isinstance(f.kind, str) else v.to_dict()
-        return out
+        return {f.name: f.to_json(getattr(self, f.name)) for f in self.FIELDS}
 
     @classmethod
-    def from_dict(cls, data: Any, path: str = "") -> Message:
+    def from_dict(cls, data: Any, path: str = "") -> Any:
         """Build from JSON-like data; missing fields keep defaults, unknown ones are an error."""
         if not isinstance(data, Mapping):
             raise MessageError(path, f"expected an object for {cls.TYPE}, got {type(data).__name__}")
@@ -134,10 +269,7 @@ class Message:
             field = cls._FIELD_MAP.get(key)
             if field is None:
                 raise MessageError(sub, f"{cls.TYPE} has no field {key!r}")
-            if isinstance(field.kind, str):
-                object.__setattr__(msg, key, _check_primitive(field.kind, value, sub))
-            else:
-                object.__setattr__(msg, key, field.kind.from_dict(value, sub))
+            object.__setattr__(msg, key, field.from_json(value, sub))
         return msg
 
     @classmethod
@@ -148,20 +280,43 @@ class Message:
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):
             return NotImplemented
-        return all(getattr(self, f.name) == getattr(other, f.name) for f in self.FIELDS)
+        return all(f.equal(getattr(self, f.name), getattr(other, f.name)) for f in self.FIELDS)
+
+    __hash__ = None  # type: ignore[assignment]  # mutable, like rclpy's messages
 
     def __repr__(self) -> str:
-        pkg, _, name = self.TYPE.split("/")
+        pkg, kind, name = self.TYPE.split("/")
         inner = ", ".join(f"{f.name}={getattr(self, f.name)!r}" for f in self.FIELDS)
-        return f"{pkg}.msg.{name}({inner})"
+        return f"{pkg}.{kind}.{name}({inner})"
 
 
-def define(type_name: str, fields: list[Field], namespace: dict[str, Any] | None = None) -> type[Message]:
-    """Create a message class with slots for its fields (and optional constants)."""
-    attrs: dict[str, Any] = {
-        "TYPE": type_name,
-        "FIELDS": tuple(fields),
-        "__slots__": tuple(f.name for f in fields),
-    }
-    attrs.update(namespace or {})
-    return type(type_name.rsplit("/", 1)[1], (Message,), attrs)
+class Service:
+    """Base of every service type: ``Request`` and ``Response`` message classes, as in rclpy."""
+
+    TYPE: ClassVar[str] = ""
+    Request: ClassVar[type[Message]]
+    Response: ClassVar[type[Message]]
+
+    def __init_subclass__(cls, type_name: str | None = None, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if type_name is None:
+            return
+        spec = lab_definitions().services[type_name]
+        if spec.request.name != cls.Request.TYPE or spec.response.name != cls.Response.TYPE:
+            raise TypeError(f"{cls.__name__}: Request/Response do not match {type_name}")
+        cls.TYPE = type_name
+
+
+def define_message(spec: MessageSpec) -> type[Message]:
+    """A message class made at run time from a parsed definition (its nested types must exist)."""
+    namespace = {"__slots__": tuple(f.name for f in spec.fields), "__module__": __name__}
+    return type(spec.name.rsplit("/", 1)[1], (Message,), namespace, type_name=spec.name, spec=spec)
+
+
+def message_class(type_name: str) -> type[Message]:
+    """The class declared for a full type name (KeyError if none)."""
+    return _CLASSES[type_name]
+
+
+def message_classes() -> dict[str, type[Message]]:
+    return dict(_CLASSES)

@@ -51,6 +51,23 @@ class ExecutableNotFoundError(LookupError):
         super().__init__(f"package {pkg!r} has no executable {exe!r} (it has: {', '.join(known) or 'none'})")
 
 
+@dataclass(frozen=True)
+class Executable:
+    """What ``(pkg, exec)`` names: a lab node (``module:Class``) or a student's file."""
+
+    pkg: str
+    name: str
+    builtin: str | None = None  # "module:Class"
+    file: Path | None = None
+
+
+class NotInProcessError(LookupError):
+    """A student's file asked to run inside the app: it runs as its own process instead."""
+
+    def __init__(self, exe: Executable) -> None:
+        super().__init__(f"{exe.file}: a student's node runs as its own process, not inside the app")
+
+
 @dataclass
 class PackageIndex:
     """The packages a launch can name: the built-in ones, overlaid by a student workspace."""
@@ -76,23 +93,37 @@ class PackageIndex:
             return HERE / pkg
         raise PackageNotFoundError(pkg, self.names())
 
-    def executables_of(self, pkg: str) -> dict[str, str | Callable[[], Node]]:
-        from .workspace import executables_in, node_factory
+    def executables_of(self, pkg: str) -> dict[str, Executable]:
+        """A package's executables by name; a student's files win over the lab's of the same name."""
+        from .workspace import executables_in
 
-        exes: dict[str, str | Callable[[], Node]] = dict(self.executables.get(pkg, {}))
+        exes = {name: Executable(pkg, name, builtin=t) if isinstance(t, str) else Executable(pkg, name)
+                for name, t in self.executables.get(pkg, {}).items()}  # fmt: skip
         student = self._workspace_packages().get(pkg)
         if student is not None:
-            exes.update({name: node_factory(path) for name, path in executables_in(student).items()})
+            exes.update(
+                {name: Executable(pkg, name, file=path) for name, path in executables_in(student).items()}
+            )
         elif pkg not in self.executables:
             raise PackageNotFoundError(pkg, self.names())
         return exes
 
-    def factory(self, pkg: str, exe: str) -> Callable[[], Node]:
+    def resolve(self, pkg: str, exe: str) -> Executable:
         exes = self.executables_of(pkg)
-        target = exes.get(exe)
-        if target is None:
+        found = exes.get(exe)
+        if found is None:
             raise ExecutableNotFoundError(pkg, exe, sorted(exes))
+        return found
+
+    def factory(self, pkg: str, exe: str) -> Callable[[], Node]:
+        """The class of a lab node, to make it inside the app (NotInProcessError for a student's file)."""
+        target = self.executables.get(pkg, {}).get(exe)
+        found = self.resolve(pkg, exe)
+        if found.file is not None:
+            raise NotInProcessError(found)
         if callable(target):
             return target
+        assert isinstance(target, str)
         module, _, attr = target.partition(":")
-        return getattr(importlib.import_module(module), attr)
+        factory: Callable[[], Node] = getattr(importlib.import_module(module), attr)
+        return factory

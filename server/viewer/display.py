@@ -10,6 +10,7 @@ from typing import Any
 import viser
 
 from .views import CameraView, Follow, Vec3, ViewRegistry
+from .viser_guard import guarded_serve, new_token
 
 log = logging.getLogger("viewer")
 
@@ -22,8 +23,11 @@ class Display:
     """
 
     def __init__(self, loop: asyncio.AbstractEventLoop | None = None) -> None:
-        # Loopback and an ephemeral port: the browser only ever reaches it through the app.
-        self.server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
+        # Loopback, an ephemeral port, and a secret only the app's proxy sends: a browser reaches
+        # viser only through the app and its guard (viser_guard.py).
+        self.proxy_token = new_token()
+        with guarded_serve(self.proxy_token):
+            self.server = viser.ViserServer(host="127.0.0.1", port=0, verbose=False)
         self.set_theme(dark=False)
         self.server.scene.set_up_direction("+z")
         self._loop = loop

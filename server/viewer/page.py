@@ -16,6 +16,7 @@ from fastapi.responses import HTMLResponse, Response
 from websockets.asyncio.client import ClientConnection
 
 from .views import ViewRegistry
+from .viser_guard import PROXY_TOKEN_HEADER
 
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
@@ -74,7 +75,11 @@ async def viser_proxy(websocket: WebSocket) -> None:
     subprotocols = websocket.scope.get("subprotocols") or None
     try:
         upstream = await websockets.connect(
-            f"ws://127.0.0.1:{display.port}", subprotocols=subprotocols, max_size=None, compression=None
+            f"ws://127.0.0.1:{display.port}",
+            subprotocols=subprotocols,
+            additional_headers={PROXY_TOKEN_HEADER: display.proxy_token},
+            max_size=None,
+            compression=None,
         )
     except (OSError, TimeoutError, ValueError, websockets.exceptions.WebSocketException) as exc:
         # viser refuses a client without its subprotocol (HTTP 400): refuse the browser in turn.

@@ -105,7 +105,7 @@ class RocketScene:
     """The viser objects: pad, rocket, flame, label and the GUI readouts."""
 
     def __init__(
-        self, display: Display, on_reset: Callable[[], None], busy: Callable[[], bool] | None = None
+        self, display: Display, on_reset: Callable[[], object], busy: Callable[[], bool] | None = None
     ) -> None:
         scene, gui = display.scene, display.gui
         x, y = PAD_XY
@@ -178,7 +178,7 @@ class RocketScene:
 class RocketViewNode(Node):
     """Hidden tool node ``_rocket_view``: subscribes to the rocket's topics and redraws at 30 Hz."""
 
-    def __init__(self, display: Display | None, on_reset: Callable[[], None]) -> None:
+    def __init__(self, display: Display | None, on_reset: Callable[[], object]) -> None:
         super().__init__("_rocket_view")
         self.tracker = RocketTracker()
         self.scene = RocketScene(display, on_reset, self.before_liftoff) if display is not None else None

@@ -109,11 +109,11 @@ def test_graph_and_nodes_node_crashing_in_its_timer_shows_crashed(client: TestCl
         return node
 
     on_loop(client, start_fragile)
-    crashed = {"name": "/Fragile", "namespace": "/", "state": "crashed"}
+    crashed = {"name": "/Fragile", "namespace": "/", "state": "crashed", "location": "app", "respawn": None}
     nodes = poll(lambda: client.get("/api/nodes").json(), lambda ns: crashed in ns)
     assert crashed in nodes
     graph = client.get("/api/graph").json()
-    assert {"name": "/Fragile", "state": "crashed", "hidden": False} in graph["nodes"]
+    assert {"name": "/Fragile", "state": "crashed", "hidden": False, "location": "app"} in graph["nodes"]
     info = client.get("/api/nodes/Fragile").json()
     assert info["crash_reason"] == "RuntimeError: sensor unplugged"
     assert all(n["state"] == "active" for n in nodes if n["name"] != "/Fragile")

@@ -2,13 +2,17 @@
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Callable
 
+import httpx
 import viser
+import websockets
 from labclient import LabClient, receive_within, refused, wait_until
 from starlette.testclient import WebSocketTestSession
 
 from server.viewer.page import PROXY_MAX_FRAME_BYTES
+from server.viewer.viser_guard import PROXY_TOKEN_HEADER
 
 
 def test_index_serves_viser_page_with_key_script_injected(make_lab: Callable[..., LabClient]) -> None:
@@ -118,3 +122,43 @@ def test_page_views_without_viewer_lists_none(rocket_lab: LabClient) -> None:
 
     assert response.status_code == 200
     assert response.json() == {"views": [], "suggested": None}
+
+
+def _direct_to_viser(port: int, **headers: str) -> int:
+    """Open a WebSocket straight to viser's own port, as another page or program could; returns
+    the HTTP status of the refusal (101 would be a connection)."""
+
+    async def attempt() -> int:
+        try:
+            async with websockets.connect(
+                f"ws://127.0.0.1:{port}",
+                subprotocols=[websockets.Subprotocol(f"viser-v{viser.__version__}")],
+                additional_headers=headers,
+                open_timeout=5,
+            ):
+                return 101
+        except websockets.exceptions.InvalidStatus as exc:
+            return exc.response.status_code
+
+    return asyncio.run(attempt())
+
+
+def test_viser_port_direct_connection_with_foreign_origin_refused(make_lab: Callable[..., LabClient]) -> None:
+    lab = make_lab(viewer=True)
+    display = lab.http.app.state.lab.display  # type: ignore[attr-defined]
+
+    assert _direct_to_viser(display.port, Origin="http://evil.example") == 403
+    assert _direct_to_viser(display.port) == 403, "no Origin but no secret either: still not the proxy"
+    token = {PROXY_TOKEN_HEADER: display.proxy_token}
+    assert _direct_to_viser(display.port, Origin="http://evil.example", **token) == 403, "a browser never"
+    assert _direct_to_viser(display.port, **token) == 101, "the proxy's own request is admitted"
+
+
+def test_viser_port_plain_http_refused(make_lab: Callable[..., LabClient]) -> None:
+    lab = make_lab(viewer=True)
+    port = lab.http.app.state.lab.display.port  # type: ignore[attr-defined]
+
+    response = httpx.get(f"http://127.0.0.1:{port}/", timeout=5)
+
+    assert response.status_code == 403
+    assert "proxy" in response.text

@@ -60,8 +60,10 @@ class LabServer:
         self.url = f"http://127.0.0.1:{self.port}"
         self.log_path = log_path
         self._log = log_path.open("w")
+        self.zenoh_port = free_port()  # the app's Zenoh router, on loopback, never the shared 7447
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(self.port), *launch_args],
+            [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(self.port),
+             "--zenoh-listen", f"tcp/127.0.0.1:{self.zenoh_port}", *launch_args],
             cwd=REPO, stdout=self._log, stderr=subprocess.STDOUT,
         )  # fmt: skip
 

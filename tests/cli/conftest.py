@@ -88,7 +88,7 @@ def live_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LiveServer
     with log_path.open("wb") as log:
         proc = subprocess.Popen(
             [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(port), "--launch", "rocket",
-             "start_delay:=0.5"],
+             "--zenoh-listen", f"tcp/127.0.0.1:{free_port()}", "start_delay:=0.5"],
             cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
         )  # fmt: skip
     server = LiveServer(f"http://127.0.0.1:{port}", proc, log_path)
@@ -145,7 +145,8 @@ class Running:
         )
         self.lines: queue.Queue[str | None] = queue.Queue()
         self.seen: list[str] = []
-        threading.Thread(target=self._pump, args=(self.proc.stdout,), daemon=True).start()
+        self._pump_thread = threading.Thread(target=self._pump, args=(self.proc.stdout,), daemon=True)
+        self._pump_thread.start()
 
     def _pump(self, stream: IO[str] | None) -> None:
         assert stream is not None
@@ -177,7 +178,9 @@ class Running:
             self.proc.wait()
             pytest.fail(f"the command did not stop within {timeout_s} s of Ctrl-C")
         assert self.proc.stderr is not None
-        return self.proc.returncode, self.proc.stderr.read()
+        err = self.proc.stderr.read()
+        self._close_pipes()
+        return self.proc.returncode, err
 
     def stop(self) -> None:
         """Ctrl-C, so that what it started on the server is stopped too; killed if it hangs."""
@@ -188,6 +191,14 @@ class Running:
             except subprocess.TimeoutExpired:
                 self.proc.kill()
                 self.proc.wait()
+        self._close_pipes()
+
+    def _close_pipes(self) -> None:
+        """The process has ended: let the pump reach the end of its output, then close both pipes."""
+        self._pump_thread.join(timeout=READ_TIMEOUT_S)
+        for stream in (self.proc.stdout, self.proc.stderr):
+            if stream is not None and not stream.closed:
+                stream.close()
 
 
 @pytest.fixture

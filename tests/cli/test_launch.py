@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from server.cli.client import CliError
-from server.cli.launch import launch_request, parse_ros_args
+from server.cli.launch import launch_request
 
 from .conftest import LiveServer, Result, Running
 
@@ -28,42 +28,6 @@ def test_launch_request_package_and_file() -> None:
 def test_launch_request_wrong_shape_refused(tokens: list[str]) -> None:
     with pytest.raises(CliError):
         launch_request(tokens)
-
-
-def test_parse_ros_args_parameters_as_yaml_remappings_and_node_name() -> None:
-    options = parse_ros_args(
-        [
-            "--ros-args",
-            "-p",
-            "start_delay_s:=2.0",
-            "--param",
-            "on:=true",
-            "-p",
-            "s:=hi",
-            "-r",
-            "/countdown:=/cd",
-            "--remap",
-            "__node:=Mine",
-        ]
-    )
-    assert options == {
-        "name": "Mine",
-        "parameters": {"start_delay_s": 2.0, "on": True, "s": "hi"},
-        "remappings": {"/countdown": "/cd"},
-    }
-
-
-def test_parse_ros_args_nothing_gives_nothing() -> None:
-    assert parse_ros_args([]) == {"name": None, "parameters": {}, "remappings": {}}
-
-
-@pytest.mark.parametrize(
-    "argv", [["-p", "a:=1"], ["--ros-args", "-p"], ["--ros-args", "--params-file", "x.yaml"],
-             ["--ros-args", "-p", "novalue"]],
-)  # fmt: skip
-def test_parse_ros_args_unsupported_or_malformed_refused(argv: list[str]) -> None:
-    with pytest.raises(CliError):
-        parse_ros_args(argv)
 
 
 # -- against the live server ------------------------------------------------------------------

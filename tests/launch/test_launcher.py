@@ -6,9 +6,10 @@ from pathlib import Path
 
 import pytest
 
-from server.bus import ManualClock
+from server.bus import ManualClock, Node
 from server.lab import Lab
 from server.launch.description import LaunchFileError
+from server.msgs import get_service_type
 from server.settings import Settings
 
 HANDOUT_FLY = """<?xml version="1.0"?>
@@ -118,3 +119,26 @@ def test_rocket_reset_restarts_countdown_without_touching_other_nodes() -> None:
     lab.executor.spin_until(12.5)
     assert lab.bus.topics["/countdown"].latest.data == 10
     assert lab.bus.get_node("keyboard") is keyboard, "the shared keyboard is not restarted"
+
+
+def test_rocket_reset_service_restarts_countdown_like_the_rest_call() -> None:
+    trigger = get_service_type("std_srvs/srv/Trigger")
+    lab = lab_for("rocket", start_delay="0")
+    lab.executor.spin_until(12.0)
+    client = Node("student_cli", context=lab.bus).create_client(trigger, "/rocket/reset")
+    future = client.call_async(trigger.Request())
+    lab.executor.spin_until(12.5)
+    assert future.result() == trigger.Response(success=True, message="rocket back on the pad")
+    assert lab.bus.topics["/countdown"].latest.data == 10
+
+
+def test_rocket_reset_service_without_a_rocket_says_so() -> None:
+    trigger = get_service_type("std_srvs/srv/Trigger")
+    lab = lab_for("fly")
+    future = (
+        Node("student_cli", context=lab.bus)
+        .create_client(trigger, "/rocket/reset")
+        .call_async(trigger.Request())
+    )
+    lab.executor.spin_until(0.1)
+    assert future.result() == trigger.Response(success=False, message="no rocket in this launch")

@@ -104,7 +104,11 @@ def test_message_defaults_are_ros_defaults() -> None:
     assert Quaternion().w == 1.0 and Quaternion().x == 0.0
     assert (Bool().data, Int64().data, Float64().data, String().data) == (False, 0, 0.0, "")
     assert (Key().code, Key().modifiers, Key().header.frame_id) == (0, 0, "")
-    assert Log().level == Log.INFO == 20
+    assert Log().level == 0 and (Log.DEBUG, Log.INFO, Log.FATAL) == (
+        10,
+        20,
+        50,
+    )  # rcl_interfaces/msg/Log: no default level
 
 
 @pytest.mark.parametrize(("name", "value"), sorted(KEY_VALUES.items()))

@@ -177,3 +177,41 @@ def test_workspace_overlay_keeps_builtin_executables_and_reports_unknown(tmp_pat
     )
     with pytest.raises(ExecutableNotFoundError, match="no executable 'nope'"):
         index.factory("rocketship", "nope")
+
+
+def test_student_node_calling_sys_exit_crashes_only_itself(tmp_path: Path) -> None:
+    write_pkg(
+        tmp_path,
+        "my_pkg",
+        {
+            "quitter.py": """
+            import sys
+            from rclpy.node import Node
+
+            class Quitter(Node):
+                def __init__(self):
+                    super().__init__('quitter')
+                    self.create_timer(0.5, self.tick)
+
+                def tick(self):
+                    sys.exit('done here')
+            """,
+            "quits_early.py": """
+            import sys
+            from rclpy.node import Node
+
+            class QuitsEarly(Node):
+                def __init__(self):
+                    super().__init__('quits_early')
+                    sys.exit(3)
+            """,
+        },
+    )
+    lab = make_lab(tmp_path, start_delay="0")
+    lab.run_node("my_pkg", "quitter.py")
+    group = lab.run_node("my_pkg", "quits_early.py")
+    assert "SystemExit" in (group.describe()["nodes"][0]["error"] or "")
+    lab.executor.spin_until(3.0)
+    quitter = lab.bus.get_node("quitter")
+    assert quitter.state == "crashed" and "SystemExit: done here" in (quitter.crash_reason or "")
+    assert lab.bus.topics["/countdown"].publish_count == 4, "the rocket's countdown ran on"

@@ -10,7 +10,7 @@ arena are clamped to it with a warning.
 
 from __future__ import annotations
 
-from server.bus import Node
+from server.bus import Node, Timer
 from server.msgs import PoseStamped, Vector3
 from sim.control import LAB_PID_DT_S, LabPositionController, PositionController
 
@@ -41,7 +41,7 @@ class PositionControllerNode(Node):
         self.vel_pub = self.create_publisher(Vector3, "/uav/input/velocity", 1)
         self.create_subscription(Vector3, "/uav/input/position", self.on_setpoint, 10)
         self.create_subscription(PoseStamped, "/uav/sensors/gps", self.on_gps, 1)
-        self.timer = None
+        self.timer: Timer | None = None
         if start_delay_s > 0:  # the lab's node sleeps 5 s before it starts
             self._delay = self.create_timer(start_delay_s, self.start)
         else:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from server.bus import Node
+from server.bus import Node, Timer
 from server.msgs import Int64
 
 MAX_START_DELAY_S = 3600.0
@@ -22,7 +22,7 @@ class CountDownNode(Node):
             )
         self.countdown_pub = self.create_publisher(Int64, "/countdown", 1000)
         self.remaining = 10
-        self.timer = None
+        self.timer: Timer | None = None
         if delay > 0:
             self.delay_timer = self.create_timer(float(delay), self.start)
         else:

@@ -64,6 +64,7 @@ class KeyboardManager(Node):
         self.drone_v: tuple[float, float, float] = (0.0, 0.0, 0.0)
         self.timer: Timer | None = None
         self.started = False
+        self._delay: Timer | None = None
         if start_delay_s > 0:  # the handout's node sleeps 10 s to let the simulator start
             self._delay = self.create_timer(start_delay_s, self.start)
         else:
@@ -104,7 +105,7 @@ class KeyboardManager(Node):
 
     # -- life --------------------------------------------------------------------
     def start(self) -> None:
-        if getattr(self, "_delay", None) is not None:
+        if self._delay is not None:
             self._delay.cancel()
             self._delay = None
         self._stop_timer()

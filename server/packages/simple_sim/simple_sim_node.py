@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Literal, cast
+
 import numpy as np
 
 from server.bus import Node
@@ -15,9 +17,10 @@ class SimpleSimNode(Node):
         seed = int(self.declare_parameter("seed", 0).value)
         noise = bool(self.declare_parameter("noise", True).value)
         wobble = str(self.declare_parameter("wobble_noise", "lab").value)
-        self.sim = SimpleSim(
-            SimpleSimParams(wobble_noise=wobble), rng=np.random.default_rng(seed), noise=noise
-        )  # type: ignore[arg-type]
+        if wobble not in ("lab", "fixed"):
+            raise ValueError(f"wobble_noise must be lab or fixed, got {wobble!r}")
+        params = SimpleSimParams(wobble_noise=cast(Literal["lab", "fixed"], wobble))
+        self.sim = SimpleSim(params, rng=np.random.default_rng(seed), noise=noise)
         self.gps_pub = self.create_publisher(PoseStamped, "/uav/sensors/gps", 10)
         self.create_subscription(Vector3, "/uav/input/velocity", self.on_velocity, 10)
         self.create_timer(self.sim.dt_s, self.tick)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
+from typing import Any
 
 import numpy as np
 
@@ -57,9 +58,9 @@ def euler_deg(w: float, x: float, y: float, z: float) -> tuple[float, float, flo
 
 
 class DroneScene:
-    def __init__(self, display: object) -> None:
-        scene, gui = display.scene, display.gui  # type: ignore[attr-defined]
-        display.add_view(  # type: ignore[attr-defined]
+    def __init__(self, display: Any) -> None:
+        scene, gui = display.scene, display.gui
+        display.add_view(
             "Quadrotor",
             CAMERA_POSITION,
             CAMERA_LOOK_AT,
@@ -115,7 +116,7 @@ class DroneScene:
         setpoint: tuple[float, float, float] | None,
         trail: np.ndarray,
     ) -> None:
-        with self._display.server.atomic():  # type: ignore[attr-defined]
+        with self._display.server.atomic():
             self.drone.position = pos
             self.drone.wxyz = wxyz
             if setpoint is not None:

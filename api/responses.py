@@ -1,0 +1,42 @@
+"""The error responses a route can give, for the OpenAPI document (api/errors.py produces them)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pydantic import BaseModel, Field
+
+
+class ErrorBody(BaseModel):
+    """Every error the app answers: ``detail`` names the problem (FastAPI's validation errors give a
+    list of ``{type, loc, msg}``); a 500 adds the ``request_id`` its log entry carries."""
+
+    detail: str | list[dict[str, Any]] = Field(examples=["unknown topic '/nope'"])
+    request_id: str | None = Field(default=None, description="only on a 500: find it in the server log")
+
+
+NOT_FOUND = 404
+TYPE_CONFLICT = 409
+UNPROCESSABLE = 422
+TOO_MANY = 429
+NO_ANSWER = 504
+_DESCRIPTIONS = {
+    400: "the request is malformed",
+    403: "another site's page may not write (Origin refused)",
+    404: "no such topic, node, service, type, package, publisher or launch",
+    409: "the topic carries another type, or the thing was destroyed",
+    413: "the body is larger than the limit (64 KiB)",
+    421: "the Host header is not a name of this server",
+    422: "a field, a number or a name is invalid (the detail names it)",
+    429: "a per-app limit is reached (publishers, launches, topics)",
+    500: "a bug: the detail carries a request id, the log has the traceback",
+    504: "the service did not answer in time (its server is gone, busy or crashed)",
+}
+_ALWAYS = (421, 500)  # any route: the Host guard, and a bug
+_WRITES = (400, 403, 413, 422)  # any route with a JSON body: the Origin guard, size, strict JSON
+
+
+def responses(*codes: int, body: bool = False) -> dict[int | str, dict[str, Any]]:
+    """OpenAPI ``responses`` for these statuses, plus those every route (and every write) can give."""
+    chosen = {*codes, *_ALWAYS, *(_WRITES if body else ())}
+    return {code: {"model": ErrorBody, "description": _DESCRIPTIONS[code]} for code in sorted(chosen)}

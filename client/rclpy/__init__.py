@@ -1,0 +1,99 @@
+"""rclpy for the teleop lab: the ROS 2 Python client library's API, in the node's own process, joined
+to the lab's graph over Zenoh in rmw_zenoh's wire format (so it also talks to a real ROS 2).
+
+A student's node file runs unchanged: ``rclpy.init()``, a ``Node`` subclass, ``rclpy.spin(node)``,
+``create_timer`` or ``create_rate`` with ``rate.sleep()``, and Ctrl-C as ``KeyboardInterrupt``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from server.bus import Future
+
+from ._context import Context, RCLError, default_context
+from .executors import Executor, ExternalShutdownException, SingleThreadedExecutor
+
+_global_executor: Executor | None = None
+
+
+def init(
+    *, args: Sequence[str] | None = None, context: Context | None = None, domain_id: int | None = None
+) -> None:
+    """Join the lab's graph (``--ros-args`` from ``args``, else from ``sys.argv``)."""
+    (context or default_context).init(args, domain_id)
+
+
+def ok(*, context: Context | None = None) -> bool:
+    return (context or default_context).ok()
+
+
+def shutdown(*, context: Context | None = None) -> None:
+    global _global_executor
+    ctx = context or default_context
+    if _global_executor is not None and _global_executor.context is ctx:
+        _global_executor = None
+    ctx.shutdown()
+
+
+def try_shutdown(*, context: Context | None = None) -> None:
+    """Shut down unless it already was (the handout's ``finally``)."""
+    if (context or default_context).ok():
+        shutdown(context=context)
+
+
+def get_global_executor() -> Executor:
+    global _global_executor
+    if _global_executor is None or not _global_executor.context.ok():
+        _global_executor = SingleThreadedExecutor()
+    return _global_executor
+
+
+def spin(node: Any, executor: Executor | None = None) -> None:
+    """Run the process's callbacks until shutdown; Ctrl-C raises KeyboardInterrupt, as in rclpy."""
+    executor = executor or get_global_executor()
+    executor.add_node(node)
+    executor.spin()
+
+
+def spin_once(node: Any, *, executor: Executor | None = None, timeout_sec: float | None = None) -> None:
+    executor = executor or get_global_executor()
+    executor.add_node(node)
+    executor.spin_once(timeout_sec)
+
+
+def spin_until_future_complete(
+    node: Any, future: Future[Any], executor: Executor | None = None, timeout_sec: float | None = None
+) -> None:
+    executor = executor or get_global_executor()
+    executor.add_node(node)
+    executor.spin_until_future_complete(future, timeout_sec)
+
+
+def create_node(node_name: str, **kwargs: Any) -> Any:
+    from .node import Node
+
+    return Node(node_name, **kwargs)
+
+
+def get_default_context() -> Context:
+    return default_context
+
+
+__all__ = [
+    "Context",
+    "ExternalShutdownException",
+    "Future",
+    "RCLError",
+    "create_node",
+    "get_default_context",
+    "get_global_executor",
+    "init",
+    "ok",
+    "shutdown",
+    "spin",
+    "spin_once",
+    "spin_until_future_complete",
+    "try_shutdown",
+]

@@ -1,0 +1,3 @@
+from server.bus import Future
+
+__all__ = ["Future"]

@@ -1,0 +1,73 @@
+"""``run PKG EXEC [--ros-args ...]``: the executable as a child process, as ``ros2 run`` starts it.
+
+Its output streams to this terminal as it comes, Ctrl-C is passed on to it (once: the child has a
+process group of its own, so the terminal's Ctrl-C reaches only this command), and its exit code
+is this command's. It joins the graph of the lab the command talks to (``--url``): the lab tells
+where its Zenoh router listens; with no lab to ask, rmw_zenoh's default, tcp/127.0.0.1:7447.
+"""
+
+from __future__ import annotations
+
+import argparse
+import signal
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+from server.packages import ExecutableNotFoundError, PackageIndex, PackageNotFoundError
+from server.processes.command import node_command
+from server.transport.config import DEFAULT_ROUTER_ENDPOINT, domain_id_from_env
+
+from .client import CliError, LabClient
+
+STOP_GRACE_S = 10.0
+
+
+def router_of(client: LabClient) -> str:
+    """The lab's router endpoint, from its health report; the default when there is no lab."""
+    try:
+        zenoh = client.get("/api/health").get("zenoh") or {}
+    except CliError:
+        return DEFAULT_ROUTER_ENDPOINT
+    endpoint = zenoh.get("router")
+    return str(endpoint) if endpoint else DEFAULT_ROUTER_ENDPOINT
+
+
+def run(args: argparse.Namespace, client: LabClient) -> int:
+    packages = PackageIndex(workspace=Path(args.workspace))
+    try:
+        exe = packages.resolve(args.package_name, args.executable_name)
+    except PackageNotFoundError:
+        print(f"Package '{args.package_name}' not found", file=sys.stderr)
+        return 1
+    except ExecutableNotFoundError as exc:
+        print(f"No executable found: {exc}", file=sys.stderr)
+        return 1
+    target: Path | str = exe.file if exe.file is not None else str(exe.builtin)
+    command = node_command(target, list(args.argv), router=router_of(client), domain_id=domain_id_from_env())
+    child = subprocess.Popen(command.argv, env=command.env, process_group=0)
+    interrupted = False
+    while True:
+        try:
+            return child.wait(timeout=STOP_GRACE_S if interrupted else None)
+        except KeyboardInterrupt:
+            if not interrupted:
+                child.send_signal(signal.SIGINT)
+                interrupted = True
+        except subprocess.TimeoutExpired:
+            child.kill()  # it ignored Ctrl-C for STOP_GRACE_S
+            return child.wait()
+
+
+def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
+    p = verbs.add_parser("run", parents=[common], help="Run a package specific executable")
+    p.add_argument("package_name", help="Name of the ROS package")
+    p.add_argument("executable_name", help="Name of the executable")
+    p.add_argument(
+        "--workspace",
+        default="workspace",
+        help="folder of your own packages (src/<pkg>/...), default ./workspace",
+    )
+    p.add_argument("argv", nargs=argparse.REMAINDER, help="--ros-args -p NAME:=VALUE -r FROM:=TO")
+    p.set_defaults(handler=run)

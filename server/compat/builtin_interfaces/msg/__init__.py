@@ -1,3 +1,0 @@
-from server.msgs import Time
-
-__all__ = ["Time"]

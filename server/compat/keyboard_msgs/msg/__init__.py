@@ -1,3 +1,0 @@
-from server.msgs import Key
-
-__all__ = ["Key"]

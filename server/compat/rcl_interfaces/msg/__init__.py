@@ -1,3 +1,0 @@
-from server.msgs import Log
-
-__all__ = ["Log"]

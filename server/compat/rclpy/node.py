@@ -1,3 +1,0 @@
-from server.bus import Node, Parameter
-
-__all__ = ["Node", "Parameter"]

@@ -1,0 +1,26 @@
+"""What the ROS tools show about a bus, as plain data: ``ros2 topic hz`` (``rates``), rqt_graph's
+graph (``graph``), ``ros2 node info`` (``node_info``) and message types as JSON Schema
+(``schemas``). Pure functions; the web layer only serialises.
+"""
+
+from .graph import EdgeKind, GraphEdge, GraphNode, GraphSnapshot, GraphTopic, graph_snapshot
+from .node_info import node_info, timer_info
+from .rates import RateStats, percentile, rate_stats
+from .schemas import FLOAT32_MAX, JSON_SCHEMA_DIALECT, type_schema
+
+__all__ = [
+    "FLOAT32_MAX",
+    "JSON_SCHEMA_DIALECT",
+    "EdgeKind",
+    "GraphEdge",
+    "GraphNode",
+    "GraphSnapshot",
+    "GraphTopic",
+    "RateStats",
+    "graph_snapshot",
+    "node_info",
+    "percentile",
+    "rate_stats",
+    "timer_info",
+    "type_schema",
+]

@@ -1,0 +1,306 @@
+"""Evaluate a checked launch tree: substitutions and conditions, includes (each included file
+has its own argument scope) and the nodes, collected in document order. Nothing is executed:
+the result is plain data for the launcher.
+"""
+
+from __future__ import annotations
+
+import os
+from collections import ChainMap
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import MappingProxyType
+
+from .description import LaunchDescription, LaunchFileError, NodeAction, ParamValue, SourceLocation
+from .substitutions import SubstitutionError, arity, package_not_found, substitute
+from .values import OUTPUTS, join_namespace, parse_bool, typed_param
+from .xml_tree import ACTIONS, Element, declared_names, did_you_mean, load_tree, read_bytes
+
+MAX_INCLUDE_DEPTH = 32
+MAX_FILES_READ = 256  # counted with repetition: a diamond of includes doubles the work per level
+
+FindPackageShare = Callable[[str], Path]
+"""Maps a package name to its share directory; raises ``LookupError`` for an unknown package."""
+
+
+@dataclass
+class Session:
+    find_package_share: FindPackageShare
+    environ: Mapping[str, str]
+    nodes: list[NodeAction] = field(default_factory=list)
+    files: list[str] = field(default_factory=list)
+    files_read: int = 1
+
+    def note_file(self, file: str) -> None:
+        if file not in self.files:
+            self.files.append(file)
+
+
+@dataclass
+class _Frame:
+    """What a group sees: its variables (scoped by ChainMap) and its pushed namespace."""
+
+    variables: ChainMap[str, str]
+    namespace: str | None
+
+
+class FileEvaluator:
+    """Evaluates one file's actions; ``origin`` names who passed ``passed`` (for error messages)."""
+
+    def __init__(
+        self,
+        session: Session,
+        file: str,
+        passed: Mapping[str, str],
+        stack: tuple[Path, ...],
+        origin: str,
+    ) -> None:
+        self.session = session
+        self.file = file
+        self.passed = passed
+        self.stack = stack
+        self.origin = origin
+        self.declared: dict[str, str] = {}
+        self.declared_at: dict[str, int] = {}
+
+    def run(self, root: Element, namespace: str | None) -> dict[str, str]:
+        self._run_actions(root, _Frame(ChainMap({}), namespace))
+        return self.declared
+
+    def _error(self, element: Element, problem: str) -> LaunchFileError:
+        return LaunchFileError(self.file, element.line, problem)
+
+    def _run_actions(self, parent: Element, frame: _Frame) -> None:
+        handlers: Mapping[str, Callable[[Element, _Frame], None]] = {
+            "arg": self._run_arg,
+            "let": self._run_let,
+            "node": self._run_node,
+            "include": self._run_include,
+            "group": self._run_group,
+            "push-ros-namespace": self._run_push_namespace,
+        }
+        for element in parent.children:
+            if self._active(element, frame):
+                handlers[ACTIONS[element.tag]](element, frame)
+
+    # -- attributes
+
+    def _sub(self, element: Element, attr: str, frame: _Frame) -> str:
+        raw = element.attrs[attr]
+
+        def resolve(name: str, args: list[str]) -> str:
+            return self._resolve(name, args, frame)
+
+        try:
+            return substitute(raw, resolve)
+        except SubstitutionError as err:
+            raise self._error(element, f'in {attr}="{raw}": {err}') from None
+
+    def _optional(self, element: Element, attr: str, frame: _Frame) -> str | None:
+        return self._sub(element, attr, frame) if attr in element.attrs else None
+
+    def _resolve(self, name: str, args: list[str], frame: _Frame) -> str:
+        if name == "var":
+            arity(name, args, 1, 1)
+            if args[0] not in frame.variables:
+                hint = did_you_mean(args[0], frame.variables) or " (declare it with <arg> above this line)"
+                raise SubstitutionError(f"no argument or variable '{args[0]}' is defined here{hint}")
+            return frame.variables[args[0]]
+        if name == "find-pkg-share":
+            arity(name, args, 1, 1)
+            try:
+                return str(self.session.find_package_share(args[0]))
+            except LookupError as err:
+                raise SubstitutionError(package_not_found(args[0], err)) from None
+        if name == "env":
+            arity(name, args, 1, 2)
+            value = self.session.environ.get(args[0])
+            if value is None and len(args) == 1:
+                raise SubstitutionError(f"environment variable '{args[0]}' is not set (no default given)")
+            return value if value is not None else args[1]
+        arity(name, args, 0, 0)  # dirname
+        return str(Path(self.file).parent)
+
+    def _active(self, element: Element, frame: _Frame) -> bool:
+        for attr, wanted in (("if", True), ("unless", False)):
+            if attr in element.attrs:
+                value = self._sub(element, attr, frame)
+                truth = parse_bool(value)
+                if truth is None:
+                    raise self._error(
+                        element, f'{attr}="{value}" is not a condition: use true, false, 1 or 0'
+                    )
+                return truth == wanted
+        return True
+
+    # -- actions
+
+    def _run_arg(self, element: Element, frame: _Frame) -> None:
+        name = element.attrs["name"]
+        if name in self.declared_at:
+            raise self._error(
+                element, f"argument '{name}' is declared twice (first at line {self.declared_at[name]})"
+            )
+        if name in self.passed:
+            value = self.passed[name]
+        elif "default" in element.attrs:
+            value = self._sub(element, "default", frame)
+        else:
+            raise self._error(
+                element,
+                f"argument '{name}' is required: it has no default and {self.origin} does not give it",
+            )
+        self.declared_at[name] = element.line
+        self.declared[name] = value
+        frame.variables[name] = value
+
+    def _run_let(self, element: Element, frame: _Frame) -> None:
+        frame.variables[element.attrs["name"]] = self._sub(element, "value", frame)
+
+    def _run_group(self, element: Element, frame: _Frame) -> None:
+        self._run_actions(element, _Frame(frame.variables.new_child(), frame.namespace))
+
+    def _run_push_namespace(self, element: Element, frame: _Frame) -> None:
+        frame.namespace = join_namespace(frame.namespace, self._sub(element, "namespace", frame))
+
+    def _run_node(self, element: Element, frame: _Frame) -> None:
+        pkg = self._sub(element, "pkg", frame)
+        executable = self._sub(element, "exec" if "exec" in element.attrs else "type", frame)
+        if not pkg or not executable:
+            raise self._error(element, "<node> has an empty pkg= or exec=")
+        node_ns = self._optional(element, "namespace" if "namespace" in element.attrs else "ns", frame)
+        output = self._optional(element, "output", frame)
+        if output is not None and output not in OUTPUTS:
+            raise self._error(element, f'output="{output}" is not one of {", ".join(OUTPUTS)}')
+        on_exit = self._optional(element, "on_exit", frame)
+        if on_exit not in (None, "shutdown"):
+            raise self._error(element, f'on_exit="{on_exit}" is not supported; the only value is "shutdown"')
+        parameters: list[tuple[str, ParamValue]] = []
+        self._collect_params(element, frame, "", parameters, {})
+        remappings = tuple(
+            (self._sub(child, "from", frame), self._sub(child, "to", frame))
+            for child in element.children
+            if child.tag == "remap"
+        )
+        self.session.nodes.append(
+            NodeAction(
+                pkg=pkg,
+                exec=executable,
+                name=self._optional(element, "name", frame),
+                namespace=frame.namespace if node_ns is None else join_namespace(frame.namespace, node_ns),
+                output=output,
+                respawn=self._respawn(element, frame),
+                respawn_delay_s=self._respawn_delay_s(element, frame),
+                parameters=tuple(parameters),
+                remappings=remappings,
+                location=SourceLocation(self.file, element.line),
+                shutdown_on_exit=on_exit == "shutdown",
+            )
+        )
+
+    def _respawn(self, element: Element, frame: _Frame) -> bool:
+        text = self._optional(element, "respawn", frame)
+        value = False if text is None else parse_bool(text)
+        if value is None:
+            raise self._error(element, f'respawn="{text}" is not a boolean: use true or false')
+        return value
+
+    def _respawn_delay_s(self, element: Element, frame: _Frame) -> float:
+        text = self._optional(element, "respawn_delay", frame)
+        if text is None:
+            return 0.0
+        try:
+            delay_s = float(text)
+        except ValueError:
+            delay_s = -1.0
+        if not 0.0 <= delay_s < float("inf"):
+            raise self._error(element, f'respawn_delay="{text}" is not a number of seconds >= 0')
+        return delay_s
+
+    def _collect_params(
+        self,
+        parent: Element,
+        frame: _Frame,
+        prefix: str,
+        out: list[tuple[str, ParamValue]],
+        seen: dict[str, int],
+    ) -> None:
+        for child in parent.children:
+            if child.tag != "param":
+                continue
+            name = prefix + self._sub(child, "name", frame)
+            if child.children:
+                self._collect_params(child, frame, name + ".", out, seen)
+                continue
+            if name in seen:
+                raise self._error(child, f"parameter '{name}' is set twice (first at line {seen[name]})")
+            seen[name] = child.line
+            try:
+                out.append((name, typed_param(self._sub(child, "value", frame))))
+            except ValueError as err:
+                raise self._error(child, f"parameter '{name}': {err}") from None
+
+    def _run_include(self, element: Element, frame: _Frame) -> None:
+        path = Path(self._sub(element, "file", frame))
+        if not path.is_absolute():
+            path = Path(self.file).parent / path
+        passed: dict[str, str] = {}
+        for arg in element.children:
+            if arg.attrs["name"] in passed:
+                raise self._error(arg, f"argument '{arg.attrs['name']}' is passed twice")
+            passed[arg.attrs["name"]] = self._sub(arg, "value", frame)
+        root = self._load_include(element, path)
+        declared = declared_names(root)
+        for arg in element.children:
+            if arg.attrs["name"] not in declared:
+                hint = did_you_mean(arg.attrs["name"], declared)
+                listed = ", ".join(sorted(declared)) or "none"
+                raise self._error(
+                    arg, f"{path} declares no argument '{arg.attrs['name']}'{hint} (it declares: {listed})"
+                )
+        self.session.note_file(str(path))
+        origin = f"the include at {self.file}:{element.line}"
+        stack = (*self.stack, path.resolve())
+        FileEvaluator(self.session, str(path), passed, stack, origin).run(root, frame.namespace)
+
+    def _load_include(self, element: Element, path: Path) -> Element:
+        if path.suffix in (".py", ".yaml", ".yml"):
+            raise self._error(element, f"cannot include {path}: only XML launch files are supported")
+        if path.resolve() in self.stack:
+            chain = " -> ".join(str(p) for p in (*self.stack, path.resolve()))
+            raise self._error(element, f"include cycle: {chain}")
+        if len(self.stack) >= MAX_INCLUDE_DEPTH:
+            raise self._error(element, f"includes are nested more than {MAX_INCLUDE_DEPTH} deep")
+        self.session.files_read += 1
+        if self.session.files_read > MAX_FILES_READ:
+            raise self._error(element, f"more than {MAX_FILES_READ} files included in one launch")
+        try:
+            data = read_bytes(path)
+        except FileNotFoundError:
+            raise self._error(element, f"included file not found: {path}") from None
+        except OSError as err:
+            raise self._error(element, f"cannot read included file {path}: {err.strerror}") from None
+        return load_tree(data, str(path))
+
+
+def evaluate(
+    root: Element,
+    file: str,
+    args: Mapping[str, str],
+    find_package_share: FindPackageShare,
+    environ: Mapping[str, str] | None,
+) -> LaunchDescription:
+    """Evaluate a checked tree from ``file`` with the caller's ``args`` into one flat description."""
+    declared = declared_names(root)
+    for name in args:
+        if name not in declared:
+            hint = did_you_mean(name, declared)
+            raise LaunchFileError(
+                file, 0, f"argument '{name}' was given but the file declares no such argument{hint}"
+            )
+    session = Session(find_package_share, os.environ if environ is None else environ)
+    session.note_file(file)
+    evaluator = FileEvaluator(session, file, dict(args), (Path(file).resolve(),), "the caller")
+    values = evaluator.run(root, None)
+    return LaunchDescription(tuple(session.nodes), MappingProxyType(dict(values)), tuple(session.files))

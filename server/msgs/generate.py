@@ -1,0 +1,186 @@
+"""Write the message classes from the interface definitions: ``python -m server.msgs.generate``.
+
+As rosidl generates Python classes from ``.msg`` files, this writes one module per package
+under ``server/msgs/generated/`` with a class per message and service. The classes only
+declare what a reader and mypy need to see (field names and Python types, constants, a typed
+constructor); their behaviour, defaults and checks come from the definitions at import time,
+so the definitions stay the single source. A test checks the files are current.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterable
+from pathlib import Path
+
+from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, Definitions, FieldSpec, MessageSpec, lab_definitions
+
+GENERATED_DIR = Path(__file__).resolve().parent / "generated"
+HEADER = (
+    '"""{package}: generated from server/msgs/interfaces/{package} by `python -m server.msgs.generate`; '
+    'do not edit."""\n\n'
+)
+NUMPY_SCALARS = {
+    "bool": "np.bool_",
+    "byte": "np.uint8",
+    "char": "np.uint8",
+    "float32": "np.float32",
+    "float64": "np.float64",
+    **{k: f"np.{k}" for k in INT_RANGES if k not in ("byte", "char")},
+}
+
+
+def _class_name(type_name: str) -> str:
+    return type_name.rsplit("/", 1)[1]
+
+
+def _scalar_python_type(base: str) -> str:
+    if base == "bool":
+        return "bool"
+    if base in INT_RANGES:
+        return "int"
+    if base in FLOAT_TYPES:
+        return "float"
+    if base in STRING_TYPES:
+        return "str"
+    return _class_name(base)
+
+
+def _python_types(field: FieldSpec) -> tuple[str, str]:
+    """(the attribute's type, the constructor argument's type)."""
+    if not field.is_array:
+        t = _scalar_python_type(field.base)
+        return t, t
+    if field.is_primitive and field.base not in STRING_TYPES:
+        element = _scalar_python_type(field.base)
+        return f"npt.NDArray[{NUMPY_SCALARS[field.base]}]", f"Sequence[{element}] | npt.NDArray[Any]"
+    element = _scalar_python_type(field.base)
+    return f"list[{element}]", f"Sequence[{element}]"
+
+
+def _doc(spec: MessageSpec) -> str:
+    first = next((line.lstrip("# ").strip() for line in spec.text.splitlines() if line.startswith("#")), "")
+    return f"{spec.name}: {first}" if first else spec.name
+
+
+def _message_class(spec: MessageSpec) -> list[str]:
+    name = _class_name(spec.name)
+    lines = [f'class {name}(Message, type_name="{spec.name}"):', f'    """{_doc(spec)}"""', ""]
+    if len(spec.fields) == 1:
+        lines.append(f'    __slots__ = ("{spec.fields[0].name}",)')
+    elif spec.fields:
+        lines += ["    __slots__ = (", *(f'        "{f.name}",' for f in spec.fields), "    )"]
+    else:
+        lines.append("    __slots__ = ()")
+    for constant in spec.constants:
+        lines.append(f"    {constant.name}: ClassVar[{_scalar_python_type(constant.base)}]")
+    for field in spec.fields:
+        lines.append(f"    {field.name}: {_python_types(field)[0]}")
+    if spec.fields:
+        params = [f"            {f.name}: {_python_types(f)[1]} = ...," for f in spec.fields]
+        lines += [
+            "",
+            "    if TYPE_CHECKING:",
+            "",
+            "        def __init__(",
+            "            self,",
+            "            *,",
+            *params,
+            "        ) -> None: ...",
+        ]
+    return lines
+
+
+def _service_class(name: str) -> list[str]:
+    short = _class_name(name)
+    return [
+        f'class {short}(Service, type_name="{name}"):',
+        f'    """{name}: call with a {short}.Request, answered with a {short}.Response."""',
+        "",
+        f"    Request = {short}_Request",
+        f"    Response = {short}_Response",
+    ]
+
+
+def _ordered(specs: Iterable[MessageSpec]) -> list[MessageSpec]:
+    """Dependencies first, so that a class exists before a class that nests it."""
+    pending = {s.name: s for s in specs}
+    done: list[MessageSpec] = []
+
+    def visit(spec: MessageSpec) -> None:
+        if spec.name not in pending:
+            return
+        del pending[spec.name]
+        for dep in spec.dependencies():
+            if dep in pending:
+                visit(pending[dep])
+        done.append(spec)
+
+    for spec in list(pending.values()):
+        visit(spec)
+    return done
+
+
+def package_module(package: str, definitions: Definitions) -> str:
+    """The source of ``generated/<package>.py``."""
+    messages = [s for n, s in definitions.messages.items() if n.startswith(package + "/")]
+    services = [s for n, s in definitions.services.items() if n.startswith(package + "/")]
+    specs = _ordered(messages + [p for s in services for p in (s.request, s.response)])
+    foreign = sorted({d for s in specs for d in s.dependencies() if not d.startswith(package + "/")})
+    body: list[str] = []
+    for spec in specs:
+        body += ["", "", *_message_class(spec)]
+    for service in services:
+        body += ["", "", *_service_class(service.name)]
+    text = "\n".join(body)
+    imports = ["from __future__ import annotations", ""]
+    typing_names = ["Any"] if "Any]" in text else []
+    typing_names += ["ClassVar"] if "ClassVar[" in text else []
+    if "Sequence[" in text:
+        imports.append("from collections.abc import Sequence")
+    imports.append(f"from typing import {', '.join(['TYPE_CHECKING', *typing_names])}")
+    imports.append("")
+    if "np." in text:
+        imports += ["import numpy as np", "import numpy.typing as npt", ""]
+    bases = ["Message"] + (["Service"] if services else [])
+    imports.append(f"from .._base import {', '.join(bases)}")
+    by_package: dict[str, list[str]] = {}
+    for dep in foreign:
+        by_package.setdefault(dep.split("/")[0], []).append(_class_name(dep))
+    for pkg, names in sorted(by_package.items()):
+        imports.append(f"from .{pkg} import {', '.join(sorted(set(names)))}")
+    names = [_class_name(s.name) for s in specs] + [_class_name(s.name) for s in services]
+    exports = "\n\n__all__ = [\n" + "".join(f'    "{n}",\n' for n in sorted(names)) + "]\n"
+    return HEADER.format(package=package) + "\n".join(imports) + "\n" + text + "\n" + exports
+
+
+def packages(definitions: Definitions) -> list[str]:
+    return sorted({n.split("/")[0] for n in list(definitions.messages) + list(definitions.services)})
+
+
+def generated_files(definitions: Definitions | None = None) -> dict[Path, str]:
+    """Every generated file's path and text (the package modules and their ``__init__``)."""
+    definitions = definitions or lab_definitions()
+    files = {GENERATED_DIR / f"{pkg}.py": package_module(pkg, definitions) for pkg in packages(definitions)}
+    names = packages(definitions)
+    files[GENERATED_DIR / "__init__.py"] = (
+        '"""The message and service classes, one module per ROS package (see server/msgs/generate.py)."""\n\n'
+        + "from . import (\n"
+        + "".join(f"    {pkg},\n" for pkg in names)
+        + ")\n\n__all__ = [\n"
+        + "".join(f'    "{pkg}",\n' for pkg in names)
+        + "]\n"
+    )
+    return files
+
+
+def main() -> int:
+    GENERATED_DIR.mkdir(exist_ok=True)
+    for path, text in generated_files().items():
+        path.write_text(text, encoding="utf-8")
+    print(f"wrote {len(generated_files())} files to {GENERATED_DIR}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

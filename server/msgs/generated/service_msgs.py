@@ -1,0 +1,47 @@
+"""service_msgs: generated from server/msgs/interfaces/service_msgs by `python -m server.msgs.generate`; do not edit."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any, ClassVar
+
+import numpy as np
+import numpy.typing as npt
+
+from .._base import Message
+from .builtin_interfaces import Time
+
+
+class ServiceEventInfo(Message, type_name="service_msgs/msg/ServiceEventInfo"):
+    """service_msgs/msg/ServiceEventInfo: What a service event reports: which step of a call it is, when, and which client and call."""
+
+    __slots__ = (
+        "event_type",
+        "stamp",
+        "client_gid",
+        "sequence_number",
+    )
+    REQUEST_SENT: ClassVar[int]
+    REQUEST_RECEIVED: ClassVar[int]
+    RESPONSE_SENT: ClassVar[int]
+    RESPONSE_RECEIVED: ClassVar[int]
+    event_type: int
+    stamp: Time
+    client_gid: npt.NDArray[np.uint8]
+    sequence_number: int
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            event_type: int = ...,
+            stamp: Time = ...,
+            client_gid: Sequence[int] | npt.NDArray[Any] = ...,
+            sequence_number: int = ...,
+        ) -> None: ...
+
+
+__all__ = [
+    "ServiceEventInfo",
+]

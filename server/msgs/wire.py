@@ -1,0 +1,204 @@
+"""Messages on the wire: CDR bytes and RIHS01 type hashes, as ROS 2 and rmw_zenoh use them.
+
+``rosbags`` does both, from a typestore this module fills with the lab's own definitions. Two
+of its habits are corrected on the way in: it hashes ``char`` as CHAR where rosidl hashes it as
+UINT8 (both are one byte on the wire), and it names service parts ``pkg/srv/msg/X`` where a
+service's type description names them ``pkg/srv/X``. A service's hash covers its request,
+response and event message (REP-2016), so the event type is declared here as rosidl generates it.
+"""
+
+from __future__ import annotations
+
+import re
+from functools import cache
+from typing import Any
+
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from rosbags.typesys.store import Typestore
+
+from ._base import Field, Message, MessageError, message_class, message_classes
+from .idl import Definitions, lab_definitions
+
+CDR_LE_HEADER = b"\x00\x01\x00\x00"
+SERVICE_EVENT_INFO = "service_msgs/msg/ServiceEventInfo"
+
+
+class WireError(ValueError):
+    """Bytes that are not a CDR message of the expected type."""
+
+
+_CHAR = re.compile(r"^(\s*)char(?=[\s\[])", re.MULTILINE)
+_BYTE = re.compile(r"^(\s*)byte(?=[\s\[])", re.MULTILINE)
+
+
+def _for_rosbags(text: str, *, byte_as_uint8: bool = False) -> str:
+    # rosidl's type description (and so the hash) treats char as uint8; the bytes are the same.
+    # rosbags packs byte as a signed int8, where ROS's byte (octet) is 0..255: for CDR, uint8.
+    text = _CHAR.sub(r"\1uint8", text)
+    return _BYTE.sub(r"\1uint8", text) if byte_as_uint8 else text
+
+
+def _fix_srv_names(types: dict[str, Any]) -> dict[str, Any]:
+    def fix(value: Any) -> Any:
+        if isinstance(value, tuple):
+            return tuple(fix(v) for v in value)
+        return value.replace("/srv/msg/", "/srv/") if isinstance(value, str) else value
+
+    return {fix(name): (consts, [(n, fix(d)) for n, d in fields]) for name, (consts, fields) in types.items()}
+
+
+def _service_types(name: str, request: str, response: str, byte_as_uint8: bool) -> dict[str, Any]:
+    event = f"{SERVICE_EVENT_INFO} info\n{name}_Request[<=1] request\n{name}_Response[<=1] response"
+    whole = f"{name}_Request request_message\n{name}_Response response_message\n{name}_Event event_message"
+    types: dict[str, Any] = {}
+    for suffix, text in (("_Request", request), ("_Response", response), ("_Event", event), ("", whole)):
+        types.update(get_types_from_msg(_for_rosbags(text, byte_as_uint8=byte_as_uint8), f"{name}{suffix}"))
+    return _fix_srv_names(types)
+
+
+def build_typestore(definitions: Definitions, *, for_hashing: bool = False) -> Typestore:
+    """A rosbags typestore holding exactly ``definitions`` (and the event types of its services),
+    laid out for CDR, or ``for_hashing`` with byte kept as rosidl's BYTE."""
+    store = get_typestore(Stores.EMPTY)
+    types: dict[str, Any] = {}
+    for name, spec in definitions.messages.items():
+        types.update(get_types_from_msg(_for_rosbags(spec.text, byte_as_uint8=not for_hashing), name))
+    for name, service in definitions.services.items():
+        types.update(_service_types(name, service.request.text, service.response.text, not for_hashing))
+    store.register(types)
+    return store
+
+
+# rosbags gives a message without fields one uint8 member of this name, as IDL structs need one.
+EMPTY_STRUCT_MEMBER = "structure_needs_at_least_one_member"
+
+
+@cache
+def typestore() -> Typestore:
+    for cls in message_classes().values():
+        if not cls.FIELDS:
+            setattr(cls, EMPTY_STRUCT_MEMBER, 0)
+    return build_typestore(lab_definitions())
+
+
+@cache
+def _hashing_typestore() -> Typestore:
+    return build_typestore(lab_definitions(), for_hashing=True)
+
+
+@cache
+def type_hash(type_name: str) -> str:
+    """``RIHS01_<sha256 hex>`` of a message or service type, computed from its definition."""
+    return str(_hashing_typestore().hash_rihs01(type_name))
+
+
+def dds_type_name(type_name: str) -> str:
+    """``geometry_msgs/msg/Vector3`` → ``geometry_msgs::msg::dds_::Vector3_``, as rmw_zenoh keys it."""
+    pkg, kind, name = type_name.split("/")
+    return f"{pkg}::{kind}::dds_::{name}_"
+
+
+def ros_type_name(dds_name: str) -> str | None:
+    """The inverse of :func:`dds_type_name`; None if ``dds_name`` is not of that shape."""
+    parts = dds_name.split("::")
+    if len(parts) != 4 or parts[2] != "dds_" or not parts[3].endswith("_") or parts[1] not in ("msg", "srv"):
+        return None
+    return f"{parts[0]}/{parts[1]}/{parts[3][:-1]}"
+
+
+def serialize(msg: Message) -> bytes:
+    """Little-endian CDR with its 4-byte header and no trailing padding, as rmw_zenoh sends it."""
+    return bytes(typestore().serialize_cdr(msg, msg.TYPE))
+
+
+def _nested(path: str, exc: MessageError) -> MessageError:
+    return MessageError(f"{path}.{exc.path}" if exc.path else path, exc.problem)
+
+
+def _field_step(f: Field) -> Any:
+    """How one field's value from rosbags becomes ours; values are checked only where the wire
+    could carry more than the type allows (bounded strings and sequences)."""
+    name = f.name
+    if isinstance(f.kind, str):
+        if f.array or f.string_bound is not None:
+            return lambda raw: f.check(list(raw) if f.array and not f.numeric_array else raw, name)
+        if f.kind == "bool":
+            return bool
+        return None
+    inner = _converter_for(f.kind)
+    if not f.array:
+
+        def nested(raw: Any) -> Message:
+            try:
+                converted: Message = inner(raw)
+            except MessageError as exc:
+                raise _nested(name, exc) from None
+            return converted
+
+        return nested
+
+    def items(raw: Any) -> list[Message]:
+        out = []
+        for i, item in enumerate(raw):
+            try:
+                out.append(inner(item))
+            except MessageError as exc:
+                raise _nested(f"{name}[{i}]", exc) from None
+        return list(f.check(out, name))
+
+    return items
+
+
+_CONVERTERS: dict[type[Message], Any] = {}
+
+
+def _converter_for(cls: type[Message]) -> Any:
+    converter = _CONVERTERS.get(cls)
+    if converter is None:
+        converter = _CONVERTERS[cls] = _make_converter(cls)
+    return converter
+
+
+def _make_converter(cls: type[Message]) -> Any:
+    steps = [(f.name, _field_step(f)) for f in cls.FIELDS]
+    setter = object.__setattr__
+
+    def convert(raw: Any) -> Message:
+        msg = object.__new__(cls)
+        for name, step in steps:
+            value = getattr(raw, name)
+            setter(msg, name, value if step is None else step(value))
+        return msg
+
+    return convert
+
+
+def deserialize(
+    type_name: str, data: bytes | bytearray | memoryview, store: Typestore | None = None
+) -> Message:
+    """A message from CDR bytes (trailing padding accepted); WireError if they do not decode.
+    ``store`` is the lab's typestore unless given (tests pass one built from other definitions)."""
+    cls = message_class(type_name)
+    raw_bytes = bytes(data)
+    if raw_bytes[:2] != CDR_LE_HEADER[:2]:
+        raise WireError(f"{type_name}: not little-endian CDR (header {raw_bytes[:4].hex() or 'missing'})")
+    try:
+        raw = (store or typestore()).deserialize_cdr(raw_bytes, type_name)
+        converted: Message = _converter_for(cls)(raw)
+        return converted
+    except MessageError as exc:
+        raise WireError(f"{type_name}: {exc}") from None
+    except Exception as exc:  # rosbags raises struct/index/unicode errors on short or bad bytes
+        raise WireError(f"{type_name}: {len(raw_bytes)} bytes do not decode: {type(exc).__name__}") from None
+
+
+def definition_closure_text(type_name: str) -> str:
+    """The type's definition followed by each nested type's, as ROS 2's MCAP and Foxglove's
+    ``ros2msg`` schemas carry it (sections ``MSG: pkg/Type`` between lines of ``=``)."""
+    definitions = lab_definitions()
+    specs = definitions.closure(type_name)
+    parts = [specs[0].text.rstrip("\n")]
+    for spec in specs[1:]:
+        pkg, _, name = spec.name.split("/")
+        parts.append("=" * 80 + f"\nMSG: {pkg}/{name}\n" + spec.text.rstrip("\n"))
+    return "\n".join(parts) + "\n"

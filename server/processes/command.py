@@ -1,0 +1,78 @@
+"""The command line and environment of a node process, for the app's launcher and ``ros2lab run``."""
+
+from __future__ import annotations
+
+import json
+import os
+import secrets
+import sys
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from server.transport.config import DEFAULT_ROUTER_ENDPOINT
+
+from .runner import PARENT_ENV
+
+CLIENT_DIR = Path(__file__).resolve().parents[2] / "client"
+
+
+@dataclass(frozen=True)
+class NodeCommand:
+    argv: list[str]
+    env: dict[str, str]
+    zid: str  # the Zenoh session id the process will have, so the graph can tell which process it is
+
+
+def ros_args(
+    name: str | None,
+    namespace: str | None,
+    parameters: Iterable[tuple[str, Any]],
+    remappings: Iterable[tuple[str, str]],
+) -> list[str]:
+    """``--ros-args`` as ``ros2 launch`` passes a ``<node>``'s name, namespace, params and remaps."""
+    out: list[str] = []
+    if name:
+        out += ["-r", f"__node:={name}"]
+    if namespace:
+        out += ["-r", f"__ns:={namespace}"]
+    for key, value in parameters:
+        out += ["-p", f"{key}:={json.dumps(value) if not isinstance(value, str) else value}"]
+    for source, target in remappings:
+        out += ["-r", f"{source}:={target}"]
+    return ["--ros-args", *out] if out else []
+
+
+def new_zid() -> str:
+    """A Zenoh session id: 128 bits in lowercase hex, no leading zero (Zenoh refuses those)."""
+    digits = secrets.token_hex(16)
+    return ("1" + digits[1:]) if digits[0] == "0" else digits
+
+
+def node_command(
+    target: Path | str,
+    args: list[str],
+    *,
+    router: str | None = None,
+    domain_id: int = 0,
+    env: Mapping[str, str] | None = None,
+) -> NodeCommand:
+    """Run ``target`` (a student's file, or ``module:Class`` of a built-in node) in its own process,
+    joined to the router at ``router`` (``tcp/HOST:PORT``)."""
+    runner = [sys.executable, "-u", "-m", "server.processes.runner"]
+    argv = (
+        [*runner, str(target), *args] if isinstance(target, Path) else [*runner, "--builtin", target, *args]
+    )
+    zid = new_zid()
+    overrides = [f'connect/endpoints=["{router or DEFAULT_ROUTER_ENDPOINT}"]', f'id="{zid}"']
+    base = dict(os.environ if env is None else env)
+    inherited = base.get("ZENOH_CONFIG_OVERRIDE", "")
+    child_env = {
+        **base,
+        "PYTHONUNBUFFERED": "1",
+        "ROS_DOMAIN_ID": str(domain_id),
+        "ZENOH_CONFIG_OVERRIDE": ";".join(filter(None, [inherited, *overrides])),
+        PARENT_ENV: str(os.getpid()),
+    }
+    return NodeCommand(argv, child_env, zid)

@@ -1,0 +1,151 @@
+"""Node processes the app starts: their output, their exit, and stopping them with the app.
+
+Like ``ros2 launch``: each process is labelled ``<executable>-<n>``; with ``output="screen"`` its
+lines are printed with that label in front; its start and its death (pid, exit code) are logged.
+Output is read by a thread per process and kept (the last lines) for the API; an exit is handed
+to the bus's executor through a poller, so respawning happens on the executor's thread. Stopping
+sends Ctrl-C (SIGINT), then SIGTERM, then SIGKILL, each after a grace period.
+"""
+
+from __future__ import annotations
+
+import itertools
+import logging
+import signal
+import subprocess
+import sys
+import threading
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import IO, Literal
+
+from server.bus import Bus
+
+from .command import NodeCommand
+
+log = logging.getLogger("launch")
+KEEP_LINES = 200
+STOP_GRACE_S = 3.0
+ProcessState = Literal["running", "died", "stopped"]
+_labels = itertools.count(1)
+_print_lock = threading.Lock()
+
+
+@dataclass
+class ProcessNode:
+    """One node process: started from a ``NodeCommand``, watched until it ends."""
+
+    command: NodeCommand
+    executable: str
+    screen: bool
+    node_name: str | None = None  # the name it was given (a launch's name=), if any
+    label: str = ""
+    proc: subprocess.Popen[str] | None = None
+    state: ProcessState = "running"
+    exit_code: int | None = None
+    lines: deque[str] = field(default_factory=lambda: deque(maxlen=KEEP_LINES))
+
+    @property
+    def pid(self) -> int | None:
+        return self.proc.pid if self.proc is not None else None
+
+    def describe(self) -> dict[str, object]:
+        return {"pid": self.pid, "state": self.state, "exit_code": self.exit_code, "label": self.label}
+
+
+class Supervisor:
+    """Starts node processes and reports their exits on the bus's executor thread."""
+
+    def __init__(self, bus: Bus, on_exit: Callable[[ProcessNode], None]) -> None:
+        self.bus = bus
+        self.on_exit = on_exit
+        self.processes: list[ProcessNode] = []
+        self._exited: deque[ProcessNode] = deque()
+        self._lock = threading.Lock()
+        bus.pollers.append(self._poll)
+
+    def start(
+        self, command: NodeCommand, executable: str, *, screen: bool, node_name: str | None
+    ) -> ProcessNode:
+        process = ProcessNode(command, executable, screen, node_name, label=f"{executable}-{next(_labels)}")
+        process.proc = subprocess.Popen(
+            command.argv, env=command.env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT, text=True, errors="replace", bufsize=1,
+        )  # fmt: skip
+        log.info("[%s]: process started with pid [%d]", process.label, process.proc.pid)
+        self.processes.append(process)
+        threading.Thread(
+            target=self._watch, args=(process,), name=f"out-{process.label}", daemon=True
+        ).start()
+        return process
+
+    def _watch(self, process: ProcessNode) -> None:
+        """The process's output, line by line, until it ends; then its exit, to the executor."""
+        assert process.proc is not None and process.proc.stdout is not None
+        stream: IO[str] = process.proc.stdout
+        for line in stream:
+            text = line.rstrip("\n")
+            process.lines.append(text)
+            if process.screen:
+                with _print_lock:
+                    sys.stdout.write(f"[{process.label}] {text}\n")
+                    sys.stdout.flush()
+        stream.close()
+        process.exit_code = process.proc.wait()
+        with self._lock:
+            self._exited.append(process)
+        self.bus.wake_threadsafe()
+
+    def _poll(self) -> None:
+        with self._lock:
+            exited, self._exited = list(self._exited), deque()
+        for process in exited:
+            if process.state == "stopped":
+                continue
+            process.state = "died"
+            code = process.exit_code
+            level = logging.INFO if code == 0 else logging.ERROR
+            log.log(level, "[%s]: process has died [pid %s, exit code %s, cmd '%s']", process.label,
+                    process.pid, code, " ".join(process.command.argv[3:]))  # fmt: skip
+            self.on_exit(process)
+
+    def stop(self, process: ProcessNode, grace_s: float = STOP_GRACE_S) -> None:
+        """Ctrl-C, then SIGTERM, then SIGKILL; returns once it is gone."""
+        process.state = "stopped"
+        proc = process.proc
+        if proc is None or proc.poll() is not None:
+            return
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            proc.send_signal(sig)
+            try:
+                proc.wait(timeout=grace_s)
+                return
+            except subprocess.TimeoutExpired:
+                continue
+        proc.kill()
+        proc.wait()
+
+    def stop_soon(self, process: ProcessNode) -> None:
+        """Stop it without waiting here: the escalation runs on a thread of its own."""
+        if process.proc is None or process.proc.poll() is not None:
+            process.state = "stopped"
+            return
+        threading.Thread(target=self.stop, args=(process,), name=f"stop-{process.label}", daemon=True).start()
+
+    def stop_all(self) -> None:
+        """Every process, at once: Ctrl-C to all, then waits."""
+        running = [p for p in self.processes if p.proc is not None and p.proc.poll() is None]
+        for process in running:
+            process.state = "stopped"
+            assert process.proc is not None
+            process.proc.send_signal(signal.SIGINT)
+        for process in running:
+            self.stop(process)
+
+    def forget(self, process: ProcessNode) -> None:
+        if process in self.processes:
+            self.processes.remove(process)
+
+    def by_zid(self, zid: str) -> ProcessNode | None:
+        return next((p for p in self.processes if p.command.zid == zid and p.state == "running"), None)

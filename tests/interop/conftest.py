@@ -1,0 +1,234 @@
+"""The real app in a subprocess with its Zenoh router on a free loopback port, and independent peers
+(zenoh-ros2-sdk, raw eclipse-zenoh) in processes of their own, each ended by its own id."""
+
+from __future__ import annotations
+
+import json
+import os
+import queue
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import IO, Any
+
+import httpx
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+INTERFACES = REPO / "server" / "msgs" / "interfaces"
+READY_S = 40.0
+WAIT_S = 20.0
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])
+
+
+def end(proc: subprocess.Popen[Any], timeout_s: float = 10.0) -> None:
+    """Ctrl-C, then a kill if it does not stop in time."""
+    if proc.poll() is None:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait(timeout=timeout_s)
+
+
+class App:
+    """``python -m server`` with a Zenoh router of its own."""
+
+    def __init__(self, workdir: Path, *launch: str) -> None:
+        self.port, self.zenoh_port = free_port(), free_port()
+        self.url = f"http://127.0.0.1:{self.port}"
+        self.router = f"127.0.0.1:{self.zenoh_port}"
+        self.log_path = workdir / "app.log"
+        self._log = self.log_path.open("w")
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(self.port),
+             "--zenoh-listen", f"tcp/{self.router}", *launch],
+            cwd=REPO, stdout=self._log, stderr=subprocess.STDOUT,
+        )  # fmt: skip
+        deadline = time.monotonic() + READY_S
+        while not self._healthy():
+            if self.proc.poll() is not None or time.monotonic() > deadline:
+                pytest.fail(f"the app did not come up:\n{self.log_tail()}")
+            time.sleep(0.1)
+
+    def _healthy(self) -> bool:
+        try:
+            return httpx.get(self.url + "/api/health", timeout=1.0).status_code == 200
+        except httpx.HTTPError:
+            return False
+
+    def get(self, path: str, **params: Any) -> Any:
+        response = httpx.get(self.url + path, params=params, timeout=5.0)
+        response.raise_for_status()
+        return response.json()
+
+    def post(self, path: str, body: dict[str, Any]) -> httpx.Response:
+        return httpx.post(self.url + path, json=body, timeout=30.0)
+
+    def wait_for(self, condition: Callable[[], bool], what: str, timeout_s: float = WAIT_S) -> None:
+        deadline = time.monotonic() + timeout_s
+        while not condition():
+            if time.monotonic() > deadline:
+                pytest.fail(f"timed out after {timeout_s} s waiting for {what}\n{self.log_tail()}")
+            time.sleep(0.05)
+
+    def log_tail(self, chars: int = 3000) -> str:
+        self._log.flush()
+        return self.log_path.read_text(errors="replace")[-chars:]
+
+    def stop(self) -> None:
+        end(self.proc)
+        self._log.close()
+
+
+class JsonProcess:
+    """A helper process that takes JSON lines on stdin and answers with JSON lines on stdout."""
+
+    def __init__(self, args: list[str], env: dict[str, str] | None = None) -> None:
+        self.proc = subprocess.Popen(
+            args, cwd=REPO, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+            text=True, env={**os.environ, **(env or {})},
+        )  # fmt: skip
+        self.events: queue.Queue[dict[str, Any] | None] = queue.Queue()
+        self.seen: list[dict[str, Any]] = []
+        self.stderr: list[str] = []
+        self._readers = [
+            threading.Thread(target=self._pump, args=(self.proc.stdout,), daemon=True),
+            threading.Thread(target=self._errors, args=(self.proc.stderr,), daemon=True),
+        ]
+        for reader in self._readers:
+            reader.start()
+
+    def _pump(self, stream: IO[str] | None) -> None:
+        assert stream is not None
+        for line in stream:
+            try:
+                self.events.put(json.loads(line))
+            except json.JSONDecodeError:
+                self.stderr.append(line)
+        self.events.put(None)
+
+    def _errors(self, stream: IO[str] | None) -> None:
+        assert stream is not None
+        for line in stream:
+            self.stderr.append(line)
+
+    def send(self, **command: Any) -> None:
+        assert self.proc.stdin is not None
+        self.proc.stdin.write(json.dumps(command) + "\n")
+        self.proc.stdin.flush()
+
+    def expect(
+        self, predicate: Callable[[dict[str, Any]], bool], what: str, timeout_s: float = WAIT_S
+    ) -> dict[str, Any]:
+        """The first event (from now on, or already seen) for which ``predicate`` holds."""
+        for event in self.seen:
+            if predicate(event):
+                return event
+        deadline = time.monotonic() + timeout_s
+        while True:
+            try:
+                event = self.events.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                pytest.fail(
+                    f"no {what} within {timeout_s} s; saw {self.seen[-10:]}; stderr {self.stderr[-10:]}"
+                )
+            if event is None:
+                pytest.fail(f"the process ended before {what}; stderr:\n{''.join(self.stderr[-30:])}")
+            self.seen.append(event)
+            if event.get("event") == "error":
+                pytest.fail(f"the peer failed: {event}")
+            if predicate(event):
+                return event
+
+    def newest(self, predicate: Callable[[dict[str, Any]], bool]) -> dict[str, Any] | None:
+        """The newest event so far for which ``predicate`` holds (what has queued up is read first)."""
+        while True:
+            try:
+                event = self.events.get_nowait()
+            except queue.Empty:
+                break
+            if event is not None:
+                self.seen.append(event)
+        return next((e for e in reversed(self.seen) if predicate(e)), None)
+
+    def kill(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait(timeout=10)
+
+    def stop(self) -> None:
+        if self.proc.poll() is None:
+            try:
+                self.send(cmd="quit")
+                self.proc.wait(timeout=5)
+            except (BrokenPipeError, subprocess.TimeoutExpired):
+                self.kill()
+        for reader in self._readers:  # they end at the pipes' end of file, once the process is gone
+            reader.join(timeout=5)
+        for stream in (self.proc.stdin, self.proc.stdout, self.proc.stderr):
+            if stream is not None:
+                stream.close()
+
+
+def definitions(*types: str) -> dict[str, str]:
+    """The .msg texts of ``types`` and what they nest, as files a ROS 2 install would carry."""
+    out: dict[str, str] = {}
+
+    def add(name: str) -> None:
+        if name in out:
+            return
+        pkg, kind, short = name.split("/")
+        text = (INTERFACES / pkg / kind / f"{short}.{kind}").read_text()
+        out[name] = text
+        for line in text.splitlines():
+            words = line.split("#", 1)[0].split()
+            if len(words) >= 2 and "/" in words[0] and "=" not in words[1]:
+                dep_pkg, dep = words[0].split("[", 1)[0].split("/")
+                add(f"{dep_pkg}/msg/{dep}")
+            elif len(words) >= 2 and words[0][:1].isupper() and "=" not in words[1]:
+                add(f"{pkg}/msg/{words[0].split('[', 1)[0]}")
+
+    for name in types:
+        add(name)
+    return out
+
+
+def service_text(name: str) -> tuple[str, str]:
+    pkg, kind, short = name.split("/")
+    request, _, response = (INTERFACES / pkg / kind / f"{short}.{kind}").read_text().partition("---")
+    strip = "\n".join(line for line in request.splitlines() if not line.startswith("#"))
+    return strip, response
+
+
+@pytest.fixture(scope="module")
+def app(tmp_path_factory: pytest.TempPathFactory) -> Iterator[App]:
+    """The all launch, with time to press "a" before lift-off (10 s start delay, then 10 s of countdown)."""
+    lab = App(tmp_path_factory.mktemp("interop"), "--launch", "all", "start_delay:=10")
+    try:
+        yield lab
+    finally:
+        lab.stop()
+
+
+@pytest.fixture
+def sdk_peer(app: App) -> Iterator[JsonProcess]:
+    peer = JsonProcess(
+        [sys.executable, str(REPO / "tests" / "interop" / "sdk_peer.py"), "--router", app.router]
+    )
+    try:
+        peer.expect(lambda e: e.get("event") == "ready", "the peer to start")
+        yield peer
+    finally:
+        peer.stop()

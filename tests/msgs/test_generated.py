@@ -1,0 +1,27 @@
+"""The generated message classes are current with the definitions, and declare what they hold."""
+
+from __future__ import annotations
+
+import typing
+
+import pytest
+
+from server.msgs import Message, get_type, type_names
+from server.msgs.generate import generated_files
+
+
+@pytest.mark.parametrize("path", sorted(generated_files()), ids=lambda p: p.name)
+def test_generated_module_matches_the_definitions(path) -> None:  # type: ignore[no-untyped-def]
+    expected = generated_files()[path]
+    assert path.read_text(encoding="utf-8") == expected, (
+        f"{path.name} is stale: run `python -m server.msgs.generate` after editing server/msgs/interfaces"
+    )
+
+
+@pytest.mark.parametrize("name", type_names())
+def test_generated_class_annotates_every_field_and_constant(name: str) -> None:
+    cls: type[Message] = get_type(name)
+    hints = typing.get_type_hints(cls)
+    assert [f.name for f in cls.FIELDS] == list(cls.__slots__)
+    assert all(f.name in hints for f in cls.FIELDS)
+    assert all(c.name in hints and getattr(cls, c.name) == c.value for c in cls.SPEC.constants)

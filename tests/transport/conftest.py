@@ -1,0 +1,79 @@
+"""Two buses joined over real Zenoh sessions on loopback: the app's router and a node process's peer.
+
+Zenoh delivers on its own threads, so these tests wait for what they expect, each wait bounded.
+"""
+
+from __future__ import annotations
+
+import socket
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+
+import pytest
+
+from server.bus import Bus, Executor
+from server.transport.bridge import ZenohBridge
+from server.transport.config import ZenohSettings
+from server.transport.session import open_session
+
+WAIT_S = 5.0
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])
+
+
+@dataclass
+class Side:
+    bus: Bus
+    executor: Executor
+    bridge: ZenohBridge
+    session: object
+
+
+@dataclass
+class Pair:
+    app: Side
+    proc: Side
+    router_endpoint: str
+
+    def pump(
+        self, condition: Callable[[], bool], what: str, timeout_s: float = WAIT_S, *, spin: bool = True
+    ) -> None:
+        """Run both executors (unless not ``spin``) until ``condition`` holds; fail after ``timeout_s``."""
+        deadline = time.monotonic() + timeout_s
+        while True:
+            if spin:
+                self.app.executor.spin_some()
+                self.proc.executor.spin_some()
+            if condition():
+                return
+            if time.monotonic() > deadline:
+                pytest.fail(f"timed out after {timeout_s} s waiting for {what}")
+            time.sleep(0.002)
+
+
+def _side(settings: ZenohSettings) -> Side:
+    session = open_session(settings)
+    bus = Bus()
+    return Side(bus, Executor(bus), ZenohBridge(bus, session, settings.domain_id), session)
+
+
+def _close(side: Side) -> None:
+    side.bridge.close()
+    side.session.close()  # type: ignore[attr-defined]
+
+
+@pytest.fixture
+def pair() -> Iterator[Pair]:
+    endpoint = f"tcp/127.0.0.1:{free_port()}"
+    app = _side(ZenohSettings(mode="router", listen=(endpoint,)))
+    proc = _side(ZenohSettings(mode="peer", listen=("tcp/127.0.0.1:0",), connect=(endpoint,)))
+    try:
+        yield Pair(app, proc, endpoint)
+    finally:
+        _close(proc)
+        _close(app)
