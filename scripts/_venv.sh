@@ -1,4 +1,7 @@
-# Sourced by run.sh and test.sh: make .venv with a Python 3.11 or newer if it is not there.
+# Sourced by run.sh and test.sh: make .venv with a Python 3.11 or newer if it is not there, and
+# install_once SPEC: pip-install the project (SPEC: "." or ".[test]") only when pyproject.toml or
+# the checkout's place changed since the last install of that SPEC (the install is editable, so
+# code changes need none). TELEOP_REINSTALL=1 forces it.
 VENV="${TELEOP_VENV:-.venv}"
 if [ ! -x "$VENV/bin/python" ]; then
   PY=""
@@ -15,3 +18,19 @@ if [ ! -x "$VENV/bin/python" ]; then
   "$PY" -m venv "$VENV"
   "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check --upgrade pip
 fi
+
+install_once() {
+  local spec="$1"
+  local stamp="$VENV/.installed-$(printf '%s' "$spec" | tr -c 'a-z' '_')"
+  local want
+  want="$(cksum < pyproject.toml) $(pwd)"
+  if [ "${TELEOP_REINSTALL:-0}" != 1 ] && [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ]; then
+    return 0
+  fi
+  echo "Installing the lab and its pinned dependencies ($spec) into $VENV ..."
+  # setuptools reports "Editable installation" through the warnings module although it is only
+  # information (its own InformationOnly class); every other warning still shows.
+  PYTHONWARNINGS="ignore:Editable installation" \
+    "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -e "$spec"
+  printf '%s\n' "$want" > "$stamp"
+}

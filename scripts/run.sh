@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/_venv.sh
-"$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -e .
+install_once .
 exec "$VENV/bin/python" -m server "$@"

@@ -121,6 +121,16 @@ def check_launch(settings: Settings) -> str | None:
     return None
 
 
+def banner(host: str, port: int, launch: str) -> str:
+    """The first lines a student reads: where to open the page, and which keys fly."""
+    shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
+    return (
+        f"Teleop lab: open http://{shown}:{port}/ in a browser (launch: {launch}; Ctrl-C stops it)\n"
+        "Keys, after a click in the 3D view: arrows fly the drone, PgUp/PgDn climb and sink, "
+        "a aborts the rocket, ? shows help"
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv and (argv[0] in cli.VERBS or argv[0].startswith("--url")):
@@ -147,15 +157,12 @@ def main(argv: list[str] | None = None) -> int:
     if error:
         print(f"error: {error}", file=sys.stderr)
         return 2
+    print(banner(args.host, args.port, args.launch), flush=True)
+    import rich
     import uvicorn
 
     from server.app import create_app
 
-    print(
-        f"Teleop lab on http://{'127.0.0.1' if args.host in ('0.0.0.0', '::') else args.host}:{args.port}/ "
-        f"(launch: {args.launch}); Ctrl-C to stop",
-        flush=True,
-    )
     if zenoh is not None:
         wide = [e for e in zenoh.listen if not is_loopback(e)] if zenoh.mode == "router" else []
         where = ", ".join(zenoh.listen) if zenoh.mode == "router" else "router " + ", ".join(zenoh.connect)
@@ -163,6 +170,10 @@ def main(argv: list[str] | None = None) -> int:
         if wide:
             print(f"note: Zenoh listens on {', '.join(wide)}: other machines can join this graph "
                   "(see the README on opening it to a classroom)", flush=True)  # fmt: skip
+    # viser prints a box with its own loopback port; the page is served on ours, so that box
+    # would send a student to a page without the lab's keys and HUD. The app prints nothing else
+    # through rich.
+    rich.get_console().quiet = True
     config = uvicorn.Config(
         create_app(settings),
         host=args.host,

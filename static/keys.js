@@ -1,7 +1,8 @@
 // Key capture for the lab page: every key press goes to the server's keyboard over /ws/keys,
 // as keydown/keyup frames, with sided modifier flags. The keys viser's camera would also take
 // (arrows, WASDQE, space, page up/down) are stopped here, in the capture phase on window,
-// before viser's listeners see them. A blur or a hidden tab releases every held key.
+// before viser's listeners see them. A blur or a hidden tab releases every held key. The HUD
+// (static/hud.js) shows the channel's state and the keys held.
 (() => {
   "use strict";
   const CAMERA_KEYS = new Set(["ArrowUp", "ArrowDown", "ArrowLeft", "ArrowRight", "a", "d", "w", "s", "q", "e",
@@ -15,22 +16,15 @@
   let ws = null;
   let retryMs = 250;
 
-  const badge = document.createElement("div");
-  badge.id = "teleop-keys-badge";
-  const render = () => {
-    badge.textContent = (state.connected ? "keys: connected" : "keys: offline") +
-      (state.held.size ? " | held: " + [...state.held].join(" ") : "");
-    badge.className = state.connected ? "on" : "off";
-  };
   const send = (frame) => {
     if (ws && ws.readyState === WebSocket.OPEN) { ws.send(JSON.stringify(frame)); state.sent++; }
   };
   const connect = () => {
     ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws/keys");
-    ws.onopen = () => { state.connected = true; retryMs = 250; render(); };
+    ws.onopen = () => { state.connected = true; retryMs = 250; };
     ws.onmessage = (ev) => { try { const f = JSON.parse(ev.data); if (f.type === "error") state.errors.push(f.error); } catch (_) {} };
     ws.onclose = () => {
-      state.connected = false; state.held.clear(); render();
+      state.connected = false; state.held.clear();
       setTimeout(connect, retryMs); retryMs = Math.min(retryMs * 2, 5000);
     };
   };
@@ -47,14 +41,12 @@
       caps: e.getModifierState("CapsLock"), num: e.getModifierState("NumLock"), t: performance.now() };
     if (e.repeat) frame.repeat = true;
     send(frame);
-    render();
     for (const listener of state.listeners) { try { listener(e, k); } catch (err) { console.error(err); } }
   };
   const releaseAll = () => {
     if (state.held.size) send({ type: "release_all" });
     state.held.clear();
     for (const m of Object.keys(mods)) mods[m] = false;
-    render();
   };
 
   addEventListener("keydown", onKey, true);
@@ -63,6 +55,5 @@
   document.addEventListener("visibilitychange", () => { if (document.hidden) releaseAll(); });
   addEventListener("pagehide", releaseAll);
   setInterval(() => send({ type: "heartbeat" }), HEARTBEAT_MS);
-  addEventListener("DOMContentLoaded", () => { document.body.appendChild(badge); render(); });
   connect();
 })();

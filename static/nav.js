@@ -5,7 +5,7 @@
   "use strict";
   const CSS = `
     #teleop-nav-tools {
-      position: fixed; left: 8px; top: 8px; z-index: 1000; padding: 3px 9px; border-radius: 6px;
+      position: fixed; left: 15px; top: 8px; z-index: 1000; padding: 3px 9px; border-radius: 6px;
       font: 12px/1.45 system-ui, sans-serif; text-decoration: none; white-space: nowrap;
       background: rgba(255, 255, 255, 0.85); color: #1f5fbf; box-shadow: 0 1px 4px rgba(0, 0, 0, 0.2);
     }

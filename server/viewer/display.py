@@ -5,21 +5,14 @@ from __future__ import annotations
 import asyncio
 import logging
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
 
 import viser
 
+from .views import CameraView, Follow, Vec3, ViewRegistry
 from .viser_guard import guarded_serve, new_token
 
 log = logging.getLogger("viewer")
-Vec3 = tuple[float, float, float]
-
-
-@dataclass(frozen=True)
-class CameraView:
-    position: Vec3
-    look_at: Vec3
 
 
 class Display:
@@ -38,31 +31,28 @@ class Display:
         self.set_theme(dark=False)
         self.server.scene.set_up_direction("+z")
         self._loop = loop
-        self.views: dict[str, CameraView] = {}
-        self._view_switch: Any = None
+        self.views = ViewRegistry()
+        # Shadows cost a fixed depth pass per frame, which software WebGL pays in full; the labs
+        # read fine without them.
+        self.server.scene.configure_default_lights(enabled=True, cast_shadow=False)
 
-    def add_view(self, name: str, position: Vec3, look_at: Vec3, *, initial: bool = False) -> None:
-        """A camera preset the page can switch to (one per lab); ``initial`` for new tabs."""
-        self.views[name] = CameraView(position, look_at)
+    def add_view(
+        self,
+        name: str,
+        position: Vec3,
+        look_at: Vec3,
+        *,
+        initial: bool = False,
+        follow: Follow | None = None,
+        busy: Callable[[], bool] | None = None,
+    ) -> None:
+        """A camera view of one lab, switched in the page (static/scene.js); ``initial``: where
+        viser's camera starts before the page picks its view."""
+        self.views.add(CameraView(name, position, look_at, follow, busy))
         if initial or len(self.views) == 1:
             self.server.initial_camera.position = position
             self.server.initial_camera.look_at = look_at
             self.server.initial_camera.up = (0.0, 0.0, 1.0)
-        if self._view_switch is not None:
-            self._view_switch.remove()
-        self._view_switch = self.server.gui.add_button_group(
-            "View", list(self.views), order=-10.0, hint="Point the camera at this lab"
-        )
-        self._view_switch.on_click(self._on_view)
-
-    def _on_view(self, event: Any) -> None:
-        view = self.views.get(event.target.value)
-        if view is None or event.client is None:
-            return
-        with event.client.atomic():
-            event.client.camera.position = view.position
-            event.client.camera.look_at = view.look_at
-            event.client.camera.up_direction = (0.0, 0.0, 1.0)
 
     def set_theme(self, *, dark: bool) -> None:
         # The share button would reach an outside tunnel host: never offer it.

@@ -7,23 +7,34 @@ import asyncio
 import contextlib
 from functools import cache
 from pathlib import Path
+from typing import Any
 
 import viser
 import websockets
-from fastapi import APIRouter, WebSocket, WebSocketDisconnect, status
-from fastapi.responses import HTMLResponse
+from fastapi import APIRouter, Request, WebSocket, WebSocketDisconnect, status
+from fastapi.responses import HTMLResponse, Response
 from websockets.asyncio.client import ClientConnection
 
+from .views import ViewRegistry
 from .viser_guard import PROXY_TOKEN_HEADER
 
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
 INJECT_STYLES = ("page.css",)
-INJECT_SCRIPTS = ("keys.js", "hud.js", "nav.js")  # key capture first: it must see keys before viser does
+# Key capture first: it must see keys before viser does. Then the pose stream, the setpoint
+# prediction, the scene driver (views, follow), the drawn answer to a key, the drawing quality,
+# the HUD, the tools link, and the layout of these overlays.
+INJECT_SCRIPTS = (
+    "keys.js", "poses.js", "predict.js", "scene.js", "answer.js", "quality.js", "hud.js", "nav.js", "layout.js",
+)  # fmt: skip
 INJECT = "".join(f'<link rel="stylesheet" href="/static/{name}">' for name in INJECT_STYLES) + "".join(
     f'<script src="/static/{name}"></script>' for name in INJECT_SCRIPTS
 )
 PROXY_MAX_FRAME_BYTES = 1 << 20  # browser → viser: camera moves and GUI clicks, all small
+# Cross-origin isolation, so the page may share memory with its pose worker (static/poses.js):
+# everything the page loads comes from this origin, and it opens other pages only as new tabs.
+ISOLATED = {"Cross-Origin-Opener-Policy": "same-origin", "Cross-Origin-Embedder-Policy": "require-corp"}
+POSES_WORKER = Path(__file__).resolve().parents[2] / "static" / "poses.worker.js"
 
 
 @cache
@@ -36,7 +47,23 @@ def index_html() -> str:
 
 @router.get("/")
 async def index() -> HTMLResponse:
-    return HTMLResponse(index_html(), headers={"Cache-Control": "no-cache"})
+    return HTMLResponse(index_html(), headers={"Cache-Control": "no-cache", **ISOLATED})
+
+
+@router.get("/page/poses.worker.js")
+async def poses_worker() -> Response:
+    """The pose stream's worker, with the isolation its page has (a dedicated worker needs its own)."""
+    return Response(POSES_WORKER.read_bytes(), media_type="text/javascript", headers=ISOLATED)
+
+
+@router.get("/page/views")
+async def views(request: Request) -> dict[str, Any]:
+    """The labs' camera views for the page, and the one a page with no remembered choice opens on."""
+    display = request.app.state.lab.display
+    if display is None:
+        return {"views": [], "suggested": None}
+    views: ViewRegistry = display.views
+    return views.to_json()
 
 
 @router.websocket("/")

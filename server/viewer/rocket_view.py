@@ -21,6 +21,9 @@ from .plots import TimePlot
 CMD_PERIOD_S = 0.1  # MainControllerNode publishes /cmd_vel at 10 Hz
 PAD_XY = (60.0, 0.0)  # the rocket stands apart from the quadrotor's arena
 REDRAW_HZ = 30.0
+# From the south-east, close enough that the rocket stands a quarter of the view's height, and
+# high enough to keep its whole (squeezed) flight, pad to ceiling, in the picture.
+CAMERA_OFFSET_M, CAMERA_LOOK_AT_Z_M = (11.0, -11.0, 9.0), 7.5
 
 
 @dataclass
@@ -101,10 +104,13 @@ def _cone(radius: float, height: float, segments: int = 24) -> tuple[np.ndarray,
 class RocketScene:
     """The viser objects: pad, rocket, flame, label and the GUI readouts."""
 
-    def __init__(self, display: Display, on_reset: Callable[[], object]) -> None:
+    def __init__(
+        self, display: Display, on_reset: Callable[[], object], busy: Callable[[], bool] | None = None
+    ) -> None:
         scene, gui = display.scene, display.gui
         x, y = PAD_XY
-        display.add_view("Rocket", (x + 17.0, y - 17.0, 9.0), (x, y, 7.0), initial=True)
+        dx, dy, z = CAMERA_OFFSET_M
+        display.add_view("Rocket", (x + dx, y + dy, z), (x, y, CAMERA_LOOK_AT_Z_M), initial=True, busy=busy)
         scene.add_grid("/rocket_lab/ground", width=30, height=30, cell_size=1.0, position=(x, y, 0))
         scene.add_box(
             "/rocket_lab/pad", color=(110, 110, 120), dimensions=(3.0, 3.0, 0.3), position=(x, y, 0.15)
@@ -175,7 +181,7 @@ class RocketViewNode(Node):
     def __init__(self, display: Display | None, on_reset: Callable[[], object]) -> None:
         super().__init__("_rocket_view")
         self.tracker = RocketTracker()
-        self.scene = RocketScene(display, on_reset) if display is not None else None
+        self.scene = RocketScene(display, on_reset, self.before_liftoff) if display is not None else None
         self._drawn = -1
         self.create_subscription(Int64, "/countdown", lambda m: self.tracker.on_countdown(m.data), 100)
         self.create_subscription(Bool, "/abort_takeoff", lambda m: self.tracker.on_abort(m.data), 100)
@@ -185,6 +191,10 @@ class RocketViewNode(Node):
         self._t0 = self.bus.clock.now()
         if self.scene is not None:
             self.create_timer(0.25, self.scene.plot.flush)
+
+    def before_liftoff(self) -> bool:
+        """The rocket's part of the lab is under way: ready or counting down, not yet launched."""
+        return self.tracker.phase in ("ready", "counting down")
 
     def on_sensor_vel(self, msg: Float64) -> None:
         """Track it, and plot both velocities as /sensor_vel arrives (10 Hz), like the lab's rqt_plot."""

@@ -8,7 +8,7 @@ from collections.abc import Callable
 import httpx
 import viser
 import websockets
-from labclient import LabClient, receive_within, refused
+from labclient import LabClient, receive_within, refused, wait_until
 from starlette.testclient import WebSocketTestSession
 
 from server.viewer.page import PROXY_MAX_FRAME_BYTES
@@ -29,6 +29,20 @@ def test_index_serves_viser_page_with_key_script_injected(make_lab: Callable[...
     script = lab.http.get("/static/keys.js")
     assert script.status_code == 200
     assert "window.__teleopKeys" in script.text
+
+
+def test_index_and_pose_worker_are_cross_origin_isolated(make_lab: Callable[..., LabClient]) -> None:
+    """The page shares a ring of poses with its worker: that takes both headers, on both."""
+    lab = make_lab(viewer=True)
+
+    page, worker = lab.http.get("/"), lab.http.get("/page/poses.worker.js")
+
+    assert worker.status_code == 200
+    assert worker.headers["content-type"].startswith("text/javascript")
+    assert "SharedArrayBuffer" in lab.http.get("/static/poses.js").text
+    for response in (page, worker):
+        assert response.headers["cross-origin-opener-policy"] == "same-origin"
+        assert response.headers["cross-origin-embedder-policy"] == "require-corp"
 
 
 def test_viser_proxy_with_viser_subprotocol_receives_scene(make_lab: Callable[..., LabClient]) -> None:
@@ -80,6 +94,34 @@ def test_viser_proxy_oversized_frame_closed_1009(make_lab: Callable[..., LabClie
     assert code == 1009
     assert f"larger than {PROXY_MAX_FRAME_BYTES} bytes" in reason
     assert lab.healthy()
+
+
+def test_page_views_all_launch_opens_on_rocket_until_it_is_aborted_then_on_quadrotor(
+    make_lab: Callable[..., LabClient],
+) -> None:
+    lab = make_lab(viewer=True, launch="all")
+
+    before = lab.http.get("/page/views")
+    lab.publish("/abort_takeoff", {"data": True})
+    after = wait_until(
+        lambda: (r := lab.http.get("/page/views").json())["suggested"] == "Quadrotor" and r,
+        "the suggested view to move on from the aborted rocket",
+    )
+
+    assert before.status_code == 200
+    assert before.json()["suggested"] == "Rocket"  # counting down to a start an hour away: under way
+    views = {v["name"]: v for v in after["views"]}
+    assert set(views) == {"Rocket", "Quadrotor"}
+    assert views["Rocket"]["follow"] is None
+    follow = views["Quadrotor"]["follow"]
+    assert follow["node"] == "/drone_lab/drone" and follow["setpoint"] == "/drone_lab/setpoint"
+
+
+def test_page_views_without_viewer_lists_none(rocket_lab: LabClient) -> None:
+    response = rocket_lab.http.get("/page/views")
+
+    assert response.status_code == 200
+    assert response.json() == {"views": [], "suggested": None}
 
 
 def _direct_to_viser(port: int, **headers: str) -> int:

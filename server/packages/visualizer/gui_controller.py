@@ -1,6 +1,9 @@
 """GUIControllerNode: draws the quadrotor as the lab's GUI does (green hub, blue arm along body x,
 red arm along body y, L = 1 m) at its true (x, y, z), in the lab's arena, at 30 Hz rather than
 the lab's 2 Hz; plus the setpoint marker, a short trail and a telemetry panel.
+
+The page (static/scene.js) draws the drone between these updates from the pose stream, at the
+display's rate, and moves the setpoint marker itself the moment a key goes down.
 """
 
 from __future__ import annotations
@@ -15,14 +18,29 @@ from server.bus import Node
 from server.msgs import PoseStamped, TwistStamped, Vector3
 from server.packages.flightcontroller.setpoints import ARENA_MAX_M, ARENA_MIN_M
 from server.viewer.plots import TimePlot
+from server.viewer.views import Follow
 
 ARM_M = 1.0  # the lab draws each arm 1 m from the hub
 TRAIL_POINTS = 150
 PLOT_WINDOW_S = 20.0
 PLOT_SAMPLE_HZ = 10.0
 PLOT_FLUSH_HZ = 4.0
+TELEMETRY_HZ = 5.0  # text to read, not to watch move: each update costs the page a React render
+# A hovering drone jitters by a few millimetres (process noise): drawn again only once it has
+# moved this far from where it was last drawn. Each drawing keeps the page rendering for a while
+# (viser renders for 0.25 s after any change), so a hover drawn at 30 Hz would keep a slow
+# machine's page always busy, and a key pressed then would wait behind a frame under way. The
+# page draws the drone itself between these drawings, from the pose stream, whenever it moves.
+REDRAW_MIN_M = 0.02
+REDRAW_MIN_RAD = math.radians(1.0)
 HUB_GREEN, ARM_X_BLUE, ARM_Y_RED = (0, 200, 0), (30, 60, 255), (230, 30, 30)
-CAMERA_POSITION, CAMERA_LOOK_AT = (0.0, -23.0, 15.0), (0.0, 0.0, 5.0)  # from -y: right = +x, up = +y
+DRONE_NODE, SETPOINT_NODE, TRAIL_NODE = "/drone_lab/drone", "/drone_lab/setpoint", "/drone_lab/trail"
+# Both cameras look from -y, so on screen right = +x and away = +y, as the arrow keys move it.
+# Fixed: the hover point (0, 0, 3) about 10 m away, the arms about a tenth of the view's height,
+# the arena's far side and ceiling in view. Follow: 5.5 m behind and above the drone, the arms
+# about a quarter of the view's height (viser's vertical field of view is 75 degrees).
+CAMERA_POSITION, CAMERA_LOOK_AT = (0.0, -10.0, 6.0), (0.0, 0.0, 4.0)
+FOLLOW_OFFSET_M = (0.0, -5.0, 2.2)
 
 
 def _arena_edges() -> np.ndarray:
@@ -42,19 +60,24 @@ def euler_deg(w: float, x: float, y: float, z: float) -> tuple[float, float, flo
 class DroneScene:
     def __init__(self, display: Any) -> None:
         scene, gui = display.scene, display.gui
-        display.add_view("Quadrotor", CAMERA_POSITION, CAMERA_LOOK_AT)
+        display.add_view(
+            "Quadrotor",
+            CAMERA_POSITION,
+            CAMERA_LOOK_AT,
+            follow=Follow(DRONE_NODE, FOLLOW_OFFSET_M, SETPOINT_NODE, TRAIL_NODE),
+        )
         scene.add_grid("/drone_lab/ground", width=20, height=20, cell_size=1.0, section_size=5.0)
         scene.add_line_segments("/drone_lab/bounds", _arena_edges(), colors=(150, 150, 160), thickness=0.03)
-        self.drone = scene.add_frame("/drone_lab/drone", show_axes=False)
+        self.drone = scene.add_frame(DRONE_NODE, show_axes=False)
         scene.add_icosphere("/drone_lab/drone/hub", radius=0.3, color=HUB_GREEN)
         arms = np.array([[[-ARM_M, 0, 0], [ARM_M, 0, 0]], [[0, -ARM_M, 0], [0, ARM_M, 0]]], dtype=np.float32)
         colors = np.array([[ARM_X_BLUE] * 2, [ARM_Y_RED] * 2], dtype=np.uint8)
         scene.add_line_segments("/drone_lab/drone/arms", arms, colors=colors, thickness=0.15)
         self.setpoint = scene.add_icosphere(
-            "/drone_lab/setpoint", radius=0.15, color=(255, 150, 0), opacity=0.6, position=(0.0, 0.0, 3.0)
+            SETPOINT_NODE, radius=0.15, color=(255, 150, 0), opacity=0.6, position=(0.0, 0.0, 3.0)
         )
         self.trail = scene.add_line_segments(
-            "/drone_lab/trail", np.zeros((1, 2, 3), np.float32), colors=(90, 160, 90), thickness=0.03
+            TRAIL_NODE, np.zeros((1, 2, 3), np.float32), colors=(90, 160, 90), thickness=0.03
         )
         with gui.add_folder("Quadrotor"):
             self.telemetry = gui.add_markdown("waiting for /uav/sensors/gps ...")
@@ -92,7 +115,6 @@ class DroneScene:
         wxyz: tuple[float, float, float, float],
         setpoint: tuple[float, float, float] | None,
         trail: np.ndarray,
-        text: str,
     ) -> None:
         with self._display.server.atomic():
             self.drone.position = pos
@@ -100,8 +122,8 @@ class DroneScene:
             if setpoint is not None:
                 self.setpoint.position = setpoint
             if len(trail) >= 2:
-                self.trail.points = np.stack([trail[:-1], trail[1:]], axis=1)
-        self.telemetry.content = text
+                # Newest segment first: the page draws only the first N when it must save time.
+                self.trail.points = np.stack([trail[:0:-1], trail[-2::-1]], axis=1)
 
 
 class GUIControllerNode(Node):
@@ -118,11 +140,13 @@ class GUIControllerNode(Node):
         self.trail: deque[tuple[float, float, float]] = deque(maxlen=TRAIL_POINTS)
         self.frames_drawn = 0
         self._dirty = False
+        self._drawn: tuple[tuple[float, float, float], tuple[float, float, float, float]] | None = None
         self.create_subscription(PoseStamped, "uav/sensors/gps", self.on_gps, 10)
         self.create_subscription(TwistStamped, "uav/sensors/velocity", self.on_velocity, 1)
         self.create_subscription(Vector3, "uav/input/position", self.on_setpoint, 10)
         self.create_timer(1.0 / redraw_hz, self.redraw)
         if self.scene is not None:
+            self.create_timer(1.0 / TELEMETRY_HZ, self.write_telemetry)
             self.create_timer(1.0 / PLOT_SAMPLE_HZ, self.sample_plots)
             self.create_timer(1.0 / PLOT_FLUSH_HZ, self.scene.flush_plots)
         self._t0 = self.bus.clock.now()
@@ -137,20 +161,35 @@ class GUIControllerNode(Node):
         self.velocity = (v.x, v.y, v.z)
 
     def on_setpoint(self, msg: Vector3) -> None:
+        if self.setpoint != (msg.x, msg.y, msg.z):
+            self._drawn = None  # draw the new setpoint, however still the drone
         self.setpoint = (msg.x, msg.y, msg.z)
         self._dirty = True
+
+    def moved_since_drawn(self) -> bool:
+        assert self.pose is not None
+        if self._drawn is None:
+            return True
+        (pos, wxyz), (pos0, wxyz0) = self.pose, self._drawn
+        dot = min(1.0, abs(sum(a * b for a, b in zip(wxyz, wxyz0, strict=True))))
+        return math.dist(pos, pos0) > REDRAW_MIN_M or 2 * math.acos(dot) > REDRAW_MIN_RAD
 
     def redraw(self) -> None:
         if not self._dirty or self.pose is None:
             return
         self._dirty = False
+        if not self.moved_since_drawn():
+            return
+        self._drawn = self.pose
         pos, wxyz = self.pose
         self.trail.append(pos)
         self.frames_drawn += 1
         if self.scene is not None:
-            self.scene.draw(
-                pos, wxyz, self.setpoint, np.array(self.trail, dtype=np.float32), self.telemetry_text()
-            )
+            self.scene.draw(pos, wxyz, self.setpoint, np.array(self.trail, dtype=np.float32))
+
+    def write_telemetry(self) -> None:
+        if self.pose is not None and self.scene is not None:
+            self.scene.telemetry.content = self.telemetry_text()
 
     def sample_plots(self) -> None:
         if self.pose is not None and self.scene is not None:

@@ -1,0 +1,137 @@
+"""For the browser tests: the lab page in a headless Chromium, and the server's topics it is checked
+against. Every wait is bounded: Playwright's own timeouts, or a polled deadline."""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import time
+import warnings
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import httpx
+import pytest
+from labserver import LabServer
+from playwright.sync_api import Browser, Page
+from playwright.sync_api import Error as PlaywrightError
+
+WAIT_S = 15.0
+STILL_M_S = 0.1
+STILL_WINDOW_S = 0.5
+STILL_DRIFT_M = 0.05
+STOP_WAIT_S = 10.0  # the drone stops in about 1.5 s; generous for a loaded 2-core machine
+PAGE_WAIT_MS = 30_000
+SETTLE_WAIT_MS = 25_000
+CLICK_WAIT_MS = 2_000
+MAX_NOTIFICATIONS = 5
+VIEWPORT = {"width": 1000, "height": 650}
+
+# Counts requestAnimationFrame frames and remembers the last long gap between two: SwiftShader
+# stalls the page's main thread for seconds while it compiles the scene's shaders, a few seconds
+# after load, and a stall during a hold would stop the heartbeats (the dead-man then releases).
+FRAME_MONITOR_JS = """(() => {
+  const m = { count: 0, last: performance.now(), lastStall: performance.now() };
+  window.__frames = m;
+  const tick = (now) => { if (now - m.last > 400) m.lastStall = now; m.last = now; m.count++;
+    requestAnimationFrame(tick); };
+  requestAnimationFrame(tick);
+})();"""
+SETTLED_JS = "() => window.__frames.count > 20 && performance.now() - window.__frames.lastStall > 2000"
+
+
+# -- the server's topics -------------------------------------------------------------------------
+def wait_until(check: Callable[[], Any], what: str, timeout_s: float = WAIT_S, poll_s: float = 0.05) -> Any:
+    """Poll ``check`` until it returns something truthy (returned); fail after ``timeout_s``."""
+    deadline = time.monotonic() + timeout_s
+    while not (value := check()):
+        if time.monotonic() > deadline:
+            pytest.fail(f"gave up after {timeout_s} s waiting for {what} (last: {value!r})")
+        time.sleep(poll_s)
+    return value
+
+
+def topic(server: LabServer, name: str) -> dict[str, Any]:
+    response = httpx.get(f"{server.url}/api/topics/{name.lstrip('/')}", timeout=5.0)
+    response.raise_for_status()
+    return response.json()
+
+
+def position(server: LabServer) -> tuple[float, float, float]:
+    p = topic(server, "/uav/sensors/gps")["latest"]["pose"]["position"]
+    return p["x"], p["y"], p["z"]
+
+
+def speed(server: LabServer) -> float:
+    v = topic(server, "/uav/sensors/velocity")["latest"]["twist"]["linear"]
+    return math.hypot(v["x"], v["y"], v["z"])
+
+
+def wait_stopped(server: LabServer, timeout_s: float = STOP_WAIT_S) -> tuple[float, float, float]:
+    """Until the drone is still (under 0.1 m/s, and two positions 0.5 s apart within 5 cm); where."""
+
+    def still() -> tuple[float, float, float] | None:
+        if speed(server) >= STILL_M_S:
+            return None
+        before = position(server)
+        time.sleep(STILL_WINDOW_S)
+        after = position(server)
+        return after if math.dist(before, after) < STILL_DRIFT_M and speed(server) < STILL_M_S else None
+
+    return wait_until(still, "the drone to stop", timeout_s)
+
+
+# -- the page ------------------------------------------------------------------------------------
+@contextlib.contextmanager
+def lab_page(chromium: Browser, viewport: dict[str, int] | None = None) -> Iterator[Page]:
+    """A page (1000x650 unless told) in its own context, counting its frames; uncaught page errors
+    fail the test."""
+    context = chromium.new_context(viewport=viewport or VIEWPORT)
+    context.add_init_script(FRAME_MONITOR_JS)
+    page = context.new_page()
+    page.set_default_timeout(PAGE_WAIT_MS)
+    errors: list[str] = []
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    try:
+        yield page
+    finally:
+        context.close()
+    assert errors == [], f"uncaught errors in the page: {errors}"
+
+
+def open_lab_page(page: Page, server: LabServer, close_notices: bool = True) -> None:
+    """Load the lab page; wait for viser, the key channel, the page's camera view and a steady frame
+    rate; close viser's notifications unless told not to."""
+    page.goto(server.url + "/")
+    page.wait_for_function("() => document.body.innerText.includes('Connected')")
+    page.wait_for_function("() => window.__teleopKeys !== undefined && window.__teleopKeys.connected")
+    page.wait_for_function("() => window.__teleopScene !== undefined && window.__teleopScene.ready")
+    try:
+        page.wait_for_function(SETTLED_JS, polling=100, timeout=SETTLE_WAIT_MS)
+    except PlaywrightError:
+        warnings.warn(
+            f"the page never drew steadily for 2 s within {SETTLE_WAIT_MS} ms; going on", stacklevel=2
+        )
+    if not close_notices:
+        return
+    close_buttons = page.locator(".mantine-Notification-closeButton")
+    for _ in range(MAX_NOTIFICATIONS):
+        if not close_buttons.count():
+            break
+        with contextlib.suppress(PlaywrightError):  # it may be closing already
+            close_buttons.first.click(timeout=CLICK_WAIT_MS)
+
+
+def wait_frames(page: Page, frames: int = 5) -> None:
+    """Let the page draw a few more frames (after a camera move or a state change)."""
+    start = page.evaluate("window.__frames.count")
+    page.wait_for_function(f"() => window.__frames.count >= {start + frames}", polling="raf")
+
+
+def save_screenshot(page: Page, folder: Path, name: str, capsys: pytest.CaptureFixture[str]) -> bytes:
+    png = page.screenshot()
+    (folder / name).write_bytes(png)
+    with capsys.disabled():
+        print(f"\nscreenshot {name} in {folder}")
+    return png
