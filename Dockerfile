@@ -1,5 +1,6 @@
 # The same app in a container. Inside, it listens on 0.0.0.0 so the published port reaches it;
-# docker-compose.yml publishes that port on the host's loopback only. Host and Origin checks
+# docker-compose.yml publishes its ports (HTTP 8000, Zenoh 7447, Foxglove 8765) on the host's
+# loopback only. Host and Origin checks
 # stay on: open the page at http://127.0.0.1:8000/ or http://localhost:8000/.
 FROM python:3.11-slim
 ENV PYTHONDONTWRITEBYTECODE=1 PYTHONUNBUFFERED=1 PIP_DISABLE_PIP_VERSION_CHECK=1
@@ -8,10 +9,11 @@ COPY pyproject.toml README.md ./
 COPY server ./server
 COPY sim ./sim
 COPY api ./api
+COPY client ./client
 COPY static ./static
 RUN pip install --no-cache-dir -e . && useradd --create-home lab
 USER lab
-EXPOSE 8000
+EXPOSE 8000 7447 8765
 HEALTHCHECK --interval=10s --timeout=3s --start-period=10s \
   CMD python -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:8000/api/health')"
-CMD ["python", "-m", "server", "--host", "0.0.0.0", "--port", "8000"]
+CMD ["python", "-m", "server", "--host", "0.0.0.0", "--port", "8000", "--zenoh-listen", "tcp/0.0.0.0:7447"]
