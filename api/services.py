@@ -29,7 +29,7 @@ class ServiceCallRequest(BaseModel):
     request: dict[str, Any] = Field(default_factory=dict, examples=[{}])
     type: str | None = Field(
         default=None,
-        description="needed only if no node serves or calls it yet",
+        description="optional: checked against the type the service is served with",
         examples=["std_srvs/srv/Trigger"],
     )
     timeout_s: float = Field(

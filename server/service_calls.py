@@ -38,15 +38,18 @@ class ServiceCaller:
         self._clients: dict[str, ServiceClient] = {}
 
     def service_type(self, name: str, type_name: str | None, remote: RemoteGraph | None) -> type[Service]:
+        """The type to call ``name`` with. A service nobody serves (here or in another process) is
+        unknown, even with a type given: the call could only time out."""
         channel = self.node.bus.services.get(name)
-        known = {channel.srv_type.TYPE} if channel is not None else remote_service_types(remote, name)
+        served_here = channel is not None and any(server.active for server in channel.servers)
+        known = {channel.srv_type.TYPE} if served_here and channel else remote_service_types(remote, name)
+        if not known:
+            raise UnknownServiceError(name)
         if type_name is not None:
             wanted = get_service_type(type_name)
             if known and wanted.TYPE not in known:
                 raise TopicTypeError(f"service {name} is a {', '.join(sorted(known))}, not {wanted.TYPE}")
             return wanted
-        if not known:
-            raise UnknownServiceError(name)
         if len(known) > 1:
             raise TopicTypeError(f"service {name} is served with several types ({', '.join(sorted(known))})")
         (only,) = known
