@@ -7,6 +7,7 @@ serves the MCAP file that Foxglove, Lichtblick and ``ros2 bag info`` open.
 from __future__ import annotations
 
 import asyncio
+import shutil
 from pathlib import Path
 from typing import Any
 
@@ -15,13 +16,14 @@ from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field
 
 from server.bag.manager import NAME as BAG_NAME
-from server.bag.manager import BagLimitError
-from server.bag.player import MAX_RATE, MIN_RATE, BagError
+from server.bag.player import MAX_RATE, MIN_RATE
 
 from .deps import LabDep
+from .responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, UNPROCESSABLE, responses
 
 # Handlers are ``async def``: the bus belongs to the event loop (see api/publishers.py).
-router = APIRouter(prefix="/api/bag", tags=["bag"])
+# Errors (server/bag/errors.py) are mapped to statuses once, in api/errors.py.
+router = APIRouter(prefix="/api/bag", tags=["bag"], responses=responses())
 
 
 class RecordRequest(BaseModel):
@@ -42,24 +44,14 @@ class PlayRequest(BaseModel):
     loop: bool = False
 
 
-def _error(exc: Exception) -> Exception:
-    """The bag's own errors as statuses; the rest (bad names, types) go to the app's error map."""
-    if isinstance(exc, LookupError):
-        return HTTPException(status.HTTP_404_NOT_FOUND, str(exc))
-    if isinstance(exc, (FileExistsError, BagLimitError)):
-        return HTTPException(status.HTTP_409_CONFLICT, str(exc))
-    if isinstance(exc, (BagError, ValueError)):
-        return HTTPException(status.HTTP_422_UNPROCESSABLE_CONTENT, str(exc))
-    return exc
-
-
-@router.post("/recordings", status_code=status.HTTP_201_CREATED)
+@router.post(
+    "/recordings",
+    status_code=status.HTTP_201_CREATED,
+    responses=responses(TYPE_CONFLICT, TOO_MANY, body=True),
+)
 async def record(body: RecordRequest, lab: LabDep) -> dict[str, Any]:
-    """Start recording the named topics (or all of them) into a new bag."""
-    try:
-        return lab.bags.record(body.topics, all_topics=body.all, name=body.name).describe()
-    except Exception as exc:
-        raise _error(exc) from exc
+    """Start recording the named topics (or all of them) into a new bag (ros2 bag record)."""
+    return lab.bags.record(body.topics, all_topics=body.all, name=body.name).describe()
 
 
 @router.get("/recordings")
@@ -68,62 +60,63 @@ async def list_recordings(lab: LabDep) -> list[dict[str, Any]]:
     return lab.bags.list_bags()
 
 
-@router.delete("/recordings/{name}")
+@router.post("/recordings/{name}/stop", responses=responses(NOT_FOUND, UNPROCESSABLE))
 async def stop_recording(name: str, lab: LabDep) -> dict[str, Any]:
-    """Stop a recording; the bag is complete (MCAP summary, metadata.yaml) when this returns."""
-    try:
-        recording = lab.bags.detach_recording(name)
-    except Exception as exc:
-        raise _error(exc) from exc
+    """Stop a recording (Ctrl-C on ros2 bag record); the bag is complete (MCAP summary,
+    metadata.yaml) when this returns, and stays in the bag folder. Stopping a stopped one is a no-op."""
+    recording = lab.bags.detach_recording(name)
     await asyncio.to_thread(recording.writer.close)  # the disk, not the loop, waits
     return recording.describe()
 
 
-@router.get("/recordings/{name}/download", response_class=FileResponse)
+@router.delete("/recordings/{name}", responses=responses(NOT_FOUND, UNPROCESSABLE))
+async def delete_bag(name: str, lab: LabDep) -> dict[str, Any]:
+    """Delete a bag from the bag folder (a recording is stopped first)."""
+    folder, recording = lab.bags.detach_bag(name)
+    if recording is not None:
+        await asyncio.to_thread(recording.writer.close)
+    await asyncio.to_thread(shutil.rmtree, folder, True)
+    return {"name": name, "deleted": True}
+
+
+@router.get(
+    "/recordings/{name}/download",
+    response_class=FileResponse,
+    responses=responses(NOT_FOUND, TYPE_CONFLICT, UNPROCESSABLE),
+)
 async def download(name: str, lab: LabDep) -> FileResponse:
-    """The bag's MCAP file."""
-    try:
-        path = lab.bags.bag_file(name)
-    except Exception as exc:
-        raise _error(exc) from exc
+    """The bag's MCAP file (409 while it is still being recorded)."""
+    path = lab.bags.bag_file(name)
     return FileResponse(path, media_type="application/octet-stream", filename=path.name)
 
 
-@router.get("/recordings/{name}/metadata.yaml", response_class=FileResponse)
+@router.get(
+    "/recordings/{name}/metadata.yaml",
+    response_class=FileResponse,
+    responses=responses(NOT_FOUND, TYPE_CONFLICT, UNPROCESSABLE),
+)
 async def metadata(name: str, lab: LabDep) -> FileResponse:
     """The bag's metadata.yaml, as ros2 bag writes it beside the MCAP file."""
-    try:
-        path = lab.bags.bag_file(name).parent / "metadata.yaml"
-    except Exception as exc:
-        raise _error(exc) from exc
+    path = lab.bags.bag_file(name).parent / "metadata.yaml"
     if not path.is_file():
         raise HTTPException(status.HTTP_404_NOT_FOUND, f"{name} has no metadata.yaml")
     return FileResponse(path, media_type="application/yaml", filename=path.name)
 
 
-@router.post("/players", status_code=status.HTTP_201_CREATED)
+@router.post("/players", status_code=status.HTTP_201_CREATED, responses=responses(TOO_MANY, body=True))
 async def play(body: PlayRequest, lab: LabDep) -> dict[str, Any]:
     """Publish a bag's messages back onto the bus with their timing (ros2 bag play)."""
     in_folder = lab.settings.bag_dir / body.bag
     path = in_folder if BAG_NAME.match(body.bag) and in_folder.exists() else Path(body.bag)
-    try:
-        player_id, node = lab.bags.play(path, rate=body.rate, loop=body.loop)
-    except Exception as exc:
-        raise _error(exc) from exc
+    player_id, node = lab.bags.play(path, rate=body.rate, loop=body.loop)
     return {"id": player_id, **node.describe()}
 
 
-@router.get("/players/{player_id}")
+@router.get("/players/{player_id}", responses=responses(NOT_FOUND))
 async def get_player(player_id: str, lab: LabDep) -> dict[str, Any]:
-    try:
-        return {"id": player_id, **lab.bags.player(player_id).describe()}
-    except Exception as exc:
-        raise _error(exc) from exc
+    return {"id": player_id, **lab.bags.player(player_id).describe()}
 
 
-@router.delete("/players/{player_id}")
+@router.delete("/players/{player_id}", responses=responses(NOT_FOUND))
 async def stop_player(player_id: str, lab: LabDep) -> dict[str, Any]:
-    try:
-        return {"id": player_id, **lab.bags.stop_player(player_id).describe()}
-    except Exception as exc:
-        raise _error(exc) from exc
+    return {"id": player_id, **lab.bags.stop_player(player_id).describe()}

@@ -20,6 +20,7 @@ from starlette.responses import Response
 from starlette.routing import Match
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from server.bag.errors import BagBusyError, BagError, BagExistsError, BagLimitError, BagNotFoundError
 from server.bus import (
     DestroyedError,
     InvalidNameError,
@@ -80,6 +81,11 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (LaunchFileError, status.HTTP_422_UNPROCESSABLE_CONTENT),
     (ValueLimitError, status.HTTP_422_UNPROCESSABLE_CONTENT),
     (PublisherError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (BagNotFoundError, status.HTTP_404_NOT_FOUND),
+    (BagExistsError, status.HTTP_409_CONFLICT),
+    (BagBusyError, status.HTTP_409_CONFLICT),
+    (BagLimitError, status.HTTP_429_TOO_MANY_REQUESTS),
+    (BagError, status.HTTP_422_UNPROCESSABLE_CONTENT),
 )
 _CLOSE_FOR_STATUS = {
     status.HTTP_404_NOT_FOUND: CloseCode.UNKNOWN_TOPIC,

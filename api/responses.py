@@ -23,12 +23,12 @@ NO_ANSWER = 504
 _DESCRIPTIONS = {
     400: "the request is malformed",
     403: "another site's page may not write (Origin refused)",
-    404: "no such topic, node, service, type, package, publisher or launch",
-    409: "the topic carries another type, or the thing was destroyed",
+    404: "no such topic, node, service, type, package, publisher, launch, bag or playback",
+    409: "the topic carries another type, the thing was destroyed, or the bag exists or is still recording",
     413: "the body is larger than the limit (64 KiB)",
     421: "the Host header is not a name of this server",
     422: "a field, a number or a name is invalid (the detail names it)",
-    429: "a per-app limit is reached (publishers, launches, topics)",
+    429: "a per-app limit is reached (publishers, launches, topics, recordings, playbacks)",
     500: "a bug: the detail carries a request id, the log has the traceback",
     504: "the service did not answer in time (its server is gone, busy or crashed)",
 }

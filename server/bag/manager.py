@@ -18,6 +18,7 @@ from typing import Any
 
 from server.bus import Bus
 
+from .errors import BagBusyError, BagError, BagExistsError, BagLimitError, BagNotFoundError
 from .player import PlayerNode, mcap_file
 from .recorder import RecorderNode
 from .writer import BagWriter
@@ -29,10 +30,6 @@ KEPT_FINISHED = 16
 MAX_BAG_BYTES = 512 * 1024 * 1024
 
 
-class BagLimitError(RuntimeError):
-    """Too many recordings or playbacks at once."""
-
-
 def default_bag_name(now_s: float | None = None) -> str:
     """``rosbag2_YYYY_MM_DD-HH_MM_SS``, as ros2 bag record names a bag it is not told a name for."""
     return time.strftime("rosbag2_%Y_%m_%d-%H_%M_%S", time.localtime(now_s))
@@ -40,7 +37,7 @@ def default_bag_name(now_s: float | None = None) -> str:
 
 def check_name(name: str) -> str:
     if not NAME.match(name) or name in (".", ".."):
-        raise ValueError(f"a bag name is letters, digits, '_', '.', '-' (at most 100), got {name!r}")
+        raise BagError(f"a bag name is letters, digits, '_', '.', '-' (at most 100), got {name!r}")
     return name
 
 
@@ -85,12 +82,12 @@ class BagManager:
         """Start recording; the bag is written until ``stop_recording``."""
         topics = list(topics)
         if not all_topics and not topics:
-            raise ValueError("name the topics to record, or record all of them")
+            raise BagError("name the topics to record, or record all of them")
         if sum(r.active for r in self.recordings.values()) >= MAX_RECORDINGS:
             raise BagLimitError(f"already {MAX_RECORDINGS} recordings running; stop one first")
         name = check_name(default_bag_name() if name is None else name)
         if name in self.recordings or (self.folder / name).exists():
-            raise FileExistsError(f"a bag named {name!r} already exists")
+            raise BagExistsError(f"a bag named {name!r} already exists")
         writer = BagWriter(self.folder / name)
         try:
             with self.bus.activate():
@@ -109,7 +106,7 @@ class BagManager:
         which may wait on the disk (``writer.close``)."""
         recording = self.recordings.get(name)
         if recording is None:
-            raise LookupError(f"no recording named {name!r}")
+            raise BagNotFoundError(f"no recording named {name!r}")
         if recording.active:
             recording.node.flush()
             recording.node.destroy_node()
@@ -120,13 +117,25 @@ class BagManager:
         recording.writer.close()
         return recording
 
+    def detach_bag(self, name: str) -> tuple[Path, Recording | None]:
+        """Forget a bag (stopping its recorder node if it still records); the caller closes the
+        recording's writer, then deletes the returned folder (both may wait on the disk)."""
+        folder = self.folder / check_name(name)
+        recording = self.recordings.get(name)
+        if recording is None and not folder.is_dir():
+            raise BagNotFoundError(f"no bag named {name!r}")
+        if recording is not None:
+            self.detach_recording(name)
+            del self.recordings[name]
+        return folder, recording
+
     def bag_file(self, name: str) -> Path:
         """The MCAP file of a finished bag in the bag folder."""
         recording = self.recordings.get(check_name(name))
         if recording is not None and recording.active:
-            raise BagLimitError(f"{name} is still being recorded; stop it first")
+            raise BagBusyError(f"{name} is still being recorded; stop it first")
         if not (self.folder / name).is_dir():
-            raise LookupError(f"no bag named {name!r}")
+            raise BagNotFoundError(f"no bag named {name!r}")
         return mcap_file(self.folder / name)
 
     def list_bags(self) -> list[dict[str, Any]]:
@@ -153,7 +162,7 @@ class BagManager:
         self.reap_players()
         node = self.players.get(player_id)
         if node is None:
-            raise LookupError(f"no playback with id {player_id!r}")
+            raise BagNotFoundError(f"no playback with id {player_id!r}")
         return node
 
     def stop_player(self, player_id: str) -> PlayerNode:

@@ -22,15 +22,12 @@ from server.bus import Node, Publisher, Timer, TopicTypeError
 from server.msgs import UnknownTypeError, get_type
 from server.msgs.wire import WireError, deserialize
 
+from .errors import BagError
 from .writer import MESSAGE_ENCODING, SCHEMA_ENCODING
 
 MIN_RATE, MAX_RATE = 0.01, 100.0
 MCAP_MAGIC = b"\x89MCAP0\r\n"
 DUE_EPS_S = 1e-6  # a timer's deadline may land a rounding error before the message's time
-
-
-class BagError(ValueError):
-    """A file that is not a bag this lab can play."""
 
 
 def mcap_file(path: Path) -> Path:
@@ -76,7 +73,7 @@ class PlayerNode(Node):
         self, path: Path, *, rate: float = 1.0, loop: bool = False, node_name: str = "rosbag2_player"
     ) -> None:
         if not MIN_RATE <= rate <= MAX_RATE:
-            raise ValueError(f"rate must be in {MIN_RATE}..{MAX_RATE}, got {rate}")
+            raise BagError(f"rate must be in {MIN_RATE}..{MAX_RATE}, got {rate}")
         self.path = mcap_file(path)
         super().__init__(node_name)
         self.rate = rate

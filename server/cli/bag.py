@@ -44,7 +44,7 @@ def bag_record(
             sleep(POLL_S)
     except KeyboardInterrupt:
         pass
-    summary = client.delete(f"/api/bag/recordings/{name}")
+    summary = client.post(f"/api/bag/recordings/{name}/stop", {})
     folder = out if out is not None else Path(name)
     folder.mkdir(parents=True)
     client.download(f"/api/bag/recordings/{name}/download", folder / summary["file"])

@@ -34,7 +34,7 @@ def record_flags(lab: LabClient, name: str, values: list[bool]) -> dict[str, obj
     assert r.status_code == 201, r.text
     assert r.json()["topics"] == ["/flag"] and r.json()["recording"] is True
     publish_flags(lab, values)
-    r = lab.http.delete(f"/api/bag/recordings/{name}")
+    r = lab.http.post(f"/api/bag/recordings/{name}/stop")
     assert r.status_code == 200, r.text
     return r.json()
 
@@ -76,6 +76,8 @@ def test_play_publishes_the_bag_back_and_leaves_the_graph(bag_lab: LabClient) ->
         ("post", "/api/bag/recordings", {"all": True, "name": "../up"}, 422),
         ("post", "/api/bag/recordings", {"all": True, "extra": 1}, 422),
         ("delete", "/api/bag/recordings/nope", None, 404),
+        ("post", "/api/bag/recordings/nope/stop", None, 404),
+        ("post", "/api/bag/recordings", {"all": True, "name": "."}, 422),
         ("get", "/api/bag/recordings/nope/download", None, 404),
         ("post", "/api/bag/players", {"bag": "nope"}, 422),
         ("post", "/api/bag/players", {"bag": "x", "rate": 0}, 422),
@@ -101,5 +103,19 @@ def test_a_running_recording_is_not_downloadable_and_its_name_is_taken(bag_lab: 
     assert r.status_code == 201
     assert bag_lab.http.get("/api/bag/recordings/live/download").status_code == 409
     assert bag_lab.http.post("/api/bag/recordings", json={"all": True, "name": "live"}).status_code == 409
-    assert bag_lab.http.delete("/api/bag/recordings/live").status_code == 200
+    assert bag_lab.http.post("/api/bag/recordings/live/stop").status_code == 200
     assert bag_lab.http.get("/api/bag/recordings/live/download").status_code == 200
+    assert bag_lab.http.post("/api/bag/recordings/live/stop").status_code == 200  # stopped: a no-op
+
+
+def test_deleting_a_bag_removes_it_from_the_folder_and_the_list(bag_lab: LabClient, tmp_path: Path) -> None:
+    record_flags(bag_lab, "gone", [True])
+    live = bag_lab.http.post("/api/bag/recordings", json={"topics": ["/flag"], "name": "live_gone"})
+    assert live.status_code == 201
+    for name in ("gone", "live_gone"):  # a finished bag, and one still recording
+        r = bag_lab.http.delete(f"/api/bag/recordings/{name}")
+        assert r.status_code == 200 and r.json() == {"name": name, "deleted": True}, r.text
+        assert bag_lab.http.get(f"/api/bag/recordings/{name}/download").status_code == 404
+        assert bag_lab.http.delete(f"/api/bag/recordings/{name}").status_code == 404
+    assert bag_lab.http.get("/api/bag/recordings").json() == []
+    assert "/rosbag2_recorder" not in {n["name"] for n in bag_lab.http.get("/api/nodes").json()}
