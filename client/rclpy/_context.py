@@ -156,6 +156,19 @@ class Context:
                 self.session.close()
             set_process_bus(None)
             self.bridge = self.session = None
+        _forget_nested_interrupt()
+
+
+def _forget_nested_interrupt() -> None:
+    """CPython marks the interpreter "ended by Ctrl-C" (exit status -SIGINT, no traceback) when a
+    KeyboardInterrupt leaves any ``exec`` of a string, even one nested in a library (rosbags builds
+    its CDR code that way) whose exception the node's own ``except KeyboardInterrupt`` then
+    catches. Shutting down means the node handled it; a KeyboardInterrupt that still leaves the
+    script sets the mark again when the script ends. CPython 3.11 keeps the mark in this symbol."""
+    import ctypes
+
+    with contextlib.suppress(ValueError, AttributeError):
+        ctypes.c_int.in_dll(ctypes.pythonapi, "_Py_UnhandledKeyboardInterrupt").value = 0
 
 
 def _before_thread_join(hook: Callable[[], None]) -> None:

@@ -106,6 +106,28 @@ def ros_type_name(dds_name: str) -> str | None:
     return f"{parts[0]}/{parts[1]}/{parts[3][:-1]}"
 
 
+def prepare(type_name: str) -> None:
+    """Build rosbags' CDR code for a type and every type it nests, now rather than at the first
+    message. rosbags generates that code with ``exec`` of a string, and a Ctrl-C landing inside
+    such an ``exec`` marks the interpreter as ended by Ctrl-C (exit status -SIGINT) even when the
+    node's own ``except KeyboardInterrupt`` catches it; endpoints call this when they are made."""
+    store = typestore()
+    pending, seen = [type_name], set()
+    while pending:
+        name = pending.pop()
+        if name in seen or name not in store.fielddefs:
+            continue
+        seen.add(name)
+        store.get_msgdef(name)
+        stack: list[Any] = [store.fielddefs[name][1]]
+        while stack:
+            item = stack.pop()
+            if isinstance(item, str):
+                pending.append(item)
+            elif isinstance(item, tuple | list):
+                stack.extend(item)
+
+
 def serialize(msg: Message) -> bytes:
     """Little-endian CDR with its 4-byte header and no trailing padding, as rmw_zenoh sends it."""
     return bytes(typestore().serialize_cdr(msg, msg.TYPE))

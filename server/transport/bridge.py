@@ -26,7 +26,7 @@ import zenoh
 from ..bus import Bus, Future, Node, Publisher, ServiceClient, ServiceServer, Subscription
 from ..bus.services import PendingCall
 from ..msgs import Message, Service
-from ..msgs.wire import WireError, dds_type_name, deserialize, serialize, type_hash
+from ..msgs.wire import WireError, dds_type_name, deserialize, prepare, serialize, type_hash
 from .attachment import Attachment
 from .inbox import Inbox
 from .keys import EntityKind, EntityToken, data_key, keep_last, liveliness_prefix
@@ -150,6 +150,11 @@ class ZenohBridge:
     def endpoint_added(self, endpoint: object) -> None:
         if self._closed:
             return
+        if isinstance(endpoint, Publisher | Subscription):
+            prepare(endpoint.msg_type.TYPE)
+        elif isinstance(endpoint, ServiceServer | ServiceClient):
+            prepare(endpoint.srv_type.Request.TYPE)
+            prepare(endpoint.srv_type.Response.TYPE)
         if isinstance(endpoint, Publisher):
             self._add_publisher(endpoint)
         elif isinstance(endpoint, Subscription):

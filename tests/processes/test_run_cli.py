@@ -58,6 +58,14 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, Path]]:
         app.stop()
 
 
+@pytest.fixture(autouse=True)
+def no_student_node_left(lab: tuple[App, Path]) -> None:
+    """Each test starts once the graph has forgotten the earlier tests' nodes: a stale entry would
+    send a test's Ctrl-C to a process that has not started its interpreter yet."""
+    app, _root = lab
+    app.wait_for(lambda: node_entry(app, "/KeyboardManagerNode") is None, "the earlier nodes to leave")
+
+
 def ros2lab(app: App, cwd: Path, *args: str) -> subprocess.Popen[str]:
     return subprocess.Popen(
         [sys.executable, "-m", "server", "--url", app.url, "run", *args], cwd=cwd, text=True,
@@ -136,12 +144,14 @@ def test_a_second_node_of_the_same_name_is_warned_about(lab: tuple[App, Path]) -
 def test_python_file_runs_the_node_from_the_projects_environment(lab: tuple[App, Path]) -> None:
     app, root = lab
     file = root / "workspace" / "src" / "rocketship" / "src" / "keyboard_manager.py"
-    env = {**os.environ, "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["tcp/{app.router}"]'}
+    zid = "1f" + os.urandom(15).hex()
+    env = {**os.environ, "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["tcp/{app.router}"];id="{zid}"'}
     proc = subprocess.Popen([sys.executable, str(file)], cwd=root, env=env, text=True,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)  # fmt: skip
     try:
-        app.wait_for(
-            lambda: node_entry(app, "/KeyboardManagerNode") is not None, "python FILE's node in the graph"
+        app.wait_for(  # this process's node, by its Zenoh session id
+            lambda: (node_entry(app, "/KeyboardManagerNode") or {}).get("location") == f"zenoh:{zid[:8]}",
+            "python FILE's node in the graph",
         )
     finally:
         proc.send_signal(signal.SIGINT)
