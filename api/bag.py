@@ -27,19 +27,25 @@ router = APIRouter(prefix="/api/bag", tags=["bag"], responses=responses())
 
 
 class RecordRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)
     topics: list[str] = Field(default_factory=list, max_length=256, examples=[["/uav/sensors/gps"]])
     all: bool = Field(
         default=False, description="every topic but hidden ones, new ones too (ros2 bag record -a)"
     )
     name: str | None = Field(
-        default=None, description="the bag's folder name; default rosbag2_YYYY_MM_DD-HH_MM_SS"
+        default=None,
+        pattern=BAG_NAME.pattern,
+        description="the bag's folder name; default rosbag2_YYYY_MM_DD-HH_MM_SS",
     )
 
 
 class PlayRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
-    bag: str = Field(description="a bag's name in the bag folder, or a path to a bag folder or .mcap file")
+    model_config = ConfigDict(extra="forbid", strict=True)
+    bag: str = Field(
+        min_length=1,
+        max_length=4096,
+        description="a bag's name in the bag folder, or a path to a bag folder or .mcap file",
+    )
     rate: float = Field(default=1.0, ge=MIN_RATE, le=MAX_RATE)
     loop: bool = False
 

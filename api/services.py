@@ -25,7 +25,7 @@ class ServiceSummary(BaseModel):
 
 
 class ServiceCallRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)
     request: dict[str, Any] = Field(default_factory=dict, examples=[{}])
     type: str | None = Field(
         default=None,

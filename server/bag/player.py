@@ -32,6 +32,13 @@ DUE_EPS_S = 1e-6  # a timer's deadline may land a rounding error before the mess
 
 def mcap_file(path: Path) -> Path:
     """The MCAP file of a bag given as the file itself or as its folder (as ros2 bag takes either)."""
+    try:
+        return _mcap_file(path)
+    except OSError as exc:  # a name too long, a folder not readable: the request's fault, not ours
+        raise BagError(f"{str(path)[:200]} cannot be opened: {exc.strerror or exc}") from None
+
+
+def _mcap_file(path: Path) -> Path:
     if path.is_dir():
         files = sorted(path.glob("*.mcap"))
         if not files:

@@ -75,6 +75,8 @@ def test_play_publishes_the_bag_back_and_leaves_the_graph(bag_lab: LabClient) ->
         ("post", "/api/bag/recordings", {}, 422),  # no topics, not all
         ("post", "/api/bag/recordings", {"all": True, "name": "../up"}, 422),
         ("post", "/api/bag/recordings", {"all": True, "extra": 1}, 422),
+        ("post", "/api/bag/recordings", {"all": 0, "topics": ["/flag"]}, 422),  # not a bool
+        ("post", "/api/bag/recordings", {"topics": "/flag"}, 422),
         ("delete", "/api/bag/recordings/nope", None, 404),
         ("post", "/api/bag/recordings/nope/stop", None, 404),
         ("post", "/api/bag/recordings", {"all": True, "name": "."}, 422),
@@ -82,6 +84,8 @@ def test_play_publishes_the_bag_back_and_leaves_the_graph(bag_lab: LabClient) ->
         ("post", "/api/bag/players", {"bag": "nope"}, 422),
         ("post", "/api/bag/players", {"bag": "x", "rate": 0}, 422),
         ("post", "/api/bag/players", {"bag": "x", "rate": 1e9}, 422),
+        ("post", "/api/bag/players", {"bag": "x", "loop": "yes"}, 422),
+        ("post", "/api/bag/players", {"bag": "0" * 4000}, 422),  # longer than a file name may be
         ("get", "/api/bag/players/play99", None, 404),
         ("delete", "/api/bag/players/play99", None, 404),
     ],

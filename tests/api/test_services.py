@@ -58,6 +58,8 @@ def test_a_wrong_type_or_a_bad_request_field_is_refused_and_calls_nothing(counti
     assert r.status_code == 422 and "data" in str(r.json()["detail"])
     r = counting_lab.http.post("/api/services/rocket/reset", json={"timeout_s": 0})
     assert r.status_code == 422
+    r = counting_lab.http.post("/api/services/rocket/reset", json={"timeout_s": "5"})
+    assert r.status_code == 422 and "timeout_s" in str(r.json()["detail"])
     assert lab.bus.services["/rocket/reset"].calls == calls_before
 
 
