@@ -5,8 +5,6 @@ port, started and ended by this test, a bounded number of examples per operation
 from __future__ import annotations
 
 import os
-import signal
-import socket
 import subprocess
 import sys
 import time
@@ -15,6 +13,7 @@ from pathlib import Path
 
 import httpx
 import pytest
+from support.app import end, free_port
 
 HERE = Path(__file__).resolve().parent
 SCHEMATHESIS = Path(sys.executable).with_name("schemathesis")
@@ -22,16 +21,10 @@ READY_S = 30.0
 RUN_CAP_S = 160  # schemathesis' own --max-time (100 s) is below this
 
 
-def _free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
-
-
 @pytest.fixture(scope="module")
 def live_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     workdir = tmp_path_factory.mktemp("schemathesis_server")
-    port, zenoh_port = _free_port(), _free_port()
+    port, zenoh_port = free_port(), free_port()
     url = f"http://127.0.0.1:{port}"
     log = (workdir / "server.log").open("wb")
     proc = subprocess.Popen(
@@ -52,12 +45,7 @@ def live_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
             time.sleep(0.1)
         yield url
     finally:
-        proc.send_signal(signal.SIGINT)
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
+        end(proc)
         log.close()
         # A node that a /api/run request names may fail to start (logged, and reported in the
         # answer); what must never appear is a bug: a traceback or the error net's entry.

@@ -7,8 +7,6 @@ through the REST API first, so it sees a countdown from 10 and a rocket that has
 
 from __future__ import annotations
 
-import signal
-import socket
 import subprocess
 import sys
 import time
@@ -18,15 +16,10 @@ from pathlib import Path
 
 import httpx
 import pytest
+from support.app import end, free_port
 
 READY_S = 30.0
 STOP_S = 10.0
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
 
 
 @dataclass
@@ -72,13 +65,7 @@ def rosbridge_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Rosbr
             time.sleep(0.1)
         yield server
     finally:
-        if proc.poll() is None:
-            proc.send_signal(signal.SIGINT)
-            try:
-                proc.wait(timeout=STOP_S)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
+        end(proc, STOP_S)
 
 
 def _healthy(url: str) -> bool:

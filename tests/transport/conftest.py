@@ -5,12 +5,12 @@ Zenoh delivers on its own threads, so these tests wait for what they expect, eac
 
 from __future__ import annotations
 
-import socket
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 import pytest
+from support.app import free_port
 
 from server.bus import Bus, Executor
 from server.transport.bridge import ZenohBridge
@@ -18,12 +18,6 @@ from server.transport.config import ZenohSettings
 from server.transport.session import open_session
 
 WAIT_S = 5.0
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
 
 
 @dataclass
