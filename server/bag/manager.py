@@ -118,8 +118,9 @@ class BagManager:
         return recording
 
     def detach_bag(self, name: str) -> tuple[Path, Recording | None]:
-        """Forget a bag (stopping its recorder node if it still records); the caller closes the
-        recording's writer, then deletes the returned folder (both may wait on the disk)."""
+        """Forget a bag (stopping its recorder node if it still records, and its playbacks); the
+        caller closes the recording's writer, then deletes the returned folder (both may wait on
+        the disk)."""
         folder = self.folder / check_name(name)
         recording = self.recordings.get(name)
         if recording is None and not folder.is_dir():
@@ -127,6 +128,9 @@ class BagManager:
         if recording is not None:
             self.detach_recording(name)
             del self.recordings[name]
+        for player_id, player in list(self.players.items()):
+            if player.path.parent.resolve() == folder.resolve():
+                self.stop_player(player_id)
         return folder, recording
 
     def bag_file(self, name: str) -> Path:

@@ -106,7 +106,7 @@ class PlayerNode(Node):
             return None
         try:
             return next(self._messages, None)
-        except (McapError, struct.error, EOFError) as exc:
+        except (McapError, struct.error, EOFError, OSError) as exc:  # OSError: the file went away
             if self.published == 0:
                 raise BagError(f"{self.path} cannot be read: {exc}") from None
             self.get_logger().warning(f"{self.path} ends early: {exc}")

@@ -7,6 +7,7 @@ deadline, so the counts and intervals asserted here are the graph's own, not the
 from __future__ import annotations
 
 import itertools
+import shutil
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -179,24 +180,55 @@ def test_bag_play_at_double_rate_halves_the_intervals(
     assert all(g == pytest.approx(0.5, abs=1e-6) for g in gaps)
 
 
-def test_bag_play_loop_starts_over(tmp_path: Path) -> None:
-    """A two-message bag looped: the pair comes again and again, with the recorded gap."""
-    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
+def record_pair(lab: Lab, name: str) -> None:
+    """A two-message bag: True, then False 0.25 s later."""
     with lab.bus.activate():
         talker = Node("talker")
     pub = talker.create_publisher(Bool, "/flag", 10)
-    lab.bags.record(["/flag"], name="pair")
+    lab.bags.record(["/flag"], name=name)
     pub.publish(Bool(data=True))
     lab.executor.spin_for(0.25)
     pub.publish(Bool(data=False))
     lab.executor.spin_for(0.01)
-    lab.bags.stop_recording("pair")
+    lab.bags.stop_recording(name)
     talker.destroy_node()
+
+
+def test_bag_play_loop_starts_over(tmp_path: Path) -> None:
+    """A two-message bag looped: the pair comes again and again, with the recorded gap."""
+    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
+    record_pair(lab, "pair")
     echo = Echo(lab, {"/flag": Bool})
     _, player = lab.bags.play(tmp_path / "pair", loop=True)
     lab.executor.spin_for(1.0)
     assert not player.finished
     assert [m.data for _, _, m in echo.got][:6] == [True, False, True, False, True, False]
+
+
+def test_a_looping_playback_whose_file_vanishes_ends_instead_of_crashing(tmp_path: Path) -> None:
+    """Deleted on disk between two loops (rm -r in a terminal): the player finishes, as at a
+    damaged file's end, with a warning; its node does not crash."""
+    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
+    record_pair(lab, "pair")
+    _, player = lab.bags.play(tmp_path / "pair", loop=True)
+    lab.executor.spin_for(0.1)  # the first message is out; the second is due at 0.25 s
+    shutil.rmtree(tmp_path / "pair")
+    lab.executor.spin_for(1.0)
+    assert player.finished and player.state != "crashed"
+    assert player.published == 2  # one loop, then nothing more
+
+
+def test_deleting_a_bag_stops_its_playbacks(tmp_path: Path) -> None:
+    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
+    record_pair(lab, "pair")
+    record_pair(lab, "other")
+    pair_id, pair_player = lab.bags.play(tmp_path / "pair", loop=True)
+    _, other_player = lab.bags.play(tmp_path / "other", loop=True)
+    lab.executor.spin_for(0.1)
+    lab.bags.detach_bag("pair")
+    assert pair_player.state == "destroyed" and pair_id not in lab.bags.players
+    lab.executor.spin_for(1.0)
+    assert other_player.state == "active" and other_player.published > 2  # the other bag plays on
 
 
 def test_bag_play_refuses_what_is_not_a_bag(tmp_path: Path) -> None:
