@@ -3,9 +3,12 @@ Chromium it drives (Debian's, with the flags that work on a machine without a GP
 
 from __future__ import annotations
 
+import json
 import os
 import platform
 from pathlib import Path
+
+RESULTS = Path(__file__).resolve().parent / "results"
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = [
@@ -36,3 +39,12 @@ def machine_info() -> dict[str, object]:
         "numpy": np.__version__,
         "load_average_at_start": os.getloadavg(),
     }
+
+
+def save_results(name: str, results: dict[str, object]) -> Path:
+    """Write a bench's results to bench/results/NAME.json (git-ignored) and say where."""
+    RESULTS.mkdir(exist_ok=True)
+    path = RESULTS / f"{name}.json"
+    path.write_text(json.dumps(results, indent=2) + "\n")
+    print(f"written to bench/results/{path.name}", flush=True)
+    return path
