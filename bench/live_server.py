@@ -3,13 +3,15 @@ outside: start, wait until healthy, read its memory, stop it by its own id."""
 
 from __future__ import annotations
 
+import json
 import signal
 import socket
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
-from typing import IO
+from typing import IO, Any
 
 import httpx
 
@@ -29,6 +31,49 @@ def rss_mib(pid: int) -> float:
         if line.startswith("VmRSS:"):
             return int(line.split()[1]) / 1024.0
     raise RuntimeError(f"no VmRSS for pid {pid}")
+
+
+class FrameReader:
+    """A WebSocket read on a thread of its own: every frame with when it came here, as
+    (CLOCK_REALTIME ns, CLOCK_MONOTONIC ns, frame decoded from JSON)."""
+
+    def __init__(self, url: str) -> None:
+        from websockets.sync.client import connect
+
+        self.ws = connect(url, max_size=None)
+        self._frames: list[tuple[int, int, Any]] = []
+        self._lock = threading.Lock()
+        self.last_monotonic_ns = time.monotonic_ns()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._read, daemon=True)
+        self._thread.start()
+
+    def _read(self) -> None:
+        while not self._stop.is_set():
+            try:
+                text = self.ws.recv(timeout=0.2)
+            except TimeoutError:
+                continue
+            except Exception:  # closed
+                return
+            wall_ns, mono_ns = time.time_ns(), time.monotonic_ns()
+            frame = json.loads(text)
+            with self._lock:
+                self._frames.append((wall_ns, mono_ns, frame))
+                self.last_monotonic_ns = mono_ns
+
+    def frames(self, since: int = 0) -> list[tuple[int, int, Any]]:
+        with self._lock:
+            return self._frames[since:]
+
+    def count(self) -> int:
+        with self._lock:
+            return len(self._frames)
+
+    def close(self) -> None:
+        self._stop.set()
+        self._thread.join(timeout=5)
+        self.ws.close()
 
 
 class LiveServer:

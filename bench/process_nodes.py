@@ -61,7 +61,6 @@ import subprocess
 import sys
 import tempfile
 import textwrap
-import threading
 import time
 from pathlib import Path
 from typing import Any
@@ -71,7 +70,7 @@ import httpx
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))  # run as a script from anywhere: the app's packages live at the root
 
-from live_server import LiveServer, free_port, rss_mib
+from live_server import FrameReader, LiveServer, free_port, rss_mib
 from machine import machine_info, save_results
 from zenoh_graph import POLL_S, cpu_seconds, end, percentile, wait_until
 
@@ -235,34 +234,14 @@ class AbortRig:
 
         self.server = server
         self.keys = connect(f"{server.ws_url}/ws/keys")
-        self.echo = connect(f"{server.ws_url}/ws/topics/abort_takeoff?type=std_msgs/msg/Bool")
-        self.frames: list[tuple[int, bool, float]] = []
-        self._lock = threading.Lock()
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._read, daemon=True)
-        self._thread.start()
+        self.echo = FrameReader(f"{server.ws_url}/ws/topics/abort_takeoff?type=std_msgs/msg/Bool")
         self.latency_ms: list[float] = []
         self.app_callback_ms: list[float] = []
         self.reset_to_fresh_s: list[float] = []
         self.misses = 0
 
-    def _read(self) -> None:
-        while not self._stop.is_set():
-            try:
-                text = self.echo.recv(timeout=0.2)
-            except TimeoutError:
-                continue
-            except Exception:  # closed
-                return
-            frame = json.loads(text)
-            with self._lock:
-                self.frames.append(
-                    (time.monotonic_ns(), bool(frame["msg"]["data"]), float(frame["received"]))
-                )
-
     def snapshot(self) -> list[tuple[int, bool, float]]:
-        with self._lock:
-            return list(self.frames)
+        return [(mono, bool(f["msg"]["data"]), float(f["received"])) for _, mono, f in self.echo.frames()]
 
     def press(self) -> None:
         self.keys.send(json.dumps({"type": "keydown", "key": "a"}))
@@ -316,8 +295,6 @@ class AbortRig:
         }
 
     def close(self) -> None:
-        self._stop.set()
-        self._thread.join(timeout=5)
         self.keys.close()
         self.echo.close()
 
@@ -348,43 +325,15 @@ def key_to_abort(
     return result
 
 
-class EchoStamps:
-    """An echo WebSocket read on a thread: the ``received`` stamp (the app's clock, in its
-    subscription callback) of every frame, in arrival order."""
+class EchoStamps(FrameReader):
+    """An echo WebSocket: the ``received`` stamp (the app's clock, in its subscription callback)
+    of each frame, in arrival order."""
 
     def __init__(self, server: LiveServer, topic: str, type_name: str) -> None:
-        from websockets.sync.client import connect
-
-        self.ws = connect(f"{server.ws_url}/ws/topics{topic}?type={type_name}&queue_length=100")
-        self.received: list[float] = []
-        self._lock = threading.Lock()
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._read, daemon=True)
-        self._thread.start()
-
-    def _read(self) -> None:
-        while not self._stop.is_set():
-            try:
-                text = self.ws.recv(timeout=0.2)
-            except TimeoutError:
-                continue
-            except Exception:  # closed
-                return
-            with self._lock:
-                self.received.append(float(json.loads(text)["received"]))
-
-    def count(self) -> int:
-        with self._lock:
-            return len(self.received)
+        super().__init__(f"{server.ws_url}/ws/topics{topic}?type={type_name}&queue_length=100")
 
     def at(self, index: int) -> float:
-        with self._lock:
-            return self.received[index]
-
-    def close(self) -> None:
-        self._stop.set()
-        self._thread.join(timeout=5)
-        self.ws.close()
+        return float(self.frames(index)[0][2]["received"])
 
 
 def reflex(server: LiveServer, samples: int, gap_s: float) -> dict[str, Any]:

@@ -60,7 +60,6 @@ import struct
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -69,7 +68,7 @@ from typing import Any
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))  # run as a script from anywhere: the app's packages live at the root
 
-from live_server import LiveServer, free_port, rss_mib
+from live_server import FrameReader, LiveServer, free_port, rss_mib
 from machine import machine_info, save_results
 
 TOPIC = "/bench_chatter"
@@ -333,40 +332,16 @@ def idle_cost(root: Path, warmup_s: float, idle_s: float, rounds: int) -> tuple[
 
 
 # -- a: latency and throughput -----------------------------------------------------------------
-class EchoReader:
-    """The app's echo WebSocket on TOPIC, read on a thread: (receive ns here, frame text)."""
+class EchoReader(FrameReader):
+    """The app's echo WebSocket on TOPIC, read on a thread."""
 
     def __init__(self, server: LiveServer) -> None:
-        from websockets.sync.client import connect
-
-        url = f"{server.ws_url}/ws/topics{TOPIC}?type=std_msgs/msg/String&queue_length=1000"
-        self.ws = connect(url, max_size=None)
-        self.frames: list[tuple[int, str]] = []
-        self.last_ns = time.monotonic_ns()
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._read, daemon=True)
-        self._thread.start()
-
-    def _read(self) -> None:
-        while not self._stop.is_set():
-            try:
-                text = self.ws.recv(timeout=0.2)
-            except TimeoutError:
-                continue
-            except Exception:  # closed
-                return
-            self.frames.append((time.time_ns(), str(text)))
-            self.last_ns = time.monotonic_ns()
+        super().__init__(f"{server.ws_url}/ws/topics{TOPIC}?type=std_msgs/msg/String&queue_length=1000")
 
     def wait_quiet(self) -> None:
         deadline = time.monotonic() + DRAIN_LIMIT_S
-        while time.monotonic() < deadline and time.monotonic_ns() - self.last_ns < QUIET_S * 1e9:
+        while time.monotonic() < deadline and time.monotonic_ns() - self.last_monotonic_ns < QUIET_S * 1e9:
             time.sleep(0.05)
-
-    def close(self) -> None:
-        self._stop.set()
-        self._thread.join(timeout=5)
-        self.ws.close()
 
 
 def exchange_app(server: LiveServer, rate_hz: float, duration_s: float, warmup_s: float) -> dict[str, Any]:
@@ -392,8 +367,7 @@ def exchange_app(server: LiveServer, rate_hz: float, duration_s: float, warmup_s
     rows: list[tuple[int, int, int]] = []
     to_client: list[float] = []
     dropped = 0
-    for here_ns, text in reader.frames:
-        frame = json.loads(text)
+    for here_ns, _, frame in reader.frames():
         dropped = max(dropped, int(frame.get("dropped", 0)))
         phase, seq, sent_ns = parse_text(frame["msg"]["data"])
         if phase == "m":
