@@ -37,6 +37,7 @@ from typing import Any
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
+from live_server import end
 from machine import machine_info
 
 RESULTS = REPO / "bench" / "results"
@@ -187,12 +188,7 @@ def run_server(kind: str, mode: str) -> tuple[subprocess.Popen[bytes], int]:
 
 
 def stop(proc: subprocess.Popen[bytes]) -> None:
-    proc.send_signal(signal.SIGTERM)
-    try:
-        proc.wait(timeout=15)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        proc.wait()
+    end(proc, 15.0, signal.SIGTERM)
 
 
 def main() -> None:

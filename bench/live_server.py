@@ -25,6 +25,17 @@ def free_port() -> int:
         return int(sock.getsockname()[1])
 
 
+def end(proc: subprocess.Popen[Any], timeout_s: float = STOP_TIMEOUT_S, sig: int = signal.SIGINT) -> None:
+    """Ctrl-C (or ``sig``) to this process, by its id; killed if it does not stop in time."""
+    if proc.poll() is None:
+        proc.send_signal(sig)
+        try:
+            proc.wait(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait(timeout=timeout_s)
+
+
 def rss_mib(pid: int) -> float:
     """VmRSS of the process, in MiB."""
     for line in Path(f"/proc/{pid}/status").read_text().splitlines():
@@ -113,12 +124,5 @@ class LiveServer:
         return [line for line in lines if " ERROR " in line or "Traceback" in line or "Exception" in line]
 
     def stop(self) -> None:
-        """Ctrl-C to this process (by its id); killed if it does not stop in time."""
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(timeout=STOP_TIMEOUT_S)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        end(self.proc)
         self._log.close()

@@ -70,9 +70,9 @@ import httpx
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))  # run as a script from anywhere: the app's packages live at the root
 
-from live_server import FrameReader, LiveServer, free_port, rss_mib
+from live_server import FrameReader, LiveServer, end, free_port, rss_mib
 from machine import machine_info, save_results
-from zenoh_graph import POLL_S, cpu_seconds, end, percentile, wait_until
+from zenoh_graph import POLL_S, cpu_seconds, percentile, wait_until
 
 EXAMPLES = REPO / "examples" / "workspace"
 PUBLISHER_FILE = """

@@ -19,7 +19,6 @@ import argparse
 import asyncio
 import json
 import os
-import socket
 import statistics
 import subprocess
 import sys
@@ -35,6 +34,7 @@ import numpy as np
 REPO_ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO_ROOT))
 
+from live_server import free_port
 from machine import (
     CHROMIUM,
     machine_info,
@@ -77,12 +77,6 @@ def bench_manual_clock(runs: int, sim_seconds: float) -> dict[str, Any]:
 
 
 # -- 2. the real-time server's CPU -----------------------------------------------------------------
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
 def cpu_ticks(pid: int) -> int:
     """utime + stime of one process, in clock ticks (fields 14 and 15 of /proc/<pid>/stat)."""
     text = Path(f"/proc/{pid}/stat").read_text()

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import signal
 import socket
 import statistics
 import subprocess
@@ -36,6 +35,7 @@ import httpx
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
+from live_server import end
 from machine import machine_info
 from startup_idle_keys import cpu_seconds, free_port, rss_mb
 
@@ -67,12 +67,7 @@ class Server:
         time.sleep(3.0)  # take-off transient over
 
     def stop(self) -> None:
-        self.proc.send_signal(signal.SIGINT)
-        try:
-            self.proc.wait(timeout=15)
-        except subprocess.TimeoutExpired:
-            self.proc.kill()
-            self.proc.wait()
+        end(self.proc, 15.0)
 
 
 def subscribe_clients(url: str, n: int) -> tuple[list[Any], list[list[float]]]:

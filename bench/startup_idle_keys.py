@@ -36,8 +36,6 @@ import argparse
 import asyncio
 import json
 import os
-import signal
-import socket
 import statistics
 import subprocess
 import sys
@@ -53,6 +51,7 @@ import httpx
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))  # run as a script from anywhere: the app's packages live at the root
 
+from live_server import end, free_port
 from machine import machine_info
 
 RESULTS = REPO / "bench" / "results"
@@ -63,12 +62,6 @@ AIMS = {"idle_cpu_pct": 5.0, "rss_mb": 150.0, "key_p99_ms": 2.0}  # from the iss
 
 
 # -- the machine -----------------------------------------------------------------------------
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
-
-
 # -- /proc -----------------------------------------------------------------------------------
 def cpu_seconds(pid: int) -> float:
     """utime + stime of the whole process (all threads), in seconds."""
@@ -115,13 +108,7 @@ class ServerProcess:
                 time.sleep(0.01)
 
     def stop(self) -> None:
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(timeout=STOP_TIMEOUT_S)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        end(self.proc, STOP_TIMEOUT_S)
 
 
 def bench_startup(starts: int) -> dict[str, Any]:

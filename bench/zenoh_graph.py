@@ -68,7 +68,7 @@ from typing import Any
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))  # run as a script from anywhere: the app's packages live at the root
 
-from live_server import FrameReader, LiveServer, free_port, rss_mib
+from live_server import FrameReader, LiveServer, end, free_port, rss_mib
 from machine import machine_info, save_results
 
 TOPIC = "/bench_chatter"
@@ -236,17 +236,6 @@ def cpu_seconds(pid: int) -> float:
     stat = Path(f"/proc/{pid}/stat").read_text()
     fields = stat[stat.rindex(")") + 2 :].split()  # the command name may contain spaces
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
-def end(proc: subprocess.Popen[Any], timeout_s: float = STOP_TIMEOUT_S) -> None:
-    """Ctrl-C to this process (by its pid), then a kill if it does not stop in time."""
-    if proc.poll() is None:
-        proc.send_signal(signal.SIGINT)
-        try:
-            proc.wait(timeout=timeout_s)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(timeout=timeout_s)
 
 
 def child_env(router: str) -> dict[str, str]:

@@ -8,15 +8,12 @@ from __future__ import annotations
 
 import os
 import shutil
-import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
-import httpx
 import pytest
-from support.app import free_port
+from support.app import end, free_port, wait_healthy
 
 REPO = Path(__file__).resolve().parents[2]
 CHROMIUM_ARGS = [
@@ -39,13 +36,6 @@ def find_chromium() -> str:
     return path
 
 
-def healthy(url: str) -> bool:
-    try:
-        return httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200
-    except httpx.HTTPError:
-        return False
-
-
 class LabServer:
     """``python -m server`` in a subprocess on a free loopback port."""
 
@@ -62,21 +52,11 @@ class LabServer:
         )  # fmt: skip
 
     def wait_ready(self, timeout_s: float = SERVER_READY_S) -> None:
-        deadline = time.monotonic() + timeout_s
-        while not healthy(self.url):
-            if self.proc.poll() is not None or time.monotonic() > deadline:
-                pytest.fail(f"the server did not come up within {timeout_s} s:\n{self.log_tail()}")
-            time.sleep(0.1)
+        wait_healthy(self.url, self.proc, timeout_s, self.log_tail)
 
     def stop(self) -> None:
         """Ctrl-C, as a person would; killed if it does not stop in time."""
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(timeout=SERVER_STOP_S)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait(timeout=SERVER_STOP_S)
+        end(self.proc, SERVER_STOP_S)
         self._log.close()
 
     def log_tail(self, chars: int = 3000) -> str:

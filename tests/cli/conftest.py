@@ -20,7 +20,7 @@ from typing import IO, Any
 
 import httpx
 import pytest
-from support.app import end, free_port
+from support.app import end, free_port, wait_healthy
 
 SERVER_READY_S = 30.0
 SERVER_STOP_S = 10.0
@@ -56,13 +56,6 @@ class LiveServer:
             time.sleep(0.05)
 
 
-def _healthy(url: str) -> bool:
-    try:
-        return httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200
-    except httpx.HTTPError:
-        return False
-
-
 @pytest.fixture(scope="session")
 def live_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LiveServer]:
     workdir = tmp_path_factory.mktemp("cli_server")
@@ -76,11 +69,7 @@ def live_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LiveServer
         )  # fmt: skip
     server = LiveServer(f"http://127.0.0.1:{port}", proc, log_path)
     try:
-        deadline = time.monotonic() + SERVER_READY_S
-        while not _healthy(server.url):
-            if proc.poll() is not None or time.monotonic() > deadline:
-                pytest.fail(f"the lab server did not come up within {SERVER_READY_S} s:\n{server.log_tail()}")
-            time.sleep(0.1)
+        wait_healthy(server.url, proc, SERVER_READY_S, server.log_tail)
         yield server
     finally:
         end(proc, SERVER_STOP_S)  # Ctrl-C, as a person would; killed if it does not stop

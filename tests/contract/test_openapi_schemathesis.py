@@ -7,13 +7,11 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
-import time
 from collections.abc import Iterator
 from pathlib import Path
 
-import httpx
 import pytest
-from support.app import end, free_port
+from support.app import end, free_port, wait_healthy
 
 HERE = Path(__file__).resolve().parent
 SCHEMATHESIS = Path(sys.executable).with_name("schemathesis")
@@ -33,16 +31,7 @@ def live_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
         cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
     )  # fmt: skip
     try:
-        deadline = time.monotonic() + READY_S
-        while True:
-            try:
-                if httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200:
-                    break
-            except httpx.HTTPError:
-                pass
-            if proc.poll() is not None or time.monotonic() > deadline:
-                pytest.fail(f"the server did not come up: {(workdir / 'server.log').read_text()[-2000:]}")
-            time.sleep(0.1)
+        wait_healthy(url, proc, READY_S, lambda: (workdir / "server.log").read_text()[-2000:])
         yield url
     finally:
         end(proc)

@@ -9,14 +9,13 @@ from __future__ import annotations
 
 import subprocess
 import sys
-import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
 import httpx
 import pytest
-from support.app import end, free_port
+from support.app import end, free_port, wait_healthy
 
 READY_S = 30.0
 STOP_S = 10.0
@@ -58,18 +57,7 @@ def rosbridge_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Rosbr
             cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
         )  # fmt: skip
     try:
-        deadline = time.monotonic() + READY_S
-        while not _healthy(server.url):
-            if proc.poll() is not None or time.monotonic() > deadline:
-                pytest.fail(f"the lab server did not come up within {READY_S} s:\n{server.log_tail()}")
-            time.sleep(0.1)
+        wait_healthy(server.url, proc, READY_S, server.log_tail)
         yield server
     finally:
         end(proc, STOP_S)
-
-
-def _healthy(url: str) -> bool:
-    try:
-        return httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200
-    except httpx.HTTPError:
-        return False

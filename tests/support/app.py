@@ -41,6 +41,25 @@ def end(proc: subprocess.Popen[Any], timeout_s: float = 10.0) -> None:
             proc.wait(timeout=timeout_s)
 
 
+def healthy(url: str) -> bool:
+    try:
+        return httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200
+    except httpx.HTTPError:
+        return False
+
+
+def wait_healthy(
+    url: str, proc: subprocess.Popen[Any], timeout_s: float, log_tail: Callable[[], str]
+) -> None:
+    """Until the app at ``url`` answers /api/health; the test fails, with the log's tail, if its
+    process ends first or ``timeout_s`` passes."""
+    deadline = time.monotonic() + timeout_s
+    while not healthy(url):
+        if proc.poll() is not None or time.monotonic() > deadline:
+            pytest.fail(f"the app did not come up within {timeout_s} s:\n{log_tail()}")
+        time.sleep(0.1)
+
+
 class App:
     """``python -m server`` with a Zenoh router of its own, run in ``cwd`` (its ./workspace)."""
 
@@ -55,17 +74,7 @@ class App:
              "--zenoh-listen", f"tcp/{self.router}", *launch],
             cwd=cwd or REPO, stdout=self._log, stderr=subprocess.STDOUT,
         )  # fmt: skip
-        deadline = time.monotonic() + READY_S
-        while not self._healthy():
-            if self.proc.poll() is not None or time.monotonic() > deadline:
-                pytest.fail(f"the app did not come up:\n{self.log_tail()}")
-            time.sleep(0.1)
-
-    def _healthy(self) -> bool:
-        try:
-            return httpx.get(self.url + "/api/health", timeout=1.0).status_code == 200
-        except httpx.HTTPError:
-            return False
+        wait_healthy(self.url, self.proc, READY_S, self.log_tail)
 
     def get(self, path: str, **params: Any) -> Any:
         response = httpx.get(self.url + path, params=params, timeout=5.0)
