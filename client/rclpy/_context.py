@@ -23,7 +23,7 @@ from server.bus.graph import set_process_bus
 from server.transport.bridge import ZenohBridge
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT, domain_id_from_env
 
-from ._console import console_line
+from ._console import console_line, set_threshold
 from ._ros_args import RosArgs, parse_ros_args
 
 ROUTER_WAIT_NOTE_S = 1.0  # say once that the lab's router is not there yet, then keep waiting
@@ -109,6 +109,8 @@ class Context:
             if self._ok:
                 raise RCLError("rclpy.init() was already called for this context")
             self.args = parse_ros_args(list(sys.argv if args is None else args))
+            if self.args.log_level is not None:
+                set_threshold(self.args.log_level)
             bus = Bus(SystemClock())
             bus.lock = threading.RLock()
             bus.console = console_line

@@ -9,6 +9,8 @@ from typing import Any
 
 import yaml
 
+LOG_LEVELS = {"debug": 10, "info": 20, "warn": 30, "warning": 30, "error": 40, "fatal": 50}
+
 
 class RosArgsError(ValueError):
     """An argument after ``--ros-args`` that rcl would refuse."""
@@ -20,7 +22,7 @@ class RosArgs:
     namespace: str | None = None
     remappings: dict[str, str] = field(default_factory=dict)
     parameters: dict[str, Any] = field(default_factory=dict)
-    log_level: str | None = None
+    log_level: int | None = None  # the console's threshold (``--log-level``), as rcutils' severities
     rest: list[str] = field(default_factory=list)  # what is not a ROS argument (the program's own)
 
 
@@ -57,7 +59,10 @@ def parse_ros_args(argv: Sequence[str]) -> RosArgs:
             i += 1
             text = argv[i]
             if arg == "--log-level":
-                out.log_level = text.split(":=")[-1].lower()
+                level = text.split(":=")[-1].lower()  # ``name:=level`` sets one logger in ROS; here, all
+                if level not in LOG_LEVELS:
+                    raise RosArgsError(f"--log-level takes one of {', '.join(LOG_LEVELS)}, got {text!r}")
+                out.log_level = LOG_LEVELS[level]
             elif arg in ("-r", "--remap"):
                 rule = text
                 target, sep, _ = text.partition(":=")
