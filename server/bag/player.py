@@ -131,16 +131,20 @@ class PlayerNode(Node):
         if self._timer is not None:
             self.destroy_timer(self._timer)
             self._timer = None
-        while self._next is not None and self._due_s(self._next) <= self.bus.clock.now() + DUE_EPS_S:
+        # One reading of the clock for the whole pass: on a wall clock, time moves between two
+        # readings, and a message found not yet due could be due (delay <= 0) by the second.
+        now = self.bus.clock.now()
+        while self._next is not None and self._due_s(self._next) <= now + DUE_EPS_S:
             self._publish(self._next)
             self._next = self._advance()
+            now = self.bus.clock.now()
         if self._next is None:
             if self.loop and self.published:
                 self._begin()
             else:
                 self._finish()
             return
-        self._timer = self.create_timer(self._due_s(self._next) - self.bus.clock.now(), self._schedule)
+        self._timer = self.create_timer(self._due_s(self._next) - now, self._schedule)
 
     def _publisher(self, msg: Recorded) -> Publisher | None:
         pub = self._publishers.get(msg.topic)

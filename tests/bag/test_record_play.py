@@ -218,6 +218,38 @@ def test_a_looping_playback_whose_file_vanishes_ends_instead_of_crashing(tmp_pat
     assert player.published == 2  # one loop, then nothing more
 
 
+class CreepingClock(ManualClock):
+    """A clock that moves a little at every reading, as the wall clock does on a busy machine."""
+
+    STEP_S = 5e-6  # more than the player's rounding allowance (DUE_EPS_S)
+
+    def now(self) -> float:
+        self.advance(self.STEP_S)
+        return super().now()
+
+
+def test_playback_survives_time_passing_while_it_schedules(tmp_path: Path) -> None:
+    """Time moves between the player's readings of the clock: a message due within a few
+    microseconds is then due at once, never a timer of zero or negative period (which crashed
+    the player). Gaps of 1..60 us between recorded messages cover that window."""
+    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), CreepingClock(0.0))
+    with lab.bus.activate():
+        talker = Node("talker")
+    pub = talker.create_publisher(Bool, "/flag", 100)
+    lab.bags.record(["/flag"], name="close")
+    for k in range(60):
+        pub.publish(Bool(data=k % 2 == 0))
+        lab.executor.spin_for(k * 1e-6)
+    lab.executor.spin_for(0.01)
+    lab.bags.stop_recording("close")
+    talker.destroy_node()
+    echo = Echo(lab, {"/flag": Bool})
+    _, player = lab.bags.play(tmp_path / "close")
+    lab.executor.spin_for(1.0)
+    assert player.state != "crashed" and player.finished
+    assert [m.data for _, _, m in echo.got] == [k % 2 == 0 for k in range(60)]
+
+
 def test_deleting_a_bag_stops_its_playbacks(tmp_path: Path) -> None:
     lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
     record_pair(lab, "pair")

@@ -129,10 +129,15 @@ def test_topic_hz_reports_the_sensor_rate(ros2lab: Callable[..., Result]) -> Non
     assert len(lines) == 4
     for rate_line, stats_line in zip(lines[::2], lines[1::2], strict=True):
         rate = float(re.fullmatch(r"average rate: (\d+\.\d{3})", rate_line).group(1))  # type: ignore[union-attr]
-        assert 8.0 <= rate <= 12.0
-        assert re.fullmatch(
-            r"\tmin: \d+\.\d{3}s max: \d+\.\d{3}s std dev: \d+\.\d{5}s window: \d+", stats_line
+        stats = re.fullmatch(
+            r"\tmin: (\d+\.\d{3})s max: (\d+\.\d{3})s std dev: \d+\.\d{5}s window: \d+", stats_line
         )
+        assert stats is not None, stats_line
+        # The live lab runs on the wall clock, so a loaded machine may delay a tick: the exact
+        # 10 Hz is checked on a manual clock (tests/api/test_introspection.py); here the figures
+        # must agree with each other: the mean period lies between the shortest and the longest.
+        shortest, longest = float(stats.group(1)), float(stats.group(2))
+        assert rate > 0.0 and shortest - 0.001 <= 1.0 / rate <= longest + 0.001, (rate_line, stats_line)
 
 
 def test_topic_hz_window_bounds_the_statistics(ros2lab: Callable[..., Result]) -> None:

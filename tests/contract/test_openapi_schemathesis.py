@@ -39,8 +39,11 @@ def live_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
         # A node that a /api/run request names may fail to start (logged, and reported in the
         # answer); what must never appear is a bug: a traceback or the error net's entry.
         text = (workdir / "server.log").read_text()
-        bugs = [line for line in text.splitlines() if "unexpected error" in line or "Traceback" in line]
-        assert not bugs, f"the server logged bugs under schemathesis: {bugs[:5]}"
+        lines = text.splitlines()
+        bugs = [i for i, line in enumerate(lines) if "unexpected error" in line or "Traceback" in line]
+        # Show each bug with the lines that follow it, so a CI log names the failing frame.
+        shown = "\n---\n".join("\n".join(lines[max(0, i - 2) : i + 25]) for i in bugs[:3])
+        assert not bugs, f"the server logged {len(bugs)} bug(s) under schemathesis:\n{shown}"
 
 
 def test_openapi_schemathesis_checks_all_pass(live_url: str) -> None:
