@@ -4,6 +4,7 @@ from fastapi import APIRouter
 
 from . import (
     bag,
+    classroom,
     introspection,
     lab_routes,
     launch_routes,
@@ -28,6 +29,7 @@ def build_router() -> APIRouter:
         ws_topics,
         ws_keys,
         bag,
+        classroom,
         rosbridge,
     ):
         router.include_router(module.router)

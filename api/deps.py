@@ -1,21 +1,80 @@
-"""What route handlers take from the running app."""
+"""What route handlers take from the running app: the lab a call acts on.
+
+One lab, or on a class server (``--classroom``) the world the caller's token names: a student's
+own world, or for the instructor the world named by ``X-Lab-World`` (or ``?world=``). No valid
+token is 401, another student's world 403; a student's writes are rate-limited per world (429).
+"""
 
 from __future__ import annotations
 
 from typing import Annotated, cast
 
-from fastapi import Depends, Request, WebSocket
+from fastapi import Depends, HTTPException, Request, WebSocket, WebSocketException
+from starlette.requests import HTTPConnection
 
+from server.classroom import Classroom, ClassroomError, Grant
 from server.lab import Lab
 
+from .errors import CloseCode, close_reason
 
-def _lab(request: Request) -> Lab:
-    return cast(Lab, request.app.state.lab)
+TOKEN_COOKIE = "lab_token"
+WORLD_HEADER = "x-lab-world"
+SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
+
+
+def classroom_of(conn: HTTPConnection) -> Classroom | None:
+    return getattr(conn.app.state, "classroom", None)
+
+
+def token_of(conn: HTTPConnection) -> str | None:
+    """A bearer token (REST, WebSockets, the CLI) or the page's HTTP-only cookie."""
+    auth = conn.headers.get("authorization", "")
+    if auth[:7].lower() == "bearer ":
+        return auth[7:].strip()
+    return conn.cookies.get(TOKEN_COOKIE)
+
+
+def grant_of(conn: HTTPConnection, classroom: Classroom) -> Grant:
+    grant = classroom.grant(token_of(conn))
+    if grant is None:
+        raise ClassroomError(
+            401, "join the class first: no valid token (lab_token cookie or Authorization: Bearer)"
+        )
+    return grant
+
+
+def lab_of(conn: HTTPConnection) -> Lab:
+    """The lab this call acts on; ClassroomError says why a class server refuses it."""
+    classroom = classroom_of(conn)
+    if classroom is None:
+        return cast(Lab, conn.app.state.lab)
+    grant = grant_of(conn, classroom)
+    asked = conn.headers.get(WORLD_HEADER) or conn.query_params.get("world")
+    world = classroom.world_for(grant, asked)
+    writing = conn.scope["type"] == "http" and conn.scope["method"] not in SAFE_METHODS
+    if writing and not grant.is_instructor and not world.writes.take():
+        raise ClassroomError(429, f"too many requests for world {world.name!r}: at most "
+                                  f"{classroom.settings.world_writes_hz:g} writes a second")  # fmt: skip
+    return world.lab
+
+
+def lab_for_request(request: Request) -> Lab:
+    try:
+        return lab_of(request)
+    except ClassroomError as exc:
+        raise HTTPException(exc.status, str(exc)) from None
+
+
+WS_CODES = {401: CloseCode.UNAUTHORIZED, 403: CloseCode.FORBIDDEN}
 
 
 def _ws_lab(websocket: WebSocket) -> Lab:
-    return cast(Lab, websocket.app.state.lab)
+    try:
+        return lab_of(websocket)
+    except ClassroomError as exc:
+        code = WS_CODES.get(exc.status, CloseCode.POLICY_VIOLATION)
+        raise WebSocketException(code, close_reason(str(exc))) from None
 
 
-LabDep = Annotated[Lab, Depends(_lab)]
+LabDep = Annotated[Lab, Depends(lab_for_request)]
 WsLabDep = Annotated[Lab, Depends(_ws_lab)]

@@ -56,6 +56,8 @@ class CloseCode(IntEnum):
     INTERNAL_ERROR = 1011
     TRY_AGAIN_LATER = 1013
     BAD_REQUEST = 4400
+    UNAUTHORIZED = 4401  # a class server: no valid token
+    FORBIDDEN = 4403  # a class server: another student's world
     UNKNOWN_TOPIC = 4404
     TYPE_CONFLICT = 4409
 

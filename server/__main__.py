@@ -5,9 +5,11 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import logging
 import sys
 from pathlib import Path
+from typing import Any
 
 from server import cli
 from server.settings import Settings
@@ -87,6 +89,15 @@ def build_parser() -> argparse.ArgumentParser:
         help="serve rosbridge on this port too, as rosbridge_server does on 9090 (always at /rosbridge)",
     )  # fmt: skip
     parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
+    # -- a class on one server (issue 13) --
+    classroom = parser.add_argument_group("a class on one server")
+    classroom.add_argument(
+        "--classroom", action="store_true",
+        help="a world per student (their own rocket, drone, graph and 3D view) behind signed tokens; "
+             "prints the class code and the instructor's link once. Add --host for a LAN.",
+    )  # fmt: skip
+    classroom.add_argument("--class-code", help="the code students type to join (default: a new random one)")
+    classroom.add_argument("--max-worlds", type=int, default=60, help="worlds at most (default 60)")
     return parser
 
 
@@ -131,6 +142,16 @@ def banner(host: str, port: int, launch: str) -> str:
     )
 
 
+def classroom_banner(host: str, port: int, classroom: Any) -> str:
+    """The class code for the projector, and the instructor's link (its token, printed once)."""
+    shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
+    lan = " (and this machine's LAN address)" if host in ("0.0.0.0", "::") else ""
+    return (
+        f"Class server: students open http://{shown}:{port}/{lan} and join with class code {classroom.code}\n"
+        f"Instructor (keep this link to yourself): http://127.0.0.1:{port}/instructor?token={classroom.instructor_token}"
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv and (argv[0] in cli.VERBS or argv[0].startswith("--url")):
@@ -146,8 +167,12 @@ def main(argv: list[str] | None = None) -> int:
         workspace=Path(args.workspace), allowed_hosts=tuple(args.allow_host), allowed_origins=tuple(args.allow_origin),
         zenoh=zenoh, node_processes=args.node_processes,
         foxglove_port=None if args.no_foxglove else args.foxglove_port, rosbridge_port=args.rosbridge_port,
-        bag_dir=Path(args.bag_dir),
+        bag_dir=Path(args.bag_dir), classroom=args.classroom, class_code=args.class_code,
+        max_worlds=args.max_worlds,
     )  # fmt: skip
+    if args.classroom:  # worlds are in-process graphs; the class server opens no Zenoh or bridge port
+        settings = dataclasses.replace(settings, zenoh=None, foxglove_port=None, rosbridge_port=None)
+        zenoh = None
     logging.basicConfig(
         level=args.log_level.upper(),
         format="%(asctime)s %(levelname)s %(name)s: %(message)s",
@@ -174,8 +199,11 @@ def main(argv: list[str] | None = None) -> int:
     # would send a student to a page without the lab's keys and HUD. The app prints nothing else
     # through rich.
     rich.get_console().quiet = True
+    app = create_app(settings)
+    if app.state.classroom is not None:
+        print(classroom_banner(args.host, args.port, app.state.classroom), flush=True)
     config = uvicorn.Config(
-        create_app(settings),
+        app,
         host=args.host,
         port=args.port,
         log_level=args.log_level,

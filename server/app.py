@@ -15,6 +15,7 @@ from api.security import GuardMiddleware
 from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
 from server.bridges.runner import run_bridges
 from server.bus import Clock
+from server.classroom import Classroom
 from server.lab import Lab
 from server.settings import Settings
 from server.viewer.page import router as page_router
@@ -26,8 +27,16 @@ STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 def create_app(settings: Settings | None = None, clock: Clock | None = None) -> FastAPI:
     settings = settings or Settings()
 
+    classroom = Classroom(settings, clock, code=settings.class_code) if settings.classroom else None
+
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        if classroom is not None:  # worlds start as students join
+            try:
+                yield
+            finally:
+                await classroom.stop()
+            return
         lab = Lab(settings, clock)
         app.state.lab = lab
         await lab.start()
@@ -45,6 +54,7 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         lifespan=lifespan,
         default_response_class=SafeJSONResponse,
     )
+    app.state.classroom = classroom
     app.include_router(build_router())
     app.include_router(page_router)
     app.include_router(tools_router)

@@ -43,6 +43,13 @@ class Settings:
     # rosbridge on a port of its own too, as rosbridge_server's 9090; None: only at /rosbridge.
     rosbridge_port: int | None = None
 
+    # -- a class on one server (issue 13) --
+    classroom: bool = False  # a world per student, behind signed tokens; the instructor sees all
+    class_code: str | None = None  # what students type to join; None: a new random one
+    max_worlds: int = 60
+    world_writes_hz: float = 20.0  # a student's REST writes per second in their world, bursts of:
+    world_writes_burst: int = 40
+
     def __post_init__(self) -> None:
         for name in ("port", "foxglove_port", "rosbridge_port"):
             port = getattr(self, name)

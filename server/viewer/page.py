@@ -12,8 +12,13 @@ from typing import Any
 import viser
 import websockets
 from fastapi import APIRouter, Request, WebSocket, WebSocketDisconnect, status
-from fastapi.responses import HTMLResponse, Response
+from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
+from starlette.requests import HTTPConnection
 from websockets.asyncio.client import ClientConnection
+
+from api.classroom import set_token_cookie
+from api.deps import classroom_of, lab_of, token_of
+from server.classroom import ClassroomError
 
 from .views import ViewRegistry
 from .viser_guard import PROXY_TOKEN_HEADER
@@ -45,9 +50,47 @@ def index_html() -> str:
     return html.replace("</head>", INJECT + "</head>", 1)
 
 
+STATIC = Path(__file__).resolve().parents[2] / "static"
+
+
 @router.get("/")
-async def index() -> HTMLResponse:
+async def index(request: Request) -> Response:
+    classroom = classroom_of(request)
+    if classroom is not None:  # a class server: the join form until this browser has a world
+        grant = classroom.grant(token_of(request))
+        if grant is None:
+            return FileResponse(STATIC / "join.html", headers={"Cache-Control": "no-cache"})
+        if grant.is_instructor:
+            return RedirectResponse("/instructor", status.HTTP_303_SEE_OTHER)
     return HTMLResponse(index_html(), headers={"Cache-Control": "no-cache", **ISOLATED})
+
+
+@router.get("/instructor")
+async def instructor(request: Request, token: str | None = None) -> Response:
+    """The instructor's page. Opened once with ``?token=`` (the link the class server prints),
+    it keeps the token in an HTTP-only cookie and drops it from the address bar."""
+    classroom = classroom_of(request)
+    if classroom is None:
+        return Response("not a class server (start it with --classroom)", status.HTTP_404_NOT_FOUND)
+    if token is not None:
+        grant = classroom.grant(token)
+        if grant is None or not grant.is_instructor:
+            return Response("that link's token is not the instructor's", status.HTTP_403_FORBIDDEN)
+        response = RedirectResponse("/instructor", status.HTTP_303_SEE_OTHER)
+        set_token_cookie(response, token)
+        return response
+    grant = classroom.grant(token_of(request))
+    if grant is None or not grant.is_instructor:
+        return Response("open the instructor's link the class server printed", status.HTTP_401_UNAUTHORIZED)
+    return FileResponse(STATIC / "instructor.html", headers={"Cache-Control": "no-cache"})
+
+
+def _display_of(conn: HTTPConnection) -> Any:
+    """The 3D view of the lab (or the caller's world on a class server); None if there is none."""
+    try:
+        return lab_of(conn).display
+    except ClassroomError:
+        return None
 
 
 @router.get("/page/poses.worker.js")
@@ -59,7 +102,7 @@ async def poses_worker() -> Response:
 @router.get("/page/views")
 async def views(request: Request) -> dict[str, Any]:
     """The labs' camera views for the page, and the one a page with no remembered choice opens on."""
-    display = request.app.state.lab.display
+    display = _display_of(request)
     if display is None:
         return {"views": [], "suggested": None}
     views: ViewRegistry = display.views
@@ -68,7 +111,7 @@ async def views(request: Request) -> dict[str, Any]:
 
 @router.websocket("/")
 async def viser_proxy(websocket: WebSocket) -> None:
-    display = websocket.app.state.lab.display
+    display = _display_of(websocket)
     if display is None:
         await websocket.close(status.WS_1013_TRY_AGAIN_LATER, "the 3D view is not running")
         return

@@ -1,0 +1,159 @@
+"""REST for a class server (``--classroom``): join, who am I, and the instructor's controls.
+
+Out of the OpenAPI document's schema for the single-lab app it documents; on an app without
+``--classroom`` every route here answers 404.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Depends, HTTPException, Request, Response, status
+from pydantic import BaseModel, ConfigDict, Field
+
+from server.bus import BusError
+from server.classroom import Classroom, ClassroomError, Grant
+from server.limits import LimitExceededError
+from server.msgs import MessageError
+
+from .deps import TOKEN_COOKIE, classroom_of, grant_of
+
+router = APIRouter(prefix="/api/classroom", tags=["classroom"], include_in_schema=False)
+COOKIE_MAX_AGE_S = 12 * 3600  # a school day
+
+
+class JoinRequest(BaseModel):
+    model_config = ConfigDict(strict=True, extra="forbid")
+    name: str = Field(min_length=1, max_length=64, examples=["Ada Lovelace"])
+    code: str = Field(min_length=1, max_length=16, examples=["K7PX2M"])
+
+
+class BroadcastRequest(BaseModel):
+    model_config = ConfigDict(strict=True, extra="forbid")
+    topic: str = Field(min_length=1, max_length=256, examples=["/uav/input/position"])
+    msg: dict[str, Any] = Field(examples=[{"x": 5.0, "y": 5.0, "z": 10.0}])
+    type: str | None = Field(default=None, max_length=128, examples=["geometry_msgs/msg/Vector3"])
+
+
+def _classroom(request: Request) -> Classroom:
+    classroom = classroom_of(request)
+    if classroom is None:
+        raise HTTPException(
+            status.HTTP_404_NOT_FOUND, "this server is not a class server (start it with --classroom)"
+        )
+    return classroom
+
+
+def _grant(request: Request, classroom: Annotated[Classroom, Depends(_classroom)]) -> Grant:
+    try:
+        return grant_of(request, classroom)
+    except ClassroomError as exc:
+        raise HTTPException(exc.status, str(exc)) from None
+
+
+def _instructor(grant: Annotated[Grant, Depends(_grant)]) -> Grant:
+    if not grant.is_instructor:
+        raise HTTPException(status.HTTP_403_FORBIDDEN, "only the instructor may do this")
+    return grant
+
+
+ClassroomDep = Annotated[Classroom, Depends(_classroom)]
+GrantDep = Annotated[Grant, Depends(_grant)]
+InstructorDep = Annotated[Grant, Depends(_instructor)]
+
+
+def _refuse(exc: ClassroomError) -> HTTPException:
+    return HTTPException(exc.status, str(exc))
+
+
+def set_token_cookie(response: Response, token: str) -> None:
+    """HTTP-only (no script reads it), same-site (no other site's page sends it)."""
+    response.set_cookie(
+        TOKEN_COOKIE, token, max_age=COOKIE_MAX_AGE_S, httponly=True, samesite="strict", path="/"
+    )
+
+
+@router.post("/join", status_code=status.HTTP_201_CREATED)
+async def join(body: JoinRequest, classroom: ClassroomDep, response: Response) -> dict[str, Any]:
+    """A world of one's own: the rocket and drone launches, under a token for this world only."""
+    try:
+        world, token = await classroom.join(body.name, body.code)
+    except ClassroomError as exc:
+        raise _refuse(exc) from None
+    set_token_cookie(response, token)
+    return {"world": world.name, "student": world.student, "token": token}
+
+
+@router.post("/leave")
+async def leave(response: Response) -> dict[str, str]:
+    """Forget this browser's token (the world stays until the instructor removes it)."""
+    response.delete_cookie(TOKEN_COOKIE, path="/")
+    return {"status": "left"}
+
+
+@router.get("/me")
+async def me(grant: GrantDep, classroom: ClassroomDep) -> dict[str, Any]:
+    out: dict[str, Any] = {"role": grant.role, "world": grant.world, "name": grant.name}
+    if grant.is_instructor:
+        out["class_code"] = classroom.code
+    return out
+
+
+@router.get("/worlds")
+async def worlds(_: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+    """Every world: its student, keys held, rocket phase, drone position, crashed nodes."""
+    return {
+        "class_code": classroom.code,
+        "max_worlds": classroom.settings.max_worlds,
+        "worlds": [w.describe() for w in classroom.worlds.values()],
+    }
+
+
+@router.post("/worlds/{name}/reset")
+async def reset_world(name: str, grant: GrantDep, classroom: ClassroomDep) -> dict[str, Any]:
+    """Start a world over (every node, the 3D view): the instructor any, a student their own."""
+    if not grant.is_instructor and grant.world != name:
+        raise HTTPException(
+            status.HTTP_403_FORBIDDEN, f"your token is for world {grant.world!r}, not {name!r}"
+        )
+    try:
+        world = await classroom.reset(name)
+    except ClassroomError as exc:
+        raise _refuse(exc) from None
+    return world.describe()
+
+
+@router.post("/reset")
+async def reset_all(_: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+    names = list(classroom.worlds)
+    for name in names:
+        await classroom.reset(name)
+    return {"reset": names}
+
+
+@router.delete("/worlds/{name}")
+async def kick(name: str, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+    """Remove a student's world; their token stops working at once."""
+    try:
+        world = await classroom.kick(name)
+    except ClassroomError as exc:
+        raise _refuse(exc) from None
+    return {"kicked": world.name, "student": world.student}
+
+
+@router.post("/broadcast")
+async def broadcast(body: BroadcastRequest, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+    """Publish one message in every world (a setpoint, a start signal); a world whose graph
+    refuses it (another type on that topic, say) is listed with the reason."""
+    reached: list[str] = []
+    refused: dict[str, str] = {}
+    for name, world in classroom.worlds.items():
+        try:
+            world.lab.publish(body.topic, body.msg, body.type)
+        except (BusError, LimitExceededError, LookupError, MessageError, TypeError, ValueError) as exc:
+            refused[name] = str(exc)
+        else:
+            reached.append(name)
+    if refused and not reached:
+        raise HTTPException(status.HTTP_422_UNPROCESSABLE_CONTENT, f"no world took the message: {refused}")
+    return {"reached": reached, "refused": refused}

@@ -1,0 +1,228 @@
+"""The class server's worlds: one lab per student, each with its own graph, sims and 3D view.
+
+A world is a whole ``Lab`` (bus, executor, launched nodes, viser display) named after its
+student. Worlds share the process and its event loop and nothing else: a student's topics,
+keys, publishers and resets reach only their own world. The instructor's grant reaches all.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hmac
+import logging
+import re
+import secrets
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+from server.bus import Clock, SystemClock
+from server.lab import Lab
+from server.settings import Settings
+
+from .tokens import Grant, TokenSigner
+
+log = logging.getLogger("classroom")
+CODE_ALPHABET = "ABCDEFGHJKLMNPQRSTUVWXYZ23456789"  # no 0/O, 1/I: read aloud or off a projector
+CODE_CHARS = 6
+MAX_NAME_CHARS = 32
+# A world's name is a ROS namespace token: letters, digits and underscores, not starting with a digit.
+_NOT_NAME = re.compile(r"[^a-z0-9_]+")
+
+
+class ClassroomError(Exception):
+    """A refused classroom request: ``status`` is the HTTP status that says why."""
+
+    def __init__(self, status: int, message: str) -> None:
+        super().__init__(message)
+        self.status = status
+
+
+def new_code() -> str:
+    return "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_CHARS))
+
+
+def world_name(student: str) -> str:
+    """``"Ada Lovelace"`` → ``ada_lovelace``; ValueError when nothing usable is left."""
+    name = _NOT_NAME.sub("_", student.strip().lower()).strip("_")[:MAX_NAME_CHARS].rstrip("_")
+    if not name:
+        raise ValueError("a name needs at least one letter or digit")
+    return name if not name[0].isdigit() else f"s_{name}"[:MAX_NAME_CHARS]
+
+
+class RateLimit:
+    """A token bucket on the lab's clock: ``rate_hz`` calls a second, bursts of ``burst``."""
+
+    def __init__(self, clock: Clock, rate_hz: float, burst: int) -> None:
+        self.clock, self.rate_hz, self.burst = clock, rate_hz, float(burst)
+        self._tokens = float(burst)
+        self._at = clock.now()
+        self.refused = 0
+
+    def take(self) -> bool:
+        now = self.clock.now()
+        self._tokens = min(self.burst, self._tokens + (now - self._at) * self.rate_hz)
+        self._at = now
+        if self._tokens >= 1.0:
+            self._tokens -= 1.0
+            return True
+        self.refused += 1
+        return False
+
+
+@dataclass
+class World:
+    name: str
+    student: str
+    token_id: str
+    lab: Lab
+    writes: RateLimit
+    joined_at: float = field(default_factory=time.time)
+    resets: int = 0
+
+    def describe(self) -> dict[str, Any]:
+        lab = self.lab
+        rocket = lab.rocket_view.tracker if lab.rocket_view is not None else None
+        return {
+            "world": self.name,
+            "student": self.student,
+            "joined_at": self.joined_at,
+            "resets": self.resets,
+            "keys_held": sorted(lab.keyboard.held()),
+            "rocket": None
+            if rocket is None
+            else {"phase": rocket.phase, "altitude_m": round(rocket.altitude_m, 2)},
+            "drone": drone_position(lab),
+            "crashed_nodes": sorted(n.fully_qualified_name for n in lab.bus.nodes if n.state == "crashed"),
+            "nodes": len(lab.bus.nodes),
+            "writes_refused": self.writes.refused,
+        }
+
+
+def drone_position(lab: Lab) -> list[float] | None:
+    """Where the world's drone is (its GPS topic's latest pose), or None before the first fix."""
+    topic = lab.bus.topics.get("/uav/sensors/gps")
+    latest: Any = topic.latest if topic is not None else None
+    if latest is None:
+        return None
+    p = latest.pose.position
+    return [round(p.x, 3), round(p.y, 3), round(p.z, 3)]
+
+
+class Classroom:
+    """The worlds of one class server, and who may do what in them."""
+
+    def __init__(
+        self,
+        settings: Settings,
+        clock: Clock | None = None,
+        *,
+        code: str | None = None,
+        signer: TokenSigner | None = None,
+    ) -> None:
+        self.settings = settings
+        self.clock = clock
+        self.code = code or new_code()
+        self.signer = signer or TokenSigner()
+        self.instructor_token, self.instructor = self.signer.issue("instructor", None, "instructor")
+        self.worlds: dict[str, World] = {}
+        self._revoked: set[str] = set()
+        self._starting: set[str] = set()
+
+    # -- who is calling ------------------------------------------------------
+    def grant(self, token: str | None) -> Grant | None:
+        """The grant of a genuine, current token: a student's world must still be theirs."""
+        if not token:
+            return None
+        grant = self.signer.verify(token)
+        if grant is None or grant.token_id in self._revoked:
+            return None
+        if grant.is_instructor:
+            return grant
+        world = self.worlds.get(grant.world or "")
+        return grant if world is not None and world.token_id == grant.token_id else None
+
+    def world_for(self, grant: Grant, asked: str | None) -> World:
+        """The world a call acts on: a student's own (naming another is 403); the instructor's
+        must be named."""
+        if grant.is_instructor:
+            if asked is None:
+                raise ClassroomError(400, "name a world (the X-Lab-World header or ?world=)")
+            return self.get(asked)
+        if asked is not None and asked != grant.world:
+            raise ClassroomError(403, f"your token is for world {grant.world!r}, not {asked!r}")
+        return self.get(grant.world or "")
+
+    def get(self, name: str) -> World:
+        world = self.worlds.get(name)
+        if world is None:
+            raise ClassroomError(404, f"no world named {name!r}")
+        return world
+
+    # -- worlds ----------------------------------------------------------------
+    def _world_settings(self, name: str) -> Settings:
+        # A world is in-process: the class server's own ports (Zenoh, Foxglove, rosbridge) stay
+        # the class server's; each world records its bags in a folder of its own.
+        return dataclasses.replace(
+            self.settings,
+            zenoh=None,
+            foxglove_port=None,
+            rosbridge_port=None,
+            bag_dir=self.settings.bag_dir / name,
+        )
+
+    async def _start_lab(self, name: str) -> Lab:
+        lab = Lab(self._world_settings(name), self.clock)
+        await lab.start()
+        return lab
+
+    async def join(self, student: str, code: str) -> tuple[World, str]:
+        if not hmac.compare_digest(code.strip().upper().encode(), self.code.encode()):
+            raise ClassroomError(403, "wrong class code")
+        try:
+            name = world_name(student)
+        except ValueError as exc:
+            raise ClassroomError(422, str(exc)) from None
+        if name in self.worlds or name in self._starting:
+            raise ClassroomError(409, f"the name {student!r} is taken in this class (world {name!r})")
+        if len(self.worlds) + len(self._starting) >= self.settings.max_worlds:
+            raise ClassroomError(429, f"the class is full ({self.settings.max_worlds} worlds)")
+        self._starting.add(name)  # held while the world starts, so two joins cannot take one name
+        try:
+            lab = await self._start_lab(name)
+        finally:
+            self._starting.discard(name)
+        student = student.strip()[:64]
+        token, grant = self.signer.issue("student", name, student)
+        world = self.worlds[name] = World(name, student, grant.token_id, lab, self._limit())
+        log.info("%s joined: world %s", student, name)
+        return world, token
+
+    def _limit(self) -> RateLimit:
+        return RateLimit(
+            self.clock or SystemClock(), self.settings.world_writes_hz, self.settings.world_writes_burst
+        )
+
+    async def reset(self, name: str) -> World:
+        """A fresh world under the same name and token: every node starts over, the 3D view too."""
+        world = self.get(name)
+        old = world.lab
+        world.lab = await self._start_lab(name)
+        world.resets += 1
+        await old.stop()
+        log.info("world %s reset", name)
+        return world
+
+    async def kick(self, name: str) -> World:
+        world = self.worlds.pop(name, None)
+        if world is None:
+            raise ClassroomError(404, f"no world named {name!r}")
+        self._revoked.add(world.token_id)
+        await world.lab.stop()
+        log.info("%s kicked: world %s removed", world.student, name)
+        return world
+
+    async def stop(self) -> None:
+        for name in list(self.worlds):
+            world = self.worlds.pop(name)
+            await world.lab.stop()

@@ -1,0 +1,273 @@
+"""A class server through the real app: worlds per student, tokens that scope every call, the
+instructor's controls. The worlds run on one manual clock that the tests step."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+from fastapi.testclient import TestClient
+from starlette.websockets import WebSocketDisconnect
+
+from api.errors import CloseCode
+from server.app import create_app
+from server.bus import ManualClock
+from server.classroom import Classroom
+from server.settings import Settings
+
+CODE = "TEST42"
+TARGET = {"x": 5.0, "y": 5.0, "z": 10.0}
+VECTOR3 = "geometry_msgs/msg/Vector3"
+STEP_S = 0.005  # the worlds share a clock: step them together, a little at a time
+BURST = 5
+HOVER_S = 6.0  # a world's drone climbs to its 3 m hover in about 5 s
+
+
+def class_settings(**overrides: Any) -> Settings:
+    base: dict[str, Any] = {
+        "launch": "all", "launch_args": {"start_delay": "3600"}, "viewer": False, "allowed_hosts": ("testserver",),
+        "classroom": True, "class_code": CODE, "max_worlds": 3, "world_writes_hz": 1.0,
+        "world_writes_burst": BURST,
+    }  # fmt: skip
+    return Settings(**{**base, **overrides})
+
+
+@pytest.fixture
+def clock() -> ManualClock:
+    return ManualClock(1_000.0)
+
+
+@pytest.fixture
+def client(clock: ManualClock) -> Iterator[TestClient]:
+    with TestClient(create_app(class_settings(), clock)) as test_client:
+        yield test_client
+
+
+def classroom(client: TestClient) -> Classroom:
+    return client.app.state.classroom  # type: ignore[attr-defined,no-any-return]
+
+
+def join(client: TestClient, name: str, code: str = CODE) -> str:
+    reply = client.post("/api/classroom/join", json={"name": name, "code": code})
+    assert reply.status_code == 201, reply.text
+    client.cookies.clear()  # each call below says whose token it carries
+    return str(reply.json()["token"])
+
+
+def auth(token: str, world: str | None = None) -> dict[str, str]:
+    headers = {"Authorization": f"Bearer {token}"}
+    if world is not None:
+        headers["X-Lab-World"] = world
+    return headers
+
+
+def advance(client: TestClient, clock: ManualClock, seconds: float) -> None:
+    """Move every world's time on together, each running its timers at their deadlines."""
+    labs = [w.lab for w in classroom(client).worlds.values()]
+    end = clock.now() + seconds
+
+    def run() -> None:
+        while clock.now() < end - 1e-9:
+            t = min(end, clock.now() + STEP_S)
+            for lab in labs:
+                lab.executor.spin_until(t)
+
+    assert client.portal is not None
+    client.portal.call(run)
+
+
+def drone(client: TestClient, token: str) -> tuple[float, float, float]:
+    latest = client.get("/api/topics/uav/sensors/gps", headers=auth(token)).json()["latest"]
+    p = latest["pose"]["position"]
+    return p["x"], p["y"], p["z"]
+
+
+# -- joining -------------------------------------------------------------------------------------
+def test_join_gives_a_world_and_an_http_only_same_site_cookie(client: TestClient) -> None:
+    reply = client.post("/api/classroom/join", json={"name": "Ada Lovelace", "code": CODE.lower()})
+    assert reply.status_code == 201, reply.text
+    assert reply.json()["world"] == "ada_lovelace"
+    cookie = reply.headers["set-cookie"].lower()
+    assert "lab_token=" in cookie and "httponly" in cookie and "samesite=strict" in cookie
+    me = client.get("/api/classroom/me")  # the cookie alone identifies the page
+    assert me.json() == {"role": "student", "world": "ada_lovelace", "name": "Ada Lovelace"}
+
+
+@pytest.mark.parametrize(
+    ("body", "status", "says"),
+    [
+        ({"name": "Eve", "code": "WRONG1"}, 403, "wrong class code"),
+        ({"name": "---", "code": CODE}, 422, "at least one letter"),
+        ({"name": "Eve", "code": 42}, 422, "code"),
+        ({"name": "Eve", "code": CODE, "world": "ada"}, 422, "world"),
+    ],
+)
+def test_a_bad_join_is_refused_by_name_and_starts_no_world(
+    client: TestClient, body: dict[str, Any], status: int, says: str
+) -> None:
+    reply = client.post("/api/classroom/join", json=body)
+    assert reply.status_code == status and says in reply.text
+    assert classroom(client).worlds == {}
+
+
+def test_a_taken_name_is_409_and_a_full_class_429(client: TestClient) -> None:
+    join(client, "Ada")
+    taken = client.post("/api/classroom/join", json={"name": "ADA", "code": CODE})
+    assert taken.status_code == 409 and "taken" in taken.text
+    join(client, "Bob")
+    join(client, "Cy")
+    full = client.post("/api/classroom/join", json={"name": "Dee", "code": CODE})
+    assert full.status_code == 429 and "full" in full.text
+    assert set(classroom(client).worlds) == {"ada", "bob", "cy"}
+
+
+# -- isolation -----------------------------------------------------------------------------------
+@pytest.mark.parametrize("token", [None, "junk", "e30.e30"])
+def test_without_a_valid_token_the_worlds_are_closed(client: TestClient, token: str | None) -> None:
+    join(client, "Ada")
+    headers = {} if token is None else auth(token)
+    assert client.get("/api/topics", headers=headers).status_code == 401
+    assert (
+        client.post(
+            "/api/publish", headers=headers, json={"topic": "/abort_takeoff", "msg": {"data": True}}
+        ).status_code
+        == 401
+    )
+    with pytest.raises(WebSocketDisconnect) as closed, client.websocket_connect("/ws/keys", headers=headers):
+        pass
+    assert closed.value.code == CloseCode.UNAUTHORIZED
+
+
+def test_one_students_token_on_another_students_world_is_403(client: TestClient) -> None:
+    ada, bob = join(client, "Ada"), join(client, "Bob")
+    for headers in (auth(ada, "bob"), {**auth(ada), "X-Lab-World": "bob"}):
+        assert client.get("/api/topics", headers=headers).status_code == 403
+        publish = client.post(
+            "/api/publish", headers=headers, json={"topic": "/abort_takeoff", "msg": {"data": True}}
+        )
+        assert publish.status_code == 403 and "'ada'" in publish.text
+    assert client.get("/api/topics?world=bob", headers=auth(ada)).status_code == 403
+    assert client.post("/api/classroom/worlds/bob/reset", headers=auth(ada)).status_code == 403
+    for path in ("/ws/keys", "/ws/topics/keydown"):
+        with (
+            pytest.raises(WebSocketDisconnect) as closed,
+            client.websocket_connect(path, headers=auth(ada, "bob")),
+        ):
+            pass
+        assert closed.value.code == CloseCode.FORBIDDEN
+    # Nothing reached Bob's world.
+    assert client.get("/api/topics/abort_takeoff", headers=auth(bob)).json()["publish_count"] == 0
+
+
+def test_a_setpoint_flies_only_its_own_worlds_drone(client: TestClient, clock: ManualClock) -> None:
+    ada, bob = join(client, "Ada"), join(client, "Bob")
+    advance(client, clock, HOVER_S)  # both drones take off and hover at their home
+    home = drone(client, bob)
+    reply = client.post(
+        "/api/publish",
+        headers=auth(ada),
+        json={"topic": "/uav/input/position", "msg": TARGET, "type": VECTOR3},
+    )
+    assert reply.status_code == 200, reply.text
+    advance(client, clock, 4.0)
+    x, y, z = drone(client, ada)
+    assert x > 1.0 and y > 1.0 and z > home[2] + 1.0  # on its way to (5, 5, 10)
+    bx, by, bz = drone(client, bob)
+    assert abs(bx - home[0]) < 0.05 and abs(by - home[1]) < 0.05 and abs(bz - home[2]) < 0.05
+
+
+def test_a_flooding_student_is_limited_in_their_own_world_only(client: TestClient) -> None:
+    ada, bob = join(client, "Ada"), join(client, "Bob")
+    body = {"topic": "/abort_takeoff", "msg": {"data": False}}
+    codes = [client.post("/api/publish", headers=auth(ada), json=body).status_code for _ in range(BURST + 3)]
+    assert codes == [200] * BURST + [429] * 3  # the clock is still: no write comes back
+    assert client.post("/api/publish", headers=auth(bob), json=body).status_code == 200
+    assert client.get("/api/topics", headers=auth(ada)).status_code == 200  # reading is not limited
+
+
+# -- the instructor ------------------------------------------------------------------------------
+def test_the_instructor_sees_every_world_and_must_name_one_to_act_in_it(client: TestClient) -> None:
+    ada = join(client, "Ada")
+    join(client, "Bob")
+    teacher = classroom(client).instructor_token
+    listed = client.get("/api/classroom/worlds", headers=auth(teacher)).json()
+    assert listed["class_code"] == CODE and [w["world"] for w in listed["worlds"]] == ["ada", "bob"]
+    assert all(w["crashed_nodes"] == [] and w["keys_held"] == [] for w in listed["worlds"])
+    assert client.get("/api/classroom/worlds", headers=auth(ada)).status_code == 403
+    assert client.get("/api/topics", headers=auth(teacher)).status_code == 400
+    assert client.get("/api/topics", headers=auth(teacher, "bob")).status_code == 200
+    assert client.get("/api/topics", headers=auth(teacher, "nobody")).status_code == 404
+
+
+def test_resetting_one_world_leaves_the_other_as_it_was(client: TestClient, clock: ManualClock) -> None:
+    ada, bob = join(client, "Ada"), join(client, "Bob")
+    teacher = classroom(client).instructor_token
+    for token in (ada, bob):
+        started = client.post("/api/publishers", headers=auth(token),
+                              json={"topic": "/uav/input/position", "msg": TARGET, "type": VECTOR3, "rate_hz": 1.0})  # fmt: skip
+        assert started.status_code == 201, started.text
+    advance(client, clock, 3.0)
+    ada_before, bob_before = drone(client, ada), drone(client, bob)
+    assert bob_before[0] > 0.5  # both on their way
+    reply = client.post("/api/classroom/worlds/bob/reset", headers=auth(teacher))
+    assert reply.status_code == 200 and reply.json()["resets"] == 1
+    # Bob's world starts over (no publisher, the drone back home); Ada's keeps its publisher and flight.
+    assert client.get("/api/publishers", headers=auth(bob)).json() == []
+    assert len(client.get("/api/publishers", headers=auth(ada)).json()) == 1
+    assert drone(client, ada) == ada_before
+    advance(client, clock, 1.0)
+    assert drone(client, ada)[0] > ada_before[0]
+    assert abs(drone(client, bob)[0]) < 0.05
+
+
+def test_a_removed_students_token_stops_working(client: TestClient) -> None:
+    ada, bob = join(client, "Ada"), join(client, "Bob")
+    teacher = classroom(client).instructor_token
+    assert client.delete("/api/classroom/worlds/bob", headers=auth(teacher)).status_code == 200
+    assert client.get("/api/topics", headers=auth(bob)).status_code == 401
+    assert client.get("/api/topics", headers=auth(ada)).status_code == 200
+    assert client.delete("/api/classroom/worlds/bob", headers=auth(teacher)).status_code == 404
+    assert client.delete("/api/classroom/worlds/ada", headers=auth(ada)).status_code == 403
+
+
+def test_a_broadcast_reaches_every_world(client: TestClient) -> None:
+    ada, bob = join(client, "Ada"), join(client, "Bob")
+    teacher = classroom(client).instructor_token
+    reply = client.post("/api/classroom/broadcast", headers=auth(teacher),
+                        json={"topic": "/uav/input/position", "msg": TARGET, "type": VECTOR3})  # fmt: skip
+    assert reply.json() == {"reached": ["ada", "bob"], "refused": {}}
+    for token in (ada, bob):
+        assert client.get("/api/topics/uav/input/position", headers=auth(token)).json()["publish_count"] == 1
+    wrong = client.post("/api/classroom/broadcast", headers=auth(teacher),
+                        json={"topic": "/uav/input/position", "msg": {"data": 1}, "type": "std_msgs/msg/Int64"})  # fmt: skip
+    assert wrong.status_code == 422 and "no world took" in wrong.text
+
+
+# -- the pages -----------------------------------------------------------------------------------
+def test_the_page_is_the_join_form_until_the_browser_has_a_world(client: TestClient) -> None:
+    assert 'id="join"' in client.get("/").text
+    join(client, "Ada")
+    reply = client.post("/api/classroom/join", json={"name": "Bea", "code": CODE})
+    assert reply.status_code == 201
+    page = client.get("/")  # the cookie the join set
+    assert 'id="join"' not in page.text and "/static/keys.js" in page.text
+
+
+def test_the_instructors_link_sets_the_cookie_and_leaves_the_address_bar(client: TestClient) -> None:
+    teacher = classroom(client).instructor_token
+    assert client.get("/instructor").status_code == 401
+    assert client.get("/instructor", params={"token": "junk"}).status_code == 403
+    reply = client.get("/instructor", params={"token": teacher}, follow_redirects=False)
+    assert reply.status_code == 303 and reply.headers["location"] == "/instructor"
+    assert "httponly" in reply.headers["set-cookie"].lower()
+    page = client.get("/instructor")
+    assert page.status_code == 200 and "/static/instructor.js" in page.text
+
+
+def test_a_single_lab_app_has_no_classroom() -> None:
+    settings = Settings(launch="rocket", viewer=False, allowed_hosts=("testserver",))
+    with TestClient(create_app(settings)) as single:
+        assert single.post("/api/classroom/join", json={"name": "Ada", "code": CODE}).status_code == 404
+        assert single.get("/instructor").status_code == 404
+        assert single.get("/api/topics").status_code == 200  # no token needed on one's own machine
