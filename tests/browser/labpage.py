@@ -100,10 +100,12 @@ def lab_page(chromium: Browser, viewport: dict[str, int] | None = None) -> Itera
     assert errors == [], f"uncaught errors in the page: {errors}"
 
 
-def open_lab_page(page: Page, server: LabServer, close_notices: bool = True) -> None:
-    """Load the lab page; wait for viser, the key channel, the page's camera view and a steady frame
-    rate; close viser's notifications unless told not to."""
-    page.goto(server.url + "/")
+def open_lab_page(page: Page, server: LabServer | None, close_notices: bool = True) -> None:
+    """Load the lab page (``server`` None: the page is loading already, e.g. after a class
+    server's join form); wait for viser, the key channel, the page's camera view and a steady
+    frame rate; close viser's notifications unless told not to."""
+    if server is not None:
+        page.goto(server.url + "/")
     page.wait_for_function("() => document.body.innerText.includes('Connected')")
     page.wait_for_function("() => window.__teleopKeys !== undefined && window.__teleopKeys.connected")
     page.wait_for_function("() => window.__teleopScene !== undefined && window.__teleopScene.ready")

@@ -1,0 +1,119 @@
+"""A class server (``--classroom``) in a real headless Chromium: two students, two browser
+contexts, each joined through the page's form. Each student's keys fly only their own drone and
+abort only their own rocket; the other world is checked through the REST API with its token."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Iterator
+from typing import Any
+
+import httpx
+import pytest
+from labpage import lab_page, open_lab_page, wait_until
+from labserver import LabServer
+from playwright.sync_api import Browser, Page
+
+pytestmark = pytest.mark.browser
+
+CODE = "TEST42"
+HOME_M = (0.0, 0.0, 3.0)  # the drone keyboard manager's start setpoint
+HOME_WAIT_S = 25.0
+HOLD_S = 1.0
+MOVED_M = 0.5  # a 1 s hold at 2 m/s moves about 2 m; far more than hover jitter
+STILL_M = 0.15
+
+
+@pytest.fixture(scope="module")
+def class_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LabServer]:
+    """A class server with the whole lab per world: the drone in hold mode, the rocket waiting."""
+    server = LabServer(
+        ["--classroom", "--class-code", CODE, "--launch", "all", "keyboard_mode:=hold", "start_delay:=3600"],
+        tmp_path_factory.mktemp("classroom") / "server.log",
+    )
+    try:
+        server.wait_ready()
+        yield server
+    finally:
+        server.stop()
+
+
+class Student:
+    """One student's browser context, page and token (read from the page's HTTP-only cookie)."""
+
+    def __init__(self, page: Page, server: LabServer, name: str) -> None:
+        self.page, self.server = page, server
+        page.goto(server.url + "/")
+        page.fill("#name", name)
+        page.fill("#code", CODE)
+        with page.expect_navigation():  # the form reloads the page once the world is up
+            page.click("#go")
+        page.wait_for_load_state("domcontentloaded")
+        open_lab_page(page, None)  # the form reloaded the page into the student's own world
+        cookies = {c["name"]: c["value"] for c in page.context.cookies()}
+        self.token = cookies["lab_token"]
+        self.world = httpx.get(f"{server.url}/api/classroom/me", headers=self.auth, timeout=5.0).json()[
+            "world"
+        ]
+
+    @property
+    def auth(self) -> dict[str, str]:
+        return {"Authorization": f"Bearer {self.token}"}
+
+    def topic(self, name: str) -> dict[str, Any]:
+        reply = httpx.get(f"{self.server.url}/api/topics/{name.lstrip('/')}", headers=self.auth, timeout=5.0)
+        reply.raise_for_status()
+        return reply.json()
+
+    def position(self) -> tuple[float, float, float]:
+        p = self.topic("/uav/sensors/gps")["latest"]["pose"]["position"]
+        return p["x"], p["y"], p["z"]
+
+    def aborted(self) -> bool:
+        return bool((self.topic("/abort_takeoff")["latest"] or {}).get("data"))
+
+
+@pytest.fixture(scope="module")
+def students(chromium: Browser, class_server: LabServer) -> Iterator[tuple[Student, Student]]:
+    with lab_page(chromium) as ada_page, lab_page(chromium) as bob_page:
+        ada, bob = Student(ada_page, class_server, "Ada"), Student(bob_page, class_server, "Bob")
+        for s in (ada, bob):
+            wait_until(
+                lambda s=s: math.dist(s.position(), HOME_M) < STILL_M,
+                f"{s.world}'s drone at home",
+                HOME_WAIT_S,
+            )
+        yield ada, bob
+
+
+def test_two_students_have_two_worlds(students: tuple[Student, Student]) -> None:
+    ada, bob = students
+    assert (ada.world, bob.world) == ("ada", "bob")
+    other = httpx.get(f"{ada.server.url}/api/topics", headers={**ada.auth, "X-Lab-World": "bob"}, timeout=5.0)
+    assert other.status_code == 403
+
+
+def test_arrow_keys_fly_only_the_students_own_drone(students: tuple[Student, Student]) -> None:
+    ada, bob = students
+    ada_before, bob_before = ada.position(), bob.position()
+    bob.page.keyboard.down("ArrowRight")
+    time.sleep(HOLD_S)  # the hold itself
+    bob.page.keyboard.up("ArrowRight")
+    wait_until(lambda: bob.position()[0] - bob_before[0] > MOVED_M, "bob's drone to move right")
+    assert math.dist(ada.position(), ada_before) < STILL_M  # Ada's drone did not take Bob's key
+    ada.page.keyboard.down("ArrowLeft")
+    time.sleep(HOLD_S)
+    ada.page.keyboard.up("ArrowLeft")
+    wait_until(lambda: ada_before[0] - ada.position()[0] > MOVED_M, "ada's drone to move left")
+    assert bob.position()[0] - bob_before[0] > MOVED_M  # Bob's is still to the right, not back left
+
+
+def test_a_aborts_only_the_students_own_rocket(students: tuple[Student, Student]) -> None:
+    ada, bob = students
+    assert not ada.aborted() and not bob.aborted()
+    ada.page.keyboard.press("a")
+    wait_until(ada.aborted, "ada's /abort_takeoff true")
+    assert ada.topic("/keydown")["publish_count"] >= 1
+    assert not bob.aborted()
+    assert all(k["latest"] is None or k["latest"]["code"] != 97 for k in [bob.topic("/keydown")])
