@@ -1,7 +1,8 @@
 # The same app in a container. Inside, it listens on 0.0.0.0 so the published port reaches it;
 # docker-compose.yml publishes its ports (HTTP 8000, Zenoh 7447, Foxglove 8765) on the host's
 # loopback only. Host and Origin checks
-# stay on: open the page at http://127.0.0.1:8000/ or http://localhost:8000/.
+# stay on, and listening beyond loopback needs a token: open the link the log prints
+# (http://127.0.0.1:8000/?token=...).
 FROM python:3.11-slim
 ENV PYTHONDONTWRITEBYTECODE=1 PYTHONUNBUFFERED=1 PIP_DISABLE_PIP_VERSION_CHECK=1
 WORKDIR /app
@@ -16,4 +17,4 @@ USER lab
 EXPOSE 8000 7447 8765
 HEALTHCHECK --interval=10s --timeout=3s --start-period=10s \
   CMD python -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:8000/api/health')"
-CMD ["python", "-m", "server", "--host", "0.0.0.0", "--port", "8000", "--zenoh-listen", "tcp/0.0.0.0:7447"]
+CMD ["python", "-m", "server", "--host", "0.0.0.0", "--port", "8000", "--zenoh-listen", "tcp/0.0.0.0:7447", "--token", "auto"]

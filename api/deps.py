@@ -7,6 +7,7 @@ token is 401, another student's world 403; a student's writes are rate-limited p
 
 from __future__ import annotations
 
+import hmac
 from typing import Annotated, cast
 
 from fastapi import Depends, HTTPException, Request, WebSocket, WebSocketException
@@ -27,11 +28,19 @@ def classroom_of(conn: HTTPConnection) -> Classroom | None:
 
 
 def token_of(conn: HTTPConnection) -> str | None:
-    """A bearer token (REST, WebSockets, the CLI) or the page's HTTP-only cookie."""
+    """A bearer token (REST, WebSockets, the CLI), the page's HTTP-only cookie, or for a WebSocket
+    ``?token=`` (clients such as Foxglove's cannot add a header)."""
     auth = conn.headers.get("authorization", "")
     if auth[:7].lower() == "bearer ":
         return auth[7:].strip()
-    return conn.cookies.get(TOKEN_COOKIE)
+    cookie = conn.cookies.get(TOKEN_COOKIE)
+    if cookie is None and conn.scope["type"] == "websocket":
+        return conn.query_params.get("token")
+    return cookie
+
+
+def token_matches(given: str | None, expected: str) -> bool:
+    return given is not None and hmac.compare_digest(given.encode(), expected.encode())
 
 
 def grant_of(conn: HTTPConnection, classroom: Classroom) -> Grant:
@@ -47,7 +56,11 @@ def lab_of(conn: HTTPConnection) -> Lab:
     """The lab this call acts on; ClassroomError says why a class server refuses it."""
     classroom = classroom_of(conn)
     if classroom is None:
-        return cast(Lab, conn.app.state.lab)
+        lab = cast(Lab, conn.app.state.lab)
+        if lab.settings.token is not None and not token_matches(token_of(conn), lab.settings.token):
+            raise ClassroomError(401, "this lab needs its token: open the link the server printed "
+                                      "(/?token=...), or send Authorization: Bearer")  # fmt: skip
+        return lab
     grant = grant_of(conn, classroom)
     asked = conn.headers.get(WORLD_HEADER) or conn.query_params.get("world")
     world = classroom.world_for(grant, asked)

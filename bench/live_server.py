@@ -48,10 +48,10 @@ class FrameReader:
     """A WebSocket read on a thread of its own: every frame with when it came here, as
     (CLOCK_REALTIME ns, CLOCK_MONOTONIC ns, frame decoded from JSON)."""
 
-    def __init__(self, url: str) -> None:
+    def __init__(self, url: str, headers: dict[str, str] | None = None) -> None:
         from websockets.sync.client import connect
 
-        self.ws = connect(url, max_size=None)
+        self.ws = connect(url, max_size=None, additional_headers=headers)
         self._frames: list[tuple[int, int, Any]] = []
         self._lock = threading.Lock()
         self.last_monotonic_ns = time.monotonic_ns()

@@ -7,12 +7,13 @@ import argparse
 import contextlib
 import dataclasses
 import logging
+import secrets
 import sys
 from pathlib import Path
 from typing import Any
 
 from server import cli
-from server.settings import Settings
+from server.settings import LOOPBACK_HOSTS, Settings
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env, is_loopback
 
 
@@ -98,6 +99,11 @@ def build_parser() -> argparse.ArgumentParser:
     )  # fmt: skip
     classroom.add_argument("--class-code", help="the code students type to join (default: a new random one)")
     classroom.add_argument("--max-worlds", type=int, default=60, help="worlds at most (default 60)")
+    classroom.add_argument(
+        "--token", metavar="TOKEN|auto",
+        help="one lab behind a token: every page, call and bridge port needs it (auto: a new random one, "
+             "printed once in the page's link). Needed to listen beyond loopback without --classroom.",
+    )  # fmt: skip
     return parser
 
 
@@ -142,6 +148,16 @@ def banner(host: str, port: int, launch: str) -> str:
     )
 
 
+def lab_token(arg: str | None) -> str | None:
+    if arg is None:
+        return None
+    return secrets.token_urlsafe(24) if arg == "auto" else arg
+
+
+def is_loopback_host(host: str) -> bool:
+    return host in LOOPBACK_HOSTS or host.startswith("127.")
+
+
 def classroom_banner(host: str, port: int, classroom: Any) -> str:
     """The class code for the projector, and the instructor's link (its token, printed once)."""
     shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
@@ -168,8 +184,13 @@ def main(argv: list[str] | None = None) -> int:
         zenoh=zenoh, node_processes=args.node_processes,
         foxglove_port=None if args.no_foxglove else args.foxglove_port, rosbridge_port=args.rosbridge_port,
         bag_dir=Path(args.bag_dir), classroom=args.classroom, class_code=args.class_code,
-        max_worlds=args.max_worlds,
+        max_worlds=args.max_worlds, token=lab_token(args.token),
     )  # fmt: skip
+    if not is_loopback_host(args.host) and not (args.classroom or settings.token):
+        print(f"error: refusing to listen on {args.host} with no login: anyone who reaches this machine could "
+              "fly the drone. Add --token auto (one lab behind a token) or --classroom (a world per student).",
+              file=sys.stderr)  # fmt: skip
+        return 2
     if args.classroom:  # worlds are in-process graphs; the class server opens no Zenoh or bridge port
         settings = dataclasses.replace(settings, zenoh=None, foxglove_port=None, rosbridge_port=None)
         zenoh = None
@@ -183,6 +204,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: {error}", file=sys.stderr)
         return 2
     print(banner(args.host, args.port, args.launch), flush=True)
+    if settings.token is not None and not args.classroom:
+        shown = "127.0.0.1" if args.host in ("0.0.0.0", "::") else args.host
+        print(f"This lab needs its token: open http://{shown}:{args.port}/?token={settings.token} "
+              "(bridges: ?token= or Authorization: Bearer)", flush=True)  # fmt: skip
     import rich
     import uvicorn
 

@@ -55,6 +55,7 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         default_response_class=SafeJSONResponse,
     )
     app.state.classroom = classroom
+    app.state.settings = settings
     app.include_router(build_router())
     app.include_router(page_router)
     app.include_router(tools_router)

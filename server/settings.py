@@ -43,6 +43,9 @@ class Settings:
     # rosbridge on a port of its own too, as rosbridge_server's 9090; None: only at /rosbridge.
     rosbridge_port: int | None = None
 
+    # One lab behind a token (``--token``): every call, page and bridge port needs it. Required
+    # (with --classroom the other way) when the app listens beyond loopback.
+    token: str | None = None
     # -- a class on one server (issue 13) --
     classroom: bool = False  # a world per student, behind signed tokens; the instructor sees all
     class_code: str | None = None  # what students type to join; None: a new random one

@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import hmac
 import logging
 from collections.abc import Iterable
+from urllib.parse import parse_qs, urlsplit
 
 from api.security import host_allowed, origin_allowed
 
@@ -52,7 +54,11 @@ def parse_head(head: bytes) -> tuple[str, dict[str, str]]:
 
 
 def check_handshake(
-    request_line: str, headers: dict[str, str], accepted_hosts: Iterable[str], allowed_origins: Iterable[str]
+    request_line: str,
+    headers: dict[str, str],
+    accepted_hosts: Iterable[str],
+    allowed_origins: Iterable[str],
+    token: str | None = None,
 ) -> None:
     """The app's rules for a WebSocket handshake; HandshakeRefused says which one failed."""
     parts = request_line.split(" ")
@@ -65,6 +71,16 @@ def check_handshake(
         raise HandshakeRefused(421, f"host {host!r} is not a name of this server")
     if not origin_allowed(headers.get("origin"), host, allowed_origins):
         raise HandshakeRefused(403, "cross-site origin refused")
+    if token is not None and not _carries_token(parts[1], headers, token):
+        raise HandshakeRefused(401, "this lab needs its token: ?token=... or Authorization: Bearer")
+
+
+def _carries_token(target: str, headers: dict[str, str], token: str) -> bool:
+    auth = headers.get("authorization", "")
+    given = auth[7:].strip() if auth[:7].lower() == "bearer " else None
+    if given is None:
+        given = next(iter(parse_qs(urlsplit(target).query).get("token", [])), None)
+    return given is not None and hmac.compare_digest(given.encode(), token.encode())
 
 
 class GuardedFront:
@@ -78,6 +94,7 @@ class GuardedFront:
         accepted_hosts: Iterable[str],
         allowed_origins: Iterable[str],
         upstream_path: str | None = None,
+        token: str | None = None,
     ) -> None:
         """``upstream_path``: the path every handshake is sent to upstream (rosbridge's port
         serves at ``/``, the app at ``/rosbridge``); None keeps the client's."""
@@ -87,6 +104,7 @@ class GuardedFront:
         self.upstream_port = upstream_port
         self.accepted_hosts = frozenset(accepted_hosts)
         self.allowed_origins = frozenset(allowed_origins)
+        self.token = token
         self.refused = 0
         self._server: asyncio.Server | None = None
         self._tasks: set[asyncio.Task[None]] = set()
@@ -130,7 +148,7 @@ class GuardedFront:
             if len(head) > MAX_HEAD_BYTES:
                 raise HandshakeRefused(431, "request head too large")
             request_line, headers = parse_head(head[:-4])
-            check_handshake(request_line, headers, self.accepted_hosts, self.allowed_origins)
+            check_handshake(request_line, headers, self.accepted_hosts, self.allowed_origins, self.token)
         except HandshakeRefused as exc:
             self.refused += 1
             await _refuse(writer, exc)
@@ -151,8 +169,10 @@ class GuardedFront:
     def _upstream_head(self, head: bytes, request_line: str) -> bytes:
         if self.upstream_path is None:
             return head
-        method, _, version = request_line.split(" ")
-        return f"{method} {self.upstream_path} {version}".encode("latin-1") + head[len(request_line) :]
+        method, target, version = request_line.split(" ")
+        query = urlsplit(target).query  # a ?token= goes on to the app, which checks it too
+        path = f"{self.upstream_path}?{query}" if query else self.upstream_path
+        return f"{method} {path} {version}".encode("latin-1") + head[len(request_line) :]
 
 
 async def _refuse(writer: asyncio.StreamWriter, exc: HandshakeRefused) -> None:

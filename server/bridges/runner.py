@@ -48,7 +48,7 @@ async def run_bridges(lab: Lab) -> AsyncIterator[Bridges]:
             foxglove = FoxgloveBridge(lab.bus, asyncio.get_running_loop())
             front = GuardedFront(
                 settings.host, settings.foxglove_port, foxglove.port,
-                settings.accepted_hosts, settings.allowed_origins,
+                settings.accepted_hosts, settings.allowed_origins, token=settings.token,
             )  # fmt: skip
             try:
                 await front.start()
@@ -69,6 +69,7 @@ async def run_bridges(lab: Lab) -> AsyncIterator[Bridges]:
                 front = GuardedFront(
                     settings.host, settings.rosbridge_port, settings.port,
                     settings.accepted_hosts, settings.allowed_origins, upstream_path="/rosbridge",
+                    token=settings.token,
                 )  # fmt: skip
                 await front.start()
                 bridges.rosbridge_front = front

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any, Self
@@ -19,6 +20,9 @@ TIMEOUT_S = 10.0
 CLOSE_UNKNOWN_TOPIC = 4404
 # What FastAPI answers for a path no route serves: an older server than this CLI.
 NO_ROUTE_DETAIL = "Not Found"
+
+
+TOKEN_ENV = "ROS2LAB_TOKEN"
 
 
 class CliError(Exception):
@@ -79,7 +83,12 @@ class LabClient:
 
     def __init__(self, base_url: str, transport: httpx.BaseTransport | None = None) -> None:
         self.base_url = base_url.rstrip("/")
-        self._http = httpx.Client(base_url=self.base_url, timeout=TIMEOUT_S, transport=transport)
+        # A lab behind --token, or a student's world on a class server: ROS2LAB_TOKEN carries it.
+        token = os.environ.get(TOKEN_ENV)
+        self._headers = {"Authorization": f"Bearer {token}"} if token else {}
+        self._http = httpx.Client(
+            base_url=self.base_url, timeout=TIMEOUT_S, transport=transport, headers=self._headers
+        )
 
     def __enter__(self) -> Self:
         return self
@@ -138,7 +147,7 @@ class LabClient:
         """Frames ``{topic, type, msg, received}`` of ``WS /ws/topics/{topic}``, as they come."""
         url = self.ws_url("/ws/topics/" + topic.lstrip("/"), params)
         try:
-            with connect(url, open_timeout=TIMEOUT_S, max_size=None) as ws:
+            with connect(url, open_timeout=TIMEOUT_S, max_size=None, additional_headers=self._headers) as ws:
                 for frame in ws:
                     yield json.loads(frame)
         except ConnectionClosed as exc:

@@ -17,7 +17,7 @@ from starlette.requests import HTTPConnection
 from websockets.asyncio.client import ClientConnection
 
 from api.classroom import set_token_cookie
-from api.deps import classroom_of, lab_of, token_of
+from api.deps import classroom_of, lab_of, token_matches, token_of
 from server.classroom import ClassroomError
 
 from .views import ViewRegistry
@@ -62,6 +62,17 @@ async def index(request: Request) -> Response:
             return FileResponse(STATIC / "join.html", headers={"Cache-Control": "no-cache"})
         if grant.is_instructor:
             return RedirectResponse("/instructor", status.HTTP_303_SEE_OTHER)
+    elif (lab_token := request.app.state.settings.token) is not None:  # one lab behind --token
+        asked = request.query_params.get("token")
+        if asked is not None:  # the printed link: keep the token in a cookie, not the address bar
+            if not token_matches(asked, lab_token):
+                return Response("that link's token is not this lab's", status.HTTP_403_FORBIDDEN)
+            response = RedirectResponse("/", status.HTTP_303_SEE_OTHER)
+            set_token_cookie(response, asked)
+            return response
+        if not token_matches(token_of(request), lab_token):
+            return Response("this lab needs its token: open the link the server printed (/?token=...)",
+                            status.HTTP_401_UNAUTHORIZED)  # fmt: skip
     return HTMLResponse(index_html(), headers={"Cache-Control": "no-cache", **ISOLATED})
 
 
