@@ -9,7 +9,7 @@ from sim.control.cascade import (
     VelocityController,
     VelocityGains,
 )
-from sim.control.closed_loop import CascadeGains, ClosedLoop
+from sim.control.closed_loop import Cascade, CascadeGains, ClosedLoop
 from sim.control.lab_position import LAB_PID_DT_S, LabPositionController
 from sim.control.pid import PID
 from sim.control.simple_loop import SimpleModeLoop
@@ -20,6 +20,7 @@ __all__ = [
     "AngleController",
     "AngleGains",
     "AttitudeThrustSetpoint",
+    "Cascade",
     "CascadeGains",
     "ClosedLoop",
     "LabPositionController",

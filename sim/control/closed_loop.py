@@ -1,8 +1,9 @@
-"""Runs one QuadrotorSim under the controller cascade, all controllers at one fixed rate.
+"""The controller cascade of one drone at one fixed rate, and ClosedLoop: one QuadrotorSim under it.
 
 Each control tick samples the true state (no estimator), runs position (unless a velocity
 setpoint was given directly) -> velocity -> angle, and holds the resulting rateThrust
-command for the whole tick while the physics steps at its own rate.
+command for the whole tick while the physics steps at its own rate. Cascade alone drives a
+drone of a QuadrotorBatch the same way: command(drone.state) each tick, then step the batch.
 """
 
 from __future__ import annotations
@@ -17,8 +18,9 @@ from sim.control.cascade import (
     VelocityController,
     VelocityGains,
 )
+from sim.quadrotor.params import QuadrotorParams
 from sim.quadrotor.sim import QuadrotorSim
-from sim.quadrotor.state import QuadrotorState, as_finite_floats
+from sim.quadrotor.state import QuadrotorState, RateThrustCommand, as_finite_floats
 from sim.types import FloatsLike
 
 
@@ -31,17 +33,18 @@ class CascadeGains:
     angle: AngleGains = field(default_factory=AngleGains)
 
 
-class ClosedLoop:
-    """The sim plus the cascade. Call set_position_setpoint or set_velocity_setpoint, then run()."""
+class Cascade:
+    """Position -> velocity -> angle for one drone: set a setpoint, then command(state) once per control tick."""
 
-    def __init__(self, sim: QuadrotorSim, gains: CascadeGains | None = None, control_rate_hz: float = 50.0):
-        if not control_rate_hz > 0 or control_rate_hz > sim.physics_rate_hz:
-            raise ValueError(f"control_rate_hz must be in (0, {sim.physics_rate_hz}], got {control_rate_hz}")
+    def __init__(
+        self, params: QuadrotorParams, gains: CascadeGains | None = None, control_rate_hz: float = 50.0
+    ):
+        if not control_rate_hz > 0:
+            raise ValueError(f"control_rate_hz must be > 0, got {control_rate_hz}")
         gains = gains if gains is not None else CascadeGains()
-        self.sim = sim
         self.control_dt_s = 1.0 / control_rate_hz
         self.position = PositionController(gains.position)
-        p = sim.params
+        p = params
         self.velocity = VelocityController(p.mass_kg, p.gravity_m_s2, gains.velocity, p.drag_coeff_n_per_m_s2)
         self.angle = AngleController(gains.angle)
         self._velocity_mode = False
@@ -59,15 +62,37 @@ class ClosedLoop:
         self.velocity.set_setpoint(velocity_m_s, yaw_rad)
         self._velocity_mode = True
 
-    def tick(self) -> QuadrotorState:
-        """One control period: sample, control, advance the physics. Returns the sampled state."""
-        state = self.sim.state
+    def command(self, state: QuadrotorState) -> RateThrustCommand:
+        """The rateThrust command to hold for the next control period, from the sampled state."""
         dt = self.control_dt_s
         if not self._velocity_mode:
             self.velocity.set_setpoint(self.position.update(state.position_m, dt), self._yaw_rad)
         self.angle.set_setpoint(self.velocity.update(state.velocity_m_s, state.euler_sxyz_rad, dt))
-        self.sim.set_command(self.angle.update(state.euler_sxyz_rad, dt))
-        self.sim.advance(dt)
+        return self.angle.update(state.euler_sxyz_rad, dt)
+
+
+class ClosedLoop:
+    """The sim plus the cascade. Call set_position_setpoint or set_velocity_setpoint, then run()."""
+
+    def __init__(self, sim: QuadrotorSim, gains: CascadeGains | None = None, control_rate_hz: float = 50.0):
+        if not control_rate_hz > 0 or control_rate_hz > sim.physics_rate_hz:
+            raise ValueError(f"control_rate_hz must be in (0, {sim.physics_rate_hz}], got {control_rate_hz}")
+        self.sim = sim
+        self.cascade = Cascade(sim.params, gains, control_rate_hz)
+        self.control_dt_s = self.cascade.control_dt_s
+        self.position, self.velocity, self.angle = (
+            self.cascade.position,
+            self.cascade.velocity,
+            self.cascade.angle,
+        )
+        self.set_position_setpoint = self.cascade.set_position_setpoint
+        self.set_velocity_setpoint = self.cascade.set_velocity_setpoint
+
+    def tick(self) -> QuadrotorState:
+        """One control period: sample, control, advance the physics. Returns the sampled state."""
+        state = self.sim.state
+        self.sim.set_command(self.cascade.command(state))
+        self.sim.advance(self.control_dt_s)
         return state
 
     def run(self, duration_s: float) -> list[QuadrotorState]:

@@ -3,15 +3,33 @@
 A projection model rather than a contact force: penetration is removed, downward
 velocity is killed (a plastic landing), Coulomb friction slows horizontal motion by
 the normal force, and a drone that thrust cannot lift settles level on its legs.
+QuadrotorSim applies it to its state (apply); QuadrotorBatch to its drones in contact, either
+one at a time through apply or, for many, through apply_columns, which does apply's operations
+in apply's order on numpy columns and calls math's functions per drone where apply calls them.
+So a drone touches down, slides and settles bit for bit the same alone or in a batch.
 """
 
 from __future__ import annotations
 
 import math
 
-from sim.quadrotor.dynamics import Vector
+import numpy as np
+import numpy.typing as npt
+
+from sim.quadrotor.dynamics import QUAT, RATES, ROTORS, VEL, Vector
 from sim.quadrotor.params import QuadrotorParams
 from sim.quadrotor.rotation import quat_yaw
+from sim.types import FloatArray
+
+BoolArray = npt.NDArray[np.bool_]
+_VX, _VY, _VZ, _WX, _WY, _WZ, _PZ = (
+    VEL.start,
+    VEL.start + 1,
+    VEL.start + 2,
+    *range(RATES.start, RATES.stop),
+    8,
+)
+_QW, _QX, _QY, _QZ = range(QUAT.start, QUAT.stop)
 
 
 class GroundContact:
@@ -66,3 +84,62 @@ class GroundContact:
         keep = 1.0 - k
         # Roll and pitch rates stop against the legs; yaw spin decays with the same constant.
         s[10], s[11], s[12] = 0.0, 0.0, s[12] * keep
+
+    def apply_columns(self, s: FloatArray) -> BoolArray:
+        """apply for every column of s, a block of a batch state (rows as in sim.quadrotor.dynamics)
+        whose drones all touch the ground (z <= 0), in place; returns which of them rest."""
+        s[_PZ] = 0.0
+        vz = s[_VZ]
+        vz[vz < 0.0] = 0.0  # max(vz, 0.0), keeping -0.0 as max does
+        r = s[ROTORS]
+        qx, qy = s[_QX], s[_QY]
+        body_z_up = 1.0 - 2.0 * (qx * qx + qy * qy)
+        lift = self._thrust_per_mass * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]) * body_z_up
+        normal_acc = self._g - lift
+        resting: BoolArray = ~(normal_acc <= 0.0)
+        if resting.all():
+            self._rest_columns(s, normal_acc)
+        elif resting.any():
+            rest = s[:, resting]
+            self._rest_columns(rest, normal_acc[resting])
+            s[:, resting] = rest
+        return resting
+
+    def _rest_columns(self, s: FloatArray, normal_acc: FloatArray) -> None:
+        """The resting part of apply, _friction and _settle_level, column by column: math's hypot,
+        atan2, cos and sin per drone, the rest as numpy passes in apply's order."""
+        s[_VZ] = 0.0
+        vx, vy = s[_VX], s[_VY]
+        q = s[QUAT]
+        qw, qx, qy, qz = q
+        speed = np.array(list(map(math.hypot, vx.tolist(), vy.tolist())))
+        yaw_y, yaw_x = 2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz)  # quat_yaw's atan2
+        half_yaw = (0.5 * np.array(list(map(math.atan2, yaw_y.tolist(), yaw_x.tolist())))).tolist()
+        lw, lz = np.array(list(map(math.cos, half_yaw))), np.array(list(map(math.sin, half_yaw)))
+        slow_by = self._friction_dv * normal_acc
+        stop = speed <= slow_by
+        if stop.all():
+            vx[:] = 0.0
+            vy[:] = 0.0
+        else:
+            slide = ~stop
+            scale = 1.0 - slow_by[slide] / speed[slide]
+            vx[slide] *= scale
+            vy[slide] *= scale
+            vx[stop] = 0.0
+            vy[stop] = 0.0
+        flip = qw * lw + qz * lz < 0.0
+        if flip.any():
+            lw[flip] = -lw[flip]
+            lz[flip] = -lz[flip]
+        # q + k (level - q) with level = (lw, 0, 0, lz): for x and y that is exactly x - k x.
+        level = np.zeros_like(q)
+        level[0], level[3] = lw, lz
+        level -= q
+        level *= self._settle
+        q += level
+        squares = q * q
+        q *= 1.0 / np.sqrt(squares[0] + squares[1] + squares[2] + squares[3])
+        s[_WX] = 0.0
+        s[_WY] = 0.0
+        s[_WZ] *= 1.0 - self._settle

@@ -4,6 +4,9 @@ Reproduced as the lab runs it: no gravity, no ground, explicit Euler, velocity t
 within one tick except for a 5 m/s per-tick cap on each axis, and a decorative wobble
 whose phase noise has sigma = phase/10 (the lab's bug; wobble_noise="fixed" uses
 sigma = wobble_tilt/10 as a later student fork does).
+
+SimpleSim is one drone in plain floats; SimpleSimBatch (sim.quadrotor.simple_batch) ticks many
+together, each bit for bit as a SimpleSim with the same seed and commands.
 """
 
 from __future__ import annotations
@@ -14,6 +17,7 @@ from typing import Literal
 
 import numpy as np
 
+from sim.quadrotor.fixed_step import FixedStepClock
 from sim.quadrotor.rotation import euler_sxyz_to_quat
 from sim.quadrotor.state import as_finite_floats
 from sim.types import FloatsLike
@@ -90,7 +94,7 @@ class SimpleSim:
         self._wobble = 0.0
         self._att = (1.0, 0.0, 0.0, 0.0)
         self._ticks = 0
-        self._remainder_s = 0.0
+        self._clock = FixedStepClock(self.params.rate_hz)
         self.gps = GpsReading(0.0, (0.0, 0.0, 0.0), self._att)
         """The latest GPS reading; before the first tick, the noise-free origin."""
 
@@ -110,12 +114,7 @@ class SimpleSim:
 
     def advance(self, duration_s: float) -> list[GpsReading]:
         """Tick for duration_s, carrying the remainder; returns the GPS readings produced."""
-        if not (math.isfinite(duration_s) and duration_s >= 0.0):
-            raise ValueError(f"duration_s must be finite and >= 0, got {duration_s}")
-        total = self._remainder_s + duration_s
-        n = math.floor(total * self.params.rate_hz + 1e-6)
-        self._remainder_s = max(0.0, total - n * self.dt_s)
-        return [self.tick() for _ in range(n)]
+        return [self.tick() for _ in range(self._clock.steps_for(duration_s))]
 
     def tick(self) -> GpsReading:
         """One 1/rate_hz step of the lab's timer callback; returns the published GPS reading."""
