@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from server.bus import Clock, SystemClock
+from server.devices.shared_physics import SharedQuadrotorPhysics
 from server.lab import Lab
 from server.settings import Settings
 
@@ -126,6 +127,7 @@ class Classroom:
         self.signer = signer or TokenSigner()
         self.instructor_token, self.instructor = self.signer.issue("instructor", None, "instructor")
         self.worlds: dict[str, World] = {}
+        self.physics = SharedQuadrotorPhysics(clock or SystemClock())
         self._revoked: set[str] = set()
         self._starting: set[str] = set()
 
@@ -173,6 +175,7 @@ class Classroom:
 
     async def _start_lab(self, name: str) -> Lab:
         lab = Lab(self._world_settings(name), self.clock)
+        lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         await lab.start()
         return lab
 

@@ -13,8 +13,9 @@ from __future__ import annotations
 import numpy as np
 
 from server.bus import Node
+from server.devices.shared_physics import SharedQuadrotorPhysics
 from server.msgs import PoseStamped, TFMessage, TransformStamped, TwistStamped, Vector3
-from sim.quadrotor import QuadrotorSim, QuadrotorState, RateThrustCommand
+from sim.quadrotor import Drone, QuadrotorSim, QuadrotorState, RateThrustCommand
 
 BODY_FRAME = "uav/imu"  # FlightGoggles' name for the body frame
 MAX_CATCH_UP_S = 0.1  # after a stall, the sim skips ahead rather than running a burst of steps
@@ -29,7 +30,16 @@ class UavDynamicsNode(Node):
         seed = int(self.declare_parameter("seed", 0).value)
         if not 10.0 <= rate_hz <= 1000.0:
             raise ValueError(f"publish_rate_hz must be in 10..1000, got {rate_hz}")
-        self.sim = QuadrotorSim(rng=np.random.default_rng(seed), noise=noise, physics_rate_hz=physics_hz)
+        # On a class server every world's drone steps in one shared batch (server/devices/
+        # shared_physics.py); alone, the drone has a QuadrotorSim of its own. Same model either way.
+        self.shared: SharedQuadrotorPhysics | None = self.bus.devices.get("quadrotor_physics")
+        if self.shared is not None and self.shared.physics_rate_hz != physics_hz:
+            self.shared = None  # another physics rate than the class's: this world steps its own
+        self.sim: QuadrotorSim | Drone = (
+            self.shared.add(seed, noise)
+            if self.shared is not None
+            else QuadrotorSim(rng=np.random.default_rng(seed), noise=noise, physics_rate_hz=physics_hz)
+        )
         self.gps_pub = self.create_publisher(PoseStamped, "/uav/sensors/gps", 10)
         self.vel_pub = self.create_publisher(TwistStamped, "/uav/sensors/velocity", 10)
         self.att_pub = self.create_publisher(Vector3, "/uav/sensors/attitude", 10)
@@ -41,6 +51,10 @@ class UavDynamicsNode(Node):
 
     def on_command(self, msg: TwistStamped) -> None:
         a = msg.twist.angular
+        if self.shared is not None:
+            # The steps up to now were flown on the old command whichever world's tick runs them:
+            # a drone's flight then does not depend on the other worlds' timers.
+            self.shared.advance_to(self.bus.clock.now())
         try:
             self.sim.set_command(RateThrustCommand((a.x, a.y, a.z), msg.twist.linear.z))
         except ValueError as exc:
@@ -48,9 +62,17 @@ class UavDynamicsNode(Node):
 
     def tick(self) -> None:
         now = self.bus.clock.now()
-        self.sim.advance(min(max(now - self._last_s, 0.0), MAX_CATCH_UP_S))
+        if self.shared is not None:
+            self.shared.advance_to(now)
+        elif isinstance(self.sim, QuadrotorSim):
+            self.sim.advance(min(max(now - self._last_s, 0.0), MAX_CATCH_UP_S))
         self._last_s = now
         self.publish_state(self.sim.state)
+
+    def destroy_node(self) -> bool:
+        if self.shared is not None and not isinstance(self.sim, QuadrotorSim) and self.state != "destroyed":
+            self.sim.remove()  # the world resets or leaves: its drone leaves the shared batch
+        return super().destroy_node()
 
     def publish_state(self, s: QuadrotorState) -> None:
         stamp = self.get_clock().now().to_msg()

@@ -1,0 +1,43 @@
+"""Every world's drone in one QuadrotorBatch (issue 13): the physics of a class server.
+
+Each world's dynamics node (flightgoggles_uav_dynamics) finds this device on its bus and adds
+its drone here instead of building its own QuadrotorSim. A node's tick brings the whole batch up
+to the tick's time, so each 1 ms physics step runs once, vectorized, for every drone, however
+the worlds' timers interleave; a world ticking later in the same millisecond finds the work
+done. Each drone keeps its own seeded generator, so its noise does not depend on the others.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from server.bus import Clock
+from sim.quadrotor import QuadrotorBatch
+from sim.quadrotor.batch import Drone
+
+MAX_CATCH_UP_S = 0.1  # after a stall the batch skips ahead, as a single world's sim does
+
+
+class SharedQuadrotorPhysics:
+    def __init__(self, clock: Clock, physics_rate_hz: float = 1000.0) -> None:
+        self.clock = clock
+        self.physics_rate_hz = float(physics_rate_hz)
+        self.batch = QuadrotorBatch(physics_rate_hz=physics_rate_hz)
+        self._at_s = clock.now()
+        self.steps = 0
+
+    def __len__(self) -> int:
+        return len(self.batch)
+
+    def add(self, seed: int, noise: bool) -> Drone:
+        """A new drone at rest at the origin; the others are first brought up to now."""
+        self.advance_to(self.clock.now())
+        return self.batch.add(rng=np.random.default_rng(seed) if noise else None, noise=noise)
+
+    def advance_to(self, now_s: float) -> None:
+        """Step every drone up to ``now_s`` (nothing if it is already there)."""
+        elapsed = now_s - self._at_s
+        if elapsed <= 0.0:
+            return
+        self.steps += self.batch.advance(min(elapsed, MAX_CATCH_UP_S))
+        self._at_s = now_s
