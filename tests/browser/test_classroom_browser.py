@@ -5,6 +5,7 @@ abort only their own rocket; the other world is checked through the REST API wit
 from __future__ import annotations
 
 import math
+import re
 import time
 from collections.abc import Iterator
 from typing import Any
@@ -117,3 +118,24 @@ def test_a_aborts_only_the_students_own_rocket(students: tuple[Student, Student]
     assert ada.topic("/keydown")["publish_count"] >= 1
     assert not bob.aborted()
     assert all(k["latest"] is None or k["latest"]["code"] != 97 for k in [bob.topic("/keydown")])
+
+
+def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
+    chromium: Browser, class_server: LabServer, students: tuple[Student, Student]
+) -> None:
+    ada, bob = students
+    found = re.search(r"/instructor\?token=(\S+)", class_server.log_tail(10**6))
+    assert found is not None, "the class server prints the instructor's link once"
+    wait_until(lambda: abs(bob.position()[0]) > MOVED_M, "bob's drone away from the origin (the hold test)")
+    ada_before = ada.position()
+    with lab_page(chromium) as page:
+        page.goto(f"{class_server.url}/instructor?token={found.group(1)}")
+        page.wait_for_selector("tr[data-world='bob']")
+        assert page.url == f"{class_server.url}/instructor"  # the token left the address bar
+        rows = page.inner_text("#worlds")
+        assert "Ada" in rows and "Bob" in rows
+        page.click("tr[data-world='bob'] button:text-is('Reset')")
+        page.wait_for_function("() => document.getElementById('status').textContent === 'reset bob'")
+    wait_until(lambda: abs(bob.position()[0]) < STILL_M, "bob's drone back at the origin after the reset")
+    assert math.dist(ada.position(), ada_before) < STILL_M  # Ada's drone hovers where it was
+    assert ada.aborted()  # and her rocket is still aborted: her world kept its state
