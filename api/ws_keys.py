@@ -13,6 +13,7 @@ gets an error frame. When the channel closes, its held keys are released.
 from __future__ import annotations
 
 import itertools
+import math
 from typing import Any
 
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect
@@ -28,6 +29,7 @@ FRAME_MAX_DEPTH = 2  # a frame is one flat object
 _ids = itertools.count(1)
 FRAME_FIELDS = frozenset({"type", "key", "code", "location", "repeat", "t", *MODIFIER_FLAG_NAMES})
 MAX_KEY_CHARS = 32
+FLOOD_ERROR = "too many key frames: at most {:g} keydowns a second; keydowns dropped"
 
 
 class BadFrame(ValueError):
@@ -65,6 +67,7 @@ async def keys(websocket: WebSocket, lab: WsLabDep) -> None:
     source = f"ws-keys-{next(_ids)}"
     limit = lab.settings.max_ws_frame_bytes
     lab.key_deadman.watch(source)
+    last_flood_notice = -math.inf
     try:
         while True:
             message = await websocket.receive()
@@ -83,6 +86,16 @@ async def keys(websocket: WebSocket, lab: WsLabDep) -> None:
             except BadFrame as exc:
                 await websocket.close(CloseCode.INVALID_PAYLOAD, close_reason(str(exc)))
                 return
+            if frame["type"] == "keydown" and not lab.key_frames.take():
+                # A flood: drop the keydown (a keyup or release_all always goes through, so no key
+                # sticks) and say so at most once a second.
+                now = lab.bus.clock.now()
+                if now - last_flood_notice >= 1.0:
+                    last_flood_notice = now
+                    await websocket.send_json(
+                        {"type": "error", "error": FLOOD_ERROR.format(lab.settings.key_frames_hz)}
+                    )
+                continue
             error = handle_frame(lab, source, frame)
             if error is not None:
                 await websocket.send_json({"type": "error", "error": error})

@@ -14,7 +14,28 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any
 
+from server.bus.clock import Clock
 from server.msgs import Message
+
+
+class RateLimit:
+    """A token bucket on the lab's clock: ``rate_hz`` calls a second, bursts of ``burst``."""
+
+    def __init__(self, clock: Clock, rate_hz: float, burst: int) -> None:
+        self.clock, self.rate_hz, self.burst = clock, rate_hz, float(burst)
+        self._tokens = float(burst)
+        self._at = clock.now()
+        self.refused = 0
+
+    def take(self) -> bool:
+        now = self.clock.now()
+        self._tokens = min(self.burst, self._tokens + (now - self._at) * self.rate_hz)
+        self._at = now
+        if self._tokens >= 1.0:
+            self._tokens -= 1.0
+            return True
+        self.refused += 1
+        return False
 
 
 class LimitExceededError(Exception):

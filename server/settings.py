@@ -24,6 +24,10 @@ class Settings:
     allowed_origins: tuple[str, ...] = ()
     max_body_bytes: int = 64 * 1024
     max_ws_frame_bytes: int = 16 * 1024
+    # Key frames a lab (a world, on a class server) takes a second, bursts of: over it, keydowns
+    # are dropped (keyups and release_all never are, so no key sticks).
+    key_frames_hz: float = 200.0
+    key_frames_burst: int = 400
     deadman_s: float = 0.5  # a key channel silent this long with keys held has them released
     max_api_topics: int = 256  # topics the REST API may create, so a loop of typos cannot grow memory
     max_publishers: int = 64  # periodic publishers running at once

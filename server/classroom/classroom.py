@@ -19,6 +19,7 @@ from typing import Any
 from server.bus import Clock, SystemClock
 from server.devices.shared_physics import SharedQuadrotorPhysics
 from server.lab import Lab
+from server.limits import RateLimit
 from server.settings import Settings
 
 from .tokens import Grant, TokenSigner
@@ -49,26 +50,6 @@ def world_name(student: str) -> str:
     if not name:
         raise ValueError("a name needs at least one letter or digit")
     return name if not name[0].isdigit() else f"s_{name}"[:MAX_NAME_CHARS]
-
-
-class RateLimit:
-    """A token bucket on the lab's clock: ``rate_hz`` calls a second, bursts of ``burst``."""
-
-    def __init__(self, clock: Clock, rate_hz: float, burst: int) -> None:
-        self.clock, self.rate_hz, self.burst = clock, rate_hz, float(burst)
-        self._tokens = float(burst)
-        self._at = clock.now()
-        self.refused = 0
-
-    def take(self) -> bool:
-        now = self.clock.now()
-        self._tokens = min(self.burst, self._tokens + (now - self._at) * self.rate_hz)
-        self._at = now
-        if self._tokens >= 1.0:
-            self._tokens -= 1.0
-            return True
-        self.refused += 1
-        return False
 
 
 @dataclass
