@@ -191,9 +191,8 @@ def main(argv: list[str] | None = None) -> int:
               "fly the drone. Add --token auto (one lab behind a token) or --classroom (a world per student).",
               file=sys.stderr)  # fmt: skip
         return 2
-    if args.classroom:  # worlds are in-process graphs; the class server opens no Zenoh or bridge port
-        settings = dataclasses.replace(settings, zenoh=None, foxglove_port=None, rosbridge_port=None)
-        zenoh = None
+    if args.classroom:  # each world joins the class's Zenoh router in a ROS domain of its own
+        settings = dataclasses.replace(settings, foxglove_port=None, rosbridge_port=None)
     logging.basicConfig(
         level=args.log_level.upper(),
         format="%(asctime)s %(levelname)s %(name)s: %(message)s",
@@ -216,7 +215,8 @@ def main(argv: list[str] | None = None) -> int:
     if zenoh is not None:
         wide = [e for e in zenoh.listen if not is_loopback(e)] if zenoh.mode == "router" else []
         where = ", ".join(zenoh.listen) if zenoh.mode == "router" else "router " + ", ".join(zenoh.connect)
-        print(f"ROS graph on Zenoh ({where}, domain {zenoh.domain_id})", flush=True)
+        domains = "a ROS domain per world (1, 2, ...)" if args.classroom else f"domain {zenoh.domain_id}"
+        print(f"ROS graph on Zenoh ({where}, {domains})", flush=True)
         if wide:
             print(f"note: Zenoh listens on {', '.join(wide)}: other machines can join this graph "
                   "(see the README on opening it to a classroom)", flush=True)  # fmt: skip

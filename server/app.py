@@ -32,6 +32,7 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         if classroom is not None:  # worlds start as students join
+            await classroom.open()
             try:
                 yield
             finally:

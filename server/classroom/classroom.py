@@ -7,6 +7,7 @@ keys, publishers and resets reach only their own world. The instructor's grant r
 
 from __future__ import annotations
 
+import asyncio
 import dataclasses
 import hmac
 import logging
@@ -21,6 +22,7 @@ from server.devices.shared_physics import SharedQuadrotorPhysics
 from server.lab import Lab
 from server.limits import RateLimit
 from server.settings import Settings
+from server.transport.config import ZenohSettings, endpoint_host
 
 from .tokens import Grant, TokenSigner
 
@@ -28,6 +30,7 @@ log = logging.getLogger("classroom")
 CODE_ALPHABET = "ABCDEFGHJKLMNPQRSTUVWXYZ23456789"  # no 0/O, 1/I: read aloud or off a projector
 CODE_CHARS = 6
 MAX_NAME_CHARS = 32
+MAX_DOMAIN_ID = 232  # ROS 2's highest ROS_DOMAIN_ID
 # A world's name is a ROS namespace token: letters, digits and underscores, not starting with a digit.
 _NOT_NAME = re.compile(r"[^a-z0-9_]+")
 
@@ -59,6 +62,7 @@ class World:
     token_id: str
     lab: Lab
     writes: RateLimit
+    domain_id: int = 0  # its ROS_DOMAIN_ID on the class's Zenoh graph
     joined_at: float = field(default_factory=time.time)
     resets: int = 0
 
@@ -68,6 +72,7 @@ class World:
         return {
             "world": self.name,
             "student": self.student,
+            "domain_id": self.domain_id if lab.zenoh is not None else None,
             "joined_at": self.joined_at,
             "resets": self.resets,
             "keys_held": sorted(lab.keyboard.held()),
@@ -110,7 +115,9 @@ class Classroom:
         self.worlds: dict[str, World] = {}
         self.physics = SharedQuadrotorPhysics(clock or SystemClock())
         self._revoked: set[str] = set()
-        self._starting: set[str] = set()
+        self._starting: dict[str, int] = {}  # world → its ROS domain, while it starts
+        self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
+        self.zenoh_error: str | None = None
 
     # -- who is calling ------------------------------------------------------
     def grant(self, token: str | None) -> Grant | None:
@@ -143,19 +150,57 @@ class Classroom:
         return world
 
     # -- worlds ----------------------------------------------------------------
-    def _world_settings(self, name: str) -> Settings:
-        # A world is in-process: the class server's own ports (Zenoh, Foxglove, rosbridge) stay
-        # the class server's; each world records its bags in a folder of its own.
+    # -- the class's Zenoh graph ---------------------------------------------------------------
+    async def open(self) -> None:
+        """Open the class's Zenoh router (if Zenoh is on): each world joins it in a ROS domain of
+        its own, so students' node processes join their world with its ROS_DOMAIN_ID."""
+        zenoh = self.settings.zenoh
+        if zenoh is None or zenoh.mode != "router":
+            return
+        from server.transport.session import TransportError, open_session
+
+        try:
+            self._router = await asyncio.to_thread(open_session, zenoh)
+        except TransportError as exc:
+            log.warning("%s; the worlds run without Zenoh", exc)
+            self.zenoh_error = str(exc)
+
+    def router_endpoint(self) -> str | None:
+        """Where worlds and node processes connect: the class's router, or the one it joined."""
+        zenoh = self.settings.zenoh
+        if zenoh is None or (zenoh.mode == "router" and self._router is None):
+            return None
+        if zenoh.mode != "router":
+            return zenoh.connect[0]
+        proto, host, port = endpoint_host(zenoh.listen[0])
+        return f"{proto}/{'127.0.0.1' if host in ('0.0.0.0', '[::]', '::') else host}:{port}"
+
+    def _free_domain(self) -> int:
+        taken = {w.domain_id for w in self.worlds.values()} | set(self._starting.values())
+        if self.settings.zenoh is not None:
+            taken.add(self.settings.zenoh.domain_id)  # the class's own domain stays empty
+        return next(d for d in range(1, MAX_DOMAIN_ID + 1) if d not in taken)
+
+    def _world_settings(self, name: str, domain_id: int) -> Settings:
+        # A world's graph joins the class's router in a ROS domain of its own; the class server's
+        # other ports (Foxglove, rosbridge) are not opened per world; bags go in a folder per world.
+        endpoint = self.router_endpoint()
+        zenoh = None
+        if endpoint is not None:
+            config_file = self.settings.zenoh.config_file if self.settings.zenoh is not None else None
+            zenoh = ZenohSettings(
+                mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file
+            )
         return dataclasses.replace(
             self.settings,
-            zenoh=None,
+            zenoh=zenoh,
             foxglove_port=None,
             rosbridge_port=None,
             bag_dir=self.settings.bag_dir / name,
         )
 
-    async def _start_lab(self, name: str) -> Lab:
-        lab = Lab(self._world_settings(name), self.clock)
+    async def _start_lab(self, name: str, domain_id: int) -> Lab:
+        lab = Lab(self._world_settings(name, domain_id), self.clock)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         await lab.start()
         return lab
@@ -171,14 +216,15 @@ class Classroom:
             raise ClassroomError(409, f"the name {student!r} is taken in this class (world {name!r})")
         if len(self.worlds) + len(self._starting) >= self.settings.max_worlds:
             raise ClassroomError(429, f"the class is full ({self.settings.max_worlds} worlds)")
-        self._starting.add(name)  # held while the world starts, so two joins cannot take one name
+        domain_id = self._free_domain()
+        self._starting[name] = domain_id  # held while the world starts: no two joins take one name
         try:
-            lab = await self._start_lab(name)
+            lab = await self._start_lab(name, domain_id)
         finally:
-            self._starting.discard(name)
+            del self._starting[name]
         student = student.strip()[:64]
         token, grant = self.signer.issue("student", name, student)
-        world = self.worlds[name] = World(name, student, grant.token_id, lab, self._limit())
+        world = self.worlds[name] = World(name, student, grant.token_id, lab, self._limit(), domain_id)
         log.info("%s joined: world %s", student, name)
         return world, token
 
@@ -191,9 +237,9 @@ class Classroom:
         """A fresh world under the same name and token: every node starts over, the 3D view too."""
         world = self.get(name)
         old = world.lab
-        world.lab = await self._start_lab(name)
+        await old.stop()  # first: the new world takes the same ROS domain on the graph
+        world.lab = await self._start_lab(name, world.domain_id)
         world.resets += 1
-        await old.stop()
         log.info("world %s reset", name)
         return world
 
@@ -210,3 +256,6 @@ class Classroom:
         for name in list(self.worlds):
             world = self.worlds.pop(name)
             await world.lab.stop()
+        if self._router is not None:
+            self._router.close()
+            self._router = None

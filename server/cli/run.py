@@ -24,14 +24,19 @@ from .client import CliError, LabClient
 STOP_GRACE_S = 10.0
 
 
-def router_of(client: LabClient) -> str:
-    """The lab's router endpoint, from its health report; the default when there is no lab."""
+def graph_of(client: LabClient) -> tuple[str, int]:
+    """The lab's router endpoint and ROS domain, from its health report (on a class server with
+    ROS2LAB_TOKEN: the student's world's); ROS_DOMAIN_ID, if set, wins; defaults without a lab."""
     try:
         zenoh = client.get("/api/health").get("zenoh") or {}
     except CliError:
-        return DEFAULT_ROUTER_ENDPOINT
+        zenoh = {}
     endpoint = zenoh.get("router")
-    return str(endpoint) if endpoint else DEFAULT_ROUTER_ENDPOINT
+    domain = zenoh.get("domain_id")
+    return (
+        str(endpoint) if endpoint else DEFAULT_ROUTER_ENDPOINT,
+        domain_id_from_env(default=domain if isinstance(domain, int) else 0),
+    )
 
 
 def run(args: argparse.Namespace, client: LabClient) -> int:
@@ -45,7 +50,8 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
         print(f"No executable found: {exc}", file=sys.stderr)
         return 1
     target: Path | str = exe.file if exe.file is not None else str(exe.builtin)
-    command = node_command(target, list(args.argv), router=router_of(client), domain_id=domain_id_from_env())
+    router, domain_id = graph_of(client)
+    command = node_command(target, list(args.argv), router=router, domain_id=domain_id)
     child = subprocess.Popen(command.argv, env=command.env, process_group=0)
     interrupted = False
     while True:
