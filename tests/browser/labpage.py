@@ -100,21 +100,23 @@ def lab_page(chromium: Browser, viewport: dict[str, int] | None = None) -> Itera
     assert errors == [], f"uncaught errors in the page: {errors}"
 
 
-def open_lab_page(page: Page, server: LabServer | None, close_notices: bool = True) -> None:
+def open_lab_page(
+    page: Page, server: LabServer | None, close_notices: bool = True, settle_ms: int = SETTLE_WAIT_MS
+) -> None:
     """Load the lab page (``server`` None: the page is loading already, e.g. after a class
-    server's join form); wait for viser, the key channel, the page's camera view and a steady
-    frame rate; close viser's notifications unless told not to."""
+    server's join form); wait for viser, the key channel, the page's camera view and (up to
+    ``settle_ms``; 0: not at all) a steady frame rate; close viser's notifications unless told
+    not to."""
     if server is not None:
         page.goto(server.url + "/")
     page.wait_for_function("() => document.body.innerText.includes('Connected')")
     page.wait_for_function("() => window.__teleopKeys !== undefined && window.__teleopKeys.connected")
     page.wait_for_function("() => window.__teleopScene !== undefined && window.__teleopScene.ready")
     try:
-        page.wait_for_function(SETTLED_JS, polling=100, timeout=SETTLE_WAIT_MS)
+        if settle_ms:
+            page.wait_for_function(SETTLED_JS, polling=100, timeout=settle_ms)
     except PlaywrightError:
-        warnings.warn(
-            f"the page never drew steadily for 2 s within {SETTLE_WAIT_MS} ms; going on", stacklevel=2
-        )
+        warnings.warn(f"the page never drew steadily for 2 s within {settle_ms} ms; going on", stacklevel=2)
     if not close_notices:
         return
     close_buttons = page.locator(".mantine-Notification-closeButton")

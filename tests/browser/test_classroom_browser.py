@@ -12,7 +12,7 @@ from typing import Any
 
 import httpx
 import pytest
-from labpage import lab_page, open_lab_page, wait_until
+from labpage import STILL_DRIFT_M, STILL_WINDOW_S, lab_page, open_lab_page, wait_until
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
 
@@ -24,6 +24,7 @@ HOME_WAIT_S = 25.0
 HOLD_S = 1.0
 MOVED_M = 0.5  # a 1 s hold at 2 m/s moves about 2 m; far more than hover jitter
 STILL_M = 0.15
+SMALL = {"width": 800, "height": 600}
 
 
 @pytest.fixture(scope="module")
@@ -44,19 +45,22 @@ class Student:
     """One student's browser context, page and token (read from the page's HTTP-only cookie)."""
 
     def __init__(self, page: Page, server: LabServer, name: str) -> None:
+        """Join through the page's form; the lab page then loads (``ready`` waits for it)."""
         self.page, self.server = page, server
         page.goto(server.url + "/")
         page.fill("#name", name)
         page.fill("#code", CODE)
         with page.expect_navigation():  # the form reloads the page once the world is up
             page.click("#go")
-        page.wait_for_load_state("domcontentloaded")
-        open_lab_page(page, None)  # the form reloaded the page into the student's own world
-        cookies = {c["name"]: c["value"] for c in page.context.cookies()}
+
+    def ready(self) -> Student:
+        self.page.wait_for_load_state("domcontentloaded")
+        open_lab_page(self.page, None)  # the form reloaded the page into the student's own world
+        cookies = {c["name"]: c["value"] for c in self.page.context.cookies()}
         self.token = cookies["lab_token"]
-        self.world = httpx.get(f"{server.url}/api/classroom/me", headers=self.auth, timeout=5.0).json()[
-            "world"
-        ]
+        me = httpx.get(f"{self.server.url}/api/classroom/me", headers=self.auth, timeout=5.0)
+        self.world = me.json()["world"]
+        return self
 
     @property
     def auth(self) -> dict[str, str]:
@@ -71,14 +75,24 @@ class Student:
         p = self.topic("/uav/sensors/gps")["latest"]["pose"]["position"]
         return p["x"], p["y"], p["z"]
 
+    def still(self) -> tuple[float, float, float] | None:
+        """Where the drone is, if it moved under 5 cm in half a second; else None."""
+        before = self.position()
+        time.sleep(STILL_WINDOW_S)
+        after = self.position()
+        return after if math.dist(before, after) < STILL_DRIFT_M else None
+
     def aborted(self) -> bool:
         return bool((self.topic("/abort_takeoff")["latest"] or {}).get("data"))
 
 
 @pytest.fixture(scope="module")
 def students(chromium: Browser, class_server: LabServer) -> Iterator[tuple[Student, Student]]:
-    with lab_page(chromium) as ada_page, lab_page(chromium) as bob_page:
-        ada, bob = Student(ada_page, class_server, "Ada"), Student(bob_page, class_server, "Bob")
+    # A small window: software WebGL loads and draws it faster, and two pages share the machine.
+    with lab_page(chromium, SMALL) as ada_page, lab_page(chromium, SMALL) as bob_page:
+        # Both join first, so the two pages load at the same time.
+        joined = Student(ada_page, class_server, "Ada"), Student(bob_page, class_server, "Bob")
+        ada, bob = (student.ready() for student in joined)
         for s in (ada, bob):
             wait_until(
                 lambda s=s: math.dist(s.position(), HOME_M) < STILL_M,
@@ -127,8 +141,8 @@ def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
     found = re.search(r"/instructor\?token=(\S+)", class_server.log_tail(10**6))
     assert found is not None, "the class server prints the instructor's link once"
     wait_until(lambda: abs(bob.position()[0]) > MOVED_M, "bob's drone away from the origin (the hold test)")
-    ada_before = ada.position()
-    with lab_page(chromium) as page:
+    ada_before = wait_until(ada.still, "ada's drone to stop after the hold test")
+    with lab_page(chromium, SMALL) as page:
         page.goto(f"{class_server.url}/instructor?token={found.group(1)}")
         page.wait_for_selector("tr[data-world='bob']")
         assert page.url == f"{class_server.url}/instructor"  # the token left the address bar

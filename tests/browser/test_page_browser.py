@@ -2,7 +2,7 @@
 machine without GPU acceleration), against ``python -m server --launch all`` with the rocket's
 countdown an hour away (the rocket stands on its pad, the drone hovers at (0, 0, 3)):
 
-- at 800x600, 1366x768 and 1920x1080, each view frames its vehicle (the drone's hub and arms at
+- at 800x600 and 1366x768, each view frames its vehicle (the drone's hub and arms at
   least a set number of pixels, counted by colour classes, in the follow and the arena camera; the
   rocket standing on its pad), and the HUD, viser's notices, the help overlay and the panel never
   overlap (the panel a strip at 800x600);
@@ -39,7 +39,9 @@ from shots import CanvasShot, assert_drone_seen, assert_rocket_on_pad, find_dron
 
 pytestmark = pytest.mark.browser
 
-SIZES = [(800, 600), (1366, 768), (1920, 1080)]
+# The lab's VNC size and a laptop's. 1920x1080 framed the same way in software WebGL but cost the
+# suite 75 s a run, for a case the relative framing already covers.
+SIZES = [(800, 600), (1366, 768)]
 HOME_M = (0.0, 0.0, 3.0)
 FAR_M = (5.0, 5.0, 10.0)
 KEY_LEFT = 276  # keyboard_msgs/Key code (SDL) of ArrowLeft
