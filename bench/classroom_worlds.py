@@ -40,11 +40,10 @@ def cpu_s(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def measure(size: int, window_s: float) -> dict[str, Any]:
+def measure(size: int, window_s: float, extra: list[str]) -> dict[str, Any]:
     with tempfile.TemporaryDirectory() as tmp:
-        server = LiveServer(
-            Path(tmp), "fly", "--classroom", "--class-code", CODE, "--max-worlds", str(max(size, 1))
-        )
+        args = ["--classroom", "--class-code", CODE, "--max-worlds", str(max(size, 1)), *extra]
+        server = LiveServer(Path(tmp), "fly", *args)
         readers: list[FrameReader] = []
         try:
             tokens = []
@@ -97,6 +96,7 @@ def main() -> None:
     )
     parser.add_argument("--sizes", type=int, nargs="+", default=[1, 5, 10, 30, 60])
     parser.add_argument("--window", type=float, default=20.0, help="measuring window per size, s")
+    parser.add_argument("--no-zenoh", action="store_true", help="worlds in-process only (no Zenoh sessions)")
     args = parser.parse_args()
     info = machine_info()
     print(f"machine: {info['cpu_model']}, {info['nproc']} CPUs, Python {info['python']}", flush=True)
@@ -105,14 +105,15 @@ def main() -> None:
     )
     rows = []
     for size in args.sizes:
-        row = measure(size, args.window)
+        row = measure(size, args.window, ["--no-zenoh"] if args.no_zenoh else [])
         rows.append(row)
         print(f"{row['worlds']:>6} {row['cpu_core_share']:>10.2f} {row['rss_mib']:>8.0f} "
               f"{row['pose_hz_median']!s:>8}/{row['pose_hz_min']!s:<7} "
               f"{row['tick_lateness_p99_ms_median']!s:>9}/{row['tick_lateness_p99_ms_max']!s:<9}", flush=True)  # fmt: skip
         if row["log_problems"]:
             print("   server log:", row["log_problems"], flush=True)
-    save_results("classroom_worlds", {"machine": info, "window_s": args.window, "rows": rows})
+    name = "classroom_worlds_no_zenoh" if args.no_zenoh else "classroom_worlds"
+    save_results(name, {"machine": info, "window_s": args.window, "zenoh": not args.no_zenoh, "rows": rows})
 
 
 if __name__ == "__main__":
