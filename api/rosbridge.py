@@ -18,6 +18,7 @@ from server.bridges.rosbridge import RosbridgeSession
 
 from .deps import WsLabDep
 from .errors import CloseCode
+from .ws_life import closed_when_lab_stops
 
 router = APIRouter(tags=["websockets"])
 MAX_FRAME_BYTES = 1 << 20  # a publish of the largest message any lab type can hold fits
@@ -29,7 +30,8 @@ async def rosbridge(websocket: WebSocket, lab: WsLabDep) -> None:
     session = RosbridgeSession(lab.bus)
     sender = asyncio.create_task(_send_loop(websocket, session))
     try:
-        close = await _receive_loop(websocket, session)
+        async with closed_when_lab_stops(websocket, lab):
+            close = await _receive_loop(websocket, session)
     finally:
         sender.cancel()
         with contextlib.suppress(BaseException):

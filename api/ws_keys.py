@@ -23,6 +23,7 @@ from server.devices.keymap import MODIFIER_FLAG_NAMES, UnknownKeyError, modifier
 from .deps import WsLabDep
 from .errors import CloseCode, close_reason
 from .strict_json import JsonRejected, loads
+from .ws_life import closed_when_lab_stops
 
 router = APIRouter(tags=["websockets"])
 FRAME_MAX_DEPTH = 2  # a frame is one flat object
@@ -65,45 +66,54 @@ def parse_frame(text: str) -> dict[str, Any]:
 async def keys(websocket: WebSocket, lab: WsLabDep) -> None:
     await websocket.accept()
     source = f"ws-keys-{next(_ids)}"
-    limit = lab.settings.max_ws_frame_bytes
     lab.key_deadman.watch(source)
-    last_flood_notice = -math.inf
     try:
-        while True:
-            message = await websocket.receive()
-            lab.key_deadman.feed(source)
-            if message["type"] == "websocket.disconnect":
-                return
-            text = message.get("text")
-            if text is None:
-                await websocket.close(CloseCode.UNSUPPORTED_DATA, "the key channel takes JSON text frames")
-                return
-            if len(text) > limit:
-                await websocket.close(CloseCode.MESSAGE_TOO_BIG, f"frame larger than {limit} bytes")
-                return
-            try:
-                frame = parse_frame(text)
-            except BadFrame as exc:
-                await websocket.close(CloseCode.INVALID_PAYLOAD, close_reason(str(exc)))
-                return
-            if frame["type"] == "keydown" and not lab.key_frames.take():
-                # A flood: drop the keydown (a keyup or release_all always goes through, so no key
-                # sticks) and say so at most once a second.
-                now = lab.bus.clock.now()
-                if now - last_flood_notice >= 1.0:
-                    last_flood_notice = now
-                    await websocket.send_json(
-                        {"type": "error", "error": FLOOD_ERROR.format(lab.settings.key_frames_hz)}
-                    )
-                continue
-            error = handle_frame(lab, source, frame)
-            if error is not None:
-                await websocket.send_json({"type": "error", "error": error})
+        async with closed_when_lab_stops(websocket, lab):
+            await _key_loop(websocket, lab, source)
     except WebSocketDisconnect:
         return
+    except RuntimeError:
+        if not lab.stopped.is_set():  # a send racing the lab's stop finds the socket closed: fine
+            raise
     finally:
         lab.key_deadman.unwatch(source)
         lab.keyboard.release_all(source)
+
+
+async def _key_loop(websocket: WebSocket, lab: Any, source: str) -> None:
+    """Frames until the client leaves or must be closed (then closed here, with a named code)."""
+    limit = lab.settings.max_ws_frame_bytes
+    last_flood_notice = -math.inf
+    while True:
+        message = await websocket.receive()
+        lab.key_deadman.feed(source)
+        if message["type"] == "websocket.disconnect":
+            return
+        text = message.get("text")
+        if text is None:
+            await websocket.close(CloseCode.UNSUPPORTED_DATA, "the key channel takes JSON text frames")
+            return
+        if len(text) > limit:
+            await websocket.close(CloseCode.MESSAGE_TOO_BIG, f"frame larger than {limit} bytes")
+            return
+        try:
+            frame = parse_frame(text)
+        except BadFrame as exc:
+            await websocket.close(CloseCode.INVALID_PAYLOAD, close_reason(str(exc)))
+            return
+        if frame["type"] == "keydown" and not lab.key_frames.take():
+            # A flood: drop the keydown (a keyup or release_all always goes through, so no key
+            # sticks) and say so at most once a second.
+            now = lab.bus.clock.now()
+            if now - last_flood_notice >= 1.0:
+                last_flood_notice = now
+                await websocket.send_json(
+                    {"type": "error", "error": FLOOD_ERROR.format(lab.settings.key_frames_hz)}
+                )
+            continue
+        error = handle_frame(lab, source, frame)
+        if error is not None:
+            await websocket.send_json({"type": "error", "error": error})
 
 
 def handle_frame(lab: Any, source: str, frame: dict[str, Any]) -> str | None:

@@ -24,6 +24,7 @@ from server.msgs import Message
 from .deps import WsLabDep
 from .errors import CloseCode, close_code, close_reason
 from .strict_json import dumps
+from .ws_life import closed_when_lab_stops
 
 router = APIRouter(tags=["websockets"])
 MAX_QUEUE = 1000
@@ -115,7 +116,8 @@ async def echo(
         return
     sender = asyncio.create_task(_send_loop(websocket, node, throttle_ms / 1000.0))
     try:
-        await _receive_until_closed(websocket, lab.settings.max_ws_frame_bytes)
+        async with closed_when_lab_stops(websocket, lab):
+            await _receive_until_closed(websocket, lab.settings.max_ws_frame_bytes)
     finally:
         sender.cancel()
         node.destroy_node()

@@ -144,6 +144,7 @@ class Lab:
         self.bags = BagManager(self.bus, settings.bag_dir)  # ros2 bag record / play (issue 12)
         self.launch_groups: dict[str, LaunchGroup] = {}
         self._group_ids = itertools.count(1)
+        self.stopped = asyncio.Event()  # set by stop(): open WebSockets close, and clients reconnect
 
     # -- life ----------------------------------------------------------------
     def launch_path(self, launch: str) -> Path:
@@ -187,6 +188,7 @@ class Lab:
         self._spin_task = asyncio.create_task(self.executor.spin(), name="executor")
 
     async def stop(self) -> None:
+        self.stopped.set()
         self.executor.stop()
         if self._spin_task is not None:
             await self._spin_task

@@ -8,8 +8,6 @@ read gives up after a deadline instead of blocking the run forever.
 from __future__ import annotations
 
 import json
-import queue
-import threading
 import time
 from collections.abc import Callable
 from typing import Any, TypeVar
@@ -17,8 +15,8 @@ from typing import Any, TypeVar
 import pytest
 from fastapi.testclient import TestClient
 from starlette.testclient import WebSocketTestSession
-from starlette.types import Message
 from starlette.websockets import WebSocketDisconnect
+from support.ws import receive_within
 
 from server.settings import Settings
 
@@ -91,30 +89,6 @@ class LabClient:
     def healthy(self) -> bool:
         response = self.http.get("/api/health")
         return response.status_code == 200 and response.json()["status"] == "ok"
-
-
-def receive_within(ws: WebSocketTestSession, timeout_s: float = WAIT_S) -> Message:
-    """The next ASGI message the app sent on ``ws``; fails after ``timeout_s``.
-
-    TestClient's ``receive`` has no timeout, so it runs in a helper thread; if the test fails
-    here, closing the session ends that thread's read.
-    """
-    box: queue.Queue[tuple[bool, Any]] = queue.Queue(maxsize=1)
-
-    def read() -> None:
-        try:
-            box.put((True, ws.receive()))
-        except BaseException as exc:  # handed to the test's thread
-            box.put((False, exc))
-
-    threading.Thread(target=read, name="ws-receive", daemon=True).start()
-    try:
-        ok, value = box.get(timeout=timeout_s)
-    except queue.Empty:
-        pytest.fail(f"no WebSocket message within {timeout_s} s")
-    if not ok:
-        raise value
-    return value
 
 
 def receive_json_within(ws: WebSocketTestSession, timeout_s: float = WAIT_S) -> Any:

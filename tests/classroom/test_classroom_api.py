@@ -9,6 +9,7 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 from starlette.websockets import WebSocketDisconnect
+from support.ws import receive_within
 
 from api.errors import CloseCode
 from server.app import create_app
@@ -303,3 +304,31 @@ def test_a_world_flies_the_same_alone_or_among_others() -> None:
     among = fly(["Bob", "Cy", "Dee"])
     assert alone[-1][0] > 1.0  # she is flying, not sitting on the pad
     assert among == alone  # float for float: the others' drones share her batch, not her flight
+
+
+def test_a_reset_closes_the_worlds_sockets_so_the_page_reconnects_to_the_new_world(
+    client: TestClient,
+) -> None:
+    bob = join(client, "Bob")
+    teacher = classroom(client).instructor_token
+    with (
+        client.websocket_connect("/ws/keys", headers=auth(bob)) as keys,
+        client.websocket_connect("/ws/topics/countdown", headers=auth(bob)) as echo,
+    ):
+        assert client.post("/api/classroom/worlds/bob/reset", headers=auth(teacher)).status_code == 200
+        for ws in (keys, echo):
+            closed = receive_within(ws)
+            assert closed["type"] == "websocket.close" and closed["code"] == CloseCode.SERVICE_RESTART
+    with client.websocket_connect("/ws/keys", headers=auth(bob)) as keys:  # as keys.js reconnects
+        keys.send_json({"type": "keydown", "key": "b"})
+        lab = classroom(client).get("bob").lab
+
+        def held() -> set[int]:
+            assert client.portal is not None
+            return client.portal.call(lab.keyboard.held)
+
+        deadline = 50
+        while not held() and deadline:
+            deadline -= 1
+            keys.send_json({"type": "heartbeat"})
+        assert held() == {ord("b")}  # the new world's keyboard has the key

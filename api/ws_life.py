@@ -1,0 +1,33 @@
+"""A WebSocket's life is its lab's: when the lab stops (a class server resets or removes the
+world, or the app shuts down), the socket is closed with 1012, so the page's channels reconnect
+to the world's new lab (or learn, with a 4401, that it is gone) instead of talking to a dead one."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+from collections.abc import AsyncIterator
+
+from fastapi import WebSocket, WebSocketDisconnect
+
+from server.lab import Lab
+
+from .errors import CloseCode
+
+STOPPED_REASON = "the lab restarted: reconnect (a class server reset or removed this world)"
+
+
+@contextlib.asynccontextmanager
+async def closed_when_lab_stops(websocket: WebSocket, lab: Lab) -> AsyncIterator[None]:
+    async def watch() -> None:
+        await lab.stopped.wait()
+        with contextlib.suppress(RuntimeError, WebSocketDisconnect):
+            await websocket.close(CloseCode.SERVICE_RESTART, STOPPED_REASON)
+
+    watcher = asyncio.create_task(watch())
+    try:
+        yield
+    finally:
+        watcher.cancel()
+        with contextlib.suppress(BaseException):
+            await watcher
