@@ -11,15 +11,12 @@ from typing import Annotated, Any
 from fastapi import APIRouter, Depends, HTTPException, Request, Response, status
 from pydantic import BaseModel, ConfigDict, Field
 
-from server.bus import BusError
-from server.classroom import Classroom, ClassroomError, Grant
-from server.limits import LimitExceededError
-from server.msgs import MessageError
+from server.classroom import Classroom, Grant
 
-from .deps import TOKEN_COOKIE, classroom_of, grant_of
+from .deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie
+from .errors import status_for
 
 router = APIRouter(prefix="/api/classroom", tags=["classroom"], include_in_schema=False)
-COOKIE_MAX_AGE_S = 12 * 3600  # a school day
 
 
 class JoinRequest(BaseModel):
@@ -45,10 +42,7 @@ def _classroom(request: Request) -> Classroom:
 
 
 def _grant(request: Request, classroom: Annotated[Classroom, Depends(_classroom)]) -> Grant:
-    try:
-        return grant_of(request, classroom)
-    except ClassroomError as exc:
-        raise HTTPException(exc.status, str(exc)) from None
+    return grant_of(request, classroom)
 
 
 def _instructor(grant: Annotated[Grant, Depends(_grant)]) -> Grant:
@@ -62,24 +56,10 @@ GrantDep = Annotated[Grant, Depends(_grant)]
 InstructorDep = Annotated[Grant, Depends(_instructor)]
 
 
-def _refuse(exc: ClassroomError) -> HTTPException:
-    return HTTPException(exc.status, str(exc))
-
-
-def set_token_cookie(response: Response, token: str) -> None:
-    """HTTP-only (no script reads it), same-site (no other site's page sends it)."""
-    response.set_cookie(
-        TOKEN_COOKIE, token, max_age=COOKIE_MAX_AGE_S, httponly=True, samesite="strict", path="/"
-    )
-
-
 @router.post("/join", status_code=status.HTTP_201_CREATED)
 async def join(body: JoinRequest, classroom: ClassroomDep, response: Response) -> dict[str, Any]:
     """A world of one's own: the rocket and drone launches, under a token for this world only."""
-    try:
-        world, token = await classroom.join(body.name, body.code)
-    except ClassroomError as exc:
-        raise _refuse(exc) from None
+    world, token = await classroom.join(body.name, body.code)
     set_token_cookie(response, token)
     return {"world": world.name, "student": world.student, "token": token}
 
@@ -116,10 +96,7 @@ async def reset_world(name: str, grant: GrantDep, classroom: ClassroomDep) -> di
         raise HTTPException(
             status.HTTP_403_FORBIDDEN, f"your token is for world {grant.world!r}, not {name!r}"
         )
-    try:
-        world = await classroom.reset(name)
-    except ClassroomError as exc:
-        raise _refuse(exc) from None
+    world = await classroom.reset(name)
     return world.describe()
 
 
@@ -134,10 +111,7 @@ async def reset_all(_: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]
 @router.delete("/worlds/{name}")
 async def kick(name: str, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
     """Remove a student's world; their token stops working at once."""
-    try:
-        world = await classroom.kick(name)
-    except ClassroomError as exc:
-        raise _refuse(exc) from None
+    world = await classroom.kick(name)
     return {"kicked": world.name, "student": world.student}
 
 
@@ -150,7 +124,9 @@ async def broadcast(body: BroadcastRequest, _: InstructorDep, classroom: Classro
     for name, world in classroom.worlds.items():
         try:
             world.lab.publish(body.topic, body.msg, body.type)
-        except (BusError, LimitExceededError, LookupError, MessageError, TypeError, ValueError) as exc:
+        except Exception as exc:
+            if status_for(exc) is None:  # a bug, not a refusal: the error net has it
+                raise
             refused[name] = str(exc)
         else:
             reached.append(name)

@@ -7,18 +7,20 @@ token is 401, another student's world 403; a student's writes are rate-limited p
 
 from __future__ import annotations
 
-import hmac
 from typing import Annotated, cast
 
-from fastapi import Depends, HTTPException, Request, WebSocket, WebSocketException
+from fastapi import Depends, Request, Response, WebSocket, WebSocketException, status
+from fastapi.responses import RedirectResponse
 from starlette.requests import HTTPConnection
 
 from server.classroom import Classroom, ClassroomError, Grant
 from server.lab import Lab
 
 from .errors import CloseCode, close_reason
+from .security import bearer_token, token_matches
 
 TOKEN_COOKIE = "lab_token"
+COOKIE_MAX_AGE_S = 12 * 3600  # a school day
 WORLD_HEADER = "x-lab-world"
 SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
 
@@ -30,17 +32,13 @@ def classroom_of(conn: HTTPConnection) -> Classroom | None:
 def token_of(conn: HTTPConnection) -> str | None:
     """A bearer token (REST, WebSockets, the CLI), the page's HTTP-only cookie, or for a WebSocket
     ``?token=`` (clients such as Foxglove's cannot add a header)."""
-    auth = conn.headers.get("authorization", "")
-    if auth[:7].lower() == "bearer ":
-        return auth[7:].strip()
+    bearer = bearer_token(conn.headers.get("authorization"))
+    if bearer is not None:
+        return bearer
     cookie = conn.cookies.get(TOKEN_COOKIE)
     if cookie is None and conn.scope["type"] == "websocket":
         return conn.query_params.get("token")
     return cookie
-
-
-def token_matches(given: str | None, expected: str) -> bool:
-    return given is not None and hmac.compare_digest(given.encode(), expected.encode())
 
 
 def grant_of(conn: HTTPConnection, classroom: Classroom) -> Grant:
@@ -72,10 +70,22 @@ def lab_of(conn: HTTPConnection) -> Lab:
 
 
 def lab_for_request(request: Request) -> Lab:
-    try:
-        return lab_of(request)
-    except ClassroomError as exc:
-        raise HTTPException(exc.status, str(exc)) from None
+    """LabDep: a refusal is a ClassroomError, which api/errors.py answers with its status."""
+    return lab_of(request)
+
+
+def set_token_cookie(response: Response, token: str) -> None:
+    """HTTP-only (no script reads it), same-site (no other site's page sends it)."""
+    response.set_cookie(
+        TOKEN_COOKIE, token, max_age=COOKIE_MAX_AGE_S, httponly=True, samesite="strict", path="/"
+    )
+
+
+def keep_token_and_go(path: str, token: str) -> Response:
+    """A link that carried ``?token=``: keep the token in the cookie and drop it from the address bar."""
+    response = RedirectResponse(path, status.HTTP_303_SEE_OTHER)
+    set_token_cookie(response, token)
+    return response
 
 
 WS_CODES = {401: CloseCode.UNAUTHORIZED, 403: CloseCode.FORBIDDEN}

@@ -31,6 +31,7 @@ from server.bus import (
     UnknownServiceError,
     UnknownTopicError,
 )  # fmt: skip
+from server.classroom import ClassroomError
 from server.lab import UnknownLaunchError
 from server.launch.description import LaunchFileError
 from server.limits import LimitExceededError, ValueLimitError
@@ -159,6 +160,13 @@ def register_error_handlers(app: FastAPI) -> None:
         app.add_exception_handler(kind, _handler(code))
     app.add_exception_handler(RequestValidationError, _validation_error)
     app.add_exception_handler(StarletteHTTPException, _http_error)
+    app.add_exception_handler(ClassroomError, _classroom_error)
+
+
+async def _classroom_error(_request: Request, exc: Exception) -> SafeJSONResponse:
+    """A class server's refusal carries its own status (401 no token, 403 another world, ...)."""
+    code = exc.status if isinstance(exc, ClassroomError) else status.HTTP_500_INTERNAL_SERVER_ERROR
+    return SafeJSONResponse({"detail": str(exc)}, status_code=code)
 
 
 class ErrorMiddleware:

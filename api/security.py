@@ -7,6 +7,7 @@ this machine (DNS rebinding) is refused outright.
 
 from __future__ import annotations
 
+import hmac
 import json
 from collections.abc import Iterable
 from urllib.parse import urlsplit
@@ -38,6 +39,17 @@ def origin_allowed(origin: str | None, host_header: str | None, allowed_origins:
     if parts.scheme not in ("http", "https") or not parts.netloc or host_header is None:
         return False
     return parts.netloc.lower() == host_header.strip().lower()
+
+
+def bearer_token(authorization: str | None) -> str | None:
+    """The token of an ``Authorization: Bearer TOKEN`` header, else None."""
+    auth = authorization or ""
+    return auth[7:].strip() if auth[:7].lower() == "bearer " else None
+
+
+def token_matches(given: str | None, expected: str) -> bool:
+    """Compared in constant time, so the answer's timing tells nothing of the token."""
+    return given is not None and hmac.compare_digest(given.encode(), expected.encode())
 
 
 def _header(scope: Scope, name: bytes) -> str | None:

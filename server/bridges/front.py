@@ -11,12 +11,11 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import hmac
 import logging
 from collections.abc import Iterable
 from urllib.parse import parse_qs, urlsplit
 
-from api.security import host_allowed, origin_allowed
+from api.security import bearer_token, host_allowed, origin_allowed, token_matches
 
 log = logging.getLogger("bridges.front")
 MAX_HEAD_BYTES = 16 * 1024
@@ -76,11 +75,10 @@ def check_handshake(
 
 
 def _carries_token(target: str, headers: dict[str, str], token: str) -> bool:
-    auth = headers.get("authorization", "")
-    given = auth[7:].strip() if auth[:7].lower() == "bearer " else None
+    given = bearer_token(headers.get("authorization"))
     if given is None:
         given = next(iter(parse_qs(urlsplit(target).query).get("token", [])), None)
-    return given is not None and hmac.compare_digest(given.encode(), token.encode())
+    return token_matches(given, token)
 
 
 class GuardedFront:

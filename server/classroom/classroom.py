@@ -108,16 +108,15 @@ class Classroom:
         signer: TokenSigner | None = None,
     ) -> None:
         self.settings = settings
-        self.clock = clock
+        self.clock: Clock = clock or SystemClock()  # every world's, the physics' and the limits'
         self.code = code or new_code()
         self.signer = signer or TokenSigner()
         self.instructor_token, self.instructor = self.signer.issue("instructor", None, "instructor")
         self.worlds: dict[str, World] = {}
-        self.physics = SharedQuadrotorPhysics(clock or SystemClock())
+        self.physics = SharedQuadrotorPhysics(self.clock)
         self._revoked: set[str] = set()
         self._starting: dict[str, int] = {}  # world → its ROS domain, while it starts
         self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
-        self.zenoh_error: str | None = None
 
     # -- who is calling ------------------------------------------------------
     def grant(self, token: str | None) -> Grant | None:
@@ -163,7 +162,6 @@ class Classroom:
             self._router = await asyncio.to_thread(open_session, zenoh)
         except TransportError as exc:
             log.warning("%s; the worlds run without Zenoh", exc)
-            self.zenoh_error = str(exc)
 
     def router_endpoint(self) -> str | None:
         """Where worlds and node processes connect: the class's router, or the one it joined."""
@@ -229,9 +227,7 @@ class Classroom:
         return world, token
 
     def _limit(self) -> RateLimit:
-        return RateLimit(
-            self.clock or SystemClock(), self.settings.world_writes_hz, self.settings.world_writes_burst
-        )
+        return RateLimit(self.clock, self.settings.world_writes_hz, self.settings.world_writes_burst)
 
     async def reset(self, name: str) -> World:
         """A fresh world under the same name and token: every node starts over, the 3D view too."""

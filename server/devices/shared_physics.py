@@ -24,7 +24,6 @@ class SharedQuadrotorPhysics:
         self.physics_rate_hz = float(physics_rate_hz)
         self.batch = QuadrotorBatch(physics_rate_hz=physics_rate_hz)
         self._at_s = clock.now()
-        self.steps = 0
 
     def __len__(self) -> int:
         return len(self.batch)
@@ -39,5 +38,5 @@ class SharedQuadrotorPhysics:
         elapsed = now_s - self._at_s
         if elapsed <= 0.0:
             return
-        self.steps += self.batch.advance(min(elapsed, MAX_CATCH_UP_S))
+        self.batch.advance(min(elapsed, MAX_CATCH_UP_S))
         self._at_s = now_s

@@ -16,8 +16,8 @@ from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Resp
 from starlette.requests import HTTPConnection
 from websockets.asyncio.client import ClientConnection
 
-from api.classroom import set_token_cookie
-from api.deps import classroom_of, lab_of, token_matches, token_of
+from api.deps import classroom_of, keep_token_and_go, lab_of, token_of
+from api.security import token_matches
 from server.classroom import ClassroomError
 
 from .views import ViewRegistry
@@ -39,7 +39,8 @@ PROXY_MAX_FRAME_BYTES = 1 << 20  # browser → viser: camera moves and GUI click
 # Cross-origin isolation, so the page may share memory with its pose worker (static/poses.js):
 # everything the page loads comes from this origin, and it opens other pages only as new tabs.
 ISOLATED = {"Cross-Origin-Opener-Policy": "same-origin", "Cross-Origin-Embedder-Policy": "require-corp"}
-POSES_WORKER = Path(__file__).resolve().parents[2] / "static" / "poses.worker.js"
+STATIC = Path(__file__).resolve().parents[2] / "static"
+POSES_WORKER = STATIC / "poses.worker.js"
 
 
 @cache
@@ -48,9 +49,6 @@ def index_html() -> str:
     if "</head>" not in html:
         raise RuntimeError(f"viser's page at {VISER_INDEX} changed shape; pin viser==1.1.1")
     return html.replace("</head>", INJECT + "</head>", 1)
-
-
-STATIC = Path(__file__).resolve().parents[2] / "static"
 
 
 @router.get("/")
@@ -67,9 +65,7 @@ async def index(request: Request) -> Response:
         if asked is not None:  # the printed link: keep the token in a cookie, not the address bar
             if not token_matches(asked, lab_token):
                 return Response("that link's token is not this lab's", status.HTTP_403_FORBIDDEN)
-            response = RedirectResponse("/", status.HTTP_303_SEE_OTHER)
-            set_token_cookie(response, asked)
-            return response
+            return keep_token_and_go("/", asked)
         if not token_matches(token_of(request), lab_token):
             return Response("this lab needs its token: open the link the server printed (/?token=...)",
                             status.HTTP_401_UNAUTHORIZED)  # fmt: skip
@@ -87,9 +83,7 @@ async def instructor(request: Request, token: str | None = None) -> Response:
         grant = classroom.grant(token)
         if grant is None or not grant.is_instructor:
             return Response("that link's token is not the instructor's", status.HTTP_403_FORBIDDEN)
-        response = RedirectResponse("/instructor", status.HTTP_303_SEE_OTHER)
-        set_token_cookie(response, token)
-        return response
+        return keep_token_and_go("/instructor", token)
     grant = classroom.grant(token_of(request))
     if grant is None or not grant.is_instructor:
         return Response("open the instructor's link the class server printed", status.HTTP_401_UNAUTHORIZED)

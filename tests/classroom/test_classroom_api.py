@@ -332,3 +332,13 @@ def test_a_reset_closes_the_worlds_sockets_so_the_page_reconnects_to_the_new_wor
             deadline -= 1
             keys.send_json({"type": "heartbeat"})
         assert held() == {ord("b")}  # the new world's keyboard has the key
+
+
+def test_leaving_forgets_the_browsers_cookie_and_the_world_stays(client: TestClient) -> None:
+    reply = client.post("/api/classroom/join", json={"name": "Ada", "code": CODE})
+    assert reply.status_code == 201
+    assert client.get("/api/classroom/me").status_code == 200  # the join's cookie
+    left = client.post("/api/classroom/leave")
+    assert left.status_code == 200 and "lab_token=" in left.headers["set-cookie"]
+    assert client.get("/api/classroom/me").status_code == 401
+    assert "ada" in classroom(client).worlds
