@@ -6,6 +6,7 @@ Out of the OpenAPI document's schema for the single-lab app it documents; on an 
 
 from __future__ import annotations
 
+import asyncio
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, HTTPException, Request, Response, status
@@ -30,6 +31,17 @@ class BroadcastRequest(BaseModel):
     topic: str = Field(min_length=1, max_length=256, examples=["/uav/input/position"])
     msg: dict[str, Any] = Field(examples=[{"x": 5.0, "y": 5.0, "z": 10.0}])
     type: str | None = Field(default=None, max_length=128, examples=["geometry_msgs/msg/Vector3"])
+
+
+class HostRequest(BaseModel):
+    """A class server placing a world on this world worker."""
+
+    model_config = ConfigDict(strict=True, extra="forbid")
+    world: str = Field(min_length=1, max_length=32, pattern=r"^[a-z_][a-z0-9_]*$")
+    student: str = Field(min_length=1, max_length=64)
+    domain_id: int = Field(ge=1, le=232)
+    launch: str = Field(min_length=1, max_length=256)
+    launch_args: dict[str, str] = Field(default_factory=dict, max_length=32)
 
 
 def _classroom(request: Request) -> Classroom:
@@ -85,8 +97,26 @@ async def worlds(_: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
     return {
         "class_code": classroom.code,
         "max_worlds": classroom.settings.max_worlds,
-        "worlds": [w.describe() for w in classroom.worlds.values()],
+        "worlds": await classroom.describe_all(),
     }
+
+
+@router.get("/workers")
+async def workers(_: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+    """Where worlds can go: this server's own room, and each world worker that answers now."""
+    found = await asyncio.to_thread(classroom.workers.discover) if classroom.workers is not None else []
+    local = sum(1 for w in classroom.worlds.values() if w.worker is None)
+    return {
+        "local": {"worlds": local, "max_worlds": classroom.local_capacity},
+        "workers": [ref.describe() for ref in found],
+    }
+
+
+@router.post("/host", status_code=status.HTTP_201_CREATED)
+async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+    """On a world worker: start the world its class server placed here."""
+    world = await classroom.host(body.world, body.student, body.domain_id, body.launch, body.launch_args)
+    return world.describe()
 
 
 @router.post("/worlds/{name}/reset")
@@ -122,6 +152,8 @@ async def broadcast(body: BroadcastRequest, _: InstructorDep, classroom: Classro
     reached: list[str] = []
     refused: dict[str, str] = {}
     for name, world in classroom.worlds.items():
+        if world.lab is None:
+            continue  # a worker's world: its worker publishes it, below
         try:
             world.lab.publish(body.topic, body.msg, body.type)
         except Exception as exc:
@@ -130,6 +162,9 @@ async def broadcast(body: BroadcastRequest, _: InstructorDep, classroom: Classro
             refused[name] = str(exc)
         else:
             reached.append(name)
+    far_reached, far_refused = await classroom.broadcast_on_workers(body.model_dump())
+    reached += far_reached
+    refused |= far_refused
     if refused and not reached:
         raise HTTPException(status.HTTP_422_UNPROCESSABLE_CONTENT, f"no world took the message: {refused}")
     return {"reached": reached, "refused": refused}

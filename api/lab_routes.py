@@ -25,7 +25,7 @@ async def health(request: Request) -> dict[str, Any]:
     health check needs no secret; with a token, the caller's world. No token is needed."""
     classroom = classroom_of(request)
     if classroom is not None and token_of(request) is None:
-        labs = [w.lab for w in classroom.worlds.values()]
+        labs = [w.lab for w in classroom.worlds.values() if w.lab is not None]
         return {
             "status": "ok",
             "launch": classroom.settings.launch,

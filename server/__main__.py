@@ -100,6 +100,11 @@ def build_parser() -> argparse.ArgumentParser:
     classroom.add_argument("--class-code", help="the code students type to join (default: a new random one)")
     classroom.add_argument("--max-worlds", type=int, default=60, help="worlds at most (default 60)")
     classroom.add_argument(
+        "--local-worlds", type=int, metavar="N",
+        help="worlds this server hosts itself (default: all); the rest go to world workers "
+             f"(ros2lab {cli.WORKER_VERB} --connect tcp/HOST:7447, which join this server's Zenoh router)",
+    )  # fmt: skip
+    classroom.add_argument(
         "--token", metavar="TOKEN|auto",
         help="one lab behind a token: every page, call and bridge port needs it (auto: a new random one, "
              "printed once in the page's link). Needed to listen beyond loopback without --classroom.",
@@ -159,18 +164,25 @@ def is_loopback_host(host: str) -> bool:
 
 
 def classroom_banner(host: str, port: int, classroom: Any) -> str:
-    """The class code for the projector, and the instructor's link (its token, printed once)."""
+    """The class code for the projector, the instructor's link (its token, printed once) and, with
+    Zenoh, how to add a world worker."""
     shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
     lan = " (and this machine's LAN address)" if host in ("0.0.0.0", "::") else ""
-    return (
-        f"Class server: students open http://{shown}:{port}/{lan} and join with class code {classroom.code}\n"
-        f"Instructor (keep this link to yourself): http://127.0.0.1:{port}/instructor?token={classroom.instructor_token}"
-    )
+    lines = [
+        f"Class server: students open http://{shown}:{port}/{lan} and join with class code {classroom.code}",
+        f"Instructor (keep this link to yourself): http://127.0.0.1:{port}/instructor?token={classroom.instructor_token}",
+    ]
+    zenoh = classroom.settings.zenoh
+    if zenoh is not None and zenoh.mode == "router":
+        router = zenoh.listen[0].replace("0.0.0.0", "<this machine's address>")
+        lines.append(f"More cores or machines: ROS2LAB_TOKEN=<the instructor's token> ros2lab {cli.WORKER_VERB} "
+                     f"--connect {router}")  # fmt: skip
+    return "\n".join(lines)
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
-    if argv and (argv[0] in cli.VERBS or argv[0].startswith("--url")):
+    if argv and (argv[0] in (*cli.VERBS, cli.WORKER_VERB) or argv[0].startswith("--url")):
         return cli.main(argv)  # ros2's verbs, against a running server
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -184,8 +196,10 @@ def main(argv: list[str] | None = None) -> int:
         zenoh=zenoh, node_processes=args.node_processes,
         foxglove_port=None if args.no_foxglove else args.foxglove_port, rosbridge_port=args.rosbridge_port,
         bag_dir=Path(args.bag_dir), classroom=args.classroom, class_code=args.class_code,
-        max_worlds=args.max_worlds, token=lab_token(args.token),
+        max_worlds=args.max_worlds, token=lab_token(args.token), local_worlds=args.local_worlds,
     )  # fmt: skip
+    if args.local_worlds is not None and (args.local_worlds < 0 or not args.classroom or zenoh is None):
+        parser.error("--local-worlds needs --classroom and Zenoh (world workers join its router), and N >= 0")
     if not is_loopback_host(args.host) and not (args.classroom or settings.token):
         print(f"error: refusing to listen on {args.host} with no login: anyone who reaches this machine could "
               "fly the drone. Add --token auto (one lab behind a token) or --classroom (a world per student).",

@@ -13,6 +13,7 @@ from api import build_router
 from api.errors import ErrorMiddleware, register_error_handlers
 from api.security import GuardMiddleware
 from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
+from api.world_proxy import WorldProxyMiddleware
 from server.bridges.runner import run_bridges
 from server.bus import Clock
 from server.classroom import Classroom
@@ -62,7 +63,9 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
     app.include_router(tools_router)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     register_error_handlers(app)
-    # Added innermost first: a request meets the error net, then the guard, then strict JSON.
+    # Added innermost first: a request meets the error net, then the guard, then strict JSON, then
+    # (on a class server) the pass to the world worker that hosts the caller's world.
+    app.add_middleware(WorldProxyMiddleware)
     app.add_middleware(StrictJsonMiddleware)
     app.add_middleware(
         GuardMiddleware,

@@ -12,6 +12,15 @@ LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
 
 
 @dataclass(frozen=True)
+class WorkerSettings:
+    """A world worker's identity (``ros2lab world-worker``): it hosts worlds a class server places."""
+
+    id: str
+    url: str  # where the class server reaches its HTTP API
+    class_token: str  # the instructor's token of the class it serves (never sent anywhere)
+
+
+@dataclass(frozen=True)
 class Settings:
     host: str = "127.0.0.1"
     port: int = 8000
@@ -56,6 +65,9 @@ class Settings:
     max_worlds: int = 60
     world_writes_hz: float = 20.0  # a student's REST writes per second in their world, bursts of:
     world_writes_burst: int = 40
+    # Worlds the class server hosts itself; the rest go to world workers (None: up to max_worlds).
+    local_worlds: int | None = None
+    worker: WorkerSettings | None = None  # set on a world worker: worlds come from a class server
 
     def __post_init__(self) -> None:
         for name in ("port", "foxglove_port", "rosbridge_port"):

@@ -24,7 +24,9 @@ from server.limits import RateLimit
 from server.settings import Settings
 from server.transport.config import ZenohSettings, endpoint_host
 
+from .errors import ClassroomError
 from .tokens import Grant, TokenSigner
+from .workers import WorkerDirectory, WorkerRef, worker_api_token
 
 log = logging.getLogger("classroom")
 CODE_ALPHABET = "ABCDEFGHJKLMNPQRSTUVWXYZ23456789"  # no 0/O, 1/I: read aloud or off a projector
@@ -33,14 +35,6 @@ MAX_NAME_CHARS = 32
 MAX_DOMAIN_ID = 232  # ROS 2's highest ROS_DOMAIN_ID
 # A world's name is a ROS namespace token: letters, digits and underscores, not starting with a digit.
 _NOT_NAME = re.compile(r"[^a-z0-9_]+")
-
-
-class ClassroomError(Exception):
-    """A refused classroom request: ``status`` is the HTTP status that says why."""
-
-    def __init__(self, status: int, message: str) -> None:
-        super().__init__(message)
-        self.status = status
 
 
 def new_code() -> str:
@@ -60,21 +54,31 @@ class World:
     name: str
     student: str
     token_id: str
-    lab: Lab
+    lab: Lab | None  # None when the world runs on a world worker
     writes: RateLimit
     domain_id: int = 0  # its ROS_DOMAIN_ID on the class's Zenoh graph
     joined_at: float = field(default_factory=time.time)
     resets: int = 0
+    worker: WorkerRef | None = None  # the world worker that hosts it, if one does
 
     def describe(self) -> dict[str, Any]:
-        lab = self.lab
-        rocket = lab.rocket_view.tracker if lab.rocket_view is not None else None
-        return {
+        """What the class server knows itself; a worker's world adds what its worker reports."""
+        out: dict[str, Any] = {
             "world": self.name,
             "student": self.student,
-            "domain_id": self.domain_id if lab.zenoh is not None else None,
+            "domain_id": self.domain_id,
             "joined_at": self.joined_at,
             "resets": self.resets,
+            "writes_refused": self.writes.refused,
+            "worker": self.worker.id if self.worker is not None else None,
+        }
+        lab = self.lab
+        if lab is None:
+            return out
+        rocket = lab.rocket_view.tracker if lab.rocket_view is not None else None
+        return {
+            **out,
+            "domain_id": self.domain_id if lab.zenoh is not None else None,
             "keys_held": sorted(lab.keyboard.held()),
             "rocket": None
             if rocket is None
@@ -82,7 +86,6 @@ class World:
             "drone": drone_position(lab),
             "crashed_nodes": sorted(n.fully_qualified_name for n in lab.bus.nodes if n.state == "crashed"),
             "nodes": len(lab.bus.nodes),
-            "writes_refused": self.writes.refused,
         }
 
 
@@ -97,7 +100,8 @@ def drone_position(lab: Lab) -> list[float] | None:
 
 
 class Classroom:
-    """The worlds of one class server, and who may do what in them."""
+    """The worlds of one class server, and who may do what in them. On a world worker
+    (``settings.worker``) the same class hosts the worlds a class server places on it."""
 
     def __init__(
         self,
@@ -114,15 +118,35 @@ class Classroom:
         self.instructor_token, self.instructor = self.signer.issue("instructor", None, "instructor")
         self.worlds: dict[str, World] = {}
         self.physics = SharedQuadrotorPhysics(self.clock)
+        self.workers: WorkerDirectory | None = None  # the class server's world workers, with Zenoh
         self._revoked: set[str] = set()
         self._starting: dict[str, int] = {}  # world → its ROS domain, while it starts
+        self._placing: dict[str, int] = {}  # worker id → worlds being started there
+        self._local_starting = 0  # worlds being started here
         self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
+        self._control: Any = None  # a worker's hello queryable (WorkerControl) and its session
+        self._control_session: Any = None
+        worker = settings.worker
+        self._worker_token = worker_api_token(worker.class_token, worker.id) if worker is not None else None
+
+    @property
+    def is_worker(self) -> bool:
+        return self.settings.worker is not None
+
+    @property
+    def local_capacity(self) -> int:
+        local = self.settings.local_worlds
+        return self.settings.max_worlds if local is None else min(local, self.settings.max_worlds)
 
     # -- who is calling ------------------------------------------------------
     def grant(self, token: str | None) -> Grant | None:
         """The grant of a genuine, current token: a student's world must still be theirs."""
         if not token:
             return None
+        if self._worker_token is not None and hmac.compare_digest(
+            token.encode(), self._worker_token.encode()
+        ):
+            return self.instructor  # the class server, calling its worker
         grant = self.signer.verify(token)
         if grant is None or grant.token_id in self._revoked:
             return None
@@ -148,20 +172,34 @@ class Classroom:
             raise ClassroomError(404, f"no world named {name!r}")
         return world
 
-    # -- worlds ----------------------------------------------------------------
     # -- the class's Zenoh graph ---------------------------------------------------------------
     async def open(self) -> None:
         """Open the class's Zenoh router (if Zenoh is on): each world joins it in a ROS domain of
-        its own, so students' node processes join their world with its ROS_DOMAIN_ID."""
+        its own, so students' node processes join their world with its ROS_DOMAIN_ID. On a world
+        worker: join the class's router and answer the class server's hellos."""
         zenoh = self.settings.zenoh
-        if zenoh is None or zenoh.mode != "router":
+        if zenoh is None:
             return
         from server.transport.session import TransportError, open_session
 
+        if self.settings.worker is not None:
+            from .worker import WorkerControl
+
+            self._control_session = await asyncio.to_thread(open_session, zenoh)
+            self._control = WorkerControl(self._control_session, self.settings.worker, self._load)
+            return
+        if zenoh.mode != "router":
+            return
         try:
             self._router = await asyncio.to_thread(open_session, zenoh)
         except TransportError as exc:
             log.warning("%s; the worlds run without Zenoh", exc)
+            return
+        self.workers = WorkerDirectory(self._router, self.instructor_token)
+
+    def _load(self) -> dict[str, Any]:
+        """A worker's hello: how full it is."""
+        return {"worlds": len(self.worlds) + len(self._starting), "max_worlds": self.settings.max_worlds}
 
     def router_endpoint(self) -> str | None:
         """Where worlds and node processes connect: the class's router, or the one it joined."""
@@ -177,9 +215,15 @@ class Classroom:
         taken = {w.domain_id for w in self.worlds.values()} | set(self._starting.values())
         if self.settings.zenoh is not None:
             taken.add(self.settings.zenoh.domain_id)  # the class's own domain stays empty
-        return next(d for d in range(1, MAX_DOMAIN_ID + 1) if d not in taken)
+        free = (d for d in range(1, MAX_DOMAIN_ID + 1) if d not in taken)
+        domain = next(free, None)
+        if domain is None:
+            raise ClassroomError(429, f"every ROS domain (1..{MAX_DOMAIN_ID}) is taken")
+        return domain
 
-    def _world_settings(self, name: str, domain_id: int) -> Settings:
+    def _world_settings(
+        self, name: str, domain_id: int, launch: tuple[str, dict[str, str]] | None
+    ) -> Settings:
         # A world's graph joins the class's router in a ROS domain of its own; the class server's
         # other ports (Foxglove, rosbridge) are not opened per world; bags go in a folder per world.
         endpoint = self.router_endpoint()
@@ -189,21 +233,29 @@ class Classroom:
             zenoh = ZenohSettings(
                 mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file
             )
+        file, args = launch if launch is not None else (self.settings.launch, self.settings.launch_args)
         return dataclasses.replace(
             self.settings,
             zenoh=zenoh,
             foxglove_port=None,
             rosbridge_port=None,
             bag_dir=self.settings.bag_dir / name,
+            launch=file,
+            launch_args=args,
         )
 
-    async def _start_lab(self, name: str, domain_id: int) -> Lab:
-        lab = Lab(self._world_settings(name, domain_id), self.clock)
+    async def _start_lab(
+        self, name: str, domain_id: int, launch: tuple[str, dict[str, str]] | None = None
+    ) -> Lab:
+        lab = Lab(self._world_settings(name, domain_id, launch), self.clock)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         await lab.start()
         return lab
 
+    # -- worlds ----------------------------------------------------------------
     async def join(self, student: str, code: str) -> tuple[World, str]:
+        if self.is_worker:
+            raise ClassroomError(403, "this is a world worker: students join through the class server")
         if not hmac.compare_digest(code.strip().upper().encode(), self.code.encode()):
             raise ClassroomError(403, "wrong class code")
         try:
@@ -214,44 +266,175 @@ class Classroom:
             raise ClassroomError(409, f"the name {student!r} is taken in this class (world {name!r})")
         if len(self.worlds) + len(self._starting) >= self.settings.max_worlds:
             raise ClassroomError(429, f"the class is full ({self.settings.max_worlds} worlds)")
+        student = student.strip()[:64]
         domain_id = self._free_domain()
         self._starting[name] = domain_id  # held while the world starts: no two joins take one name
         try:
-            lab = await self._start_lab(name, domain_id)
+            place = await self._place()
+            lab: Lab | None = None
+            if place is None:
+                self._local_starting += 1
+                try:
+                    lab = await self._start_lab(name, domain_id)
+                finally:
+                    self._local_starting -= 1
+            else:
+                await self._host_on(place, name, student, domain_id)
         finally:
             del self._starting[name]
-        student = student.strip()[:64]
         token, grant = self.signer.issue("student", name, student)
-        world = self.worlds[name] = World(name, student, grant.token_id, lab, self._limit(), domain_id)
-        log.info("%s joined: world %s", student, name)
+        world = self.worlds[name] = World(
+            name, student, grant.token_id, lab, self._limit(), domain_id, worker=place
+        )
+        where = f" on world worker {place.id}" if place is not None else ""
+        log.info("%s joined: world %s%s", student, name, where)
         return world, token
+
+    async def _place(self) -> WorkerRef | None:
+        """Where a new world goes: here or the world worker with the lowest load (worlds over
+        capacity); on a tie a worker, so the class server keeps its core for the pages."""
+        local = sum(1 for w in self.worlds.values() if w.worker is None) + self._local_starting
+        choices: list[tuple[float, int, WorkerRef | None]] = []
+        if local < self.local_capacity:
+            choices.append((local / max(self.local_capacity, 1), 1, None))
+        refs = await asyncio.to_thread(self.workers.discover) if self.workers is not None else []
+        for ref in refs:
+            ours = sum(1 for w in self.worlds.values() if w.worker is not None and w.worker.id == ref.id)
+            worlds = max(ref.worlds, ours) + self._placing.get(ref.id, 0)
+            if worlds < ref.max_worlds:
+                choices.append((worlds / ref.max_worlds, 0, ref))
+        if not choices:
+            raise ClassroomError(
+                503, f"no room for another world: this server hosts {self.local_capacity} itself "
+                     f"(--local-worlds) and {'no world worker has room' if refs else 'no world worker answered'}"
+            )  # fmt: skip
+        return min(choices, key=lambda c: (c[0], c[1]))[2]
+
+    async def _host_on(self, ref: WorkerRef, name: str, student: str, domain_id: int) -> None:
+        assert self.workers is not None
+        self._placing[ref.id] = self._placing.get(ref.id, 0) + 1
+        try:
+            body = {"world": name, "student": student, "domain_id": domain_id,
+                    "launch": self.settings.launch, "launch_args": self.settings.launch_args}  # fmt: skip
+            await self.workers.checked(ref, "POST", "/api/classroom/host", body=body)
+        finally:
+            self._placing[ref.id] -= 1
+
+    async def host(
+        self, name: str, student: str, domain_id: int, launch: str, launch_args: dict[str, str]
+    ) -> World:
+        """A world worker: start the world a class server placed here, in the domain it chose."""
+        if not self.is_worker:
+            raise ClassroomError(404, "only a world worker hosts worlds for a class server")
+        if name in self.worlds or name in self._starting:
+            raise ClassroomError(409, f"world {name!r} is already here")
+        if len(self.worlds) + len(self._starting) >= self.settings.max_worlds:
+            raise ClassroomError(429, f"this worker is full ({self.settings.max_worlds} worlds)")
+        self._starting[name] = domain_id
+        try:
+            lab = await self._start_lab(name, domain_id, (launch, launch_args))
+        finally:
+            del self._starting[name]
+        _token, grant = self.signer.issue(
+            "student", name, student
+        )  # never handed out: the class server proxies
+        world = self.worlds[name] = World(name, student, grant.token_id, lab, self._limit(), domain_id)
+        log.info("hosting world %s (%s), ROS domain %d", name, student, domain_id)
+        return world
 
     def _limit(self) -> RateLimit:
         return RateLimit(self.clock, self.settings.world_writes_hz, self.settings.world_writes_burst)
 
+    async def describe_all(self) -> list[dict[str, Any]]:
+        """Every world as the instructor's page shows it; a worker's worlds as their worker reports."""
+        reports: dict[tuple[str, str], dict[str, Any]] = {}
+        by_worker = {w.worker.id: w.worker for w in self.worlds.values() if w.worker is not None}
+        errors: dict[str, str] = {}
+        if self.workers is not None:
+            for ref in by_worker.values():
+                try:
+                    listed = await self.workers.checked(ref, "GET", "/api/classroom/worlds")
+                except ClassroomError as exc:
+                    errors[ref.id] = str(exc)
+                    continue
+                reports.update({(ref.id, str(w.get("world"))): w for w in listed.get("worlds", [])})
+        out = []
+        for world in self.worlds.values():
+            mine = world.describe()
+            if world.worker is not None:
+                reported = reports.get((world.worker.id, world.name), {})
+                mine = {**reported, **mine}
+                if world.worker.id in errors:
+                    mine["worker_error"] = errors[world.worker.id]
+            out.append(mine)
+        return out
+
+    async def broadcast_on_workers(self, body: dict[str, Any]) -> tuple[list[str], dict[str, str]]:
+        """The instructor's broadcast, published by each world worker in the worlds it hosts."""
+        reached: list[str] = []
+        refused: dict[str, str] = {}
+        refs = {w.worker.id: w.worker for w in self.worlds.values() if w.worker is not None}
+        for ref in refs.values():
+            names = [w.name for w in self.worlds.values() if w.worker is not None and w.worker.id == ref.id]
+            try:
+                answer = (
+                    await self.workers.checked(ref, "POST", "/api/classroom/broadcast", body=body)
+                    if self.workers
+                    else {}
+                )
+            except ClassroomError as exc:
+                refused |= dict.fromkeys(names, str(exc))
+                continue
+            reached += [n for n in answer.get("reached", []) if n in names]
+            refused |= {n: str(why) for n, why in answer.get("refused", {}).items() if n in names}
+        return reached, refused
+
     async def reset(self, name: str) -> World:
         """A fresh world under the same name and token: every node starts over, the 3D view too."""
         world = self.get(name)
-        old = world.lab
-        await old.stop()  # first: the new world takes the same ROS domain on the graph
-        world.lab = await self._start_lab(name, world.domain_id)
+        if world.worker is not None:
+            assert self.workers is not None
+            await self.workers.checked(world.worker, "POST", f"/api/classroom/worlds/{name}/reset")
+        else:
+            assert world.lab is not None
+            await world.lab.stop()  # first: the new world takes the same ROS domain on the graph
+            world.lab = await self._start_lab(name, world.domain_id, self._launch_of(world.lab))
         world.resets += 1
         log.info("world %s reset", name)
         return world
+
+    @staticmethod
+    def _launch_of(lab: Lab) -> tuple[str, dict[str, str]]:
+        return lab.settings.launch, lab.settings.launch_args
 
     async def kick(self, name: str) -> World:
         world = self.worlds.pop(name, None)
         if world is None:
             raise ClassroomError(404, f"no world named {name!r}")
         self._revoked.add(world.token_id)
-        await world.lab.stop()
+        await self._end(world)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
 
+    async def _end(self, world: World) -> None:
+        if world.lab is not None:
+            await world.lab.stop()
+        elif world.worker is not None and self.workers is not None:
+            try:  # a worker that is gone took its world with it
+                await self.workers.checked(world.worker, "DELETE", f"/api/classroom/worlds/{world.name}")
+            except ClassroomError as exc:
+                log.warning("world %s: %s", world.name, exc)
+
     async def stop(self) -> None:
         for name in list(self.worlds):
-            world = self.worlds.pop(name)
-            await world.lab.stop()
-        if self._router is not None:
-            self._router.close()
-            self._router = None
+            await self._end(self.worlds.pop(name))
+        if self.workers is not None:
+            await self.workers.close()
+            self.workers = None
+        if self._control is not None:
+            self._control.close()
+            self._control = None
+        for session in (self._router, self._control_session):
+            if session is not None:
+                session.close()
+        self._router = self._control_session = None

@@ -17,13 +17,17 @@ from . import bag, interface, launch, node, run, service, topic
 from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
 
 VERBS = ("topic", "node", "service", "launch", "run", "interface", "bag")
+WORKER_VERB = "world-worker"  # ros2lab world-worker: host a class server's worlds (server.classroom.worker)
 
 __all__ = ["VERBS", "build_parser", "main"]
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="ros2lab", description="ros2's command-line tools for the teleop lab's running server."
+        prog="ros2lab",
+        description="ros2's command-line tools for the teleop lab's running server.",
+        epilog=f"ros2lab {WORKER_VERB} --connect tcp/HOST:7447 hosts worlds for a class server "
+        f"(ros2lab {WORKER_VERB} --help).",
     )
     url_help = f"the lab server (default: ${URL_ENV}, else {DEFAULT_URL})"
     parser.add_argument("--url", default=None, help=url_help)
@@ -47,6 +51,11 @@ def _interrupt(_signum: int, _frame: FrameType | None) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     """Run one command; 0 on success or Ctrl-C, 1 when it failed, 2 on bad usage or no server."""
+    argv = sys.argv[1:] if argv is None else argv
+    if argv and argv[0] == WORKER_VERB:  # not a client verb: this process hosts worlds itself
+        from .world_worker import main as worker_main
+
+        return worker_main(argv[1:])
     args = build_parser().parse_args(argv)
     url = args.url or os.environ.get(URL_ENV) or DEFAULT_URL
     # SIGTERM cleans up as Ctrl-C does: a launch's nodes and a periodic publisher are stopped.

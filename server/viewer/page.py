@@ -3,21 +3,19 @@ proxy that carries it to the viser server on loopback: one port for everything."
 
 from __future__ import annotations
 
-import asyncio
-import contextlib
 from functools import cache
 from pathlib import Path
 from typing import Any
 
 import viser
 import websockets
-from fastapi import APIRouter, Request, WebSocket, WebSocketDisconnect, status
+from fastapi import APIRouter, Request, WebSocket, status
 from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
 from starlette.requests import HTTPConnection
-from websockets.asyncio.client import ClientConnection
 
 from api.deps import classroom_of, keep_token_and_go, lab_of, token_of
 from api.security import token_matches
+from api.ws_relay import relay
 from server.classroom import ClassroomError
 
 from .views import ViewRegistry
@@ -135,51 +133,4 @@ async def viser_proxy(websocket: WebSocket) -> None:
             status.WS_1008_POLICY_VIOLATION, f"the 3D view refused the connection: {exc}"[:120]
         )
         return
-    async with upstream:
-        await websocket.accept(subprotocol=upstream.subprotocol)
-
-        async def client_to_viser() -> tuple[int, str] | None:
-            """Pump until the browser leaves (None) or must be closed (code, reason)."""
-            while (message := await websocket.receive())["type"] != "websocket.disconnect":
-                data = message.get("bytes") if message.get("bytes") is not None else message.get("text")
-                if data is None:
-                    return status.WS_1003_UNSUPPORTED_DATA, "empty frame"
-                if len(data) > PROXY_MAX_FRAME_BYTES:
-                    return status.WS_1009_MESSAGE_TOO_BIG, f"frame larger than {PROXY_MAX_FRAME_BYTES} bytes"
-                try:
-                    await upstream.send(data)
-                except websockets.exceptions.ConnectionClosed:
-                    return _upstream_close(upstream)
-            return None
-
-        async def viser_to_client() -> tuple[int, str]:
-            with contextlib.suppress(websockets.exceptions.ConnectionClosed):
-                async for data in upstream:
-                    if isinstance(data, bytes):
-                        await websocket.send_bytes(data)
-                    else:
-                        await websocket.send_text(data)
-            return _upstream_close(upstream)  # e.g. viser's 1002 on a version mismatch, for the page to show
-
-        tasks = [asyncio.create_task(client_to_viser()), asyncio.create_task(viser_to_client())]
-        try:
-            done, _ = await asyncio.wait(tasks, return_when=asyncio.FIRST_COMPLETED)
-        finally:
-            for task in tasks:
-                task.cancel()
-            for task in tasks:
-                with contextlib.suppress(BaseException):
-                    await task
-    first = next(iter(done))
-    close = first.result() if first.exception() is None else (status.WS_1011_INTERNAL_ERROR, "proxy failed")
-    if close is not None:  # the browser is still there: tell it why, never just drop the connection
-        with contextlib.suppress(RuntimeError, WebSocketDisconnect):
-            await websocket.close(*close)
-
-
-def _upstream_close(upstream: ClientConnection) -> tuple[int, str]:
-    """viser's close code and reason, as a code a server may send (1005/1006/1015 may not be)."""
-    code = upstream.close_code
-    if code is None or code in (1005, 1006, 1015):
-        code = status.WS_1011_INTERNAL_ERROR
-    return code, upstream.close_reason or "the 3D view closed the connection"
+    await relay(websocket, upstream, PROXY_MAX_FRAME_BYTES)

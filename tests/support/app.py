@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import os
 import queue
+import re
 import signal
 import socket
 import subprocess
@@ -191,3 +192,57 @@ class JsonProcess:
         for stream in (self.proc.stdin, self.proc.stdout, self.proc.stderr):
             if stream is not None:
                 stream.close()
+
+
+def instructor_token(log_text: str) -> str:
+    """The instructor's token from the link a class server prints once at start."""
+    found = re.search(r"/instructor\?token=(\S+)", log_text)
+    if found is None:
+        pytest.fail(f"the class server printed no instructor's link:\n{log_text[-2000:]}")
+    return found.group(1)
+
+
+class WorldWorker:
+    """``ros2lab world-worker`` in a subprocess, joined to a class server's Zenoh router."""
+
+    def __init__(
+        self,
+        workdir: Path,
+        router: str,
+        class_token: str,
+        worker_id: str,
+        *extra: str,
+        cwd: Path | None = None,
+    ) -> None:
+        self.id = worker_id
+        self.log_path = workdir / f"worker-{worker_id}.log"
+        self._log = self.log_path.open("w")
+        env = {**os.environ, "ROS2LAB_TOKEN": class_token}
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", "server", "world-worker", "--connect", f"tcp/{router}", "--id", worker_id,
+             *extra],
+            cwd=cwd or REPO, stdout=self._log, stderr=subprocess.STDOUT, env=env,
+        )  # fmt: skip
+
+    def log_tail(self, chars: int = 3000) -> str:
+        self._log.flush()
+        return self.log_path.read_text(errors="replace")[-chars:]
+
+    def stop(self) -> None:
+        end(self.proc)
+        self._log.close()
+
+
+def wait_for_workers(url: str, token: str, ids: set[str], timeout_s: float = READY_S) -> list[dict[str, Any]]:
+    """Until the class server at ``url`` finds every worker in ``ids`` on its router."""
+    deadline = time.monotonic() + timeout_s
+    seen: list[dict[str, Any]] = []
+    while time.monotonic() < deadline:
+        reply = httpx.get(
+            f"{url}/api/classroom/workers", headers={"Authorization": f"Bearer {token}"}, timeout=10
+        )
+        seen = reply.json()["workers"] if reply.status_code == 200 else []
+        if ids <= {w["id"] for w in seen}:
+            return seen
+        time.sleep(0.2)
+    pytest.fail(f"the class server found workers {seen}, not all of {sorted(ids)}, within {timeout_s} s")

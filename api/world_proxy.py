@@ -1,0 +1,177 @@
+"""A class server's calls for a world that runs on a world worker go to that worker (issue 13).
+
+The class server keeps the student's page, the join form, the instructor's page and every
+access check (token, world, write limit) for itself; what acts on a world (``/api/...``, the
+page's views, and every WebSocket: keys, echo, rosbridge, the 3D view) is passed on to the
+worker that hosts it, as its instructor, naming the world. The student's cookie and token never
+leave the class server. A worker that does not answer is a 502 (HTTP) or close 1011 (WebSocket)
+that says so; a closed world's socket keeps its worker's close code (1012 on a reset).
+"""
+
+from __future__ import annotations
+
+from urllib.parse import parse_qsl, urlencode
+
+import httpx
+import websockets
+from fastapi import WebSocket, status
+from starlette.requests import HTTPConnection
+from starlette.types import ASGIApp, Message, Receive, Scope, Send
+
+from server.classroom import Classroom, ClassroomError, World
+from server.classroom.workers import WorkerDirectory, WorkerRef
+
+from .deps import SAFE_METHODS, WORLD_HEADER, token_of
+from .errors import close_reason
+from .strict_json import SafeJSONResponse
+from .ws_relay import relay
+
+# Hop-by-hop headers, and what the class server answers for itself (who the caller is, where from).
+DROP_REQUEST = frozenset({
+    "host", "cookie", "authorization", WORLD_HEADER, "origin", "referer", "connection", "keep-alive",
+    "te", "trailer", "transfer-encoding", "upgrade", "content-length", "proxy-authorization",
+})  # fmt: skip
+DROP_RESPONSE = frozenset({"connection", "keep-alive", "transfer-encoding", "set-cookie", "server", "date"})
+WS_OPEN_TIMEOUT_S = 10.0
+
+
+def passed_on(scope: Scope) -> bool:
+    """Whether a request acts on a world (and so goes where the world runs)."""
+    if scope["type"] == "websocket":
+        return True
+    path: str = scope["path"]
+    if path.startswith("/api/classroom/") or path == "/api/classroom":
+        return False
+    return path.startswith("/api/") or path == "/page/views"
+
+
+class WorldProxyMiddleware:
+    def __init__(self, app: ASGIApp) -> None:
+        self.app = app
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        classroom: Classroom | None = None
+        if scope["type"] in ("http", "websocket"):
+            classroom = getattr(scope["app"].state, "classroom", None)
+        if classroom is None or classroom.workers is None or not passed_on(scope):
+            await self.app(scope, receive, send)
+            return
+        conn = HTTPConnection(scope)
+        grant = classroom.grant(token_of(conn))
+        world: World | None = None
+        if grant is not None:
+            try:
+                world = classroom.world_for(
+                    grant, conn.headers.get(WORLD_HEADER) or conn.query_params.get("world")
+                )
+            except ClassroomError:
+                world = None  # the route refuses it, as for any world
+        if world is None or world.worker is None:
+            await self.app(scope, receive, send)
+            return
+        directory = classroom.workers
+        if scope["type"] == "websocket":
+            await _forward_ws(world, world.worker, scope, receive, send)
+            return
+        assert grant is not None
+        if scope["method"] not in SAFE_METHODS and not grant.is_instructor and not world.writes.take():
+            detail = (f"too many requests for world {world.name!r}: at most "
+                      f"{classroom.settings.world_writes_hz:g} writes a second")  # fmt: skip
+            await SafeJSONResponse({"detail": detail}, status.HTTP_429_TOO_MANY_REQUESTS)(
+                scope, receive, send
+            )
+            return
+        await _forward_http(directory, world, world.worker, scope, receive, send)
+
+
+def _target(ref: WorkerRef, scope: Scope, websocket: bool) -> str:
+    raw_path = scope.get("raw_path")
+    path = raw_path.decode("latin-1") if isinstance(raw_path, bytes) else scope["path"]
+    query = [(k, v) for k, v in parse_qsl(scope["query_string"].decode("latin-1"), keep_blank_values=True)
+             if k not in ("token", "world")]  # fmt: skip
+    base = ref.url.replace("http", "ws", 1) if websocket else ref.url
+    return base + path + (f"?{urlencode(query)}" if query else "")
+
+
+def _headers(scope: Scope, ref: WorkerRef, world: World) -> list[tuple[str, str]]:
+    kept = [
+        (k.decode("latin-1"), v.decode("latin-1"))
+        for k, v in scope["headers"]
+        if k.decode("latin-1").lower() not in DROP_REQUEST and not k.lower().startswith(b"sec-websocket")
+    ]
+    return [*kept, ("authorization", f"Bearer {ref.token}"), (WORLD_HEADER, world.name)]
+
+
+async def _read_body(receive: Receive) -> bytes | None:
+    body = bytearray()
+    while True:
+        message: Message = await receive()
+        if message["type"] == "http.disconnect":
+            return None
+        body += message.get("body", b"")
+        if not message.get("more_body"):
+            return bytes(body)
+
+
+async def _forward_http(
+    directory: WorkerDirectory, world: World, ref: WorkerRef, scope: Scope, receive: Receive, send: Send
+) -> None:
+    body = await _read_body(receive)  # the guard outside has already capped its size
+    if body is None:
+        return
+    request = directory.http.build_request(
+        scope["method"],
+        _target(ref, scope, websocket=False),
+        headers=_headers(scope, ref, world),
+        content=body,
+    )
+    try:
+        response = await directory.http.send(request, stream=True)
+    except httpx.HTTPError as exc:
+        detail = f"world {world.name!r} runs on world worker {ref.id!r}, which did not answer: {exc or type(exc).__name__}"
+        await SafeJSONResponse({"detail": detail}, status.HTTP_502_BAD_GATEWAY)(scope, receive, send)
+        return
+    try:
+        headers = [
+            (k.encode("latin-1"), v.encode("latin-1"))
+            for k, v in response.headers.multi_items()
+            if k.lower() not in DROP_RESPONSE
+        ]
+        await send({"type": "http.response.start", "status": response.status_code, "headers": headers})
+        async for chunk in response.aiter_raw():
+            await send({"type": "http.response.body", "body": chunk, "more_body": True})
+        await send({"type": "http.response.body", "body": b"", "more_body": False})
+    finally:
+        await response.aclose()
+
+
+async def _forward_ws(world: World, ref: WorkerRef, scope: Scope, receive: Receive, send: Send) -> None:
+    websocket = WebSocket(scope, receive, send)
+    subprotocols = scope.get("subprotocols") or None
+    headers = [(k, v) for k, v in _headers(scope, ref, world) if k.lower() != "user-agent"]
+    try:
+        upstream = await websockets.connect(
+            _target(ref, scope, websocket=True),
+            subprotocols=subprotocols,
+            additional_headers=headers,
+            max_size=None,
+            compression=None,
+            open_timeout=WS_OPEN_TIMEOUT_S,
+            proxy=None,
+        )
+    except websockets.exceptions.InvalidStatus as exc:
+        # The worker refused it before opening (an unknown topic, a full lab): say so in its words.
+        code = (
+            status.WS_1008_POLICY_VIOLATION
+            if exc.response.status_code < 500
+            else status.WS_1011_INTERNAL_ERROR
+        )
+        await websocket.close(code, close_reason(f"world {world.name!r}: the world worker refused: {exc}"))
+        return
+    except (OSError, TimeoutError, ValueError, websockets.exceptions.WebSocketException) as exc:
+        await websocket.close(
+            status.WS_1011_INTERNAL_ERROR,
+            close_reason(f"world {world.name!r}'s worker {ref.id!r} did not answer: {exc}"),
+        )
+        return
+    await relay(websocket, upstream)

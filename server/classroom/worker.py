@@ -1,0 +1,159 @@
+"""``ros2lab world-worker --connect tcp/HOST:7447``: host worlds for a class server (issue 13).
+
+The worker joins the class's Zenoh router, serves its own HTTP API (loopback by default; every
+call needs a token derived from the instructor's), and answers the class server's hello with
+where that API is and how many worlds it hosts. Its worlds join the same router in the ROS
+domains the class server gives them, so a student's node processes find them as before.
+
+    ROS2LAB_TOKEN=<the instructor's token> ros2lab world-worker --connect tcp/127.0.0.1:7447
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import logging
+import os
+import socket
+import sys
+import threading
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from server.settings import LOOPBACK_HOSTS, Settings, WorkerSettings
+from server.transport.config import ZenohSettings
+
+from .workers import MAX_REPLY_BYTES, control_key, seal
+
+log = logging.getLogger("classroom.worker")
+TOKEN_ENV = "ROS2LAB_TOKEN"
+
+
+class WorkerControl:
+    """Answers hellos on the router: sealed with the class's token, so only its server trusts them."""
+
+    def __init__(
+        self, session: Any, settings: WorkerSettings, describe: Callable[[], dict[str, Any]]
+    ) -> None:
+        self._describe = describe
+        self._settings = settings
+        self._lock = threading.Lock()
+        self._queryable = session.declare_queryable(control_key(settings.id), self._on_query, complete=True)
+
+    def _on_query(self, query: Any) -> None:  # Zenoh's thread: answer at once, block nothing
+        try:
+            raw = query.payload.to_bytes() if query.payload is not None else b""
+            if len(raw) > MAX_REPLY_BYTES:
+                return
+            asked = json.loads(raw) if raw else None
+            if not isinstance(asked, dict) or asked.get("op") != "hello":
+                return  # nothing but a hello is asked here; the querier's timeout ends it
+            nonce = asked.get("nonce")
+            if not isinstance(nonce, str) or len(nonce) > 64:
+                return
+            with self._lock:
+                body = {
+                    **self._describe(),
+                    "id": self._settings.id,
+                    "url": self._settings.url,
+                    "nonce": nonce,
+                }
+            query.reply(control_key(self._settings.id), seal(self._settings.class_token, body))
+        except ValueError:
+            return
+        finally:
+            query.drop()
+
+    def close(self) -> None:
+        self._queryable.undeclare()
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="ros2lab world-worker",
+        description="Host worlds for a class server: join its Zenoh router and serve the worlds it places "
+        f"here. The instructor's token comes from ${TOKEN_ENV} (the class server prints it).",
+    )
+    parser.add_argument(
+        "--connect",
+        required=True,
+        metavar="ENDPOINT",
+        help="the class's Zenoh router, e.g. tcp/127.0.0.1:7447",
+    )
+    parser.add_argument(
+        "--host", default="127.0.0.1", help="address of this worker's HTTP API (default 127.0.0.1)"
+    )
+    parser.add_argument("--port", type=int, default=0, help="its port (default: a free one)")
+    parser.add_argument(
+        "--advertise", metavar="HOST",
+        help="the address the class server reaches this worker on (default: --host; needed with 0.0.0.0)",
+    )  # fmt: skip
+    parser.add_argument("--id", dest="worker_id", help="this worker's name (default: HOSTNAME-PID)")
+    parser.add_argument("--max-worlds", type=int, default=30, help="worlds at most (default 30)")
+    parser.add_argument(
+        "--workspace", default="workspace", help="folder of students' packages (default ./workspace)"
+    )
+    parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
+    parser.add_argument("--log-level", default="info", choices=["debug", "info", "warning", "error"])
+    return parser
+
+
+def _worker_id(asked: str | None) -> str:
+    wid = asked or f"{socket.gethostname()}-{os.getpid()}"
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in wid)[:64] or f"worker-{os.getpid()}"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    class_token = os.environ.get(TOKEN_ENV, "").strip()
+    if not class_token:
+        print(f"error: set {TOKEN_ENV} to the instructor's token (in the link the class server printed): "
+              "a worker serves only its own class", file=sys.stderr)  # fmt: skip
+        return 2
+    if args.max_worlds < 1:
+        parser.error("--max-worlds must be at least 1")
+    advertise = args.advertise or args.host
+    if advertise in ("0.0.0.0", "::"):
+        parser.error(
+            "with --host 0.0.0.0, name the address the class server reaches this machine on: --advertise HOST"
+        )
+    family = socket.AF_INET6 if ":" in args.host else socket.AF_INET
+    sock = socket.socket(family, socket.SOCK_STREAM)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        sock.bind((args.host, args.port))
+    except OSError as exc:
+        print(f"error: cannot listen on {args.host}:{args.port}: {exc.strerror}", file=sys.stderr)
+        return 2
+    port = int(sock.getsockname()[1])
+    shown = f"[{advertise}]" if ":" in advertise else advertise
+    worker = WorkerSettings(
+        id=_worker_id(args.worker_id), url=f"http://{shown}:{port}", class_token=class_token
+    )
+    settings = Settings(
+        host=args.host, port=port, workspace=Path(args.workspace), bag_dir=Path(args.bag_dir),
+        zenoh=ZenohSettings(mode="client", listen=(), connect=(args.connect,)),
+        classroom=True, max_worlds=args.max_worlds, worker=worker,
+        allowed_hosts=() if args.host in LOOPBACK_HOSTS else (advertise,),
+    )  # fmt: skip
+    logging.basicConfig(
+        level=args.log_level.upper(),
+        format="%(asctime)s %(levelname)s %(name)s: %(message)s",
+        datefmt="%H:%M:%S",
+    )
+    import rich
+    import uvicorn
+
+    from server.app import create_app
+
+    rich.get_console().quiet = True  # viser's banner names its own loopback port: not for anyone here
+    app = create_app(settings)
+    print(f"World worker {worker.id}: API at {worker.url}, class router {args.connect}, "
+          f"up to {args.max_worlds} worlds (Ctrl-C stops it and its worlds)", flush=True)  # fmt: skip
+    config = uvicorn.Config(app, log_level=args.log_level, timeout_graceful_shutdown=1, lifespan="on")
+    with contextlib.suppress(KeyboardInterrupt):
+        uvicorn.Server(config).run(sockets=[sock])
+    return 0

@@ -1,0 +1,152 @@
+"""Worlds in other processes: world workers on the class's Zenoh router (issue 13).
+
+A world worker (``ros2lab world-worker --connect tcp/HOST:7447``) is a class server of its own
+that hosts worlds it is asked to host and lets no student join it directly. It answers a *hello*
+on the class's router (``ros2lab/classroom/worker/<id>``) with where its HTTP API listens and how
+full it is. The class server asks before placing a new world, puts it where the load is lowest,
+and then serves the student's page itself while every call for that world goes to the worker
+(``api/world_proxy.py``).
+
+Trust comes from the instructor's token, which both sides know and which never crosses the wire:
+a worker seals its hello reply with it (so a stranger on the router cannot pose as a worker),
+and the class server calls the worker's API with a token derived from it and the worker's id.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import hmac
+import json
+import secrets
+from dataclasses import dataclass
+from typing import Any
+
+import httpx
+
+from .errors import ClassroomError
+
+CONTROL_PREFIX = "ros2lab/classroom/worker"
+MAX_REPLY_BYTES = 16 * 1024
+HELLO_TIMEOUT_S = 1.0
+WORKER_CALL_TIMEOUT_S = 30.0  # starting a world with the whole lab takes a few seconds
+
+
+def control_key(worker_id: str) -> str:
+    return f"{CONTROL_PREFIX}/{worker_id}"
+
+
+def _mac(secret: str, body: dict[str, Any]) -> str:
+    canonical = json.dumps(body, sort_keys=True, separators=(",", ":")).encode()
+    return hmac.new(secret.encode(), canonical, hashlib.sha256).hexdigest()
+
+
+def seal(secret: str, body: dict[str, Any]) -> bytes:
+    """``body`` as JSON with a MAC under ``secret``."""
+    return json.dumps({**body, "mac": _mac(secret, body)}).encode()
+
+
+def unseal(secret: str, raw: bytes) -> dict[str, Any] | None:
+    """The body of a genuine sealed message; None for anything else (never an exception)."""
+    if len(raw) > MAX_REPLY_BYTES:
+        return None
+    try:
+        body = json.loads(raw)
+    except ValueError:
+        return None
+    if not isinstance(body, dict) or not isinstance(mac := body.pop("mac", None), str):
+        return None
+    return body if hmac.compare_digest(_mac(secret, body), mac) else None
+
+
+def worker_api_token(class_token: str, worker_id: str) -> str:
+    """The token the class server calls a worker's API with: derived, never sent in a hello."""
+    return hmac.new(class_token.encode(), f"world-worker:{worker_id}".encode(), hashlib.sha256).hexdigest()
+
+
+@dataclass(frozen=True)
+class WorkerRef:
+    """A world worker as its last hello described it."""
+
+    id: str
+    url: str  # its HTTP API, e.g. http://127.0.0.1:41234
+    worlds: int
+    max_worlds: int
+    token: str  # worker_api_token(...): what the class server calls it with
+
+    @property
+    def load(self) -> float:
+        return self.worlds / self.max_worlds if self.max_worlds > 0 else 1.0
+
+    def describe(self) -> dict[str, Any]:
+        return {"id": self.id, "url": self.url, "worlds": self.worlds, "max_worlds": self.max_worlds}
+
+
+def _worker_ref(body: dict[str, Any], class_token: str) -> WorkerRef | None:
+    wid, url, worlds, most = body.get("id"), body.get("url"), body.get("worlds"), body.get("max_worlds")
+    if not (isinstance(wid, str) and isinstance(url, str) and url.startswith(("http://", "https://"))):
+        return None
+    if not (isinstance(worlds, int) and isinstance(most, int)):
+        return None
+    return WorkerRef(wid, url.rstrip("/"), worlds, most, worker_api_token(class_token, wid))
+
+
+class WorkerDirectory:
+    """The class server's side: find workers on the router, and call their API."""
+
+    def __init__(self, session: Any, class_token: str, hello_timeout_s: float = HELLO_TIMEOUT_S) -> None:
+        self.session = session  # the class's Zenoh router session
+        self.class_token = class_token
+        self.hello_timeout_s = hello_timeout_s
+        self.known: dict[str, WorkerRef] = {}
+        self.http = httpx.AsyncClient(timeout=WORKER_CALL_TIMEOUT_S, trust_env=False)
+
+    def discover(self) -> list[WorkerRef]:
+        """Every worker that answers a fresh hello in time (blocking: call it in a thread)."""
+        nonce = secrets.token_hex(16)
+        found: dict[str, WorkerRef] = {}
+        replies = self.session.get(
+            f"{CONTROL_PREFIX}/*", payload=json.dumps({"op": "hello", "nonce": nonce}).encode(),
+            timeout=self.hello_timeout_s,
+        )  # fmt: skip
+        for reply in replies:
+            if reply.ok is None:
+                continue
+            body = unseal(self.class_token, reply.ok.payload.to_bytes())
+            if body is None or body.get("nonce") != nonce:
+                continue  # not sealed with this class's token, or an old reply: not our worker
+            ref = _worker_ref(body, self.class_token)
+            if ref is not None:
+                found[ref.id] = ref
+        self.known = found
+        return sorted(found.values(), key=lambda r: r.id)
+
+    async def call(
+        self, ref: WorkerRef, method: str, path: str, *, world: str | None = None, body: Any = None
+    ) -> httpx.Response:
+        """One call to a worker's API as its instructor; ClassroomError 502 if it cannot answer."""
+        headers = {"Authorization": f"Bearer {ref.token}"}
+        if world is not None:
+            headers["X-Lab-World"] = world
+        try:
+            return await self.http.request(method, ref.url + path, headers=headers, json=body)
+        except httpx.HTTPError as exc:
+            raise ClassroomError(
+                502, f"world worker {ref.id!r} did not answer: {exc or type(exc).__name__}"
+            ) from None
+
+    async def checked(
+        self, ref: WorkerRef, method: str, path: str, *, world: str | None = None, body: Any = None
+    ) -> Any:
+        """``call``, and its JSON; a refusal keeps the worker's status and reason."""
+        reply = await self.call(ref, method, path, world=world, body=body)
+        if reply.status_code >= 400:
+            try:
+                detail = reply.json().get("detail")
+            except ValueError:
+                detail = reply.text[:200]
+            status = reply.status_code if reply.status_code < 500 else 502
+            raise ClassroomError(status, f"world worker {ref.id!r}: {detail}")
+        return reply.json()
+
+    async def close(self) -> None:
+        await self.http.aclose()

@@ -1,0 +1,202 @@
+"""World workers (``ros2lab world-worker``): a class server places new worlds where the load is
+lowest (itself or a worker on its Zenoh router) and keeps serving every student's calls; a world
+on a worker answers through the class server like a local one.
+
+A class server, two workers and a stranger (a worker started with another token) run as
+processes of their own on loopback, and are ended by their ids.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import math
+import os
+import subprocess
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import httpx
+import pytest
+import websockets
+from support.app import App, WorldWorker, instructor_token, wait_for_workers
+
+CODE = "WRK042"
+STUDENTS = ("Ada", "Bob", "Cy", "Dee")
+TARGET = (5.0, 5.0, 10.0)
+NEAR_M = 1.0
+FLY_S = 40.0
+
+
+@dataclass
+class Class:
+    app: App
+    instructor: str
+    workers: dict[str, WorldWorker]
+    tokens: dict[str, str]  # world → its student's token
+
+    def get(self, path: str, token: str, **headers: str) -> httpx.Response:
+        return httpx.get(
+            self.app.url + path, headers={"Authorization": f"Bearer {token}", **headers}, timeout=10
+        )
+
+    def post(self, path: str, token: str, body: Any = None) -> httpx.Response:
+        return httpx.post(
+            self.app.url + path, headers={"Authorization": f"Bearer {token}"}, json=body, timeout=30
+        )
+
+    def worlds(self) -> dict[str, dict[str, Any]]:
+        reply = self.get("/api/classroom/worlds", self.instructor)
+        assert reply.status_code == 200, reply.text
+        return {w["world"]: w for w in reply.json()["worlds"]}
+
+    def position(self, world: str) -> tuple[float, float, float]:
+        latest = self.get("/api/topics/uav/sensors/gps", self.tokens[world]).json()["latest"]
+        p = latest["pose"]["position"]
+        return p["x"], p["y"], p["z"]
+
+
+@pytest.fixture(scope="module")
+def klass(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
+    root = tmp_path_factory.mktemp("world_workers")
+    # The class server hosts one world itself; each worker up to three.
+    app = App(
+        root, "--classroom", "--class-code", CODE, "--launch", "fly", "--local-worlds", "1", "--no-foxglove"
+    )
+    workers: dict[str, WorldWorker] = {}
+    try:
+        instructor = instructor_token(app.log_tail(10**6))
+        for wid in ("wa", "wb"):
+            workers[wid] = WorldWorker(root, app.router, instructor, wid, "--max-worlds", "3")
+        # A process on the same router that does not know the instructor's token.
+        workers["stranger"] = WorldWorker(root, app.router, "not-the-instructors-token", "stranger")
+        wait_for_workers(app.url, instructor, {"wa", "wb"})
+        tokens: dict[str, str] = {}
+        for name in STUDENTS:  # one at a time: each placement sees the one before
+            reply = httpx.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60)
+            assert reply.status_code == 201, reply.text
+            tokens[reply.json()["world"]] = reply.json()["token"]
+        yield Class(app, instructor, workers, tokens)
+    finally:
+        for worker in workers.values():
+            worker.stop()
+        app.stop()
+
+
+def test_the_class_server_trusts_only_workers_that_know_its_token(klass: Class) -> None:
+    listed = klass.get("/api/classroom/workers", klass.instructor).json()
+    assert {w["id"] for w in listed["workers"]} == {"wa", "wb"}  # not the stranger
+    assert listed["local"]["max_worlds"] == 1
+    assert "ros2lab world-worker --connect" in klass.app.log_tail(10**6)  # the banner says how to add one
+
+
+def test_new_worlds_go_where_the_load_is_lowest(klass: Class) -> None:
+    # Empty workers first (a tie with the empty server goes to a worker), then the server's own
+    # room, then the less loaded worker; never the stranger.
+    placed = {name: world["worker"] for name, world in klass.worlds().items()}
+    assert placed == {"ada": "wa", "bob": "wb", "cy": None, "dee": "wa"}
+
+
+def test_a_workers_world_flies_through_the_class_server(klass: Class) -> None:
+    reply = klass.post(
+        "/api/publish",
+        klass.tokens["ada"],
+        {"topic": "/uav/input/position", "msg": dict(zip("xyz", TARGET, strict=True))},
+    )
+    assert reply.status_code == 200, reply.text
+    klass.app.wait_for(
+        lambda: math.dist(klass.position("ada"), TARGET) < NEAR_M, "ada's drone at (5, 5, 10)", FLY_S
+    )
+    assert klass.worlds()["ada"]["drone"][2] > TARGET[2] - NEAR_M  # the instructor sees it there too
+    assert klass.position("bob")[2] < 4.0  # bob's drone, on the other worker, still hovers at home
+
+
+def test_topic_echo_and_keys_reach_a_workers_world_over_websockets(klass: Class) -> None:
+    async def run() -> tuple[dict[str, Any], list[str]]:
+        auth = {"Authorization": f"Bearer {klass.tokens['bob']}"}
+        base = klass.app.url.replace("http", "ws")
+        async with websockets.connect(f"{base}/ws/topics/uav/sensors/gps", additional_headers=auth) as echo:
+            frame = json.loads(await asyncio.wait_for(echo.recv(), 10.0))
+        async with websockets.connect(f"{base}/ws/keys", additional_headers=auth) as keys:
+            await keys.send(json.dumps({"type": "keydown", "key": "ArrowUp", "code": "ArrowUp"}))
+            held: list[str] = []
+            for _ in range(50):
+                held = klass.worlds()["bob"].get("keys_held", [])
+                if held:
+                    break
+                await asyncio.sleep(0.1)
+            await keys.send(json.dumps({"type": "keyup", "key": "ArrowUp", "code": "ArrowUp"}))
+        return frame, held
+
+    frame, held = asyncio.run(run())
+    assert frame["topic"] == "/uav/sensors/gps" and "pose" in frame["msg"]
+    assert held  # the key went down in bob's world, on worker wb
+    klass.app.wait_for(lambda: not klass.worlds()["bob"].get("keys_held"), "bob's key released")
+
+
+def test_one_students_token_opens_no_other_world_on_any_worker(klass: Class) -> None:
+    assert klass.get("/api/topics", klass.tokens["bob"], **{"X-Lab-World": "ada"}).status_code == 403
+    assert (
+        httpx.get(f"{klass.app.url}/api/topics", headers={"X-Lab-World": "ada"}, timeout=10).status_code
+        == 401
+    )
+
+    async def other_world_socket() -> int | None:
+        auth = {"Authorization": f"Bearer {klass.tokens['bob']}"}
+        url = klass.app.url.replace("http", "ws") + "/ws/topics/uav/sensors/gps?world=ada"
+        try:
+            async with websockets.connect(url, additional_headers=auth) as ws:
+                await ws.recv()
+        except websockets.exceptions.InvalidStatus as exc:
+            return exc.response.status_code
+        return None
+
+    assert asyncio.run(other_world_socket()) == 403
+    # The worker itself takes no student's token, and no student joins it directly.
+    worker_url = next(
+        w["url"] for w in klass.get("/api/classroom/workers", klass.instructor).json()["workers"]
+    )
+    direct = httpx.get(
+        f"{worker_url}/api/topics", headers={"Authorization": f"Bearer {klass.tokens['ada']}"}, timeout=10
+    )
+    assert direct.status_code == 401
+    join = httpx.post(f"{worker_url}/api/classroom/join", json={"name": "Eve", "code": CODE}, timeout=10)
+    assert join.status_code == 403
+
+
+def test_the_instructor_resets_and_removes_a_workers_world(klass: Class) -> None:
+    reply = klass.post("/api/classroom/worlds/ada/reset", klass.instructor)
+    assert reply.status_code == 200, reply.text
+    klass.app.wait_for(lambda: klass.position("ada")[2] < 4.0, "ada's drone back near home after the reset")
+    assert klass.worlds()["ada"]["resets"] == 1
+    removed = httpx.delete(
+        f"{klass.app.url}/api/classroom/worlds/dee",
+        headers={"Authorization": f"Bearer {klass.instructor}"},
+        timeout=30,
+    )
+    assert removed.status_code == 200, removed.text
+    assert klass.get("/api/topics", klass.tokens["dee"]).status_code == 401  # dee's token is void
+    counts = {
+        w["id"]: w["worlds"] for w in klass.get("/api/classroom/workers", klass.instructor).json()["workers"]
+    }
+    assert counts == {"wa": 1, "wb": 1}  # dee's world is gone from worker wa
+
+
+def test_the_broadcast_reaches_worlds_here_and_on_workers(klass: Class) -> None:
+    body = {"topic": "/uav/input/position", "msg": {"x": 0.0, "y": 0.0, "z": 2.0}}
+    reply = klass.post("/api/classroom/broadcast", klass.instructor, body)
+    assert reply.status_code == 200, reply.text
+    assert sorted(reply.json()["reached"]) == ["ada", "bob", "cy"]
+
+
+def test_a_worker_needs_the_instructors_token(tmp_path: Path) -> None:
+    env = {k: v for k, v in os.environ.items() if k != "ROS2LAB_TOKEN"}
+    done = subprocess.run(
+        [sys.executable, "-m", "server", "world-worker", "--connect", "tcp/127.0.0.1:1"],
+        env=env, capture_output=True, text=True, timeout=60, cwd=tmp_path,
+    )  # fmt: skip
+    assert done.returncode == 2
+    assert "ROS2LAB_TOKEN" in done.stderr
