@@ -45,12 +45,12 @@ def class_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LabServer
 class Student:
     """One student's browser context, page and token (read from the page's HTTP-only cookie)."""
 
-    def __init__(self, page: Page, server: LabServer, name: str) -> None:
+    def __init__(self, page: Page, server: LabServer, name: str, code: str = CODE) -> None:
         """Join through the page's form; the lab page then loads (``ready`` waits for it)."""
         self.page, self.server = page, server
         page.goto(server.url + "/")
         page.fill("#name", name)
-        page.fill("#code", CODE)
+        page.fill("#code", code)
         with page.expect_navigation():  # the form reloads the page once the world is up
             page.click("#go")
 
