@@ -15,7 +15,10 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
+import signal
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
@@ -25,7 +28,7 @@ from typing import Any
 import httpx
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from live_server import FrameReader, LiveServer
+from live_server import FrameReader, LiveServer, rss_mib
 from machine import machine_info, save_results
 
 CODE = "BENCH1"
@@ -40,12 +43,59 @@ def cpu_s(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def measure(size: int, window_s: float, extra: list[str]) -> dict[str, Any]:
+def start_workers(
+    server: LiveServer, count: int, per_worker: int, workdir: Path
+) -> list[subprocess.Popen[bytes]]:
+    """``count`` world workers on the class server's router, each for up to ``per_worker`` worlds."""
+    found = re.search(r"/instructor\?token=(\S+)", server.log_path.read_text())
+    if found is None:
+        raise RuntimeError("the class server printed no instructor's link")
+    token = found.group(1)
+    env = {**os.environ, "ROS2LAB_TOKEN": token, "PYTHONPATH": str(Path(__file__).resolve().parent.parent)}
+    procs = [
+        subprocess.Popen(
+            [
+                sys.executable,
+                "-m",
+                "server",
+                "world-worker",
+                "--connect",
+                f"tcp/127.0.0.1:{server.zenoh_port}",
+                "--id",
+                f"w{i}",
+                "--max-worlds",
+                str(per_worker),
+            ],
+            cwd=workdir,
+            env=env,
+            stdout=(workdir / f"w{i}.log").open("wb"),
+            stderr=subprocess.STDOUT,
+        )
+        for i in range(count)
+    ]
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:
+        listed = httpx.get(
+            f"{server.url}/api/classroom/workers", headers={"Authorization": f"Bearer {token}"}, timeout=10
+        )
+        if len(listed.json()["workers"]) == count:
+            return procs
+        time.sleep(0.2)
+    raise RuntimeError("the workers did not show up on the class server's router")
+
+
+def measure(size: int, window_s: float, extra: list[str], workers: int = 0) -> dict[str, Any]:
     with tempfile.TemporaryDirectory() as tmp:
         args = ["--classroom", "--class-code", CODE, "--max-worlds", str(max(size, 1)), *extra]
+        if workers:
+            args += ["--local-worlds", "0"]
         server = LiveServer(Path(tmp), "fly", *args)
         readers: list[FrameReader] = []
+        worker_procs: list[subprocess.Popen[bytes]] = []
         try:
+            if workers:
+                worker_procs = start_workers(server, workers, -(-size // workers), Path(tmp))
+            pids = [server.proc.pid, *(p.pid for p in worker_procs)]
             tokens = []
             for i in range(size):
                 reply = httpx.post(
@@ -60,9 +110,9 @@ def measure(size: int, window_s: float, extra: list[str]) -> dict[str, Any]:
                 readers.append(FrameReader(url, {"Authorization": f"Bearer {token}"}))
             time.sleep(WARM_S)
             counts = [r.count() for r in readers]
-            cpu0, t0 = cpu_s(server.proc.pid), time.monotonic()
+            cpu0, t0 = sum(cpu_s(p) for p in pids), time.monotonic()
             time.sleep(window_s)
-            cpu1, t1 = cpu_s(server.proc.pid), time.monotonic()
+            cpu1, t1 = sum(cpu_s(p) for p in pids), time.monotonic()
             rates = [(r.count() - c) / (t1 - t0) for r, c in zip(readers, counts, strict=True)]
             lateness = []
             for token in tokens:
@@ -72,14 +122,23 @@ def measure(size: int, window_s: float, extra: list[str]) -> dict[str, Any]:
                     timeout=10,
                 ).json()
                 lateness.append(info["timers"][0]["lateness_p99_ms"])
-            rss = server.rss_mib()
+            rss = server.rss_mib() + sum(rss_mib(p.pid) for p in worker_procs)
             problems = server.log_problems()
         finally:
             for r in readers:
                 r.close()
+            for proc in worker_procs:
+                proc.send_signal(signal.SIGINT)
+            for proc in worker_procs:
+                try:
+                    proc.wait(timeout=15)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+                    proc.wait(timeout=15)
             server.stop()
     return {
         "worlds": size,
+        "workers": workers,
         "cpu_core_share": round((cpu1 - cpu0) / (t1 - t0), 3),
         "rss_mib": round(rss, 1),
         "pose_hz_median": round(statistics.median(rates), 1) if rates else None,
@@ -97,6 +156,11 @@ def main() -> None:
     parser.add_argument("--sizes", type=int, nargs="+", default=[1, 5, 10, 30, 60])
     parser.add_argument("--window", type=float, default=20.0, help="measuring window per size, s")
     parser.add_argument("--no-zenoh", action="store_true", help="worlds in-process only (no Zenoh sessions)")
+    parser.add_argument(
+        "--workers", type=int, default=0,
+        help="worlds on this many world workers (ros2lab world-worker) instead of the class server; "
+             "CPU and RSS are then the sum over the server and its workers",
+    )  # fmt: skip
     args = parser.parse_args()
     info = machine_info()
     print(f"machine: {info['cpu_model']}, {info['nproc']} CPUs, Python {info['python']}", flush=True)
@@ -105,15 +169,19 @@ def main() -> None:
     )
     rows = []
     for size in args.sizes:
-        row = measure(size, args.window, ["--no-zenoh"] if args.no_zenoh else [])
+        row = measure(size, args.window, ["--no-zenoh"] if args.no_zenoh else [], args.workers)
         rows.append(row)
         print(f"{row['worlds']:>6} {row['cpu_core_share']:>10.2f} {row['rss_mib']:>8.0f} "
               f"{row['pose_hz_median']!s:>8}/{row['pose_hz_min']!s:<7} "
               f"{row['tick_lateness_p99_ms_median']!s:>9}/{row['tick_lateness_p99_ms_max']!s:<9}", flush=True)  # fmt: skip
         if row["log_problems"]:
             print("   server log:", row["log_problems"], flush=True)
+    if args.workers and args.no_zenoh:
+        parser.error("world workers join the class server's Zenoh router: drop --no-zenoh")
     name = "classroom_worlds_no_zenoh" if args.no_zenoh else "classroom_worlds"
-    save_results(name, {"machine": info, "window_s": args.window, "zenoh": not args.no_zenoh, "rows": rows})
+    name += f"_{args.workers}_workers" if args.workers else ""
+    save_results(name, {"machine": info, "window_s": args.window, "zenoh": not args.no_zenoh,
+                        "workers": args.workers, "rows": rows})  # fmt: skip
 
 
 if __name__ == "__main__":

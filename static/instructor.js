@@ -42,11 +42,14 @@
       const row = body.insertRow();
       row.dataset.world = w.world;
       cell(row, w.student);
-      cell(row, w.world);
-      cell(row, w.keys_held.length ? w.keys_held.join(", ") : "–", "num");
+      cell(row, w.worker ? `${w.world} (on worker ${w.worker})` : w.world);
+      const keys = w.keys_held || [];
+      const crashed = w.crashed_nodes || [];
+      cell(row, keys.length ? keys.join(", ") : "–", "num");
       cell(row, w.rocket ? `${w.rocket.phase} ${w.rocket.altitude_m} m` : "–");
       cell(row, w.drone ? w.drone.map((v) => v.toFixed(2)).join(", ") : "–", "num");
-      cell(row, w.crashed_nodes.length ? w.crashed_nodes.join(", ") : "none", w.crashed_nodes.length ? "bad" : "");
+      if (w.worker_error) cell(row, w.worker_error, "bad");
+      else cell(row, crashed.length ? crashed.join(", ") : "none", crashed.length ? "bad" : "");
       const actions = row.insertCell();
       button(actions, "Reset", () => act("POST", `/api/classroom/worlds/${encodeURIComponent(w.world)}/reset`, `reset ${w.world}`));
       button(actions, "Remove", () => {
