@@ -11,8 +11,9 @@ and of messages are lists.
 
 from __future__ import annotations
 
+import keyword
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any, ClassVar
 
 import numpy as np
@@ -88,7 +89,7 @@ class Field:
     """One field of a message class: its spec, and ``kind``, the primitive name or message class
     of one value (of one element, for an array)."""
 
-    __slots__ = ("array", "bound", "default", "kind", "name", "size", "spec", "string_bound")
+    __slots__ = ("array", "bound", "default", "exact", "kind", "name", "size", "spec", "string_bound")
 
     def __init__(self, spec: FieldSpec, kind: str | type[Message]) -> None:
         self.spec = spec
@@ -106,6 +107,13 @@ class Field:
             )
         else:
             self.default = None
+        # A value of exactly this type is stored as it is: a float for float64, a bool, a message of
+        # the field's own class. check_primitive would return it unchanged; this skips its tests.
+        self.exact: type | None = None
+        if not self.array:
+            self.exact = float if kind == "float64" else bool if kind == "bool" else None
+            if not isinstance(kind, str):
+                self.exact = kind
 
     @property
     def type_name(self) -> str:
@@ -131,6 +139,8 @@ class Field:
 
     def check(self, value: Any, path: str) -> Any:
         """``value`` as this field stores it (a MessageError naming ``path`` if it does not fit)."""
+        if type(value) is self.exact:
+            return value
         if not self.array:
             if isinstance(self.kind, str):
                 return check_primitive(self.kind, value, path, self.string_bound)
@@ -231,6 +241,7 @@ class Message:
         cls._FIELD_MAP = {f.name: f for f in fields}
         for constant in spec.constants:
             setattr(cls, constant.name, constant.value)
+        _compile_methods(cls)
         _CLASSES[type_name] = cls
 
     def __init__(self, **kwargs: Any) -> None:
@@ -288,6 +299,62 @@ class Message:
         pkg, kind, name = self.TYPE.split("/")
         inner = ", ".join(f"{f.name}={getattr(self, f.name)!r}" for f in self.FIELDS)
         return f"{pkg}.{kind}.{name}({inner})"
+
+
+def _copy_expression(field: Field, value: str) -> str:
+    """Python source for what ``field.copy_value(value)`` returns."""
+    if not field.array:
+        return value if isinstance(field.kind, str) else f"{value}.copy()"
+    if field.numeric_array:
+        return f"{value}.copy()"
+    return f"list({value})" if isinstance(field.kind, str) else f"[v.copy() for v in {value}]"
+
+
+def _compile_methods(cls: type[Message]) -> None:
+    """``__init__`` and ``copy`` written out for this class's fields, as dataclasses writes its
+    methods: the same results as Message's loops over FIELDS, without their per-field overhead
+    (messages are built and copied on every publish). Slots are set through their descriptors,
+    past the checking ``__setattr__``; values given to ``__init__`` still go through Field.check."""
+    names = [f.name for f in cls.FIELDS]
+    if any(keyword.iskeyword(n) or n in ("self", "new") or n.startswith("_") for n in names):
+        return  # a name Python would not take as a parameter: the generic methods serve
+    env: dict[str, Any] = {"_new": object.__new__, "_missing": _MISSING, "_type": cls.TYPE, "_sorted": sorted}
+    params, init_lines, copy_lines = [], [], []
+    for i, f in enumerate(cls.FIELDS):
+        env[f"_set{i}"] = cls.__dict__[f.name].__set__  # the slot's own setter
+        env[f"_check{i}"] = f.check
+        if not f.array and isinstance(f.kind, str):
+            env[f"_default{i}"] = f.default  # immutable: shared by every message
+            initial = f"_default{i}"
+        elif not f.array:
+            env[f"_kind{i}"] = f.kind
+            initial = f"_kind{i}()"
+        else:
+            env[f"_initial{i}"] = f.initial
+            initial = f"_initial{i}()"
+        params.append(f"{f.name}=_missing")
+        init_lines.append(
+            f"    _set{i}(self, {initial} if {f.name} is _missing else _check{i}({f.name}, {f.name!r}))"
+        )
+        copy_lines.append(f"    _set{i}(new, {_copy_expression(f, 'self.' + f.name)})")
+    source = "\n".join([
+        f"def __init__(self, {', '.join(['*', *params, '**unknown'] if params else ['**unknown'])}):",
+        *init_lines,
+        "    if unknown:",
+        "        raise TypeError(f\"{_type} has no field(s) {', '.join(_sorted(unknown))}\")",
+        "def copy(self):",
+        "    new = _new(type(self))",
+        *copy_lines,
+        "    return new",
+    ])  # fmt: skip
+    exec(compile(source, f"<{cls.TYPE} methods>", "exec"), env)
+    for name in ("__init__", "copy"):
+        method: Callable[..., Any] = env[name]
+        method.__qualname__ = f"{cls.__qualname__}.{name}"
+        setattr(cls, name, method)
+
+
+_MISSING: Any = object()
 
 
 class Service:

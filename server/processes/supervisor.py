@@ -98,6 +98,8 @@ class Supervisor:
         self.bus.wake_threadsafe()
 
     def _poll(self) -> None:
+        if not self._exited:  # read without the lock: an exit that races it wakes the executor again
+            return
         with self._lock:
             exited, self._exited = list(self._exited), deque()
         for process in exited:

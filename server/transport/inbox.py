@@ -51,6 +51,8 @@ class Inbox:
 
     def take(self) -> tuple[list[Any], dict[str, list[Any]]]:
         """Everything queued so far: (events in order, samples by topic in order)."""
+        if not self._pending:  # read without the lock: a put that races it wakes the executor again
+            return [], {}
         with self._lock:
             events = list(self._events)
             self._events.clear()

@@ -70,6 +70,12 @@ class Display:
     def gui(self) -> Any:
         return self.server.gui
 
+    def watched(self) -> bool:
+        """Whether a page shows this display now. Views skip their updates while none does and send
+        the latest on their next tick after one connects: with no page there is no one to draw for,
+        and a world of a class server with no student looking costs that much less."""
+        return bool(self.server.get_clients())
+
     def call_in_app(self, fn: Callable[[], Any]) -> None:
         """Run ``fn`` on the app's loop (from a viser callback thread)."""
         if self._loop is None or self._loop.is_closed():

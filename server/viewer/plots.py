@@ -37,7 +37,11 @@ class TimePlot:
         )
 
     def append(self, t_s: float, *values: float) -> None:
-        self._rows.append((t_s, *values))
+        rows = self._rows
+        rows.append((t_s, *values))
+        if self.window_s is not None:  # what flush would leave out anyway: no need to keep it
+            while rows[0][0] < t_s - self.window_s:
+                rows.popleft()
         self._dirty = True
 
     def clear(self) -> None:

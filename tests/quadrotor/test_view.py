@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from .conftest import Flight, make_lab, node, start
@@ -73,3 +74,40 @@ def test_view_node_pose_is_the_latest_gps(fly_flight: Flight) -> None:
     assert view.pose == ((p.x, p.y, p.z), (q.w, q.x, q.y, q.z))
     assert view.setpoint == fly_flight.TARGET_M
     assert "Setpoint** (5.00, 5.00, 10.00)" in view.telemetry_text()
+
+
+def test_view_node_sends_the_3d_view_only_while_a_page_shows_it() -> None:
+    """With no page connected the view node keeps its state (frames, trail, plot samples) but sends
+    nothing to viser; the next ticks after a page connects send the latest frame, plots and text."""
+    from server.viewer.display import Display
+
+    lab = make_lab()
+    display = Display()
+    watching = False
+    display.watched = lambda: watching  # type: ignore[method-assign]  # a page connects when the test says
+    lab.display = lab.bus.devices["display"] = display
+    try:
+        start(lab)
+        view = node(lab, VIEW)
+        scene = view.scene
+        plots_before = [np.asarray(p.handle.data[0]).copy() for p in scene.plots]
+        lab.executor.spin_until(8.0)  # taken off: many frames, none sent
+        assert view.frames_drawn >= 30
+        assert tuple(scene.drone.position) == (0.0, 0.0, 0.0)
+        assert scene.telemetry.content.startswith("waiting")
+        for plot, before in zip(scene.plots, plots_before, strict=True):
+            np.testing.assert_array_equal(plot.handle.data[0], before)
+
+        watching = True
+        lab.executor.spin_until(8.0 + 1 / 30 + 1e-6)  # one redraw: the frame last drawn is sent
+        (pos, wxyz) = view._drawn
+        np.testing.assert_allclose(scene.drone.position, pos)
+        np.testing.assert_allclose(scene.drone.wxyz, wxyz)
+        assert len(np.asarray(scene.trail.points)) == len(view.trail) - 1
+        lab.executor.spin_until(8.5)  # telemetry (5 Hz) and plots (4 Hz) caught up too
+        assert scene.telemetry.content.startswith("**Position**")
+        assert len(scene.plots[2].handle.data[0]) > 1
+        assert scene.plots[2].handle.data[1][-1] > 1.0  # z: the drone has taken off
+    finally:
+        lab.launcher.shutdown()
+        display.stop()

@@ -79,14 +79,14 @@ class UavDynamicsNode(Node):
         gps = PoseStamped()
         gps.header.stamp, gps.header.frame_id = stamp, "world"
         p, q = gps.pose.position, gps.pose.orientation
-        p.x, p.y, p.z = (float(v) for v in s.position_m)
-        q.w, q.x, q.y, q.z = (float(v) for v in s.attitude_wxyz)
+        p.x, p.y, p.z = s.position_m.tolist()
+        q.w, q.x, q.y, q.z = s.attitude_wxyz.tolist()
         self.gps_pub.publish(gps)
         vel = TwistStamped()
         vel.header.stamp, vel.header.frame_id = stamp, "world"
         lin, ang = vel.twist.linear, vel.twist.angular
-        lin.x, lin.y, lin.z = (float(v) for v in s.velocity_m_s)
-        ang.x, ang.y, ang.z = (float(v) for v in s.body_rates_rad_s)
+        lin.x, lin.y, lin.z = s.velocity_m_s.tolist()
+        ang.x, ang.y, ang.z = s.body_rates_rad_s.tolist()
         self.vel_pub.publish(vel)
         roll, pitch, yaw = s.euler_sxyz_rad
         self.att_pub.publish(Vector3(x=roll, y=pitch, z=yaw))

@@ -105,6 +105,9 @@ class DroneScene:
         for plot, value, target in zip(self.plots, pos, sp, strict=True):
             plot.append(t_s, value, target)
 
+    def watched(self) -> bool:
+        return bool(self._display.watched())
+
     def flush_plots(self) -> None:
         for plot in self.plots:
             plot.flush()
@@ -141,6 +144,7 @@ class GUIControllerNode(Node):
         self.frames_drawn = 0
         self._dirty = False
         self._drawn: tuple[tuple[float, float, float], tuple[float, float, float, float]] | None = None
+        self._unsent = False  # a frame drawn while no page watched: sent once one does
         self.create_subscription(PoseStamped, "uav/sensors/gps", self.on_gps, 10)
         self.create_subscription(TwistStamped, "uav/sensors/velocity", self.on_velocity, 1)
         self.create_subscription(Vector3, "uav/input/position", self.on_setpoint, 10)
@@ -148,7 +152,7 @@ class GUIControllerNode(Node):
         if self.scene is not None:
             self.create_timer(1.0 / TELEMETRY_HZ, self.write_telemetry)
             self.create_timer(1.0 / PLOT_SAMPLE_HZ, self.sample_plots)
-            self.create_timer(1.0 / PLOT_FLUSH_HZ, self.scene.flush_plots)
+            self.create_timer(1.0 / PLOT_FLUSH_HZ, self.flush_plots)
         self._t0 = self.bus.clock.now()
 
     def on_gps(self, msg: PoseStamped) -> None:
@@ -175,21 +179,27 @@ class GUIControllerNode(Node):
         return math.dist(pos, pos0) > REDRAW_MIN_M or 2 * math.acos(dot) > REDRAW_MIN_RAD
 
     def redraw(self) -> None:
-        if not self._dirty or self.pose is None:
-            return
-        self._dirty = False
-        if not self.moved_since_drawn():
-            return
-        self._drawn = self.pose
-        pos, wxyz = self.pose
-        self.trail.append(pos)
-        self.frames_drawn += 1
-        if self.scene is not None:
+        if self._dirty and self.pose is not None:
+            self._dirty = False
+            if self.moved_since_drawn():
+                self._drawn = self.pose
+                self.trail.append(self.pose[0])
+                self.frames_drawn += 1
+                self._unsent = True
+        # The 3D view is sent only while a page shows it; one that opens later gets the latest frame.
+        if self._unsent and self._drawn is not None and self.scene is not None and self.scene.watched():
+            self._unsent = False
+            pos, wxyz = self._drawn
             self.scene.draw(pos, wxyz, self.setpoint, np.array(self.trail, dtype=np.float32))
 
     def write_telemetry(self) -> None:
-        if self.pose is not None and self.scene is not None:
+        if self.pose is not None and self.scene is not None and self.scene.watched():
             self.scene.telemetry.content = self.telemetry_text()
+
+    def flush_plots(self) -> None:
+        """The plots' new samples, while a page shows them (they keep sampling either way)."""
+        if self.scene is not None and self.scene.watched():
+            self.scene.flush_plots()
 
     def sample_plots(self) -> None:
         if self.pose is not None and self.scene is not None:
