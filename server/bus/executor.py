@@ -57,7 +57,7 @@ class Executor:
         self.callbacks_run += 1
 
     def _run_subscription(self, sub: Subscription) -> bool:
-        if not sub.active or not sub.queue:
+        if sub.destroyed or sub.node.state != "active" or not sub.queue:  # not sub.active, inline
             return False
         self._run(sub.node, sub.callback, sub.queue.popleft())
         return True

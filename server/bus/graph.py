@@ -118,13 +118,15 @@ class Topic:
         self.publish_count += 1
         self.publish_times_s.append(now if published_s is None else published_s)
         delivered = 0
+        ready = self.bus._ready
         for sub in self.subscriptions:
-            if not sub.active:
+            if sub.destroyed or sub.node.state != "active":  # Subscription.active, inline: the hot path
                 continue
-            if len(sub.queue) == sub.depth:
+            queue = sub.queue
+            if len(queue) == sub.depth:
                 sub.dropped += 1
-            sub.queue.append(msg.copy())
-            self.bus._ready.append(sub)
+            queue.append(msg.copy())
+            ready.append(sub)
             delivered += 1
         if delivered:
             self.bus._wake()

@@ -14,12 +14,12 @@ from sim.types import FloatArray, FloatsLike
 def as_finite_floats(name: str, values: FloatsLike, length: int) -> tuple[float, ...]:
     """The values as a tuple of floats, or ValueError naming the field."""
     try:
-        floats = tuple(float(v) for v in values)
+        floats = tuple(map(float, values))
     except (TypeError, ValueError) as exc:
         raise ValueError(f"{name} must be {length} numbers") from exc
     if len(floats) != length:
         raise ValueError(f"{name} must have {length} components, got {len(floats)}")
-    if not all(math.isfinite(v) for v in floats):
+    if not all(map(math.isfinite, floats)):
         raise ValueError(f"{name} must be finite, got {floats}")
     return floats
 

@@ -14,7 +14,19 @@ import numpy as np
 
 from server.bus import Node
 from server.devices.shared_physics import SharedQuadrotorPhysics
-from server.msgs import PoseStamped, TFMessage, TransformStamped, TwistStamped, Vector3
+from server.msgs import (
+    Header,
+    Point,
+    Pose,
+    PoseStamped,
+    Quaternion,
+    TFMessage,
+    Transform,
+    TransformStamped,
+    Twist,
+    TwistStamped,
+    Vector3,
+)
 from sim.quadrotor import Drone, QuadrotorSim, QuadrotorState, RateThrustCommand
 
 BODY_FRAME = "uav/imu"  # FlightGoggles' name for the body frame
@@ -75,24 +87,30 @@ class UavDynamicsNode(Node):
         return super().destroy_node()
 
     def publish_state(self, s: QuadrotorState) -> None:
+        # Each message is built whole from its parts (no default parts made and then replaced):
+        # this runs 100 times a second in every world of a class server.
         stamp = self.get_clock().now().to_msg()
-        gps = PoseStamped()
-        gps.header.stamp, gps.header.frame_id = stamp, "world"
-        p, q = gps.pose.position, gps.pose.orientation
-        p.x, p.y, p.z = s.position_m.tolist()
-        q.w, q.x, q.y, q.z = s.attitude_wxyz.tolist()
+        x, y, z = s.position_m.tolist()
+        qw, qx, qy, qz = s.attitude_wxyz.tolist()
+        vx, vy, vz = s.velocity_m_s.tolist()
+        wx, wy, wz = s.body_rates_rad_s.tolist()
+        gps = PoseStamped(
+            header=Header(stamp=stamp, frame_id="world"),
+            pose=Pose(position=Point(x=x, y=y, z=z), orientation=Quaternion(x=qx, y=qy, z=qz, w=qw)),
+        )
         self.gps_pub.publish(gps)
-        vel = TwistStamped()
-        vel.header.stamp, vel.header.frame_id = stamp, "world"
-        lin, ang = vel.twist.linear, vel.twist.angular
-        lin.x, lin.y, lin.z = s.velocity_m_s.tolist()
-        ang.x, ang.y, ang.z = s.body_rates_rad_s.tolist()
+        vel = TwistStamped(
+            header=Header(stamp=stamp, frame_id="world"),
+            twist=Twist(linear=Vector3(x=vx, y=vy, z=vz), angular=Vector3(x=wx, y=wy, z=wz)),
+        )
         self.vel_pub.publish(vel)
         roll, pitch, yaw = s.euler_sxyz_rad
         self.att_pub.publish(Vector3(x=roll, y=pitch, z=yaw))
-        tf = TransformStamped(child_frame_id=BODY_FRAME)
-        tf.header.stamp, tf.header.frame_id = stamp, "world"
-        t, r = tf.transform.translation, tf.transform.rotation
-        t.x, t.y, t.z = p.x, p.y, p.z
-        r.w, r.x, r.y, r.z = q.w, q.x, q.y, q.z
+        tf = TransformStamped(
+            header=Header(stamp=stamp, frame_id="world"),
+            child_frame_id=BODY_FRAME,
+            transform=Transform(
+                translation=Vector3(x=x, y=y, z=z), rotation=Quaternion(x=qx, y=qy, z=qz, w=qw)
+            ),
+        )
         self.tf_pub.publish(TFMessage(transforms=[tf]))
