@@ -105,9 +105,8 @@ async def worlds(_: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
 async def workers(_: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
     """Where worlds can go: this server's own room, and each world worker that answers now."""
     found = await asyncio.to_thread(classroom.workers.discover) if classroom.workers is not None else []
-    local = sum(1 for w in classroom.worlds.values() if w.worker is None)
     return {
-        "local": {"worlds": local, "max_worlds": classroom.local_capacity},
+        "local": {"worlds": classroom.hosted_here, "max_worlds": classroom.local_capacity},
         "workers": [ref.describe() for ref in found],
     }
 

@@ -15,6 +15,7 @@ import json
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect
 
 from server.bridges.rosbridge import RosbridgeSession
+from server.tasks import cancel_and_wait
 
 from .deps import WsLabDep
 from .errors import CloseCode
@@ -33,9 +34,7 @@ async def rosbridge(websocket: WebSocket, lab: WsLabDep) -> None:
         async with closed_when_lab_stops(websocket, lab):
             close = await _receive_loop(websocket, session)
     finally:
-        sender.cancel()
-        with contextlib.suppress(BaseException):
-            await sender
+        await cancel_and_wait(sender)
         session.close()
     if close is not None:
         with contextlib.suppress(RuntimeError, WebSocketDisconnect):

@@ -11,6 +11,7 @@ from collections.abc import AsyncIterator
 from fastapi import WebSocket, WebSocketDisconnect
 
 from server.lab import Lab
+from server.tasks import cancel_and_wait
 
 from .errors import CloseCode
 
@@ -28,6 +29,4 @@ async def closed_when_lab_stops(websocket: WebSocket, lab: Lab) -> AsyncIterator
     try:
         yield
     finally:
-        watcher.cancel()
-        with contextlib.suppress(BaseException):
-            await watcher
+        await cancel_and_wait(watcher)

@@ -11,6 +11,8 @@ import websockets
 from fastapi import WebSocket, WebSocketDisconnect, status
 from websockets.asyncio.client import ClientConnection
 
+from server.tasks import cancel_and_wait
+
 
 async def relay(websocket: WebSocket, upstream: ClientConnection, max_frame_bytes: int | None = None) -> None:
     """Accept ``websocket`` with the subprotocol upstream chose and pump frames until one side ends."""
@@ -44,11 +46,7 @@ async def relay(websocket: WebSocket, upstream: ClientConnection, max_frame_byte
         try:
             done, _ = await asyncio.wait(tasks, return_when=asyncio.FIRST_COMPLETED)
         finally:
-            for task in tasks:
-                task.cancel()
-            for task in tasks:
-                with contextlib.suppress(BaseException):
-                    await task
+            await cancel_and_wait(*tasks)
     first = next(iter(done))
     close = first.result() if first.exception() is None else (status.WS_1011_INTERNAL_ERROR, "relay failed")
     if close is not None:  # the browser is still there: tell it why, never just drop the connection

@@ -16,6 +16,7 @@ from collections.abc import Iterable
 from urllib.parse import parse_qs, urlsplit
 
 from api.security import bearer_token, host_allowed, origin_allowed, token_matches
+from server.tasks import cancel_and_wait
 
 log = logging.getLogger("bridges.front")
 MAX_HEAD_BYTES = 16 * 1024
@@ -116,11 +117,7 @@ class GuardedFront:
     async def stop(self) -> None:
         if self._server is not None:
             self._server.close()
-        for task in list(self._tasks):
-            task.cancel()
-        for task in list(self._tasks):
-            with contextlib.suppress(BaseException):
-                await task
+        await cancel_and_wait(*self._tasks)
         if self._server is not None:
             await self._server.wait_closed()
 
@@ -203,8 +200,4 @@ async def _pipe_both(
     try:
         await asyncio.wait(tasks, return_when=asyncio.FIRST_COMPLETED)
     finally:
-        for task in tasks:
-            task.cancel()
-        for task in tasks:
-            with contextlib.suppress(BaseException):
-                await task
+        await cancel_and_wait(*tasks)

@@ -134,6 +134,11 @@ class Classroom:
         return self.settings.worker is not None
 
     @property
+    def hosted_here(self) -> int:
+        """Worlds this process runs itself (not on a world worker)."""
+        return sum(1 for w in self.worlds.values() if w.worker is None)
+
+    @property
     def local_capacity(self) -> int:
         local = self.settings.local_worlds
         return self.settings.max_worlds if local is None else min(local, self.settings.max_worlds)
@@ -293,7 +298,7 @@ class Classroom:
     async def _place(self) -> WorkerRef | None:
         """Where a new world goes: here or the world worker with the lowest load (worlds over
         capacity); on a tie a worker, so the class server keeps its core for the pages."""
-        local = sum(1 for w in self.worlds.values() if w.worker is None) + self._local_starting
+        local = self.hosted_here + self._local_starting
         choices: list[tuple[float, int, WorkerRef | None]] = []
         if local < self.local_capacity:
             choices.append((local / max(self.local_capacity, 1), 1, None))

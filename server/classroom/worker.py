@@ -17,7 +17,6 @@ import logging
 import os
 import socket
 import sys
-import threading
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -39,7 +38,6 @@ class WorkerControl:
     ) -> None:
         self._describe = describe
         self._settings = settings
-        self._lock = threading.Lock()
         self._queryable = session.declare_queryable(control_key(settings.id), self._on_query, complete=True)
 
     def _on_query(self, query: Any) -> None:  # Zenoh's thread: answer at once, block nothing
@@ -53,13 +51,7 @@ class WorkerControl:
             nonce = asked.get("nonce")
             if not isinstance(nonce, str) or len(nonce) > 64:
                 return
-            with self._lock:
-                body = {
-                    **self._describe(),
-                    "id": self._settings.id,
-                    "url": self._settings.url,
-                    "nonce": nonce,
-                }
+            body = {**self._describe(), "id": self._settings.id, "url": self._settings.url, "nonce": nonce}
             query.reply(control_key(self._settings.id), seal(self._settings.class_token, body))
         except ValueError:
             return

@@ -73,10 +73,6 @@ class WorkerRef:
     max_worlds: int
     token: str  # worker_api_token(...): what the class server calls it with
 
-    @property
-    def load(self) -> float:
-        return self.worlds / self.max_worlds if self.max_worlds > 0 else 1.0
-
     def describe(self) -> dict[str, Any]:
         return {"id": self.id, "url": self.url, "worlds": self.worlds, "max_worlds": self.max_worlds}
 
@@ -97,7 +93,6 @@ class WorkerDirectory:
         self.session = session  # the class's Zenoh router session
         self.class_token = class_token
         self.hello_timeout_s = hello_timeout_s
-        self.known: dict[str, WorkerRef] = {}
         self.http = httpx.AsyncClient(timeout=WORKER_CALL_TIMEOUT_S, trust_env=False)
 
     def discover(self) -> list[WorkerRef]:
@@ -117,7 +112,6 @@ class WorkerDirectory:
             ref = _worker_ref(body, self.class_token)
             if ref is not None:
                 found[ref.id] = ref
-        self.known = found
         return sorted(found.values(), key=lambda r: r.id)
 
     async def call(

@@ -61,7 +61,23 @@ def wait_healthy(
         time.sleep(0.1)
 
 
-class App:
+class LoggedProcess:
+    """A ``python -m server`` process whose output goes to ``log_path``; ``stop`` ends it by its id."""
+
+    proc: subprocess.Popen[bytes]
+    log_path: Path
+    _log: IO[str]
+
+    def log_tail(self, chars: int = 3000) -> str:
+        self._log.flush()
+        return self.log_path.read_text(errors="replace")[-chars:]
+
+    def stop(self) -> None:
+        end(self.proc)
+        self._log.close()
+
+
+class App(LoggedProcess):
     """``python -m server`` with a Zenoh router of its own, run in ``cwd`` (its ./workspace)."""
 
     def __init__(self, workdir: Path, *launch: str, cwd: Path | None = None) -> None:
@@ -94,14 +110,6 @@ class App:
             if time.monotonic() > deadline:
                 pytest.fail(f"timed out after {timeout_s} s waiting for {what}\n{self.log_tail()}")
             time.sleep(0.05)
-
-    def log_tail(self, chars: int = 3000) -> str:
-        self._log.flush()
-        return self.log_path.read_text(errors="replace")[-chars:]
-
-    def stop(self) -> None:
-        end(self.proc)
-        self._log.close()
 
 
 class JsonProcess:
@@ -202,7 +210,7 @@ def instructor_token(log_text: str) -> str:
     return found.group(1)
 
 
-class WorldWorker:
+class WorldWorker(LoggedProcess):
     """``ros2lab world-worker`` in a subprocess, joined to a class server's Zenoh router."""
 
     def __init__(
@@ -223,14 +231,6 @@ class WorldWorker:
              *extra],
             cwd=cwd or REPO, stdout=self._log, stderr=subprocess.STDOUT, env=env,
         )  # fmt: skip
-
-    def log_tail(self, chars: int = 3000) -> str:
-        self._log.flush()
-        return self.log_path.read_text(errors="replace")[-chars:]
-
-    def stop(self) -> None:
-        end(self.proc)
-        self._log.close()
 
 
 def wait_for_workers(url: str, token: str, ids: set[str], timeout_s: float = READY_S) -> list[dict[str, Any]]:
