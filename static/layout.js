@@ -39,10 +39,20 @@
     if (minimise && performance.now() - clickedAt > CLICK_AGAIN_MS) { minimise.click(); clickedAt = performance.now(); }
   };
 
+  // The HUD grows when its telemetry arrives: lay out again at once, so viser's notices below it
+  // never sit under it until the next interval.
+  const resized = window.ResizeObserver ? new ResizeObserver(() => layout()) : null;
+  let observedHud = null;
+
   const placeColumn = () => {
     const nav = document.getElementById("teleop-nav-tools");
     const hud = document.getElementById("teleop-hud");
     if (!hud) return null;
+    if (resized && hud !== observedHud) {
+      if (observedHud) resized.unobserve(observedHud);
+      resized.observe(hud);
+      observedHud = hud;
+    }
     const top = nav ? rect(nav).bottom + GAP : MARGIN;
     hud.style.top = `${top}px`;
     const notices = document.querySelector(".mantine-Notifications-root");
