@@ -13,7 +13,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from support.app import end, free_port, wait_healthy
+from support.app import end, free_ports, wait_healthy
 
 REPO = Path(__file__).resolve().parents[2]
 CHROMIUM_ARGS = [
@@ -40,11 +40,10 @@ class LabServer:
     """``python -m server`` in a subprocess on a free loopback port."""
 
     def __init__(self, launch_args: list[str], log_path: Path) -> None:
-        self.port = free_port()
+        self.port, self.zenoh_port = free_ports(2)  # the Zenoh router on loopback, never 7447
         self.url = f"http://127.0.0.1:{self.port}"
         self.log_path = log_path
         self._log = log_path.open("w")
-        self.zenoh_port = free_port()  # the app's Zenoh router, on loopback, never the shared 7447
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(self.port),
              "--zenoh-listen", f"tcp/127.0.0.1:{self.zenoh_port}", *launch_args],

@@ -20,7 +20,7 @@ from typing import IO, Any
 
 import httpx
 import pytest
-from support.app import end, free_port, wait_healthy
+from support.app import end, free_ports, wait_healthy
 
 SERVER_READY_S = 30.0
 SERVER_STOP_S = 10.0
@@ -59,12 +59,12 @@ class LiveServer:
 @pytest.fixture(scope="session")
 def live_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LiveServer]:
     workdir = tmp_path_factory.mktemp("cli_server")
-    port = free_port()
+    port, zenoh_port = free_ports(2)
     log_path = workdir / "server.log"
     with log_path.open("wb") as log:
         proc = subprocess.Popen(
             [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(port), "--launch", "rocket",
-             "--zenoh-listen", f"tcp/127.0.0.1:{free_port()}", "start_delay:=0.5"],
+             "--zenoh-listen", f"tcp/127.0.0.1:{zenoh_port}", "start_delay:=0.5"],
             cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
         )  # fmt: skip
     server = LiveServer(f"http://127.0.0.1:{port}", proc, log_path)

@@ -9,11 +9,12 @@ import tomllib
 from pathlib import Path
 
 import pytest
+from support.app import free_port
 
 import server.__main__ as app_main
 from server import cli
 
-from .conftest import LiveServer, Result, cli_command, free_port
+from .conftest import LiveServer, Result, cli_command
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -11,7 +11,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from support.app import end, free_port, wait_healthy
+from support.app import end, free_ports, wait_healthy
 
 HERE = Path(__file__).resolve().parent
 SCHEMATHESIS = Path(sys.executable).with_name("schemathesis")
@@ -22,7 +22,7 @@ RUN_CAP_S = 160  # schemathesis' own --max-time (50 s, a bound on the suite's ti
 @pytest.fixture(scope="module")
 def live_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     workdir = tmp_path_factory.mktemp("schemathesis_server")
-    port, zenoh_port = free_port(), free_port()
+    port, zenoh_port = free_ports(2)
     url = f"http://127.0.0.1:{port}"
     log = (workdir / "server.log").open("wb")
     proc = subprocess.Popen(

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import httpx
 import pytest
-from support.app import end, free_port, wait_healthy
+from support.app import end, free_ports, wait_healthy
 
 READY_S = 30.0
 STOP_S = 10.0
@@ -49,7 +49,8 @@ class RosbridgeServer:
 @pytest.fixture(scope="session")
 def rosbridge_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[RosbridgeServer]:
     workdir = tmp_path_factory.mktemp("rosbridge_server")
-    server = RosbridgeServer(free_port(), free_port(), workdir / "server.log")
+    port, rosbridge_port = free_ports(2)
+    server = RosbridgeServer(port, rosbridge_port, workdir / "server.log")
     with server.log_path.open("wb") as log:
         proc = subprocess.Popen(
             [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(server.port), "--launch", "rocket",

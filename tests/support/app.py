@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import os
 import queue
+import random
 import re
 import signal
 import socket
@@ -25,10 +26,43 @@ READY_S = 40.0
 WAIT_S = 20.0
 
 
+def _ephemeral_low() -> int:
+    """The lowest port the kernel hands out by itself (for bind to 0 and outgoing connections)."""
+    try:
+        return int(Path("/proc/sys/net/ipv4/ip_local_port_range").read_text().split()[0])
+    except (OSError, ValueError, IndexError):
+        return 32768
+
+
+def free_ports(count: int) -> list[int]:
+    """``count`` distinct loopback ports that are free now, picked below the kernel's ephemeral
+    range: a port the kernel gives out by itself (to a Zenoh session or WebSocket server the app
+    binds to port 0, or to any outgoing connection) can then never be one a test hands the app.
+    All are held until all are picked, so two never come out the same."""
+    low, high = 20000, _ephemeral_low()
+    rng = random.Random()
+    held: list[socket.socket] = []
+    try:
+        for _ in range(200 * count):
+            if len(held) == count:
+                break
+            sock = socket.socket()
+            try:
+                sock.bind(("127.0.0.1", rng.randrange(low, high) if high > low + count else 0))
+            except OSError:
+                sock.close()
+                continue
+            held.append(sock)
+        if len(held) < count:
+            raise RuntimeError(f"found only {len(held)} of {count} free loopback ports")
+        return [int(sock.getsockname()[1]) for sock in held]
+    finally:
+        for sock in held:
+            sock.close()
+
+
 def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
+    return free_ports(1)[0]
 
 
 def end(proc: subprocess.Popen[Any], timeout_s: float = 10.0) -> None:
@@ -81,7 +115,7 @@ class App(LoggedProcess):
     """``python -m server`` with a Zenoh router of its own, run in ``cwd`` (its ./workspace)."""
 
     def __init__(self, workdir: Path, *launch: str, cwd: Path | None = None) -> None:
-        self.port, self.zenoh_port = free_port(), free_port()
+        self.port, self.zenoh_port = free_ports(2)
         self.url = f"http://127.0.0.1:{self.port}"
         self.router = f"127.0.0.1:{self.zenoh_port}"
         self.log_path = workdir / "app.log"
