@@ -17,7 +17,7 @@ from sim.quadrotor.fixed_step import FixedStepClock
 from sim.quadrotor.params import QuadrotorParams
 from sim.quadrotor.rate_control import RateGains
 from sim.quadrotor.slots import DroneHandle, SlotTable
-from sim.quadrotor.state import Command, MotorSpeedCommand, QuadrotorState, RateThrustCommand
+from sim.quadrotor.state import Command, Kinematics, MotorSpeedCommand, QuadrotorState, RateThrustCommand
 from sim.quadrotor.step_kernel import BASE, MOTOR_CMD, RATES_CMD, ROWS, StepKernel
 from sim.quadrotor.vehicle import (
     NOISE_BLOCK,
@@ -149,6 +149,11 @@ class QuadrotorBatch:
             on_ground=bool(self._slots.arrays["on_ground"][col]),
         )
 
+    def kinematics(self, drone_id: int) -> Kinematics:
+        """One drone's position, velocity, attitude and body rates as floats (see Kinematics)."""
+        f = self._slots.arrays["floats"][0:13, self._slots.column(drone_id)].tolist()
+        return (f[6], f[7], f[8], f[0], f[1], f[2], f[9], f[10], f[11], f[12], f[3], f[4], f[5])
+
     def time_s(self, drone_id: int) -> float:
         """One drone's simulated time since it joined or was reset (s): its steps times dt."""
         return (self._steps - self._slots.record(drone_id).start_step) * self.dt_s
@@ -219,6 +224,9 @@ class Drone(DroneHandle["QuadrotorBatch"]):
     @property
     def state(self) -> QuadrotorState:
         return self._batch.state(self.id)
+
+    def kinematics(self) -> Kinematics:
+        return self._batch.kinematics(self.id)
 
     @property
     def fault(self) -> str | None:

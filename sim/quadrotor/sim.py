@@ -12,7 +12,7 @@ from sim.quadrotor.fixed_step import FixedStepClock
 from sim.quadrotor.ground import GroundContact
 from sim.quadrotor.params import QuadrotorParams
 from sim.quadrotor.rate_control import RateLoop
-from sim.quadrotor.state import Command, MotorSpeedCommand, QuadrotorState, RateThrustCommand
+from sim.quadrotor.state import Command, Kinematics, MotorSpeedCommand, QuadrotorState, RateThrustCommand
 from sim.quadrotor.vehicle import (
     MIN_PHYSICS_RATE_HZ,
     clamp_motor_speeds,
@@ -98,6 +98,11 @@ class QuadrotorSim:
             rotor_speeds_rad_s=np.array(s[13:17]),
             on_ground=self._on_ground,
         )
+
+    def kinematics(self) -> Kinematics:
+        """Position, velocity, attitude and body rates as floats (see Kinematics)."""
+        s = self._s
+        return (s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], s[10], s[11], s[12])
 
     def set_command(self, command: Command) -> None:
         """Hold a new input until the next call. Raises ValueError (and keeps the old one) if invalid."""

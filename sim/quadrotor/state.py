@@ -55,6 +55,13 @@ class MotorSpeedCommand:
 Command = RateThrustCommand | MotorSpeedCommand
 
 
+Kinematics = tuple[float, float, float, float, float, float, float, float, float, float, float, float, float]
+"""One drone's motion as plain floats, in this order: position (m, world), velocity (m/s, world),
+attitude (w, x, y, z; body to world), body rates (rad/s, body). What a sim's ``kinematics()``
+returns: the same values as its ``state`` without building its read-only arrays, for code that
+reads them at every tick (the dynamics node publishes them 100 times a second in every world)."""
+
+
 def _frozen_array(values: FloatsLike) -> FloatArray:
     array = np.array(values, dtype=float)
     array.flags.writeable = False

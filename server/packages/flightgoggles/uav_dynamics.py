@@ -27,7 +27,9 @@ from server.msgs import (
     TwistStamped,
     Vector3,
 )
-from sim.quadrotor import Drone, QuadrotorSim, QuadrotorState, RateThrustCommand
+from sim.quadrotor import Drone, QuadrotorSim, RateThrustCommand
+from sim.quadrotor.rotation import quat_to_euler_sxyz
+from sim.quadrotor.state import Kinematics
 
 BODY_FRAME = "uav/imu"  # FlightGoggles' name for the body frame
 MAX_CATCH_UP_S = 0.1  # after a stall, the sim skips ahead rather than running a burst of steps
@@ -59,7 +61,7 @@ class UavDynamicsNode(Node):
         self.create_subscription(TwistStamped, "/uav/input/rateThrust", self.on_command, 1)
         self._last_s = self.bus.clock.now()
         self.create_timer(1.0 / rate_hz, self.tick)
-        self.publish_state(self.sim.state)
+        self.publish_state(self.sim.kinematics())
 
     def on_command(self, msg: TwistStamped) -> None:
         a = msg.twist.angular
@@ -79,21 +81,18 @@ class UavDynamicsNode(Node):
         elif isinstance(self.sim, QuadrotorSim):
             self.sim.advance(min(max(now - self._last_s, 0.0), MAX_CATCH_UP_S))
         self._last_s = now
-        self.publish_state(self.sim.state)
+        self.publish_state(self.sim.kinematics())
 
     def destroy_node(self) -> bool:
         if self.shared is not None and not isinstance(self.sim, QuadrotorSim) and self.state != "destroyed":
             self.sim.remove()  # the world resets or leaves: its drone leaves the shared batch
         return super().destroy_node()
 
-    def publish_state(self, s: QuadrotorState) -> None:
-        # Each message is built whole from its parts (no default parts made and then replaced):
-        # this runs 100 times a second in every world of a class server.
+    def publish_state(self, k: Kinematics) -> None:
+        # Each message is built whole from plain floats (no state snapshot's arrays, no default
+        # parts made and then replaced): this runs 100 times a second in every world of a class server.
         stamp = self.get_clock().now().to_msg()
-        x, y, z = s.position_m.tolist()
-        qw, qx, qy, qz = s.attitude_wxyz.tolist()
-        vx, vy, vz = s.velocity_m_s.tolist()
-        wx, wy, wz = s.body_rates_rad_s.tolist()
+        x, y, z, vx, vy, vz, qw, qx, qy, qz, wx, wy, wz = k
         gps = PoseStamped(
             header=Header(stamp=stamp, frame_id="world"),
             pose=Pose(position=Point(x=x, y=y, z=z), orientation=Quaternion(x=qx, y=qy, z=qz, w=qw)),
@@ -104,7 +103,7 @@ class UavDynamicsNode(Node):
             twist=Twist(linear=Vector3(x=vx, y=vy, z=vz), angular=Vector3(x=wx, y=wy, z=wz)),
         )
         self.vel_pub.publish(vel)
-        roll, pitch, yaw = s.euler_sxyz_rad
+        roll, pitch, yaw = quat_to_euler_sxyz((qw, qx, qy, qz))
         self.att_pub.publish(Vector3(x=roll, y=pitch, z=yaw))
         tf = TransformStamped(
             header=Header(stamp=stamp, frame_id="world"),
