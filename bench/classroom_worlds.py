@@ -4,11 +4,12 @@ For each size N: ``python -m server --classroom --launch fly`` in a child proces
 joined through the REST API, one WebSocket per world echoing its drone's pose at 30 Hz (as the
 page's pose stream would), then over a measuring window: the server's CPU (share of one core,
 from /proc), its RSS, the pose frames each client got, and each world's sim tick lateness (p99
-of the dynamics node's 100 Hz timer, from /api/nodes). Prints a table and writes
-bench/results/classroom_worlds.json.
+of the dynamics node's 100 Hz timer, from /api/nodes) and the rate that timer kept (its calls over
+the window). Prints a table and writes bench/results/classroom_worlds.json.
 
     python bench/classroom_worlds.py                 # sizes 1 5 10 30 60
     python bench/classroom_worlds.py --sizes 1 5 --window 10
+    python bench/classroom_worlds.py --sizes 30 --workers 1 --local-worlds 15   # half on a worker
 """
 
 from __future__ import annotations
@@ -84,17 +85,28 @@ def start_workers(
     raise RuntimeError("the workers did not show up on the class server's router")
 
 
-def measure(size: int, window_s: float, extra: list[str], workers: int = 0) -> dict[str, Any]:
+def dynamics_timer(server: LiveServer, token: str) -> dict[str, Any]:
+    """The world's dynamics node's 100 Hz timer, as /api/nodes shows it (calls, lateness)."""
+    info = httpx.get(
+        f"{server.url}/api/nodes/{DYNAMICS}", headers={"Authorization": f"Bearer {token}"}, timeout=10
+    ).json()
+    timer: dict[str, Any] = info["timers"][0]
+    return timer
+
+
+def measure(
+    size: int, window_s: float, extra: list[str], workers: int = 0, local_worlds: int = 0
+) -> dict[str, Any]:
     with tempfile.TemporaryDirectory() as tmp:
         args = ["--classroom", "--class-code", CODE, "--max-worlds", str(max(size, 1)), *extra]
         if workers:
-            args += ["--local-worlds", "0"]
+            args += ["--local-worlds", str(local_worlds)]
         server = LiveServer(Path(tmp), "fly", *args)
         readers: list[FrameReader] = []
         worker_procs: list[subprocess.Popen[bytes]] = []
         try:
             if workers:
-                worker_procs = start_workers(server, workers, -(-size // workers), Path(tmp))
+                worker_procs = start_workers(server, workers, -(-(size - local_worlds) // workers), Path(tmp))
             pids = [server.proc.pid, *(p.pid for p in worker_procs)]
             tokens = []
             for i in range(size):
@@ -110,18 +122,15 @@ def measure(size: int, window_s: float, extra: list[str], workers: int = 0) -> d
                 readers.append(FrameReader(url, {"Authorization": f"Bearer {token}"}))
             time.sleep(WARM_S)
             counts = [r.count() for r in readers]
+            calls0 = [dynamics_timer(server, token)["calls"] for token in tokens]
             cpu0, t0 = sum(cpu_s(p) for p in pids), time.monotonic()
             time.sleep(window_s)
             cpu1, t1 = sum(cpu_s(p) for p in pids), time.monotonic()
+            timers = [dynamics_timer(server, token) for token in tokens]
             rates = [(r.count() - c) / (t1 - t0) for r, c in zip(readers, counts, strict=True)]
-            lateness = []
-            for token in tokens:
-                info = httpx.get(
-                    f"{server.url}/api/nodes/{DYNAMICS}",
-                    headers={"Authorization": f"Bearer {token}"},
-                    timeout=10,
-                ).json()
-                lateness.append(info["timers"][0]["lateness_p99_ms"])
+            # The calls are read one world after another, at both ends alike: the window's length.
+            dynamics_hz = [(t["calls"] - c) / (t1 - t0) for t, c in zip(timers, calls0, strict=True)]
+            lateness = [t["lateness_p99_ms"] for t in timers]
             rss = server.rss_mib() + sum(rss_mib(p.pid) for p in worker_procs)
             problems = server.log_problems()
         finally:
@@ -139,10 +148,13 @@ def measure(size: int, window_s: float, extra: list[str], workers: int = 0) -> d
     return {
         "worlds": size,
         "workers": workers,
+        "local_worlds": local_worlds if workers else size,
         "cpu_core_share": round((cpu1 - cpu0) / (t1 - t0), 3),
         "rss_mib": round(rss, 1),
         "pose_hz_median": round(statistics.median(rates), 1) if rates else None,
         "pose_hz_min": round(min(rates), 1) if rates else None,
+        "dynamics_hz_median": round(statistics.median(dynamics_hz), 1) if dynamics_hz else None,
+        "dynamics_hz_min": round(min(dynamics_hz), 1) if dynamics_hz else None,
         "tick_lateness_p99_ms_median": round(statistics.median(lateness), 2) if lateness else None,
         "tick_lateness_p99_ms_max": round(max(lateness), 2) if lateness else None,
         "log_problems": problems[:5],
@@ -161,27 +173,36 @@ def main() -> None:
         help="worlds on this many world workers (ros2lab world-worker) instead of the class server; "
              "CPU and RSS are then the sum over the server and its workers",
     )  # fmt: skip
+    parser.add_argument(
+        "--local-worlds", type=int, default=0,
+        help="with --workers: this many worlds stay on the class server, the rest go to the workers",
+    )  # fmt: skip
     args = parser.parse_args()
     info = machine_info()
     print(f"machine: {info['cpu_model']}, {info['nproc']} CPUs, Python {info['python']}", flush=True)
     print(
         f"{'worlds':>6} {'CPU (core)':>10} {'RSS MiB':>8} {'pose Hz med/min':>16} {'tick p99 ms med/max':>20}"
+        f" {'dynamics Hz med/min':>20}"
     )
     rows = []
     for size in args.sizes:
-        row = measure(size, args.window, ["--no-zenoh"] if args.no_zenoh else [], args.workers)
+        row = measure(
+            size, args.window, ["--no-zenoh"] if args.no_zenoh else [], args.workers, args.local_worlds
+        )
         rows.append(row)
         print(f"{row['worlds']:>6} {row['cpu_core_share']:>10.2f} {row['rss_mib']:>8.0f} "
               f"{row['pose_hz_median']!s:>8}/{row['pose_hz_min']!s:<7} "
-              f"{row['tick_lateness_p99_ms_median']!s:>9}/{row['tick_lateness_p99_ms_max']!s:<9}", flush=True)  # fmt: skip
+              f"{row['tick_lateness_p99_ms_median']!s:>9}/{row['tick_lateness_p99_ms_max']!s:<9} "
+              f"{row['dynamics_hz_median']!s:>9}/{row['dynamics_hz_min']!s:<9}", flush=True)  # fmt: skip
         if row["log_problems"]:
             print("   server log:", row["log_problems"], flush=True)
     if args.workers and args.no_zenoh:
         parser.error("world workers join the class server's Zenoh router: drop --no-zenoh")
     name = "classroom_worlds_no_zenoh" if args.no_zenoh else "classroom_worlds"
     name += f"_{args.workers}_workers" if args.workers else ""
+    name += f"_{args.local_worlds}_local" if args.workers and args.local_worlds else ""
     save_results(name, {"machine": info, "window_s": args.window, "zenoh": not args.no_zenoh,
-                        "workers": args.workers, "rows": rows})  # fmt: skip
+                        "workers": args.workers, "local_worlds": args.local_worlds, "rows": rows})  # fmt: skip
 
 
 if __name__ == "__main__":
