@@ -121,16 +121,19 @@ def measure(
                 url = f"{server.ws_url}/ws/topics/uav/sensors/gps?throttle_rate={POSE_THROTTLE_MS}"
                 readers.append(FrameReader(url, {"Authorization": f"Bearer {token}"}))
             time.sleep(WARM_S)
+            # Each world's timer calls with the time they were read: the reads take a while under
+            # load, so each world's rate is over its own interval, not the CPU window's.
+            calls0 = [(dynamics_timer(server, token)["calls"], time.monotonic()) for token in tokens]
             counts = [r.count() for r in readers]
-            calls0 = [dynamics_timer(server, token)["calls"] for token in tokens]
             cpu0, t0 = sum(cpu_s(p) for p in pids), time.monotonic()
             time.sleep(window_s)
             cpu1, t1 = sum(cpu_s(p) for p in pids), time.monotonic()
-            timers = [dynamics_timer(server, token) for token in tokens]
             rates = [(r.count() - c) / (t1 - t0) for r, c in zip(readers, counts, strict=True)]
-            # The calls are read one world after another, at both ends alike: the window's length.
-            dynamics_hz = [(t["calls"] - c) / (t1 - t0) for t, c in zip(timers, calls0, strict=True)]
-            lateness = [t["lateness_p99_ms"] for t in timers]
+            timers = [(dynamics_timer(server, token), time.monotonic()) for token in tokens]
+            dynamics_hz = [
+                (t["calls"] - c) / (at - since) for (t, at), (c, since) in zip(timers, calls0, strict=True)
+            ]
+            lateness = [t["lateness_p99_ms"] for t, _ in timers]
             rss = server.rss_mib() + sum(rss_mib(p.pid) for p in worker_procs)
             problems = server.log_problems()
         finally:
