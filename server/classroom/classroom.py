@@ -303,8 +303,9 @@ class Classroom:
         if local < self.local_capacity:
             choices.append((local / max(self.local_capacity, 1), 1, None))
         refs = await asyncio.to_thread(self.workers.discover) if self.workers is not None else []
+        on_workers = self._on_workers()
         for ref in refs:
-            ours = sum(1 for w in self.worlds.values() if w.worker is not None and w.worker.id == ref.id)
+            ours = len(on_workers[ref.id][1]) if ref.id in on_workers else 0
             worlds = max(ref.worlds, ours) + self._placing.get(ref.id, 0)
             if worlds < ref.max_worlds:
                 choices.append((worlds / ref.max_worlds, 0, ref))
@@ -347,22 +348,29 @@ class Classroom:
         log.info("hosting world %s (%s), ROS domain %d", name, student, domain_id)
         return world
 
+    def _on_workers(self) -> dict[str, tuple[WorkerRef, list[str]]]:
+        """Worker id → that worker and the names of the worlds it hosts for this class."""
+        out: dict[str, tuple[WorkerRef, list[str]]] = {}
+        for world in self.worlds.values():
+            if world.worker is not None:
+                out.setdefault(world.worker.id, (world.worker, []))[1].append(world.name)
+        return out
+
     def _limit(self) -> RateLimit:
         return RateLimit(self.clock, self.settings.world_writes_hz, self.settings.world_writes_burst)
 
     async def describe_all(self) -> list[dict[str, Any]]:
         """Every world as the instructor's page shows it; a worker's worlds as their worker reports."""
         reports: dict[tuple[str, str], dict[str, Any]] = {}
-        by_worker = {w.worker.id: w.worker for w in self.worlds.values() if w.worker is not None}
         errors: dict[str, str] = {}
-        if self.workers is not None:
-            for ref in by_worker.values():
-                try:
-                    listed = await self.workers.checked(ref, "GET", "/api/classroom/worlds")
-                except ClassroomError as exc:
-                    errors[ref.id] = str(exc)
-                    continue
-                reports.update({(ref.id, str(w.get("world"))): w for w in listed.get("worlds", [])})
+        for ref, _names in self._on_workers().values():
+            assert self.workers is not None
+            try:
+                listed = await self.workers.checked(ref, "GET", "/api/classroom/worlds")
+            except ClassroomError as exc:
+                errors[ref.id] = str(exc)
+                continue
+            reports.update({(ref.id, str(w.get("world"))): w for w in listed.get("worlds", [])})
         out = []
         for world in self.worlds.values():
             mine = world.describe()
@@ -378,15 +386,10 @@ class Classroom:
         """The instructor's broadcast, published by each world worker in the worlds it hosts."""
         reached: list[str] = []
         refused: dict[str, str] = {}
-        refs = {w.worker.id: w.worker for w in self.worlds.values() if w.worker is not None}
-        for ref in refs.values():
-            names = [w.name for w in self.worlds.values() if w.worker is not None and w.worker.id == ref.id]
+        for ref, names in self._on_workers().values():
+            assert self.workers is not None
             try:
-                answer = (
-                    await self.workers.checked(ref, "POST", "/api/classroom/broadcast", body=body)
-                    if self.workers
-                    else {}
-                )
+                answer = await self.workers.checked(ref, "POST", "/api/classroom/broadcast", body=body)
             except ClassroomError as exc:
                 refused |= dict.fromkeys(names, str(exc))
                 continue
