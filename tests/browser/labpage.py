@@ -23,6 +23,7 @@ STILL_WINDOW_S = 0.5
 STILL_DRIFT_M = 0.05
 STOP_WAIT_S = 10.0  # the drone stops in about 1.5 s; generous for a loaded 2-core machine
 PAGE_WAIT_MS = 30_000
+LOAD_WAIT_MS = 90_000  # a first load parses viser's bundle; on a 2-core machine with a busy neighbour
 SETTLE_WAIT_MS = 25_000
 CLICK_WAIT_MS = 2_000
 MAX_NOTIFICATIONS = 5
@@ -109,7 +110,7 @@ def open_lab_page(
     not to."""
     if server is not None:
         page.goto(server.url + "/")
-    page.wait_for_function("() => document.body.innerText.includes('Connected')")
+    page.wait_for_function("() => document.body.innerText.includes('Connected')", timeout=LOAD_WAIT_MS)
     page.wait_for_function("() => window.__teleopKeys !== undefined && window.__teleopKeys.connected")
     page.wait_for_function("() => window.__teleopScene !== undefined && window.__teleopScene.ready")
     try:

@@ -40,6 +40,7 @@ from labpage import (
 )
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
+from playwright.sync_api import Error as PlaywrightError
 from shots import CanvasShot, assert_drone_seen, assert_rocket_on_pad, find_drone
 
 pytestmark = pytest.mark.browser
@@ -258,6 +259,9 @@ def test_rocket_view_before_launch_shows_rocket_standing_on_pad(
 ) -> None:
     open_lab_page(page, quiet_rocket_server)
     page.get_by_role("button", name="Rocket", exact=True).click()
+    # viser draws a markdown panel once its lazily loaded renderer arrives: wait for the status.
+    with contextlib.suppress(PlaywrightError):
+        page.wait_for_function("() => /Ready|Counting down/.test(document.body.innerText)")
     wait_frames(page)
     png = save_screenshot(page, screenshot_dir, "rocket_on_pad.png", capsys)
     text = page.evaluate("document.body.innerText")

@@ -14,6 +14,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -29,6 +30,8 @@ STUDENTS = ("Ada", "Bob", "Cy", "Dee")
 TARGET = (5.0, 5.0, 10.0)
 NEAR_M = 1.0
 FLY_S = 40.0
+HEARTBEAT_S = 0.1
+KEY_WAIT_S = 30.0  # the key crosses the class server, a WebSocket and Zenoh to worker wb
 
 
 @dataclass
@@ -122,12 +125,22 @@ def test_topic_echo_and_keys_reach_a_workers_world_over_websockets(klass: Class)
             frame = json.loads(await asyncio.wait_for(echo.recv(), 10.0))
         async with websockets.connect(f"{base}/ws/keys", additional_headers=auth) as keys:
             await keys.send(json.dumps({"type": "keydown", "key": "ArrowUp", "code": "ArrowUp"}))
+
+            async def heartbeats() -> None:  # as the page does while a key is down (dead-man: 0.5 s)
+                while True:
+                    await asyncio.sleep(HEARTBEAT_S)
+                    await keys.send(json.dumps({"type": "heartbeat"}))
+
+            beating = asyncio.create_task(heartbeats())
             held: list[str] = []
-            for _ in range(50):
-                held = klass.worlds()["bob"].get("keys_held", [])
-                if held:
-                    break
-                await asyncio.sleep(0.1)
+            deadline = time.monotonic() + KEY_WAIT_S
+            async with httpx.AsyncClient(headers={"Authorization": f"Bearer {klass.instructor}"}) as client:
+                while not held and time.monotonic() < deadline:
+                    reply = await client.get(f"{klass.app.url}/api/classroom/worlds", timeout=10)
+                    held = next(w for w in reply.json()["worlds"] if w["world"] == "bob").get("keys_held", [])
+                    if not held:
+                        await asyncio.sleep(0.1)
+            beating.cancel()
             await keys.send(json.dumps({"type": "keyup", "key": "ArrowUp", "code": "ArrowUp"}))
         return frame, held
 
