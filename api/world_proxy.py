@@ -70,6 +70,16 @@ class WorldProxyMiddleware:
             await self.app(scope, receive, send)
             return
         directory = classroom.workers
+        if world.lost is not None:  # its worker is gone; it starts again elsewhere shortly
+            if scope["type"] == "websocket":
+                await WebSocket(scope, receive, send).close(
+                    status.WS_1013_TRY_AGAIN_LATER, close_reason(world.lost)
+                )
+            else:
+                await SafeJSONResponse({"detail": world.lost}, status.HTTP_503_SERVICE_UNAVAILABLE)(
+                    scope, receive, send
+                )
+            return
         if scope["type"] == "websocket":
             await _forward_ws(world, world.worker, scope, receive, send)
             return

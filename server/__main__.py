@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from server import cli
-from server.settings import LOOPBACK_HOSTS, Settings
+from server.settings import LOOPBACK_HOSTS, WORKER_TIMEOUT_S, Settings
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env, is_loopback
 
 
@@ -103,6 +103,11 @@ def build_parser() -> argparse.ArgumentParser:
         "--local-worlds", type=int, metavar="N",
         help="worlds this server hosts itself (default: all); the rest go to world workers "
              f"(ros2lab {cli.WORKER_VERB} --connect tcp/HOST:7447, which join this server's Zenoh router)",
+    )  # fmt: skip
+    classroom.add_argument(
+        "--worker-timeout", type=float, default=WORKER_TIMEOUT_S, metavar="S",
+        help="a world worker that answers no hello for S seconds is gone: its worlds start again here "
+             f"or on another worker, under the same names and tokens (default {WORKER_TIMEOUT_S:g})",
     )  # fmt: skip
     classroom.add_argument(
         "--token", metavar="TOKEN|auto",
@@ -197,7 +202,10 @@ def main(argv: list[str] | None = None) -> int:
         foxglove_port=None if args.no_foxglove else args.foxglove_port, rosbridge_port=args.rosbridge_port,
         bag_dir=Path(args.bag_dir), classroom=args.classroom, class_code=args.class_code,
         max_worlds=args.max_worlds, token=lab_token(args.token), local_worlds=args.local_worlds,
+        worker_timeout_s=args.worker_timeout,
     )  # fmt: skip
+    if not 2.0 <= args.worker_timeout <= 3600.0:
+        parser.error("--worker-timeout must be in 2..3600 s")
     if args.local_worlds is not None and (args.local_worlds < 0 or not args.classroom or zenoh is None):
         parser.error("--local-worlds needs --classroom and Zenoh (world workers join its router), and N >= 0")
     if not is_loopback_host(args.host) and not (args.classroom or settings.token):

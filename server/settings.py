@@ -9,6 +9,10 @@ from typing import Literal
 from server.transport.config import ZenohSettings
 
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
+# A class's world workers (issue 13): the class server takes a worker silent this long as gone and
+# starts its worlds again elsewhere; a worker that hears no hello this long frees its worlds first.
+WORKER_TIMEOUT_S = 20.0
+ORPHAN_TIMEOUT_S = 12.0
 
 
 @dataclass(frozen=True)
@@ -18,6 +22,7 @@ class WorkerSettings:
     id: str
     url: str  # where the class server reaches its HTTP API
     class_token: str  # the instructor's token of the class it serves (never sent anywhere)
+    orphan_timeout_s: float = ORPHAN_TIMEOUT_S  # no hello from the class server this long: free the worlds
 
 
 @dataclass(frozen=True)
@@ -68,6 +73,7 @@ class Settings:
     # Worlds the class server hosts itself; the rest go to world workers (None: up to max_worlds).
     local_worlds: int | None = None
     worker: WorkerSettings | None = None  # set on a world worker: worlds come from a class server
+    worker_timeout_s: float = WORKER_TIMEOUT_S  # a world worker silent this long is gone: its worlds move
 
     def __post_init__(self) -> None:
         for name in ("port", "foxglove_port", "rosbridge_port"):

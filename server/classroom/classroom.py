@@ -22,11 +22,12 @@ from server.devices.shared_physics import SharedQuadrotorPhysics
 from server.lab import Lab
 from server.limits import RateLimit
 from server.settings import Settings
+from server.tasks import cancel_and_wait
 from server.transport.config import ZenohSettings, endpoint_host
 
 from .errors import ClassroomError
 from .tokens import Grant, TokenSigner
-from .workers import WorkerDirectory, WorkerRef, worker_api_token
+from .workers import WATCH_PERIOD_S, Silence, WorkerDirectory, WorkerRef, worker_api_token
 
 log = logging.getLogger("classroom")
 CODE_ALPHABET = "ABCDEFGHJKLMNPQRSTUVWXYZ23456789"  # no 0/O, 1/I: read aloud or off a projector
@@ -60,6 +61,8 @@ class World:
     joined_at: float = field(default_factory=time.time)
     resets: int = 0
     worker: WorkerRef | None = None  # the world worker that hosts it, if one does
+    moves: int = 0  # times it started again elsewhere because its world worker was gone
+    lost: str | None = None  # why it cannot be reached now (its worker is gone and it waits for room)
 
     def describe(self) -> dict[str, Any]:
         """What the class server knows itself; a worker's world adds what its worker reports."""
@@ -71,6 +74,8 @@ class World:
             "resets": self.resets,
             "writes_refused": self.writes.refused,
             "worker": self.worker.id if self.worker is not None else None,
+            "moves": self.moves,
+            "lost": self.lost,
         }
         lab = self.lab
         if lab is None:
@@ -126,6 +131,9 @@ class Classroom:
         self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
         self._control: Any = None  # a worker's hello queryable (WorkerControl) and its session
         self._control_session: Any = None
+        self._watch: asyncio.Task[None] | None = None  # the class server's hellos, or a worker's orphan check
+        self._silent_workers = Silence(settings.worker_timeout_s)
+        self._class_heard_at = self.clock.now()  # a worker: the class server's last hello or call
         worker = settings.worker
         self._worker_token = worker_api_token(worker.class_token, worker.id) if worker is not None else None
 
@@ -151,6 +159,7 @@ class Classroom:
         if self._worker_token is not None and hmac.compare_digest(
             token.encode(), self._worker_token.encode()
         ):
+            self.heard_from_class()
             return self.instructor  # the class server, calling its worker
         grant = self.signer.verify(token)
         if grant is None or grant.token_id in self._revoked:
@@ -191,7 +200,10 @@ class Classroom:
             from .worker import WorkerControl
 
             self._control_session = await asyncio.to_thread(open_session, zenoh)
-            self._control = WorkerControl(self._control_session, self.settings.worker, self._load)
+            self._control = WorkerControl(
+                self._control_session, self.settings.worker, self._load, self.heard_from_class
+            )
+            self._watch = asyncio.create_task(self._watch_class(self.settings.worker.orphan_timeout_s))
             return
         if zenoh.mode != "router":
             return
@@ -201,6 +213,90 @@ class Classroom:
             log.warning("%s; the worlds run without Zenoh", exc)
             return
         self.workers = WorkerDirectory(self._router, self.instructor_token)
+        self._watch = asyncio.create_task(self._watch_workers())
+
+    # -- workers that go, class servers that go ------------------------------------------------
+    async def _watch_workers(self) -> None:
+        """The class server: say hello to the workers every few seconds; the worlds of one silent
+        for ``--worker-timeout`` start again elsewhere, under the same names, domains and tokens."""
+        while self.workers is not None:
+            await asyncio.sleep(WATCH_PERIOD_S)
+            try:
+                await self.watch_workers_once()
+            except Exception:  # the watch must outlive any one round
+                log.exception("watching the world workers failed; trying again")
+
+    async def watch_workers_once(self) -> None:
+        assert self.workers is not None
+        answered = await asyncio.to_thread(self.workers.discover)
+        now = self.clock.now()
+        for ref in answered:
+            self._silent_workers.heard(ref.id, now)
+        hosting = {w.worker.id for w in self.worlds.values() if w.worker is not None}
+        gone = self._silent_workers.silent(hosting, now)
+        for world in list(self.worlds.values()):
+            if world.worker is not None and (world.worker.id in gone or world.lost is not None):
+                await self._move(world)
+
+    async def _move(self, world: World) -> None:
+        """Start a world whose worker is gone again, here or on another worker; its student's
+        token and ROS domain stay, its state starts over (as after a reset)."""
+        gone = world.worker
+        assert gone is not None
+        if world.lost is None:
+            log.warning("world worker %s is gone (no hello for %g s): moving world %s",
+                        gone.id, self.settings.worker_timeout_s, world.name)  # fmt: skip
+        world.lost = (
+            f"world {world.name!r} was on world worker {gone.id!r}, which is gone; it is starting again"
+        )
+        lab: Lab | None = None
+        try:
+            place = await self._place(exclude=gone.id)
+            if place is None:
+                self._local_starting += 1
+                try:
+                    lab = await self._start_lab(world.name, world.domain_id)
+                finally:
+                    self._local_starting -= 1
+            else:
+                await self._host_on(place, world.name, world.student, world.domain_id)
+        except ClassroomError as exc:
+            world.lost = f"{world.lost}, when there is room ({exc})"
+            return
+        if self.worlds.get(world.name) is not world:  # kicked while it started
+            await self._end(World(world.name, world.student, world.token_id, lab, world.writes, worker=place))
+            return
+        world.lab, world.worker, world.lost = lab, place, None
+        world.moves += 1
+        where = f"world worker {place.id}" if place is not None else "the class server"
+        log.info("world %s started again on %s", world.name, where)
+
+    def heard_from_class(self) -> None:
+        """A worker: the class server said hello or called (Zenoh's thread or the loop)."""
+        self._class_heard_at = self.clock.now()
+
+    async def _watch_class(self, timeout_s: float) -> None:
+        """A worker: free every world when the class server has been silent for ``timeout_s`` (it
+        stopped or lost the network): nobody can reach them, and its replacement starts them anew."""
+        while True:
+            await asyncio.sleep(min(WATCH_PERIOD_S, timeout_s / 2))
+            try:
+                await self.free_if_orphaned(timeout_s)
+            except Exception:
+                log.exception("checking on the class server failed; trying again")
+
+    async def free_if_orphaned(self, timeout_s: float) -> list[str]:
+        """The worlds freed because the class server has said nothing for ``timeout_s``."""
+        silent_s = self.clock.now() - self._class_heard_at
+        if not self.worlds or silent_s < timeout_s:
+            return []
+        names = list(self.worlds)
+        log.warning(
+            "no hello from the class server for %.0f s: freeing worlds %s", silent_s, ", ".join(names)
+        )
+        for name in names:
+            await self._end(self.worlds.pop(name))
+        return names
 
     def _load(self) -> dict[str, Any]:
         """A worker's hello: how full it is."""
@@ -295,9 +391,10 @@ class Classroom:
         log.info("%s joined: world %s%s", student, name, where)
         return world, token
 
-    async def _place(self) -> WorkerRef | None:
+    async def _place(self, exclude: str | None = None) -> WorkerRef | None:
         """Where a new world goes: here or the world worker with the lowest load (worlds over
-        capacity); on a tie a worker, so the class server keeps its core for the pages."""
+        capacity); on a tie a worker, so the class server keeps its core for the pages. Never
+        on worker ``exclude``."""
         local = self.hosted_here + self._local_starting
         choices: list[tuple[float, int, WorkerRef | None]] = []
         if local < self.local_capacity:
@@ -305,6 +402,8 @@ class Classroom:
         refs = await asyncio.to_thread(self.workers.discover) if self.workers is not None else []
         on_workers = self._on_workers()
         for ref in refs:
+            if ref.id == exclude:
+                continue
             ours = len(on_workers[ref.id][1]) if ref.id in on_workers else 0
             worlds = max(ref.worlds, ours) + self._placing.get(ref.id, 0)
             if worlds < ref.max_worlds:
@@ -332,6 +431,7 @@ class Classroom:
         """A world worker: start the world a class server placed here, in the domain it chose."""
         if not self.is_worker:
             raise ClassroomError(404, "only a world worker hosts worlds for a class server")
+        self.heard_from_class()
         if name in self.worlds or name in self._starting:
             raise ClassroomError(409, f"world {name!r} is already here")
         if len(self.worlds) + len(self._starting) >= self.settings.max_worlds:
@@ -434,6 +534,9 @@ class Classroom:
                 log.warning("world %s: %s", world.name, exc)
 
     async def stop(self) -> None:
+        if self._watch is not None:
+            await cancel_and_wait(self._watch)
+            self._watch = None
         for name in list(self.worlds):
             await self._end(self.worlds.pop(name))
         if self.workers is not None:

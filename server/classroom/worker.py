@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import json
 import logging
 import os
 import socket
@@ -21,10 +20,10 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from server.settings import LOOPBACK_HOSTS, Settings, WorkerSettings
+from server.settings import LOOPBACK_HOSTS, ORPHAN_TIMEOUT_S, Settings, WorkerSettings
 from server.transport.config import ZenohSettings
 
-from .workers import MAX_REPLY_BYTES, control_key, seal
+from .workers import control_key, genuine_hello, seal
 
 log = logging.getLogger("classroom.worker")
 TOKEN_ENV = "ROS2LAB_TOKEN"
@@ -34,27 +33,26 @@ class WorkerControl:
     """Answers hellos on the router: sealed with the class's token, so only its server trusts them."""
 
     def __init__(
-        self, session: Any, settings: WorkerSettings, describe: Callable[[], dict[str, Any]]
+        self,
+        session: Any,
+        settings: WorkerSettings,
+        describe: Callable[[], dict[str, Any]],
+        on_hello: Callable[[], None],
     ) -> None:
         self._describe = describe
+        self._on_hello = on_hello
         self._settings = settings
         self._queryable = session.declare_queryable(control_key(settings.id), self._on_query, complete=True)
 
     def _on_query(self, query: Any) -> None:  # Zenoh's thread: answer at once, block nothing
         try:
             raw = query.payload.to_bytes() if query.payload is not None else b""
-            if len(raw) > MAX_REPLY_BYTES:
-                return
-            asked = json.loads(raw) if raw else None
-            if not isinstance(asked, dict) or asked.get("op") != "hello":
-                return  # nothing but a hello is asked here; the querier's timeout ends it
-            nonce = asked.get("nonce")
-            if not isinstance(nonce, str) or len(nonce) > 64:
-                return
+            nonce = genuine_hello(self._settings.class_token, raw)
+            if nonce is None:
+                return  # not this class's server: no answer (the querier's timeout ends it)
+            self._on_hello()
             body = {**self._describe(), "id": self._settings.id, "url": self._settings.url, "nonce": nonce}
             query.reply(control_key(self._settings.id), seal(self._settings.class_token, body))
-        except ValueError:
-            return
         finally:
             query.drop()
 
@@ -85,6 +83,11 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--id", dest="worker_id", help="this worker's name (default: HOSTNAME-PID)")
     parser.add_argument("--max-worlds", type=int, default=30, help="worlds at most (default 30)")
     parser.add_argument(
+        "--orphan-timeout", type=float, default=ORPHAN_TIMEOUT_S, metavar="S",
+        help="free this worker's worlds when the class server has said no hello for S seconds "
+        f"(default {ORPHAN_TIMEOUT_S:g}; keep it below the class server's --worker-timeout)",
+    )  # fmt: skip
+    parser.add_argument(
         "--workspace", default="workspace", help="folder of students' packages (default ./workspace)"
     )
     parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
@@ -107,6 +110,8 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     if args.max_worlds < 1:
         parser.error("--max-worlds must be at least 1")
+    if not 1.0 <= args.orphan_timeout <= 3600.0:
+        parser.error("--orphan-timeout must be in 1..3600 s")
     advertise = args.advertise or args.host
     if advertise in ("0.0.0.0", "::"):
         parser.error(
@@ -123,8 +128,9 @@ def main(argv: list[str] | None = None) -> int:
     port = int(sock.getsockname()[1])
     shown = f"[{advertise}]" if ":" in advertise else advertise
     worker = WorkerSettings(
-        id=_worker_id(args.worker_id), url=f"http://{shown}:{port}", class_token=class_token
-    )
+        id=_worker_id(args.worker_id), url=f"http://{shown}:{port}", class_token=class_token,
+        orphan_timeout_s=args.orphan_timeout,
+    )  # fmt: skip
     settings = Settings(
         host=args.host, port=port, workspace=Path(args.workspace), bag_dir=Path(args.bag_dir),
         zenoh=ZenohSettings(mode="client", listen=(), connect=(args.connect,)),

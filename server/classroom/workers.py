@@ -7,9 +7,14 @@ full it is. The class server asks before placing a new world, puts it where the 
 and then serves the student's page itself while every call for that world goes to the worker
 (``api/world_proxy.py``).
 
+The class server also says hello every ``WATCH_PERIOD_S``: a worker silent for its
+``--worker-timeout`` is taken as gone, and its worlds start again elsewhere; a worker that hears
+no hello for its ``--orphan-timeout`` (shorter) frees its worlds, as nobody can reach them.
+
 Trust comes from the instructor's token, which both sides know and which never crosses the wire:
-a worker seals its hello reply with it (so a stranger on the router cannot pose as a worker),
-and the class server calls the worker's API with a token derived from it and the worker's id.
+the class server seals its hellos with it and a worker seals its replies (so a stranger on the
+router can neither pose as a worker nor learn what one hosts), and the class server calls the
+worker's API with a token derived from it and the worker's id.
 """
 
 from __future__ import annotations
@@ -28,6 +33,7 @@ from .errors import ClassroomError
 CONTROL_PREFIX = "ros2lab/classroom/worker"
 MAX_REPLY_BYTES = 16 * 1024
 HELLO_TIMEOUT_S = 1.0
+WATCH_PERIOD_S = 2.0  # how often the class server says hello to its workers
 WORKER_CALL_TIMEOUT_S = 30.0  # starting a world with the whole lab takes a few seconds
 
 
@@ -56,6 +62,39 @@ def unseal(secret: str, raw: bytes) -> dict[str, Any] | None:
     if not isinstance(body, dict) or not isinstance(mac := body.pop("mac", None), str):
         return None
     return body if hmac.compare_digest(_mac(secret, body), mac) else None
+
+
+def hello_request(class_token: str, nonce: str) -> bytes:
+    """The class server's hello, sealed: only a worker of this class answers it."""
+    return seal(class_token, {"op": "hello", "nonce": nonce})
+
+
+def genuine_hello(class_token: str, raw: bytes) -> str | None:
+    """The nonce of a hello sealed with this class's token; None for anything else."""
+    body = unseal(class_token, raw)
+    if body is None or body.get("op") != "hello":
+        return None
+    nonce = body.get("nonce")
+    return nonce if isinstance(nonce, str) and 0 < len(nonce) <= 64 else None
+
+
+class Silence:
+    """When each peer was last heard, on the caller's clock: who has been silent too long.
+
+    A peer is first heard when it is first asked about, so a new one gets the whole timeout.
+    """
+
+    def __init__(self, timeout_s: float) -> None:
+        self.timeout_s = timeout_s
+        self._heard: dict[str, float] = {}
+
+    def heard(self, peer: str, now: float) -> None:
+        self._heard[peer] = now
+
+    def silent(self, peers: set[str], now: float) -> set[str]:
+        """Those of ``peers`` not heard for ``timeout_s``; the rest are forgotten."""
+        self._heard = {p: self._heard.get(p, now) for p in peers}
+        return {p for p, at in self._heard.items() if now - at >= self.timeout_s}
 
 
 def worker_api_token(class_token: str, worker_id: str) -> str:
@@ -100,9 +139,10 @@ class WorkerDirectory:
         nonce = secrets.token_hex(16)
         found: dict[str, WorkerRef] = {}
         replies = self.session.get(
-            f"{CONTROL_PREFIX}/*", payload=json.dumps({"op": "hello", "nonce": nonce}).encode(),
+            f"{CONTROL_PREFIX}/*",
+            payload=hello_request(self.class_token, nonce),
             timeout=self.hello_timeout_s,
-        )  # fmt: skip
+        )
         for reply in replies:
             if reply.ok is None:
                 continue

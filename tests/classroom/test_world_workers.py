@@ -23,7 +23,12 @@ from typing import Any
 import httpx
 import pytest
 import websockets
+import zenoh
 from support.app import App, WorldWorker, instructor_token, wait_for_workers
+
+from server.classroom.workers import CONTROL_PREFIX, hello_request
+from server.transport.config import ZenohSettings
+from server.transport.session import build_config
 
 CODE = "WRK042"
 STUDENTS = ("Ada", "Bob", "Cy", "Dee")
@@ -31,6 +36,7 @@ TARGET = (5.0, 5.0, 10.0)
 NEAR_M = 1.0
 FLY_S = 40.0
 HEARTBEAT_S = 0.1
+HELLO_S = 3.0
 KEY_WAIT_S = 30.0  # the key crosses the class server, a WebSocket and Zenoh to worker wb
 
 
@@ -94,6 +100,20 @@ def test_the_class_server_trusts_only_workers_that_know_its_token(klass: Class) 
     assert {w["id"] for w in listed["workers"]} == {"wa", "wb"}  # not the stranger
     assert listed["local"]["max_worlds"] == 1
     assert "ros2lab world-worker --connect" in klass.app.log_tail(10**6)  # the banner says how to add one
+
+
+def test_a_hello_not_sealed_with_the_class_token_gets_no_answer_from_any_worker(klass: Class) -> None:
+    # A stranger on the router learns nothing: not where the workers' APIs are, nor their load.
+    config = build_config(ZenohSettings(mode="client", listen=(), connect=(f"tcp/{klass.app.router}",)))
+    with zenoh.open(config) as session:
+        plain = json.dumps({"op": "hello", "nonce": "stranger"}).encode()
+        strangers = list(session.get(f"{CONTROL_PREFIX}/*", payload=plain, timeout=HELLO_S))
+        sealed = hello_request(
+            klass.instructor, "genuine"
+        )  # the same question, sealed as the class server does
+        genuine = [r.ok for r in session.get(f"{CONTROL_PREFIX}/*", payload=sealed, timeout=HELLO_S) if r.ok]
+    assert [r for r in strangers if r.ok is not None] == []
+    assert sorted(json.loads(r.payload.to_bytes())["id"] for r in genuine) == ["wa", "wb"]
 
 
 def test_new_worlds_go_where_the_load_is_lowest(klass: Class) -> None:
