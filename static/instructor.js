@@ -1,10 +1,10 @@
-// The instructor's page: every world once a second (GET /api/classroom/worlds), a map of every
-// drone from above, and the controls (reset one or all, remove a student, publish in all worlds).
-// The token is the page's HTTP-only cookie; these requests are same-origin.
+// The instructor's page: every world once a second (GET /api/classroom/worlds) in a table, and
+// the controls (reset one or all, remove a student, publish in all worlds). Every drone in 3D is
+// the class view's own viser page, in a frame (/instructor/view). The token is the page's
+// HTTP-only cookie; these requests are same-origin.
 "use strict";
 (() => {
   const $ = (id) => document.getElementById(id);
-  const SVG = "http://www.w3.org/2000/svg";
   const say = (text) => { $("status").textContent = text; };
 
   async function call(method, url, body) {
@@ -36,8 +36,6 @@
   function draw(worlds) {
     const body = $("worlds");
     body.replaceChildren();
-    const map = $("map");
-    for (const dot of map.querySelectorAll("g")) dot.remove();
     for (const w of worlds) {
       const row = body.insertRow();
       row.dataset.world = w.world;
@@ -48,7 +46,8 @@
       cell(row, keys.length ? keys.join(", ") : "–", "num");
       cell(row, w.rocket ? `${w.rocket.phase} ${w.rocket.altitude_m} m` : "–");
       cell(row, w.drone ? w.drone.map((v) => v.toFixed(2)).join(", ") : "–", "num");
-      if (w.worker_error) cell(row, w.worker_error, "bad");
+      if (w.lost) cell(row, w.lost, "bad");
+      else if (w.worker_error) cell(row, w.worker_error, "bad");
       else cell(row, crashed.length ? crashed.join(", ") : "none", crashed.length ? "bad" : "");
       const actions = row.insertCell();
       button(actions, "Reset", () => act("POST", `/api/classroom/worlds/${encodeURIComponent(w.world)}/reset`, `reset ${w.world}`));
@@ -57,20 +56,6 @@
           act("DELETE", `/api/classroom/worlds/${encodeURIComponent(w.world)}`, `removed ${w.world}`);
         }
       });
-      if (w.drone) {
-        const g = document.createElementNS(SVG, "g");
-        const dot = document.createElementNS(SVG, "circle");
-        dot.setAttribute("cx", w.drone[0]);
-        dot.setAttribute("cy", -w.drone[1]);
-        dot.setAttribute("r", 0.35);
-        const label = document.createElementNS(SVG, "text");
-        label.setAttribute("x", w.drone[0] + 0.5);
-        label.setAttribute("y", -w.drone[1] + 0.3);
-        label.setAttribute("font-size", 0.9);
-        label.textContent = `${w.world} (${w.drone[2].toFixed(1)} m)`;
-        g.append(dot, label);
-        map.append(g);
-      }
     }
   }
 

@@ -11,11 +11,12 @@ import asyncio
 import dataclasses
 import hmac
 import logging
+import math
 import re
 import secrets
 import time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from server.bus import Clock, SystemClock
 from server.devices.shared_physics import SharedQuadrotorPhysics
@@ -29,11 +30,16 @@ from .errors import ClassroomError
 from .tokens import Grant, TokenSigner
 from .workers import WATCH_PERIOD_S, Silence, WorkerDirectory, WorkerRef, worker_api_token
 
+if TYPE_CHECKING:
+    from .class_view import ClassView
+
 log = logging.getLogger("classroom")
 CODE_ALPHABET = "ABCDEFGHJKLMNPQRSTUVWXYZ23456789"  # no 0/O, 1/I: read aloud or off a projector
 CODE_CHARS = 6
 MAX_NAME_CHARS = 32
 MAX_DOMAIN_ID = 232  # ROS 2's highest ROS_DOMAIN_ID
+VIEW_HZ = 10.0  # the instructor's 3D view: local worlds' drones
+REMOTE_VIEW_HZ = 2.0  # and world workers' (one call per worker)
 # A world's name is a ROS namespace token: letters, digits and underscores, not starting with a digit.
 _NOT_NAME = re.compile(r"[^a-z0-9_]+")
 
@@ -132,6 +138,9 @@ class Classroom:
         self._control: Any = None  # a worker's hello queryable (WorkerControl) and its session
         self._control_session: Any = None
         self._watch: asyncio.Task[None] | None = None  # the class server's hellos, or a worker's orphan check
+        self.view: ClassView | None = None  # the instructor's 3D view of every world (a class server's)
+        self._view_task: asyncio.Task[None] | None = None
+        self._remote_drones: dict[str, list[float] | None] = {}  # worker worlds' drones, last fetched
         self._silent_workers = Silence(settings.worker_timeout_s)
         self._class_heard_at = self.clock.now()  # a worker: the class server's last hello or call
         worker = settings.worker
@@ -191,6 +200,11 @@ class Classroom:
         """Open the class's Zenoh router (if Zenoh is on): each world joins it in a ROS domain of
         its own, so students' node processes join their world with its ROS_DOMAIN_ID. On a world
         worker: join the class's router and answer the class server's hellos."""
+        if not self.is_worker and self.settings.viewer:
+            from .class_view import ClassView
+
+            self.view = ClassView(asyncio.get_running_loop())
+            self._view_task = asyncio.create_task(self._view_loop())
         zenoh = self.settings.zenoh
         if zenoh is None:
             return
@@ -214,6 +228,56 @@ class Classroom:
             return
         self.workers = WorkerDirectory(self._router, self.instructor_token)
         self._watch = asyncio.create_task(self._watch_workers())
+
+    # -- the instructor's 3D view ------------------------------------------------------------------
+    async def _view_loop(self) -> None:
+        """Move the class view's drones while the instructor's page shows it: local worlds' at
+        VIEW_HZ from their latest GPS fix, workers' as often as REMOTE_VIEW_HZ asks them."""
+        assert self.view is not None
+        remote_at = -math.inf
+        while True:
+            await asyncio.sleep(1.0 / VIEW_HZ)
+            if not self.view.watched():
+                continue
+            try:
+                now = self.clock.now()
+                if now - remote_at >= 1.0 / REMOTE_VIEW_HZ or now < remote_at:
+                    remote_at = now
+                    self._remote_drones = await self._fetch_remote_drones()
+                self.view.show(self.drones())
+            except Exception:  # the view must outlive any one round
+                log.exception("updating the class view failed; trying again")
+
+    def drones(self) -> dict[str, tuple[str, list[float] | None]]:
+        """Every world's student and drone position, as the class view shows them (None: not known now)."""
+        out: dict[str, tuple[str, list[float] | None]] = {}
+        for world in self.worlds.values():
+            if world.lab is not None:
+                position = drone_position(world.lab)
+            else:
+                position = None if world.lost is not None else self._remote_drones.get(world.name)
+            out[world.name] = (world.student, position)
+        return out
+
+    async def _fetch_remote_drones(self) -> dict[str, list[float] | None]:
+        found: dict[str, list[float] | None] = {}
+        if self.workers is None:
+            return found
+        for ref, names in self._on_workers().values():
+            try:
+                listed = await self.workers.checked(ref, "GET", "/api/classroom/worlds")
+            except ClassroomError:
+                continue
+            for w in listed.get("worlds", []):
+                drone = w.get("drone")
+                ok = (
+                    isinstance(drone, list)
+                    and len(drone) == 3
+                    and all(isinstance(v, int | float) for v in drone)
+                )
+                if w.get("world") in names:
+                    found[str(w["world"])] = [float(v) for v in drone] if ok else None
+        return found
 
     # -- workers that go, class servers that go ------------------------------------------------
     async def _watch_workers(self) -> None:
@@ -534,9 +598,13 @@ class Classroom:
                 log.warning("world %s: %s", world.name, exc)
 
     async def stop(self) -> None:
-        if self._watch is not None:
-            await cancel_and_wait(self._watch)
-            self._watch = None
+        for task in (self._watch, self._view_task):
+            if task is not None:
+                await cancel_and_wait(task)
+        self._watch = self._view_task = None
+        if self.view is not None:
+            self.view.stop()
+            self.view = None
         for name in list(self.worlds):
             await self._end(self.worlds.pop(name))
         if self.workers is not None:

@@ -42,8 +42,13 @@ POSES_WORKER = STATIC / "poses.worker.js"
 
 
 @cache
+def viser_html() -> str:
+    return VISER_INDEX.read_text(encoding="utf-8")
+
+
+@cache
 def index_html() -> str:
-    html = VISER_INDEX.read_text(encoding="utf-8")
+    html = viser_html()
     if "</head>" not in html:
         raise RuntimeError(f"viser's page at {VISER_INDEX} changed shape; pin viser==1.1.1")
     return html.replace("</head>", INJECT + "</head>", 1)
@@ -114,7 +119,49 @@ async def views(request: Request) -> dict[str, Any]:
 
 @router.websocket("/")
 async def viser_proxy(websocket: WebSocket) -> None:
-    display = _display_of(websocket)
+    await _proxy_to(_display_of(websocket), websocket)
+
+
+def _instructors_view(conn: HTTPConnection) -> tuple[Any, Response | None]:
+    """The class view (every world's drone) for the instructor; else why not, as a response."""
+    classroom = classroom_of(conn)
+    if classroom is None:
+        return None, Response("not a class server (start it with --classroom)", status.HTTP_404_NOT_FOUND)
+    grant = classroom.grant(token_of(conn))
+    if grant is None or not grant.is_instructor:
+        return None, Response(
+            "open the instructor's link the class server printed", status.HTTP_401_UNAUTHORIZED
+        )
+    return classroom.view, None
+
+
+@router.get("/instructor/view")
+async def instructor_view(request: Request) -> Response:
+    """viser's own page for the class view, shown in a frame of the instructor's page (no key script:
+    nothing here flies a drone)."""
+    view, refused = _instructors_view(request)
+    if refused is not None:
+        return refused
+    if view is None:
+        return Response("the 3D view is off (--no-viewer)", status.HTTP_404_NOT_FOUND)
+    # Framed by the instructor's page only, never by another site's.
+    headers = {"Cache-Control": "no-cache", "Content-Security-Policy": "frame-ancestors 'self'",
+               "X-Frame-Options": "SAMEORIGIN"}  # fmt: skip
+    return HTMLResponse(viser_html(), headers=headers)
+
+
+@router.websocket("/instructor/view")
+async def instructor_view_proxy(websocket: WebSocket) -> None:
+    view, refused = _instructors_view(websocket)
+    if refused is not None:
+        reason = "the instructor's token is needed" if refused.status_code == 401 else "not a class server"
+        await websocket.close(status.WS_1008_POLICY_VIOLATION, reason)
+        return
+    await _proxy_to(view.display if view is not None else None, websocket)
+
+
+async def _proxy_to(display: Any, websocket: WebSocket) -> None:
+    """Carry ``websocket`` to ``display``'s viser server (on loopback, behind its proxy token)."""
     if display is None:
         await websocket.close(status.WS_1013_TRY_AGAIN_LATER, "the 3D view is not running")
         return

@@ -109,7 +109,7 @@ def open_lab_page(
     ``settle_ms``; 0: not at all) a steady frame rate; close viser's notifications unless told
     not to."""
     if server is not None:
-        page.goto(server.url + "/")
+        page.goto(server.url + "/", timeout=LOAD_WAIT_MS)
     page.wait_for_function("() => document.body.innerText.includes('Connected')", timeout=LOAD_WAIT_MS)
     page.wait_for_function("() => window.__teleopKeys !== undefined && window.__teleopKeys.connected")
     page.wait_for_function("() => window.__teleopScene !== undefined && window.__teleopScene.ready")

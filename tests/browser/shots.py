@@ -95,10 +95,10 @@ def pad_grey(r: np.ndarray, g: np.ndarray, b: np.ndarray) -> np.ndarray:
     return (lo >= 40) & (hi <= 150) & (hi - lo <= 35)
 
 
-def largest_blob(mask: np.ndarray) -> np.ndarray:
-    """The (row, column) pixels of the largest 8-connected region of ``mask``."""
+def blobs(mask: np.ndarray) -> list[list[tuple[int, int]]]:
+    """The 8-connected regions of ``mask``, each as its (row, column) pixels."""
     left = {(int(r), int(c)) for r, c in zip(*np.nonzero(mask), strict=True)}
-    best: list[tuple[int, int]] = []
+    found: list[list[tuple[int, int]]] = []
     while left:
         stack, blob = [left.pop()], []
         while stack:
@@ -108,7 +108,13 @@ def largest_blob(mask: np.ndarray) -> np.ndarray:
                 if n in left:
                     left.remove(n)
                     stack.append(n)
-        best = max(best, blob, key=len)
+        found.append(blob)
+    return found
+
+
+def largest_blob(mask: np.ndarray) -> np.ndarray:
+    """The (row, column) pixels of the largest 8-connected region of ``mask``."""
+    best = max(blobs(mask), key=len, default=[])
     return np.array(best, dtype=float).reshape(-1, 2)
 
 

@@ -4,17 +4,30 @@ abort only their own rocket; the other world is checked through the REST API wit
 
 from __future__ import annotations
 
+import io
 import math
 import re
 import time
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
 import httpx
+import numpy as np
 import pytest
-from labpage import STILL_DRIFT_M, STILL_WINDOW_S, lab_page, open_lab_page, wait_until
+from labpage import (
+    LOAD_WAIT_MS,
+    STILL_DRIFT_M,
+    STILL_WINDOW_S,
+    lab_page,
+    open_lab_page,
+    save_screenshot,
+    wait_until,
+)
 from labserver import LabServer
+from PIL import Image
 from playwright.sync_api import Browser, Page
+from shots import blobs, hub_green
 
 pytestmark = pytest.mark.browser
 
@@ -25,6 +38,9 @@ PRESSES = 2  # a metre each
 MOVED_M = 0.5  # far more than hover jitter
 STILL_M = 0.15
 SMALL = {"width": 800, "height": 600}
+VIEW_WAIT_S = 60.0
+MIN_DRONE_PX = 6  # a drone 60 m from the camera is a few pixels across
+MIN_APART_PX = 20  # two arenas apart
 
 
 @pytest.fixture(scope="module")
@@ -48,14 +64,14 @@ class Student:
     def __init__(self, page: Page, server: LabServer, name: str, code: str = CODE) -> None:
         """Join through the page's form; the lab page then loads (``ready`` waits for it)."""
         self.page, self.server = page, server
-        page.goto(server.url + "/")
+        page.goto(server.url + "/", timeout=LOAD_WAIT_MS)
         page.fill("#name", name)
         page.fill("#code", code)
-        with page.expect_navigation():  # the form reloads the page once the world is up
+        with page.expect_navigation(timeout=LOAD_WAIT_MS):  # the form reloads the page once the world is up
             page.click("#go")
 
     def ready(self) -> Student:
-        self.page.wait_for_load_state("domcontentloaded")
+        self.page.wait_for_load_state("domcontentloaded", timeout=LOAD_WAIT_MS)
         # The form reloaded the page into the student's own world. Presses need no steady frame
         # rate (each moves the setpoint a metre), and two pages drawing at once rarely hold one.
         open_lab_page(self.page, None, settle_ms=0)
@@ -135,8 +151,24 @@ def test_a_aborts_only_the_students_own_rocket(students: tuple[Student, Student]
     assert all(k["latest"] is None or k["latest"]["code"] != 97 for k in [bob.topic("/keydown")])
 
 
+def two_drones_drawn(page: Page) -> list[list[tuple[int, int]]] | None:
+    """The class view's green drone blobs, once there are at least two far enough apart."""
+    png = page.locator("#view").screenshot()
+    rgb = np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(np.int16)
+    found = [b for b in blobs(hub_green(rgb[..., 0], rgb[..., 1], rgb[..., 2])) if len(b) >= MIN_DRONE_PX]
+    if len(found) < 2:
+        return None
+    centres = [np.mean(np.array(b), axis=0) for b in found]
+    apart = max(math.dist(a, b) for a in centres for b in centres)
+    return found if apart >= MIN_APART_PX else None
+
+
 def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
-    chromium: Browser, class_server: LabServer, students: tuple[Student, Student]
+    chromium: Browser,
+    class_server: LabServer,
+    students: tuple[Student, Student],
+    screenshot_dir: Path,
+    capsys: pytest.CaptureFixture[str],
 ) -> None:
     ada, bob = students
     found = re.search(r"/instructor\?token=(\S+)", class_server.log_tail(10**6))
@@ -144,11 +176,20 @@ def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
     wait_until(lambda: abs(bob.position()[0]) > MOVED_M, "bob's drone away from the origin (the keys test)")
     ada_before = wait_until(ada.still, "ada's drone to stop after the keys test")
     with lab_page(chromium, SMALL) as page:
-        page.goto(f"{class_server.url}/instructor?token={found.group(1)}")
+        page.goto(f"{class_server.url}/instructor?token={found.group(1)}", timeout=LOAD_WAIT_MS)
         page.wait_for_selector("tr[data-world='bob']")
         assert page.url == f"{class_server.url}/instructor"  # the token left the address bar
         rows = page.inner_text("#worlds")
         assert "Ada" in rows and "Bob" in rows
+        # The 3D view: both worlds listed, and two drones drawn apart (an arena each).
+        view = page.frame_locator("#view")
+        view.get_by_text("2 worlds").wait_for(timeout=LOAD_WAIT_MS)
+        listed = view.locator("body").inner_text()
+        assert "Ada (ada)" in listed and "Bob (bob)" in listed, listed[-500:]
+        drones = wait_until(lambda: two_drones_drawn(page), "two drones drawn in the class view", VIEW_WAIT_S)
+        sizes = sorted(len(blob) for blob in drones)
+        assert sizes[-2] >= MIN_DRONE_PX, sizes
+        save_screenshot(page, screenshot_dir, "instructor_class_view.png", capsys)
         page.click("tr[data-world='bob'] button:text-is('Reset')")
         page.wait_for_function("() => document.getElementById('status').textContent === 'reset bob'")
     wait_until(lambda: abs(bob.position()[0]) < STILL_M, "bob's drone back at the origin after the reset")

@@ -20,6 +20,7 @@ from typing import Any
 
 import httpx
 import pytest
+from labpage import LOAD_WAIT_MS
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
 
@@ -64,7 +65,7 @@ def page(chromium: Browser) -> Iterator[Page]:
 def wait_responsive(page: Page) -> None:
     """Wait until the page's main thread has answered within PROMPT_S for RESPONSIVE_S in a row
     (viser's first frames on SwiftShader block it for seconds; a key pressed then waits too)."""
-    deadline = time.monotonic() + PAGE_WAIT_MS / 1000
+    deadline = time.monotonic() + LOAD_WAIT_MS / 1000
     calm_since = time.monotonic()
     while time.monotonic() - calm_since < RESPONSIVE_S:
         asked = time.monotonic()
@@ -78,8 +79,8 @@ def wait_responsive(page: Page) -> None:
 
 def open_lab_page(page: Page, server: LabServer) -> None:
     """Load the page, wait for viser and the key channel, and close viser's notifications."""
-    page.goto(server.url + "/")
-    page.wait_for_function("() => document.body.innerText.includes('Connected')")
+    page.goto(server.url + "/", timeout=LOAD_WAIT_MS)
+    page.wait_for_function("() => document.body.innerText.includes('Connected')", timeout=LOAD_WAIT_MS)
     page.wait_for_function("() => window.__teleopKeys !== undefined && window.__teleopKeys.connected")
     # Clicked from the page's script: they slide in, so Playwright's click waits for them to hold still.
     close_all = "() => document.querySelectorAll('.mantine-Notification-closeButton').forEach(b => b.click())"
