@@ -68,6 +68,7 @@ class World:
     resets: int = 0
     worker: WorkerRef | None = None  # the world worker that hosts it, if one does
     moves: int = 0  # times it started again elsewhere because its world worker was gone
+    placed_at: float = -math.inf  # when it was last started where it is (the class's clock)
     lost: str | None = None  # why it cannot be reached now (its worker is gone and it waits for room)
 
     def describe(self) -> dict[str, Any]:
@@ -292,30 +293,54 @@ class Classroom:
 
     async def watch_workers_once(self) -> None:
         assert self.workers is not None
+        asked_at = self.clock.now()
         answered = await asyncio.to_thread(self.workers.discover)
         now = self.clock.now()
+        answering = {ref.id for ref in answered}
         for ref in answered:
             self._silent_workers.heard(ref.id, now)
         hosting = {w.worker.id for w in self.worlds.values() if w.worker is not None}
         gone = self._silent_workers.silent(hosting, now)
+        # A worker that answers but no longer hosts a world placed on it before this hello (it
+        # restarted, or freed its worlds while cut off): that world is gone too.
+        missing = {
+            (ref.id, name)
+            for ref in answered
+            if ref.hosted is not None
+            for name, world in self.worlds.items()
+            if world.worker is not None and world.worker.id == ref.id and world.placed_at < asked_at
+            and name not in ref.hosted
+        }  # fmt: skip
         for world in list(self.worlds.values()):
-            if world.worker is not None and (world.worker.id in gone or world.lost is not None):
-                await self._move(world)
+            if world.worker is None:
+                continue
+            silent = world.worker.id in gone
+            if silent:
+                why = f"no hello for {self.settings.worker_timeout_s:g} s"
+            elif (world.worker.id, world.name) in missing:
+                why = "it answers but no longer hosts this world (restarted?)"
+            elif world.lost is not None:
+                why = "still waiting for room"
+            else:
+                continue
+            # Never back onto a worker that did not answer this round.
+            await self._move(
+                world, why, exclude=world.worker.id if world.worker.id not in answering else None
+            )
 
-    async def _move(self, world: World) -> None:
+    async def _move(self, world: World, why: str, exclude: str | None) -> None:
         """Start a world whose worker is gone again, here or on another worker; its student's
         token and ROS domain stay, its state starts over (as after a reset)."""
         gone = world.worker
         assert gone is not None
         if world.lost is None:
-            log.warning("world worker %s is gone (no hello for %g s): moving world %s",
-                        gone.id, self.settings.worker_timeout_s, world.name)  # fmt: skip
+            log.warning("world worker %s lost world %s (%s): moving it", gone.id, world.name, why)
         world.lost = (
-            f"world {world.name!r} was on world worker {gone.id!r}, which is gone; it is starting again"
+            f"world {world.name!r} was lost by world worker {gone.id!r} ({why}); it is starting again"
         )
         lab: Lab | None = None
         try:
-            place = await self._place(exclude=gone.id)
+            place = await self._place(exclude=exclude)
             if place is None:
                 self._local_starting += 1
                 try:
@@ -332,6 +357,7 @@ class Classroom:
             return
         world.lab, world.worker, world.lost = lab, place, None
         world.moves += 1
+        world.placed_at = self.clock.now()
         where = f"world worker {place.id}" if place is not None else "the class server"
         log.info("world %s started again on %s", world.name, where)
 
@@ -363,8 +389,10 @@ class Classroom:
         return names
 
     def _load(self) -> dict[str, Any]:
-        """A worker's hello: how full it is."""
-        return {"worlds": len(self.worlds) + len(self._starting), "max_worlds": self.settings.max_worlds}
+        """A worker's hello: how full it is, and which worlds it hosts (Zenoh's thread: a copy)."""
+        hosted = sorted(self.worlds)
+        return {"worlds": len(hosted) + len(self._starting), "max_worlds": self.settings.max_worlds,
+                "hosted": hosted}  # fmt: skip
 
     def router_endpoint(self) -> str | None:
         """Where worlds and node processes connect: the class's router, or the one it joined."""
@@ -449,7 +477,14 @@ class Classroom:
             del self._starting[name]
         token, grant = self.signer.issue("student", name, student)
         world = self.worlds[name] = World(
-            name, student, grant.token_id, lab, self._limit(), domain_id, worker=place
+            name,
+            student,
+            grant.token_id,
+            lab,
+            self._limit(),
+            domain_id,
+            worker=place,
+            placed_at=self.clock.now(),
         )
         where = f" on world worker {place.id}" if place is not None else ""
         log.info("%s joined: world %s%s", student, name, where)
@@ -513,10 +548,11 @@ class Classroom:
         return world
 
     def _on_workers(self) -> dict[str, tuple[WorkerRef, list[str]]]:
-        """Worker id → that worker and the names of the worlds it hosts for this class."""
+        """Worker id → that worker and the names of the worlds it hosts for this class (not those
+        it lost: they are being started again, and count nowhere until they are)."""
         out: dict[str, tuple[WorkerRef, list[str]]] = {}
         for world in self.worlds.values():
-            if world.worker is not None:
+            if world.worker is not None and world.lost is None:
                 out.setdefault(world.worker.id, (world.worker, []))[1].append(world.name)
         return out
 

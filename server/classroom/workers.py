@@ -32,7 +32,7 @@ from .errors import ClassroomError
 
 CONTROL_PREFIX = "ros2lab/classroom/worker"
 MAX_REPLY_BYTES = 16 * 1024
-HELLO_TIMEOUT_S = 1.0
+HELLO_TIMEOUT_S = 3.0  # an upper bound: a get ends once every worker has answered
 WATCH_PERIOD_S = 2.0  # how often the class server says hello to its workers
 WORKER_CALL_TIMEOUT_S = 30.0  # starting a world with the whole lab takes a few seconds
 
@@ -111,6 +111,7 @@ class WorkerRef:
     worlds: int
     max_worlds: int
     token: str  # worker_api_token(...): what the class server calls it with
+    hosted: frozenset[str] | None = None  # the worlds it said it hosts (None: it did not say)
 
     def describe(self) -> dict[str, Any]:
         return {"id": self.id, "url": self.url, "worlds": self.worlds, "max_worlds": self.max_worlds}
@@ -122,7 +123,11 @@ def _worker_ref(body: dict[str, Any], class_token: str) -> WorkerRef | None:
         return None
     if not (isinstance(worlds, int) and isinstance(most, int)):
         return None
-    return WorkerRef(wid, url.rstrip("/"), worlds, most, worker_api_token(class_token, wid))
+    listed = body.get("hosted")
+    hosted = (
+        frozenset(listed) if isinstance(listed, list) and all(isinstance(n, str) for n in listed) else None
+    )
+    return WorkerRef(wid, url.rstrip("/"), worlds, most, worker_api_token(class_token, wid), hosted)
 
 
 class WorkerDirectory:

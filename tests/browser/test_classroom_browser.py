@@ -39,6 +39,7 @@ MOVED_M = 0.5  # far more than hover jitter
 STILL_M = 0.15
 SMALL = {"width": 800, "height": 600}
 VIEW_WAIT_S = 60.0
+HTTP_WAIT_S = 30.0  # a class server with two whole worlds and two pages in software WebGL, on 2 cores
 MIN_DRONE_PX = 6  # a drone 60 m from the camera is a few pixels across
 MIN_APART_PX = 20  # two arenas apart
 
@@ -77,7 +78,7 @@ class Student:
         open_lab_page(self.page, None, settle_ms=0)
         cookies = {c["name"]: c["value"] for c in self.page.context.cookies()}
         self.token = cookies["lab_token"]
-        me = httpx.get(f"{self.server.url}/api/classroom/me", headers=self.auth, timeout=5.0)
+        me = httpx.get(f"{self.server.url}/api/classroom/me", headers=self.auth, timeout=HTTP_WAIT_S)
         self.world = me.json()["world"]
         return self
 
@@ -86,7 +87,9 @@ class Student:
         return {"Authorization": f"Bearer {self.token}"}
 
     def topic(self, name: str) -> dict[str, Any]:
-        reply = httpx.get(f"{self.server.url}/api/topics/{name.lstrip('/')}", headers=self.auth, timeout=5.0)
+        reply = httpx.get(
+            f"{self.server.url}/api/topics/{name.lstrip('/')}", headers=self.auth, timeout=HTTP_WAIT_S
+        )
         reply.raise_for_status()
         return reply.json()
 
@@ -124,7 +127,9 @@ def students(chromium: Browser, class_server: LabServer) -> Iterator[tuple[Stude
 def test_two_students_have_two_worlds(students: tuple[Student, Student]) -> None:
     ada, bob = students
     assert (ada.world, bob.world) == ("ada", "bob")
-    other = httpx.get(f"{ada.server.url}/api/topics", headers={**ada.auth, "X-Lab-World": "bob"}, timeout=5.0)
+    other = httpx.get(
+        f"{ada.server.url}/api/topics", headers={**ada.auth, "X-Lab-World": "bob"}, timeout=HTTP_WAIT_S
+    )
     assert other.status_code == 403
 
 

@@ -49,6 +49,7 @@ KEY_RIGHT = 275  # keyboard_msgs/Key code (SDL) of ArrowRight
 HOME_M = (0.0, 0.0, 3.0)  # the keyboard manager's start setpoint
 HOLD_S = 1.0
 BRIEF_HOLD_S = 0.3
+HOLD_ATTEMPTS = 3  # a hold the dead-man released (the page stalled) is tried again
 MOVED_M = 0.5  # hold speed 2 m/s for 1 s moves about 2 m; far more than hover jitter
 # How far a hold may take the drone: hold speed 2 m/s (2.2 m/s seen) for as long as the server
 # saw the key held, plus the stop: the brake setpoint (0.55 s of velocity ahead) and overshoot.
@@ -224,22 +225,32 @@ class TestHoldMode:
     def test_page_gone_during_hold_server_releases_key_and_drone_stops(
         self, chromium: Browser, hold_server: LabServer, end: str
     ) -> None:
-        renderers_before = renderer_pids()
-        with lab_page(chromium) as page:
-            open_lab_page(page, hold_server)
-            x0 = position(hold_server)[0]
-            before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
-            page.keyboard.down("ArrowRight")
-            time.sleep(BRIEF_HOLD_S)  # the hold itself
-            if end == "close":
-                page.close()  # pagehide (the page sends release_all), then the channel closes
-            else:
-                with page.expect_event("crash", timeout=PAGE_WAIT_MS):
-                    for pid in renderer_pids() - renderers_before:  # this page's (and maybe a spare)
-                        os.kill(pid, signal.SIGKILL)  # no pagehide, no release_all: the channel drops
-            wait_keyup(hold_server, before)
-            assert_stopped_promptly(hold_server, x0)
-            assert deadman_releases(hold_server) == deadman_before, "released by the dead-man timer"
+        for _ in range(HOLD_ATTEMPTS):
+            renderers_before = renderer_pids()
+            with lab_page(chromium) as page:
+                open_lab_page(page, hold_server)
+                x0 = position(hold_server)[0]
+                before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
+                page.keyboard.down("ArrowRight")
+                time.sleep(BRIEF_HOLD_S)  # the hold itself
+                if deadman_releases(hold_server) != deadman_before:
+                    # The page or the server stalled for 0.5 s during the hold (software WebGL on
+                    # a loaded machine), so the dead-man rightly released the key before the page
+                    # went: this attempt cannot tell how the page's going releases it.
+                    page.keyboard.up("ArrowRight")
+                    wait_stopped(hold_server)
+                    continue
+                if end == "close":
+                    page.close()  # pagehide (the page sends release_all), then the channel closes
+                else:
+                    with page.expect_event("crash", timeout=PAGE_WAIT_MS):
+                        for pid in renderer_pids() - renderers_before:  # this page's (and maybe a spare)
+                            os.kill(pid, signal.SIGKILL)  # no pagehide, no release_all: the channel drops
+                wait_keyup(hold_server, before)
+                assert_stopped_promptly(hold_server, x0)
+                assert deadman_releases(hold_server) == deadman_before, "released by the dead-man timer"
+                return
+        pytest.fail(f"in each of {HOLD_ATTEMPTS} holds the page stalled and the dead-man released the key")
 
 
 # -- the rocket on its pad -----------------------------------------------------------------------

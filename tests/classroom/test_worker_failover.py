@@ -170,7 +170,7 @@ def failover_class(tmp_path: Path) -> Iterator[tuple[App, dict[str, WorldWorker]
 
 
 def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_frees_it(
-    failover_class: tuple[App, dict[str, WorldWorker], str],
+    failover_class: tuple[App, dict[str, WorldWorker], str], tmp_path: Path
 ) -> None:
     app, workers, instructor = failover_class
     joined = httpx.post(f"{app.url}/api/classroom/join", json={"name": "Ada", "code": CODE}, timeout=60)
@@ -197,7 +197,7 @@ def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_fr
         lambda: (w := ada())["moves"] == 1 and w["lost"] is None and w, "ada's world to move", app.log_tail
     )
     assert moved["worker"] == other and moved["domain_id"] == domain
-    assert "moving world ada" in app.log_tail(10**6)
+    assert f"world worker {first} lost world ada (no hello for" in app.log_tail(10**6)
 
     # The student's token opens the new world, which flies.
     def gps() -> dict[str, Any] | None:
@@ -219,6 +219,36 @@ def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_fr
         return math.dist((p["x"], p["y"], p["z"]), TARGET) < 1.0
 
     wait_until(near_target, "ada's drone at (5, 5, 10) in its new world", app.log_tail)
+
+    # The worker that hosts it now restarts under the same id, faster than --worker-timeout: it
+    # answers hellos again, but without ada's world, which then starts again (here, or there).
+    os.kill(workers[other].proc.pid, signal.SIGKILL)
+    workers[other].proc.wait(timeout=10)
+    workers[other].stop()
+    workers[other] = restarted = WorldWorker(
+        tmp_path,
+        app.router,
+        instructor,
+        other,
+        "--max-worlds",
+        "1",
+        "--orphan-timeout",
+        str(ORPHAN_TIMEOUT_S),
+    )
+    again = wait_until(
+        lambda: (w := ada())["moves"] == 2 and w["lost"] is None and w,
+        "ada's world to start again",
+        app.log_tail,
+    )
+    assert again["worker"] == other  # the only worker with room: the restarted one
+    assert f"world worker {other} lost world ada (it answers but no longer hosts" in app.log_tail(10**6)
+    wait_until(gps, "a GPS fix from ada's world on the restarted worker", app.log_tail)
+    other_url = next(
+        w["url"]
+        for w in api(app.url, "/api/classroom/workers", instructor).json()["workers"]
+        if w["id"] == other
+    )
+    assert restarted.proc.poll() is None
 
     # The class server goes without a goodbye: the worker frees the world nobody can reach.
     os.kill(app.proc.pid, signal.SIGKILL)
