@@ -10,6 +10,7 @@ from collections.abc import Iterator
 
 import httpx
 import pytest
+from labpage import LOAD_WAIT_MS
 from labserver import LabServer
 from playwright.sync_api import Browser, ConsoleMessage, Page, expect
 
@@ -104,15 +105,16 @@ def test_tools_page_click_countdown_shows_type_and_a_live_echo_frame(page: Page,
 
 
 def test_main_page_nav_link_opens_tools_in_new_tab_without_taking_focus(page: Page, server_url: str) -> None:
-    page.goto(f"{server_url}/", wait_until="domcontentloaded")  # the 3D view need not finish loading
+    # The 3D view need not finish loading; the main page's first load is slow on a loaded machine.
+    page.goto(f"{server_url}/", wait_until="domcontentloaded", timeout=LOAD_WAIT_MS)
     link = page.locator("#teleop-nav-tools")
-    link.wait_for()
+    link.wait_for(timeout=LOAD_WAIT_MS)
     assert (link.get_attribute("href"), link.get_attribute("target"), link.get_attribute("tabindex")) == (
         "/tools", "_blank", "-1",
     )  # fmt: skip
-    with page.context.expect_page() as new_tab:
-        link.click()
-    new_tab.value.wait_for_load_state()
+    with page.context.expect_page(timeout=LOAD_WAIT_MS) as new_tab:
+        link.click(timeout=LOAD_WAIT_MS)
+    new_tab.value.wait_for_load_state(timeout=LOAD_WAIT_MS)
     assert new_tab.value.url == f"{server_url}/tools"
     assert page.evaluate("document.activeElement && document.activeElement.id") != "teleop-nav-tools"
 
