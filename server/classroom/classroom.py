@@ -261,23 +261,14 @@ class Classroom:
         return out
 
     async def _fetch_remote_drones(self) -> dict[str, list[float] | None]:
+        reports, _errors = await self._worker_reports()
         found: dict[str, list[float] | None] = {}
-        if self.workers is None:
-            return found
-        for ref, names in self._on_workers().values():
-            try:
-                listed = await self.workers.checked(ref, "GET", "/api/classroom/worlds")
-            except ClassroomError:
-                continue
-            for w in listed.get("worlds", []):
-                drone = w.get("drone")
-                ok = (
-                    isinstance(drone, list)
-                    and len(drone) == 3
-                    and all(isinstance(v, int | float) for v in drone)
-                )
-                if w.get("world") in names:
-                    found[str(w["world"])] = [float(v) for v in drone] if ok else None
+        for (_wid, name), report in reports.items():
+            drone = report.get("drone")
+            if isinstance(drone, list) and len(drone) == 3 and all(isinstance(v, int | float) for v in drone):
+                found[name] = [float(v) for v in drone]
+            else:
+                found[name] = None
         return found
 
     # -- workers that go, class servers that go ------------------------------------------------
@@ -561,16 +552,7 @@ class Classroom:
 
     async def describe_all(self) -> list[dict[str, Any]]:
         """Every world as the instructor's page shows it; a worker's worlds as their worker reports."""
-        reports: dict[tuple[str, str], dict[str, Any]] = {}
-        errors: dict[str, str] = {}
-        for ref, _names in self._on_workers().values():
-            assert self.workers is not None
-            try:
-                listed = await self.workers.checked(ref, "GET", "/api/classroom/worlds")
-            except ClassroomError as exc:
-                errors[ref.id] = str(exc)
-                continue
-            reports.update({(ref.id, str(w.get("world"))): w for w in listed.get("worlds", [])})
+        reports, errors = await self._worker_reports()
         out = []
         for world in self.worlds.values():
             mine = world.describe()
@@ -581,6 +563,27 @@ class Classroom:
                     mine["worker_error"] = errors[world.worker.id]
             out.append(mine)
         return out
+
+    async def _worker_reports(self) -> tuple[dict[tuple[str, str], dict[str, Any]], dict[str, str]]:
+        """What each world worker reports of the worlds it hosts for this class, by (worker id,
+        world); and why each worker that could not answer did not."""
+        reports: dict[tuple[str, str], dict[str, Any]] = {}
+        errors: dict[str, str] = {}
+        for ref, names in self._on_workers().values():
+            assert self.workers is not None
+            try:
+                listed = await self.workers.checked(ref, "GET", "/api/classroom/worlds")
+            except ClassroomError as exc:
+                errors[ref.id] = str(exc)
+                continue
+            reports.update(
+                {
+                    (ref.id, str(w.get("world"))): w
+                    for w in listed.get("worlds", [])
+                    if w.get("world") in names
+                }
+            )
+        return reports, errors
 
     async def broadcast_on_workers(self, body: dict[str, Any]) -> tuple[list[str], dict[str, str]]:
         """The instructor's broadcast, published by each world worker in the worlds it hosts."""
