@@ -21,7 +21,9 @@ WAIT_S = 15.0
 STILL_M_S = 0.1
 STILL_WINDOW_S = 0.5
 STILL_DRIFT_M = 0.05
-STOP_WAIT_S = 10.0  # the drone stops in about 1.5 s; generous for a loaded 2-core machine
+STOP_WAIT_S = 30.0  # the drone stops in about 1.5 s; each check is 4 requests, which a loaded
+# 2-core machine (a page drawing in software beside the server) answered in 0.4-4 s each
+HTTP_TIMEOUT_S = 30.0
 PAGE_WAIT_MS = 30_000
 LOAD_WAIT_MS = 90_000  # a first load parses viser's bundle; on a 2-core machine with a busy neighbour
 SETTLE_WAIT_MS = 25_000
@@ -54,7 +56,7 @@ def wait_until(check: Callable[[], Any], what: str, timeout_s: float = WAIT_S, p
 
 
 def topic(server: LabServer, name: str) -> dict[str, Any]:
-    response = httpx.get(f"{server.url}/api/topics/{name.lstrip('/')}", timeout=5.0)
+    response = httpx.get(f"{server.url}/api/topics/{name.lstrip('/')}", timeout=HTTP_TIMEOUT_S)
     response.raise_for_status()
     return response.json()
 
@@ -111,8 +113,12 @@ def open_lab_page(
     if server is not None:
         page.goto(server.url + "/", timeout=LOAD_WAIT_MS)
     page.wait_for_function("() => document.body.innerText.includes('Connected')", timeout=LOAD_WAIT_MS)
-    page.wait_for_function("() => window.__teleopKeys !== undefined && window.__teleopKeys.connected")
-    page.wait_for_function("() => window.__teleopScene !== undefined && window.__teleopScene.ready")
+    page.wait_for_function(
+        "() => window.__teleopKeys !== undefined && window.__teleopKeys.connected", timeout=LOAD_WAIT_MS
+    )
+    page.wait_for_function(
+        "() => window.__teleopScene !== undefined && window.__teleopScene.ready", timeout=LOAD_WAIT_MS
+    )
     try:
         if settle_ms:
             page.wait_for_function(SETTLED_JS, polling=100, timeout=settle_ms)

@@ -24,6 +24,7 @@ from pathlib import Path
 import httpx
 import pytest
 from labpage import (
+    HTTP_TIMEOUT_S,
     lab_page,
     open_lab_page,
     position,
@@ -88,7 +89,7 @@ def lab_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LabServer]:
 
 def fly_to(server: LabServer, target: tuple[float, float, float]) -> None:
     body = {"topic": "/uav/input/position", "msg": dict(zip("xyz", target, strict=True))}
-    assert httpx.post(f"{server.url}/api/publish", json=body, timeout=5.0).status_code == 200
+    assert httpx.post(f"{server.url}/api/publish", json=body, timeout=HTTP_TIMEOUT_S).status_code == 200
     wait_until(
         lambda: math.dist(position(server), target) < ARRIVED_M, f"the drone at {target}", FLIGHT_WAIT_S
     )

@@ -7,6 +7,7 @@ import shutil
 
 import httpx
 import pytest
+from labpage import HTTP_TIMEOUT_S
 from labserver import REPO, LabServer
 from playwright.sync_api import Page
 from test_rocket_browser import open_lab_page, page, wait_responsive, wait_until  # noqa: F401  (page is a fixture)
@@ -16,7 +17,7 @@ MCAP_MAGIC = b"\x89MCAP0\r\n"
 
 
 def recordings(server: LabServer) -> list[dict[str, object]]:
-    return list(httpx.get(f"{server.url}/api/bag/recordings", timeout=5.0).json())
+    return list(httpx.get(f"{server.url}/api/bag/recordings", timeout=HTTP_TIMEOUT_S).json())
 
 
 def test_record_button_records_and_the_link_downloads_the_mcap(page: Page, rocket_server: LabServer) -> None:  # noqa: F811

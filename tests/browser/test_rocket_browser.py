@@ -14,13 +14,14 @@ on the pad, and only the page's key can stop it.
 from __future__ import annotations
 
 import time
+import warnings
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 import httpx
 import pytest
-from labpage import LOAD_WAIT_MS
+from labpage import HTTP_TIMEOUT_S, LOAD_WAIT_MS, SETTLE_WAIT_MS, VIEWPORT
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
 
@@ -45,14 +46,14 @@ def wait_until(check: Callable[[], Any], what: str, timeout_s: float = WAIT_S) -
 
 
 def topic(server: LabServer, name: str) -> dict[str, Any]:
-    response = httpx.get(f"{server.url}/api/topics/{name.lstrip('/')}", timeout=5.0)
+    response = httpx.get(f"{server.url}/api/topics/{name.lstrip('/')}", timeout=HTTP_TIMEOUT_S)
     response.raise_for_status()
     return response.json()
 
 
 @pytest.fixture
 def page(chromium: Browser) -> Iterator[Page]:
-    context = chromium.new_context(viewport={"width": 1280, "height": 800})
+    context = chromium.new_context(viewport=VIEWPORT)
     page = context.new_page()
     page.set_default_timeout(PAGE_WAIT_MS)
     errors: list[str] = []
@@ -63,9 +64,11 @@ def page(chromium: Browser) -> Iterator[Page]:
 
 
 def wait_responsive(page: Page) -> None:
-    """Wait until the page's main thread has answered within PROMPT_S for RESPONSIVE_S in a row
-    (viser's first frames on SwiftShader block it for seconds; a key pressed then waits too)."""
-    deadline = time.monotonic() + LOAD_WAIT_MS / 1000
+    """Wait (up to SETTLE_WAIT_MS) until the page's main thread has answered within PROMPT_S for
+    RESPONSIVE_S in a row: viser's first frames on SwiftShader block it for seconds, and a key
+    pressed then waits too. A page that never calms down (a loaded machine drawing in software)
+    is noted and the test goes on: the key is pressed by T-3, seconds before T-0."""
+    deadline = time.monotonic() + SETTLE_WAIT_MS / 1000
     calm_since = time.monotonic()
     while time.monotonic() - calm_since < RESPONSIVE_S:
         asked = time.monotonic()
@@ -73,7 +76,11 @@ def wait_responsive(page: Page) -> None:
         if time.monotonic() - asked > PROMPT_S:
             calm_since = time.monotonic()
         if time.monotonic() > deadline:
-            pytest.fail(f"the page never answered within {PROMPT_S} s for {RESPONSIVE_S} s running")
+            warnings.warn(
+                f"the page never answered within {PROMPT_S} s for {RESPONSIVE_S} s running; going on",
+                stacklevel=2,
+            )
+            return
         time.sleep(0.05)
 
 
@@ -93,13 +100,15 @@ def test_press_a_during_countdown_aborts_and_rocket_stays_on_pad(
     page: Page, rocket_server: LabServer, screenshot_dir: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     hold = httpx.post(
-        f"{rocket_server.url}/api/publish", json={"topic": "/abort_takeoff", "msg": {"data": True}}
+        f"{rocket_server.url}/api/publish",
+        json={"topic": "/abort_takeoff", "msg": {"data": True}},
+        timeout=HTTP_TIMEOUT_S,
     )
     assert hold.status_code == 200, hold.text
     open_lab_page(page, rocket_server)
     wait_responsive(page)
     countdown_before = topic(rocket_server, "/countdown")["publish_count"]
-    assert httpx.post(f"{rocket_server.url}/api/rocket/reset", timeout=5.0).status_code == 200
+    assert httpx.post(f"{rocket_server.url}/api/rocket/reset", timeout=HTTP_TIMEOUT_S).status_code == 200
     wait_until(lambda: (topic(rocket_server, "/abort_takeoff")["latest"] or {}).get("data") is False,
                "the fresh KeyboardManager's /abort_takeoff false")  # fmt: skip
 

@@ -27,6 +27,7 @@ from typing import Any
 import httpx
 import pytest
 from labpage import (
+    HTTP_TIMEOUT_S,
     STILL_DRIFT_M,
     WAIT_S,
     lab_page,
@@ -55,12 +56,13 @@ MOVED_M = 0.5  # hold speed 2 m/s for 1 s moves about 2 m; far more than hover j
 # saw the key held, plus the stop: the brake setpoint (0.55 s of velocity ahead) and overshoot.
 MAX_HOLD_SPEED_M_S = 2.5
 STOP_M = 1.5
-RELEASE_WAIT_S = 3.0  # a release must reach /keyup well inside this (dead-man: 0.5 s)
+RELEASE_WAIT_S = WAIT_S  # a release reaches /keyup within 0.5 s (the dead-man); reading it may take seconds
 HOME_WAIT_S = 25.0
 FLIGHT_WAIT_S = 30.0
 ARRIVED_M = 0.1
 PAGE_WAIT_MS = 30_000
 MOVED_PX = 20
+DEADMAN_S = 0.5  # the server's dead-man: a channel silent this long with keys held has them released
 DEADMAN_LOG = "silent for over"  # api/ws_keys.py logs this when its timer releases keys
 
 
@@ -73,7 +75,7 @@ def page(chromium: Browser) -> Iterator[Page]:
 def fly_home(server: LabServer) -> tuple[float, float, float]:
     """Publish the start setpoint (every keyboard mode but lab adopts it) and wait until it is held."""
     body = {"topic": "/uav/input/position", "msg": dict(zip("xyz", HOME_M, strict=True))}
-    assert httpx.post(f"{server.url}/api/publish", json=body, timeout=5.0).status_code == 200
+    assert httpx.post(f"{server.url}/api/publish", json=body, timeout=HTTP_TIMEOUT_S).status_code == 200
     wait_until(lambda: math.dist(position(server), HOME_M) < 0.15, "the drone back at (0, 0, 3)", HOME_WAIT_S)
     return wait_stopped(server)
 
@@ -158,68 +160,112 @@ def assert_stopped_promptly(server: LabServer, x0: float) -> float:
     return x
 
 
+def stalled_since(server: LabServer, deadman_before: int) -> bool:
+    """Whether the dead-man released a key since ``deadman_before``: the page or the server stalled
+    for 0.5 s (software WebGL on a loaded machine) during a hold, which then ended early."""
+    return deadman_releases(server) != deadman_before
+
+
+def lost_race_to_deadman(server: LabServer, deadman_before: int, went_s: float) -> bool:
+    """Whether the dead-man released the key while the page took longer to act (blur, close,
+    crash) than the dead-man waits: a race the page may rightly lose on a loaded machine."""
+    return stalled_since(server, deadman_before) and went_s > DEADMAN_S
+
+
 @pytest.mark.usefixtures("home")
 class TestHoldMode:
     def test_hold_arrow_right_for_1s_moves_drone_right_and_release_stops_it(
         self, hold_page: Page, hold_server: LabServer
     ) -> None:
-        x0, y0, z0 = position(hold_server)
-        before = keyup_count(hold_server)
-        hold_page.keyboard.down("ArrowRight")
-        time.sleep(HOLD_S)  # the hold itself
-        x_held = position(hold_server)[0]
-        hold_page.keyboard.up("ArrowRight")
-        assert x_held - x0 > MOVED_M
-        wait_keyup(hold_server, before)
-        x = assert_stopped_promptly(hold_server, x0)
-        assert x > x_held - STILL_DRIFT_M  # it brakes ahead, it does not come back
-        _, y, z = position(hold_server)
-        assert abs(y - y0) < 0.3 and abs(z - z0) < 0.3  # moving along x keeps y and the height
+        for _ in range(HOLD_ATTEMPTS):
+            x0, y0, z0 = position(hold_server)
+            before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
+            hold_page.keyboard.down("ArrowRight")
+            time.sleep(HOLD_S)  # the hold itself
+            x_held = position(hold_server)[0]
+            stalled = stalled_since(hold_server, deadman_before)
+            hold_page.keyboard.up("ArrowRight")
+            if stalled:  # the hold ended before x_held was read: hold again
+                wait_stopped(hold_server)
+                continue
+            assert x_held - x0 > MOVED_M
+            wait_keyup(hold_server, before)
+            x = assert_stopped_promptly(hold_server, x0)
+            assert x > x_held - STILL_DRIFT_M  # it brakes ahead, it does not come back
+            _, y, z = position(hold_server)
+            assert abs(y - y0) < 0.3 and abs(z - z0) < 0.3  # moving along x keeps y and the height
+            return
+        pytest.fail(f"in each of {HOLD_ATTEMPTS} holds the page stalled and the dead-man released the key")
 
     def test_blur_during_hold_releases_key_from_page_and_drone_stops(
         self, hold_page: Page, hold_server: LabServer
     ) -> None:
-        x0 = position(hold_server)[0]
-        before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
-        hold_page.keyboard.down("ArrowRight")
-        time.sleep(BRIEF_HOLD_S)  # the hold itself
-        # Headless Chromium never loses focus (another page brought to front does not blur this
-        # one), so the window gets the event a real focus loss fires.
-        hold_page.evaluate("window.dispatchEvent(new Event('blur'))")
-        wait_keyup(hold_server, before)
-        assert hold_page.evaluate("window.__teleopKeys.held.size") == 0
-        assert_stopped_promptly(hold_server, x0)
-        assert deadman_releases(hold_server) == deadman_before, "released by the dead-man, not by the page"
-        hold_page.keyboard.up("ArrowRight")  # Playwright's own key state; the server ignores it
+        for _ in range(HOLD_ATTEMPTS):
+            x0 = position(hold_server)[0]
+            before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
+            hold_page.keyboard.down("ArrowRight")
+            time.sleep(BRIEF_HOLD_S)  # the hold itself
+            if stalled_since(hold_server, deadman_before):  # released before the blur: hold again
+                hold_page.keyboard.up("ArrowRight")
+                wait_stopped(hold_server)
+                continue
+            # Headless Chromium never loses focus (another page brought to front does not blur
+            # this one), so the window gets the event a real focus loss fires.
+            going = time.monotonic()
+            hold_page.evaluate("window.dispatchEvent(new Event('blur'))")
+            went_s = time.monotonic() - going
+            wait_keyup(hold_server, before)
+            assert hold_page.evaluate("window.__teleopKeys.held.size") == 0
+            assert_stopped_promptly(hold_server, x0)
+            if lost_race_to_deadman(hold_server, deadman_before, went_s):
+                hold_page.keyboard.up("ArrowRight")
+                continue  # the page took longer to blur than the dead-man waits: it may win the race
+            assert not stalled_since(hold_server, deadman_before), "released by the dead-man, not by the page"
+            hold_page.keyboard.up("ArrowRight")  # Playwright's own key state; the server ignores it
+            return
+        pytest.fail(f"in each of {HOLD_ATTEMPTS} holds the page stalled and the dead-man released the key")
 
     def test_frozen_page_during_hold_dead_man_releases_key_and_drone_stops(
         self, hold_page: Page, hold_server: LabServer
     ) -> None:
-        x0 = position(hold_server)[0]
-        before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
-        cdp = hold_page.context.new_cdp_session(hold_page)
         paused: list[Any] = []
-        cdp.on("Debugger.paused", lambda event: paused.append(event))
-        cdp.send("Debugger.enable")
-        hold_page.keyboard.down("ArrowRight")
-        time.sleep(BRIEF_HOLD_S)  # the hold itself
-        cdp.send("Debugger.pause")  # no more heartbeats, while the page's WebSocket stays open
-        try:
-            deadline = time.monotonic() + WAIT_S
-            while not paused and time.monotonic() < deadline:
-                hold_page.wait_for_timeout(20)  # lets Playwright deliver the CDP event
-            assert paused, "the page's JavaScript did not pause"
-            keyup = wait_keyup(hold_server, before)
-            assert keyup["publish_count"] == before + 1
-            assert deadman_releases(hold_server) == deadman_before + 1, hold_server.log_tail()
-            assert_stopped_promptly(hold_server, x0)  # still frozen: the server alone stopped it
-        finally:
-            cdp.send("Debugger.resume")
-            cdp.detach()
-        # The page never released the key, and its channel was never closed.
-        assert hold_page.evaluate("[...window.__teleopKeys.held]") == ["ArrowRight"]
-        assert hold_page.evaluate("window.__teleopKeys.connected") is True
-        hold_page.keyboard.up("ArrowRight")
+        for _ in range(HOLD_ATTEMPTS):
+            x0 = position(hold_server)[0]
+            before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
+            hold_page.keyboard.down("ArrowRight")
+            time.sleep(BRIEF_HOLD_S)  # the hold itself
+            if stalled_since(hold_server, deadman_before):  # released before the freeze: hold again
+                hold_page.keyboard.up("ArrowRight")
+                wait_stopped(hold_server)
+                continue
+            cdp = hold_page.context.new_cdp_session(hold_page)
+            cdp.on("Debugger.paused", lambda event: paused.append(event))
+            cdp.send("Debugger.enable")
+            cdp.send("Debugger.pause")  # no more heartbeats, while the page's WebSocket stays open
+            try:
+                deadline = time.monotonic() + WAIT_S
+                while not paused and time.monotonic() < deadline:
+                    hold_page.wait_for_timeout(20)  # lets Playwright deliver the CDP event
+                assert paused, "the page's JavaScript did not pause"
+                keyup = wait_keyup(hold_server, before)
+                assert keyup["publish_count"] == before + 1
+                assert deadman_releases(hold_server) == deadman_before + 1, hold_server.log_tail()
+                assert_stopped_promptly(hold_server, x0)  # still frozen: the server alone stopped it
+            finally:
+                cdp.send("Debugger.resume")
+                cdp.detach()
+            # The page never released the key, and its channel was never closed.
+            assert hold_page.evaluate("[...window.__teleopKeys.held]") == ["ArrowRight"]
+            assert hold_page.evaluate("window.__teleopKeys.connected") is True
+            hold_page.keyboard.up("ArrowRight")
+            return
+        pytest.fail(f"in each of {HOLD_ATTEMPTS} holds the page stalled and the dead-man released the key")
+
+
+@pytest.mark.usefixtures("home")
+class TestHoldModePageGone:
+    """Pages that go during a hold; a server of their own, so the hold page above is closed and
+    only the page under test draws."""
 
     @pytest.mark.parametrize("end", ["close", "crash"])
     def test_page_gone_during_hold_server_releases_key_and_drone_stops(
@@ -233,22 +279,24 @@ class TestHoldMode:
                 before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
                 page.keyboard.down("ArrowRight")
                 time.sleep(BRIEF_HOLD_S)  # the hold itself
-                if deadman_releases(hold_server) != deadman_before:
-                    # The page or the server stalled for 0.5 s during the hold (software WebGL on
-                    # a loaded machine), so the dead-man rightly released the key before the page
-                    # went: this attempt cannot tell how the page's going releases it.
+                if stalled_since(hold_server, deadman_before):
+                    # Released before the page went: this attempt cannot tell how its going does.
                     page.keyboard.up("ArrowRight")
                     wait_stopped(hold_server)
                     continue
+                going = time.monotonic()
                 if end == "close":
                     page.close()  # pagehide (the page sends release_all), then the channel closes
                 else:
                     with page.expect_event("crash", timeout=PAGE_WAIT_MS):
                         for pid in renderer_pids() - renderers_before:  # this page's (and maybe a spare)
                             os.kill(pid, signal.SIGKILL)  # no pagehide, no release_all: the channel drops
+                went_s = time.monotonic() - going
                 wait_keyup(hold_server, before)
                 assert_stopped_promptly(hold_server, x0)
-                assert deadman_releases(hold_server) == deadman_before, "released by the dead-man timer"
+                if lost_race_to_deadman(hold_server, deadman_before, went_s):
+                    continue  # the page took longer to go than the dead-man waits: it may win the race
+                assert not stalled_since(hold_server, deadman_before), "released by the dead-man timer"
                 return
         pytest.fail(f"in each of {HOLD_ATTEMPTS} holds the page stalled and the dead-man released the key")
 
@@ -315,7 +363,7 @@ def test_publisher_panel_position_at_1hz_flies_drone_to_5_5_10(
     page.get_by_label("Enabled", exact=True).check()
     page.wait_for_function("() => document.body.innerText.includes('publishing on')")
 
-    publishers = httpx.get(f"{fly_server.url}/api/publishers", timeout=5.0).json()
+    publishers = httpx.get(f"{fly_server.url}/api/publishers", timeout=HTTP_TIMEOUT_S).json()
     assert [(p["topic"], p["rate_hz"], p["msg"]) for p in publishers] == [
         ("/uav/input/position", 1.0, {"x": 5.0, "y": 5.0, "z": 10.0})
     ]
@@ -323,7 +371,9 @@ def test_publisher_panel_position_at_1hz_flies_drone_to_5_5_10(
                FLIGHT_WAIT_S)  # fmt: skip
     wait_stopped(fly_server)
     assert math.dist(position(fly_server), (5.0, 5.0, 10.0)) < ARRIVED_M
-    assert httpx.get(f"{fly_server.url}/api/publishers", timeout=5.0).json()[0]["count"] >= 2  # it repeats
+    assert (
+        httpx.get(f"{fly_server.url}/api/publishers", timeout=HTTP_TIMEOUT_S).json()[0]["count"] >= 2
+    )  # it repeats
 
     wait_frames(page)
     png = save_screenshot(page, screenshot_dir, "drone_at_5_5_10.png", capsys)
