@@ -21,8 +21,9 @@ WAIT_S = 15.0
 STILL_M_S = 0.1
 STILL_WINDOW_S = 0.5
 STILL_DRIFT_M = 0.05
-STOP_WAIT_S = 30.0  # the drone stops in about 1.5 s; each check is 4 requests, which a loaded
-# 2-core machine (a page drawing in software beside the server) answered in 0.4-4 s each
+# The drone stops in about 1.5 s, but each check is 4 requests, and a loaded 2-core machine (a
+# page drawing in software beside the server) answered each in 0.4-4 s.
+STOP_WAIT_S = 30.0
 HTTP_TIMEOUT_S = 30.0
 PAGE_WAIT_MS = 30_000
 LOAD_WAIT_MS = 90_000  # a first load parses viser's bundle; on a 2-core machine with a busy neighbour

@@ -172,6 +172,21 @@ def lost_race_to_deadman(server: LabServer, deadman_before: int, went_s: float) 
     return stalled_since(server, deadman_before) and went_s > DEADMAN_S
 
 
+def brief_hold(page: Page, server: LabServer) -> tuple[float, int, int] | None:
+    """Press ArrowRight and keep it down for BRIEF_HOLD_S; where the drone started, /keyup's count
+    and the dead-man's count before. None if the dead-man already released it (the page stalled):
+    the key is then let go and the drone left to stop, for the caller to hold again."""
+    x0 = position(server)[0]
+    before, deadman_before = keyup_count(server), deadman_releases(server)
+    page.keyboard.down("ArrowRight")
+    time.sleep(BRIEF_HOLD_S)  # the hold itself
+    if stalled_since(server, deadman_before):
+        page.keyboard.up("ArrowRight")
+        wait_stopped(server)
+        return None
+    return x0, before, deadman_before
+
+
 @pytest.mark.usefixtures("home")
 class TestHoldMode:
     def test_hold_arrow_right_for_1s_moves_drone_right_and_release_stops_it(
@@ -201,14 +216,10 @@ class TestHoldMode:
         self, hold_page: Page, hold_server: LabServer
     ) -> None:
         for _ in range(HOLD_ATTEMPTS):
-            x0 = position(hold_server)[0]
-            before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
-            hold_page.keyboard.down("ArrowRight")
-            time.sleep(BRIEF_HOLD_S)  # the hold itself
-            if stalled_since(hold_server, deadman_before):  # released before the blur: hold again
-                hold_page.keyboard.up("ArrowRight")
-                wait_stopped(hold_server)
+            held = brief_hold(hold_page, hold_server)
+            if held is None:  # released before the blur: hold again
                 continue
+            x0, before, deadman_before = held
             # Headless Chromium never loses focus (another page brought to front does not blur
             # this one), so the window gets the event a real focus loss fires.
             going = time.monotonic()
@@ -230,14 +241,10 @@ class TestHoldMode:
     ) -> None:
         paused: list[Any] = []
         for _ in range(HOLD_ATTEMPTS):
-            x0 = position(hold_server)[0]
-            before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
-            hold_page.keyboard.down("ArrowRight")
-            time.sleep(BRIEF_HOLD_S)  # the hold itself
-            if stalled_since(hold_server, deadman_before):  # released before the freeze: hold again
-                hold_page.keyboard.up("ArrowRight")
-                wait_stopped(hold_server)
+            held = brief_hold(hold_page, hold_server)
+            if held is None:  # released before the freeze: hold again
                 continue
+            x0, before, deadman_before = held
             cdp = hold_page.context.new_cdp_session(hold_page)
             cdp.on("Debugger.paused", lambda event: paused.append(event))
             cdp.send("Debugger.enable")
@@ -275,15 +282,10 @@ class TestHoldModePageGone:
             renderers_before = renderer_pids()
             with lab_page(chromium) as page:
                 open_lab_page(page, hold_server)
-                x0 = position(hold_server)[0]
-                before, deadman_before = keyup_count(hold_server), deadman_releases(hold_server)
-                page.keyboard.down("ArrowRight")
-                time.sleep(BRIEF_HOLD_S)  # the hold itself
-                if stalled_since(hold_server, deadman_before):
-                    # Released before the page went: this attempt cannot tell how its going does.
-                    page.keyboard.up("ArrowRight")
-                    wait_stopped(hold_server)
+                held = brief_hold(page, hold_server)
+                if held is None:  # released before the page went: it cannot tell how its going does
                     continue
+                x0, before, deadman_before = held
                 going = time.monotonic()
                 if end == "close":
                     page.close()  # pagehide (the page sends release_all), then the channel closes
