@@ -35,11 +35,14 @@ class RemoteOut(Protocol):
 class Publisher:
     """Sends messages of one type on one topic; ``publish`` never runs a callback itself."""
 
-    def __init__(self, node: Node, topic: Topic, msg_type: type[Message], depth: int) -> None:
+    def __init__(
+        self, node: Node, topic: Topic, msg_type: type[Message], depth: int, *, hand_over: bool = False
+    ) -> None:
         self.node = node
         self.topic = topic
         self.msg_type = msg_type
         self.depth = depth
+        self.hand_over = hand_over  # every message published is new and never changed after: no copy
         self.destroyed = False
         self.remote: RemoteOut | None = None
 
@@ -58,10 +61,10 @@ class Publisher:
             )
         lock = self.topic.bus.lock
         if lock is None:
-            reached = self.topic.deliver(msg)
+            reached = self.topic.deliver(msg, handed_over=self.hand_over)
         else:
             with lock:
-                reached = self.topic.deliver(msg)
+                reached = self.topic.deliver(msg, handed_over=self.hand_over)
         if self.remote is not None:
             self.remote.put(msg)
         return reached
@@ -77,7 +80,14 @@ class Subscription:
     """Receives a topic's messages into a keep-last queue of ``depth``; the executor runs the callback."""
 
     def __init__(
-        self, node: Node, topic: Topic, msg_type: type[Message], callback: Callable[[Any], Any], depth: int
+        self,
+        node: Node,
+        topic: Topic,
+        msg_type: type[Message],
+        callback: Callable[[Any], Any],
+        depth: int,
+        *,
+        read_only: bool = False,
     ) -> None:
         if topic.msg_type is not msg_type:
             raise TopicTypeError(f"{topic.name} carries {topic.msg_type.TYPE}, not {msg_type.TYPE}")
@@ -86,6 +96,7 @@ class Subscription:
         self.msg_type = msg_type
         self.callback = callback
         self.depth = depth
+        self.read_only = read_only  # the callback never changes a message: it gets the shared one
         self.queue: deque[Message] = deque(maxlen=depth)
         self.dropped = 0
         self.destroyed = False

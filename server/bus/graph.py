@@ -109,11 +109,18 @@ class Topic:
     def hidden(self) -> bool:
         return self.name in INTERNAL_TOPICS or is_hidden(self.name)
 
-    def deliver(self, msg: Message, published_s: float | None = None) -> int:
+    def deliver(self, msg: Message, published_s: float | None = None, *, handed_over: bool = False) -> int:
         """Queue ``msg`` for every live subscription. ``published_s``: when another process published
-        it (its source timestamp), so rates are the publisher's, not this process's arrivals."""
+        it (its source timestamp), so rates are the publisher's, not this process's arrivals.
+
+        One snapshot of ``msg`` is kept as the topic's latest and given to every read-only
+        subscription; any other subscription gets a copy of its own, as a message from another
+        process would be. ``handed_over``: ``msg`` is new and nobody will change it (a publisher
+        that builds a message for every publish, or one decoded from the wire), so it is the snapshot
+        itself; as rclcpp shares one const message among its intra-process subscriptions."""
         now = self.bus.clock.now()
-        self.latest = msg.copy()
+        snapshot = msg if handed_over else msg.copy()
+        self.latest = snapshot
         self.latest_time_s = now
         self.publish_count += 1
         self.publish_times_s.append(now if published_s is None else published_s)
@@ -125,7 +132,7 @@ class Topic:
             queue = sub.queue
             if len(queue) == sub.depth:
                 sub.dropped += 1
-            queue.append(msg.copy())
+            queue.append(snapshot if sub.read_only else snapshot.copy())
             ready.append(sub)
             delivered += 1
         if delivered:

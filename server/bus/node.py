@@ -126,23 +126,35 @@ class Node:
         if self.state == "destroyed":
             raise DestroyedError(f"node {self.fully_qualified_name} was destroyed")
 
-    def create_publisher(self, msg_type: type[Message], topic: str, qos_profile: Any) -> Publisher:
+    def create_publisher(
+        self, msg_type: type[Message], topic: str, qos_profile: Any, *, hand_over: bool = False
+    ) -> Publisher:
+        """rclpy's call. ``hand_over`` (the lab's own nodes): every message this publisher sends is
+        built for that publish and never changed after it, so the bus shares it instead of copying."""
         self._check_alive()
         depth = qos_depth(qos_profile)
         t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
-        pub = Publisher(self, t, msg_type, depth)
+        pub = Publisher(self, t, msg_type, depth, hand_over=hand_over)
         t.publishers.append(pub)
         self.publishers.append(pub)
         self.bus.endpoint_added(pub)
         return pub
 
     def create_subscription(
-        self, msg_type: type[Message], topic: str, callback: Callable[[Any], Any], qos_profile: Any
+        self,
+        msg_type: type[Message],
+        topic: str,
+        callback: Callable[[Any], Any],
+        qos_profile: Any,
+        *,
+        read_only: bool = False,
     ) -> Subscription:
+        """rclpy's call. ``read_only`` (the lab's own nodes): ``callback`` never changes a message it
+        gets, so it gets the one the topic shares (its latest) rather than a copy of its own."""
         self._check_alive()
         depth = qos_depth(qos_profile)
         t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
-        sub = Subscription(self, t, msg_type, callback, depth)
+        sub = Subscription(self, t, msg_type, callback, depth, read_only=read_only)
         t.subscriptions.append(sub)
         self.subscriptions.append(sub)
         self.bus.endpoint_added(sub)

@@ -286,7 +286,8 @@ class ZenohBridge:
                     log.debug("dropped a sample on %s: %s", name, exc)
                     continue
                 self.stats.received += 1
-                topic.deliver(msg, stamp_ns / 1e9 if stamp_ns > 0 else None)
+                published_s = stamp_ns / 1e9 if stamp_ns > 0 else None
+                topic.deliver(msg, published_s, handed_over=True)  # just decoded: nobody else has it
 
     def _warn_on_same_name(self, key: str) -> None:
         """A node of another process took the name of one of ours: say so, as ROS does."""

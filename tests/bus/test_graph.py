@@ -139,6 +139,51 @@ def test_publisher_mutating_message_after_publish_leaves_queued_copy(bus: Bus, e
     assert latest is not None and latest.data == 1.0
 
 
+def test_hand_over_publisher_read_only_subscriptions_share_its_message_others_get_copies(
+    bus: Bus, executor: Executor
+) -> None:
+    """The lab's own nodes: a publisher that builds each message for its publish hands it over, and
+    read-only subscriptions share it with the topic's latest (no copy); a plain subscription still
+    gets a copy of its own, and what it does to it reaches nobody else."""
+    node = Node("n", context=bus)
+    shared: list[PoseStamped] = []
+    node.create_subscription(PoseStamped, "/pose", shared.append, 10, read_only=True)
+    node.create_subscription(PoseStamped, "/pose", shared.append, 10, read_only=True)
+
+    def vandal(msg: PoseStamped) -> None:
+        msg.pose.position.x = -1.0
+
+    node.create_subscription(PoseStamped, "/pose", vandal, 10)
+    pub = node.create_publisher(PoseStamped, "/pose", 10, hand_over=True)
+    msg = PoseStamped()
+    msg.pose.position.x = 2.0
+    assert pub.publish(msg) == 3
+    executor.spin_some()
+    latest = bus.get_topic("/pose").latest
+    assert len(shared) == 2 and shared[0] is msg and shared[1] is msg and latest is msg
+    assert msg.pose.position.x == 2.0  # the plain subscription changed its own copy only
+
+
+def test_plain_publisher_changing_its_message_after_publish_leaves_read_only_subscription_and_latest(
+    bus: Bus, executor: Executor
+) -> None:
+    """A student's publisher may reuse one message: read-only subscriptions and the latest then
+    share one snapshot taken at the publish, never the publisher's object."""
+    node = Node("n", context=bus)
+    got: list[Float64] = []
+    node.create_subscription(Float64, "/v", got.append, 10, read_only=True)
+    pub = node.create_publisher(Float64, "/v", 10)
+    msg = Float64(data=1.0)
+    pub.publish(msg)
+    msg.data = 2.0
+    pub.publish(msg)
+    msg.data = 99.0
+    executor.spin_some()
+    assert [m.data for m in got] == [1.0, 2.0] and got[0] is not msg
+    latest = bus.get_topic("/v").latest
+    assert latest is got[1] and latest.data == 2.0
+
+
 def test_publish_wrong_type_raises_type_error_and_delivers_nothing(bus: Bus, executor: Executor) -> None:
     node = Node("n", context=bus)
     got, _ = _collect(node, Int64, "/x")

@@ -20,10 +20,10 @@ class AngleControllerNode(Node):
         self.attitude_sp = (0.0, 0.0, 0.0)
         self.thrust_n = 0.0
         self.euler: tuple[float, float, float] | None = None
-        self.cmd_pub = self.create_publisher(TwistStamped, "/uav/input/rateThrust", 1)
-        self.create_subscription(Vector3, "/uav/input/attitude", self.on_attitude_sp, 1)
-        self.create_subscription(Float64, "/uav/input/thrust", self.on_thrust, 1)
-        self.create_subscription(Vector3, "/uav/sensors/attitude", self.on_attitude, 1)
+        self.cmd_pub = self.create_publisher(TwistStamped, "/uav/input/rateThrust", 1, hand_over=True)
+        self.create_subscription(Vector3, "/uav/input/attitude", self.on_attitude_sp, 1, read_only=True)
+        self.create_subscription(Float64, "/uav/input/thrust", self.on_thrust, 1, read_only=True)
+        self.create_subscription(Vector3, "/uav/sensors/attitude", self.on_attitude, 1, read_only=True)
         self.create_timer(1.0 / RATE_HZ, self.tick)
 
     def on_attitude_sp(self, msg: Vector3) -> None:

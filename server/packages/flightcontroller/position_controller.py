@@ -38,9 +38,9 @@ class PositionControllerNode(Node):
             self.period_s = 1.0 / CASCADE_RATE_HZ
         self.position: tuple[float, float, float] | None = None
         self._last_clamped: tuple[float, float, float] | None = None
-        self.vel_pub = self.create_publisher(Vector3, "/uav/input/velocity", 1)
-        self.create_subscription(Vector3, "/uav/input/position", self.on_setpoint, 10)
-        self.create_subscription(PoseStamped, "/uav/sensors/gps", self.on_gps, 1)
+        self.vel_pub = self.create_publisher(Vector3, "/uav/input/velocity", 1, hand_over=True)
+        self.create_subscription(Vector3, "/uav/input/position", self.on_setpoint, 10, read_only=True)
+        self.create_subscription(PoseStamped, "/uav/sensors/gps", self.on_gps, 1, read_only=True)
         self.timer: Timer | None = None
         if start_delay_s > 0:  # the lab's node sleeps 5 s before it starts
             self._delay = self.create_timer(start_delay_s, self.start)

@@ -26,11 +26,11 @@ class VelocityControllerNode(Node):
         )
         self.velocity: tuple[float, float, float] | None = None
         self.euler: tuple[float, float, float] | None = None
-        self.att_pub = self.create_publisher(Vector3, "/uav/input/attitude", 1)
-        self.thrust_pub = self.create_publisher(Float64, "/uav/input/thrust", 1)
-        self.create_subscription(Vector3, "/uav/input/velocity", self.on_setpoint, 1)
-        self.create_subscription(TwistStamped, "/uav/sensors/velocity", self.on_velocity, 1)
-        self.create_subscription(Vector3, "/uav/sensors/attitude", self.on_attitude, 1)
+        self.att_pub = self.create_publisher(Vector3, "/uav/input/attitude", 1, hand_over=True)
+        self.thrust_pub = self.create_publisher(Float64, "/uav/input/thrust", 1, hand_over=True)
+        self.create_subscription(Vector3, "/uav/input/velocity", self.on_setpoint, 1, read_only=True)
+        self.create_subscription(TwistStamped, "/uav/sensors/velocity", self.on_velocity, 1, read_only=True)
+        self.create_subscription(Vector3, "/uav/sensors/attitude", self.on_attitude, 1, read_only=True)
         self.create_timer(1.0 / RATE_HZ, self.tick)
 
     def on_setpoint(self, msg: Vector3) -> None:

@@ -26,8 +26,8 @@ class PressureSensorNode(Node):
         self.rng = np.random.default_rng(int(self.declare_parameter("seed", 0).value))
         self.altitude_m = 0.0
         self.pending = 0.0
-        self.pub = self.create_publisher(Float64, "/uav/sensors/pressure", 1)
-        self.create_subscription(PoseStamped, "/uav/sensors/gps", self.on_gps, 1)
+        self.pub = self.create_publisher(Float64, "/uav/sensors/pressure", 1, hand_over=True)
+        self.create_subscription(PoseStamped, "/uav/sensors/gps", self.on_gps, 1, read_only=True)
         self.create_timer(0.1, self.tick)
 
     def on_gps(self, msg: PoseStamped) -> None:

@@ -21,8 +21,8 @@ class SimpleSimNode(Node):
             raise ValueError(f"wobble_noise must be lab or fixed, got {wobble!r}")
         params = SimpleSimParams(wobble_noise=cast(Literal["lab", "fixed"], wobble))
         self.sim = SimpleSim(params, rng=np.random.default_rng(seed), noise=noise)
-        self.gps_pub = self.create_publisher(PoseStamped, "/uav/sensors/gps", 10)
-        self.create_subscription(Vector3, "/uav/input/velocity", self.on_velocity, 10)
+        self.gps_pub = self.create_publisher(PoseStamped, "/uav/sensors/gps", 10, hand_over=True)
+        self.create_subscription(Vector3, "/uav/input/velocity", self.on_velocity, 10, read_only=True)
         self.create_timer(self.sim.dt_s, self.tick)
 
     def on_velocity(self, msg: Vector3) -> None:

@@ -145,9 +145,9 @@ class GUIControllerNode(Node):
         self._dirty = False
         self._drawn: tuple[tuple[float, float, float], tuple[float, float, float, float]] | None = None
         self._unsent = False  # a frame drawn while no page watched: sent once one does
-        self.create_subscription(PoseStamped, "uav/sensors/gps", self.on_gps, 10)
-        self.create_subscription(TwistStamped, "uav/sensors/velocity", self.on_velocity, 1)
-        self.create_subscription(Vector3, "uav/input/position", self.on_setpoint, 10)
+        self.create_subscription(PoseStamped, "uav/sensors/gps", self.on_gps, 10, read_only=True)
+        self.create_subscription(TwistStamped, "uav/sensors/velocity", self.on_velocity, 1, read_only=True)
+        self.create_subscription(Vector3, "uav/input/position", self.on_setpoint, 10, read_only=True)
         self.create_timer(1.0 / redraw_hz, self.redraw)
         if self.scene is not None:
             self.create_timer(1.0 / TELEMETRY_HZ, self.write_telemetry)
