@@ -95,7 +95,12 @@ def dynamics_timer(server: LiveServer, token: str) -> dict[str, Any]:
 
 
 def measure(
-    size: int, window_s: float, extra: list[str], workers: int = 0, local_worlds: int = 0
+    size: int,
+    window_s: float,
+    extra: list[str],
+    workers: int = 0,
+    local_worlds: int = 0,
+    clients: bool = True,
 ) -> dict[str, Any]:
     with tempfile.TemporaryDirectory() as tmp:
         args = ["--classroom", "--class-code", CODE, "--max-worlds", str(max(size, 1)), *extra]
@@ -117,7 +122,7 @@ def measure(
                 )
                 reply.raise_for_status()
                 tokens.append(reply.json()["token"])
-            for token in tokens:
+            for token in tokens if clients else ():
                 url = f"{server.ws_url}/ws/topics/uav/sensors/gps?throttle_rate={POSE_THROTTLE_MS}"
                 readers.append(FrameReader(url, {"Authorization": f"Bearer {token}"}))
             time.sleep(WARM_S)
@@ -171,6 +176,7 @@ def main() -> None:
     parser.add_argument("--sizes", type=int, nargs="+", default=[1, 5, 10, 30, 60])
     parser.add_argument("--window", type=float, default=20.0, help="measuring window per size, s")
     parser.add_argument("--no-zenoh", action="store_true", help="worlds in-process only (no Zenoh sessions)")
+    parser.add_argument("--no-clients", action="store_true", help="no pose stream: the worlds alone")
     parser.add_argument(
         "--workers", type=int, default=0,
         help="worlds on this many world workers (ros2lab world-worker) instead of the class server; "
@@ -190,7 +196,12 @@ def main() -> None:
     rows = []
     for size in args.sizes:
         row = measure(
-            size, args.window, ["--no-zenoh"] if args.no_zenoh else [], args.workers, args.local_worlds
+            size,
+            args.window,
+            ["--no-zenoh"] if args.no_zenoh else [],
+            args.workers,
+            args.local_worlds,
+            clients=not args.no_clients,
         )
         rows.append(row)
         print(f"{row['worlds']:>6} {row['cpu_core_share']:>10.2f} {row['rss_mib']:>8.0f} "
@@ -204,8 +215,10 @@ def main() -> None:
     name = "classroom_worlds_no_zenoh" if args.no_zenoh else "classroom_worlds"
     name += f"_{args.workers}_workers" if args.workers else ""
     name += f"_{args.local_worlds}_local" if args.workers and args.local_worlds else ""
+    name += "_no_clients" if args.no_clients else ""
     save_results(name, {"machine": info, "window_s": args.window, "zenoh": not args.no_zenoh,
-                        "workers": args.workers, "local_worlds": args.local_worlds, "rows": rows})  # fmt: skip
+                        "workers": args.workers, "local_worlds": args.local_worlds,
+                        "pose_clients": not args.no_clients, "rows": rows})  # fmt: skip
 
 
 if __name__ == "__main__":
