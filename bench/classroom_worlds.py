@@ -10,6 +10,7 @@ the window). Prints a table and writes bench/results/classroom_worlds.json.
     python bench/classroom_worlds.py                 # sizes 1 5 10 30 60
     python bench/classroom_worlds.py --sizes 1 5 --window 10
     python bench/classroom_worlds.py --sizes 30 --workers 1 --local-worlds 15   # half on a worker
+    python bench/classroom_worlds.py --sizes 30 --no-clients                    # no pose stream
 """
 
 from __future__ import annotations

@@ -17,38 +17,20 @@ import time
 import warnings
 from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any
 
 import httpx
 import pytest
-from labpage import HTTP_TIMEOUT_S, LOAD_WAIT_MS, SETTLE_WAIT_MS, VIEWPORT
+from labpage import HTTP_TIMEOUT_S, LOAD_WAIT_MS, PAGE_WAIT_MS, SETTLE_WAIT_MS, VIEWPORT, topic, wait_until
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
 
 pytestmark = pytest.mark.browser
 
 KEY_A = 97
-WAIT_S = 15.0  # SwiftShader on 2 cores is slow; a passing test returns as soon as it can
 COUNTDOWN_S = 20.0  # start_delay 2 s + 10 … 0 at 1 Hz, with room
 SENSOR_TICKS_AFTER_ZERO = 15  # /sensor_vel at 10 Hz: 1.5 s of the lab running after T-0
-PAGE_WAIT_MS = 30_000
 RESPONSIVE_S = 2.0  # the page must answer promptly for this long before the countdown starts
 PROMPT_S = 0.5
-
-
-def wait_until(check: Callable[[], Any], what: str, timeout_s: float = WAIT_S) -> Any:
-    deadline = time.monotonic() + timeout_s
-    while not (value := check()):
-        if time.monotonic() > deadline:
-            pytest.fail(f"gave up after {timeout_s} s waiting for {what} (last: {value!r})")
-        time.sleep(0.05)
-    return value
-
-
-def topic(server: LabServer, name: str) -> dict[str, Any]:
-    response = httpx.get(f"{server.url}/api/topics/{name.lstrip('/')}", timeout=HTTP_TIMEOUT_S)
-    response.raise_for_status()
-    return response.json()
 
 
 @pytest.fixture

@@ -44,6 +44,8 @@ from playwright.sync_api import Browser, Page
 from playwright.sync_api import Error as PlaywrightError
 from shots import CanvasShot, assert_drone_seen, assert_rocket_on_pad, find_drone
 
+from server.settings import Settings
+
 pytestmark = pytest.mark.browser
 
 KEY_RIGHT = 275  # keyboard_msgs/Key code (SDL) of ArrowRight
@@ -62,7 +64,9 @@ FLIGHT_WAIT_S = 30.0
 ARRIVED_M = 0.1
 PAGE_WAIT_MS = 30_000
 MOVED_PX = 20
-DEADMAN_S = 0.5  # the server's dead-man: a channel silent this long with keys held has them released
+DEADMAN_S = (
+    Settings.deadman_s
+)  # the server's dead-man: a channel silent this long with keys held has them released
 DEADMAN_LOG = "silent for over"  # api/ws_keys.py logs this when its timer releases keys
 
 
