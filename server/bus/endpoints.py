@@ -126,19 +126,20 @@ class Timer:
         self.callback = callback
         self._start_s = start_s
         self._n = 1
+        # When the next call is due: kept as a plain attribute, read on every executor pass.
+        self.next_deadline_s = start_s + self.period_s
         self.cancelled = False
         self.call_count = 0
         self.lateness_s: deque[float] = deque(maxlen=self.LATENESS_SAMPLES)
 
-    @property
-    def next_deadline_s(self) -> float:
-        return self._start_s + self._n * self.period_s
-
     def advance_past(self, now_s: float) -> None:
         self.lateness_s.append(now_s - self.next_deadline_s)
-        self._n = max(self._n + 1, int((now_s - self._start_s) / self.period_s) + 1)
-        while self.next_deadline_s <= now_s:
-            self._n += 1
+        start, period = self._start_s, self.period_s
+        n = max(self._n + 1, int((now_s - start) / period) + 1)
+        while start + n * period <= now_s:
+            n += 1
+        self._n = n
+        self.next_deadline_s = start + n * period
 
     def cancel(self) -> None:
         self.cancelled = True
@@ -151,6 +152,7 @@ class Timer:
         self.cancelled = False
         self._start_s = self.node.bus.clock.now()
         self._n = 1
+        self.next_deadline_s = self._start_s + self.period_s
         self.node.bus.schedule(self)
 
     def destroy(self) -> None:

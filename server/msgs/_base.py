@@ -333,9 +333,11 @@ def _compile_methods(cls: type[Message]) -> None:
             env[f"_initial{i}"] = f.initial
             initial = f"_initial{i}()"
         params.append(f"{f.name}=_missing")
-        init_lines.append(
-            f"    _set{i}(self, {initial} if {f.name} is _missing else _check{i}({f.name}, {f.name!r}))"
-        )
+        value = f"{initial} if {f.name} is _missing else _check{i}({f.name}, {f.name!r})"
+        if f.exact is not None:  # Field.check's first test, inline: a float, a bool, a nested message
+            env[f"_exact{i}"] = f.exact
+            value = f"{f.name} if type({f.name}) is _exact{i} else {value}"
+        init_lines.append(f"    _set{i}(self, {value})")
         copy_lines.append(f"    _set{i}(new, {_copy_expression(f, 'self.' + f.name)})")
     source = "\n".join([
         f"def __init__(self, {', '.join(['*', *params, '**unknown'] if params else ['**unknown'])}):",
