@@ -20,6 +20,7 @@ from server.bus import (
     Bus,
     Clock,
     Executor,
+    ExecutorGroup,
     Node,
     Publisher,
     SystemClock,
@@ -119,10 +120,14 @@ class LaunchGroup:
 
 
 class Lab:
-    def __init__(self, settings: Settings, clock: Clock | None = None) -> None:
+    def __init__(
+        self, settings: Settings, clock: Clock | None = None, *, executors: ExecutorGroup | None = None
+    ) -> None:
         self.settings = settings
         self.bus = Bus(clock or SystemClock())
         self.executor = Executor(self.bus)
+        # A class server's worlds share one task that runs their executors; alone, the lab has its own.
+        self.executors = executors
         self.packages = PackageIndex(workspace=settings.workspace)
         self.launcher = Launcher(self.bus, self.packages)
         self.launcher.all_processes = settings.node_processes == "all"
@@ -185,10 +190,15 @@ class Lab:
             self.display = Display(asyncio.get_running_loop())
             self.bus.devices["display"] = self.display
         self.start_nodes()
-        self._spin_task = asyncio.create_task(self.executor.spin(), name="executor")
+        if self.executors is not None:
+            self.executors.add(self.executor)
+        else:
+            self._spin_task = asyncio.create_task(self.executor.spin(), name="executor")
 
     async def stop(self) -> None:
         self.stopped.set()
+        if self.executors is not None:
+            self.executors.remove(self.executor)
         self.executor.stop()
         if self._spin_task is not None:
             await self._spin_task

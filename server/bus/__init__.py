@@ -14,7 +14,7 @@ from .errors import (
     UnknownServiceError,
     UnknownTopicError,
 )
-from .executor import Executor
+from .executor import Executor, ExecutorGroup
 from .graph import INTERNAL_TOPICS, Bus, NodeOverrides, Topic, current_bus
 from .names import is_hidden, resolve_topic_name, validate_namespace, validate_node_name, validate_topic_name
 from .node import Node, Parameter
@@ -27,6 +27,7 @@ __all__ = [
     "Clock",
     "DestroyedError",
     "Executor",
+    "ExecutorGroup",
     "Future",
     "InvalidNameError",
     "InvalidQoSError",

@@ -63,14 +63,15 @@ class Executor:
         return True
 
     def _run_due_timers(self, now_s: float) -> int:
-        heap = self.bus._timers
+        heap, seq = self.bus._timers, self.bus._seq
         ran = 0
         while heap and heap[0][0] <= now_s:
             deadline, _, timer = heapq.heappop(heap)
             if timer.cancelled or timer.node.state != "active" or deadline != timer.next_deadline_s:
                 continue  # stale entry (cancelled, reset, or a crashed node)
             timer.advance_past(now_s)
-            self.bus.schedule(timer)
+            # Bus.schedule without its wake-up: this executor is already running.
+            heapq.heappush(heap, (timer.next_deadline_s, next(seq), timer))
             timer.call_count += 1
             self._run(timer.node, timer.callback)
             # Deliver what it published before the next timer due at the same instant runs, so
@@ -184,3 +185,114 @@ class Executor:
     def stop(self) -> None:
         self._stopping = True
         self._wake()
+
+
+class ExecutorGroup:
+    """One asyncio task that runs the executors of many buses: a class server's worlds.
+
+    Each world keeps its own bus, executor and timers (their phases stay spread, so no instant
+    carries every world's work); what the group shares is the waiting. A task per world would wake
+    once for every world's every deadline, and on a class server those wake-ups cost about as much
+    as the worlds' own callbacks. The group wakes once for whatever is due, runs one pass of each
+    world that has work, then sleeps until the soonest deadline of any. A world with a burst of
+    messages gets one pass per round, as a task of its own would between its yields.
+    """
+
+    def __init__(self) -> None:
+        self._wakers: dict[Executor, Callable[[], None]] = {}
+        self._members: list[Executor] = []
+        self._woken: set[Executor] = set()  # had news (a message, a timer, a thread's hand-in)
+        self._waiter: asyncio.Future[None] | None = None
+        self._task: asyncio.Task[None] | None = None
+        self._stopping = False
+
+    def __len__(self) -> int:
+        return len(self._members)
+
+    def add(self, executor: Executor) -> None:
+        """Run ``executor``'s bus from now on (on the running loop; starts the group's task)."""
+        if executor in self._wakers:
+            return
+        loop = asyncio.get_running_loop()
+
+        def wake() -> None:
+            self._woken.add(executor)
+            self._wake()
+
+        def wake_from_thread() -> None:
+            with contextlib.suppress(RuntimeError):  # the loop closed while another thread had news
+                loop.call_soon_threadsafe(wake)
+
+        self._wakers[executor] = wake
+        self._members.append(executor)
+        executor.bus.add_waker(wake)
+        executor.bus.threadsafe_waker = wake_from_thread
+        wake()
+        if self._task is None or self._task.done():
+            self._stopping = False
+            self._task = loop.create_task(self._spin(), name="executors")
+
+    def remove(self, executor: Executor) -> None:
+        """Stop running ``executor``'s bus; its callbacks never run again after this returns."""
+        wake = self._wakers.pop(executor, None)
+        if wake is None:
+            return
+        self._members.remove(executor)
+        self._woken.discard(executor)
+        executor.bus.remove_waker(wake)
+        executor.bus.threadsafe_waker = None
+
+    async def close(self) -> None:
+        """Stop the group's task (the members stay added: ``remove`` them first)."""
+        self._stopping = True
+        self._wake()
+        if self._task is not None:
+            await self._task
+            self._task = None
+
+    def wake(self) -> None:
+        """Have the group look at its members now (on the loop's thread): after a ManualClock moved."""
+        self._wake()
+
+    def _wake(self) -> None:
+        if self._waiter is not None and not self._waiter.done():
+            self._waiter.set_result(None)
+
+    def _round(self) -> tuple[bool, float]:
+        """One pass of every member with work; returns (some member still has work, seconds to the
+        soonest deadline)."""
+        busy, soonest = False, math.inf
+        woken = self._woken
+        for executor in list(self._members):
+            if executor not in self._wakers:
+                continue  # removed by an earlier member's callback in this round
+            bus = executor.bus
+            if executor in woken or bus._ready or bus._calls or executor.next_deadline_s() <= bus.clock.now():
+                try:
+                    executor.spin_some()
+                except Exception:  # one world's broken executor must not stop the others
+                    log.exception("a world's executor failed; it stops, the others go on")
+                    self.remove(executor)
+                    continue
+                woken.discard(executor)  # what it published in this pass was drained in this pass
+            if bus._ready or bus._calls:
+                busy = True
+            else:
+                soonest = min(soonest, executor.next_deadline_s() - bus.clock.now())
+        return busy or bool(woken), soonest
+
+    async def _spin(self) -> None:
+        loop = asyncio.get_running_loop()
+        while not self._stopping:
+            busy, delay = self._round()
+            if busy or delay <= 0:
+                await asyncio.sleep(0)  # let the API and WebSockets in between bursts
+                continue
+            self._waiter = loop.create_future()
+            handle = loop.call_later(delay, self._wake) if math.isfinite(delay) else None
+            try:
+                await self._waiter
+            finally:
+                self._waiter = None
+                if handle is not None:
+                    handle.cancel()

@@ -18,7 +18,7 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from server.bus import Clock, SystemClock
+from server.bus import Clock, ExecutorGroup, SystemClock
 from server.devices.shared_physics import SharedQuadrotorPhysics
 from server.lab import Lab
 from server.limits import RateLimit
@@ -130,6 +130,7 @@ class Classroom:
         self.instructor_token, self.instructor = self.signer.issue("instructor", None, "instructor")
         self.worlds: dict[str, World] = {}
         self.physics = SharedQuadrotorPhysics(self.clock)
+        self.executors = ExecutorGroup()  # one task runs every world's callbacks here
         self.workers: WorkerDirectory | None = None  # the class server's world workers, with Zenoh
         self._revoked: set[str] = set()
         self._starting: dict[str, int] = {}  # world → its ROS domain, while it starts
@@ -431,7 +432,7 @@ class Classroom:
     async def _start_lab(
         self, name: str, domain_id: int, launch: tuple[str, dict[str, str]] | None = None
     ) -> Lab:
-        lab = Lab(self._world_settings(name, domain_id, launch), self.clock)
+        lab = Lab(self._world_settings(name, domain_id, launch), self.clock, executors=self.executors)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         await lab.start()
         return lab
@@ -646,6 +647,7 @@ class Classroom:
             self.view = None
         for name in list(self.worlds):
             await self._end(self.worlds.pop(name))
+        await self.executors.close()
         if self.workers is not None:
             await self.workers.close()
             self.workers = None
