@@ -26,6 +26,31 @@ log = logging.getLogger("bus.executor")
 MAX_CALLBACKS_PER_PASS = 10_000  # bounds a node that keeps re-triggering itself
 
 
+class _Sleep:
+    """An event-loop wait that ends when ``wake()`` is called or ``delay`` seconds pass."""
+
+    def __init__(self) -> None:
+        self._waiter: asyncio.Future[None] | None = None
+
+    def wake(self) -> None:
+        if self._waiter is not None and not self._waiter.done():
+            self._waiter.set_result(None)
+
+    async def __call__(self, delay: float) -> None:
+        if delay <= 0:
+            await asyncio.sleep(0)  # let the API and WebSockets in between bursts
+            return
+        loop = asyncio.get_running_loop()
+        self._waiter = loop.create_future()
+        handle = loop.call_later(delay, self.wake) if math.isfinite(delay) else None
+        try:
+            await self._waiter
+        finally:
+            self._waiter = None
+            if handle is not None:
+                handle.cancel()
+
+
 class Executor:
     """Drains a bus: ``spin_some``/``spin_until`` for tests, ``await spin()`` for the app."""
 
@@ -34,7 +59,8 @@ class Executor:
 
     def __init__(self, bus: Bus) -> None:
         self.bus = bus
-        self._waiter: asyncio.Future[None] | None = None
+        self._sleep = _Sleep()
+        self._wake = self._sleep.wake
         self._stopping = False
         self.callbacks_run = 0
 
@@ -145,10 +171,6 @@ class Executor:
         return self.spin_until(self.bus.clock.now() + duration_s)
 
     # -- the asyncio loop ----------------------------------------------------
-    def _wake(self) -> None:
-        if self._waiter is not None and not self._waiter.done():
-            self._waiter.set_result(None)
-
     async def spin(self) -> None:
         """Run callbacks as they come due until ``stop()``; sleeps between them, never busy-waits."""
         loop = asyncio.get_running_loop()
@@ -163,21 +185,8 @@ class Executor:
         try:
             while not self._stopping:
                 self.spin_some()
-                if self.bus._ready or self.bus._calls:
-                    await asyncio.sleep(0)  # let the API and WebSockets in between bursts
-                    continue
-                delay = self.next_deadline_s() - self.bus.clock.now()
-                if delay <= 0:
-                    await asyncio.sleep(0)
-                    continue
-                self._waiter = loop.create_future()
-                handle = loop.call_later(delay, self._wake) if math.isfinite(delay) else None
-                try:
-                    await self._waiter
-                finally:
-                    self._waiter = None
-                    if handle is not None:
-                        handle.cancel()
+                busy = bool(self.bus._ready or self.bus._calls)
+                await self._sleep(0.0 if busy else self.next_deadline_s() - self.bus.clock.now())
         finally:
             self.bus.remove_waker(self._wake)
             self.bus.threadsafe_waker = None
@@ -202,7 +211,8 @@ class ExecutorGroup:
         self._wakers: dict[Executor, Callable[[], None]] = {}
         self._members: list[Executor] = []
         self._woken: set[Executor] = set()  # had news (a message, a timer, a thread's hand-in)
-        self._waiter: asyncio.Future[None] | None = None
+        self._sleep = _Sleep()
+        self._wake = self._sleep.wake
         self._task: asyncio.Task[None] | None = None
         self._stopping = False
 
@@ -254,10 +264,6 @@ class ExecutorGroup:
         """Have the group look at its members now (on the loop's thread): after a ManualClock moved."""
         self._wake()
 
-    def _wake(self) -> None:
-        if self._waiter is not None and not self._waiter.done():
-            self._waiter.set_result(None)
-
     def _round(self) -> tuple[bool, float]:
         """One pass of every member with work; returns (some member still has work, seconds to the
         soonest deadline)."""
@@ -282,17 +288,6 @@ class ExecutorGroup:
         return busy or bool(woken), soonest
 
     async def _spin(self) -> None:
-        loop = asyncio.get_running_loop()
         while not self._stopping:
             busy, delay = self._round()
-            if busy or delay <= 0:
-                await asyncio.sleep(0)  # let the API and WebSockets in between bursts
-                continue
-            self._waiter = loop.create_future()
-            handle = loop.call_later(delay, self._wake) if math.isfinite(delay) else None
-            try:
-                await self._waiter
-            finally:
-                self._waiter = None
-                if handle is not None:
-                    handle.cancel()
+            await self._sleep(0.0 if busy else delay)

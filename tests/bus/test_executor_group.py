@@ -43,6 +43,20 @@ async def settle() -> None:
         await asyncio.sleep(0)
 
 
+def grouped(*worlds: World) -> ExecutorGroup:
+    """A group running ``worlds``' executors (call inside the event loop)."""
+    group = ExecutorGroup()
+    for world in worlds:
+        group.add(world.executor)
+    return group
+
+
+async def close(group: ExecutorGroup, *worlds: World) -> None:
+    for world in worlds:
+        group.remove(world.executor)
+    await group.close()
+
+
 async def step(group: ExecutorGroup, clock: ManualClock, until_s: float, dt_s: float = 0.01) -> None:
     """Move the clock to ``until_s`` in steps of ``dt_s``, letting the group run a round at each."""
     while clock.now() < until_s:
@@ -55,17 +69,13 @@ def test_each_world_keeps_its_own_timer_and_hears_only_its_own_messages() -> Non
     async def scenario() -> None:
         clock = ManualClock()
         a, b = World(clock, "a", 0.1), World(clock, "b", 0.25)
-        group = ExecutorGroup()
-        group.add(a.executor)
-        group.add(b.executor)
+        group = grouped(a, b)
         await step(group, clock, 1.0)
         assert (a.ticks, b.ticks) == (10, 4)
         # Each tick's message was delivered in the round that published it, in its own world only.
         assert a.heard == list(range(1, 11))
         assert b.heard == [1, 2, 3, 4]
-        for world in (a, b):
-            group.remove(world.executor)
-        await group.close()
+        await close(group, a, b)
 
     asyncio.run(scenario())
 
@@ -74,17 +84,14 @@ def test_a_removed_world_never_runs_again_and_the_others_go_on() -> None:
     async def scenario() -> None:
         clock = ManualClock()
         a, b = World(clock, "a", 0.1), World(clock, "b", 0.1)
-        group = ExecutorGroup()
-        group.add(a.executor)
-        group.add(b.executor)
+        group = grouped(a, b)
         await step(group, clock, 0.5)
         group.remove(b.executor)
         assert len(group) == 1
         await step(group, clock, 1.0)
         assert (a.ticks, b.ticks) == (10, 5)
         assert b.bus.threadsafe_waker is None  # the group let go of the bus
-        group.remove(a.executor)
-        await group.close()
+        await close(group, a)
 
     asyncio.run(scenario())
 
@@ -105,17 +112,13 @@ def test_a_world_flooding_itself_leaves_the_others_timers_on_time() -> None:
             loop_pub.publish(Int64(data=msg.data + 1))
 
         echo.create_subscription(Int64, "/loop", again, 10)
-        group = ExecutorGroup()
-        group.add(noisy.executor)
-        group.add(quiet.executor)
+        group = grouped(noisy, quiet)
         loop_pub.publish(Int64(data=0))
         await step(group, clock, 1.0, dt_s=0.1)
         assert quiet.ticks == 10
         assert quiet.heard == list(range(1, 11))
         assert len(echoed) > MAX_CALLBACKS_PER_PASS  # the flood went on over several rounds
-        for world in (noisy, quiet):
-            group.remove(world.executor)
-        await group.close()
+        await close(group, noisy, quiet)
 
     asyncio.run(scenario())
 
@@ -130,17 +133,14 @@ def test_a_world_whose_executor_fails_stops_alone(caplog: pytest.LogCaptureFixtu
                 raise RuntimeError("inbox torn")
 
         broken.bus.pollers.append(fail)
-        group = ExecutorGroup()
-        group.add(broken.executor)
-        group.add(healthy.executor)
+        group = grouped(broken, healthy)
         with caplog.at_level(logging.ERROR):
             await step(group, clock, 1.0)
         assert healthy.ticks == 10
         assert broken.ticks == 2  # it ran until its executor failed at 0.3 s, then never again
         assert len(group) == 1
         assert "a world's executor failed" in caplog.text and "inbox torn" in caplog.text
-        group.remove(healthy.executor)
-        await group.close()
+        await close(group, healthy)
 
     asyncio.run(scenario())
 
@@ -160,8 +160,7 @@ def test_news_handed_in_from_another_thread_runs_that_worlds_pollers() -> None:
                 polled.set_result(inbox.pop())
 
         world.bus.pollers.append(poll)
-        group = ExecutorGroup()
-        group.add(world.executor)
+        group = grouped(world)
         await settle()  # the group is idle now: nothing due before t = 1000 s
 
         def hand_in() -> None:
@@ -172,7 +171,6 @@ def test_news_handed_in_from_another_thread_runs_that_worlds_pollers() -> None:
         thread.start()
         thread.join(timeout=10)
         assert await asyncio.wait_for(polled, timeout=10) == "sample"
-        group.remove(world.executor)
-        await group.close()
+        await close(group, world)
 
     asyncio.run(scenario())
