@@ -201,10 +201,11 @@ class ExecutorGroup:
 
     Each world keeps its own bus, executor and timers (their phases stay spread, so no instant
     carries every world's work); what the group shares is the waiting. A task per world would wake
-    once for every world's every deadline, and on a class server those wake-ups cost about as much
-    as the worlds' own callbacks. The group wakes once for whatever is due, runs one pass of each
-    world that has work, then sleeps until the soonest deadline of any. A world with a burst of
-    messages gets one pass per round, as a task of its own would between its yields.
+    once for every world's every deadline; on a class server of 30 worlds those wake-ups took
+    about half as much time as the worlds' own callbacks (py-spy). The group wakes once for
+    whatever is due, runs one pass of each world that has work, then sleeps until the soonest
+    deadline of any. A world with a burst of messages gets one pass per round, as a task of its
+    own would between its yields.
     """
 
     def __init__(self) -> None:
