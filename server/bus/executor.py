@@ -213,7 +213,6 @@ class ExecutorGroup:
         self._members: list[Executor] = []
         self._woken: set[Executor] = set()  # had news (a message, a timer, a thread's hand-in)
         self._sleep = _Sleep()
-        self._wake = self._sleep.wake
         self._task: asyncio.Task[None] | None = None
         self._stopping = False
 
@@ -228,7 +227,7 @@ class ExecutorGroup:
 
         def wake() -> None:
             self._woken.add(executor)
-            self._wake()
+            self._sleep.wake()
 
         def wake_from_thread() -> None:
             with contextlib.suppress(RuntimeError):  # the loop closed while another thread had news
@@ -256,14 +255,14 @@ class ExecutorGroup:
     async def close(self) -> None:
         """Stop the group's task (the members stay added: ``remove`` them first)."""
         self._stopping = True
-        self._wake()
+        self._sleep.wake()
         if self._task is not None:
             await self._task
             self._task = None
 
     def wake(self) -> None:
         """Have the group look at its members now (on the loop's thread): after a ManualClock moved."""
-        self._wake()
+        self._sleep.wake()
 
     def _round(self) -> tuple[bool, float]:
         """One pass of every member with work; returns (some member still has work, seconds to the
@@ -274,7 +273,8 @@ class ExecutorGroup:
             if executor not in self._wakers:
                 continue  # removed by an earlier member's callback in this round
             bus = executor.bus
-            if executor in woken or bus._ready or bus._calls or executor.next_deadline_s() <= bus.clock.now():
+            deadline = executor.next_deadline_s()
+            if executor in woken or bus._ready or bus._calls or deadline <= bus.clock.now():
                 try:
                     executor.spin_some()
                 except Exception:  # one world's broken executor must not stop the others
@@ -282,10 +282,11 @@ class ExecutorGroup:
                     self.remove(executor)
                     continue
                 woken.discard(executor)  # what it published in this pass was drained in this pass
+                deadline = executor.next_deadline_s()
             if bus._ready or bus._calls:
                 busy = True
             else:
-                soonest = min(soonest, executor.next_deadline_s() - bus.clock.now())
+                soonest = min(soonest, deadline - bus.clock.now())
         return busy or bool(woken), soonest
 
     async def _spin(self) -> None:
