@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from server.bus import Clock, ExecutorGroup, SystemClock
-from server.devices.shared_physics import SharedQuadrotorPhysics
+from server.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
 from server.lab import Lab
 from server.limits import RateLimit
 from server.settings import Settings
@@ -130,6 +130,7 @@ class Classroom:
         self.instructor_token, self.instructor = self.signer.issue("instructor", None, "instructor")
         self.worlds: dict[str, World] = {}
         self.physics = SharedQuadrotorPhysics(self.clock)
+        self.simple_physics = SharedSimpleSim(self.clock)  # the worlds flown with simple:=true
         self.executors = ExecutorGroup()  # one task runs every world's callbacks here
         self.workers: WorkerDirectory | None = None  # the class server's world workers, with Zenoh
         self._revoked: set[str] = set()
@@ -434,6 +435,7 @@ class Classroom:
     ) -> Lab:
         lab = Lab(self._world_settings(name, domain_id, launch), self.clock, executors=self.executors)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
+        lab.bus.devices["simple_sim_physics"] = self.simple_physics
         await lab.start()
         return lab
 

@@ -1,10 +1,12 @@
-"""Every world's drone in one QuadrotorBatch (issue 13): the physics of a class server.
+"""Every world's drone in one batch (issue 13): the physics of a class server.
 
 Each world's dynamics node (flightgoggles_uav_dynamics) finds this device on its bus and adds
 its drone here instead of building its own QuadrotorSim. A node's tick brings the whole batch up
 to the tick's time, so each 1 ms physics step runs once, vectorized, for every drone, however
 the worlds' timers interleave; a world ticking later in the same millisecond finds the work
 done. Each drone keeps its own seeded generator, so its noise does not depend on the others.
+SharedSimpleSim does the same for the worlds that fly the lab's kinematic simple_sim
+(``simple:=true``), at its 20 Hz.
 """
 
 from __future__ import annotations
@@ -12,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from server.bus import Clock
-from sim.quadrotor import QuadrotorBatch
+from sim.quadrotor import QuadrotorBatch, SimpleDrone, SimpleSimBatch, SimpleSimParams
 from sim.quadrotor.batch import Drone
 
 MAX_CATCH_UP_S = 0.1  # after a stall the batch skips ahead, as a single world's sim does
@@ -35,6 +37,37 @@ class SharedQuadrotorPhysics:
 
     def advance_to(self, now_s: float) -> None:
         """Step every drone up to ``now_s`` (nothing if it is already there)."""
+        elapsed = now_s - self._at_s
+        if elapsed <= 0.0:
+            return
+        self.batch.advance(min(elapsed, MAX_CATCH_UP_S))
+        self._at_s = now_s
+
+
+class SharedSimpleSim:
+    """Every simple_sim world's drone in one SimpleSimBatch, ticked at the lab's 20 Hz on the class clock.
+
+    A world's node brings the batch up to now on its timer and before it sets a velocity command,
+    then publishes its drone's newest reading, so a drone's flight depends on when its commands
+    came, not on the other worlds' timers.
+    """
+
+    def __init__(self, clock: Clock, params: SimpleSimParams | None = None) -> None:
+        self.clock = clock
+        self.batch = SimpleSimBatch(params)
+        self.params = self.batch.params
+        self._at_s = clock.now()
+
+    def __len__(self) -> int:
+        return len(self.batch)
+
+    def add(self, seed: int, noise: bool) -> SimpleDrone:
+        """A new drone at rest at the origin; the others are first brought up to now."""
+        self.advance_to(self.clock.now())
+        return self.batch.add(rng=np.random.default_rng(seed) if noise else None, noise=noise)
+
+    def advance_to(self, now_s: float) -> None:
+        """Tick every drone for each 1/20 s boundary up to ``now_s`` (nothing if there is none)."""
         elapsed = now_s - self._at_s
         if elapsed <= 0.0:
             return

@@ -280,30 +280,66 @@ def test_a_single_lab_app_has_no_classroom() -> None:
 
 
 # -- physics that scales -------------------------------------------------------------------------
-def fly(others: list[str], seconds: float = 4.0) -> list[tuple[float, float, float]]:
-    """Ada's drone flying to TARGET on a fresh class server, among ``others`` flying elsewhere;
-    her positions at every 0.25 s."""
+def fly(others: list[str], simple: bool = False) -> list[tuple[float, float, float]]:
+    """Ada's drone flying on a fresh class server, among up to 3 ``others`` flying elsewhere; her
+    positions at every 0.25 s. Rotor physics: she flies to TARGET. ``simple``: every world flies
+    the lab's kinematic simple_sim, whose controller waits 5 s; until then each drone takes a new
+    velocity from REST every second, at a time between two of the batch's ticks."""
     clock = ManualClock(1_000.0)
-    with TestClient(create_app(class_settings(max_worlds=8), clock)) as client:
-        tokens = {name: join(client, name) for name in [*others[:1], "Ada", *others[1:]]}
-        for i, (name, token) in enumerate(tokens.items()):
-            goal = TARGET if name == "Ada" else {"x": -float(i), "y": 2.0 * i, "z": 1.0 + i}
-            reply = client.post("/api/publish", headers=auth(token),
-                                json={"topic": "/uav/input/position", "msg": goal, "type": VECTOR3})  # fmt: skip
-            assert reply.status_code == 200, reply.text
-        assert len(classroom(client).physics) == len(tokens)  # every drone in the one batch
+    args = {"start_delay": "3600", "simple": "true" if simple else "false"}
+    with TestClient(create_app(class_settings(max_worlds=8, launch_args=args), clock)) as client:
+        clock.set(clock.now() + 0.031)  # her timers keep a phase of their own, not the batch's
+        tokens = {"Ada": join(client, "Ada")}
+        for i in range(3):  # the others' timers keep phases of their own, 13 ms apart
+            advance(client, clock, 0.013)
+            if i < len(others):
+                tokens[others[i]] = join(client, others[i])
+        shared = classroom(client).simple_physics if simple else classroom(client).physics
+        assert len(shared) == len(tokens)  # every drone in the one batch
         track = []
-        for _ in range(round(seconds / 0.25)):
+        for step in range(16):
+            if step == 0 or (simple and step % 4 == 0):
+                for i, (name, token) in enumerate(tokens.items()):
+                    topic, msg = (
+                        ("/uav/input/velocity", {"x": 1.0 + step / 4, "y": 0.5 * i, "z": 1.0})
+                        if simple
+                        else (
+                            "/uav/input/position",
+                            TARGET if name == "Ada" else {"x": -i, "y": 2 * i, "z": 1 + i},
+                        )
+                    )
+                    reply = client.post("/api/publish", headers=auth(token),
+                                        json={"topic": topic, "msg": msg, "type": VECTOR3})  # fmt: skip
+                    assert reply.status_code == 200, reply.text
             advance(client, clock, 0.25)
             track.append(drone(client, tokens["Ada"]))
         return track
 
 
-def test_a_world_flies_the_same_alone_or_among_others() -> None:
-    alone = fly([])
-    among = fly(["Bob", "Cy", "Dee"])
+@pytest.mark.parametrize("simple", [False, True], ids=["rotor_physics", "simple_sim"])
+def test_a_world_flies_the_same_alone_or_among_others(simple: bool) -> None:
+    alone = fly([], simple)
+    among = fly(["Bob", "Cy", "Dee"], simple)
     assert alone[-1][0] > 1.0  # she is flying, not sitting on the pad
     assert among == alone  # float for float: the others' drones share her batch, not her flight
+
+
+def test_a_reset_world_leaves_the_simple_batch_and_comes_back_at_the_origin(clock: ManualClock) -> None:
+    args = {"start_delay": "3600", "simple": "true"}
+    with TestClient(create_app(class_settings(launch_args=args), clock)) as client:
+        ada, bob = join(client, "Ada"), join(client, "Bob")
+        for token in (ada, bob):
+            reply = client.post("/api/publish", headers=auth(token),
+                                json={"topic": "/uav/input/position", "msg": TARGET, "type": VECTOR3})  # fmt: skip
+            assert reply.status_code == 200, reply.text
+        advance(client, clock, 7.0)  # the simple mode's controller waits 5 s, then flies
+        assert drone(client, ada)[2] > 1.0 and drone(client, bob)[2] > 1.0
+        teacher = classroom(client).instructor_token
+        assert client.post("/api/classroom/worlds/bob/reset", headers=auth(teacher)).status_code == 200
+        assert len(classroom(client).simple_physics) == 2  # Bob's old drone left, his new one joined
+        advance(client, clock, 0.2)
+        assert abs(drone(client, bob)[2]) < 0.1  # Bob starts over at the origin (GPS noise is 0.01 m)
+        assert drone(client, ada)[2] > 1.0  # Ada keeps her flight
 
 
 def test_a_reset_closes_the_worlds_sockets_so_the_page_reconnects_to_the_new_world(
