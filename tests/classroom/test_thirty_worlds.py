@@ -1,0 +1,102 @@
+"""A class of 30 with no browser: 30 worlds of the fly launch run for 30 s of wall time, and every
+world's dynamics keeps its nominal 100 Hz (at most one tick in 20 skipped, see KEEPS).
+
+The worlds run as a class would on a machine of two cores: the class server hosts half itself
+(``--local-worlds 15``) and places the other half on a world worker (``--max-worlds 15``), so the
+load ties and the placement alternates. Each world's rate is its dynamics node's timer calls over
+the window, read through the class server's API with that student's token (a worker's world is answered by its
+worker), each count with the time it was read. Both processes are ended by their ids.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import httpx
+import pytest
+from support.app import REPO, App, WorldWorker, instructor_token, wait_for_workers
+
+CODE = "CLS030"
+WORLDS = 30
+WINDOW_S = 30.0
+NOMINAL_HZ = 100.0  # flightgoggles_uav_dynamics' publish_rate_hz in the fly launch
+# Of the nominal rate: at most 1 tick in 20 may come so late (a whole period) that the timer skips
+# it, as rcl's does; the physics itself follows the clock and loses no time. Slowest world, on a
+# 2-vCPU AMD EPYC: 99.7 to 99.9 Hz on a quiet machine; 98.2 beside a process that keeps a core
+# busy; 96.5 in one whole-suite run on a day the hypervisor's steal reached 28 %. Beside two such
+# processes 89 to 95 Hz, and with both processes held to one core 92 to 95 Hz: those fail or nearly.
+KEEPS = 0.95
+DYNAMICS = "flightgoggles_uav_dynamics"
+RESULT = REPO / "artifacts" / "thirty_worlds.json"
+
+
+@pytest.fixture(scope="module")
+def class_of_thirty(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, dict[str, str]]]:
+    root: Path = tmp_path_factory.mktemp("thirty_worlds")
+    app = App(
+        root, "--classroom", "--class-code", CODE, "--launch", "fly",
+        "--max-worlds", str(WORLDS), "--local-worlds", str(WORLDS // 2),
+    )  # fmt: skip
+    worker: WorldWorker | None = None
+    try:
+        instructor = instructor_token(app.log_tail(100_000))
+        worker = WorldWorker(root, app.router, instructor, "w1", "--max-worlds", str(WORLDS // 2))
+        wait_for_workers(app.url, instructor, {"w1"})
+        tokens: dict[str, str] = {}
+        for i in range(WORLDS):
+            reply = httpx.post(
+                f"{app.url}/api/classroom/join", json={"name": f"student{i:02d}", "code": CODE}, timeout=60
+            )
+            assert reply.status_code == 201, reply.text
+            tokens[reply.json()["world"]] = reply.json()["token"]
+        yield app, tokens
+    finally:
+        if worker is not None:
+            worker.stop()
+        app.stop()
+
+
+def dynamics_calls(app: App, token: str) -> tuple[int, float]:
+    """How often the world's dynamics timer has run, and when that was read (monotonic s)."""
+    reply = httpx.get(
+        f"{app.url}/api/nodes/{DYNAMICS}", headers={"Authorization": f"Bearer {token}"}, timeout=10
+    )
+    assert reply.status_code == 200, reply.text
+    timers: list[dict[str, Any]] = reply.json()["timers"]
+    assert len(timers) == 1 and timers[0]["period_s"] == pytest.approx(1 / NOMINAL_HZ)
+    return int(timers[0]["calls"]), time.monotonic()
+
+
+def test_thirty_worlds_each_keep_their_dynamics_rate_for_thirty_seconds(
+    class_of_thirty: tuple[App, dict[str, str]],
+) -> None:
+    app, tokens = class_of_thirty
+    instructor = instructor_token(app.log_tail(100_000))
+    listed = httpx.get(
+        f"{app.url}/api/classroom/worlds", headers={"Authorization": f"Bearer {instructor}"}, timeout=30
+    ).json()["worlds"]
+    placed = {w["world"]: w["worker"] for w in listed}
+    assert sorted(placed) == sorted(tokens)
+    on_worker = sum(1 for where in placed.values() if where == "w1")
+    assert on_worker == WORLDS // 2, placed  # half the class on the worker, half on the class server
+
+    # Every world flies already: its dynamics have run (the first reading is the window's start).
+    start = {world: dynamics_calls(app, token) for world, token in tokens.items()}
+    assert all(calls > 0 for calls, _ in start.values()), start
+    time.sleep(WINDOW_S)
+    end = {world: dynamics_calls(app, token) for world, token in tokens.items()}
+
+    rates = {world: (end[world][0] - start[world][0]) / (end[world][1] - start[world][1]) for world in tokens}
+    # The rates measured, for a CI log's reader (git-ignored, beside the browser tests' screenshots).
+    RESULT.parent.mkdir(parents=True, exist_ok=True)
+    RESULT.write_text(
+        json.dumps({"window_s": WINDOW_S, "hz": {w: round(hz, 2) for w, hz in sorted(rates.items())}})
+    )
+    slow = {world: round(hz, 1) for world, hz in rates.items() if hz < KEEPS * NOMINAL_HZ}
+    assert not slow, f"worlds below {KEEPS * NOMINAL_HZ:.0f} Hz: {slow}; all: {sorted(rates.values())}"
+    # A timer never runs more often than its period allows (a check on the reading itself).
+    assert max(rates.values()) <= NOMINAL_HZ * 1.01, rates
