@@ -4,7 +4,6 @@ from fastapi import APIRouter
 
 from . import (
     bag,
-    classroom,
     introspection,
     lab_routes,
     launch_routes,
@@ -15,9 +14,12 @@ from . import (
     ws_keys,
     ws_topics,
 )
+from . import classroom as classroom_routes
 
 
-def build_router() -> APIRouter:
+def build_router(*, classroom: bool = False) -> APIRouter:
+    """Every route; the class server's own (api/classroom.py) are in the OpenAPI document only on a
+    class server, and answer 404 elsewhere."""
     router = APIRouter()
     for module in (
         lab_routes,
@@ -29,8 +31,8 @@ def build_router() -> APIRouter:
         ws_topics,
         ws_keys,
         bag,
-        classroom,
         rosbridge,
     ):
         router.include_router(module.router)
+    router.include_router(classroom_routes.router, include_in_schema=classroom)
     return router

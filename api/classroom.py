@@ -1,13 +1,13 @@
 """REST for a class server (``--classroom``): join, who am I, and the instructor's controls.
 
-Out of the OpenAPI document's schema for the single-lab app it documents; on an app without
+In the OpenAPI document of a class server only (api.build_router); on an app without
 ``--classroom`` every route here answers 404.
 """
 
 from __future__ import annotations
 
 import asyncio
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter, Depends, HTTPException, Request, Response, status
 from pydantic import BaseModel, ConfigDict, Field
@@ -16,8 +16,22 @@ from server.classroom import Classroom, Grant
 
 from .deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie
 from .errors import status_for
+from .responses import (
+    BAD_GATEWAY,
+    FORBIDDEN,
+    NO_ROOM,
+    NOT_FOUND,
+    TOO_MANY,
+    TYPE_CONFLICT,
+    UNAUTHORIZED,
+    UNPROCESSABLE,
+    responses,
+)
 
-router = APIRouter(prefix="/api/classroom", tags=["classroom"], include_in_schema=False)
+router = APIRouter(prefix="/api/classroom", tags=["classroom"])
+OPEN: dict[str, Any] = {
+    "security": []
+}  # OpenAPI: a route that needs no token (api/openapi.py adds the rest's)
 
 
 class JoinRequest(BaseModel):
@@ -44,6 +58,37 @@ class HostRequest(BaseModel):
     launch_args: dict[str, str] = Field(default_factory=dict, max_length=32)
 
 
+class Joined(BaseModel):
+    world: str = Field(examples=["ada_lovelace"])
+    student: str = Field(examples=["Ada Lovelace"])
+    token: str = Field(description="this world's bearer token; the page keeps it in an HTTP-only cookie")
+
+
+class Me(BaseModel):
+    role: Literal["student", "instructor"]
+    world: str | None = Field(description="the student's world; none for the instructor")
+    name: str
+    class_code: str | None = Field(default=None, description="only for the instructor")
+
+
+class ClassWorlds(BaseModel):
+    class_code: str
+    max_worlds: int
+    worlds: list[dict[str, Any]] = Field(
+        description="each world: student, where it runs, keys held, rocket phase, drone, crashed nodes"
+    )
+
+
+class ClassWorkers(BaseModel):
+    local: dict[str, int] = Field(description="this server's own worlds and how many it takes")
+    workers: list[dict[str, Any]] = Field(description="each world worker that answers now, with its load")
+
+
+class Broadcast(BaseModel):
+    reached: list[str]
+    refused: dict[str, str] = Field(description="world: why its graph refused the message")
+
+
 def _classroom(request: Request) -> Classroom:
     classroom = classroom_of(request)
     if classroom is None:
@@ -68,57 +113,65 @@ GrantDep = Annotated[Grant, Depends(_grant)]
 InstructorDep = Annotated[Grant, Depends(_instructor)]
 
 
-@router.post("/join", status_code=status.HTTP_201_CREATED)
-async def join(body: JoinRequest, classroom: ClassroomDep, response: Response) -> dict[str, Any]:
+@router.post(
+    "/join",
+    status_code=status.HTTP_201_CREATED,
+    responses=responses(FORBIDDEN, TYPE_CONFLICT, TOO_MANY, BAD_GATEWAY, NO_ROOM, body=True),
+    openapi_extra=OPEN,
+)
+async def join(body: JoinRequest, classroom: ClassroomDep, response: Response) -> Joined:
     """A world of one's own: the rocket and drone launches, under a token for this world only."""
     world, token = await classroom.join(body.name, body.code)
     set_token_cookie(response, token)
-    return {"world": world.name, "student": world.student, "token": token}
+    return Joined(world=world.name, student=world.student, token=token)
 
 
-@router.post("/leave")
+@router.post("/leave", responses=responses(), openapi_extra=OPEN)
 async def leave(response: Response) -> dict[str, str]:
     """Forget this browser's token (the world stays until the instructor removes it)."""
     response.delete_cookie(TOKEN_COOKIE, path="/")
     return {"status": "left"}
 
 
-@router.get("/me")
-async def me(grant: GrantDep, classroom: ClassroomDep) -> dict[str, Any]:
-    out: dict[str, Any] = {"role": grant.role, "world": grant.world, "name": grant.name}
-    if grant.is_instructor:
-        out["class_code"] = classroom.code
-    return out
+@router.get("/me", responses=responses(UNAUTHORIZED))
+async def me(grant: GrantDep, classroom: ClassroomDep) -> Me:
+    """Whose token this is: a student and their world, or the instructor (with the class code)."""
+    code = classroom.code if grant.is_instructor else None
+    return Me(role=grant.role, world=grant.world, name=grant.name, class_code=code)
 
 
-@router.get("/worlds")
-async def worlds(_: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+@router.get("/worlds", responses=responses(UNAUTHORIZED, FORBIDDEN))
+async def worlds(_: InstructorDep, classroom: ClassroomDep) -> ClassWorlds:
     """Every world: its student, keys held, rocket phase, drone position, crashed nodes."""
-    return {
-        "class_code": classroom.code,
-        "max_worlds": classroom.settings.max_worlds,
-        "worlds": await classroom.describe_all(),
-    }
+    return ClassWorlds(
+        class_code=classroom.code,
+        max_worlds=classroom.settings.max_worlds,
+        worlds=await classroom.describe_all(),
+    )
 
 
-@router.get("/workers")
-async def workers(_: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+@router.get("/workers", responses=responses(UNAUTHORIZED, FORBIDDEN))
+async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
     """Where worlds can go: this server's own room, and each world worker that answers now."""
     found = await asyncio.to_thread(classroom.workers.discover) if classroom.workers is not None else []
-    return {
-        "local": {"worlds": classroom.hosted_here, "max_worlds": classroom.local_capacity},
-        "workers": [ref.describe() for ref in found],
-    }
+    return ClassWorkers(
+        local={"worlds": classroom.hosted_here, "max_worlds": classroom.local_capacity},
+        workers=[ref.describe() for ref in found],
+    )
 
 
-@router.post("/host", status_code=status.HTTP_201_CREATED)
+@router.post(
+    "/host",
+    status_code=status.HTTP_201_CREATED,
+    responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, TYPE_CONFLICT, TOO_MANY, body=True),
+)
 async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
     """On a world worker: start the world its class server placed here."""
     world = await classroom.host(body.world, body.student, body.domain_id, body.launch, body.launch_args)
     return world.describe()
 
 
-@router.post("/worlds/{name}/reset")
+@router.post("/worlds/{name}/reset", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, BAD_GATEWAY))
 async def reset_world(name: str, grant: GrantDep, classroom: ClassroomDep) -> dict[str, Any]:
     """Start a world over (every node, the 3D view): the instructor any, a student their own."""
     if not grant.is_instructor and grant.world != name:
@@ -129,23 +182,24 @@ async def reset_world(name: str, grant: GrantDep, classroom: ClassroomDep) -> di
     return world.describe()
 
 
-@router.post("/reset")
-async def reset_all(_: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+@router.post("/reset", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, BAD_GATEWAY))
+async def reset_all(_: InstructorDep, classroom: ClassroomDep) -> dict[str, list[str]]:
+    """Start every world over; answers the worlds reset."""
     names = list(classroom.worlds)
     for name in names:
         await classroom.reset(name)
     return {"reset": names}
 
 
-@router.delete("/worlds/{name}")
-async def kick(name: str, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+@router.delete("/worlds/{name}", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND))
+async def kick(name: str, _: InstructorDep, classroom: ClassroomDep) -> dict[str, str]:
     """Remove a student's world; their token stops working at once."""
     world = await classroom.kick(name)
     return {"kicked": world.name, "student": world.student}
 
 
-@router.post("/broadcast")
-async def broadcast(body: BroadcastRequest, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+@router.post("/broadcast", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, UNPROCESSABLE, body=True))
+async def broadcast(body: BroadcastRequest, _: InstructorDep, classroom: ClassroomDep) -> Broadcast:
     """Publish one message in every world (a setpoint, a start signal); a world whose graph
     refuses it (another type on that topic, say) is listed with the reason."""
     reached: list[str] = []
@@ -166,4 +220,4 @@ async def broadcast(body: BroadcastRequest, _: InstructorDep, classroom: Classro
     refused |= far_refused
     if refused and not reached:
         raise HTTPException(status.HTTP_422_UNPROCESSABLE_CONTENT, f"no world took the message: {refused}")
-    return {"reached": reached, "refused": refused}
+    return Broadcast(reached=reached, refused=refused)

@@ -15,21 +15,32 @@ class ErrorBody(BaseModel):
     request_id: str | None = Field(default=None, description="only on a 500: find it in the server log")
 
 
+UNAUTHORIZED = 401
+FORBIDDEN = 403
 NOT_FOUND = 404
 TYPE_CONFLICT = 409
 UNPROCESSABLE = 422
 TOO_MANY = 429
 NO_ANSWER = 504
+BAD_GATEWAY = 502
+NO_ROOM = 503
 _DESCRIPTIONS = {
     400: "the request is malformed",
-    403: "another site's page may not write (Origin refused)",
-    404: "no such topic, node, service, type, package, publisher, launch, bag or playback",
-    409: "the topic carries another type, the thing was destroyed, or the bag exists or is still recording",
+    401: "no valid token (a class server, or a lab started with --token): the lab_token cookie or "
+    "Authorization: Bearer",
+    403: "refused: another site's page may not write (Origin), or the token does not reach this "
+    "(the wrong class code, another student's world, the instructor's controls)",
+    404: "no such topic, node, service, type, package, publisher, launch, bag, playback or world",
+    409: "the topic carries another type, the thing was destroyed, the bag exists or is still "
+    "recording, or the name is taken",
     413: "the body is larger than the limit (64 KiB)",
     421: "the Host header is not a name of this server",
     422: "a field, a number or a name is invalid (the detail names it)",
-    429: "a per-app limit is reached (publishers, launches, topics, recordings, playbacks)",
+    429: "a limit is reached (publishers, launches, topics, recordings, playbacks, worlds in a class, "
+    "a world's writes per second)",
     500: "a bug: the detail carries a request id, the log has the traceback",
+    502: "a world worker did not answer",
+    503: "no place in the class has room for another world, or the world is moving to another worker",
     504: "the service did not answer in time (its server is gone, busy or crashed)",
 }
 _ALWAYS = (421, 500)  # any route: the Host guard, and a bug

@@ -11,6 +11,7 @@ from fastapi.staticfiles import StaticFiles
 
 from api import build_router
 from api.errors import ErrorMiddleware, register_error_handlers
+from api.openapi import use_token_security
 from api.security import GuardMiddleware
 from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
 from api.world_proxy import WorldProxyMiddleware
@@ -58,7 +59,11 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
     )
     app.state.classroom = classroom
     app.state.settings = settings
-    app.include_router(build_router())
+    app.include_router(build_router(classroom=settings.classroom))
+    if settings.classroom or settings.token is not None:
+        use_token_security(
+            app, classroom=settings.classroom
+        )  # the document says how to show the token, and where it is needed
     app.include_router(page_router)
     app.include_router(tools_router)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")

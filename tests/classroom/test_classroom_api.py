@@ -277,6 +277,58 @@ def test_a_single_lab_app_has_no_classroom() -> None:
         assert single.post("/api/classroom/join", json={"name": "Ada", "code": CODE}).status_code == 404
         assert single.get("/instructor").status_code == 404
         assert single.get("/api/topics").status_code == 200  # no token needed on one's own machine
+        document = single.get("/openapi.json").json()
+        assert not [path for path in document["paths"] if path.startswith("/api/classroom/")]
+        assert "security" not in document and "securitySchemes" not in document["components"]
+
+
+CLASS_ROUTES = {
+    "/api/classroom/join": {"post"},
+    "/api/classroom/leave": {"post"},
+    "/api/classroom/me": {"get"},
+    "/api/classroom/worlds": {"get"},
+    "/api/classroom/workers": {"get"},
+    "/api/classroom/host": {"post"},
+    "/api/classroom/worlds/{name}/reset": {"post"},
+    "/api/classroom/reset": {"post"},
+    "/api/classroom/worlds/{name}": {"delete"},
+    "/api/classroom/broadcast": {"post"},
+}
+
+
+def test_the_class_servers_openapi_documents_its_routes_and_the_token(client: TestClient) -> None:
+    document = client.get("/openapi.json").json()
+    paths = document["paths"]
+    assert {path: set(paths[path]) for path in CLASS_ROUTES if path in paths} == CLASS_ROUTES
+    assert set(document["components"]["securitySchemes"]) == {"bearer", "cookie"}
+    assert document["components"]["securitySchemes"]["cookie"]["name"] == "lab_token"
+    assert document["security"] == [{"bearer": []}, {"cookie": []}]
+
+    join_op = paths["/api/classroom/join"]["post"]
+    assert join_op["security"] == []  # joining needs the class code, not a token
+    assert join_op["requestBody"]["content"]["application/json"]["schema"]["$ref"].endswith("/JoinRequest")
+    assert join_op["responses"]["201"]["content"]["application/json"]["schema"]["$ref"].endswith("/Joined")
+    assert {"403", "409", "429"} <= set(join_op["responses"]) and "401" not in join_op["responses"]
+    assert paths["/api/health"]["get"]["security"] == []
+    for path, methods in CLASS_ROUTES.items():
+        for method in methods:
+            operation = paths[path][method]
+            if operation.get("security") != []:
+                assert "401" in operation["responses"], (path, method)
+
+    # A world's operation: the instructor names the world in a header; a student may be refused it.
+    publish = paths["/api/publish"]["post"]
+    assert "X-Lab-World" in [p["name"] for p in publish["parameters"] if p["in"] == "header"]
+    assert {"401", "403", "404", "429"} <= set(publish["responses"])
+    assert "429" not in paths["/api/topics"]["get"]["responses"]  # reads are not rate-limited
+
+    # What the document says of /me is what the route answers, for a student and the instructor.
+    me_schema = document["components"]["schemas"]["Me"]
+    assert set(me_schema["required"]) == {"role", "world", "name"}
+    ada = client.get("/api/classroom/me", headers=auth(join(client, "Ada"))).json()
+    assert ada == {"role": "student", "world": "ada", "name": "Ada", "class_code": None}
+    teacher = client.get("/api/classroom/me", headers=auth(classroom(client).instructor_token)).json()
+    assert teacher["role"] == "instructor" and teacher["class_code"] == CODE and teacher["world"] is None
 
 
 # -- physics that scales -------------------------------------------------------------------------
