@@ -136,6 +136,7 @@ class Classroom:
         self._revoked: set[str] = set()
         self._starting: dict[str, int] = {}  # world → its ROS domain, while it starts
         self._placing: dict[str, int] = {}  # worker id → worlds being started there
+        self._hosting: set[tuple[str, str]] = set()  # (worker id, world) while it is placed there
         self._local_starting = 0  # worlds being started here
         self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
         self._control: Any = None  # a worker's hello queryable (WorkerControl) and its session
@@ -304,6 +305,7 @@ class Classroom:
             if world.worker is not None and world.worker.id == ref.id and world.placed_at < asked_at
             and name not in ref.hosted
         }  # fmt: skip
+        await self._end_strays(answered)
         for world in list(self.worlds.values()):
             if world.worker is None:
                 continue
@@ -320,6 +322,23 @@ class Classroom:
             await self._move(
                 world, why, exclude=world.worker.id if world.worker.id not in answering else None
             )
+
+    async def _end_strays(self, answered: list[WorkerRef]) -> None:
+        """End each world a worker says it hosts that this class server does not count on it: one
+        the instructor removed, or one that moved elsewhere, while that worker could not be
+        reached. (Worlds being placed there now are not strays.)"""
+        assert self.workers is not None
+        for ref in answered:
+            ours = {name for name, w in self.worlds.items() if w.worker is not None and w.worker.id == ref.id}
+            placing = {name for wid, name in self._hosting if wid == ref.id}
+            for name in sorted((ref.hosted or frozenset()) - ours - placing - set(self._starting)):
+                log.warning("world worker %s still hosts world %s, which this class does not count there: "
+                            "ending it", ref.id, name)  # fmt: skip
+                try:
+                    await self.workers.checked(ref, "DELETE", f"/api/classroom/worlds/{name}")
+                except ClassroomError as exc:
+                    if exc.status != 404:  # 404: it ended meanwhile
+                        log.warning("world %s on world worker %s: %s", name, ref.id, exc)
 
     async def _move(self, world: World, why: str, exclude: str | None) -> None:
         """Start a world whose worker is gone again, here or on another worker; its student's
@@ -511,12 +530,14 @@ class Classroom:
     async def _host_on(self, ref: WorkerRef, name: str, student: str, domain_id: int) -> None:
         assert self.workers is not None
         self._placing[ref.id] = self._placing.get(ref.id, 0) + 1
+        self._hosting.add((ref.id, name))
         try:
             body = {"world": name, "student": student, "domain_id": domain_id,
                     "launch": self.settings.launch, "launch_args": self.settings.launch_args}  # fmt: skip
             await self.workers.checked(ref, "POST", "/api/classroom/host", body=body)
         finally:
             self._placing[ref.id] -= 1
+            self._hosting.discard((ref.id, name))
 
     async def host(
         self, name: str, student: str, domain_id: int, launch: str, launch_args: dict[str, str]

@@ -25,7 +25,7 @@ import websockets
 import zenoh
 from support.app import App, WorldWorker, instructor_token, wait_for_workers
 
-from server.classroom.workers import CONTROL_PREFIX, hello_request
+from server.classroom.workers import CONTROL_PREFIX, hello_request, worker_api_token
 from server.transport.config import ZenohSettings
 from server.transport.session import build_config
 
@@ -218,6 +218,29 @@ def test_the_broadcast_reaches_worlds_here_and_on_workers(klass: Class) -> None:
     reply = klass.post("/api/classroom/broadcast", klass.instructor, body)
     assert reply.status_code == 200, reply.text
     assert sorted(reply.json()["reached"]) == ["ada", "bob", "cy"]
+
+
+def test_a_world_a_worker_hosts_that_the_class_does_not_count_there_is_ended(klass: Class) -> None:
+    # As after a removal while worker wb could not be reached: wb hosts a world the class server
+    # does not count on it. Its next hello (every 2 s) finds it, and it ends there.
+    wb = next(
+        w for w in klass.get("/api/classroom/workers", klass.instructor).json()["workers"] if w["id"] == "wb"
+    )
+    as_class_server = {"Authorization": f"Bearer {worker_api_token(klass.instructor, 'wb')}"}
+    body = {"world": "stray", "student": "Nobody", "domain_id": 200, "launch": "rocket",
+            "launch_args": {"start_delay": "3600"}}  # fmt: skip
+    placed = httpx.post(f"{wb['url']}/api/classroom/host", headers=as_class_server, json=body, timeout=60)
+    assert placed.status_code == 201, placed.text
+
+    def on_wb() -> set[str]:
+        reply = httpx.get(f"{wb['url']}/api/classroom/worlds", headers=as_class_server, timeout=10)
+        assert reply.status_code == 200, reply.text
+        return {w["world"] for w in reply.json()["worlds"]}
+
+    klass.app.wait_for(lambda: "stray" not in on_wb(), "worker wb to end the world the class does not count")
+    assert on_wb() == {"bob"}  # the class's own world there stays
+    assert "still hosts world stray" in klass.app.log_tail(10**6)
+    assert klass.get("/api/topics", klass.tokens["bob"]).status_code == 200  # through the class server
 
 
 def test_a_worker_needs_the_instructors_token(tmp_path: Path) -> None:
