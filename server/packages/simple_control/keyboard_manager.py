@@ -55,8 +55,8 @@ class KeyboardManager(Node):
         self.keyboard_sub = self.create_subscription(Key, "/keydown", self.get_key, 1)
         self.create_subscription(Key, "/keyup", self.key_released, 10)
         self.create_subscription(Vector3, "/uav/input/position", self.adopt, 10)
-        self.create_subscription(PoseStamped, "/uav/sensors/gps", self.on_gps, 1)
-        self.create_subscription(TwistStamped, "/uav/sensors/velocity", self.on_velocity, 1)
+        self.create_subscription(PoseStamped, "/uav/sensors/gps", self.on_gps, 1, read_only=True)
+        self.create_subscription(TwistStamped, "/uav/sensors/velocity", self.on_velocity, 1, read_only=True)
         self.pos = Vector3(x=START_M[0], y=START_M[1], z=START_M[2])
         self.key_code = -1
         self.held: set[int] = set()
