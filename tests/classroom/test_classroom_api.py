@@ -97,7 +97,12 @@ def test_join_gives_a_world_and_an_http_only_same_site_cookie(client: TestClient
     cookie = reply.headers["set-cookie"].lower()
     assert "lab_token=" in cookie and "httponly" in cookie and "samesite=strict" in cookie
     me = client.get("/api/classroom/me")  # the cookie alone identifies the page
-    assert me.json() == {"role": "student", "world": "ada_lovelace", "name": "Ada Lovelace"}
+    assert me.json() == {
+        "role": "student",
+        "world": "ada_lovelace",
+        "name": "Ada Lovelace",
+        "class_code": None,
+    }
 
 
 @pytest.mark.parametrize(
