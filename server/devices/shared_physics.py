@@ -11,6 +11,8 @@ SharedSimpleSim does the same for the worlds that fly the lab's kinematic simple
 
 from __future__ import annotations
 
+from typing import Generic, Protocol, TypeVar
+
 import numpy as np
 
 from server.bus import Clock
@@ -19,18 +21,28 @@ from sim.quadrotor.batch import Drone
 
 MAX_CATCH_UP_S = 0.1  # after a stall the batch skips ahead, as a single world's sim does
 
+H = TypeVar("H")
+H_co = TypeVar("H_co", covariant=True)
 
-class SharedQuadrotorPhysics:
-    def __init__(self, clock: Clock, physics_rate_hz: float = 1000.0) -> None:
+
+class _Batch(Protocol[H_co]):
+    def __len__(self) -> int: ...
+    def add(self, *, rng: np.random.Generator | None = ..., noise: bool = ...) -> H_co: ...
+    def advance(self, duration_s: float) -> int: ...
+
+
+class SharedBatch(Generic[H]):
+    """One batch of drones on the class clock, shared by every world's node (H: a drone's handle)."""
+
+    def __init__(self, clock: Clock, batch: _Batch[H]) -> None:
         self.clock = clock
-        self.physics_rate_hz = float(physics_rate_hz)
-        self.batch = QuadrotorBatch(physics_rate_hz=physics_rate_hz)
+        self.batch = batch
         self._at_s = clock.now()
 
     def __len__(self) -> int:
         return len(self.batch)
 
-    def add(self, seed: int, noise: bool) -> Drone:
+    def add(self, seed: int, noise: bool) -> H:
         """A new drone at rest at the origin; the others are first brought up to now."""
         self.advance_to(self.clock.now())
         return self.batch.add(rng=np.random.default_rng(seed) if noise else None, noise=noise)
@@ -44,7 +56,15 @@ class SharedQuadrotorPhysics:
         self._at_s = now_s
 
 
-class SharedSimpleSim:
+class SharedQuadrotorPhysics(SharedBatch[Drone]):
+    """Every fly world's drone in one QuadrotorBatch, stepped at ``physics_rate_hz``."""
+
+    def __init__(self, clock: Clock, physics_rate_hz: float = 1000.0) -> None:
+        super().__init__(clock, QuadrotorBatch(physics_rate_hz=physics_rate_hz))
+        self.physics_rate_hz = float(physics_rate_hz)
+
+
+class SharedSimpleSim(SharedBatch[SimpleDrone]):
     """Every simple_sim world's drone in one SimpleSimBatch, ticked at the lab's 20 Hz on the class clock.
 
     A world's node brings the batch up to now on its timer and before it sets a velocity command,
@@ -53,23 +73,6 @@ class SharedSimpleSim:
     """
 
     def __init__(self, clock: Clock, params: SimpleSimParams | None = None) -> None:
-        self.clock = clock
-        self.batch = SimpleSimBatch(params)
-        self.params = self.batch.params
-        self._at_s = clock.now()
-
-    def __len__(self) -> int:
-        return len(self.batch)
-
-    def add(self, seed: int, noise: bool) -> SimpleDrone:
-        """A new drone at rest at the origin; the others are first brought up to now."""
-        self.advance_to(self.clock.now())
-        return self.batch.add(rng=np.random.default_rng(seed) if noise else None, noise=noise)
-
-    def advance_to(self, now_s: float) -> None:
-        """Tick every drone for each 1/20 s boundary up to ``now_s`` (nothing if there is none)."""
-        elapsed = now_s - self._at_s
-        if elapsed <= 0.0:
-            return
-        self.batch.advance(min(elapsed, MAX_CATCH_UP_S))
-        self._at_s = now_s
+        batch = SimpleSimBatch(params)
+        super().__init__(clock, batch)
+        self.params = batch.params
