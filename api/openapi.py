@@ -14,7 +14,6 @@ from __future__ import annotations
 from typing import Any
 
 from fastapi import FastAPI
-from fastapi.openapi.utils import get_openapi
 
 from .deps import SAFE_METHODS, TOKEN_COOKIE
 from .responses import BAD_GATEWAY, FORBIDDEN, NO_ROOM, NOT_FOUND, TOO_MANY, UNAUTHORIZED, responses
@@ -71,20 +70,13 @@ def add_token_security(schema: dict[str, Any], *, classroom: bool = False) -> di
 
 
 def use_token_security(app: FastAPI, *, classroom: bool) -> None:
-    """Make ``app.openapi()`` (and /openapi.json) document the token; built once, then cached."""
+    """Make ``app.openapi()`` (and /openapi.json) document the token: FastAPI's own document, built
+    and cached as always, amended once."""
+    plain = app.openapi
 
     def openapi() -> dict[str, Any]:
         if app.openapi_schema is None:
-            app.openapi_schema = add_token_security(
-                get_openapi(
-                    title=app.title,
-                    version=app.version,
-                    summary=app.summary,
-                    description=app.description,
-                    routes=app.routes,
-                ),
-                classroom=classroom,
-            )
-        return app.openapi_schema
+            add_token_security(plain(), classroom=classroom)  # plain() caches it as app.openapi_schema
+        return app.openapi_schema  # type: ignore[return-value]
 
     app.openapi = openapi  # type: ignore[method-assign]

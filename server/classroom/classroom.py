@@ -135,7 +135,6 @@ class Classroom:
         self.workers: WorkerDirectory | None = None  # the class server's world workers, with Zenoh
         self._revoked: set[str] = set()
         self._starting: dict[str, int] = {}  # world → its ROS domain, while it starts
-        self._placing: dict[str, int] = {}  # worker id → worlds being started there
         self._hosting: set[tuple[str, str]] = set()  # (worker id, world) while it is placed there
         self._local_starting = 0  # worlds being started here
         self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
@@ -517,7 +516,8 @@ class Classroom:
             if ref.id == exclude:
                 continue
             ours = len(on_workers[ref.id][1]) if ref.id in on_workers else 0
-            worlds = max(ref.worlds, ours) + self._placing.get(ref.id, 0)
+            placing = sum(1 for wid, _ in self._hosting if wid == ref.id)
+            worlds = max(ref.worlds, ours) + placing
             if worlds < ref.max_worlds:
                 choices.append((worlds / ref.max_worlds, 0, ref))
         if not choices:
@@ -529,14 +529,12 @@ class Classroom:
 
     async def _host_on(self, ref: WorkerRef, name: str, student: str, domain_id: int) -> None:
         assert self.workers is not None
-        self._placing[ref.id] = self._placing.get(ref.id, 0) + 1
         self._hosting.add((ref.id, name))
         try:
             body = {"world": name, "student": student, "domain_id": domain_id,
                     "launch": self.settings.launch, "launch_args": self.settings.launch_args}  # fmt: skip
             await self.workers.checked(ref, "POST", "/api/classroom/host", body=body)
         finally:
-            self._placing[ref.id] -= 1
             self._hosting.discard((ref.id, name))
 
     async def host(
