@@ -11,6 +11,8 @@ import logging
 from collections.abc import Iterator
 from typing import Any
 
+import yaml
+
 from server.msgs import Field, Message, get_type, type_names
 
 log = logging.getLogger("viewer.publisher")
@@ -29,6 +31,12 @@ def leaf_fields(msg_type: type[Message], prefix: str = "") -> Iterator[tuple[str
             yield path, field
         else:
             yield from leaf_fields(field.kind, path + ".")
+
+
+def flow_yaml(msg: dict[str, Any]) -> str:
+    """A message as ``ros2 topic pub`` takes it on one line: ``{x: 5.0, y: 5.0, z: 10.0}``."""
+    text: str = yaml.safe_dump(msg, default_flow_style=True, sort_keys=False, width=1_000_000)
+    return text.strip()
 
 
 def nest(values: dict[str, Any]) -> dict[str, Any]:
@@ -60,6 +68,10 @@ class PublisherPanel:
             self.type = gui.add_dropdown(
                 "Type", type_names(), initial_value="geometry_msgs/msg/Vector3", order=3.0
             )
+            # What the server holds, as viser delivers it: a browser sends one GUI update per 50 ms
+            # and keeps only the newest, so of two inputs changed within 50 ms only the second
+            # reaches the server. This line shows the message as it will go out.
+            self.preview = gui.add_markdown("", order=4.5)
             self.rate = gui.add_number("Rate (Hz)", 1.0, min=0.1, max=1000.0, step=0.1, order=5.0)
             self.enabled = gui.add_checkbox(
                 "Enabled", False, hint="publish at the rate while checked", order=6.0
@@ -116,6 +128,7 @@ class PublisherPanel:
         with self.fields_folder:
             for path, field in leaf_fields(msg_type):
                 self.inputs[path] = self._input(gui, path, field)
+        self.show_preview()
 
     def _input(self, gui: Any, path: str, field: Field) -> Any:
         kind = field.kind
@@ -170,8 +183,13 @@ class PublisherPanel:
         if self.enabled.value:
             self.enabled.value = False
 
+    def show_preview(self) -> None:
+        _, msg, _ = self.message()
+        self.preview.content = f"message: `{flow_yaml(msg)}` at {float(self.rate.value):g} Hz"
+
     def on_change(self) -> None:
-        """Fields or rate changed while enabled: the running publisher takes the new values."""
+        """Fields or rate changed: the preview shows them, and a running publisher takes them."""
+        self.show_preview()
         if self.publisher_id is None or self.publisher_id not in self.lab.publishers.items:
             return
         try:
