@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import json
 import time
 from typing import Any
 
-from fastapi import APIRouter, Request
+from fastapi import APIRouter, HTTPException, Request, status
+
+from server.transport.acl import process_config
 
 from .deps import LabDep, classroom_of, lab_for_request, token_of
 from .responses import responses
-from .schemas import Health
+from .schemas import Health, ZenohJoin
 
 # Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
 # handler would run in a worker thread and race the executor (timer heap, wake-up future).
@@ -44,6 +47,33 @@ async def health(request: Request) -> dict[str, Any]:
         "uptime_s": round(time.monotonic() - lab.started_at, 3),
         "zenoh": lab.zenoh.status() if lab.zenoh is not None else None,
         "zenoh_error": lab.zenoh_error,
+    }
+
+
+@router.get("/zenoh/join", response_model=ZenohJoin, responses=responses(404))
+async def zenoh_join(lab: LabDep) -> dict[str, Any]:
+    """Where and how a node process joins this lab's ROS graph on Zenoh: the router, the ROS domain
+    and, on a class server, the world's own login (its router lets each world's user into that
+    world's domain only). ``env`` is ready to export, for ``ros2lab run`` or a ROS 2 node on rmw_zenoh."""
+    link = lab.zenoh
+    if link is None:
+        why = (
+            f"its Zenoh session did not open: {lab.zenoh_error}"
+            if lab.zenoh_error
+            else "started with --no-zenoh"
+        )
+        raise HTTPException(status.HTTP_404_NOT_FOUND, f"this lab's graph is not on Zenoh ({why})")
+    login = link.settings.login
+    router = link.router_endpoint()
+    override = [f"connect/endpoints={json.dumps([router])}"]
+    if login is not None:
+        override += [f"{path}={value}" for path, value in process_config(login).items()]
+    return {
+        "router": router,
+        "domain_id": link.settings.domain_id,
+        "user": login.user if login is not None else None,
+        "password": login.password if login is not None else None,
+        "env": {"ROS_DOMAIN_ID": str(link.settings.domain_id), "ZENOH_CONFIG_OVERRIDE": ";".join(override)},
     }
 
 

@@ -30,7 +30,8 @@ _DESCRIPTIONS = {
     "Authorization: Bearer",
     403: "refused: another site's page may not write (Origin), or the token does not reach this "
     "(the wrong class code, another student's world, the instructor's controls)",
-    404: "no such topic, node, service, type, package, publisher, launch, bag, playback or world",
+    404: "no such topic, node, service, type, package, publisher, launch, bag, playback or world, "
+    "or no Zenoh graph",
     409: "the topic carries another type, the thing was destroyed, the bag exists or is still "
     "recording, or the name is taken",
     413: "the body is larger than the limit (64 KiB)",

@@ -65,11 +65,29 @@ class ZenohStatus(BaseModel):
     listen: list[str] = Field(description="where the app's router listens")
     connect: list[str] = Field(description="the router the app joined, in peer mode")
     domain_id: int
+    login: bool = Field(description="the router asks for a user and password: GET /api/zenoh/join gives them")
     zid: str = Field(description="the app's Zenoh session id")
     processes: int = Field(description="other processes in the graph now")
     sent: int = Field(description="samples the app put on Zenoh")
     received: int = Field(description="samples the app took from Zenoh")
     dropped_without_attachment: int = Field(description="samples refused: no rmw_zenoh attachment")
+
+
+class ZenohJoin(BaseModel):
+    """How a node process joins this lab's graph (a student's: their world's) on Zenoh."""
+
+    router: str = Field(examples=["tcp/127.0.0.1:7447"], description="the router to connect to")
+    domain_id: int = Field(description="the ROS_DOMAIN_ID of the graph")
+    user: str | None = Field(
+        description="the user the router asks for (a class server's: the world's own), or null"
+    )
+    password: str | None = Field(description="its password, or null")
+    env: dict[str, str] = Field(
+        description="the environment that makes ros2lab run, or a ROS 2 node on rmw_zenoh, join this graph",
+        examples=[
+            {"ROS_DOMAIN_ID": "3", "ZENOH_CONFIG_OVERRIDE": 'connect/endpoints=["tcp/127.0.0.1:7447"]'}
+        ],
+    )
 
 
 class Health(BaseModel):

@@ -213,6 +213,16 @@ def main(argv: list[str] | None = None) -> int:
               "fly the drone. Add --token auto (one lab behind a token) or --classroom (a world per student).",
               file=sys.stderr)  # fmt: skip
         return 2
+    wide_zenoh = (
+        [e for e in zenoh.listen if not is_loopback(e)]
+        if zenoh is not None and zenoh.mode == "router"
+        else []
+    )
+    if wide_zenoh and not (args.classroom or settings.token):
+        print(f"error: refusing to open the Zenoh router on {', '.join(wide_zenoh)} with no login: anyone who "
+              "reaches it could join the graph and fly the drone. Add --token auto (the router then asks every "
+              "session for the lab's login: GET /api/zenoh/join gives it) or --classroom.", file=sys.stderr)  # fmt: skip
+        return 2
     if args.classroom:  # each world joins the class's Zenoh router in a ROS domain of its own
         settings = dataclasses.replace(settings, foxglove_port=None, rosbridge_port=None)
     logging.basicConfig(
@@ -240,8 +250,8 @@ def main(argv: list[str] | None = None) -> int:
         domains = "a ROS domain per world (1, 2, ...)" if args.classroom else f"domain {zenoh.domain_id}"
         print(f"ROS graph on Zenoh ({where}, {domains})", flush=True)
         if wide:
-            print(f"note: Zenoh listens on {', '.join(wide)}: other machines can join this graph "
-                  "(see the README on opening it to a classroom)", flush=True)  # fmt: skip
+            print(f"note: Zenoh listens on {', '.join(wide)}: other machines with the login can join this graph "
+                  "(GET /api/zenoh/join with the token gives it; see the README)", flush=True)  # fmt: skip
     # viser prints a box with its own loopback port; the page is served on ours, so that box
     # would send a student to a page without the lab's keys and HUD. The app prints nothing else
     # through rich.

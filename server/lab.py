@@ -7,6 +7,7 @@ display, and step it by hand.
 from __future__ import annotations
 
 import asyncio
+import dataclasses
 import itertools
 import logging
 import time
@@ -40,6 +41,7 @@ from server.publishers import PublisherManager
 from server.service_calls import ServiceCaller
 from server.settings import Settings
 from server.topic_watch import TopicWatch
+from server.transport.config import ZenohSettings
 from server.transport.remote_graph import RemoteGraph
 
 log = logging.getLogger("lab")
@@ -140,6 +142,7 @@ class Lab:
         self.started_at = time.monotonic()
         self._spin_task: asyncio.Task[None] | None = None
         self.zenoh: Any = None  # server.transport.link.ZenohLink while the graph is on Zenoh
+        self._zenoh_logins: Any = None  # server.transport.acl.RouterLogins: a lab behind --token's router
         self.zenoh_error: str | None = None
         with self.bus.activate():
             self.api_node = ApiNode(settings.max_api_topics, self.reset_rocket)
@@ -175,10 +178,11 @@ class Lab:
         if self.settings.zenoh is not None:
             from server.transport.link import open_link
 
-            self.zenoh, self.zenoh_error = await open_link(self.bus, self.settings.zenoh)
+            self.zenoh, self.zenoh_error = await open_link(self.bus, self._zenoh_settings())
             if self.zenoh is not None:
+                zenoh = self.zenoh.settings
                 self.launcher.transport = ProcessTransport(
-                    self.zenoh.router_endpoint(), self.settings.zenoh.domain_id
+                    self.zenoh.router_endpoint(), zenoh.domain_id, zenoh.login
                 )
                 remote = self.zenoh.bridge.remote
                 self.launcher.on_process_start.append(
@@ -195,6 +199,20 @@ class Lab:
         else:
             self._spin_task = asyncio.create_task(self.executor.spin(), name="executor")
 
+    def _zenoh_settings(self) -> ZenohSettings:
+        """The graph's session; a lab behind ``--token`` that is the router logs every session in (its
+        node processes, and anyone given ``GET /api/zenoh/join``), as its HTTP port asks for the token."""
+        zenoh = self.settings.zenoh
+        assert zenoh is not None
+        if zenoh.mode != "router" or self.settings.token is None or self.settings.classroom:
+            return zenoh
+        from server.transport.acl import ClassAuth, RouterLogins
+
+        auth = ClassAuth(self.settings.token)
+        self._zenoh_logins = RouterLogins(auth)
+        extra = {**zenoh.extra, **self._zenoh_logins.config}
+        return dataclasses.replace(zenoh, extra=extra, login=auth.class_credentials())
+
     async def stop(self) -> None:
         self.stopped.set()
         if self.executors is not None:
@@ -210,6 +228,9 @@ class Lab:
         if self.zenoh is not None:
             self.zenoh.close()
             self.zenoh = None
+        if self._zenoh_logins is not None:
+            self._zenoh_logins.close()
+            self._zenoh_logins = None
         if self.display is not None:
             self.display.stop()
 

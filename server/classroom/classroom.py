@@ -24,6 +24,7 @@ from server.lab import Lab
 from server.limits import RateLimit
 from server.settings import Settings
 from server.tasks import cancel_and_wait
+from server.transport.acl import ClassAuth, Credentials, RouterLogins
 from server.transport.config import ZenohSettings, endpoint_host
 
 from .errors import ClassroomError
@@ -140,6 +141,7 @@ class Classroom:
         self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
         self._control: Any = None  # a worker's hello queryable (WorkerControl) and its session
         self._control_session: Any = None
+        self._logins: RouterLogins | None = None  # the router's user:password file, while it is open
         self._watch: asyncio.Task[None] | None = None  # the class server's hellos, or a worker's orphan check
         self.view: ClassView | None = None  # the instructor's 3D view of every world (a class server's)
         self._view_task: asyncio.Task[None] | None = None
@@ -216,6 +218,7 @@ class Classroom:
         if self.settings.worker is not None:
             from .worker import WorkerControl
 
+            zenoh = dataclasses.replace(zenoh, login=self.zenoh_auth.class_credentials())
             self._control_session = await asyncio.to_thread(open_session, zenoh)
             self._control = WorkerControl(
                 self._control_session, self.settings.worker, self._load, self.heard_from_class
@@ -224,6 +227,9 @@ class Classroom:
             return
         if zenoh.mode != "router":
             return
+        # The router logs every session in and holds each world's to its own ROS domain.
+        self._logins = RouterLogins(self.zenoh_auth)
+        zenoh = dataclasses.replace(zenoh, extra={**zenoh.extra, **self._logins.config})
         try:
             self._router = await asyncio.to_thread(open_session, zenoh)
         except TransportError as exc:
@@ -405,6 +411,16 @@ class Classroom:
         return {"worlds": len(hosted) + len(self._starting), "max_worlds": self.settings.max_worlds,
                 "hosted": hosted}  # fmt: skip
 
+    @property
+    def zenoh_auth(self) -> ClassAuth:
+        """The class's Zenoh logins, from the instructor's token (a worker holds it as its class token)."""
+        worker = self.settings.worker
+        return ClassAuth(worker.class_token if worker is not None else self.instructor_token)
+
+    def world_login(self, domain_id: int) -> Credentials | None:
+        """The user and password of a world's graph and node processes, if the class is on Zenoh."""
+        return self.zenoh_auth.world_credentials(domain_id) if self.router_endpoint() is not None else None
+
     def router_endpoint(self) -> str | None:
         """Where worlds and node processes connect: the class's router, or the one it joined."""
         zenoh = self.settings.zenoh
@@ -435,8 +451,9 @@ class Classroom:
         if endpoint is not None:
             config_file = self.settings.zenoh.config_file if self.settings.zenoh is not None else None
             zenoh = ZenohSettings(
-                mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file
-            )
+                mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file,
+                login=self.zenoh_auth.world_credentials(domain_id),
+            )  # fmt: skip
         file, args = launch if launch is not None else (self.settings.launch, self.settings.launch_args)
         return dataclasses.replace(
             self.settings,
@@ -679,3 +696,6 @@ class Classroom:
             if session is not None:
                 session.close()
         self._router = self._control_session = None
+        if self._logins is not None:
+            self._logins.close()
+            self._logins = None

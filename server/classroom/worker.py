@@ -1,6 +1,7 @@
 """``ros2lab world-worker --connect tcp/HOST:7447``: host worlds for a class server (issue 13).
 
-The worker joins the class's Zenoh router, serves its own HTTP API (loopback by default; every
+The worker joins the class's Zenoh router (logged in as the class, with a password derived from
+the instructor's token: the router lets nobody else in), serves its own HTTP API (loopback by default; every
 call needs a token derived from the instructor's), and answers the class server's hello with
 where that API is and how many worlds it hosts. Its worlds join the same router in the ROS
 domains the class server gives them, so a student's node processes find them as before.
@@ -100,6 +101,25 @@ def _worker_id(asked: str | None) -> str:
     return "".join(c if c.isalnum() or c in "-_" else "_" for c in wid)[:64] or f"worker-{os.getpid()}"
 
 
+def _router_refuses(endpoint: str, class_token: str) -> str | None:
+    """Why the class's router would not let this worker in (None: it does), before anything starts."""
+    from server.transport.acl import ClassAuth
+    from server.transport.session import TransportError, open_session
+
+    settings = ZenohSettings(
+        mode="client", listen=(), connect=(endpoint,), login=ClassAuth(class_token).class_credentials()
+    )
+    try:
+        session: Any = open_session(settings)  # zenoh's stubs leave close() untyped
+        session.close()
+    except TransportError as exc:
+        return (
+            f"{exc}. Is the class server running there, and {TOKEN_ENV} the instructor's token? Its "
+            "router lets in only the class's own workers."
+        )
+    return None
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -126,6 +146,11 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: cannot listen on {args.host}:{args.port}: {exc.strerror}", file=sys.stderr)
         return 2
     port = int(sock.getsockname()[1])
+    refused = _router_refuses(args.connect, class_token)
+    if refused:
+        sock.close()
+        print(f"error: {refused}", file=sys.stderr)
+        return 2
     shown = f"[{advertise}]" if ":" in advertise else advertise
     worker = WorkerSettings(
         id=_worker_id(args.worker_id), url=f"http://{shown}:{port}", class_token=class_token,

@@ -17,6 +17,7 @@ from typing import Any
 
 from server.packages import ExecutableNotFoundError, PackageIndex, PackageNotFoundError
 from server.processes.command import node_command
+from server.transport.acl import Credentials
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT, domain_id_from_env
 
 from .client import CliError, LabClient
@@ -24,18 +25,21 @@ from .client import CliError, LabClient
 STOP_GRACE_S = 10.0
 
 
-def graph_of(client: LabClient) -> tuple[str, int]:
-    """The lab's router endpoint and ROS domain, from its health report (on a class server with
-    ROS2LAB_TOKEN: the student's world's); ROS_DOMAIN_ID, if set, wins; defaults without a lab."""
+def graph_of(client: LabClient) -> tuple[str, int, Credentials | None]:
+    """The lab's router endpoint, ROS domain and login (on a class server with ROS2LAB_TOKEN: the
+    student's world's); ROS_DOMAIN_ID, if set, wins; rmw_zenoh's defaults without a lab."""
     try:
-        zenoh = client.get("/api/health").get("zenoh") or {}
+        join = client.get("/api/zenoh/join")
     except CliError:
-        zenoh = {}
-    endpoint = zenoh.get("router")
-    domain = zenoh.get("domain_id")
+        join = {}
+    endpoint = join.get("router")
+    domain = join.get("domain_id")
+    user, password = join.get("user"), join.get("password")
+    login = Credentials(user, password) if isinstance(user, str) and isinstance(password, str) else None
     return (
         str(endpoint) if endpoint else DEFAULT_ROUTER_ENDPOINT,
         domain_id_from_env(default=domain if isinstance(domain, int) else 0),
+        login,
     )
 
 
@@ -50,8 +54,8 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
         print(f"No executable found: {exc}", file=sys.stderr)
         return 1
     target: Path | str = exe.file if exe.file is not None else str(exe.builtin)
-    router, domain_id = graph_of(client)
-    command = node_command(target, list(args.argv), router=router, domain_id=domain_id)
+    router, domain_id, login = graph_of(client)
+    command = node_command(target, list(args.argv), router=router, domain_id=domain_id, login=login)
     child = subprocess.Popen(command.argv, env=command.env, process_group=0)
     interrupted = False
     while True:

@@ -12,6 +12,7 @@ from server.bus.faults import is_node_fault
 from server.packages import Executable, PackageIndex
 from server.processes.command import node_command, ros_args
 from server.processes.supervisor import ProcessNode, Supervisor
+from server.transport.acl import Credentials
 
 from .description import LaunchDescription, NodeAction
 from .respawn import RespawnBackoff, RespawnPolicy
@@ -39,6 +40,7 @@ class ProcessTransport:
 
     router: str
     domain_id: int = 0
+    login: Credentials | None = None  # the user and password the router asks for (a class's)
 
 
 def parse_launch(
@@ -100,7 +102,7 @@ class Launcher:
         target = exe.file if exe.file is not None else str(exe.builtin)
         command = node_command(
             target, ros_args(action.name, action.namespace, action.parameters, action.remappings),
-            router=self.transport.router, domain_id=self.transport.domain_id,
+            router=self.transport.router, domain_id=self.transport.domain_id, login=self.transport.login,
         )  # fmt: skip
         entry.process = self.supervisor.start(
             command, action.exec, screen=action.output in SCREEN_OUTPUTS, node_name=action.name

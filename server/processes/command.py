@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from server.transport.acl import Credentials, process_config
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT
 
 from .runner import PARENT_ENV
@@ -56,6 +57,7 @@ def node_command(
     *,
     router: str | None = None,
     domain_id: int = 0,
+    login: Credentials | None = None,
     env: Mapping[str, str] | None = None,
 ) -> NodeCommand:
     """Run ``target`` (a student's file, or ``module:Class`` of a built-in node) in its own process,
@@ -66,6 +68,8 @@ def node_command(
     )
     zid = new_zid()
     overrides = [f'connect/endpoints=["{router or DEFAULT_ROUTER_ENDPOINT}"]', f'id="{zid}"']
+    if login is not None:  # a class's router logs its sessions in
+        overrides += [f"{path}={value}" for path, value in process_config(login).items()]
     base = dict(os.environ if env is None else env)
     inherited = base.get("ZENOH_CONFIG_OVERRIDE", "")
     child_env = {

@@ -5,7 +5,10 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
+
+if TYPE_CHECKING:
+    from .acl import Credentials
 
 DEFAULT_ROUTER_PORT = 7447
 DEFAULT_ROUTER_ENDPOINT = f"tcp/127.0.0.1:{DEFAULT_ROUTER_PORT}"
@@ -21,6 +24,7 @@ class ZenohSettings:
     domain_id: int = 0
     config_file: Path | None = None  # a Zenoh JSON5 config (TLS, user/password ...), applied first
     extra: dict[str, str] = field(default_factory=dict)  # more config keys: path → JSON5 value
+    login: Credentials | None = None  # the user and password the router asks for (a class's)
 
     def __post_init__(self) -> None:
         if not 0 <= self.domain_id <= 232:

@@ -47,6 +47,7 @@ class ZenohLink:
             "listen": list(self.settings.listen) if self.settings.mode == "router" else [],
             "connect": list(self.settings.connect),
             "domain_id": self.settings.domain_id,
+            "login": self.settings.login is not None,
             "zid": self.bridge.zid,
             "processes": len(self.bridge.remote.sessions()),
             "sent": self.bridge.stats.sent,

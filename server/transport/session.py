@@ -42,7 +42,8 @@ def build_config(settings: ZenohSettings) -> zenoh.Config:
     config.insert_json5("scouting/multicast/enabled", "false")
     config.insert_json5("listen/endpoints", json.dumps(list(settings.listen)))
     config.insert_json5("connect/endpoints", json.dumps(list(settings.connect)))
-    for path, value in settings.extra.items():
+    logins = settings.login.config() if settings.login is not None else {}
+    for path, value in {**logins, **settings.extra}.items():
         config.insert_json5(path, value)
     return config
 

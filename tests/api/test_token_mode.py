@@ -93,3 +93,11 @@ def test_listening_beyond_loopback_without_a_login_is_refused(
     assert main(["--host", host, "--no-zenoh"]) == 2
     err = capsys.readouterr().err
     assert f"refusing to listen on {host}" in err and "--token auto" in err and "--classroom" in err
+
+
+def test_a_zenoh_router_beyond_loopback_without_a_login_is_refused(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["--zenoh-listen", "tcp/0.0.0.0:7447"]) == 2
+    err = capsys.readouterr().err
+    assert "refusing to open the Zenoh router on tcp/0.0.0.0:7447" in err and "--token auto" in err

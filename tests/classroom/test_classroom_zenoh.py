@@ -8,13 +8,19 @@ import os
 import signal
 import subprocess
 import sys
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import httpx
 import pytest
-from support.app import App, end
+import zenoh
+from support.app import App, end, instructor_token
+
+from server.transport.acl import ClassAuth, Credentials
+from server.transport.config import ZenohSettings
+from server.transport.session import build_config
 
 CODE = "ZEN042"
 TALKER = """
@@ -63,6 +69,17 @@ def get(app: App, token: str, path: str) -> httpx.Response:
     return httpx.get(app.url + path, headers={"Authorization": f"Bearer {token}"}, timeout=5.0)
 
 
+def login_of(app: App, token: str) -> Credentials:
+    join = get(app, token, "/api/zenoh/join").json()
+    return Credentials(join["user"], join["password"])
+
+
+def open_on(app: App, login: Credentials | None) -> zenoh.Session:
+    """A client of the class's router, logged in as ``login`` (or not at all)."""
+    settings = ZenohSettings(mode="client", listen=(), connect=(f"tcp/{app.router}",), login=login)
+    return zenoh.open(build_config(settings))
+
+
 def test_each_world_has_a_ros_domain_of_its_own(classroom: tuple[App, Path, dict[str, str]]) -> None:
     app, _root, tokens = classroom
     domains = {w: get(app, t, "/api/health").json()["zenoh"]["domain_id"] for w, t in tokens.items()}
@@ -96,3 +113,64 @@ def test_a_students_node_process_joins_their_world_only(classroom: tuple[App, Pa
             end(run)
     app.wait_for(lambda: "/talker" not in {n["name"] for n in get(app, tokens["ada"], "/api/nodes").json()},
                  "the talker gone from Ada's world once it stopped")  # fmt: skip
+
+
+def test_a_student_gets_their_worlds_login_and_the_environment_that_uses_it(
+    classroom: tuple[App, Path, dict[str, str]],
+) -> None:
+    app, _root, tokens = classroom
+    ada, bob = (get(app, tokens[w], "/api/zenoh/join").json() for w in ("ada", "bob"))
+    assert (ada["router"], ada["domain_id"], ada["user"]) == (f"tcp/{app.router}", 1, "ros2lab-world-1")
+    assert (bob["domain_id"], bob["user"]) == (2, "ros2lab-world-2")
+    assert len({ada["password"], bob["password"], tokens["ada"], tokens["bob"]}) == 4
+    assert ada["env"]["ROS_DOMAIN_ID"] == "1"
+    override = ada["env"]["ZENOH_CONFIG_OVERRIDE"]
+    assert f'transport/auth/usrpwd/password="{ada["password"]}"' in override and 'mode="client"' in override
+    assert get(app, tokens["ada"], "/api/health").json()["zenoh"]["login"] is True
+    assert httpx.get(app.url + "/api/zenoh/join", timeout=5.0).status_code == 401  # no token, no login
+
+
+def test_the_class_router_lets_in_no_one_without_a_login(classroom: tuple[App, Path, dict[str, str]]) -> None:
+    app, _root, tokens = classroom
+    with pytest.raises(zenoh.ZError):
+        open_on(app, None)
+    wrong = Credentials(login_of(app, tokens["ada"]).user, "0" * 40)
+    with pytest.raises(zenoh.ZError):
+        open_on(app, wrong)
+
+
+def test_a_worlds_login_reaches_its_own_domain_only(classroom: tuple[App, Path, dict[str, str]]) -> None:
+    app, _root, tokens = classroom
+    ada, bob = login_of(app, tokens["ada"]), login_of(app, tokens["bob"])
+    heard: list[str] = []
+    with open_on(app, ClassAuth(instructor_token(app.log_tail(10**6))).class_credentials()) as watcher:
+        subscriber = watcher.declare_subscriber("**", lambda sample: heard.append(str(sample.key_expr)))
+        with open_on(app, ada) as ada_session, open_on(app, bob) as bob_session:
+            # Each world's graph is visible to its own login, and only to it.
+            assert any(str(r.ok.key_expr).startswith("@ros2_lv/1/") for r in ada_session.liveliness().get("@ros2_lv/1/**", timeout=5) if r.ok)  # fmt: skip
+            assert any(str(r.ok.key_expr).startswith("@ros2_lv/2/") for r in bob_session.liveliness().get("@ros2_lv/2/**", timeout=5) if r.ok)  # fmt: skip
+            assert [r for r in ada_session.liveliness().get("@ros2_lv/2/**", timeout=2) if r.ok] == []
+            # Samples in order through the one router: Ada's put in Bob's domain, then a marker in
+            # her own. The watcher hears the marker, and nothing before it.
+            ada_session.put("2/chatter/x", b"from ada")
+            ada_session.put("1/chatter/marker", b"marker")
+            bob_session.put("2/chatter/own", b"from bob")
+            deadline = time.monotonic() + 10
+            while not {"1/chatter/marker", "2/chatter/own"} <= set(heard) and time.monotonic() < deadline:
+                time.sleep(0.02)
+        subscriber.undeclare()
+        assert "1/chatter/marker" in heard and "2/chatter/own" in heard, heard
+        assert "2/chatter/x" not in heard
+        # Nor does Ada hear Bob's domain: her subscription to it is declared before the one to her
+        # own, so once her own hears the watcher, the router has refused the other.
+        ada_heard: list[str] = []
+        with open_on(app, ada) as ada_session:
+            for keys in ("2/**", "1/**"):
+                ada_session.declare_subscriber(keys, lambda sample: ada_heard.append(str(sample.key_expr)))
+            deadline = time.monotonic() + 10
+            while "1/chatter/watcher" not in ada_heard and time.monotonic() < deadline:
+                watcher.put("2/chatter/watcher", b"for bob")
+                watcher.put("1/chatter/watcher", b"for ada")
+                time.sleep(0.05)
+    assert "1/chatter/watcher" in ada_heard
+    assert not [key for key in ada_heard if key.startswith("2/")], ada_heard

@@ -2,8 +2,8 @@
 lowest (itself or a worker on its Zenoh router) and keeps serving every student's calls; a world
 on a worker answers through the class server like a local one.
 
-A class server, two workers and a stranger (a worker started with another token) run as
-processes of their own on loopback, and are ended by their ids.
+A class server, two workers and a stranger (a worker started with another token, which the class's
+router does not let in) run as processes of their own on loopback, and are ended by their ids.
 """
 
 from __future__ import annotations
@@ -26,6 +26,7 @@ import zenoh
 from support.app import App, WorldWorker, instructor_token, wait_for_workers
 
 from server.classroom.workers import CONTROL_PREFIX, hello_request, worker_api_token
+from server.transport.acl import ClassAuth, Credentials
 from server.transport.config import ZenohSettings
 from server.transport.session import build_config
 
@@ -99,20 +100,33 @@ def test_the_class_server_trusts_only_workers_that_know_its_token(klass: Class) 
     assert {w["id"] for w in listed["workers"]} == {"wa", "wb"}  # not the stranger
     assert listed["local"]["max_worlds"] == 1
     assert "ros2lab world-worker --connect" in klass.app.log_tail(10**6)  # the banner says how to add one
+    # The stranger never got in: the class's router refused its login, and it said why.
+    stranger = klass.workers["stranger"]
+    assert stranger.proc.wait(timeout=30) == 2
+    assert "ROS2LAB_TOKEN the instructor's token" in stranger.log_tail(), stranger.log_tail()
+
+
+def hellos(klass: Class, login: Credentials, payload: bytes) -> list[Any]:
+    """The answers to a hello asked on the class's router, logged in as ``login``."""
+    settings = ZenohSettings(mode="client", listen=(), connect=(f"tcp/{klass.app.router}",), login=login)
+    with zenoh.open(build_config(settings)) as session:
+        return [r.ok for r in session.get(f"{CONTROL_PREFIX}/*", payload=payload, timeout=HELLO_S) if r.ok]
 
 
 def test_a_hello_not_sealed_with_the_class_token_gets_no_answer_from_any_worker(klass: Class) -> None:
-    # A stranger on the router learns nothing: not where the workers' APIs are, nor their load.
-    config = build_config(ZenohSettings(mode="client", listen=(), connect=(f"tcp/{klass.app.router}",)))
-    with zenoh.open(config) as session:
-        plain = json.dumps({"op": "hello", "nonce": "stranger"}).encode()
-        strangers = list(session.get(f"{CONTROL_PREFIX}/*", payload=plain, timeout=HELLO_S))
-        sealed = hello_request(
-            klass.instructor, "genuine"
-        )  # the same question, sealed as the class server does
-        genuine = [r.ok for r in session.get(f"{CONTROL_PREFIX}/*", payload=sealed, timeout=HELLO_S) if r.ok]
-    assert [r for r in strangers if r.ok is not None] == []
-    assert sorted(json.loads(r.payload.to_bytes())["id"] for r in genuine) == ["wa", "wb"]
+    # Even logged in as the class, an unsealed hello learns nothing: not where the workers' APIs
+    # are, nor their load. The same question sealed as the class server seals it is answered.
+    plain = json.dumps({"op": "hello", "nonce": "stranger"}).encode()
+    sealed = hello_request(klass.instructor, "genuine")
+    class_login = ClassAuth(klass.instructor).class_credentials()
+    assert hellos(klass, class_login, plain) == []
+    assert sorted(json.loads(r.payload.to_bytes())["id"] for r in hellos(klass, class_login, sealed)) == [
+        "wa",
+        "wb",
+    ]
+    # A student's process, logged in as their world, cannot even ask: the router keeps it in its domain.
+    join = klass.get("/api/zenoh/join", klass.tokens["ada"]).json()
+    assert hellos(klass, Credentials(join["user"], join["password"]), sealed) == []
 
 
 def test_new_worlds_go_where_the_load_is_lowest(klass: Class) -> None:
