@@ -24,7 +24,7 @@ from server.lab import Lab
 from server.limits import RateLimit
 from server.settings import Settings
 from server.tasks import cancel_and_wait
-from server.transport.acl import ClassAuth, Credentials, RouterLogins
+from server.transport.acl import ClassAuth, RouterLogins
 from server.transport.config import ZenohSettings, endpoint_host
 
 from .errors import ClassroomError
@@ -416,10 +416,6 @@ class Classroom:
         """The class's Zenoh logins, from the instructor's token (a worker holds it as its class token)."""
         worker = self.settings.worker
         return ClassAuth(worker.class_token if worker is not None else self.instructor_token)
-
-    def world_login(self, domain_id: int) -> Credentials | None:
-        """The user and password of a world's graph and node processes, if the class is on Zenoh."""
-        return self.zenoh_auth.world_credentials(domain_id) if self.router_endpoint() is not None else None
 
     def router_endpoint(self) -> str | None:
         """Where worlds and node processes connect: the class's router, or the one it joined."""
