@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import json
 import time
 from typing import Any
 
 from fastapi import APIRouter, HTTPException, Request, status
 
-from server.transport.acl import process_config
+from server.processes.command import graph_overrides
 
 from .deps import LabDep, classroom_of, lab_for_request, token_of
 from .responses import responses
@@ -65,9 +64,7 @@ async def zenoh_join(lab: LabDep) -> dict[str, Any]:
         raise HTTPException(status.HTTP_404_NOT_FOUND, f"this lab's graph is not on Zenoh ({why})")
     login = link.settings.login
     router = link.router_endpoint()
-    override = [f"connect/endpoints={json.dumps([router])}"]
-    if login is not None:
-        override += [f"{path}={value}" for path, value in process_config(login).items()]
+    override = graph_overrides(router, login)
     return {
         "router": router,
         "domain_id": link.settings.domain_id,

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import signal
 import statistics
 import subprocess
 import sys
@@ -28,9 +29,10 @@ import zenoh
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from live_server import end, free_port
 from machine import machine_info, save_results
 
-from server.transport.acl import ClassAuth, Credentials, RouterLogins
+from server.transport.acl import ClassAuth, Credentials
 from server.transport.config import ZenohSettings
 from server.transport.session import build_config, open_session
 
@@ -42,40 +44,30 @@ ROUND_TIMEOUT_S = 120.0
 
 def serve_router(kind: str, endpoint: str) -> None:
     """The child: a router, plain or as a class server opens it, until stdin closes."""
-    settings = ZenohSettings(listen=(endpoint,))
-    logins = None
-    if kind == "class":
-        logins = RouterLogins(ClassAuth(SECRET))
-        settings = ZenohSettings(listen=(endpoint,), extra=logins.config)
-    session = open_session(settings)
+    session = open_session(
+        ZenohSettings(listen=(endpoint,), router_logins=ClassAuth(SECRET) if kind == "class" else None)
+    )
     print("ready", flush=True)
-    sys.stdin.read()
-    session.close()
-    if logins is not None:
-        logins.close()
-
-
-def free_endpoint() -> str:
-    import socket
-
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return f"tcp/127.0.0.1:{probe.getsockname()[1]}"
+    try:
+        signal.pause()  # until the bench's Ctrl-C (live_server.end)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        session.close()
 
 
 def start_router(kind: str) -> tuple[subprocess.Popen[str], str]:
-    endpoint = free_endpoint()
+    endpoint = f"tcp/127.0.0.1:{free_port()}"
     child = subprocess.Popen(
-        [sys.executable, __file__, "--serve-router", kind, endpoint],
-        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
-    )  # fmt: skip
+        [sys.executable, __file__, "--serve-router", kind, endpoint], stdout=subprocess.PIPE, text=True
+    )
     assert child.stdout is not None
     deadline = time.monotonic() + READY_S
     line = ""
     while time.monotonic() < deadline and not line:
         line = child.stdout.readline().strip()
     if line != "ready":
-        child.kill()
+        end(child)
         raise SystemExit(f"the {kind} router did not start")
     return child, endpoint
 
@@ -133,22 +125,18 @@ def main() -> None:
         parser.error("--messages 1..1e6, --rounds 1..50, --size 1..1 MiB")
     info = machine_info()
     print(json.dumps(info), flush=True)
-    routers = {kind: start_router(kind) for kind in ("plain", "class")}
+    routers: dict[str, tuple[subprocess.Popen[str], str]] = {}
     login = {"plain": None, "class": ClassAuth(SECRET).world_credentials(1)}
     rates: dict[str, list[float]] = {"plain": [], "class": []}
     try:
+        for kind in ("plain", "class"):
+            routers[kind] = start_router(kind)
         for _ in range(args.rounds):
             for kind, (_child, endpoint) in routers.items():
                 rates[kind].append(one_round(endpoint, login[kind], args.messages, args.size))
     finally:
         for child, _endpoint in routers.values():
-            assert child.stdin is not None
-            child.stdin.close()
-            try:
-                child.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                child.kill()
-                child.wait()
+            end(child)
     medians = {kind: statistics.median(r) for kind, r in rates.items()}
     results = {
         "machine": info,

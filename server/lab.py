@@ -142,7 +142,6 @@ class Lab:
         self.started_at = time.monotonic()
         self._spin_task: asyncio.Task[None] | None = None
         self.zenoh: Any = None  # server.transport.link.ZenohLink while the graph is on Zenoh
-        self._zenoh_logins: Any = None  # server.transport.acl.RouterLogins: a lab behind --token's router
         self.zenoh_error: str | None = None
         with self.bus.activate():
             self.api_node = ApiNode(settings.max_api_topics, self.reset_rocket)
@@ -206,12 +205,10 @@ class Lab:
         assert zenoh is not None
         if zenoh.mode != "router" or self.settings.token is None or self.settings.classroom:
             return zenoh
-        from server.transport.acl import ClassAuth, RouterLogins
+        from server.transport.acl import ClassAuth
 
         auth = ClassAuth(self.settings.token)
-        self._zenoh_logins = RouterLogins(auth)
-        extra = {**zenoh.extra, **self._zenoh_logins.config}
-        return dataclasses.replace(zenoh, extra=extra, login=auth.class_credentials())
+        return dataclasses.replace(zenoh, router_logins=auth, login=auth.class_credentials())
 
     async def stop(self) -> None:
         self.stopped.set()
@@ -228,9 +225,6 @@ class Lab:
         if self.zenoh is not None:
             self.zenoh.close()
             self.zenoh = None
-        if self._zenoh_logins is not None:
-            self._zenoh_logins.close()
-            self._zenoh_logins = None
         if self.display is not None:
             self.display.stop()
 

@@ -24,7 +24,7 @@ from server.lab import Lab
 from server.limits import RateLimit
 from server.settings import Settings
 from server.tasks import cancel_and_wait
-from server.transport.acl import ClassAuth, RouterLogins
+from server.transport.acl import ClassAuth
 from server.transport.config import ZenohSettings, endpoint_host
 
 from .errors import ClassroomError
@@ -141,7 +141,6 @@ class Classroom:
         self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
         self._control: Any = None  # a worker's hello queryable (WorkerControl) and its session
         self._control_session: Any = None
-        self._logins: RouterLogins | None = None  # the router's user:password file, while it is open
         self._watch: asyncio.Task[None] | None = None  # the class server's hellos, or a worker's orphan check
         self.view: ClassView | None = None  # the instructor's 3D view of every world (a class server's)
         self._view_task: asyncio.Task[None] | None = None
@@ -228,8 +227,7 @@ class Classroom:
         if zenoh.mode != "router":
             return
         # The router logs every session in and holds each world's to its own ROS domain.
-        self._logins = RouterLogins(self.zenoh_auth)
-        zenoh = dataclasses.replace(zenoh, extra={**zenoh.extra, **self._logins.config})
+        zenoh = dataclasses.replace(zenoh, router_logins=self.zenoh_auth)
         try:
             self._router = await asyncio.to_thread(open_session, zenoh)
         except TransportError as exc:
@@ -692,6 +690,3 @@ class Classroom:
             if session is not None:
                 session.close()
         self._router = self._control_session = None
-        if self._logins is not None:
-            self._logins.close()
-            self._logins = None

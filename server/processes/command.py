@@ -51,6 +51,15 @@ def new_zid() -> str:
     return ("1" + digits[1:]) if digits[0] == "0" else digits
 
 
+def graph_overrides(router: str, login: Credentials | None) -> list[str]:
+    """``ZENOH_CONFIG_OVERRIDE`` entries that join a lab's graph: its router and, if the router asks
+    for one, the login (a class's node process is then a client of the router only)."""
+    entries = [f"connect/endpoints={json.dumps([router])}"]
+    if login is not None:
+        entries += [f"{path}={value}" for path, value in process_config(login).items()]
+    return entries
+
+
 def node_command(
     target: Path | str,
     args: list[str],
@@ -67,9 +76,7 @@ def node_command(
         [*runner, str(target), *args] if isinstance(target, Path) else [*runner, "--builtin", target, *args]
     )
     zid = new_zid()
-    overrides = [f'connect/endpoints=["{router or DEFAULT_ROUTER_ENDPOINT}"]', f'id="{zid}"']
-    if login is not None:  # a class's router logs its sessions in
-        overrides += [f"{path}={value}" for path, value in process_config(login).items()]
+    overrides = [*graph_overrides(router or DEFAULT_ROUTER_ENDPOINT, login), f'id="{zid}"']
     base = dict(os.environ if env is None else env)
     inherited = base.get("ZENOH_CONFIG_OVERRIDE", "")
     child_env = {

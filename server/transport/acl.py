@@ -127,7 +127,8 @@ class ClassAuth:
 
 class RouterLogins:
     """The dictionary file a router reads its logins from (mode 0600, removed on close), and the
-    router's config keys that turn authentication and access control on."""
+    router's config keys that turn authentication and access control on. Zenoh reads the file
+    while the router opens, so ``open_session`` removes it as soon as the router is open."""
 
     def __init__(self, auth: ClassAuth) -> None:
         self._dir = tempfile.mkdtemp(prefix="ros2lab-zenoh-")
@@ -144,3 +145,9 @@ class RouterLogins:
         self.path.unlink(missing_ok=True)
         with contextlib.suppress(OSError):
             os.rmdir(self._dir)
+
+    def __enter__(self) -> RouterLogins:
+        return self
+
+    def __exit__(self, *_: object) -> None:
+        self.close()

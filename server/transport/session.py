@@ -7,11 +7,13 @@ unless an endpoint says so.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import socket
 
 import zenoh
 
+from .acl import RouterLogins
 from .config import ZenohSettings, endpoint_host
 
 
@@ -54,7 +56,12 @@ def open_session(settings: ZenohSettings) -> zenoh.Session:
         for endpoint in settings.listen:
             _check_port_free(endpoint)
     try:
-        return zenoh.open(build_config(settings))
+        if settings.router_logins is None:
+            return zenoh.open(build_config(settings))
+        # Zenoh reads the login file as the router opens: it exists only for that moment.
+        with RouterLogins(settings.router_logins) as logins:
+            extra = {**settings.extra, **logins.config}
+            return zenoh.open(build_config(dataclasses.replace(settings, extra=extra)))
     except zenoh.ZError as exc:
         where = ", ".join(settings.listen if settings.mode == "router" else settings.connect) or "nowhere"
         raise TransportError(f"Zenoh could not open a {settings.mode} session on {where}: {exc}") from None
