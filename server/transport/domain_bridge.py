@@ -1,0 +1,318 @@
+"""Every world's topics in the class's own ROS domain, under the world's name: ``/ada/uav/sensors/gps``
+there is world ada's ``/uav/sensors/gps``. ROS 2's ``domain_bridge`` with a namespace remap, run
+on the class server's Zenoh session.
+
+- Worlds stay ROS domains of their own, which the router's access control keeps apart; only the
+  class's login reaches the class domain, so this is the instructor's view of the whole class
+  (their ROS 2 tools, or ``ros2lab run`` with the instructor's token).
+- Each topic a world publishes gets a publisher there (a liveliness token of node
+  ``/<world>/domain_bridge``, the world's type, hash and QoS). Its samples cross only while
+  something in the class domain subscribes (Zenoh's matching status): only then does the bridge
+  subscribe in the world, so a world nobody watches costs nothing.
+- Each topic a world subscribes gets a subscription there; what is published on it in the class
+  domain goes into the world (``ros2 topic pub /ada/uav/input/position ...`` flies ada's drone).
+- Samples cross as bytes, so no type needs to be known; each gets a new rmw_zenoh attachment (the
+  bridge's own GID and sequence numbers, the source timestamp kept), and one without an
+  attachment is dropped, as rmw_zenoh drops it. Services are not bridged.
+- Declarations happen on the bridge's own thread, which brings what is declared in line with what
+  the graph asks for; Zenoh's threads only record a change or pass a sample on (congestion
+  control DROP: a slow watcher never holds anything up). What one world's graph can make the
+  bridge declare is bounded.
+"""
+
+from __future__ import annotations
+
+import itertools
+import logging
+import threading
+import time
+from collections import Counter
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+import zenoh
+
+from .attachment import Attachment
+from .keys import ADMIN_SPACE, EntityKind, EntityToken, QoS, data_key
+
+log = logging.getLogger("transport.domain_bridge")
+NODE_NAME = "domain_bridge"
+MAX_TOKENS_PER_DOMAIN = 4096  # a world's graph tokens the bridge reads; more are ignored
+MAX_ROUTES_PER_WORLD = 512  # topics bridged for one world
+
+
+@dataclass(frozen=True)
+class Route:
+    """One topic of one world, and which way it crosses: a world's publisher (PUBLISHER) crosses out
+    into the class domain, a world's subscription (SUBSCRIPTION) takes what the class domain sends."""
+
+    domain_id: int
+    kind: EntityKind
+    topic: str
+    dds_type: str
+    type_hash: str
+
+
+@dataclass
+class BridgeStats:
+    out: int = 0  # samples from a world into the class domain
+    into: int = 0  # samples from the class domain into a world
+    dropped: int = 0  # without rmw_zenoh's attachment, or a put that failed
+
+
+@dataclass
+class _Mirror:
+    route: Route
+    namespace: str  # /<world>
+    token: EntityToken  # in the class domain
+    handle: Any  # its liveliness token
+    class_side: Any  # publisher (out) or subscriber (into) in the class domain
+    world_side: Any = None  # subscriber (out, while matched) or publisher (into) in the world
+    matching: bool = False
+    seq: Iterator[int] = field(default_factory=lambda: itertools.count(1))
+    listener: Any = None
+
+    @property
+    def gid(self) -> bytes:
+        return self.token.gid
+
+
+class DomainBridge:
+    """Mirrors the worlds ``set_world`` names into ``class_domain`` until ``close``."""
+
+    def __init__(self, session: zenoh.Session, class_domain: int) -> None:
+        self.session: Any = session
+        self.class_domain = class_domain
+        self.zid = str(session.zid())
+        self.stats = BridgeStats()
+        self._lock = threading.Lock()  # guards what Zenoh's threads and the callers change
+        self._worlds: dict[int, str] = {}  # ROS domain → world name
+        self._endpoints: dict[str, tuple[Route, QoS]] = {}  # token key → what it asks to bridge
+        self._per_domain: Counter[int] = Counter()
+        self._ignored: set[int] = set()  # domains over a limit, told once
+        self._mirrors: dict[Route, _Mirror] = {}  # the bridge thread's alone
+        self._nodes: dict[int, tuple[str, Any, int]] = {}  # domain → namespace, node token, node id
+        self._ids = itertools.count(1)
+        self._wake = threading.Event()
+        self._closed = False
+        self._graph: Any = self.session.liveliness().declare_subscriber(
+            f"{ADMIN_SPACE}/**", self._on_token, history=True
+        )
+        self._thread = threading.Thread(target=self._run, name="domain-bridge", daemon=True)
+        self._thread.start()
+
+    # -- what callers change ----------------------------------------------------------------
+    def set_world(self, domain_id: int, name: str) -> None:
+        """World ``name`` runs in ``domain_id``: show it as ``/<name>``."""
+        if domain_id == self.class_domain:
+            raise ValueError("a world cannot share the class's own domain")
+        with self._lock:
+            self._worlds[domain_id] = name
+        self._wake.set()
+
+    def drop_world(self, domain_id: int) -> None:
+        with self._lock:
+            self._worlds.pop(domain_id, None)
+        self._wake.set()
+
+    def routes(self) -> dict[str, list[str]]:
+        """What is bridged now, by world: ``out /ada/uav/sensors/gps`` (watched: ``out*``) or ``in ...``."""
+        out: dict[str, list[str]] = {}
+        for mirror in list(self._mirrors.values()):
+            way = (
+                "in"
+                if mirror.route.kind is EntityKind.SUBSCRIPTION
+                else "out*"
+                if mirror.world_side
+                else "out"
+            )
+            out.setdefault(mirror.namespace.strip("/"), []).append(f"{way} {mirror.token.topic}")
+        return {world: sorted(names) for world, names in sorted(out.items())}
+
+    def close(self) -> None:
+        self._closed = True
+        self._wake.set()
+        self._thread.join(timeout=10)
+        self._graph.undeclare()
+        for mirror in list(self._mirrors.values()):
+            self._undeclare(mirror)
+        self._mirrors.clear()
+        for _ns, handle, _id in self._nodes.values():
+            handle.undeclare()
+        self._nodes.clear()
+
+    # -- Zenoh's threads: record, wake ------------------------------------------------------
+    def _on_token(self, sample: zenoh.Sample) -> None:
+        key = str(sample.key_expr)
+        if sample.kind != zenoh.SampleKind.PUT:
+            with self._lock:
+                gone = self._endpoints.pop(key, None)
+                if gone is not None:
+                    self._per_domain[gone[0].domain_id] -= 1
+            if gone is not None:
+                self._wake.set()
+            return
+        token = EntityToken.parse(key)
+        if (
+            token is None
+            or token.zid == self.zid
+            or token.domain_id == self.class_domain
+            or token.kind not in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
+            or token.topic is None
+            or token.dds_type is None
+            or token.type_hash is None
+            or token.qos is None
+        ):
+            return
+        route = Route(token.domain_id, token.kind, token.topic, token.dds_type, token.type_hash)
+        with self._lock:
+            if key in self._endpoints:
+                return
+            if self._per_domain[route.domain_id] >= MAX_TOKENS_PER_DOMAIN:
+                self._tell_once(route.domain_id, f"more than {MAX_TOKENS_PER_DOMAIN} graph tokens")
+                return
+            self._endpoints[key] = (route, token.qos)
+            self._per_domain[route.domain_id] += 1
+        self._wake.set()
+
+    def _on_matching(self, mirror: _Mirror, status: Any) -> None:
+        mirror.matching = bool(status.matching)
+        self._wake.set()
+
+    def _tell_once(self, domain_id: int, why: str) -> None:
+        if domain_id not in self._ignored:
+            self._ignored.add(domain_id)
+            log.warning("ROS domain %d: %s; the rest of that world is not bridged", domain_id, why)
+
+    # -- samples, on Zenoh's threads ----------------------------------------------------------
+    def _forward(self, mirror: _Mirror, sample: zenoh.Sample) -> None:
+        raw = sample.attachment
+        source = Attachment.unpack(raw.to_bytes() if raw is not None else None)
+        target = mirror.class_side if mirror.route.kind is EntityKind.PUBLISHER else mirror.world_side
+        if source is None or target is None:
+            self.stats.dropped += 1
+            return
+        attachment = Attachment(next(mirror.seq), source.source_timestamp_ns, mirror.gid).pack()
+        try:
+            target.put(sample.payload, attachment=attachment)
+        except (zenoh.ZError, RuntimeError):  # undeclared while this sample was on its way
+            self.stats.dropped += 1
+            return
+        if mirror.route.kind is EntityKind.PUBLISHER:
+            self.stats.out += 1
+        else:
+            self.stats.into += 1
+
+    # -- the bridge's thread: declare what the graph asks for ----------------------------------
+    def _run(self) -> None:
+        while True:
+            self._wake.wait()
+            self._wake.clear()
+            if self._closed:
+                return
+            try:
+                self._reconcile()
+            except Exception:  # one bad round must not end the bridge
+                log.exception("bridging the worlds into the class domain failed; trying again")
+                time.sleep(0.5)
+                self._wake.set()
+
+    def _wanted(self) -> dict[Route, tuple[str, QoS]]:
+        with self._lock:
+            worlds = dict(self._worlds)
+            endpoints = list(self._endpoints.values())
+        wanted: dict[Route, tuple[str, QoS]] = {}
+        per_world: Counter[int] = Counter()
+        for route, qos in endpoints:
+            world = worlds.get(route.domain_id)
+            if world is None or route in wanted:
+                continue
+            if per_world[route.domain_id] >= MAX_ROUTES_PER_WORLD:
+                self._tell_once(route.domain_id, f"more than {MAX_ROUTES_PER_WORLD} topics")
+                continue
+            per_world[route.domain_id] += 1
+            wanted[route] = (f"/{world}", qos)
+        return wanted
+
+    def _reconcile(self) -> None:
+        wanted = self._wanted()
+        for route, mirror in list(self._mirrors.items()):
+            if route not in wanted or wanted[route][0] != mirror.namespace:
+                self._undeclare(self._mirrors.pop(route))
+        needed = {(route.domain_id, namespace) for route, (namespace, _qos) in wanted.items()}
+        for domain_id, (namespace, handle, _id) in list(self._nodes.items()):
+            if (domain_id, namespace) not in needed:
+                handle.undeclare()
+                del self._nodes[domain_id]
+        for route, (namespace, qos) in wanted.items():
+            if self._closed:
+                return
+            if route not in self._mirrors:
+                self._mirrors[route] = self._declare(route, namespace, qos)
+        for mirror in self._mirrors.values():  # a world's topic crosses out only while watched
+            if mirror.route.kind is not EntityKind.PUBLISHER:
+                continue
+            if mirror.matching and mirror.world_side is None:
+                mirror.world_side = self.session.declare_subscriber(
+                    data_key(mirror.route.domain_id, mirror.route.topic, mirror.route.dds_type,
+                             mirror.route.type_hash),
+                    lambda sample, m=mirror: self._forward(m, sample),
+                    allowed_origin=zenoh.Locality.REMOTE,
+                )  # fmt: skip
+            elif not mirror.matching and mirror.world_side is not None:
+                mirror.world_side.undeclare()
+                mirror.world_side = None
+
+    def _node(self, domain_id: int, namespace: str) -> int:
+        known = self._nodes.get(domain_id)
+        if known is not None and known[0] == namespace:
+            return known[2]
+        if known is not None:
+            known[1].undeclare()
+        node_id = next(self._ids)
+        token = EntityToken(
+            self.class_domain, self.zid, node_id, node_id, EntityKind.NODE, namespace, NODE_NAME
+        )
+        self._nodes[domain_id] = (namespace, self.session.liveliness().declare_token(token.key), node_id)
+        return node_id
+
+    def _declare(self, route: Route, namespace: str, qos: QoS) -> _Mirror:
+        node_id = self._node(route.domain_id, namespace)
+        token = EntityToken(
+            self.class_domain, self.zid, node_id, next(self._ids), route.kind, namespace, NODE_NAME,
+            topic=namespace + route.topic, dds_type=route.dds_type, type_hash=route.type_hash, qos=qos,
+        )  # fmt: skip
+        class_key = data_key(self.class_domain, namespace + route.topic, route.dds_type, route.type_hash)
+        world_key = data_key(route.domain_id, route.topic, route.dds_type, route.type_hash)
+        if route.kind is EntityKind.PUBLISHER:
+            # REMOTE: only a subscriber outside this session counts as a watcher.
+            zpub = self.session.declare_publisher(
+                class_key, congestion_control=zenoh.CongestionControl.DROP,
+                allowed_destination=zenoh.Locality.REMOTE,
+            )  # fmt: skip
+            mirror = _Mirror(route, namespace, token, None, zpub)
+            mirror.listener = zpub.declare_matching_listener(
+                lambda status, m=mirror: self._on_matching(m, status)
+            )
+            mirror.matching = bool(zpub.matching_status.matching)  # after the listener: no change missed
+        else:
+            zpub = self.session.declare_publisher(
+                world_key, congestion_control=zenoh.CongestionControl.DROP,
+                allowed_destination=zenoh.Locality.REMOTE,
+            )  # fmt: skip
+            mirror = _Mirror(route, namespace, token, None, None, world_side=zpub)
+            mirror.class_side = self.session.declare_subscriber(
+                class_key,
+                lambda sample, m=mirror: self._forward(m, sample),
+                allowed_origin=zenoh.Locality.REMOTE,
+            )
+        mirror.handle = self.session.liveliness().declare_token(token.key)
+        return mirror
+
+    @staticmethod
+    def _undeclare(mirror: _Mirror) -> None:
+        for entity in (mirror.listener, mirror.world_side, mirror.class_side, mirror.handle):
+            if entity is not None:
+                entity.undeclare()
+        mirror.world_side = None

@@ -1,0 +1,168 @@
+"""The domain bridge's rules, with real Zenoh sessions on loopback: a router holding the bridge, a
+"world" session in domain 1 that declares rmw_zenoh tokens and data, and a watcher in the class's
+domain 0. Zenoh delivers on its own threads, so each wait is bounded."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+import pytest
+import zenoh
+from support.app import free_port
+
+from server.transport import domain_bridge
+from server.transport.attachment import Attachment
+from server.transport.config import ZenohSettings
+from server.transport.domain_bridge import DomainBridge
+from server.transport.keys import EntityKind, EntityToken, data_key, keep_last
+from server.transport.session import open_session
+
+WAIT_S = 5.0
+TYPE, HASH = "std_msgs::msg::dds_::Int64_", "RIHS01_" + "ab" * 32
+GID = bytes(range(16))
+
+
+def wait_for(condition: Callable[[], bool], what: str) -> None:
+    deadline = time.monotonic() + WAIT_S
+    while not condition():
+        if time.monotonic() > deadline:
+            pytest.fail(f"timed out after {WAIT_S} s waiting for {what}")
+        time.sleep(0.005)
+
+
+@dataclass
+class Net:
+    router: Any
+    bridge: DomainBridge
+    world: Any  # a session in world domain 1
+    watcher: Any  # a session in the class's domain 0
+    world_zid: str
+
+    def declare(self, kind: EntityKind, topic: str, entity_id: int, domain_id: int = 1) -> Any:
+        token = EntityToken(
+            domain_id, self.world_zid, 1, entity_id, kind, "/", "sim",
+            topic=topic, dds_type=TYPE, type_hash=HASH, qos=keep_last(10),
+        )  # fmt: skip
+        return self.world.liveliness().declare_token(token.key)
+
+    def class_tokens(self) -> list[str]:
+        replies = self.watcher.liveliness().get("@ros2_lv/0/**", timeout=2)
+        return sorted(str(r.ok.key_expr) for r in replies if r.ok)
+
+
+@pytest.fixture
+def net() -> Iterator[Net]:
+    endpoint = f"tcp/127.0.0.1:{free_port()}"
+    router = open_session(ZenohSettings(mode="router", listen=(endpoint,), connect=()))
+    client = ZenohSettings(mode="client", listen=(), connect=(endpoint,))
+    world, watcher = open_session(client), open_session(client)
+    bridge = DomainBridge(router, 0)
+    try:
+        yield Net(router, bridge, world, watcher, str(world.zid()))
+    finally:
+        bridge.close()
+        for session in (watcher, world, router):
+            session.close()
+
+
+def test_a_world_shows_only_once_named_and_leaves_when_dropped(net: Net) -> None:
+    keep = net.declare(EntityKind.PUBLISHER, "/chatter", 2)
+    time.sleep(0.2)  # the bridge has heard the token by now, but the world has no name yet
+    assert net.bridge.routes() == {}
+    net.bridge.set_world(1, "ada")
+    wait_for(lambda: net.bridge.routes() == {"ada": ["out /ada/chatter"]}, "ada's /chatter bridged")
+    tokens = net.class_tokens()
+    assert any(t.endswith("/NN/%/%ada/domain_bridge") for t in tokens), tokens
+    assert any("/MP/%/%ada/domain_bridge/%ada%chatter/" in t for t in tokens), tokens
+    net.bridge.set_world(1, "bea")  # the domain taken by another world: renamed, not both
+    wait_for(lambda: net.bridge.routes() == {"bea": ["out /bea/chatter"]}, "the domain under its new name")
+    net.bridge.drop_world(1)
+    wait_for(lambda: net.bridge.routes() == {}, "nothing bridged once the world is gone")
+    wait_for(lambda: net.class_tokens() == [], "the class domain's graph empty again")
+    keep.undeclare()
+
+
+def test_samples_cross_while_watched_with_the_bridges_attachment_and_never_loop(net: Net) -> None:
+    net.bridge.set_world(1, "ada")
+    keep = [
+        net.declare(EntityKind.PUBLISHER, "/chatter", 2),
+        net.declare(EntityKind.SUBSCRIPTION, "/chatter", 3),
+    ]
+    wait_for(lambda: len(net.bridge.routes().get("ada", [])) == 2, "both ways of /chatter bridged")
+    # REMOTE, as a world's bus publishes: its own process hears it on the bus, not through Zenoh.
+    world_pub = net.world.declare_publisher(
+        data_key(1, "/chatter", TYPE, HASH), allowed_destination=zenoh.Locality.REMOTE
+    )
+    assert not world_pub.matching_status.matching  # nobody watches: the world is not even asked
+    out: list[tuple[bytes, Attachment | None]] = []
+    back: list[bytes] = []
+    watcher_sub = net.watcher.declare_subscriber(
+        data_key(0, "/ada/chatter", TYPE, HASH),
+        lambda s: out.append((s.payload.to_bytes(), Attachment.unpack(s.attachment.to_bytes()) if s.attachment else None)),
+    )  # fmt: skip
+    world_sub = net.world.declare_subscriber(
+        data_key(1, "/chatter", TYPE, HASH), lambda s: back.append(s.payload.to_bytes())
+    )
+    wait_for(lambda: world_pub.matching_status.matching, "the bridge subscribing in the world once watched")
+    assert "out* /ada/chatter" in net.bridge.routes()["ada"]
+    world_pub.put(b"no attachment")  # rmw_zenoh drops it; so does the bridge
+    for seq in (1, 2, 3):
+        world_pub.put(b"sample %d" % seq, attachment=Attachment(seq, 1000 + seq, GID).pack())
+    wait_for(lambda: len(out) == 3, "three samples in the class domain")
+    assert [payload for payload, _ in out] == [b"sample 1", b"sample 2", b"sample 3"]
+    attachments = [a for _, a in out]
+    assert all(a is not None for a in attachments)
+    assert [a.sequence_number for a in attachments if a] == [1, 2, 3]
+    assert [a.source_timestamp_ns for a in attachments if a] == [1001, 1002, 1003]  # the source's time
+    assert {a.gid for a in attachments if a} != {GID}  # the bridge's own publisher, as a ROS bridge is
+    assert net.bridge.stats.dropped == 1
+    # What crossed out is not sent back in.
+    time.sleep(0.2)
+    assert back == []
+    # And into the world: a sample published in the class domain, once.
+    class_pub = net.watcher.declare_publisher(
+        data_key(0, "/ada/chatter", TYPE, HASH), allowed_destination=zenoh.Locality.REMOTE
+    )
+    class_pub.put(b"from the class", attachment=Attachment(1, 5, GID).pack())
+    wait_for(lambda: b"from the class" in back, "the class's sample in the world")
+    time.sleep(0.2)
+    assert back == [b"from the class"] and len(out) == 3  # once, and not echoed back out
+    watcher_sub.undeclare()
+    wait_for(lambda: not world_pub.matching_status.matching, "the bridge leaving the world once unwatched")
+    for entity in (class_pub, world_sub, world_pub, *keep):
+        entity.undeclare()
+
+
+def test_what_one_world_can_make_the_bridge_declare_is_bounded(
+    net: Net, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(domain_bridge, "MAX_ROUTES_PER_WORLD", 3)
+    monkeypatch.setattr(domain_bridge, "MAX_TOKENS_PER_DOMAIN", 5)
+    net.bridge.set_world(1, "ada")
+    net.bridge.set_world(2, "bob")
+    keep = [net.declare(EntityKind.PUBLISHER, f"/flood{i}", 10 + i) for i in range(8)]
+    keep.append(net.declare(EntityKind.PUBLISHER, "/fine", 2, domain_id=2))
+    wait_for(lambda: len(net.bridge.routes().get("ada", [])) == 3, "ada's first three topics")
+    wait_for(
+        lambda: net.bridge.routes().get("bob") == ["out /bob/fine"], "bob's topic, untouched by ada's flood"
+    )
+    time.sleep(0.2)
+    assert len(net.bridge.routes()["ada"]) == 3
+    for token in keep:
+        token.undeclare()
+    wait_for(lambda: net.bridge.routes() == {}, "the flood gone with its tokens")
+
+
+def test_the_class_domain_itself_is_never_bridged(net: Net) -> None:
+    with pytest.raises(ValueError, match="class's own domain"):
+        net.bridge.set_world(0, "ada")
+    net.bridge.set_world(1, "ada")
+    keep = net.declare(EntityKind.PUBLISHER, "/in_class", 2, domain_id=0)
+    mark = net.declare(EntityKind.PUBLISHER, "/marker", 3)
+    wait_for(lambda: net.bridge.routes() == {"ada": ["out /ada/marker"]}, "the world's marker bridged")
+    assert "/in_class" not in str(net.bridge.routes())
+    keep.undeclare()
+    mark.undeclare()
