@@ -84,6 +84,18 @@ class ClassWorkers(BaseModel):
     workers: list[dict[str, Any]] = Field(description="each world worker that answers now, with its load")
 
 
+class ClassGraph(BaseModel):
+    domain_id: int = Field(description="the class's own ROS domain, where every world shows under /<world>")
+    topics: dict[str, list[str]] = Field(
+        description="by world, each bridged topic: 'out' (the world publishes it; 'out*' while something "
+        "in the class domain subscribes, so it crosses now) or 'in' (the world subscribes to it)",
+        examples=[{"ada": ["in /ada/uav/input/position", "out* /ada/uav/sensors/gps"]}],
+    )
+    samples_out: int = Field(description="samples passed from worlds into the class domain")
+    samples_in: int = Field(description="samples passed from the class domain into worlds")
+    dropped: int = Field(description="samples dropped (no rmw_zenoh attachment, or a watcher too slow)")
+
+
 class Broadcast(BaseModel):
     reached: list[str]
     refused: dict[str, str] = Field(description="world: why its graph refused the message")
@@ -157,6 +169,22 @@ async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
     return ClassWorkers(
         local={"worlds": classroom.hosted_here, "max_worlds": classroom.local_capacity},
         workers=[ref.describe() for ref in found],
+    )
+
+
+@router.get("/graph", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND))
+async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
+    """The class's own ROS domain (``GET /api/zenoh/join`` without a world gives its login): what is
+    bridged from each world, as ROS 2's domain_bridge with a namespace per world."""
+    bridge = classroom.class_graph
+    if bridge is None or classroom.settings.zenoh is None:
+        raise HTTPException(status.HTTP_404_NOT_FOUND, "this class server has no Zenoh graph of its own")
+    return ClassGraph(
+        domain_id=classroom.settings.zenoh.domain_id,
+        topics=bridge.routes(),
+        samples_out=bridge.stats.out,
+        samples_in=bridge.stats.into,
+        dropped=bridge.stats.dropped,
     )
 
 

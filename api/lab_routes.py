@@ -7,9 +7,11 @@ from typing import Any
 
 from fastapi import APIRouter, HTTPException, Request, status
 
+from server.classroom import Classroom
 from server.processes.command import graph_overrides
+from server.transport.acl import Credentials
 
-from .deps import LabDep, classroom_of, lab_for_request, token_of
+from .deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_request, token_of
 from .responses import responses
 from .schemas import Health, ZenohJoin
 
@@ -50,10 +52,17 @@ async def health(request: Request) -> dict[str, Any]:
 
 
 @router.get("/zenoh/join", response_model=ZenohJoin, responses=responses(404))
-async def zenoh_join(lab: LabDep) -> dict[str, Any]:
+async def zenoh_join(request: Request) -> dict[str, Any]:
     """Where and how a node process joins this lab's ROS graph on Zenoh: the router, the ROS domain
     and, on a class server, the world's own login (its router lets each world's user into that
-    world's domain only). ``env`` is ready to export, for ``ros2lab run`` or a ROS 2 node on rmw_zenoh."""
+    world's domain only). ``env`` is ready to export, for ``ros2lab run`` or a ROS 2 node on rmw_zenoh.
+    The instructor naming no world gets the class's own graph, where every world's topics show
+    under its name (``/ada/uav/sensors/gps``)."""
+    classroom = classroom_of(request)
+    named = request.headers.get(WORLD_HEADER) or request.query_params.get("world")
+    if classroom is not None and not named and grant_of(request, classroom).is_instructor:
+        return _class_graph_join(classroom)
+    lab = lab_for_request(request)
     link = lab.zenoh
     if link is None:
         why = (
@@ -62,15 +71,26 @@ async def zenoh_join(lab: LabDep) -> dict[str, Any]:
             else "started with --no-zenoh"
         )
         raise HTTPException(status.HTTP_404_NOT_FOUND, f"this lab's graph is not on Zenoh ({why})")
-    login = link.settings.login
-    router = link.router_endpoint()
-    override = graph_overrides(router, login)
+    return _join(link.router_endpoint(), link.settings.domain_id, link.settings.login)
+
+
+def _class_graph_join(classroom: Classroom) -> dict[str, Any]:
+    router = classroom.router_endpoint()
+    if classroom.class_graph is None or router is None or classroom.settings.zenoh is None:
+        raise HTTPException(status.HTTP_404_NOT_FOUND, "this class server has no Zenoh graph of its own")
+    return _join(router, classroom.settings.zenoh.domain_id, classroom.zenoh_auth.class_credentials())
+
+
+def _join(router: str, domain_id: int, login: Credentials | None) -> dict[str, Any]:
     return {
         "router": router,
-        "domain_id": link.settings.domain_id,
+        "domain_id": domain_id,
         "user": login.user if login is not None else None,
         "password": login.password if login is not None else None,
-        "env": {"ROS_DOMAIN_ID": str(link.settings.domain_id), "ZENOH_CONFIG_OVERRIDE": ";".join(override)},
+        "env": {
+            "ROS_DOMAIN_ID": str(domain_id),
+            "ZENOH_CONFIG_OVERRIDE": ";".join(graph_overrides(router, login)),
+        },
     }
 
 

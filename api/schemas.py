@@ -74,7 +74,8 @@ class ZenohStatus(BaseModel):
 
 
 class ZenohJoin(BaseModel):
-    """How a node process joins this lab's graph (a student's: their world's) on Zenoh."""
+    """How a node process joins this lab's graph on Zenoh (a student's: their world's; the instructor
+    naming no world: the class's own, every world under its name)."""
 
     router: str = Field(examples=["tcp/127.0.0.1:7447"], description="the router to connect to")
     domain_id: int = Field(description="the ROS_DOMAIN_ID of the graph")

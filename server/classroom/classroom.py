@@ -32,6 +32,8 @@ from .tokens import Grant, TokenSigner
 from .workers import WATCH_PERIOD_S, Silence, WorkerDirectory, WorkerRef, worker_api_token
 
 if TYPE_CHECKING:
+    from server.transport.domain_bridge import DomainBridge
+
     from .class_view import ClassView
 
 log = logging.getLogger("classroom")
@@ -139,6 +141,7 @@ class Classroom:
         self._hosting: set[tuple[str, str]] = set()  # (worker id, world) while it is placed there
         self._local_starting = 0  # worlds being started here
         self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
+        self.class_graph: DomainBridge | None = None  # every world under /<world> in the class's domain
         self._control: Any = None  # a worker's hello queryable (WorkerControl) and its session
         self._control_session: Any = None
         self._watch: asyncio.Task[None] | None = None  # the class server's hellos, or a worker's orphan check
@@ -234,6 +237,9 @@ class Classroom:
             log.warning("%s; the worlds run without Zenoh", exc)
             return
         self.workers = WorkerDirectory(self._router, self.instructor_token)
+        from server.transport.domain_bridge import DomainBridge
+
+        self.class_graph = DomainBridge(self._router, zenoh.domain_id)
         self._watch = asyncio.create_task(self._watch_workers())
 
     # -- the instructor's 3D view ------------------------------------------------------------------
@@ -509,6 +515,8 @@ class Classroom:
             worker=place,
             placed_at=self.clock.now(),
         )
+        if self.class_graph is not None:
+            self.class_graph.set_world(domain_id, name)
         where = f" on world worker {place.id}" if place is not None else ""
         log.info("%s joined: world %s%s", student, name, where)
         return world, token
@@ -656,6 +664,8 @@ class Classroom:
         if world is None:
             raise ClassroomError(404, f"no world named {name!r}")
         self._revoked.add(world.token_id)
+        if self.class_graph is not None:
+            self.class_graph.drop_world(world.domain_id)
         await self._end(world)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
@@ -686,6 +696,9 @@ class Classroom:
         if self._control is not None:
             self._control.close()
             self._control = None
+        if self.class_graph is not None:
+            await asyncio.to_thread(self.class_graph.close)
+            self.class_graph = None
         for session in (self._router, self._control_session):
             if session is not None:
                 session.close()

@@ -9,9 +9,11 @@ router does not let in) run as processes of their own on loopback, and are ended
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import math
 import os
+import queue
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -26,8 +28,11 @@ import zenoh
 from support.app import App, WorldWorker, instructor_token, wait_for_workers
 
 from server.classroom.workers import CONTROL_PREFIX, hello_request, worker_api_token
+from server.msgs.wire import dds_type_name, deserialize, type_hash
 from server.transport.acl import ClassAuth, Credentials
+from server.transport.attachment import Attachment
 from server.transport.config import ZenohSettings
+from server.transport.keys import data_key
 from server.transport.session import build_config
 
 CODE = "WRK042"
@@ -148,6 +153,34 @@ def test_a_workers_world_flies_through_the_class_server(klass: Class) -> None:
     )
     assert klass.worlds()["ada"]["drone"][2] > TARGET[2] - NEAR_M  # the instructor sees it there too
     assert klass.position("bob")[2] < 4.0  # bob's drone, on the other worker, still hovers at home
+
+
+def test_a_workers_world_shows_under_its_name_in_the_class_domain(klass: Class) -> None:
+    # The instructor's login on the class's own graph hears Ada's GPS, from her world on worker wa,
+    # as /ada/uav/sensors/gps: what her world's latest pose says, but for the moments between.
+    join = klass.get("/api/zenoh/join", klass.instructor).json()
+    assert join["domain_id"] == 0
+    settings = ZenohSettings(
+        mode="client", listen=(), connect=(join["router"],), login=Credentials(join["user"], join["password"])
+    )
+    pose = "geometry_msgs/msg/PoseStamped"
+    key = data_key(0, "/ada/uav/sensors/gps", dds_type_name(pose), type_hash(pose))
+    heard: queue.Queue[tuple[bytes, bytes | None]] = queue.Queue(maxsize=1000)
+
+    def keep(sample: zenoh.Sample) -> None:
+        attachment = sample.attachment.to_bytes() if sample.attachment is not None else None
+        with contextlib.suppress(queue.Full):
+            heard.put_nowait((sample.payload.to_bytes(), attachment))
+
+    with zenoh.open(build_config(settings)) as session:
+        tokens = [str(r.ok.key_expr) for r in session.liveliness().get("@ros2_lv/0/**", timeout=5) if r.ok]
+        assert any("/MP/%/%ada/domain_bridge/%ada%uav%sensors%gps/" in t for t in tokens), tokens
+        subscriber = session.declare_subscriber(key, keep)
+        payload, attachment = heard.get(timeout=30)
+        subscriber.undeclare()
+    assert attachment is not None and Attachment.unpack(attachment) is not None  # rmw_zenoh's, or dropped
+    heard_at = deserialize(pose, payload).pose.position  # type: ignore[attr-defined]
+    assert math.dist((heard_at.x, heard_at.y, heard_at.z), klass.position("ada")) < NEAR_M
 
 
 def test_topic_echo_and_keys_reach_a_workers_world_over_websockets(klass: Class) -> None:

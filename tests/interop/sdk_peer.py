@@ -155,12 +155,17 @@ def _text(session: Any, type_name: str) -> str | None:
 def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("--router", required=True, help="HOST:PORT of the lab's Zenoh router")
+    parser.add_argument(
+        "--override",
+        default="",
+        help="more ZENOH_CONFIG_OVERRIDE entries (a class's login, from /api/zenoh/join)",
+    )
     args = parser.parse_args()
     host, _, port = args.router.rpartition(":")
     # Loopback only, no multicast, and no git fetching from the network: nothing leaves this machine.
     os.environ["GIT_ALLOW_PROTOCOL"] = "file"
-    os.environ["ZENOH_CONFIG_OVERRIDE"] = (
-        'listen/endpoints=["tcp/127.0.0.1:0"];scouting/multicast/enabled=false'
+    os.environ["ZENOH_CONFIG_OVERRIDE"] = ";".join(
+        filter(None, ['listen/endpoints=["tcp/127.0.0.1:0"];scouting/multicast/enabled=false', args.override])
     )
     peer = Peer(host, int(port))
     texts: dict[str, str] = {}
@@ -215,4 +220,8 @@ def main() -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    code = main()
+    sys.stdout.flush()
+    # The SDK's subscribers keep threads that are not daemons: without this the process outlives
+    # "quit" until its parent kills it.
+    os._exit(code)

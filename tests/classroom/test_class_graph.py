@@ -1,0 +1,161 @@
+"""The class's own ROS domain: every world's topics under the world's name (``/ada/uav/sensors/gps``),
+as ROS 2's domain_bridge with a namespace per world. An independent ROS 2-over-Zenoh peer
+(zenoh-ros2-sdk, in its own process) logs in with what ``GET /api/zenoh/join`` gives the
+instructor, and sees, watches and flies the worlds by those names; the class server runs as a
+process of its own, and both are ended by their ids."""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterator
+from typing import Any
+
+import httpx
+import pytest
+import zenoh
+from interop.conftest import definitions
+from ros_reference import ROS_REFERENCE_HASHES
+from support.app import REPO, App, JsonProcess, instructor_token
+
+from server.transport.acl import Credentials
+from server.transport.config import ZenohSettings
+from server.transport.session import build_config
+
+CODE = "GRAPH7"
+POSE, VECTOR = "geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/Vector3"
+
+
+def rihs(type_name: str) -> str:
+    return "RIHS01_" + ROS_REFERENCE_HASHES[type_name]
+
+
+class Class:
+    def __init__(self, app: App) -> None:
+        self.app = app
+        self.instructor = instructor_token(app.log_tail(10**6))
+        self.tokens: dict[str, str] = {}
+
+    def call(self, method: str, path: str, token: str | None = None, **kwargs: Any) -> httpx.Response:
+        headers = {"Authorization": f"Bearer {token or self.instructor}", **kwargs.pop("headers", {})}
+        return httpx.request(method, self.app.url + path, headers=headers, timeout=10.0, **kwargs)
+
+    def drone(self, world: str) -> list[float] | None:
+        worlds = self.call("GET", "/api/classroom/worlds").json()["worlds"]
+        return next(w["drone"] for w in worlds if w["world"] == world)
+
+    def bridged(self) -> dict[str, list[str]]:
+        reply = self.call("GET", "/api/classroom/graph")
+        assert reply.status_code == 200, reply.text
+        topics: dict[str, list[str]] = reply.json()["topics"]
+        return topics
+
+
+@pytest.fixture(scope="module")
+def school(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
+    root = tmp_path_factory.mktemp("class_graph")
+    app = App(root, "--classroom", "--class-code", CODE, "--launch", "fly", "--no-foxglove")
+    try:
+        school = Class(app)
+        for name in ("Ada", "Bob"):
+            reply = httpx.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30)
+            assert reply.status_code == 201, reply.text
+            school.tokens[reply.json()["world"]] = reply.json()["token"]
+        yield school
+    finally:
+        app.stop()
+
+
+@pytest.fixture(scope="module")
+def peer(school: Class) -> Iterator[JsonProcess]:
+    """The instructor's ROS 2 tool, on the class's own graph."""
+    join = school.call("GET", "/api/zenoh/join").json()
+    peer = JsonProcess(
+        [sys.executable, str(REPO / "tests" / "interop" / "sdk_peer.py"), "--router", school.app.router,
+         "--override", join["env"]["ZENOH_CONFIG_OVERRIDE"]],
+        env={"ROS_DOMAIN_ID": join["env"]["ROS_DOMAIN_ID"]},
+    )  # fmt: skip
+    try:
+        peer.expect(lambda e: e.get("event") == "ready", "the peer to start")
+        peer.send(cmd="define", types=definitions(POSE, VECTOR))
+        yield peer
+    finally:
+        peer.stop()
+
+
+def test_the_instructor_naming_no_world_joins_the_class_domain(school: Class) -> None:
+    join = school.call("GET", "/api/zenoh/join").json()
+    assert (join["domain_id"], join["user"]) == (0, "ros2lab-class")
+    assert join["env"]["ROS_DOMAIN_ID"] == "0"
+    named = school.call("GET", "/api/zenoh/join", headers={"X-Lab-World": "bob"}).json()
+    assert (named["domain_id"], named["user"]) == (2, "ros2lab-world-2")
+    # A student's token always gives their own world, never the class's graph.
+    own = school.call("GET", "/api/zenoh/join", school.tokens["ada"]).json()
+    assert (own["domain_id"], own["user"]) == (1, "ros2lab-world-1")
+    assert school.call("GET", "/api/classroom/graph", school.tokens["ada"]).status_code == 403
+
+
+def test_every_worlds_topics_show_under_its_name_in_the_class_domain(
+    school: Class, peer: JsonProcess
+) -> None:
+    def listed() -> dict[str, list[str]]:
+        peer.send(cmd="topics")
+        return dict(peer.expect(lambda e: e.get("event") == "topics", "the class's topics")["topics"])
+
+    school.app.wait_for(lambda: "/bob/uav/sensors/gps" in listed(), "Bob's GPS in the class domain")
+    topics = listed()
+    for world in ("ada", "bob"):
+        assert topics[f"/{world}/uav/sensors/gps"] == [POSE]
+        assert topics[f"/{world}/uav/input/position"] == [VECTOR]
+    assert "/uav/sensors/gps" not in topics  # the class's own domain holds no world's own names
+    peer.send(cmd="topic_info", topic="/ada/uav/sensors/gps")
+    info = peer.expect(lambda e: e.get("event") == "topic_info", "topic info")
+    # The world publishes its GPS and subscribes to it (the controller): both cross, by the bridge.
+    assert info["nodes"] == ["domain_bridge", "domain_bridge"]
+    assert "in /ada/uav/input/position" in school.bridged()["ada"]
+
+
+def test_the_instructor_watches_one_world_and_flies_it_while_the_other_stays(
+    school: Class, peer: JsonProcess
+) -> None:
+    assert "out /ada/uav/sensors/gps" in school.bridged()["ada"]  # nobody watches yet: nothing crosses
+    peer.send(cmd="subscribe", topic="/ada/uav/sensors/gps", type=POSE, hash=rihs(POSE))
+    is_ada = lambda e: e.get("topic") == "/ada/uav/sensors/gps"  # noqa: E731
+    peer.expect(is_ada, "Ada's GPS through the class domain")
+    assert "out* /ada/uav/sensors/gps" in school.bridged()["ada"]
+    assert "out /bob/uav/sensors/gps" in school.bridged()["bob"]  # Bob's is not watched: it stays home
+
+    def ada_goes() -> bool:
+        peer.send(cmd="publish", topic="/ada/uav/input/position", type=VECTOR, hash=rihs(VECTOR),
+                  msg={"x": 5.0, "y": 5.0, "z": 10.0}, node="teacher")  # fmt: skip
+        position = school.drone("ada")
+        return position is not None and min(position[0], position[1]) > 2.0
+
+    school.app.wait_for(ada_goes, "Ada's drone flying toward the instructor's setpoint", 60.0)
+    bob = school.drone("bob")  # hovering where the fly launch holds a drone: over its start
+    assert bob is not None and max(abs(bob[0]), abs(bob[1])) < 0.5, bob
+    # What the peer hears is Ada's own GPS: the same pose as her world's latest, but for the
+    # moments of flight between them.
+    latest = school.call("GET", "/api/topics/uav/sensors/gps", school.tokens["ada"]).json()["latest"]
+    heard = peer.newest(is_ada)
+    assert heard is not None
+    assert abs(heard["msg"]["pose"]["position"]["z"] - latest["pose"]["position"]["z"]) < 1.0
+    graph = school.call("GET", "/api/classroom/graph").json()
+    assert graph["samples_out"] > 0 and graph["samples_in"] > 0
+
+
+def test_a_students_login_does_not_reach_the_class_domain(school: Class) -> None:
+    join = school.call("GET", "/api/zenoh/join", school.tokens["ada"]).json()
+    settings = ZenohSettings(
+        mode="client", listen=(), connect=(f"tcp/{school.app.router}",),
+        login=Credentials(join["user"], join["password"]),
+    )  # fmt: skip
+    with zenoh.open(build_config(settings)) as session:
+        own = [r for r in session.liveliness().get("@ros2_lv/1/**", timeout=5) if r.ok]
+        assert own  # her own world's graph answers her
+        assert [r for r in session.liveliness().get("@ros2_lv/0/**", timeout=2) if r.ok] == []
+
+
+def test_a_removed_world_leaves_the_class_domain(school: Class) -> None:
+    assert school.call("DELETE", "/api/classroom/worlds/bob").status_code == 200
+    school.app.wait_for(lambda: "bob" not in school.bridged(), "Bob's topics gone from the class domain")
+    assert "ada" in school.bridged()
