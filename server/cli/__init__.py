@@ -1,5 +1,5 @@
 """``ros2lab``: ros2's command-line verbs against a running lab server (``topic``, ``node``, ``service``,
-``launch``, ``run``, ``interface``, ``bag``), with ros2's options and output, over the server's HTTP/WebSocket API.
+``launch``, ``run``, ``interface``, ``bag``, and the lab's own ``env``), with ros2's options and output, over the server's HTTP/WebSocket API.
 
 It imports nothing of the server: everything goes over the wire, so it works against any lab
 server it can reach (``--url``, or ``TELEOP_URL``).
@@ -13,10 +13,10 @@ import signal
 import sys
 from types import FrameType
 
-from . import bag, interface, launch, node, run, service, topic
+from . import bag, env, interface, launch, node, run, service, topic
 from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
 
-VERBS = ("topic", "node", "service", "launch", "run", "interface", "bag")
+VERBS = ("topic", "node", "service", "launch", "run", "interface", "bag", "env")
 WORKER_VERB = "world-worker"  # ros2lab world-worker: host a class server's worlds (server.classroom.worker)
 
 __all__ = ["VERBS", "build_parser", "main"]
@@ -42,6 +42,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_parser(verbs, common)
     interface.add_parser(verbs, common)
     bag.add_parser(verbs, common)
+    env.add_parser(verbs, common)
     return parser
 
 

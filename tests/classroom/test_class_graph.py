@@ -6,6 +6,9 @@ process of its own, and both are ended by their ids."""
 
 from __future__ import annotations
 
+import os
+import shlex
+import subprocess
 import sys
 from collections.abc import Iterator
 from typing import Any
@@ -65,14 +68,26 @@ def school(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
         app.stop()
 
 
+def ros2lab_env(school: Class, token: str) -> dict[str, str]:
+    """What ``eval "$(ros2lab env)"`` would export, with ``token`` as ROS2LAB_TOKEN."""
+    done = subprocess.run(
+        [sys.executable, "-m", "server", "--url", school.app.url, "env"],
+        env={**os.environ, "ROS2LAB_TOKEN": token}, capture_output=True, text=True, timeout=60,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    exports = [shlex.split(line) for line in done.stdout.splitlines()]
+    assert all(words[0] == "export" and len(words) == 2 for words in exports), done.stdout
+    return dict(words[1].split("=", 1) for words in exports)
+
+
 @pytest.fixture(scope="module")
 def peer(school: Class) -> Iterator[JsonProcess]:
-    """The instructor's ROS 2 tool, on the class's own graph."""
-    join = school.call("GET", "/api/zenoh/join").json()
+    """The instructor's ROS 2 tool, on the class's own graph, in what ``ros2lab env`` exports."""
+    env = ros2lab_env(school, school.instructor)
     peer = JsonProcess(
         [sys.executable, str(REPO / "tests" / "interop" / "sdk_peer.py"), "--router", school.app.router,
-         "--override", join["env"]["ZENOH_CONFIG_OVERRIDE"]],
-        env={"ROS_DOMAIN_ID": join["env"]["ROS_DOMAIN_ID"]},
+         "--override", env["ZENOH_CONFIG_OVERRIDE"]],
+        env={"ROS_DOMAIN_ID": env["ROS_DOMAIN_ID"]},
     )  # fmt: skip
     try:
         peer.expect(lambda e: e.get("event") == "ready", "the peer to start")
@@ -92,6 +107,19 @@ def test_the_instructor_naming_no_world_joins_the_class_domain(school: Class) ->
     own = school.call("GET", "/api/zenoh/join", school.tokens["ada"]).json()
     assert (own["domain_id"], own["user"]) == (1, "ros2lab-world-1")
     assert school.call("GET", "/api/classroom/graph", school.tokens["ada"]).status_code == 403
+
+
+def test_ros2lab_env_exports_the_graph_a_token_joins(school: Class) -> None:
+    instructor, ada = ros2lab_env(school, school.instructor), ros2lab_env(school, school.tokens["ada"])
+    assert instructor["RMW_IMPLEMENTATION"] == ada["RMW_IMPLEMENTATION"] == "rmw_zenoh_cpp"
+    assert (instructor["ROS_DOMAIN_ID"], ada["ROS_DOMAIN_ID"]) == ("0", "1")
+    assert 'user="ros2lab-class"' in instructor["ZENOH_CONFIG_OVERRIDE"]
+    assert 'user="ros2lab-world-1"' in ada["ZENOH_CONFIG_OVERRIDE"]
+    refused = subprocess.run(
+        [sys.executable, "-m", "server", "--url", school.app.url, "env"],
+        env={k: v for k, v in os.environ.items() if k != "ROS2LAB_TOKEN"}, capture_output=True, text=True, timeout=60,
+    )  # fmt: skip
+    assert refused.returncode == 1 and "join the class first" in refused.stderr, refused.stderr
 
 
 def test_every_worlds_topics_show_under_its_name_in_the_class_domain(
