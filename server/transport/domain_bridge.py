@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import itertools
 import logging
+import struct
 import threading
 import time
 from collections import Counter
@@ -33,13 +34,14 @@ from typing import Any
 
 import zenoh
 
-from .attachment import Attachment
-from .keys import ADMIN_SPACE, EntityKind, EntityToken, QoS, data_key
+from .attachment import ATTACHMENT_BYTES
+from .keys import ADMIN_SPACE, GID_BYTES, EntityKind, EntityToken, QoS, data_key
 
 log = logging.getLogger("transport.domain_bridge")
 NODE_NAME = "domain_bridge"
 MAX_TOKENS_PER_DOMAIN = 4096  # a world's graph tokens the bridge reads; more are ignored
 MAX_ROUTES_PER_WORLD = 512  # topics bridged for one world
+_SEQUENCE = struct.Struct("<q")
 
 
 @dataclass(frozen=True)
@@ -72,10 +74,10 @@ class _Mirror:
     matching: bool = False
     seq: Iterator[int] = field(default_factory=lambda: itertools.count(1))
     listener: Any = None
+    tail: bytes = b""  # the attachment's last 17 bytes: GID length and the bridge's GID
 
-    @property
-    def gid(self) -> bytes:
-        return self.token.gid
+    def __post_init__(self) -> None:
+        self.tail = bytes([GID_BYTES]) + self.token.gid  # computed once: a GID hashes its token
 
 
 class DomainBridge:
@@ -188,12 +190,13 @@ class DomainBridge:
     # -- samples, on Zenoh's threads ----------------------------------------------------------
     def _forward(self, mirror: _Mirror, sample: zenoh.Sample) -> None:
         raw = sample.attachment
-        source = Attachment.unpack(raw.to_bytes() if raw is not None else None)
+        source = raw.to_bytes() if raw is not None else b""
         target = mirror.class_side if mirror.route.kind is EntityKind.PUBLISHER else mirror.world_side
-        if source is None or target is None:
-            self.stats.dropped += 1
+        if len(source) != ATTACHMENT_BYTES or source[16] != GID_BYTES or target is None:
+            self.stats.dropped += 1  # not rmw_zenoh's attachment: dropped, as rmw_zenoh drops it
             return
-        attachment = Attachment(next(mirror.seq), source.source_timestamp_ns, mirror.gid).pack()
+        # rmw_zenoh's attachment with the bridge's sequence number and GID, the source's timestamp.
+        attachment = _SEQUENCE.pack(next(mirror.seq)) + source[8:16] + mirror.tail
         try:
             target.put(sample.payload, attachment=attachment)
         except (zenoh.ZError, RuntimeError):  # undeclared while this sample was on its way
