@@ -71,6 +71,9 @@ class ZenohStatus(BaseModel):
     sent: int = Field(description="samples the app put on Zenoh")
     received: int = Field(description="samples the app took from Zenoh")
     dropped_without_attachment: int = Field(description="samples refused: no rmw_zenoh attachment")
+    dropped_over_rate: int = Field(
+        description="samples dropped as they arrived: a class world takes at most so many a second from other processes"
+    )
 
 
 class ZenohJoin(BaseModel):

@@ -70,6 +70,9 @@ class Settings:
     max_worlds: int = 60
     world_writes_hz: float = 20.0  # a student's REST writes per second in their world, bursts of:
     world_writes_burst: int = 40
+    # Samples a second a class world takes from other processes on Zenoh (its student's nodes);
+    # a flood beyond that is dropped as it arrives, so it costs the shared loop nothing.
+    world_samples_hz: float = 2000.0
     # Worlds the class server hosts itself; the rest go to world workers (None: up to max_worlds).
     local_worlds: int | None = None
     worker: WorkerSettings | None = None  # set on a world worker: worlds come from a class server

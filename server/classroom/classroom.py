@@ -452,7 +452,7 @@ class Classroom:
             config_file = self.settings.zenoh.config_file if self.settings.zenoh is not None else None
             zenoh = ZenohSettings(
                 mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file,
-                login=self.zenoh_auth.world_credentials(domain_id),
+                login=self.zenoh_auth.world_credentials(domain_id), samples_hz=self.settings.world_samples_hz,
             )  # fmt: skip
         file, args = launch if launch is not None else (self.settings.launch, self.settings.launch_args)
         return dataclasses.replace(

@@ -17,7 +17,9 @@ from __future__ import annotations
 
 import itertools
 import logging
+import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, cast
 
@@ -42,9 +44,31 @@ class Stats:
     sent: int = 0
     received: int = 0
     no_attachment: int = 0  # dropped, as rmw_zenoh drops them
+    over_rate: int = 0  # dropped: more samples a second than the bridge takes (a class world's flood)
     undecodable: int = 0
     queries: int = 0
     replies: int = 0
+
+
+class _SampleBudget:
+    """A token bucket on wall time, taken from Zenoh's threads: ``rate_hz`` a second, bursts of a
+    second's worth."""
+
+    def __init__(self, rate_hz: float, now: Callable[[], float]) -> None:
+        self.rate_hz, self.now = rate_hz, now
+        self._tokens = rate_hz
+        self._at = now()
+        self._lock = threading.Lock()
+
+    def take(self) -> bool:
+        with self._lock:
+            at = self.now()
+            self._tokens = min(self.rate_hz, self._tokens + (at - self._at) * self.rate_hz)
+            self._at = at
+            if self._tokens < 1.0:
+                return False
+            self._tokens -= 1.0
+            return True
 
 
 class _RemotePublisher:
@@ -84,7 +108,16 @@ class _Entity:
 class ZenohBridge:
     """Joins a bus to a Zenoh session (the app's router, or a node process's peer session)."""
 
-    def __init__(self, bus: Bus, session: zenoh.Session, domain_id: int = 0, *, enclave: str = "/") -> None:
+    def __init__(
+        self,
+        bus: Bus,
+        session: zenoh.Session,
+        domain_id: int = 0,
+        *,
+        enclave: str = "/",
+        samples_hz: float | None = None,
+        now: Callable[[], float] = time.monotonic,
+    ) -> None:
         self.bus = bus
         self.session: Any = session
         self.domain_id = domain_id
@@ -93,6 +126,9 @@ class ZenohBridge:
         self.stats = Stats()
         self.remote = RemoteGraph(self.zid, domain_id)
         self.inbox = Inbox(bus.wake_threadsafe)
+        # Samples from other processes, at most samples_hz a second (bursts of one second's): a
+        # class world's flood is dropped here, on Zenoh's thread, before it costs a decode.
+        self._budget = _SampleBudget(samples_hz, now) if samples_hz is not None else None
         self._ids = itertools.count(1)
         self._node_ids: dict[int, int] = {}
         self._entities: dict[int, _Entity] = {}
@@ -244,6 +280,9 @@ class ZenohBridge:
 
     # -- Zenoh's threads: only hand over -------------------------------------------------------
     def _on_sample(self, topic: str, sample: zenoh.Sample) -> None:
+        if self._budget is not None and not self._budget.take():
+            self.stats.over_rate += 1
+            return
         attachment = sample.attachment
         raw = attachment.to_bytes() if attachment is not None else None
         att = Attachment.unpack(raw)

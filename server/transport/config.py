@@ -26,6 +26,7 @@ class ZenohSettings:
     extra: dict[str, str] = field(default_factory=dict)  # more config keys: path → JSON5 value
     login: Credentials | None = None  # the user and password the router asks for (a class's)
     router_logins: ClassAuth | None = None  # a router: who may log in, and what each may touch
+    samples_hz: float | None = None  # samples a second taken from other processes (None: all)
 
     def __post_init__(self) -> None:
         if not 0 <= self.domain_id <= 232:

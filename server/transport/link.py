@@ -25,7 +25,8 @@ class ZenohLink:
     async def open(cls, bus: Bus, settings: ZenohSettings) -> ZenohLink:
         """Open the session off the loop (it takes a moment), then join the bus on it."""
         session = await asyncio.to_thread(open_session, settings)
-        return cls(settings, session, ZenohBridge(bus, session, settings.domain_id))
+        bridge = ZenohBridge(bus, session, settings.domain_id, samples_hz=settings.samples_hz)
+        return cls(settings, session, bridge)
 
     def router_endpoint(self) -> str:
         """Where this app's node processes connect: its own router, or the one it joined."""
@@ -53,6 +54,7 @@ class ZenohLink:
             "sent": self.bridge.stats.sent,
             "received": self.bridge.stats.received,
             "dropped_without_attachment": self.bridge.stats.no_attachment,
+            "dropped_over_rate": self.bridge.stats.over_rate,
         }
 
 

@@ -18,11 +18,16 @@ import pytest
 import zenoh
 from support.app import App, end, instructor_token
 
+from server.msgs import Key
+from server.msgs.wire import dds_type_name, serialize, type_hash
 from server.transport.acl import ClassAuth, Credentials
+from server.transport.attachment import Attachment
 from server.transport.config import ZenohSettings
+from server.transport.keys import data_key
 from server.transport.session import build_config
 
 CODE = "ZEN042"
+FLOOD = 20_000  # samples, ten seconds' worth of what a world takes from other processes
 TALKER = """
 import rclpy
 from rclpy.node import Node
@@ -174,3 +179,34 @@ def test_a_worlds_login_reaches_its_own_domain_only(classroom: tuple[App, Path, 
                 time.sleep(0.05)
     assert "1/chatter/watcher" in ada_heard
     assert not [key for key in ada_heard if key.startswith("2/")], ada_heard
+
+
+def test_a_students_zenoh_flood_is_cut_at_their_worlds_door(
+    classroom: tuple[App, Path, dict[str, str]],
+) -> None:
+    # A process with Ada's login floods her world's /keydown far beyond what a world takes from
+    # other processes (Settings.world_samples_hz, 2000 a second): the rest is dropped as it
+    # arrives, counted in her world's health, and Bob's world takes nothing of it.
+    app, _root, tokens = classroom
+
+    def zenoh_of(world: str) -> dict[str, Any]:
+        status: dict[str, Any] = get(app, tokens[world], "/api/health").json()["zenoh"]
+        return status
+
+    bob_before = zenoh_of("bob")
+    key = data_key(1, "/keydown", dds_type_name(Key.TYPE), type_hash(Key.TYPE))
+    payload = serialize(Key(code=ord("x")))
+    with open_on(app, login_of(app, tokens["ada"])) as flooder:
+        publisher = flooder.declare_publisher(key, congestion_control=zenoh.CongestionControl.BLOCK)
+        deadline = time.monotonic() + 10
+        while not publisher.matching_status.matching and time.monotonic() < deadline:
+            time.sleep(0.02)
+        for seq in range(1, FLOOD + 1):
+            publisher.put(payload, attachment=Attachment(seq, time.time_ns(), bytes(16)).pack())
+        # Sent in well under a few seconds, so at most a few seconds' worth got in.
+        app.wait_for(
+            lambda: zenoh_of("ada")["dropped_over_rate"] >= FLOOD // 2, "Ada's flood cut at her world's door"
+        )
+    bob_after = zenoh_of("bob")
+    assert bob_after["dropped_over_rate"] == 0
+    assert bob_after["received"] == bob_before["received"]

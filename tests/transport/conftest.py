@@ -7,7 +7,9 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
+from typing import Any
 
 import pytest
 from support.app import free_port
@@ -50,10 +52,10 @@ class Pair:
             time.sleep(0.002)
 
 
-def _side(settings: ZenohSettings) -> Side:
+def _side(settings: ZenohSettings, **bridge: Any) -> Side:
     session = open_session(settings)
     bus = Bus()
-    return Side(bus, Executor(bus), ZenohBridge(bus, session, settings.domain_id), session)
+    return Side(bus, Executor(bus), ZenohBridge(bus, session, settings.domain_id, **bridge), session)
 
 
 def _close(side: Side) -> None:
@@ -61,13 +63,20 @@ def _close(side: Side) -> None:
     side.session.close()  # type: ignore[attr-defined]
 
 
-@pytest.fixture
-def pair() -> Iterator[Pair]:
+@contextmanager
+def joined(**proc_bridge: Any) -> Iterator[Pair]:
+    """The app's router and a node process's peer; ``proc_bridge`` goes to the process's bridge."""
     endpoint = f"tcp/127.0.0.1:{free_port()}"
     app = _side(ZenohSettings(mode="router", listen=(endpoint,)))
-    proc = _side(ZenohSettings(mode="peer", listen=("tcp/127.0.0.1:0",), connect=(endpoint,)))
+    proc = _side(ZenohSettings(mode="peer", listen=("tcp/127.0.0.1:0",), connect=(endpoint,)), **proc_bridge)
     try:
         yield Pair(app, proc, endpoint)
     finally:
         _close(proc)
         _close(app)
+
+
+@pytest.fixture
+def pair() -> Iterator[Pair]:
+    with joined() as both:
+        yield both

@@ -10,7 +10,7 @@ from server.msgs.wire import dds_type_name, serialize, type_hash
 from server.transport.attachment import Attachment
 from server.transport.keys import EntityKind, data_key
 
-from .conftest import Pair
+from .conftest import Pair, joined
 
 AddTwoInts = get_service_type("example_interfaces/srv/AddTwoInts")
 Trigger = get_service_type("std_srvs/srv/Trigger")
@@ -89,6 +89,27 @@ def test_sample_without_rmw_zenoh_attachment_is_dropped_and_counted(pair: Pair) 
     pair.pump(lambda: pair.proc.bridge.stats.no_attachment == 1, "the bare sample to be counted")
     raw.put(serialize(Int64(data=8)), attachment=Attachment(1, 0, bytes(16)).pack())
     pair.pump(lambda: heard == [8], "the sample with its attachment")
+
+
+def test_a_bridge_with_a_sample_budget_drops_a_flood_as_it_arrives() -> None:
+    # A class world's bridge takes at most samples_hz a second from other processes (bursts of one
+    # second's worth), on its own clock: the rest are counted and never decoded or delivered.
+    clock = [0.0]
+    with joined(samples_hz=10.0, now=lambda: clock[0]) as pair:
+        heard = _listener(pair)
+        raw = _raw_publisher(pair, INT64_KEY)
+        for i in range(50):
+            raw.put(serialize(Int64(data=i)), attachment=Attachment(i + 1, 0, bytes(16)).pack())
+        pair.pump(lambda: pair.proc.bridge.stats.over_rate == 40, "40 of 50 samples dropped in one instant")
+        pair.pump(lambda: len(heard) == 10, "the first ten delivered")
+        assert heard == list(range(10))
+        clock[0] = 1.0  # a second later: ten more
+        for i in range(50, 65):
+            raw.put(serialize(Int64(data=i)), attachment=Attachment(i + 1, 0, bytes(16)).pack())
+        pair.pump(lambda: pair.proc.bridge.stats.over_rate == 45, "5 of the next 15 dropped")
+        pair.pump(lambda: len(heard) == 20, "ten more delivered")
+        assert heard[10:] == list(range(50, 60))
+        assert pair.app.bridge.stats.over_rate == 0  # a bridge without a budget takes all
 
 
 def test_undecodable_sample_is_counted_not_delivered(pair: Pair) -> None:
