@@ -42,3 +42,8 @@ ROS_REFERENCE_HASHES = {
     "std_srvs/srv/SetBool": "abe9e4bb6b41b40e6789712c00ec8871923e089af3f667a79992a428cff2da0a",
     "std_srvs/srv/Trigger": "eeff2cd6fa5ad9d27cdf4dec64818317839b62f212a91e6b5304b634b2062c5f",
 }
+
+
+def rihs(type_name: str) -> str:
+    """``RIHS01_<hex>``, as rmw_zenoh's keys and tokens carry a type's hash, from ROS 2's own value."""
+    return "RIHS01_" + ROS_REFERENCE_HASHES[type_name]

@@ -19,14 +19,14 @@ import itertools
 import logging
 import threading
 import time
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, cast
 
 import zenoh
 
-from ..bus import Bus, Future, Node, Publisher, ServiceClient, ServiceServer, Subscription
+from ..bus import Bus, Clock, Future, Node, Publisher, ServiceClient, ServiceServer, Subscription, SystemClock
 from ..bus.services import PendingCall
+from ..limits import RateLimit
 from ..msgs import Message, Service
 from ..msgs.wire import WireError, dds_type_name, deserialize, prepare, serialize, type_hash
 from .attachment import Attachment
@@ -48,27 +48,6 @@ class Stats:
     undecodable: int = 0
     queries: int = 0
     replies: int = 0
-
-
-class _SampleBudget:
-    """A token bucket on wall time, taken from Zenoh's threads: ``rate_hz`` a second, bursts of a
-    second's worth."""
-
-    def __init__(self, rate_hz: float, now: Callable[[], float]) -> None:
-        self.rate_hz, self.now = rate_hz, now
-        self._tokens = rate_hz
-        self._at = now()
-        self._lock = threading.Lock()
-
-    def take(self) -> bool:
-        with self._lock:
-            at = self.now()
-            self._tokens = min(self.rate_hz, self._tokens + (at - self._at) * self.rate_hz)
-            self._at = at
-            if self._tokens < 1.0:
-                return False
-            self._tokens -= 1.0
-            return True
 
 
 class _RemotePublisher:
@@ -116,7 +95,7 @@ class ZenohBridge:
         *,
         enclave: str = "/",
         samples_hz: float | None = None,
-        now: Callable[[], float] = time.monotonic,
+        clock: Clock | None = None,
     ) -> None:
         self.bus = bus
         self.session: Any = session
@@ -127,8 +106,14 @@ class ZenohBridge:
         self.remote = RemoteGraph(self.zid, domain_id)
         self.inbox = Inbox(bus.wake_threadsafe)
         # Samples from other processes, at most samples_hz a second (bursts of one second's): a
-        # class world's flood is dropped here, on Zenoh's thread, before it costs a decode.
-        self._budget = _SampleBudget(samples_hz, now) if samples_hz is not None else None
+        # class world's flood is dropped here, on Zenoh's thread, before it costs a decode. The
+        # bucket is taken from several Zenoh threads: hence its lock.
+        self._budget = (
+            RateLimit(clock or SystemClock(), samples_hz, max(1, int(samples_hz)))
+            if samples_hz is not None
+            else None
+        )
+        self._budget_lock = threading.Lock()
         self._ids = itertools.count(1)
         self._node_ids: dict[int, int] = {}
         self._entities: dict[int, _Entity] = {}
@@ -280,9 +265,12 @@ class ZenohBridge:
 
     # -- Zenoh's threads: only hand over -------------------------------------------------------
     def _on_sample(self, topic: str, sample: zenoh.Sample) -> None:
-        if self._budget is not None and not self._budget.take():
-            self.stats.over_rate += 1
-            return
+        if self._budget is not None:
+            with self._budget_lock:
+                taken = self._budget.take()
+            if not taken:
+                self.stats.over_rate += 1
+                return
         attachment = sample.attachment
         raw = attachment.to_bytes() if attachment is not None else None
         att = Attachment.unpack(raw)

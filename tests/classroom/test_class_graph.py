@@ -17,7 +17,7 @@ import httpx
 import pytest
 import zenoh
 from interop.conftest import definitions
-from ros_reference import ROS_REFERENCE_HASHES
+from ros_reference import rihs
 from support.app import REPO, App, JsonProcess, instructor_token
 
 from server.transport.acl import Credentials
@@ -26,10 +26,6 @@ from server.transport.session import build_config
 
 CODE = "GRAPH7"
 POSE, VECTOR = "geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/Vector3"
-
-
-def rihs(type_name: str) -> str:
-    return "RIHS01_" + ROS_REFERENCE_HASHES[type_name]
 
 
 class Class:

@@ -5,15 +5,11 @@ from __future__ import annotations
 
 import json
 
-from ros_reference import ROS_REFERENCE_HASHES
+from ros_reference import rihs
 from support.app import App, JsonProcess
 from websockets.sync.client import connect
 
 from .conftest import definitions, service_text
-
-
-def rihs(type_name: str) -> str:
-    return "RIHS01_" + ROS_REFERENCE_HASHES[type_name]
 
 
 def test_sdk_subscriber_receives_countdown_and_the_drone_pose(app: App, sdk_peer: JsonProcess) -> None:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from server.bus import Node
+from server.bus import ManualClock, Node
 from server.msgs import Int64, String, get_service_type
 from server.msgs.wire import dds_type_name, serialize, type_hash
 from server.transport.attachment import Attachment
@@ -94,8 +94,8 @@ def test_sample_without_rmw_zenoh_attachment_is_dropped_and_counted(pair: Pair) 
 def test_a_bridge_with_a_sample_budget_drops_a_flood_as_it_arrives() -> None:
     # A class world's bridge takes at most samples_hz a second from other processes (bursts of one
     # second's worth), on its own clock: the rest are counted and never decoded or delivered.
-    clock = [0.0]
-    with joined(samples_hz=10.0, now=lambda: clock[0]) as pair:
+    clock = ManualClock()
+    with joined(samples_hz=10.0, clock=clock) as pair:
         heard = _listener(pair)
         raw = _raw_publisher(pair, INT64_KEY)
         for i in range(50):
@@ -103,7 +103,7 @@ def test_a_bridge_with_a_sample_budget_drops_a_flood_as_it_arrives() -> None:
         pair.pump(lambda: pair.proc.bridge.stats.over_rate == 40, "40 of 50 samples dropped in one instant")
         pair.pump(lambda: len(heard) == 10, "the first ten delivered")
         assert heard == list(range(10))
-        clock[0] = 1.0  # a second later: ten more
+        clock.set(1.0)  # a second later: ten more
         for i in range(50, 65):
             raw.put(serialize(Int64(data=i)), attachment=Attachment(i + 1, 0, bytes(16)).pack())
         pair.pump(lambda: pair.proc.bridge.stats.over_rate == 45, "5 of the next 15 dropped")
