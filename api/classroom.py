@@ -87,13 +87,20 @@ class ClassWorkers(BaseModel):
 class ClassGraph(BaseModel):
     domain_id: int = Field(description="the class's own ROS domain, where every world shows under /<world>")
     topics: dict[str, list[str]] = Field(
-        description="by world, each bridged topic: 'out' (the world publishes it; 'out*' while something "
-        "in the class domain subscribes, so it crosses now) or 'in' (the world subscribes to it)",
-        examples=[{"ada": ["in /ada/uav/input/position", "out* /ada/uav/sensors/gps"]}],
+        description="by world, each bridged topic or service: 'out' (the world publishes it; 'out*' while "
+        "something in the class domain subscribes, so it crosses now), 'in' (the world subscribes to it) "
+        "or 'srv' (the world serves it; a call in the class domain goes to that world's server)",
+        examples=[
+            {"ada": ["in /ada/uav/input/position", "out* /ada/uav/sensors/gps", "srv /ada/rocket/reset"]}
+        ],
     )
     samples_out: int = Field(description="samples passed from worlds into the class domain")
     samples_in: int = Field(description="samples passed from the class domain into worlds")
     dropped: int = Field(description="samples dropped (no rmw_zenoh attachment, or a watcher too slow)")
+    calls: int = Field(description="service calls in the class domain answered by a world's server")
+    calls_refused: int = Field(
+        description="service calls refused: no rmw_zenoh attachment, or too many waiting on one world"
+    )
 
 
 class Broadcast(BaseModel):
@@ -185,6 +192,8 @@ async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
         samples_out=bridge.stats.out,
         samples_in=bridge.stats.into,
         dropped=bridge.stats.dropped,
+        calls=bridge.stats.calls,
+        calls_refused=bridge.stats.refused,
     )
 
 

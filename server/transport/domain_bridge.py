@@ -11,9 +11,14 @@ on the class server's Zenoh session.
   subscribe in the world, so a world nobody watches costs nothing.
 - Each topic a world subscribes gets a subscription there; what is published on it in the class
   domain goes into the world (``ros2 topic pub /ada/uav/input/position ...`` flies ada's drone).
-- Samples cross as bytes, so no type needs to be known; each gets a new rmw_zenoh attachment (the
-  bridge's own GID and sequence numbers, the source timestamp kept), and one without an
-  attachment is dropped, as rmw_zenoh drops it. Services are not bridged.
+- Each service a world serves gets a server there (``ros2 service call /ada/rocket/reset ...``
+  resets ada's rocket): the bridge passes the request into the world as a call of its own and
+  answers the caller with the world's reply, under the caller's sequence number and GID, as
+  rmw_zenoh's client matches it. At most ``MAX_CALLS_PER_WORLD`` calls wait on one world at once;
+  one more is refused with an error reply.
+- Samples and requests cross as bytes, so no type needs to be known; each gets a new rmw_zenoh
+  attachment (the bridge's own GID and sequence numbers, the source timestamp kept), and one
+  without an attachment is dropped, as rmw_zenoh drops it.
 - Declarations happen on the bridge's own thread, which brings what is declared in line with what
   the graph asks for; Zenoh's threads only record a change or pass a sample on (congestion
   control DROP: a slow watcher never holds anything up). What one world's graph can make the
@@ -40,14 +45,18 @@ from .keys import ADMIN_SPACE, GID_BYTES, EntityKind, EntityToken, QoS, data_key
 log = logging.getLogger("transport.domain_bridge")
 NODE_NAME = "domain_bridge"
 MAX_TOKENS_PER_DOMAIN = 4096  # a world's graph tokens the bridge reads; more are ignored
-MAX_ROUTES_PER_WORLD = 512  # topics bridged for one world
+MAX_ROUTES_PER_WORLD = 512  # topics and services bridged for one world
+MAX_CALLS_PER_WORLD = 32  # service calls waiting on one world's servers at once
+CALL_TIMEOUT_S = 60.0  # a call the world has not answered by then is given up
+BRIDGED = (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION, EntityKind.SERVICE)
 _SEQUENCE = struct.Struct("<q")
 
 
 @dataclass(frozen=True)
 class Route:
-    """One topic of one world, and which way it crosses: a world's publisher (PUBLISHER) crosses out
-    into the class domain, a world's subscription (SUBSCRIPTION) takes what the class domain sends."""
+    """One topic or service of one world, and which way it crosses: a world's publisher (PUBLISHER)
+    crosses out into the class domain, a world's subscription (SUBSCRIPTION) takes what the class
+    domain sends, a world's service (SERVICE) answers the calls made in the class domain."""
 
     domain_id: int
     kind: EntityKind
@@ -61,6 +70,8 @@ class BridgeStats:
     out: int = 0  # samples from a world into the class domain
     into: int = 0  # samples from the class domain into a world
     dropped: int = 0  # without rmw_zenoh's attachment, or a put that failed
+    calls: int = 0  # service calls answered with a world's reply
+    refused: int = 0  # service calls refused: no attachment, or too many waiting on the world
 
 
 @dataclass
@@ -69,7 +80,7 @@ class _Mirror:
     namespace: str  # /<world>
     token: EntityToken  # in the class domain
     handle: Any  # its liveliness token
-    class_side: Any  # publisher (out) or subscriber (into) in the class domain
+    class_side: Any  # publisher (out), subscriber (into) or queryable (service) in the class domain
     world_side: Any = None  # subscriber (out, while matched) or publisher (into) in the world
     matching: bool = False
     seq: Iterator[int] = field(default_factory=lambda: itertools.count(1))
@@ -92,6 +103,7 @@ class DomainBridge:
         self._worlds: dict[int, str] = {}  # ROS domain → world name
         self._endpoints: dict[str, tuple[Route, QoS]] = {}  # token key → what it asks to bridge
         self._per_domain: Counter[int] = Counter()
+        self._calls: Counter[int] = Counter()  # service calls waiting, by world domain
         self._ignored: set[int] = set()  # domains over a limit, told once
         self._mirrors: dict[Route, _Mirror] = {}  # the bridge thread's alone
         self._nodes: dict[int, tuple[str, Any, int]] = {}  # domain → namespace, node token, node id
@@ -119,12 +131,16 @@ class DomainBridge:
         self._wake.set()
 
     def routes(self) -> dict[str, list[str]]:
-        """What is bridged now, by world: ``out /ada/uav/sensors/gps`` (watched: ``out*``) or ``in ...``."""
+        """What is bridged now, by world: ``out /ada/uav/sensors/gps`` (watched: ``out*``), ``in ...``
+        or ``srv /ada/rocket/reset``."""
         out: dict[str, list[str]] = {}
         for mirror in list(self._mirrors.values()):
+            kind = mirror.route.kind
             way = (
-                "in"
-                if mirror.route.kind is EntityKind.SUBSCRIPTION
+                "srv"
+                if kind is EntityKind.SERVICE
+                else "in"
+                if kind is EntityKind.SUBSCRIPTION
                 else "out*"
                 if mirror.world_side
                 else "out"
@@ -160,7 +176,7 @@ class DomainBridge:
             token is None
             or token.zid == self.zid
             or token.domain_id == self.class_domain
-            or token.kind not in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
+            or token.kind not in BRIDGED
             or token.topic is None
             or token.dds_type is None
             or token.type_hash is None
@@ -206,6 +222,58 @@ class DomainBridge:
             self.stats.out += 1
         else:
             self.stats.into += 1
+
+    # -- service calls, on Zenoh's threads -----------------------------------------------------
+    def _call(self, mirror: _Mirror, query: Any) -> None:  # zenoh.Query; its drop() is untyped
+        """A call to ``/<world>/<service>`` in the class domain: the same request goes to the world's
+        server, and each reply goes back under the caller's own sequence number and GID."""
+        raw = query.attachment
+        source = raw.to_bytes() if raw is not None else b""
+        domain_id = mirror.route.domain_id
+        why = ""
+        if len(source) != ATTACHMENT_BYTES or source[16] != GID_BYTES or query.payload is None:
+            why = "a request without rmw_zenoh's attachment"
+        else:
+            with self._lock:
+                if self._calls[domain_id] >= MAX_CALLS_PER_WORLD:
+                    why = f"more than {MAX_CALLS_PER_WORLD} calls are waiting on {mirror.namespace}"
+                else:
+                    self._calls[domain_id] += 1
+        if why:
+            self.stats.refused += 1
+            query.reply_err(why.encode())
+            query.drop()
+            return
+        key = str(query.key_expr)
+        caller_seq, caller_gid = source[:8], source[16:]
+
+        def on_reply(reply: zenoh.Reply) -> None:
+            if reply.ok is None:
+                query.reply_err(reply.err.payload if reply.err is not None else b"the world failed")
+                return
+            got = reply.ok.attachment
+            answer = got.to_bytes() if got is not None else b""
+            stamp = answer[8:16] if len(answer) == ATTACHMENT_BYTES else _SEQUENCE.pack(time.time_ns())
+            query.reply(key, reply.ok.payload, attachment=caller_seq + stamp + caller_gid)
+            self.stats.calls += 1
+
+        def finished() -> None:  # every reply is in, or the call timed out: the caller's call ends
+            with self._lock:
+                self._calls[domain_id] -= 1
+            query.drop()
+
+        attachment = _SEQUENCE.pack(next(mirror.seq)) + source[8:16] + mirror.tail
+        world_key = data_key(domain_id, mirror.route.topic, mirror.route.dds_type, mirror.route.type_hash)
+        try:
+            self.session.get(
+                world_key, zenoh.handlers.Callback(on_reply, finished),
+                target=zenoh.QueryTarget.ALL_COMPLETE, consolidation=zenoh.ConsolidationMode.NONE,
+                payload=query.payload, attachment=attachment, timeout=CALL_TIMEOUT_S,
+                allowed_destination=zenoh.Locality.REMOTE,
+            )  # fmt: skip
+        except (zenoh.ZError, RuntimeError):  # the session is closing
+            self.stats.refused += 1
+            finished()
 
     # -- the bridge's thread: declare what the graph asks for ----------------------------------
     def _run(self) -> None:
@@ -299,6 +367,14 @@ class DomainBridge:
                 lambda status, m=mirror: self._on_matching(m, status)
             )
             mirror.matching = bool(zpub.matching_status.matching)  # after the listener: no change missed
+        elif route.kind is EntityKind.SERVICE:
+            mirror = _Mirror(route, namespace, token, None, None)
+            mirror.class_side = self.session.declare_queryable(
+                class_key,
+                lambda query, m=mirror: self._call(m, query),
+                complete=True,
+                allowed_origin=zenoh.Locality.REMOTE,
+            )
         else:
             zpub = self.session.declare_publisher(
                 world_key, congestion_control=zenoh.CongestionControl.DROP,

@@ -16,7 +16,7 @@ from typing import Any
 import httpx
 import pytest
 import zenoh
-from interop.conftest import definitions
+from interop.conftest import definitions, service_text
 from ros_reference import rihs
 from support.app import REPO, App, JsonProcess, instructor_token
 
@@ -38,9 +38,17 @@ class Class:
         headers = {"Authorization": f"Bearer {token or self.instructor}", **kwargs.pop("headers", {})}
         return httpx.request(method, self.app.url + path, headers=headers, timeout=10.0, **kwargs)
 
-    def drone(self, world: str) -> list[float] | None:
+    def world(self, name: str) -> dict[str, Any]:
         worlds = self.call("GET", "/api/classroom/worlds").json()["worlds"]
-        return next(w["drone"] for w in worlds if w["world"] == world)
+        return next(w for w in worlds if w["world"] == name)
+
+    def drone(self, world: str) -> list[float] | None:
+        drone: list[float] | None = self.world(world)["drone"]
+        return drone
+
+    def rocket(self, world: str) -> str:
+        phase: str = self.world(world)["rocket"]["phase"]
+        return phase
 
     def bridged(self) -> dict[str, list[str]]:
         reply = self.call("GET", "/api/classroom/graph")
@@ -52,7 +60,7 @@ class Class:
 @pytest.fixture(scope="module")
 def school(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     root = tmp_path_factory.mktemp("class_graph")
-    app = App(root, "--classroom", "--class-code", CODE, "--launch", "fly", "--no-foxglove")
+    app = App(root, "--classroom", "--class-code", CODE, "--launch", "all", "--no-foxglove")
     try:
         school = Class(app)
         for name in ("Ada", "Bob"):
@@ -165,6 +173,29 @@ def test_the_instructor_watches_one_world_and_flies_it_while_the_other_stays(
     assert abs(heard["msg"]["pose"]["position"]["z"] - latest["pose"]["position"]["z"]) < 1.0
     graph = school.call("GET", "/api/classroom/graph").json()
     assert graph["samples_out"] > 0 and graph["samples_in"] > 0
+
+
+def test_the_instructor_calls_one_worlds_service_by_its_name_and_only_that_world_answers(
+    school: Class, peer: JsonProcess
+) -> None:
+    for world in ("ada", "bob"):  # both students abort their rockets
+        reply = school.call("POST", "/api/publish", school.tokens[world],
+                            json={"topic": "/abort_takeoff", "msg": {"data": True}})  # fmt: skip
+        assert reply.status_code == 200, reply.text
+    for world in ("ada", "bob"):
+        school.app.wait_for(lambda w=world: school.rocket(w) == "aborted", f"{world}'s rocket aborted")
+    school.app.wait_for(
+        lambda: "srv /ada/rocket/reset" in school.bridged().get("ada", []), "Ada's reset bridged"
+    )
+    request, response = service_text("std_srvs/srv/Trigger")
+    peer.send(cmd="call", service="/ada/rocket/reset", type="std_srvs/srv/Trigger", request=request,
+              response=response, hash=rihs("std_srvs/srv/Trigger"))  # fmt: skip
+    reply = peer.expect(lambda e: e.get("event") == "reply", "Ada's world's answer")
+    assert reply["msg"] == {"success": True, "message": "rocket back on the pad"}
+    assert school.rocket("ada") in ("ready", "counting down")  # back on the pad
+    assert school.rocket("bob") == "aborted"  # Bob's world was not asked
+    graph = school.call("GET", "/api/classroom/graph").json()
+    assert graph["calls"] >= 1 and graph["calls_refused"] == 0
 
 
 def test_a_students_login_does_not_reach_the_class_domain(school: Class) -> None:

@@ -166,3 +166,67 @@ def test_the_class_domain_itself_is_never_bridged(net: Net) -> None:
     assert "/in_class" not in str(net.bridge.routes())
     keep.undeclare()
     mark.undeclare()
+
+
+def test_a_call_in_the_class_domain_is_answered_by_the_worlds_server_as_rmw_zenoh_matches_it(
+    net: Net, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(domain_bridge, "MAX_CALLS_PER_WORLD", 1)
+    net.bridge.set_world(1, "ada")
+    token = net.declare(EntityKind.SERVICE, "/double", 2)
+    held: list[Any] = []  # calls the world's server has not answered yet
+    seen: list[Attachment | None] = []
+
+    def serve(query: Any) -> None:  # as rmw_zenoh's server: echo the request's sequence number and GID
+        request = Attachment.unpack(query.attachment.to_bytes() if query.attachment else None)
+        seen.append(request)
+        if query.payload.to_bytes() == b"hold":
+            held.append(query)
+            return
+        assert request is not None
+        answer = str(2 * int(query.payload.to_bytes())).encode()
+        query.reply(
+            query.key_expr, answer, attachment=Attachment(request.sequence_number, 77, request.gid).pack()
+        )
+        query.drop()
+
+    server = net.world.declare_queryable(data_key(1, "/double", TYPE, HASH), serve, complete=True)
+    wait_for(lambda: net.bridge.routes() == {"ada": ["srv /ada/double"]}, "ada's service bridged")
+    assert any("/SS/%/%ada/domain_bridge/%ada%double/" in t for t in net.class_tokens())
+
+    def call(payload: bytes, attachment: bytes | None) -> list[Any]:
+        replies = net.watcher.get(
+            data_key(0, "/ada/double", TYPE, HASH), payload=payload, attachment=attachment,
+            target=zenoh.QueryTarget.ALL_COMPLETE, consolidation=zenoh.ConsolidationMode.NONE, timeout=WAIT_S,
+        )  # fmt: skip
+        return list(replies)
+
+    replies = call(b"21", Attachment(41, 5, GID).pack())
+    assert [r.ok.payload.to_bytes() for r in replies if r.ok] == [b"42"]
+    answer = Attachment.unpack(replies[0].ok.attachment.to_bytes())
+    # The caller's own sequence number and GID, so its client takes the reply; the server's time.
+    assert answer == Attachment(41, 77, GID)
+    request = seen[-1]
+    assert request is not None and request.source_timestamp_ns == 5  # the caller's time, onward
+    assert request.gid != GID  # the bridge's own client in the world
+    # Without rmw_zenoh's attachment: refused, never put to the world.
+    refused = call(b"1", None)
+    assert [r.ok for r in refused] == [None] and b"attachment" in refused[0].err.payload.to_bytes()
+    assert len(seen) == 1
+    # One call may wait on the world at once here; the next is refused until it is answered.
+    waiting = net.watcher.get(
+        data_key(0, "/ada/double", TYPE, HASH), payload=b"hold", attachment=Attachment(50, 5, GID).pack(),
+        target=zenoh.QueryTarget.ALL_COMPLETE, consolidation=zenoh.ConsolidationMode.NONE, timeout=WAIT_S,
+    )  # fmt: skip
+    wait_for(lambda: len(held) == 1, "the held call at the world's server")
+    busy = call(b"3", Attachment(51, 5, GID).pack())
+    assert [r.ok for r in busy] == [None] and b"calls are waiting on /ada" in busy[0].err.payload.to_bytes()
+    first = held.pop()
+    first.reply(first.key_expr, b"late", attachment=Attachment(1, 78, GID).pack())
+    first.drop()
+    assert [r.ok.payload.to_bytes() for r in waiting if r.ok] == [b"late"]
+    assert [r.ok.payload.to_bytes() for r in call(b"4", Attachment(52, 5, GID).pack()) if r.ok] == [b"8"]
+    assert (net.bridge.stats.calls, net.bridge.stats.refused) == (3, 2)
+    server.undeclare()
+    token.undeclare()
+    wait_for(lambda: net.bridge.routes() == {}, "the service gone with its server")
