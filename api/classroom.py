@@ -80,8 +80,14 @@ class ClassWorlds(BaseModel):
 
 
 class ClassWorkers(BaseModel):
-    local: dict[str, int] = Field(description="this server's own worlds and how many it takes")
-    workers: list[dict[str, Any]] = Field(description="each world worker that answers now, with its load")
+    local: dict[str, Any] = Field(
+        description="this server's own worlds, how many it takes, and its CPU (process_cores: this process's "
+        "CPU over the last window in cores; host_busy: the machine's busy share; saturated: no new world "
+        "goes here while another place has room)"
+    )
+    workers: list[dict[str, Any]] = Field(
+        description="each world worker that answers now, with its load: worlds, max_worlds and cpu, as for local"
+    )
 
 
 class ClassGraph(BaseModel):
@@ -174,7 +180,11 @@ async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
     """Where worlds can go: this server's own room, and each world worker that answers now."""
     found = await asyncio.to_thread(classroom.workers.discover) if classroom.workers is not None else []
     return ClassWorkers(
-        local={"worlds": classroom.hosted_here, "max_worlds": classroom.local_capacity},
+        local={
+            "worlds": classroom.hosted_here,
+            "max_worlds": classroom.local_capacity,
+            "cpu": classroom.cpu.read().describe(),
+        },
         workers=[ref.describe() for ref in found],
     )
 

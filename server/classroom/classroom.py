@@ -28,6 +28,7 @@ from server.transport.acl import ClassAuth
 from server.transport.config import ZenohSettings, endpoint_host
 
 from .errors import ClassroomError
+from .load import Choice, CpuMeter, choose
 from .tokens import Grant, TokenSigner
 from .workers import WATCH_PERIOD_S, Silence, WorkerDirectory, WorkerRef, worker_api_token
 
@@ -149,6 +150,7 @@ class Classroom:
         self._view_task: asyncio.Task[None] | None = None
         self._remote_drones: dict[str, list[float] | None] = {}  # worker worlds' drones, last fetched
         self._silent_workers = Silence(settings.worker_timeout_s)
+        self.cpu = CpuMeter()  # this process's and machine's CPU: a worker's hello, the server's placing
         self._class_heard_at = self.clock.now()  # a worker: the class server's last hello or call
         worker = settings.worker
         self._worker_token = worker_api_token(worker.class_token, worker.id) if worker is not None else None
@@ -413,7 +415,7 @@ class Classroom:
         """A worker's hello: how full it is, and which worlds it hosts (Zenoh's thread: a copy)."""
         hosted = sorted(self.worlds)
         return {"worlds": len(hosted) + len(self._starting), "max_worlds": self.settings.max_worlds,
-                "hosted": hosted}  # fmt: skip
+                "hosted": hosted, "cpu": self.cpu.read().describe()}  # fmt: skip
 
     @property
     def zenoh_auth(self) -> ClassAuth:
@@ -523,12 +525,13 @@ class Classroom:
 
     async def _place(self, exclude: str | None = None) -> WorkerRef | None:
         """Where a new world goes: here or the world worker with the lowest load (worlds over
-        capacity); on a tie a worker, so the class server keeps its core for the pages. Never
-        on worker ``exclude``."""
+        capacity), but never a place whose CPU is saturated (``load.py``) while another has room;
+        on a tie a worker, so the class server keeps its core for the pages. Never on worker
+        ``exclude``."""
         local = self.hosted_here + self._local_starting
-        choices: list[tuple[float, int, WorkerRef | None]] = []
+        choices: list[Choice] = []
         if local < self.local_capacity:
-            choices.append((local / max(self.local_capacity, 1), 1, None))
+            choices.append(Choice(local / max(self.local_capacity, 1), None, self.cpu.read()))
         refs = await asyncio.to_thread(self.workers.discover) if self.workers is not None else []
         on_workers = self._on_workers()
         for ref in refs:
@@ -538,13 +541,18 @@ class Classroom:
             placing = sum(1 for wid, _ in self._hosting if wid == ref.id)
             worlds = max(ref.worlds, ours) + placing
             if worlds < ref.max_worlds:
-                choices.append((worlds / ref.max_worlds, 0, ref))
+                choices.append(Choice(worlds / ref.max_worlds, ref, ref.load))
         if not choices:
             raise ClassroomError(
                 503, f"no room for another world: this server hosts {self.local_capacity} itself "
                      f"(--local-worlds) and {'no world worker has room' if refs else 'no world worker answered'}"
             )  # fmt: skip
-        return min(choices, key=lambda c: (c[0], c[1]))[2]
+        best = choose(choices)
+        if best.saturated:
+            log.warning(
+                "every place with room for a world has its CPU saturated; placing it on the least full"
+            )
+        return best.ref
 
     async def _host_on(self, ref: WorkerRef, name: str, student: str, domain_id: int) -> None:
         assert self.workers is not None

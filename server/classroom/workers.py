@@ -3,7 +3,8 @@
 A world worker (``ros2lab world-worker --connect tcp/HOST:7447``) is a class server of its own
 that hosts worlds it is asked to host and lets no student join it directly. It answers a *hello*
 on the class's router (``ros2lab/classroom/worker/<id>``) with where its HTTP API listens and how
-full it is. The class server asks before placing a new world, puts it where the load is lowest,
+full it is and how busy its CPU is (``load.py``). The class server asks before placing a new world,
+puts it where the load is lowest,
 and then serves the student's page itself while every call for that world goes to the worker
 (``api/world_proxy.py``).
 
@@ -29,6 +30,7 @@ from typing import Any
 import httpx
 
 from .errors import ClassroomError
+from .load import CpuLoad
 
 CONTROL_PREFIX = "ros2lab/classroom/worker"
 MAX_REPLY_BYTES = 16 * 1024
@@ -112,9 +114,17 @@ class WorkerRef:
     max_worlds: int
     token: str  # worker_api_token(...): what the class server calls it with
     hosted: frozenset[str] | None = None  # the worlds it said it hosts (None: it did not say)
+    load: CpuLoad | None = None  # its CPU over its last window (None: it did not say)
 
     def describe(self) -> dict[str, Any]:
-        return {"id": self.id, "url": self.url, "worlds": self.worlds, "max_worlds": self.max_worlds}
+        cpu = self.load.describe() if self.load is not None else None
+        return {
+            "id": self.id,
+            "url": self.url,
+            "worlds": self.worlds,
+            "max_worlds": self.max_worlds,
+            "cpu": cpu,
+        }
 
 
 def _worker_ref(body: dict[str, Any], class_token: str) -> WorkerRef | None:
@@ -127,7 +137,8 @@ def _worker_ref(body: dict[str, Any], class_token: str) -> WorkerRef | None:
     hosted = (
         frozenset(listed) if isinstance(listed, list) and all(isinstance(n, str) for n in listed) else None
     )
-    return WorkerRef(wid, url.rstrip("/"), worlds, most, worker_api_token(class_token, wid), hosted)
+    load = CpuLoad.parse(body.get("cpu"))
+    return WorkerRef(wid, url.rstrip("/"), worlds, most, worker_api_token(class_token, wid), hosted, load)
 
 
 class WorkerDirectory:

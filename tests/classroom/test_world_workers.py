@@ -118,6 +118,17 @@ def hellos(klass: Class, login: Credentials, payload: bytes) -> list[Any]:
         return [r.ok for r in session.get(f"{CONTROL_PREFIX}/*", payload=payload, timeout=HELLO_S) if r.ok]
 
 
+def test_each_workers_hello_carries_its_cpu_and_the_class_server_shows_its_own(klass: Class) -> None:
+    listed = klass.get("/api/classroom/workers", klass.instructor).json()
+    for place in [listed["local"], *listed["workers"]]:
+        cpu = place["cpu"]
+        assert cpu["cores"] >= 1 and cpu["process_cores"] >= 0, place
+        assert cpu["host_busy"] is None or 0 <= cpu["host_busy"] <= 1, place
+    # Each worker hosts a fly world or two, so its process has used some CPU in its last window.
+    workers = {w["id"]: w for w in listed["workers"]}
+    assert all(workers[wid]["cpu"]["process_cores"] > 0 for wid in ("wa", "wb")), workers
+
+
 def test_a_hello_not_sealed_with_the_class_token_gets_no_answer_from_any_worker(klass: Class) -> None:
     # Even logged in as the class, an unsealed hello learns nothing: not where the workers' APIs
     # are, nor their load. The same question sealed as the class server seals it is answered.

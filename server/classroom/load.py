@@ -1,0 +1,146 @@
+"""How busy a process and its machine are: what a world worker's hello reports, and what the class
+server weighs before it places a new world (issue 13: "places new worlds on workers by load").
+
+- ``process_cores``: the CPU time this process used (every thread) over the last window, in cores.
+  A process's worlds share one event loop, in one Python thread, so near one core it is full
+  however many cores the machine has.
+- ``host_busy``: the share of the machine's CPU time that was busy over the window, for every
+  process, from ``/proc/stat``. Time the hypervisor stole counts as busy: it is capacity this
+  machine did not have. None where ``/proc/stat`` is missing.
+
+A place is *saturated* when its process uses ``PROCESS_FULL_CORES`` or its machine is
+``HOST_FULL`` busy. Placement goes by worlds against capacity, and never to a saturated place
+while another has room (docs/classroom.md).
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .workers import WorkerRef
+
+PROCESS_FULL_CORES = 0.85  # a process's worlds share one loop thread: near one core it is full
+HOST_FULL = 0.90  # the machine's share of CPU time busy (steal included)
+MIN_WINDOW_S = 1.0  # a load is measured over at least this long; reads in between repeat it
+_PROC_STAT = Path("/proc/stat")
+
+
+def host_times() -> tuple[int, int] | None:
+    """(busy, total) CPU ticks of the whole machine since boot, or None without ``/proc/stat``.
+    Busy is everything but idle and iowait: user, nice, system, irq, softirq and steal."""
+    try:
+        first = _PROC_STAT.read_text().split("\n", 1)[0].split()
+    except OSError:
+        return None
+    if not first or first[0] != "cpu" or len(first) < 5:
+        return None
+    ticks = [int(v) for v in first[1:9]]  # guest time is already inside user and nice
+    idle = ticks[3] + (ticks[4] if len(ticks) > 4 else 0)
+    total = sum(ticks)
+    return total - idle, total
+
+
+@dataclass(frozen=True)
+class CpuLoad:
+    process_cores: float
+    host_busy: float | None
+    cores: int
+
+    @property
+    def saturated(self) -> bool:
+        return self.process_cores >= PROCESS_FULL_CORES or (
+            self.host_busy is not None and self.host_busy >= HOST_FULL
+        )
+
+    def describe(self) -> dict[str, Any]:
+        return {
+            "process_cores": round(self.process_cores, 3),
+            "host_busy": None if self.host_busy is None else round(self.host_busy, 3),
+            "cores": self.cores,
+            "saturated": self.saturated,
+        }
+
+    @classmethod
+    def parse(cls, body: object) -> CpuLoad | None:
+        """A load as a hello carried it, or None for anything else (a hello is untrusted shape)."""
+        if not isinstance(body, dict):
+            return None
+        process, host, cores = body.get("process_cores"), body.get("host_busy"), body.get("cores")
+        if not isinstance(process, int | float) or isinstance(process, bool) or not 0 <= process < 1e6:
+            return None
+        if host is not None and (
+            not isinstance(host, int | float) or isinstance(host, bool) or not 0 <= host <= 1
+        ):
+            return None
+        if not isinstance(cores, int) or isinstance(cores, bool) or cores < 1:
+            return None
+        return cls(float(process), None if host is None else float(host), cores)
+
+
+def _cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
+
+
+class CpuMeter:
+    """This process's and its machine's CPU over the last window of at least ``MIN_WINDOW_S``.
+    Thread-safe: a worker reads it on Zenoh's thread, the class server on its loop."""
+
+    def __init__(
+        self,
+        now: Callable[[], float] = time.monotonic,
+        process_time: Callable[[], float] = time.process_time,
+        host: Callable[[], tuple[int, int] | None] = host_times,
+        cores: int | None = None,
+    ) -> None:
+        self._now, self._process_time, self._host = now, process_time, host
+        self.cores = cores if cores is not None else _cores()
+        self._lock = threading.Lock()
+        self._mark = (now(), process_time(), host())
+        self._load = CpuLoad(0.0, None, self.cores)
+
+    def read(self) -> CpuLoad:
+        with self._lock:
+            now = self._now()
+            then, cpu_then, host_then = self._mark
+            elapsed = now - then
+            if elapsed < MIN_WINDOW_S:
+                return self._load
+            cpu, host = self._process_time(), self._host()
+            busy: float | None = None
+            if host is not None and host_then is not None and host[1] > host_then[1]:
+                busy = min(1.0, max(0.0, (host[0] - host_then[0]) / (host[1] - host_then[1])))
+            self._load = CpuLoad(max(0.0, cpu - cpu_then) / elapsed, busy, self.cores)
+            self._mark = (now, cpu, host)
+            return self._load
+
+
+@dataclass(frozen=True)
+class Choice:
+    """A place a new world could go: its worlds over its capacity, who (None: the class server
+    itself) and its CPU, if known."""
+
+    share: float
+    ref: WorkerRef | None  # None: the class server itself
+    load: CpuLoad | None
+
+    @property
+    def saturated(self) -> bool:
+        return self.load is not None and self.load.saturated
+
+
+def choose(choices: list[Choice]) -> Choice:
+    """The place with the lowest share among those not saturated (all of them if every one is); on
+    a tie a worker before the class server, then the order given."""
+    if not choices:
+        raise ValueError("no place to choose from")
+    return min(choices, key=lambda c: (c.saturated, c.share, c.ref is None))

@@ -1,0 +1,107 @@
+"""Placement by load: the CPU meter on injected clocks and counters, a hello's load read as
+untrusted input, and the choice among the places with room."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from server.classroom.load import HOST_FULL, PROCESS_FULL_CORES, Choice, CpuLoad, CpuMeter, choose, host_times
+from server.classroom.workers import WorkerRef
+
+
+class Counters:
+    """A process's CPU seconds, the machine's (busy, total) ticks and a monotonic clock, stepped by hand."""
+
+    def __init__(self) -> None:
+        self.t = 100.0
+        self.cpu = 3.0
+        self.busy, self.total = 1000, 4000
+
+    def host(self) -> tuple[int, int]:
+        return self.busy, self.total
+
+
+def meter(c: Counters) -> CpuMeter:
+    return CpuMeter(now=lambda: c.t, process_time=lambda: c.cpu, host=c.host, cores=2)
+
+
+def test_the_meter_reports_cores_used_and_the_machines_busy_share_over_each_window() -> None:
+    c = Counters()
+    m = meter(c)
+    assert m.read() == CpuLoad(0.0, None, 2)  # nothing measured yet
+    c.t += 2.0
+    c.cpu += 1.0  # one CPU-second in two: half a core
+    c.busy, c.total = c.busy + 300, c.total + 400
+    load = m.read()
+    assert load.process_cores == pytest.approx(0.5)
+    assert load.host_busy == pytest.approx(0.75)
+    assert not load.saturated
+    c.t += 0.5  # under a window: the last load again, not a noisy half-window
+    c.cpu += 0.5
+    assert m.read() == load
+    c.t += 0.5  # a whole window since the last: 0.5 CPU-s in 1 s
+    assert m.read().process_cores == pytest.approx(0.5)
+    c.t += 1.0
+    c.cpu += PROCESS_FULL_CORES + 0.05  # the loop thread near a whole core: full, however idle the machine
+    c.busy, c.total = c.busy + 10, c.total + 200
+    assert m.read().saturated
+    c.t += 1.0
+    c.cpu += 0.1
+    c.busy, c.total = c.busy + int(HOST_FULL * 200), c.total + 200  # the machine busy (or stolen)
+    assert m.read().saturated
+
+
+def test_a_machine_without_proc_stat_is_judged_by_the_process_alone() -> None:
+    c = Counters()
+    m = CpuMeter(now=lambda: c.t, process_time=lambda: c.cpu, host=lambda: None, cores=4)
+    c.t += 1.0
+    c.cpu += 0.2
+    assert m.read() == CpuLoad(pytest.approx(0.2), None, 4)  # type: ignore[arg-type]
+
+
+@pytest.mark.skipif(not Path("/proc/stat").exists(), reason="Linux's /proc/stat only")
+def test_host_times_reads_this_machines_counters() -> None:
+    first = host_times()
+    assert first is not None and 0 <= first[0] <= first[1]
+    second = host_times()
+    assert second is not None and second[1] >= first[1] and second[0] >= first[0]
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        None, "busy", [], {"process_cores": True, "host_busy": 0.1, "cores": 2},
+        {"process_cores": -1, "host_busy": 0.1, "cores": 2}, {"process_cores": 0.1, "host_busy": 1.5, "cores": 2},
+        {"process_cores": 0.1, "host_busy": "0.5", "cores": 2}, {"process_cores": 0.1, "host_busy": 0.1, "cores": 0},
+        {"process_cores": float("nan"), "host_busy": 0.1, "cores": 2}, {"host_busy": 0.1, "cores": 2},
+    ],
+)  # fmt: skip
+def test_a_hellos_load_of_any_other_shape_is_not_taken(body: object) -> None:
+    assert CpuLoad.parse(body) is None
+
+
+def test_a_hellos_load_reads_back_as_it_was_described() -> None:
+    load = CpuLoad(0.4321, 0.5, 8)
+    assert CpuLoad.parse(load.describe()) == CpuLoad(0.432, 0.5, 8)
+    assert CpuLoad.parse({"process_cores": 0, "host_busy": None, "cores": 1}) == CpuLoad(0.0, None, 1)
+
+
+def ref(wid: str) -> WorkerRef:
+    return WorkerRef(wid, f"http://127.0.0.1/{wid}", 0, 10, "t")
+
+
+IDLE, BUSY = CpuLoad(0.1, 0.2, 2), CpuLoad(0.95, 0.5, 2)
+
+
+def test_a_new_world_goes_to_the_lowest_share_but_never_to_a_saturated_place_while_another_has_room() -> None:
+    here, wa, wb = Choice(0.5, None, IDLE), Choice(0.2, ref("wa"), BUSY), Choice(0.4, ref("wb"), IDLE)
+    assert choose([here, wa, wb]) is wb  # wa has the fewest worlds, but its loop is full
+    assert choose([here, Choice(0.2, ref("wa"), IDLE), wb]).ref == ref("wa")
+    # Every place saturated: a student still gets a world, on the least full.
+    assert choose([Choice(0.5, None, BUSY), Choice(0.3, ref("wa"), BUSY)]).ref == ref("wa")
+    # A tie goes to a worker, so the class server keeps its core for the pages; unknown load is not full.
+    assert choose([Choice(0.0, None, IDLE), Choice(0.0, ref("wa"), None)]).ref == ref("wa")
+    with pytest.raises(ValueError):
+        choose([])
