@@ -230,8 +230,13 @@ class DomainBridge:
         raw = query.attachment
         source = raw.to_bytes() if raw is not None else b""
         domain_id = mirror.route.domain_id
+        key = data_key(
+            self.class_domain, mirror.token.topic or "", mirror.route.dds_type, mirror.route.type_hash
+        )
         why = ""
-        if len(source) != ATTACHMENT_BYTES or source[16] != GID_BYTES or query.payload is None:
+        if str(query.key_expr) != key:  # a pattern (0/**) would call every world's servers at once
+            why = f"a call names one service, not a pattern: {query.key_expr}"
+        elif len(source) != ATTACHMENT_BYTES or source[16] != GID_BYTES or query.payload is None:
             why = "a request without rmw_zenoh's attachment"
         else:
             with self._lock:
@@ -244,7 +249,6 @@ class DomainBridge:
             query.reply_err(why.encode())
             query.drop()
             return
-        key = str(query.key_expr)
         caller_seq, caller_gid = source[:8], source[16:]
 
         def on_reply(reply: zenoh.Reply) -> None:

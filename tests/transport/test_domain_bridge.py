@@ -212,6 +212,11 @@ def test_a_call_in_the_class_domain_is_answered_by_the_worlds_server_as_rmw_zeno
     # Without rmw_zenoh's attachment: refused, never put to the world.
     refused = call(b"1", None)
     assert [r.ok for r in refused] == [None] and b"attachment" in refused[0].err.payload.to_bytes()
+    # A pattern would call every world's servers at once: refused, never put to a world.
+    pattern = list(
+        net.watcher.get("0/ada/**", payload=b"1", attachment=Attachment(42, 5, GID).pack(), timeout=WAIT_S)
+    )
+    assert [r.ok for r in pattern] == [None] and b"not a pattern" in pattern[0].err.payload.to_bytes()
     assert len(seen) == 1
     # One call may wait on the world at once here; the next is refused until it is answered.
     waiting = net.watcher.get(
@@ -226,7 +231,7 @@ def test_a_call_in_the_class_domain_is_answered_by_the_worlds_server_as_rmw_zeno
     first.drop()
     assert [r.ok.payload.to_bytes() for r in waiting if r.ok] == [b"late"]
     assert [r.ok.payload.to_bytes() for r in call(b"4", Attachment(52, 5, GID).pack()) if r.ok] == [b"8"]
-    assert (net.bridge.stats.calls, net.bridge.stats.refused) == (3, 2)
+    assert (net.bridge.stats.calls, net.bridge.stats.refused) == (3, 3)
     server.undeclare()
     token.undeclare()
     wait_for(lambda: net.bridge.routes() == {}, "the service gone with its server")
