@@ -28,7 +28,7 @@ from server.transport.acl import ClassAuth
 from server.transport.config import ZenohSettings, endpoint_host
 
 from .errors import ClassroomError
-from .load import Choice, CpuMeter, choose
+from .load import Choice, CpuMeter, choose, machine_id
 from .tokens import Grant, TokenSigner
 from .workers import WATCH_PERIOD_S, Silence, WorkerDirectory, WorkerRef, worker_api_token
 
@@ -150,7 +150,9 @@ class Classroom:
         self._view_task: asyncio.Task[None] | None = None
         self._remote_drones: dict[str, list[float] | None] = {}  # worker worlds' drones, last fetched
         self._silent_workers = Silence(settings.worker_timeout_s)
-        self.cpu = CpuMeter()  # this process's and machine's CPU: a worker's hello, the server's placing
+        self.cpu = CpuMeter(
+            machine=machine_id()
+        )  # this process's and machine's CPU: a worker's hello, the server's placing
         self._class_heard_at = self.clock.now()  # a worker: the class server's last hello or call
         worker = settings.worker
         self._worker_token = worker_api_token(worker.class_token, worker.id) if worker is not None else None
@@ -547,10 +549,10 @@ class Classroom:
                 503, f"no room for another world: this server hosts {self.local_capacity} itself "
                      f"(--local-worlds) and {'no world worker has room' if refs else 'no world worker answered'}"
             )  # fmt: skip
-        best = choose(choices)
-        if best.saturated:
+        best, full = choose(choices)
+        if full:
             log.warning(
-                "every place with room for a world has its CPU saturated; placing it on the least full"
+                "every place with room for a new world is saturated (CPU): placing it on the least full"
             )
         return best.ref
 

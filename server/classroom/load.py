@@ -10,11 +10,13 @@ server weighs before it places a new world (issue 13: "places new worlds on work
 
 A place is *saturated* when its process uses ``PROCESS_FULL_CORES`` or its machine is
 ``HOST_FULL`` busy. Placement goes by worlds against capacity, and never to a saturated place
-while another has room (docs/classroom.md).
+while another has room; a busy machine counts only against places on other machines, since
+places on one machine share its CPU (docs/classroom.md).
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 import threading
 import time
@@ -52,18 +54,26 @@ class CpuLoad:
     process_cores: float
     host_busy: float | None
     cores: int
+    machine: str | None = None  # which machine (a digest of its boot id): places on one share its CPU
+
+    @property
+    def process_full(self) -> bool:
+        return self.process_cores >= PROCESS_FULL_CORES
+
+    @property
+    def host_full(self) -> bool:
+        return self.host_busy is not None and self.host_busy >= HOST_FULL
 
     @property
     def saturated(self) -> bool:
-        return self.process_cores >= PROCESS_FULL_CORES or (
-            self.host_busy is not None and self.host_busy >= HOST_FULL
-        )
+        return self.process_full or self.host_full
 
     def describe(self) -> dict[str, Any]:
         return {
             "process_cores": round(self.process_cores, 3),
             "host_busy": None if self.host_busy is None else round(self.host_busy, 3),
             "cores": self.cores,
+            "machine": self.machine,
             "saturated": self.saturated,
         }
 
@@ -73,6 +83,7 @@ class CpuLoad:
         if not isinstance(body, dict):
             return None
         process, host, cores = body.get("process_cores"), body.get("host_busy"), body.get("cores")
+        machine = body.get("machine")
         if not isinstance(process, int | float) or isinstance(process, bool) or not 0 <= process < 1e6:
             return None
         if host is not None and (
@@ -81,7 +92,18 @@ class CpuLoad:
             return None
         if not isinstance(cores, int) or isinstance(cores, bool) or cores < 1:
             return None
-        return cls(float(process), None if host is None else float(host), cores)
+        if machine is not None and (not isinstance(machine, str) or not 0 < len(machine) <= 64):
+            return None
+        return cls(float(process), None if host is None else float(host), cores, machine)
+
+
+def machine_id() -> str | None:
+    """A digest of this boot's id: the same for every process (and container) on one machine."""
+    try:
+        boot = Path("/proc/sys/kernel/random/boot_id").read_text().strip()
+    except OSError:
+        return None
+    return hashlib.sha256(f"ros2lab-machine/{boot}".encode()).hexdigest()[:16] if boot else None
 
 
 def _cores() -> int:
@@ -101,12 +123,14 @@ class CpuMeter:
         process_time: Callable[[], float] = time.process_time,
         host: Callable[[], tuple[int, int] | None] = host_times,
         cores: int | None = None,
+        machine: str | None = None,
     ) -> None:
         self._now, self._process_time, self._host = now, process_time, host
         self.cores = cores if cores is not None else _cores()
+        self.machine = machine
         self._lock = threading.Lock()
         self._mark = (now(), process_time(), host())
-        self._load = CpuLoad(0.0, None, self.cores)
+        self._load = CpuLoad(0.0, None, self.cores, machine)
 
     def read(self) -> CpuLoad:
         with self._lock:
@@ -119,7 +143,7 @@ class CpuMeter:
             busy: float | None = None
             if host is not None and host_then is not None and host[1] > host_then[1]:
                 busy = min(1.0, max(0.0, (host[0] - host_then[0]) / (host[1] - host_then[1])))
-            self._load = CpuLoad(max(0.0, cpu - cpu_then) / elapsed, busy, self.cores)
+            self._load = CpuLoad(max(0.0, cpu - cpu_then) / elapsed, busy, self.cores, self.machine)
             self._mark = (now, cpu, host)
             return self._load
 
@@ -133,14 +157,20 @@ class Choice:
     ref: WorkerRef | None  # None: the class server itself
     load: CpuLoad | None
 
-    @property
-    def saturated(self) -> bool:
-        return self.load is not None and self.load.saturated
 
-
-def choose(choices: list[Choice]) -> Choice:
-    """The place with the lowest share among those not saturated (all of them if every one is); on
-    a tie a worker before the class server, then the order given."""
+def choose(choices: list[Choice]) -> tuple[Choice, bool]:
+    """The place with the lowest share among those not full (all of them if every one is), and
+    whether it is full; on a tie a worker before the class server, then the order given. A place
+    is full when its process is; its machine being busy counts only when another machine is in
+    the choice, since places on one machine share its CPU wherever the world goes."""
     if not choices:
         raise ValueError("no place to choose from")
-    return min(choices, key=lambda c: (c.saturated, c.share, c.ref is None))
+    machines = {c.load.machine for c in choices if c.load is not None}
+
+    def full(c: Choice) -> bool:
+        if c.load is None:
+            return False
+        return c.load.process_full or (c.load.host_full and len(machines) > 1)
+
+    best = min(choices, key=lambda c: (full(c), c.share, c.ref is None))
+    return best, full(best)

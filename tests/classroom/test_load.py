@@ -7,7 +7,16 @@ from pathlib import Path
 
 import pytest
 
-from server.classroom.load import HOST_FULL, PROCESS_FULL_CORES, Choice, CpuLoad, CpuMeter, choose, host_times
+from server.classroom.load import (
+    HOST_FULL,
+    PROCESS_FULL_CORES,
+    Choice,
+    CpuLoad,
+    CpuMeter,
+    choose,
+    host_times,
+    machine_id,
+)
 from server.classroom.workers import WorkerRef
 
 
@@ -62,7 +71,8 @@ def test_a_machine_without_proc_stat_is_judged_by_the_process_alone() -> None:
 
 
 @pytest.mark.skipif(not Path("/proc/stat").exists(), reason="Linux's /proc/stat only")
-def test_host_times_reads_this_machines_counters() -> None:
+def test_host_times_and_machine_id_read_this_machine() -> None:
+    assert machine_id() == machine_id() and len(machine_id() or "") == 16
     first = host_times()
     assert first is not None and 0 <= first[0] <= first[1]
     second = host_times()
@@ -72,19 +82,27 @@ def test_host_times_reads_this_machines_counters() -> None:
 @pytest.mark.parametrize(
     "body",
     [
-        None, "busy", [], {"process_cores": True, "host_busy": 0.1, "cores": 2},
-        {"process_cores": -1, "host_busy": 0.1, "cores": 2}, {"process_cores": 0.1, "host_busy": 1.5, "cores": 2},
-        {"process_cores": 0.1, "host_busy": "0.5", "cores": 2}, {"process_cores": 0.1, "host_busy": 0.1, "cores": 0},
-        {"process_cores": float("nan"), "host_busy": 0.1, "cores": 2}, {"host_busy": 0.1, "cores": 2},
+        None,
+        "busy",
+        [],
+        {"process_cores": True, "host_busy": 0.1, "cores": 2},
+        {"process_cores": -1, "host_busy": 0.1, "cores": 2},
+        {"process_cores": 0.1, "host_busy": 1.5, "cores": 2},
+        {"process_cores": 0.1, "host_busy": "0.5", "cores": 2},
+        {"process_cores": 0.1, "host_busy": 0.1, "cores": 0},
+        {"process_cores": float("nan"), "host_busy": 0.1, "cores": 2},
+        {"host_busy": 0.1, "cores": 2},
+        {"process_cores": 0.1, "host_busy": 0.1, "cores": 2, "machine": 7},
+        {"process_cores": 0.1, "host_busy": 0.1, "cores": 2, "machine": "m" * 65},
     ],
-)  # fmt: skip
+)
 def test_a_hellos_load_of_any_other_shape_is_not_taken(body: object) -> None:
     assert CpuLoad.parse(body) is None
 
 
 def test_a_hellos_load_reads_back_as_it_was_described() -> None:
-    load = CpuLoad(0.4321, 0.5, 8)
-    assert CpuLoad.parse(load.describe()) == CpuLoad(0.432, 0.5, 8)
+    load = CpuLoad(0.4321, 0.5, 8, "3f2a")
+    assert CpuLoad.parse(load.describe()) == CpuLoad(0.432, 0.5, 8, "3f2a")
     assert CpuLoad.parse({"process_cores": 0, "host_busy": None, "cores": 1}) == CpuLoad(0.0, None, 1)
 
 
@@ -92,16 +110,33 @@ def ref(wid: str) -> WorkerRef:
     return WorkerRef(wid, f"http://127.0.0.1/{wid}", 0, 10, "t")
 
 
-IDLE, BUSY = CpuLoad(0.1, 0.2, 2), CpuLoad(0.95, 0.5, 2)
+IDLE, BUSY = CpuLoad(0.1, 0.2, 2, "m1"), CpuLoad(0.95, 0.5, 2, "m1")  # BUSY: its process's loop is full
 
 
-def test_a_new_world_goes_to_the_lowest_share_but_never_to_a_saturated_place_while_another_has_room() -> None:
+def test_a_new_world_goes_to_the_lowest_share_but_never_to_a_full_process_while_another_has_room() -> None:
     here, wa, wb = Choice(0.5, None, IDLE), Choice(0.2, ref("wa"), BUSY), Choice(0.4, ref("wb"), IDLE)
-    assert choose([here, wa, wb]) is wb  # wa has the fewest worlds, but its loop is full
-    assert choose([here, Choice(0.2, ref("wa"), IDLE), wb]).ref == ref("wa")
-    # Every place saturated: a student still gets a world, on the least full.
-    assert choose([Choice(0.5, None, BUSY), Choice(0.3, ref("wa"), BUSY)]).ref == ref("wa")
+    assert choose([here, wa, wb]) == (wb, False)  # wa has the fewest worlds, but its loop is full
+    assert choose([here, Choice(0.2, ref("wa"), IDLE), wb])[0].ref == ref("wa")
+    # Every place full: a student still gets a world, on the least full, and the caller is told.
+    assert choose([Choice(0.5, None, BUSY), Choice(0.3, ref("wa"), BUSY)]) == (
+        Choice(0.3, ref("wa"), BUSY),
+        True,
+    )
     # A tie goes to a worker, so the class server keeps its core for the pages; unknown load is not full.
-    assert choose([Choice(0.0, None, IDLE), Choice(0.0, ref("wa"), None)]).ref == ref("wa")
+    assert choose([Choice(0.0, None, IDLE), Choice(0.0, ref("wa"), None)])[0].ref == ref("wa")
     with pytest.raises(ValueError):
         choose([])
+
+
+def test_a_busy_machine_counts_against_its_places_only_beside_another_machine() -> None:
+    busy_m1 = CpuLoad(0.2, 0.95, 2, "m1")  # the process is fine; its machine is busy (or stolen)
+    here, wa = Choice(0.0, None, busy_m1), Choice(0.5, ref("wa"), CpuLoad(0.3, 0.95, 2, "m1"))
+    # One machine: the world costs it the same wherever it goes, so worlds / capacity decides.
+    assert choose([here, wa]) == (here, False)
+    # A worker on another machine with CPU to spare takes it, though it has more worlds.
+    wb = Choice(0.6, ref("wb"), CpuLoad(0.3, 0.4, 16, "m2"))
+    assert choose([here, wa, wb]) == (wb, False)
+    # Both machines busy: by worlds / capacity again, and full.
+    wb_busy = Choice(0.6, ref("wb"), CpuLoad(0.3, 0.92, 16, "m2"))
+    assert choose([here, wa, wb_busy]) == (here, True)
+    assert busy_m1.saturated and not busy_m1.process_full

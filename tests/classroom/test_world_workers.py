@@ -124,6 +124,8 @@ def test_each_workers_hello_carries_its_cpu_and_the_class_server_shows_its_own(k
         cpu = place["cpu"]
         assert cpu["cores"] >= 1 and cpu["process_cores"] >= 0, place
         assert cpu["host_busy"] is None or 0 <= cpu["host_busy"] <= 1, place
+    # One machine here: every place names the same one, so its busy share decides nothing between them.
+    assert len({place["cpu"]["machine"] for place in [listed["local"], *listed["workers"]]}) == 1, listed
     # Each worker hosts a fly world or two, so its process has used some CPU in its last window.
     workers = {w["id"]: w for w in listed["workers"]}
     assert all(workers[wid]["cpu"]["process_cores"] > 0 for wid in ("wa", "wb")), workers
