@@ -82,8 +82,9 @@ class ClassWorlds(BaseModel):
 class ClassWorkers(BaseModel):
     local: dict[str, Any] = Field(
         description="this server's own worlds, how many it takes, and its CPU (process_cores: this process's "
-        "CPU over the last window in cores; host_busy: the machine's busy share; saturated: no new world "
-        "goes here while another place has room)"
+        "CPU over the last window in cores; host_busy: the machine's busy share; machine: a digest of its "
+        "boot id; saturated: the process uses 0.85 core or the machine is 90 % busy. No new world goes to a "
+        "full process while another place has room, nor to a busy machine while another machine has room)"
     )
     workers: list[dict[str, Any]] = Field(
         description="each world worker that answers now, with its load: worlds, max_worlds and cpu, as for local"
@@ -105,7 +106,8 @@ class ClassGraph(BaseModel):
     dropped: int = Field(description="samples dropped (no rmw_zenoh attachment, or a watcher too slow)")
     calls: int = Field(description="service calls in the class domain answered by a world's server")
     calls_refused: int = Field(
-        description="service calls refused: no rmw_zenoh attachment, or too many waiting on one world"
+        description="service calls refused: no rmw_zenoh attachment, a key pattern instead of one service, "
+        "or too many waiting on one world"
     )
 
 

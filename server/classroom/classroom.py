@@ -150,9 +150,9 @@ class Classroom:
         self._view_task: asyncio.Task[None] | None = None
         self._remote_drones: dict[str, list[float] | None] = {}  # worker worlds' drones, last fetched
         self._silent_workers = Silence(settings.worker_timeout_s)
-        self.cpu = CpuMeter(
-            machine=machine_id()
-        )  # this process's and machine's CPU: a worker's hello, the server's placing
+        # This process's and machine's CPU: a worker's hello, the class server's placing. Each reads
+        # it every WATCH_PERIOD_S (a hello, a watch round), so a load covers the last seconds.
+        self.cpu = CpuMeter(machine=machine_id())
         self._class_heard_at = self.clock.now()  # a worker: the class server's last hello or call
         worker = settings.worker
         self._worker_token = worker_api_token(worker.class_token, worker.id) if worker is not None else None
@@ -293,6 +293,7 @@ class Classroom:
         for ``--worker-timeout`` start again elsewhere, under the same names, domains and tokens."""
         while self.workers is not None:
             await asyncio.sleep(WATCH_PERIOD_S)
+            self.cpu.read()  # a new window: a placement weighs the last seconds, not all since the last join
             try:
                 await self.watch_workers_once()
             except Exception:  # the watch must outlive any one round

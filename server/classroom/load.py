@@ -9,9 +9,9 @@ server weighs before it places a new world (issue 13: "places new worlds on work
   machine did not have. None where ``/proc/stat`` is missing.
 
 A place is *saturated* when its process uses ``PROCESS_FULL_CORES`` or its machine is
-``HOST_FULL`` busy. Placement goes by worlds against capacity, and never to a saturated place
-while another has room; a busy machine counts only against places on other machines, since
-places on one machine share its CPU (docs/classroom.md).
+``HOST_FULL`` busy. Placement goes by worlds against capacity, and never to a full process while
+another place has room; a busy machine counts against its places only when a place on another
+machine is in the choice, since places on one machine share its CPU (``choose``, docs/classroom.md).
 """
 
 from __future__ import annotations
