@@ -61,17 +61,19 @@ class FoxgloveBridgeNode(Node):
         self.client_channels: dict[tuple[int, int], Advertised] = {}
         self.refused = 0
         self.server: Any = None  # set by FoxgloveBridge once the server runs (for status messages)
-        self._graph_version = -1
+        self._graph_version: tuple[int, int] | None = None
         self.sync()
         self.create_timer(SYNC_PERIOD_S, self.sync)
 
     # -- bus → Foxglove ----------------------------------------------------
     def sync(self) -> None:
-        """Advertise new topics, unadvertise vanished ones (or ones that changed type)."""
-        if self.bus.graph_version == self._graph_version:
+        """Advertise new topics (this process's, and those only other processes declare, with a
+        type this lab knows), unadvertise vanished ones (or ones that changed type)."""
+        version = self.bus.topics_version
+        if version == self._graph_version:
             return
-        self._graph_version = self.bus.graph_version
-        current = {name: t.msg_type for name, t in self.bus.topics.items()}
+        self._graph_version = version
+        current = self.bus.known_topics()
         for name, (channel, msg_type) in list(self.channels.items()):
             if current.get(name) is not msg_type:
                 self._drop_subscription(name)

@@ -15,7 +15,8 @@ NAMESPACE = "/rosapi"
 
 
 def _visible_topics(node: Node) -> list[tuple[str, str]]:
-    return sorted((name, t.msg_type.TYPE) for name, t in node.bus.topics.items() if not is_hidden(name))
+    """This process's topics and those other processes declare (``Bus.known_topics``)."""
+    return sorted((name, t.TYPE) for name, t in node.bus.known_topics().items() if not is_hidden(name))
 
 
 class RosapiNode(Node):
@@ -53,8 +54,8 @@ class RosapiNode(Node):
         return response
 
     def _topic_type(self, request: Any, response: Any) -> Any:
-        topic = self.bus.topics.get(self._absolute(request.topic))
-        response.type = topic.msg_type.TYPE if topic is not None else ""
+        msg_type = self.bus.known_topics().get(self._absolute(request.topic))
+        response.type = msg_type.TYPE if msg_type is not None else ""
         return response
 
     def _visible_nodes(self) -> list[Node]:

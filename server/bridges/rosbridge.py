@@ -151,13 +151,13 @@ class RosbridgeSession:
         topic = _absolute(request.get("topic"), "topic")
         pub = self.advertised.get(topic)
         if pub is None:  # rosbridge lets a client publish on an existing topic without advertising it
-            existing = self.node.bus.topics.get(topic)
+            existing = self.node.bus.known_topics().get(topic)  # here or in another process
             if existing is None:
                 raise ProtocolError(
                     f"{topic} is not advertised and does not exist: advertise it with its type"
                 )
             self._check_room(topic)
-            pub = self.advertised[topic] = self.node.create_publisher(existing.msg_type, topic, 10)
+            pub = self.advertised[topic] = self.node.create_publisher(existing, topic, 10)
         as_json = request.get("msg", {})
         message = pub.msg_type.from_dict(as_json)
         check_inbound(topic, message, as_json)
@@ -169,13 +169,13 @@ class RosbridgeSession:
         sub_id = str(request.get("id", ""))
         throttle_s = _int(request.get("throttle_rate"), "throttle_rate", 0, MAX_THROTTLE_MS, 0) / 1000.0
         depth = _int(request.get("queue_length"), "queue_length", 0, MAX_QUEUE, 0) or DEFAULT_QUEUE
-        existing = self.node.bus.topics.get(topic)
+        existing = self.node.bus.known_topics().get(topic)  # here or in another process
         if request.get("type"):
             msg_type = get_type(str(request["type"]))
-            if existing is not None and existing.msg_type is not msg_type:
-                raise TopicTypeError(f"{topic} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
+            if existing is not None and existing is not msg_type:
+                raise TopicTypeError(f"{topic} carries {existing.TYPE}, not {msg_type.TYPE}")
         elif existing is not None:
-            msg_type = existing.msg_type
+            msg_type = existing
         else:
             raise ProtocolError(f"{topic} does not exist yet: subscribe with its type")
         out = self.subscriptions.get(as_named)

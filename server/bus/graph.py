@@ -13,7 +13,7 @@ from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol
 
-from ..msgs import Message, Service
+from ..msgs import Message, Service, UnknownTypeError, get_type
 from .clock import Clock, SystemClock
 from .errors import NoBusError, TopicTypeError, UnknownNodeError, UnknownTopicError
 from .names import is_hidden
@@ -42,6 +42,16 @@ class RemoteServices(Protocol):
     def has_server(self, name: str, srv_type: type[Service]) -> bool: ...
 
     def call(self, client: ServiceClient, request: Message, future: Future[Message]) -> None: ...
+
+
+class RemoteTopics(Protocol):
+    """The topics other processes declare on the graph (the Zenoh transport's RemoteGraph)."""
+
+    version: int  # moves whenever they change
+
+    def topic_types(self) -> dict[str, set[str]]:
+        """Every topic name another process publishes or subscribes to, with the types it gives."""
+        ...
 
 
 log = logging.getLogger("bus")
@@ -148,6 +158,7 @@ class Bus:
         self.topics: dict[str, Topic] = {}
         self.services: dict[str, ServiceChannel] = {}
         self.remote_services: RemoteServices | None = None
+        self.remote_topics: RemoteTopics | None = None
         self.nodes: list[Node] = []
         self.graph_version = 0
         self.crash_handlers: list[Callable[[Node, BaseException], None]] = []
@@ -229,6 +240,28 @@ class Bus:
         elif topic.msg_type is not msg_type:
             raise TopicTypeError(f"{name} carries {topic.msg_type.TYPE}; {msg_type.TYPE} conflicts with it")
         return topic
+
+    def known_topics(self) -> dict[str, type[Message]]:
+        """Every topic a bridge (Foxglove, rosbridge) can carry: this bus's, and each one only other
+        processes declare, when this lab knows its type. A name other processes give two types is
+        left out: those endpoints never meet on the wire, and a bridge's channel has one type."""
+        known = {name: topic.msg_type for name, topic in self.topics.items()}
+        remote = self.remote_topics
+        if remote is not None:
+            for name, type_names in remote.topic_types().items():
+                if name in known or len(type_names) != 1:
+                    continue
+                try:
+                    known[name] = get_type(next(iter(type_names)))
+                except UnknownTypeError:
+                    continue  # a student's own type, or one in DDS form only: nothing to decode it with
+        return known
+
+    @property
+    def topics_version(self) -> tuple[int, int]:
+        """Moves whenever ``known_topics`` may have changed."""
+        remote = self.remote_topics
+        return self.graph_version, remote.version if remote is not None else -1
 
     def get_topic(self, name: str) -> Topic:
         try:

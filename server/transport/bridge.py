@@ -124,6 +124,7 @@ class ZenohBridge:
         bus.observers.append(self)
         bus.pollers.append(self.poll)
         bus.remote_services = self
+        bus.remote_topics = self.remote
         for node in list(bus.nodes):
             self.node_added(node)
             for endpoint in [*node.publishers, *node.subscriptions, *node.services, *node.clients]:
@@ -411,3 +412,5 @@ class ZenohBridge:
             self.bus.pollers.remove(self.poll)
         if self.bus.remote_services is self:
             self.bus.remote_services = None
+        if self.bus.remote_topics is self.remote:
+            self.bus.remote_topics = None

@@ -35,6 +35,7 @@ class RemoteEndpoint:
 
 
 MAX_SESSIONS_REMEMBERED = 1024
+_TOPIC_KINDS = frozenset({EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION})
 
 
 class RemoteGraph:
@@ -118,6 +119,14 @@ class RemoteGraph:
                 )
             )
         return sorted(out, key=lambda e: (e.name, e.kind.value, e.node))
+
+    def topic_types(self) -> dict[str, set[str]]:
+        """Every topic name other sessions publish or subscribe to, with the types they give it."""
+        out: dict[str, set[str]] = {}
+        for t in self._tokens.values():
+            if t.kind in _TOPIC_KINDS and t.topic is not None and t.dds_type is not None:
+                out.setdefault(t.topic, set()).add(ros_type_name(t.dds_type) or t.dds_type)
+        return out
 
     def has_server(self, service: str, dds_type: str) -> bool:
         return any(

@@ -330,3 +330,40 @@ def test_graph_version_changes_on_every_graph_change(bus: Bus) -> None:
     pub.destroy()
     v3 = bus.graph_version
     assert v0 < v1 < v2 < v3
+
+
+class _OtherProcesses:
+    """What the Zenoh transport's RemoteGraph tells the bus: topic names with the types given them."""
+
+    def __init__(self) -> None:
+        self.version = 0
+        self.types: dict[str, set[str]] = {}
+
+    def topic_types(self) -> dict[str, set[str]]:
+        return self.types
+
+
+def test_known_topics_add_other_processes_topics_whose_type_is_known_and_unambiguous(bus: Bus) -> None:
+    node = Node("n", context=bus)
+    node.create_publisher(Int64, "/countdown", 10)
+    remote = _OtherProcesses()
+    remote.types = {
+        "/student_pose": {"geometry_msgs/msg/PoseStamped"},
+        "/countdown": {"std_msgs/msg/String"},  # this process's type wins: the bridges carry its messages
+        "/two_types": {"std_msgs/msg/Float64", "std_msgs/msg/Int64"},
+        "/own_type": {"my_pkg/msg/Thing"},
+        "/dds_only": {"my_pkg::msg::dds_::Thing_"},
+    }
+    local = {name: topic.msg_type for name, topic in bus.topics.items()}  # /countdown, /rosout
+    assert local["/countdown"] is Int64
+    assert bus.known_topics() == local, "no transport yet: this process's topics only"
+    before = bus.topics_version
+    bus.remote_topics = remote
+    assert bus.known_topics() == {**local, "/student_pose": PoseStamped}
+    assert bus.topics_version != before
+    remote.types["/student_speed"] = {"std_msgs/msg/Float64"}
+    remote.version += 1
+    assert bus.known_topics()["/student_speed"] is Float64
+    changed = bus.topics_version
+    node.create_subscription(Float64, "/student_speed", lambda _m: None, 10)
+    assert bus.topics_version != changed, "a new local topic moves the version too"

@@ -1,0 +1,126 @@
+"""Foxglove and rosbridge clients see the whole graph, not only this process's nodes: a topic only
+another process publishes (here the independent zenoh-ros2-sdk peer, as a student's node process
+would) is advertised as a Foxglove channel and listed by rosapi, and both carry its messages."""
+
+from __future__ import annotations
+
+import json
+import struct
+import time
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+from mcap.records import Schema as McapSchema
+from mcap_ros2.decoder import DecoderFactory
+from ros_reference import rihs
+from support.app import App, JsonProcess, free_port
+from websockets.sync.client import ClientConnection, connect
+
+from .conftest import definitions
+
+STRING = "std_msgs/msg/String"
+READ_S = 10.0
+
+
+@pytest.fixture(scope="module")
+def foxglove_port() -> int:
+    return free_port()
+
+
+@pytest.fixture(scope="module")
+def app(tmp_path_factory: pytest.TempPathFactory, foxglove_port: int) -> Iterator[App]:
+    """The rocket alone (a small graph), with the Foxglove server on a port of its own."""
+    lab = App(
+        tmp_path_factory.mktemp("bridges"), "--launch", "rocket", "start_delay:=3600",
+        "--foxglove-port", str(foxglove_port),
+    )  # fmt: skip
+    try:
+        yield lab
+    finally:
+        lab.stop()
+
+
+def publish(peer: JsonProcess, topic: str, data: str) -> None:
+    peer.send(
+        cmd="publish", topic=topic, type=STRING, hash=rihs(STRING), msg={"data": data}, node="sdk_talker"
+    )
+
+
+def until_frame(ws: ClientConnection, peer: JsonProcess, topic: str, binary: bool) -> Any:
+    """Have the peer publish on ``topic`` until a frame of that kind comes (the first samples may
+    go out before the new subscription's route is in place, as for any ROS 2 subscription)."""
+    deadline = time.monotonic() + READ_S
+    i = 0
+    while time.monotonic() < deadline:
+        publish(peer, topic, f"n{i}")
+        i += 1
+        try:
+            frame = ws.recv(timeout=0.3)
+        except TimeoutError:
+            continue
+        if isinstance(frame, bytes) == binary:
+            return frame
+    pytest.fail(f"no message on {topic} reached the client in {READ_S} s ({i} published)")
+
+
+def test_foxglove_advertises_and_carries_a_topic_only_another_process_publishes(
+    app: App, sdk_peer: JsonProcess, foxglove_port: int
+) -> None:
+    sdk_peer.send(cmd="define", types=definitions(STRING))
+    publish(sdk_peer, "/sdk_fox", "first")  # declares the peer's publisher
+    with connect(
+        f"ws://127.0.0.1:{foxglove_port}", subprotocols=["foxglove.sdk.v1"], open_timeout=READ_S
+    ) as ws:
+        channel = None
+        deadline = time.monotonic() + READ_S
+        while channel is None and time.monotonic() < deadline:
+            try:
+                frame = ws.recv(timeout=max(0.05, deadline - time.monotonic()))
+            except TimeoutError:
+                break
+            if isinstance(frame, str) and (msg := json.loads(frame))["op"] == "advertise":
+                channel = next((c for c in msg["channels"] if c["topic"] == "/sdk_fox"), None)
+        assert channel is not None, "the other process's topic was never advertised"
+        assert (channel["encoding"], channel["schemaName"]) == ("cdr", STRING)
+        ws.send(json.dumps({"op": "subscribe", "subscriptions": [{"id": 3, "channelId": channel["id"]}]}))
+        frame = until_frame(ws, sdk_peer, "/sdk_fox", binary=True)
+    opcode, sub_id = struct.unpack_from("<BI", frame)
+    assert (opcode, sub_id) == (0x01, 3)
+    schema = McapSchema(id=1, name=STRING, encoding="ros2msg", data=channel["schema"].encode())
+    decoded = DecoderFactory().decoder_for("cdr", schema)(frame[13:])  # type: ignore[misc]
+    assert decoded.data == "first" or decoded.data.startswith("n"), decoded  # one the peer published
+
+
+def test_rosbridge_lists_and_subscribes_to_a_topic_only_another_process_publishes(
+    app: App, sdk_peer: JsonProcess
+) -> None:
+    sdk_peer.send(cmd="define", types=definitions(STRING))
+    publish(sdk_peer, "/sdk_rb", "first")
+    with connect(f"ws://127.0.0.1:{app.port}/rosbridge", open_timeout=READ_S) as ws:
+
+        def call(service: str, args: dict[str, Any]) -> dict[str, Any]:
+            ws.send(json.dumps({"op": "call_service", "id": service, "service": service, "args": args}))
+            deadline = time.monotonic() + READ_S
+            while time.monotonic() < deadline:
+                reply = json.loads(ws.recv(timeout=READ_S))
+                if reply.get("op") == "service_response" and reply.get("id") == service:
+                    assert reply["result"] is True, reply
+                    return dict(reply["values"])
+            pytest.fail(f"no answer from {service}")
+
+        deadline = time.monotonic() + READ_S
+        while "/sdk_rb" not in (listed := call("/rosapi/topics", {}))["topics"]:
+            assert time.monotonic() < deadline, f"/sdk_rb never listed: {listed}"
+            time.sleep(0.1)
+        assert listed["types"][listed["topics"].index("/sdk_rb")] == STRING
+        assert call("/rosapi/topic_type", {"topic": "/sdk_rb"})["type"] == STRING
+        # No type given: rosbridge learns it from the other process's publisher, as rosbridge does.
+        ws.send(json.dumps({"op": "subscribe", "id": "s1", "topic": "/sdk_rb"}))
+        while True:
+            message = json.loads(until_frame(ws, sdk_peer, "/sdk_rb", binary=False))
+            assert message.get("op") != "status" or message.get("level") != "error", message
+            if message.get("op") == "publish":
+                break
+    assert message["topic"] == "/sdk_rb"
+    assert message["msg"]["data"] == "first" or message["msg"]["data"].startswith("n"), message
