@@ -38,7 +38,7 @@ class RecorderNode(Node):
         self.max_bytes = max_bytes
         self.full = False
         self.wanted = {self.resolve_topic_name(t) for t in topics}
-        self._graph_version = -1
+        self._graph_version: tuple[int, int] | None = None
         self._recorded: set[str] = set()
         self._discover()
         if all_topics or self.wanted - self._recorded:
@@ -56,14 +56,16 @@ class RecorderNode(Node):
 
     def _discover(self) -> None:
         """Subscribe to the topics that exist now and are wanted (all, with -a)."""
-        if self.bus.graph_version == self._graph_version:
+        version = self.bus.topics_version
+        if version == self._graph_version:
             return
-        self._graph_version = self.bus.graph_version
-        for name, topic in list(self.bus.topics.items()):
+        self._graph_version = version
+        # Other processes' topics too (a student's node process), as ros2 bag records the graph's.
+        for name, msg_type in self.bus.known_topics().items():
             if name in self._recorded or (is_hidden(name) if self.all_topics else name not in self.wanted):
                 continue
             self._recorded.add(name)
-            self.create_subscription(topic.msg_type, name, self._writer_for(name), SUBSCRIPTION_DEPTH)
+            self.create_subscription(msg_type, name, self._writer_for(name), SUBSCRIPTION_DEPTH)
 
     def _writer_for(self, topic: str) -> Any:
         def record(msg: Message) -> None:

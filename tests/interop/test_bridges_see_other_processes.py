@@ -1,16 +1,20 @@
-"""Foxglove and rosbridge clients see the whole graph, not only this process's nodes: a topic only
+"""Foxglove, rosbridge and ros2 bag see the whole graph, not only this process's nodes: a topic only
 another process publishes (here the independent zenoh-ros2-sdk peer, as a student's node process
-would) is advertised as a Foxglove channel and listed by rosapi, and both carry its messages."""
+would) is advertised as a Foxglove channel, listed by rosapi and recorded by `bag record -a`, and
+each carries its messages."""
 
 from __future__ import annotations
 
+import io
 import json
 import struct
 import time
 from collections.abc import Iterator
 from typing import Any
 
+import httpx
 import pytest
+from mcap.reader import make_reader
 from mcap.records import Schema as McapSchema
 from mcap_ros2.decoder import DecoderFactory
 from ros_reference import rihs
@@ -31,9 +35,10 @@ def foxglove_port() -> int:
 @pytest.fixture(scope="module")
 def app(tmp_path_factory: pytest.TempPathFactory, foxglove_port: int) -> Iterator[App]:
     """The rocket alone (a small graph), with the Foxglove server on a port of its own."""
+    workdir = tmp_path_factory.mktemp("bridges")  # its ./bags too
     lab = App(
-        tmp_path_factory.mktemp("bridges"), "--launch", "rocket", "start_delay:=3600",
-        "--foxglove-port", str(foxglove_port),
+        workdir, "--launch", "rocket", "start_delay:=3600", "--foxglove-port", str(foxglove_port),
+        cwd=workdir,
     )  # fmt: skip
     try:
         yield lab
@@ -124,3 +129,36 @@ def test_rosbridge_lists_and_subscribes_to_a_topic_only_another_process_publishe
                 break
     assert message["topic"] == "/sdk_rb"
     assert message["msg"]["data"] == "first" or message["msg"]["data"].startswith("n"), message
+
+
+def test_bag_record_all_records_a_topic_only_another_process_publishes(
+    app: App, sdk_peer: JsonProcess
+) -> None:
+    sdk_peer.send(cmd="define", types=definitions(STRING))
+    publish(sdk_peer, "/sdk_bag", "first")
+    started = app.post("/api/bag/recordings", {"all": True, "name": "from_a_process"})
+    assert started.status_code == 201, started.text
+
+    def recorded() -> int:
+        listed = {r["name"]: r for r in app.get("/api/bag/recordings")}
+        return int(listed["from_a_process"]["counts"].get("/sdk_bag", 0))
+
+    i = 0
+    deadline = time.monotonic() + READ_S
+    while recorded() < 3:  # ros2 bag record -a subscribes to topics that appear while it runs
+        assert time.monotonic() < deadline, f"{recorded()} of the peer's messages recorded in {READ_S} s"
+        publish(sdk_peer, "/sdk_bag", f"n{i}")
+        i += 1
+        time.sleep(0.1)
+    stopped = app.post("/api/bag/recordings/from_a_process/stop", {})
+    assert stopped.status_code == 200, stopped.text
+    assert "/sdk_bag" in stopped.json()["topics"]
+    bag = httpx.get(f"{app.url}/api/bag/recordings/from_a_process/download", timeout=10.0)
+    assert bag.status_code == 200
+    reader = make_reader(io.BytesIO(bag.content), decoder_factories=[DecoderFactory()])
+    texts = [
+        decoded.data
+        for _schema, channel, _message, decoded in reader.iter_decoded_messages(topics=["/sdk_bag"])
+        if channel.topic == "/sdk_bag"
+    ]
+    assert len(texts) >= 3 and all(t == "first" or t.startswith("n") for t in texts), texts
