@@ -178,6 +178,11 @@ def classroom_banner(host: str, port: int, classroom: Any) -> str:
         f"Instructor (keep this link to yourself): http://127.0.0.1:{port}/instructor?token={classroom.instructor_token}",
     ]
     zenoh = classroom.settings.zenoh
+    foxglove = classroom.settings.foxglove_port
+    if zenoh is not None and zenoh.mode == "router" and foxglove is not None:
+        lines.append(
+            f"Foxglove, every world as /<world>/...: ws://{shown}:{foxglove}/?token=<the instructor's token>"
+        )
     if zenoh is not None and zenoh.mode == "router":
         router = zenoh.listen[0].replace("0.0.0.0", "<this machine's address>")
         lines.append(f"More cores or machines: ROS2LAB_TOKEN=<the instructor's token> ros2lab {cli.WORKER_VERB} "
@@ -223,8 +228,8 @@ def main(argv: list[str] | None = None) -> int:
               "reaches it could join the graph and fly the drone. Add --token auto (the router then asks every "
               "session for the lab's login: GET /api/zenoh/join gives it) or --classroom.", file=sys.stderr)  # fmt: skip
         return 2
-    if args.classroom:  # each world joins the class's Zenoh router in a ROS domain of its own
-        settings = dataclasses.replace(settings, foxglove_port=None, rosbridge_port=None)
+    if args.classroom:  # Foxglove serves the class's own domain to the instructor; no rosbridge port
+        settings = dataclasses.replace(settings, rosbridge_port=None)
     logging.basicConfig(
         level=args.log_level.upper(),
         format="%(asctime)s %(levelname)s %(name)s: %(message)s",

@@ -6,19 +6,28 @@ process of its own, and both are ended by their ids."""
 
 from __future__ import annotations
 
+import asyncio
+import json
 import os
+import re
 import shlex
+import struct
 import subprocess
 import sys
+import time
 from collections.abc import Iterator
 from typing import Any
 
 import httpx
 import pytest
 import zenoh
+from handshake import handshake_status
 from interop.conftest import definitions, service_text
+from mcap.records import Schema as McapSchema
+from mcap_ros2.decoder import DecoderFactory
 from ros_reference import rihs
-from support.app import REPO, App, JsonProcess, instructor_token
+from support.app import REPO, App, JsonProcess, free_port, instructor_token
+from websockets.sync.client import connect
 
 from server.transport.acl import Credentials
 from server.transport.config import ZenohSettings
@@ -32,6 +41,11 @@ class Class:
     def __init__(self, app: App) -> None:
         self.app = app
         self.instructor = instructor_token(app.log_tail(10**6))
+        found = re.search(
+            r"Foxglove, every world as /<world>/\.\.\.: ws://127\.0\.0\.1:(\d+)/", app.log_tail(10**6)
+        )
+        assert found, "the class server printed no Foxglove line"
+        self.foxglove_port = int(found.group(1))
         self.tokens: dict[str, str] = {}
 
     def call(self, method: str, path: str, token: str | None = None, **kwargs: Any) -> httpx.Response:
@@ -60,7 +74,9 @@ class Class:
 @pytest.fixture(scope="module")
 def school(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     root = tmp_path_factory.mktemp("class_graph")
-    app = App(root, "--classroom", "--class-code", CODE, "--launch", "all", "--no-foxglove")
+    app = App(
+        root, "--classroom", "--class-code", CODE, "--launch", "all", "--foxglove-port", str(free_port())
+    )
     try:
         school = Class(app)
         for name in ("Ada", "Bob"):
@@ -196,6 +212,50 @@ def test_the_instructor_calls_one_worlds_service_by_its_name_and_only_that_world
     assert school.rocket("bob") == "aborted"  # Bob's world was not asked
     graph = school.call("GET", "/api/classroom/graph").json()
     assert graph["calls"] >= 1 and graph["calls_refused"] == 0
+
+
+def test_the_instructors_foxglove_shows_every_world_under_its_name(school: Class) -> None:
+    url = f"ws://127.0.0.1:{school.foxglove_port}/?token={school.instructor}"
+    with connect(url, subprotocols=["foxglove.sdk.v1"], open_timeout=10, max_size=None) as ws:
+        channels: dict[str, dict[str, Any]] = {}
+        deadline = time.monotonic() + 20
+        wanted = {"/ada/uav/sensors/gps", "/bob/uav/sensors/gps", "/bob/countdown"}
+        while not wanted <= set(channels):
+            assert time.monotonic() < deadline, f"channels so far: {sorted(channels)}"
+            try:
+                frame = ws.recv(timeout=max(0.05, deadline - time.monotonic()))
+            except TimeoutError:
+                continue
+            if isinstance(frame, str) and (msg := json.loads(frame))["op"] == "advertise":
+                channels.update({c["topic"]: c for c in msg["channels"]})
+        assert not any(name.startswith("/uav/") for name in channels), "a world's names bare, unnamespaced"
+        gps = channels["/bob/uav/sensors/gps"]
+        assert (gps["encoding"], gps["schemaName"]) == ("cdr", POSE)
+        ws.send(json.dumps({"op": "subscribe", "subscriptions": [{"id": 9, "channelId": gps["id"]}]}))
+        deadline = time.monotonic() + 20
+        while True:  # Bob's GPS crosses into the class domain now that someone watches it
+            assert time.monotonic() < deadline, "no sample of Bob's GPS reached Foxglove"
+            frame = ws.recv(timeout=max(0.05, deadline - time.monotonic()))
+            if isinstance(frame, bytes):
+                break
+    assert struct.unpack_from("<BI", frame) == (0x01, 9)
+    schema = McapSchema(id=1, name=POSE, encoding="ros2msg", data=gps["schema"].encode())
+    pose = DecoderFactory().decoder_for("cdr", schema)(frame[13:])  # type: ignore[misc]
+    bob = school.call("GET", "/api/topics/uav/sensors/gps", school.tokens["bob"]).json()["latest"]
+    assert abs(pose.pose.position.z - bob["pose"]["position"]["z"]) < 1.0  # Bob's own, hovering
+
+
+def test_the_class_foxglove_port_refuses_a_student_and_another_site(school: Class) -> None:
+    port = school.foxglove_port
+
+    def status(path: str, *headers: tuple[str, str], host: str = f"127.0.0.1:{port}") -> int:
+        return asyncio.run(handshake_status(port, path, (("Host", host), *headers)))
+
+    assert status("/") == 401
+    assert status(f"/?token={school.tokens['ada']}") == 401  # a student's token: her world only
+    assert status("/", ("Authorization", f"Bearer {school.tokens['bob']}")) == 401
+    assert status(f"/?token={school.instructor}", ("Origin", "https://evil.example")) == 403
+    assert status(f"/?token={school.instructor}", host="evil.example") == 421  # DNS rebinding
 
 
 def test_a_students_login_does_not_reach_the_class_domain(school: Class) -> None:
