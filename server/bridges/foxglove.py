@@ -19,6 +19,7 @@ import asyncio
 import json
 import logging
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -51,9 +52,12 @@ class Advertised:
 class FoxgloveBridgeNode(Node):
     """Hidden node ``_foxglove_bridge``: bus topics → channels, client channels → publishers."""
 
-    def __init__(self, context: foxglove.Context) -> None:
+    def __init__(self, context: foxglove.Context, limits_name: Callable[[str], str] | None = None) -> None:
         super().__init__("_foxglove_bridge")
         self.context = context
+        # The name whose limits (server/limits.py) a client's message must keep: the topic's own,
+        # or on a class's graph the world's topic under /<world>.
+        self.limits_name = limits_name or (lambda topic: topic)
         self.channels: dict[str, tuple[Channel, type[Message]]] = {}
         self.subscribers: dict[int, int] = {}  # channel id → clients subscribed to it
         self.forwarding: dict[str, Subscription] = {}  # topic → the bus subscription feeding its channel
@@ -146,14 +150,14 @@ class FoxgloveBridgeNode(Node):
 
     def _publish(self, advertised: Advertised, data: bytes) -> None:
         topic = self.resolve_topic_name(advertised.topic)
-        existing = self.bus.topics.get(topic)
+        existing = self.bus.known_topics().get(topic)  # here or in another process
         msg_type = get_type(advertised.schema_name) if advertised.schema_name else None
         if msg_type is None:
             if existing is None:
                 raise ValueError(f"{topic} does not exist and the client gave no type")
-            msg_type = existing.msg_type
-        if existing is not None and existing.msg_type is not msg_type:
-            raise TopicTypeError(f"{topic} carries {existing.msg_type.TYPE}, not {msg_type.TYPE}")
+            msg_type = existing
+        if existing is not None and existing is not msg_type:
+            raise TopicTypeError(f"{topic} carries {existing.TYPE}, not {msg_type.TYPE}")
         as_json = None
         if advertised.encoding == "cdr":
             message = deserialize(msg_type.TYPE, data)
@@ -162,7 +166,7 @@ class FoxgloveBridgeNode(Node):
             message = msg_type.from_dict(as_json)
         else:
             raise ValueError(f"encoding {advertised.encoding!r} is not supported (cdr, json)")
-        check_inbound(topic, message, as_json)
+        check_inbound(self.limits_name(topic), message, as_json)
         self._publisher(topic, msg_type).publish(message)
 
     def _publisher(self, topic: str, msg_type: type[Message]) -> Publisher:
@@ -224,10 +228,16 @@ class _Listener(ServerListener):
 class FoxgloveBridge:
     """The SDK's server on loopback (ephemeral port) and the node that feeds it."""
 
-    def __init__(self, bus: Bus, loop: asyncio.AbstractEventLoop, name: str = "teleop-lab") -> None:
+    def __init__(
+        self,
+        bus: Bus,
+        loop: asyncio.AbstractEventLoop,
+        name: str = "teleop-lab",
+        limits_name: Callable[[str], str] | None = None,
+    ) -> None:
         self.context = foxglove.Context()
         with bus.activate():
-            self.node = FoxgloveBridgeNode(self.context)
+            self.node = FoxgloveBridgeNode(self.context, limits_name)
         self.listener = _Listener(self.node, loop)
         self.server = foxglove.start_server(
             name=name,

@@ -6,7 +6,8 @@ bridge (server/transport/domain_bridge.py) declares each world's topics as ``/<w
 and a Foxglove bridge on that bus advertises them (``Bus.known_topics``). A channel a client
 subscribes to becomes a subscription in the class domain, so the domain bridge carries that
 world's samples only while someone watches them; what a client publishes on
-``/ada/uav/input/position`` goes into Ada's world only. The port sits behind the guarded front
+``/ada/uav/input/position`` goes into Ada's world only, within the limits the world's own
+``/uav/input/position`` keeps. The port sits behind the guarded front
 with the instructor's token: a student's token, another site's page or a foreign Host never
 reach the SDK's server.
 """
@@ -26,6 +27,13 @@ from server.transport.config import ZenohSettings
 from server.transport.link import ZenohLink
 
 log = logging.getLogger("classroom.foxglove")
+
+
+def world_topic(name: str) -> str:
+    """``/ada/uav/input/position`` → ``/uav/input/position``: the name in the world, whose limits
+    (server/limits.py: a setpoint inside the arena) a message for it must keep."""
+    parts = name.split("/", 2)
+    return "/" + parts[2] if len(parts) == 3 and parts[2] else name
 
 
 @dataclass
@@ -59,7 +67,7 @@ class ClassFoxglove:
         )  # fmt: skip
         bus = Bus(clock)
         link = await ZenohLink.open(bus, zenoh)
-        foxglove = FoxgloveBridge(bus, asyncio.get_running_loop(), name="teleop-lab class")
+        foxglove = FoxgloveBridge(bus, asyncio.get_running_loop(), "teleop-lab class", world_topic)
         front = GuardedFront(
             settings.host, settings.foxglove_port, foxglove.port,
             settings.accepted_hosts, settings.allowed_origins, token=token,

@@ -235,7 +235,10 @@ def test_the_instructors_foxglove_shows_every_world_under_its_name(school: Class
         deadline = time.monotonic() + 20
         while True:  # Bob's GPS crosses into the class domain now that someone watches it
             assert time.monotonic() < deadline, "no sample of Bob's GPS reached Foxglove"
-            frame = ws.recv(timeout=max(0.05, deadline - time.monotonic()))
+            try:
+                frame = ws.recv(timeout=max(0.05, deadline - time.monotonic()))
+            except TimeoutError:
+                continue
             if isinstance(frame, bytes):
                 break
     assert struct.unpack_from("<BI", frame) == (0x01, 9)
@@ -243,6 +246,37 @@ def test_the_instructors_foxglove_shows_every_world_under_its_name(school: Class
     pose = DecoderFactory().decoder_for("cdr", schema)(frame[13:])  # type: ignore[misc]
     bob = school.call("GET", "/api/topics/uav/sensors/gps", school.tokens["bob"]).json()["latest"]
     assert abs(pose.pose.position.z - bob["pose"]["position"]["z"]) < 1.0  # Bob's own, hovering
+
+
+def test_a_setpoint_from_the_class_foxglove_keeps_the_worlds_limits(school: Class) -> None:
+    url = f"ws://127.0.0.1:{school.foxglove_port}/?token={school.instructor}"
+    setpoints = lambda: school.call(  # noqa: E731
+        "GET", "/api/topics/uav/input/position", school.tokens["bob"]
+    ).json()["publish_count"]
+    before = setpoints()
+    with connect(url, subprotocols=["foxglove.sdk.v1"], open_timeout=10, max_size=None) as ws:
+        channel = {"id": 1, "topic": "/bob/uav/input/position", "encoding": "json", "schemaName": VECTOR}
+        ws.send(json.dumps({"op": "advertise", "channels": [channel]}))
+        ws.send(
+            struct.pack("<BI", 0x01, 1) + b'{"x": 50000.0, "y": 0.0, "z": 1.0}'
+        )  # past the limit of 10 km
+        deadline = time.monotonic() + 10
+        while True:
+            assert time.monotonic() < deadline, "no status said the setpoint was refused"
+            try:
+                frame = ws.recv(timeout=max(0.05, deadline - time.monotonic()))
+            except TimeoutError:
+                continue
+            if isinstance(frame, str) and (msg := json.loads(frame))["op"] == "status":
+                break
+        assert "/bob/uav/input/position" in msg["message"] and "out of range" in msg["message"], msg
+        assert setpoints() == before  # nothing reached Bob's world
+
+        def lands_in_bob() -> bool:  # one inside the arena goes through, into Bob's world only
+            ws.send(struct.pack("<BI", 0x01, 1) + b'{"x": 0.0, "y": 0.0, "z": 1.5}')
+            return bool(setpoints() > before)
+
+        school.app.wait_for(lands_in_bob, "the instructor's setpoint in Bob's world")
 
 
 def test_the_class_foxglove_port_refuses_a_student_and_another_site(school: Class) -> None:
