@@ -150,7 +150,7 @@ class FoxgloveBridgeNode(Node):
 
     def _publish(self, advertised: Advertised, data: bytes) -> None:
         topic = self.resolve_topic_name(advertised.topic)
-        existing = self.bus.known_topics().get(topic)  # here or in another process
+        existing = self.bus.topic_type(topic)  # here or in another process
         msg_type = get_type(advertised.schema_name) if advertised.schema_name else None
         if msg_type is None:
             if existing is None:

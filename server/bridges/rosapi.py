@@ -54,7 +54,7 @@ class RosapiNode(Node):
         return response
 
     def _topic_type(self, request: Any, response: Any) -> Any:
-        msg_type = self.bus.known_topics().get(self._absolute(request.topic))
+        msg_type = self.bus.topic_type(self._absolute(request.topic))
         response.type = msg_type.TYPE if msg_type is not None else ""
         return response
 

@@ -151,7 +151,7 @@ class RosbridgeSession:
         topic = _absolute(request.get("topic"), "topic")
         pub = self.advertised.get(topic)
         if pub is None:  # rosbridge lets a client publish on an existing topic without advertising it
-            existing = self.node.bus.known_topics().get(topic)  # here or in another process
+            existing = self.node.bus.topic_type(topic)  # here or in another process
             if existing is None:
                 raise ProtocolError(
                     f"{topic} is not advertised and does not exist: advertise it with its type"
@@ -169,7 +169,7 @@ class RosbridgeSession:
         sub_id = str(request.get("id", ""))
         throttle_s = _int(request.get("throttle_rate"), "throttle_rate", 0, MAX_THROTTLE_MS, 0) / 1000.0
         depth = _int(request.get("queue_length"), "queue_length", 0, MAX_QUEUE, 0) or DEFAULT_QUEUE
-        existing = self.node.bus.known_topics().get(topic)  # here or in another process
+        existing = self.node.bus.topic_type(topic)  # here or in another process
         if request.get("type"):
             msg_type = get_type(str(request["type"]))
             if existing is not None and existing is not msg_type:

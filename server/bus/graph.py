@@ -257,6 +257,11 @@ class Bus:
                     continue  # a student's own type, or one in DDS form only: nothing to decode it with
         return known
 
+    def topic_type(self, name: str) -> type[Message] | None:
+        """The type of topic ``name`` here, or else as other processes declare it (``known_topics``)."""
+        topic = self.topics.get(name)
+        return topic.msg_type if topic is not None else self.known_topics().get(name)
+
     @property
     def topics_version(self) -> tuple[int, int]:
         """Moves whenever ``known_topics`` may have changed."""

@@ -67,7 +67,11 @@ class ClassFoxglove:
         )  # fmt: skip
         bus = Bus(clock)
         link = await ZenohLink.open(bus, zenoh)
-        foxglove = FoxgloveBridge(bus, asyncio.get_running_loop(), "teleop-lab class", world_topic)
+        try:
+            foxglove = FoxgloveBridge(bus, asyncio.get_running_loop(), "teleop-lab class", world_topic)
+        except BaseException:  # the SDK's server did not start: the class domain's session goes too
+            link.close()
+            raise
         front = GuardedFront(
             settings.host, settings.foxglove_port, foxglove.port,
             settings.accepted_hosts, settings.allowed_origins, token=token,

@@ -123,9 +123,8 @@ class RemoteGraph:
     def topic_types(self) -> dict[str, set[str]]:
         """Every topic name other sessions publish or subscribe to, with the types they give it."""
         out: dict[str, set[str]] = {}
-        for t in self._tokens.values():
-            if t.kind in _TOPIC_KINDS and t.topic is not None and t.dds_type is not None:
-                out.setdefault(t.topic, set()).add(ros_type_name(t.dds_type) or t.dds_type)
+        for e in self.endpoints(_TOPIC_KINDS):
+            out.setdefault(e.name, set()).add(e.type_name)
         return out
 
     def has_server(self, service: str, dds_type: str) -> bool:
