@@ -1,6 +1,8 @@
 """rosapi: the graph as services (``/rosapi/topics``, ``/rosapi/nodes`` ...), as rosbridge's rosapi
 node serves them and roslibjs' ``getTopics`` or roslibpy's ``get_nodes`` call them.
 
+The graph is the whole graph: this process's nodes with those other processes declare on Zenoh
+(a student's node process, a ROS 2 install with rmw_zenoh), as ``ros2 node list`` shows them all.
 Hidden topics and nodes (``_``-prefixed) are left out, as ``ros2 topic list`` leaves them out.
 """
 
@@ -9,7 +11,9 @@ from __future__ import annotations
 from typing import Any
 
 from server.bus import Node, RosTime, is_hidden
+from server.introspection.merged import node_views, remote_graph, remote_node_endpoints, topic_views
 from server.msgs import get_service_type
+from server.transport.keys import EntityKind
 
 NAMESPACE = "/rosapi"
 
@@ -58,11 +62,9 @@ class RosapiNode(Node):
         response.type = msg_type.TYPE if msg_type is not None else ""
         return response
 
-    def _visible_nodes(self) -> list[Node]:
-        return [n for n in self.bus.nodes if not n.get_name().startswith("_")]
-
     def _nodes(self, _request: Any, response: Any) -> Any:
-        response.nodes = sorted(n.fully_qualified_name for n in self._visible_nodes())
+        views = node_views(self.bus, remote_graph(self.bus))
+        response.nodes = sorted({n.name for n in views if not n.hidden})
         return response
 
     def _node_details(self, request: Any, response: Any) -> Any:
@@ -72,29 +74,50 @@ class RosapiNode(Node):
             response.subscribing = sorted({s.topic_name for s in node.subscriptions})
             response.publishing = sorted({p.topic_name for p in node.publishers})
             response.services = sorted({s.srv_name for s in node.services})
+        elif (remote := remote_graph(self.bus)) is not None:
+            found = remote_node_endpoints(remote, wanted)
+            response.subscribing = sorted({str(e["topic"]) for e in found["subscribers"]})
+            response.publishing = sorted({str(e["topic"]) for e in found["publishers"]})
+            response.services = sorted({str(e["topic"]) for e in found["services"]})
         return response
 
+    def _endpoint_nodes(self, topic: str, publishers: bool) -> list[str]:
+        """Nodes of any process with a publisher (or a subscription) on ``topic``, of any type."""
+        names: set[str] = set()
+        for view in topic_views(self.bus, remote_graph(self.bus)):
+            if view.name == topic:
+                names.update(e.node for e in (view.publishers if publishers else view.subscribers))
+        return sorted(names)
+
     def _publishers(self, request: Any, response: Any) -> Any:
-        topic = self.bus.topics.get(self._absolute(request.topic))
-        response.publishers = (
-            sorted({p.node.fully_qualified_name for p in topic.publishers}) if topic is not None else []
-        )
+        response.publishers = self._endpoint_nodes(self._absolute(request.topic), publishers=True)
         return response
 
     def _subscribers(self, request: Any, response: Any) -> Any:
-        topic = self.bus.topics.get(self._absolute(request.topic))
-        response.subscribers = (
-            sorted({s.node.fully_qualified_name for s in topic.subscriptions}) if topic is not None else []
-        )
+        response.subscribers = self._endpoint_nodes(self._absolute(request.topic), publishers=False)
         return response
 
+    def _remote_services(self) -> dict[str, str]:
+        """Services other processes serve, with their types (the first type a name is served with)."""
+        remote = remote_graph(self.bus)
+        if remote is None:
+            return {}
+        out: dict[str, str] = {}
+        for e in remote.endpoints([EntityKind.SERVICE]):
+            out.setdefault(e.name, e.type_name)
+        return out
+
     def _services(self, _request: Any, response: Any) -> Any:
-        response.services = sorted(name for name in self.bus.services if not is_hidden(name))
+        names = set(self.bus.services) | set(self._remote_services())
+        response.services = sorted(name for name in names if not is_hidden(name))
         return response
 
     def _service_type(self, request: Any, response: Any) -> Any:
-        channel = self.bus.services.get(self._absolute(request.service))
-        response.type = channel.srv_type.TYPE if channel is not None else ""
+        name = self._absolute(request.service)
+        channel = self.bus.services.get(name)
+        response.type = (
+            channel.srv_type.TYPE if channel is not None else self._remote_services().get(name, "")
+        )
         return response
 
     def _get_time(self, _request: Any, response: Any) -> Any:

@@ -55,6 +55,12 @@ class NodeView:
         return is_hidden(self.name)
 
 
+def remote_graph(bus: Bus) -> RemoteGraph | None:
+    """What other processes declare on the graph, when the bus is joined to Zenoh."""
+    remote = bus.remote_topics
+    return remote if isinstance(remote, RemoteGraph) else None
+
+
 def topic_views(bus: Bus, remote: RemoteGraph | None) -> list[TopicView]:
     """Every topic of the graph, by name then type."""
     views: dict[tuple[str, str], TopicView] = {}

@@ -21,7 +21,7 @@ from ros_reference import rihs
 from support.app import App, JsonProcess, free_port
 from websockets.sync.client import ClientConnection, connect
 
-from .conftest import definitions
+from .conftest import definitions, service_text
 
 STRING = "std_msgs/msg/String"
 READ_S = 10.0
@@ -69,6 +69,19 @@ def until_frame(ws: ClientConnection, peer: JsonProcess, topic: str, binary: boo
     pytest.fail(f"no message on {topic} reached the client in {READ_S} s ({i} published)")
 
 
+def rosapi(ws: ClientConnection, which: str, **args: Any) -> dict[str, Any]:
+    """Call ``/rosapi/<which>`` over rosbridge, as roslibpy's ``get_nodes`` and the like do."""
+    name = f"/rosapi/{which}"
+    ws.send(json.dumps({"op": "call_service", "id": name, "service": name, "args": args}))
+    deadline = time.monotonic() + READ_S
+    while time.monotonic() < deadline:
+        reply = json.loads(ws.recv(timeout=READ_S))
+        if reply.get("op") == "service_response" and reply.get("id") == name:
+            assert reply["result"] is True, reply
+            return dict(reply["values"])
+    pytest.fail(f"no answer from {name}")
+
+
 def test_foxglove_advertises_and_carries_a_topic_only_another_process_publishes(
     app: App, sdk_peer: JsonProcess, foxglove_port: int
 ) -> None:
@@ -103,23 +116,12 @@ def test_rosbridge_lists_and_subscribes_to_a_topic_only_another_process_publishe
     sdk_peer.send(cmd="define", types=definitions(STRING))
     publish(sdk_peer, "/sdk_rb", "first")
     with connect(f"ws://127.0.0.1:{app.port}/rosbridge", open_timeout=READ_S) as ws:
-
-        def call(service: str, args: dict[str, Any]) -> dict[str, Any]:
-            ws.send(json.dumps({"op": "call_service", "id": service, "service": service, "args": args}))
-            deadline = time.monotonic() + READ_S
-            while time.monotonic() < deadline:
-                reply = json.loads(ws.recv(timeout=READ_S))
-                if reply.get("op") == "service_response" and reply.get("id") == service:
-                    assert reply["result"] is True, reply
-                    return dict(reply["values"])
-            pytest.fail(f"no answer from {service}")
-
         deadline = time.monotonic() + READ_S
-        while "/sdk_rb" not in (listed := call("/rosapi/topics", {}))["topics"]:
+        while "/sdk_rb" not in (listed := rosapi(ws, "topics"))["topics"]:
             assert time.monotonic() < deadline, f"/sdk_rb never listed: {listed}"
             time.sleep(0.1)
         assert listed["types"][listed["topics"].index("/sdk_rb")] == STRING
-        assert call("/rosapi/topic_type", {"topic": "/sdk_rb"})["type"] == STRING
+        assert rosapi(ws, "topic_type", topic="/sdk_rb")["type"] == STRING
         # No type given: rosbridge learns it from the other process's publisher, as rosbridge does.
         ws.send(json.dumps({"op": "subscribe", "id": "s1", "topic": "/sdk_rb"}))
         while True:
@@ -129,6 +131,38 @@ def test_rosbridge_lists_and_subscribes_to_a_topic_only_another_process_publishe
                 break
     assert message["topic"] == "/sdk_rb"
     assert message["msg"]["data"] == "first" or message["msg"]["data"].startswith("n"), message
+
+
+def test_rosapi_names_another_processs_nodes_endpoints_and_services(app: App, sdk_peer: JsonProcess) -> None:
+    """``/rosapi/nodes``, ``publishers``, ``subscribers``, ``node_details``, ``services`` and
+    ``service_type`` answer for a node process as ``ros2 node list`` / ``topic info`` would."""
+    sdk_peer.send(cmd="define", types=definitions(STRING))
+    publish(sdk_peer, "/sdk_api", "first")  # a publisher of node /sdk_talker
+    sdk_peer.send(cmd="subscribe", topic="/sdk_api_in", type=STRING, hash=rihs(STRING))
+    request, response = service_text("std_srvs/srv/Trigger")
+    sdk_peer.send(cmd="serve", service="/sdk_api_srv", type="std_srvs/srv/Trigger", request=request,
+                  response=response, node="sdk_server", hash=rihs("std_srvs/srv/Trigger"))  # fmt: skip
+    sdk_peer.expect(lambda e: e.get("event") == "done" and e.get("cmd") == "serve", "the server to be up")
+    # The subscriber's node as the SDK itself names it (its own graph query, not ours).
+    sdk_peer.send(cmd="topic_info", topic="/sdk_api_in")
+    info = sdk_peer.expect(lambda e: e.get("event") == "topic_info", "the SDK's topic info")
+    assert len(info["nodes"]) == 1, info
+    subscriber = "/" + str(info["nodes"][0]).lstrip("/")
+    with connect(f"ws://127.0.0.1:{app.port}/rosbridge", open_timeout=READ_S) as ws:
+        deadline = time.monotonic() + READ_S
+        while not {"/sdk_talker", "/sdk_server", subscriber} <= set((nodes := rosapi(ws, "nodes"))["nodes"]):
+            assert time.monotonic() < deadline, f"the peer's nodes never listed: {nodes}"
+            time.sleep(0.1)
+        assert "/CountDownNode" in nodes["nodes"] and not any(n.startswith("/_") for n in nodes["nodes"])
+        assert rosapi(ws, "publishers", topic="/sdk_api")["publishers"] == ["/sdk_talker"]
+        assert rosapi(ws, "subscribers", topic="/sdk_api_in")["subscribers"] == [subscriber]
+        details = rosapi(ws, "node_details", node="/sdk_talker")
+        assert "/sdk_api" in details["publishing"] and details["services"] == [], details
+        assert rosapi(ws, "node_details", node="/sdk_server")["services"] == ["/sdk_api_srv"]
+        assert "/sdk_api_srv" in rosapi(ws, "services")["services"]
+        assert rosapi(ws, "service_type", service="/sdk_api_srv")["type"] == "std_srvs/srv/Trigger"
+        # This process's own answers are unchanged beside them.
+        assert rosapi(ws, "publishers", topic="/countdown")["publishers"] == ["/CountDownNode"]
 
 
 def test_bag_record_all_records_a_topic_only_another_process_publishes(
