@@ -1,5 +1,9 @@
 """WebSocket: the rosbridge v2 endpoint at ``/rosbridge`` (roslibjs, roslibpy), behind the app's guard.
 
+On a class server ``/rosbridge`` is a world's (the student's own; the instructor names one with
+``?world=``), and ``/class/rosbridge`` is the instructor's: the class's own domain, every world's
+topics under its name (server/classroom/class_bridges.py), as the class's ``--rosbridge-port``.
+
 The protocol is server/bridges/rosbridge.py; here are its transport and its limits. Frames are
 JSON text; a binary frame, a frame that is not a JSON object, or one over the size limit closes
 the connection with a close code that says which. A task of its own sends, so a client that
@@ -12,13 +16,14 @@ import asyncio
 import contextlib
 import json
 
-from fastapi import APIRouter, WebSocket, WebSocketDisconnect
+from fastapi import APIRouter, WebSocket, WebSocketDisconnect, WebSocketException
 
 from server.bridges.rosbridge import RosbridgeSession
+from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH, world_topic
 from server.tasks import cancel_and_wait
 
-from .deps import WsLabDep
-from .errors import CloseCode
+from .deps import WsLabDep, classroom_of, token_of
+from .errors import CloseCode, close_reason
 from .ws_life import closed_when_lab_stops
 
 router = APIRouter(tags=["websockets"])
@@ -39,6 +44,44 @@ async def rosbridge(websocket: WebSocket, lab: WsLabDep) -> None:
     if close is not None:
         with contextlib.suppress(RuntimeError, WebSocketDisconnect):
             await websocket.close(*close)
+
+
+@router.websocket(CLASS_ROSBRIDGE_PATH)
+async def class_rosbridge(websocket: WebSocket) -> None:
+    """The instructor's rosbridge on the class's own domain: ``/ada/uav/sensors/gps`` and the like."""
+    classroom = classroom_of(websocket)
+    if classroom is None:
+        raise _refused(CloseCode.UNKNOWN_TOPIC, "not a class server: use /rosbridge")
+    grant = classroom.grant(token_of(websocket))
+    if grant is None:
+        raise _refused(CloseCode.UNAUTHORIZED, "the instructor's token is needed")
+    if not grant.is_instructor:
+        raise _refused(
+            CloseCode.FORBIDDEN, "the class's rosbridge is the instructor's: a student's is /rosbridge"
+        )
+    bridges = classroom.bridges
+    if bridges is None:
+        raise _refused(CloseCode.TRY_AGAIN_LATER, "the class's graph is not up (no Zenoh router)")
+    await websocket.accept()
+    session = RosbridgeSession(bridges.bus, limits_name=world_topic)
+    sender = asyncio.create_task(_send_loop(websocket, session))
+    closed = asyncio.create_task(bridges.closed.wait())
+    receiver = asyncio.create_task(_receive_loop(websocket, session))
+    try:
+        await asyncio.wait({receiver, closed}, return_when=asyncio.FIRST_COMPLETED)
+        close = receiver.result() if receiver.done() else (CloseCode.GOING_AWAY, "the class server stops")
+    finally:
+        for task in (receiver, closed, sender):
+            await cancel_and_wait(task)
+        session.close()
+    if close is not None:
+        with contextlib.suppress(RuntimeError, WebSocketDisconnect):
+            await websocket.close(*close)
+
+
+def _refused(code: int, reason: str) -> WebSocketException:
+    """The handshake refused with a close code that names why, as a world's sockets are refused."""
+    return WebSocketException(code, close_reason(reason))
 
 
 async def _receive_loop(websocket: WebSocket, session: RosbridgeSession) -> tuple[int, str] | None:

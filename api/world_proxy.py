@@ -19,6 +19,7 @@ from starlette.requests import HTTPConnection
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from server.classroom import Classroom, ClassroomError, World
+from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH
 from server.classroom.workers import WorkerDirectory, WorkerRef
 
 from .deps import SAFE_METHODS, WORLD_HEADER, token_of
@@ -37,9 +38,9 @@ WS_OPEN_TIMEOUT_S = 10.0
 
 def passed_on(scope: Scope) -> bool:
     """Whether a request acts on a world (and so goes where the world runs)."""
-    if scope["type"] == "websocket":
-        return True
     path: str = scope["path"]
+    if scope["type"] == "websocket":
+        return path != CLASS_ROSBRIDGE_PATH  # the instructor's, on the class's own domain
     if path.startswith("/api/classroom/") or path == "/api/classroom":
         return False
     return path.startswith("/api/") or path == "/page/views"

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import dataclasses
 import logging
 import secrets
 import sys
@@ -179,9 +178,14 @@ def classroom_banner(host: str, port: int, classroom: Any) -> str:
     ]
     zenoh = classroom.settings.zenoh
     foxglove = classroom.settings.foxglove_port
+    rosbridge = classroom.settings.rosbridge_port
     if zenoh is not None and zenoh.mode == "router" and foxglove is not None:
         lines.append(
             f"Foxglove, every world as /<world>/...: ws://{shown}:{foxglove}/?token=<the instructor's token>"
+        )
+    if zenoh is not None and zenoh.mode == "router" and rosbridge is not None:
+        lines.append(
+            f"rosbridge, every world as /<world>/...: ws://{shown}:{rosbridge}/?token=<the instructor's token>"
         )
     if zenoh is not None and zenoh.mode == "router":
         router = zenoh.listen[0].replace("0.0.0.0", "<this machine's address>")
@@ -228,8 +232,6 @@ def main(argv: list[str] | None = None) -> int:
               "reaches it could join the graph and fly the drone. Add --token auto (the router then asks every "
               "session for the lab's login: GET /api/zenoh/join gives it) or --classroom.", file=sys.stderr)  # fmt: skip
         return 2
-    if args.classroom:  # Foxglove serves the class's own domain to the instructor; no rosbridge port
-        settings = dataclasses.replace(settings, rosbridge_port=None)
     logging.basicConfig(
         level=args.log_level.upper(),
         format="%(asctime)s %(levelname)s %(name)s: %(message)s",

@@ -19,6 +19,7 @@ import json
 import logging
 import math
 from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -101,7 +102,15 @@ def encode(frame: dict[str, Any]) -> str:
 class RosbridgeSession:
     """One connected client: its hidden node on the bus and its bounded outgoing queues."""
 
-    def __init__(self, bus: Bus, loop: asyncio.AbstractEventLoop | None = None) -> None:
+    def __init__(
+        self,
+        bus: Bus,
+        loop: asyncio.AbstractEventLoop | None = None,
+        limits_name: Callable[[str], str] | None = None,
+    ) -> None:
+        """``limits_name``: the name whose limits (server/limits.py) a topic's messages keep; a class
+        server's ``/ada/uav/input/position`` keeps those of the world's ``/uav/input/position``."""
+        self.limits_name = limits_name or (lambda topic: topic)
         with bus.activate():
             self.node = Node(f"_rosbridge_{next(_ids)}")
         self.loop = loop or asyncio.get_running_loop()
@@ -160,7 +169,7 @@ class RosbridgeSession:
             pub = self.advertised[topic] = self.node.create_publisher(existing, topic, 10)
         as_json = request.get("msg", {})
         message = pub.msg_type.from_dict(as_json)
-        check_inbound(topic, message, as_json)
+        check_inbound(self.limits_name(topic), message, as_json)
         pub.publish(message)
 
     def _subscribe(self, request: dict[str, Any]) -> None:

@@ -35,7 +35,7 @@ from .workers import WATCH_PERIOD_S, Silence, WorkerDirectory, WorkerRef, worker
 if TYPE_CHECKING:
     from server.transport.domain_bridge import DomainBridge
 
-    from .class_foxglove import ClassFoxglove
+    from .class_bridges import ClassBridges
     from .class_view import ClassView
 
 log = logging.getLogger("classroom")
@@ -144,7 +144,8 @@ class Classroom:
         self._local_starting = 0  # worlds being started here
         self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
         self.class_graph: DomainBridge | None = None  # every world under /<world> in the class's domain
-        self.foxglove: ClassFoxglove | None = None  # the instructor's Foxglove port on the class domain
+        # The instructor's Foxglove and rosbridge ports on the class domain.
+        self.bridges: ClassBridges | None = None
         self._control: Any = None  # a worker's hello queryable (WorkerControl) and its session
         self._control_session: Any = None
         self._watch: asyncio.Task[None] | None = None  # the class server's hellos, or a worker's orphan check
@@ -248,16 +249,16 @@ class Classroom:
         self.class_graph = DomainBridge(self._router, zenoh.domain_id)
         self._watch = asyncio.create_task(self._watch_workers())
         endpoint = self.router_endpoint()
-        if self.settings.foxglove_port is not None and endpoint is not None:
-            from .class_foxglove import ClassFoxglove
+        if endpoint is not None:  # the instructor's bridges: /class/rosbridge, and their ports if asked
+            from .class_bridges import ClassBridges
 
             try:
-                self.foxglove = await ClassFoxglove.open(
+                self.bridges = await ClassBridges.open(
                     self.settings, self.clock, self.executors, endpoint, zenoh.domain_id,
                     self.zenoh_auth.class_credentials(), self.instructor_token,
                 )  # fmt: skip
             except TransportError as exc:
-                log.warning("the class's Foxglove server not started: %s", exc)
+                log.warning("the class's Foxglove and rosbridge ports not opened: %s", exc)
 
     # -- the instructor's 3D view ------------------------------------------------------------------
     async def _view_loop(self) -> None:
@@ -713,9 +714,9 @@ class Classroom:
             self.view = None
         for name in list(self.worlds):
             await self._end(self.worlds.pop(name))
-        if self.foxglove is not None:
-            await self.foxglove.close(self.executors)
-            self.foxglove = None
+        if self.bridges is not None:
+            await self.bridges.close(self.executors)
+            self.bridges = None
         await self.executors.close()
         if self.workers is not None:
             await self.workers.close()

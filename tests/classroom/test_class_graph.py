@@ -46,6 +46,11 @@ class Class:
         )
         assert found, "the class server printed no Foxglove line"
         self.foxglove_port = int(found.group(1))
+        found = re.search(
+            r"rosbridge, every world as /<world>/\.\.\.: ws://127\.0\.0\.1:(\d+)/", app.log_tail(10**6)
+        )
+        assert found, "the class server printed no rosbridge line"
+        self.rosbridge_port = int(found.group(1))
         self.tokens: dict[str, str] = {}
 
     def call(self, method: str, path: str, token: str | None = None, **kwargs: Any) -> httpx.Response:
@@ -75,8 +80,9 @@ class Class:
 def school(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     root = tmp_path_factory.mktemp("class_graph")
     app = App(
-        root, "--classroom", "--class-code", CODE, "--launch", "all", "--foxglove-port", str(free_port())
-    )
+        root, "--classroom", "--class-code", CODE, "--launch", "all", "--foxglove-port", str(free_port()),
+        "--rosbridge-port", str(free_port()),
+    )  # fmt: skip
     try:
         school = Class(app)
         for name in ("Ada", "Bob"):
@@ -290,6 +296,82 @@ def test_the_class_foxglove_port_refuses_a_student_and_another_site(school: Clas
     assert status("/", ("Authorization", f"Bearer {school.tokens['bob']}")) == 401
     assert status(f"/?token={school.instructor}", ("Origin", "https://evil.example")) == 403
     assert status(f"/?token={school.instructor}", host="evil.example") == 421  # DNS rebinding
+
+
+def rosbridge_reply(ws: Any, wanted: Any, what: str) -> dict[str, Any]:
+    """The first JSON frame ``wanted`` accepts, within 20 s."""
+    deadline = time.monotonic() + 20
+    while time.monotonic() < deadline:
+        try:
+            frame = json.loads(ws.recv(timeout=max(0.05, deadline - time.monotonic())))
+        except TimeoutError:
+            continue
+        if wanted(frame):
+            return dict(frame)
+    pytest.fail(f"no {what} in 20 s")
+
+
+def test_the_instructors_rosbridge_sees_every_world_and_keeps_its_limits(school: Class) -> None:
+    """The class's --rosbridge-port: rosapi lists every world's topics under its name, a subscription
+    without a type gets Bob's GPS, and a setpoint keeps the limits of Bob's own /uav/input/position."""
+    url = f"ws://127.0.0.1:{school.rosbridge_port}/?token={school.instructor}"
+    with connect(url, open_timeout=10) as ws:
+        ws.send(json.dumps({"op": "set_level", "level": "error"}))  # status frames, as roslibpy asks
+        deadline = time.monotonic() + 20
+        wanted = {"/ada/uav/sensors/gps", "/bob/uav/sensors/gps", "/bob/countdown"}
+        while True:
+            ws.send(json.dumps({"op": "call_service", "id": "t", "service": "/rosapi/topics", "args": {}}))
+            topics = rosbridge_reply(ws, lambda f: f.get("op") == "service_response", "rosapi's topics")
+            if wanted <= set(topics["values"]["topics"]):
+                break
+            assert time.monotonic() < deadline, f"topics so far: {topics['values']['topics']}"
+            time.sleep(0.2)
+        assert not any(name.startswith("/uav/") for name in topics["values"]["topics"])
+        ws.send(
+            json.dumps({"op": "subscribe", "id": "g", "topic": "/bob/uav/sensors/gps", "throttle_rate": 100})
+        )
+        sample = rosbridge_reply(ws, lambda f: f.get("op") == "publish", "sample of Bob's GPS")
+        assert sample["topic"] == "/bob/uav/sensors/gps"
+        bob = school.call("GET", "/api/topics/uav/sensors/gps", school.tokens["bob"]).json()["latest"]
+        assert abs(sample["msg"]["pose"]["position"]["z"] - bob["pose"]["position"]["z"]) < 1.0
+        ws.send(json.dumps({"op": "unsubscribe", "id": "g", "topic": "/bob/uav/sensors/gps"}))
+
+        setpoints = lambda: school.call(  # noqa: E731
+            "GET", "/api/topics/uav/input/position", school.tokens["bob"]
+        ).json()["publish_count"]
+        before = setpoints()
+        far = {"op": "publish", "topic": "/bob/uav/input/position", "msg": {"x": 50000.0, "y": 0.0, "z": 1.0}}
+        ws.send(json.dumps(far))  # past the limit of 10 km
+        refused = rosbridge_reply(ws, lambda f: f.get("op") == "status", "status for the far setpoint")
+        assert refused["level"] == "error" and "out of range" in refused["msg"], refused
+        assert setpoints() == before  # nothing reached Bob's world
+
+        def lands_in_bob() -> bool:  # one inside the arena goes through, into Bob's world only
+            near = {
+                "op": "publish",
+                "topic": "/bob/uav/input/position",
+                "msg": {"x": 0.0, "y": 0.0, "z": 1.5},
+            }
+            ws.send(json.dumps(near))
+            return bool(setpoints() > before)
+
+        school.app.wait_for(lands_in_bob, "the instructor's rosbridge setpoint in Bob's world")
+
+
+def test_the_class_rosbridge_refuses_a_student_and_another_site(school: Class) -> None:
+    port, app_port = school.rosbridge_port, school.app.port
+
+    def status(at: int, path: str, *headers: tuple[str, str], host: str | None = None) -> int:
+        return asyncio.run(handshake_status(at, path, (("Host", host or f"127.0.0.1:{at}"), *headers)))
+
+    assert status(port, "/") == 401
+    assert status(port, f"/?token={school.tokens['ada']}") == 401  # a student's token: her world only
+    assert status(port, f"/?token={school.instructor}", ("Origin", "https://evil.example")) == 403
+    assert status(port, f"/?token={school.instructor}", host="evil.example") == 421  # DNS rebinding
+    # On the app's own port the path is the instructor's too; a student keeps /rosbridge, her world's.
+    assert status(app_port, f"/class/rosbridge?token={school.tokens['ada']}") == 403
+    assert status(app_port, "/class/rosbridge") == 403
+    assert status(app_port, f"/rosbridge?token={school.tokens['ada']}") == 101
 
 
 def test_a_students_login_does_not_reach_the_class_domain(school: Class) -> None:

@@ -1,0 +1,145 @@
+"""The instructor's Foxglove and rosbridge ports: the class's own ROS domain, every world under its name.
+
+A class server opens no Foxglove server or rosbridge port per world. It opens them once for the
+instructor: a bus of its own joins the class's router in the class's domain, where the domain
+bridge (server/transport/domain_bridge.py) declares each world's topics as ``/<world>/<topic>``.
+On ``--foxglove-port`` a Foxglove bridge on that bus advertises them (``Bus.known_topics``); on
+``--rosbridge-port`` (and at ``/class/rosbridge`` on the app's port, api/rosbridge.py) rosbridge
+clients subscribe, publish and ask rosapi-style questions of the same bus. A topic a client
+watches becomes a subscription in the class domain, so the domain bridge carries that world's
+samples only while someone watches them; what a client publishes on ``/ada/uav/input/position``
+goes into Ada's world only, within the limits the world's own ``/uav/input/position`` keeps. Both
+ports sit behind the guarded front with the instructor's token: a student's token, another site's
+page or a foreign Host never reach them.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from server.bridges.front import GuardedFront
+from server.bridges.rosapi import RosapiNode
+from server.bus import Bus, Clock, Executor, ExecutorGroup
+from server.settings import Settings
+from server.transport.acl import Credentials
+from server.transport.config import ZenohSettings
+from server.transport.link import ZenohLink
+
+if TYPE_CHECKING:  # typing only: the Foxglove SDK loads only when its port is asked for
+    from server.bridges.foxglove import FoxgloveBridge
+
+log = logging.getLogger("classroom.bridges")
+CLASS_ROSBRIDGE_PATH = "/class/rosbridge"
+
+
+def world_topic(name: str) -> str:
+    """``/ada/uav/input/position`` → ``/uav/input/position``: the name in the world, whose limits
+    (server/limits.py: a setpoint inside the arena) a message for it must keep."""
+    parts = name.split("/", 2)
+    return "/" + parts[2] if len(parts) == 3 and parts[2] else name
+
+
+@dataclass
+class ClassBridges:
+    bus: Bus
+    link: ZenohLink
+    executor: Executor
+    foxglove: FoxgloveBridge | None = None
+    foxglove_front: GuardedFront | None = None
+    rosbridge_front: GuardedFront | None = None
+    closed: asyncio.Event = field(default_factory=asyncio.Event)  # rosbridge sockets end with it
+
+    @property
+    def foxglove_port(self) -> int | None:
+        return self.foxglove_front.port if self.foxglove_front is not None else None
+
+    @property
+    def rosbridge_port(self) -> int | None:
+        return self.rosbridge_front.port if self.rosbridge_front is not None else None
+
+    @classmethod
+    async def open(
+        cls,
+        settings: Settings,
+        clock: Clock,
+        executors: ExecutorGroup,
+        router: str,
+        domain_id: int,
+        login: Credentials,
+        token: str,
+    ) -> ClassBridges:
+        """Join the class domain at ``router`` with the class's ``login``; serve Foxglove on
+        ``settings.foxglove_port`` and rosbridge on ``settings.rosbridge_port`` (each when set) to
+        holders of ``token``. A port that is taken is left out with a warning."""
+        zenoh = ZenohSettings(
+            mode="client", listen=(), connect=(router,), domain_id=domain_id, login=login,
+            config_file=settings.zenoh.config_file if settings.zenoh is not None else None,
+        )  # fmt: skip
+        bus = Bus(clock)
+        link = await ZenohLink.open(bus, zenoh)
+        with bus.activate():
+            RosapiNode()  # what rosbridge clients ask the class's graph through
+        bridges = cls(bus, link, Executor(bus))
+        try:
+            if settings.foxglove_port is not None:
+                await bridges._start_foxglove(settings, settings.foxglove_port, token)
+            if settings.rosbridge_port is not None:
+                await bridges._start_rosbridge(settings, settings.rosbridge_port, token)
+        except BaseException:  # the SDK's server did not start: the class domain's session goes too
+            await bridges._stop_ports()
+            link.close()
+            raise
+        executors.add(bridges.executor)
+        return bridges
+
+    async def _start_foxglove(self, settings: Settings, port: int, token: str) -> None:
+        from server.bridges.foxglove import FoxgloveBridge
+
+        foxglove = FoxgloveBridge(self.bus, asyncio.get_running_loop(), "teleop-lab class", world_topic)
+        front = GuardedFront(
+            settings.host, port, foxglove.port, settings.accepted_hosts, settings.allowed_origins, token=token
+        )
+        try:
+            await front.start()
+        except OSError as exc:
+            foxglove.stop()
+            log.warning("the class's Foxglove server not started: port %d: %s", port, exc.strerror)
+            return
+        self.foxglove, self.foxglove_front = foxglove, front
+        log.info("Foxglove WebSocket server for the class on ws://%s:%d", settings.host, front.port)
+
+    async def _start_rosbridge(self, settings: Settings, port: int, token: str) -> None:
+        if settings.port == 0:
+            log.warning("the class's rosbridge port needs the app's port to be known (not 0); "
+                        "only %s serves", CLASS_ROSBRIDGE_PATH)  # fmt: skip
+            return
+        front = GuardedFront(
+            settings.host, port, settings.port, settings.accepted_hosts, settings.allowed_origins,
+            upstream_path=CLASS_ROSBRIDGE_PATH, token=token,
+        )  # fmt: skip
+        try:
+            await front.start()
+        except OSError as exc:
+            log.warning("the class's rosbridge port not opened: port %d: %s", port, exc.strerror)
+            return
+        self.rosbridge_front = front
+        log.info(
+            "rosbridge for the class on ws://%s:%d (and at %s)", settings.host, port, CLASS_ROSBRIDGE_PATH
+        )
+
+    async def _stop_ports(self) -> None:
+        for front in (self.rosbridge_front, self.foxglove_front):
+            if front is not None:
+                await front.stop()
+        if self.foxglove is not None:
+            self.foxglove.stop()
+        self.foxglove = self.foxglove_front = self.rosbridge_front = None
+
+    async def close(self, executors: ExecutorGroup) -> None:
+        self.closed.set()
+        await self._stop_ports()
+        executors.remove(self.executor)
+        await asyncio.to_thread(self.link.close)
