@@ -24,26 +24,17 @@ from server.tasks import cancel_and_wait
 
 from .deps import WsLabDep, classroom_of, token_of
 from .errors import CloseCode, close_reason
-from .ws_life import closed_when_lab_stops
+from .ws_life import closed_when, closed_when_lab_stops
 
 router = APIRouter(tags=["websockets"])
+CLASS_STOPS = "the class server stops"
 MAX_FRAME_BYTES = 1 << 20  # a publish of the largest message any lab type can hold fits
 
 
 @router.websocket("/rosbridge")
 async def rosbridge(websocket: WebSocket, lab: WsLabDep) -> None:
     await websocket.accept()
-    session = RosbridgeSession(lab.bus)
-    sender = asyncio.create_task(_send_loop(websocket, session))
-    try:
-        async with closed_when_lab_stops(websocket, lab):
-            close = await _receive_loop(websocket, session)
-    finally:
-        await cancel_and_wait(sender)
-        session.close()
-    if close is not None:
-        with contextlib.suppress(RuntimeError, WebSocketDisconnect):
-            await websocket.close(*close)
+    await _serve(websocket, RosbridgeSession(lab.bus), closed_when_lab_stops(websocket, lab))
 
 
 @router.websocket(CLASS_ROSBRIDGE_PATH)
@@ -64,24 +55,30 @@ async def class_rosbridge(websocket: WebSocket) -> None:
         raise _refused(CloseCode.TRY_AGAIN_LATER, "the class's graph is not up (no Zenoh router)")
     await websocket.accept()
     session = RosbridgeSession(bridges.bus, limits_name=world_topic)
-    sender = asyncio.create_task(_send_loop(websocket, session))
-    closed = asyncio.create_task(bridges.closed.wait())
-    receiver = asyncio.create_task(_receive_loop(websocket, session))
-    try:
-        await asyncio.wait({receiver, closed}, return_when=asyncio.FIRST_COMPLETED)
-        close = receiver.result() if receiver.done() else (CloseCode.GOING_AWAY, "the class server stops")
-    finally:
-        for task in (receiver, closed, sender):
-            await cancel_and_wait(task)
-        session.close()
-    if close is not None:
-        with contextlib.suppress(RuntimeError, WebSocketDisconnect):
-            await websocket.close(*close)
+    await _serve(
+        websocket, session, closed_when(websocket, bridges.closed, CloseCode.GOING_AWAY, CLASS_STOPS)
+    )
 
 
 def _refused(code: int, reason: str) -> WebSocketException:
     """The handshake refused with a close code that names why, as a world's sockets are refused."""
     return WebSocketException(code, close_reason(reason))
+
+
+async def _serve(
+    websocket: WebSocket, session: RosbridgeSession, lifetime: contextlib.AbstractAsyncContextManager[None]
+) -> None:
+    """Run an accepted client's session until it leaves, breaks a rule, or ``lifetime`` closes it."""
+    sender = asyncio.create_task(_send_loop(websocket, session))
+    try:
+        async with lifetime:
+            close = await _receive_loop(websocket, session)
+    finally:
+        await cancel_and_wait(sender)
+        session.close()
+    if close is not None:
+        with contextlib.suppress(RuntimeError, WebSocketDisconnect):
+            await websocket.close(*close)
 
 
 async def _receive_loop(websocket: WebSocket, session: RosbridgeSession) -> tuple[int, str] | None:

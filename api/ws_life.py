@@ -19,14 +19,22 @@ STOPPED_REASON = "the lab restarted: reconnect (a class server reset or removed 
 
 
 @contextlib.asynccontextmanager
-async def closed_when_lab_stops(websocket: WebSocket, lab: Lab) -> AsyncIterator[None]:
+async def closed_when(
+    websocket: WebSocket, event: asyncio.Event, code: int, reason: str
+) -> AsyncIterator[None]:
+    """Close ``websocket`` with ``code`` and ``reason`` once ``event`` is set (while inside)."""
+
     async def watch() -> None:
-        await lab.stopped.wait()
+        await event.wait()
         with contextlib.suppress(RuntimeError, WebSocketDisconnect):
-            await websocket.close(CloseCode.SERVICE_RESTART, STOPPED_REASON)
+            await websocket.close(code, reason)
 
     watcher = asyncio.create_task(watch())
     try:
         yield
     finally:
         await cancel_and_wait(watcher)
+
+
+def closed_when_lab_stops(websocket: WebSocket, lab: Lab) -> contextlib.AbstractAsyncContextManager[None]:
+    return closed_when(websocket, lab.stopped, CloseCode.SERVICE_RESTART, STOPPED_REASON)

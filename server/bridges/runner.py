@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from contextlib import AsyncExitStack, asynccontextmanager
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -14,7 +14,9 @@ from .front import GuardedFront
 from .rosapi import RosapiNode
 
 if TYPE_CHECKING:
+    from server.bus import Bus
     from server.lab import Lab
+    from server.settings import Settings
 
     from .foxglove import FoxgloveBridge
 
@@ -43,36 +45,59 @@ async def run_bridges(lab: Lab) -> AsyncIterator[Bridges]:
             bridges.rosapi = RosapiNode()  # what rosbridge clients ask the graph through
         stack.callback(bridges.rosapi.destroy_node)
         if settings.foxglove_port is not None:
-            from .foxglove import FoxgloveBridge  # the SDK loads only when asked for
-
-            foxglove = FoxgloveBridge(lab.bus, asyncio.get_running_loop())
-            front = GuardedFront(
-                settings.host, settings.foxglove_port, foxglove.port,
-                settings.accepted_hosts, settings.allowed_origins, token=settings.token,
-            )  # fmt: skip
-            try:
-                await front.start()
-            except OSError as exc:  # another lab (or Foxglove bridge) has the port: run without
-                foxglove.stop()
-                log.warning("Foxglove server not started: port %d: %s", settings.foxglove_port, exc.strerror)
-            else:
-                bridges.foxglove, bridges.foxglove_front = foxglove, front
-                stack.callback(foxglove.stop)
-                stack.push_async_callback(front.stop)
-                log.info("Foxglove WebSocket server on ws://%s:%d", settings.host, front.port)
+            started = await start_foxglove(lab.bus, settings, settings.foxglove_port, settings.token)
+            if started is not None:
+                bridges.foxglove, bridges.foxglove_front = started
+                stack.callback(started[0].stop)
+                stack.push_async_callback(started[1].stop)
         if settings.rosbridge_port is not None:
-            if settings.port == 0:
-                log.warning(
-                    "rosbridge's own port needs the app's port to be known (not 0); only /rosbridge serves"
-                )
-            else:
-                front = GuardedFront(
-                    settings.host, settings.rosbridge_port, settings.port,
-                    settings.accepted_hosts, settings.allowed_origins, upstream_path="/rosbridge",
-                    token=settings.token,
-                )  # fmt: skip
-                await front.start()
+            front = await start_rosbridge_front(settings, settings.rosbridge_port, settings.token)
+            if front is not None:
                 bridges.rosbridge_front = front
                 stack.push_async_callback(front.stop)
-                log.info("rosbridge on ws://%s:%d (and at /rosbridge)", settings.host, front.port)
         yield bridges
+
+
+async def start_foxglove(
+    bus: Bus,
+    settings: Settings,
+    port: int,
+    token: str | None,
+    name: str = "teleop-lab",
+    limits_name: Callable[[str], str] | None = None,
+) -> tuple[FoxgloveBridge, GuardedFront] | None:
+    """A Foxglove server for ``bus`` behind the guarded front on ``port`` (the app's Host, Origin
+    and ``token`` rules); None, with a warning, if the port is taken."""
+    from .foxglove import FoxgloveBridge  # the SDK loads only when asked for
+
+    foxglove = FoxgloveBridge(bus, asyncio.get_running_loop(), name, limits_name)
+    front = GuardedFront(
+        settings.host, port, foxglove.port, settings.accepted_hosts, settings.allowed_origins, token=token
+    )
+    try:
+        await front.start()
+    except OSError as exc:  # another lab (or Foxglove bridge) has the port: run without
+        foxglove.stop()
+        log.warning("Foxglove server (%s) not started: port %d: %s", name, port, exc.strerror)
+        return None
+    log.info("Foxglove WebSocket server (%s) on ws://%s:%d", name, settings.host, front.port)
+    return foxglove, front
+
+
+async def start_rosbridge_front(
+    settings: Settings, port: int, token: str | None, upstream_path: str = "/rosbridge"
+) -> GuardedFront | None:
+    """rosbridge on a port of its own: the guarded front onto ``upstream_path`` on the app's port;
+    None, with a warning, if the app's port is not known. OSError if ``port`` is taken."""
+    if settings.port == 0:
+        log.warning(
+            "rosbridge's own port needs the app's port to be known (not 0); only %s serves", upstream_path
+        )
+        return None
+    front = GuardedFront(
+        settings.host, port, settings.port, settings.accepted_hosts, settings.allowed_origins,
+        upstream_path=upstream_path, token=token,
+    )  # fmt: skip
+    await front.start()
+    log.info("rosbridge on ws://%s:%d (and at %s)", settings.host, front.port, upstream_path)
+    return front

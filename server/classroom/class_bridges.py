@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 
 from server.bridges.front import GuardedFront
 from server.bridges.rosapi import RosapiNode
+from server.bridges.runner import start_foxglove, start_rosbridge_front
 from server.bus import Bus, Clock, Executor, ExecutorGroup
 from server.settings import Settings
 from server.transport.acl import Credentials
@@ -51,14 +52,6 @@ class ClassBridges:
     foxglove_front: GuardedFront | None = None
     rosbridge_front: GuardedFront | None = None
     closed: asyncio.Event = field(default_factory=asyncio.Event)  # rosbridge sockets end with it
-
-    @property
-    def foxglove_port(self) -> int | None:
-        return self.foxglove_front.port if self.foxglove_front is not None else None
-
-    @property
-    def rosbridge_port(self) -> int | None:
-        return self.rosbridge_front.port if self.rosbridge_front is not None else None
 
     @classmethod
     async def open(
@@ -96,39 +89,15 @@ class ClassBridges:
         return bridges
 
     async def _start_foxglove(self, settings: Settings, port: int, token: str) -> None:
-        from server.bridges.foxglove import FoxgloveBridge
-
-        foxglove = FoxgloveBridge(self.bus, asyncio.get_running_loop(), "teleop-lab class", world_topic)
-        front = GuardedFront(
-            settings.host, port, foxglove.port, settings.accepted_hosts, settings.allowed_origins, token=token
-        )
-        try:
-            await front.start()
-        except OSError as exc:
-            foxglove.stop()
-            log.warning("the class's Foxglove server not started: port %d: %s", port, exc.strerror)
-            return
-        self.foxglove, self.foxglove_front = foxglove, front
-        log.info("Foxglove WebSocket server for the class on ws://%s:%d", settings.host, front.port)
+        started = await start_foxglove(self.bus, settings, port, token, "teleop-lab class", world_topic)
+        if started is not None:
+            self.foxglove, self.foxglove_front = started
 
     async def _start_rosbridge(self, settings: Settings, port: int, token: str) -> None:
-        if settings.port == 0:
-            log.warning("the class's rosbridge port needs the app's port to be known (not 0); "
-                        "only %s serves", CLASS_ROSBRIDGE_PATH)  # fmt: skip
-            return
-        front = GuardedFront(
-            settings.host, port, settings.port, settings.accepted_hosts, settings.allowed_origins,
-            upstream_path=CLASS_ROSBRIDGE_PATH, token=token,
-        )  # fmt: skip
         try:
-            await front.start()
-        except OSError as exc:
+            self.rosbridge_front = await start_rosbridge_front(settings, port, token, CLASS_ROSBRIDGE_PATH)
+        except OSError as exc:  # the class runs on without it, as without its Foxglove port
             log.warning("the class's rosbridge port not opened: port %d: %s", port, exc.strerror)
-            return
-        self.rosbridge_front = front
-        log.info(
-            "rosbridge for the class on ws://%s:%d (and at %s)", settings.host, port, CLASS_ROSBRIDGE_PATH
-        )
 
     async def _stop_ports(self) -> None:
         for front in (self.rosbridge_front, self.foxglove_front):

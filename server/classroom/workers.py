@@ -3,10 +3,9 @@
 A world worker (``ros2lab world-worker --connect tcp/HOST:7447``) is a class server of its own
 that hosts worlds it is asked to host and lets no student join it directly. It answers a *hello*
 on the class's router (``ros2lab/classroom/worker/<id>``) with where its HTTP API listens and how
-full it is and how busy its CPU is (``load.py``). The class server asks before placing a new world,
-puts it where the load is lowest,
-and then serves the student's page itself while every call for that world goes to the worker
-(``api/world_proxy.py``).
+full it is and how busy its CPU is (``load.py``). The class server asks before placing a new
+world, puts it where the load is lowest, and then serves the student's page itself while every
+call for that world goes to the worker (``api/world_proxy.py``).
 
 The class server also says hello every ``WATCH_PERIOD_S``: a worker silent for its
 ``--worker-timeout`` is taken as gone, and its worlds start again elsewhere; a worker that hears
