@@ -143,9 +143,19 @@ def test_rosapi_names_another_processs_nodes_endpoints_and_services(app: App, sd
     sdk_peer.send(cmd="serve", service="/sdk_api_srv", type="std_srvs/srv/Trigger", request=request,
                   response=response, node="sdk_server", hash=rihs("std_srvs/srv/Trigger"))  # fmt: skip
     sdk_peer.expect(lambda e: e.get("event") == "done" and e.get("cmd") == "serve", "the server to be up")
-    # The subscriber's node as the SDK itself names it (its own graph query, not ours).
-    sdk_peer.send(cmd="topic_info", topic="/sdk_api_in")
-    info = sdk_peer.expect(lambda e: e.get("event") == "topic_info", "the SDK's topic info")
+    # The subscriber's node as the SDK itself names it (its own graph query, not ours), once its
+    # query sees the new subscription.
+    deadline = time.monotonic() + READ_S
+    while True:
+        answered = {id(e) for e in sdk_peer.seen if e.get("event") == "topic_info"}
+        sdk_peer.send(cmd="topic_info", topic="/sdk_api_in")
+        info = sdk_peer.expect(
+            lambda e, old=answered: e.get("event") == "topic_info" and id(e) not in old,
+            "the SDK's topic info",
+        )
+        if info["nodes"] or time.monotonic() > deadline:
+            break
+        time.sleep(0.2)
     assert len(info["nodes"]) == 1, info
     subscriber = "/" + str(info["nodes"][0]).lstrip("/")
     with connect(f"ws://127.0.0.1:{app.port}/rosbridge", open_timeout=READ_S) as ws:
