@@ -60,7 +60,7 @@ class CloseCode(IntEnum):
     BAD_REQUEST = 4400
     UNAUTHORIZED = 4401  # a class server: no valid token
     FORBIDDEN = 4403  # a class server: another student's world
-    UNKNOWN_TOPIC = 4404
+    NOT_FOUND = 4404  # an unknown topic (or node, service, bag), or a route this server does not serve
     TYPE_CONFLICT = 4409
 
 
@@ -92,7 +92,7 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (BagError, status.HTTP_422_UNPROCESSABLE_CONTENT),
 )
 _CLOSE_FOR_STATUS = {
-    status.HTTP_404_NOT_FOUND: CloseCode.UNKNOWN_TOPIC,
+    status.HTTP_404_NOT_FOUND: CloseCode.NOT_FOUND,
     status.HTTP_409_CONFLICT: CloseCode.TYPE_CONFLICT,
     status.HTTP_429_TOO_MANY_REQUESTS: CloseCode.TRY_AGAIN_LATER,
     status.HTTP_504_GATEWAY_TIMEOUT: CloseCode.TRY_AGAIN_LATER,

@@ -42,7 +42,7 @@ async def class_rosbridge(websocket: WebSocket) -> None:
     """The instructor's rosbridge on the class's own domain: ``/ada/uav/sensors/gps`` and the like."""
     classroom = classroom_of(websocket)
     if classroom is None:
-        raise _refused(CloseCode.UNKNOWN_TOPIC, "not a class server: use /rosbridge")
+        raise _refused(CloseCode.NOT_FOUND, "not a class server: use /rosbridge")
     grant = classroom.grant(token_of(websocket))
     if grant is None:
         raise _refused(CloseCode.UNAUTHORIZED, "the instructor's token is needed")

@@ -85,7 +85,7 @@ def _refusal(exc: Exception, topic: str) -> tuple[int, str]:
     if isinstance(exc, EchoRequestError):
         return CloseCode.BAD_REQUEST, str(exc)
     if isinstance(exc, UnknownTopicError):
-        return CloseCode.UNKNOWN_TOPIC, f"unknown topic {topic}; pass ?type= to wait for it"
+        return CloseCode.NOT_FOUND, f"unknown topic {topic}; pass ?type= to wait for it"
     code = close_code(exc)
     if code is None:
         raise exc  # a bug: ErrorMiddleware closes with 1011 and logs it
@@ -101,14 +101,16 @@ async def echo(
         None, description="minimum ms between frames, 0..60000 (rosbridge's name)"
     ),
     queue_length: str | None = Query(
-        None, description=f"messages kept for a slow client, 1..{MAX_QUEUE} (100)"
+        None, description=f"messages kept for a slow client, 1..{MAX_QUEUE} (100; 1 with throttle_rate)"
     ),
     type: str | None = Query(None, description="message type, to echo a topic that does not exist yet"),
 ) -> None:
     await websocket.accept()
     try:
         throttle_ms = _int_param("throttle_rate", throttle_rate, 0, 0, 60_000)
-        depth = _int_param("queue_length", queue_length, 100, 1, MAX_QUEUE)
+        # A throttled stream keeps only the newest message unless asked for more: a queue of 100
+        # behind a 30 Hz throttle on a 100 Hz topic would send messages 3 s old.
+        depth = _int_param("queue_length", queue_length, 1 if throttle_ms else 100, 1, MAX_QUEUE)
         node = open_echo(lab, name, type, depth)
     except Exception as exc:
         code, reason = _refusal(exc, "/" + name.lstrip("/"))

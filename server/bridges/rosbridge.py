@@ -32,6 +32,9 @@ log = logging.getLogger("bridges.rosbridge")
 _ids = itertools.count(1)
 
 DEFAULT_QUEUE = 100  # queue_length 0 (the clients' default): a slow client still loses only the oldest
+# queue_length 0 with a throttle_rate: only the newest message waits for the next send, as
+# rosbridge's throttle handler sends nothing older, so a throttled stream is never behind.
+THROTTLED_QUEUE = 1
 MAX_QUEUE = 1000
 MAX_THROTTLE_MS = 60_000
 MAX_TOPICS = 256  # subscriptions plus advertisements per client
@@ -177,7 +180,9 @@ class RosbridgeSession:
         as_named = str(request["topic"])  # frames go out under the client's spelling: it dispatches on it
         sub_id = str(request.get("id", ""))
         throttle_s = _int(request.get("throttle_rate"), "throttle_rate", 0, MAX_THROTTLE_MS, 0) / 1000.0
-        depth = _int(request.get("queue_length"), "queue_length", 0, MAX_QUEUE, 0) or DEFAULT_QUEUE
+        depth = _int(request.get("queue_length"), "queue_length", 0, MAX_QUEUE, 0) or (
+            THROTTLED_QUEUE if throttle_s else DEFAULT_QUEUE
+        )
         existing = self.node.bus.topic_type(topic)  # here or in another process
         if request.get("type"):
             msg_type = get_type(str(request["type"]))

@@ -16,8 +16,8 @@ from websockets.sync.client import connect
 DEFAULT_URL = "http://127.0.0.1:8000"
 URL_ENV = "TELEOP_URL"
 TIMEOUT_S = 10.0
-# The app's own close code for "no such topic" (api.errors.CloseCode.UNKNOWN_TOPIC; a test keeps them equal).
-CLOSE_UNKNOWN_TOPIC = 4404
+# The app's close code for "not found", here an unknown topic (api.errors.CloseCode.NOT_FOUND; a test keeps them equal).
+CLOSE_NOT_FOUND = 4404
 # What FastAPI answers for a path no route serves: an older server than this CLI.
 NO_ROUTE_DETAIL = "Not Found"
 
@@ -174,6 +174,6 @@ def _api_error(response: httpx.Response, method: str, path: str) -> ApiError:
 def _closed_error(exc: ConnectionClosed, topic: str) -> CliError:
     if exc.rcvd is None:
         return CliError("lost the connection to the lab server")
-    if exc.rcvd.code == CLOSE_UNKNOWN_TOPIC:
+    if exc.rcvd.code == CLOSE_NOT_FOUND:
         return UnknownTopicError(exc.rcvd.reason or f"unknown topic {topic}")
     return CliError(f"the lab server closed the echo channel: {exc.rcvd.reason or exc.rcvd.code}")

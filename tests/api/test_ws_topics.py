@@ -54,6 +54,22 @@ def test_echo_throttled_queue_of_one_sends_only_the_newest(rocket_lab: LabClient
     assert after_pause["msg"] == {"data": 4}
 
 
+def test_echo_throttled_without_a_queue_length_sends_the_newest_not_a_backlog(rocket_lab: LabClient) -> None:
+    url = "/ws/topics/laps?type=std_msgs/msg/Int64&throttle_rate=1000"
+    with rocket_lab.http.websocket_connect(url) as ws:
+        rocket_lab.publish("/laps", {"data": 0})
+        assert receive_json_within(ws)["msg"] == {"data": 0}
+        for n in range(1, 30):  # all inside the 1 s the echo now waits
+            rocket_lab.publish("/laps", {"data": n})
+        after_pause = receive_json_within(ws)
+        rocket_lab.publish("/laps", {"data": 30})
+        next_one = receive_json_within(ws)
+
+    assert after_pause["msg"] == {"data": 29}
+    assert next_one["msg"] == {"data": 30}  # not 1, 2, ...: nothing older waited behind the newest
+    assert after_pause["dropped"] == 28  # 1 to 28, each replaced by a newer one while it waited
+
+
 @pytest.mark.parametrize(
     "query",
     ["queue_length=0", "queue_length=1001", "queue_length=many", "throttle_rate=-1", "throttle_rate=60001"],
@@ -70,7 +86,7 @@ def test_echo_query_out_of_range_refused_naming_it(rocket_lab: LabClient, query:
 @pytest.mark.parametrize(
     ("path", "code", "named"),
     [
-        ("nowhere", CloseCode.UNKNOWN_TOPIC, "unknown topic /nowhere"),
+        ("nowhere", CloseCode.NOT_FOUND, "unknown topic /nowhere"),
         ("bad%20name", CloseCode.BAD_REQUEST, "invalid topic name"),
         ("countdown?type=std_msgs/msg/Bool", CloseCode.TYPE_CONFLICT, "std_msgs/msg/Int64"),
         ("laps?type=std_msgs/msg/Int65", CloseCode.BAD_REQUEST, "unknown message type"),

@@ -8,7 +8,7 @@ import httpx
 import pytest
 
 from server.cli.client import (
-    CLOSE_UNKNOWN_TOPIC,
+    CLOSE_NOT_FOUND,
     ApiError,
     CliError,
     LabClient,
@@ -26,10 +26,10 @@ def client_answering(status: int, body: Any = None, text: str | None = None) -> 
     return LabClient("http://lab.test", transport=httpx.MockTransport(handler))
 
 
-def test_close_code_for_unknown_topic_matches_the_api() -> None:
+def test_close_code_for_not_found_matches_the_api() -> None:
     from api.errors import CloseCode
 
-    assert CLOSE_UNKNOWN_TOPIC == CloseCode.UNKNOWN_TOPIC
+    assert CLOSE_NOT_FOUND == CloseCode.NOT_FOUND
 
 
 def test_get_success_returns_json() -> None:

@@ -83,6 +83,25 @@ def test_throttle_rate_spaces_frames_and_says_how_long_to_wait(
     assert frame is not None and json.loads(frame)["msg"]["data"] == 3
 
 
+def test_throttle_with_the_default_queue_sends_the_newest_not_a_backlog(
+    bus: Bus, executor: Executor, loop: asyncio.AbstractEventLoop, talker: Node
+) -> None:
+    pub = talker.create_publisher(Int64, "/count", 10)
+    session = RosbridgeSession(bus, loop)
+    session.handle({"op": "subscribe", "topic": "/count", "throttle_rate": 100, "queue_length": 0})
+    for i in range(10):
+        pub.publish(Int64(data=i))
+        executor.spin_some()
+    first, _ = session.next_frame(10.0)
+    assert first is not None and json.loads(first)["msg"]["data"] == 9
+    for i in range(10, 20):  # a 100 Hz topic during the 100 ms throttle
+        pub.publish(Int64(data=i))
+        executor.spin_some()
+    second, _ = session.next_frame(10.1)
+    assert second is not None and json.loads(second)["msg"]["data"] == 19
+    assert session.next_frame(10.2) == (None, None)  # nothing older was kept behind it
+
+
 def test_two_subscribe_ids_share_one_stream_until_both_unsubscribe(
     bus: Bus, executor: Executor, loop: asyncio.AbstractEventLoop, talker: Node
 ) -> None:
