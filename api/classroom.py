@@ -89,6 +89,11 @@ class ClassWorkers(BaseModel):
     workers: list[dict[str, Any]] = Field(
         description="each world worker that answers now, with its load: worlds, max_worlds and cpu, as for local"
     )
+    started_here: list[dict[str, Any]] = Field(
+        default_factory=list,
+        description="the world workers this server started on its machine (--workers): id, pid (null while "
+        "down), restarts, and given_up once it kept dying",
+    )
 
 
 class ClassGraph(BaseModel):
@@ -188,6 +193,7 @@ async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
             "cpu": classroom.cpu.read().describe(),
         },
         workers=[ref.describe() for ref in found],
+        started_here=classroom.local_workers.describe() if classroom.local_workers is not None else [],
     )
 
 

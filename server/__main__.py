@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from server import cli
-from server.settings import LOOPBACK_HOSTS, WORKER_TIMEOUT_S, Settings
+from server.settings import LOOPBACK_HOSTS, MAX_LOCAL_WORKERS, WORKER_TIMEOUT_S, Settings
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env, is_loopback
 
 
@@ -104,6 +104,11 @@ def build_parser() -> argparse.ArgumentParser:
              f"(ros2lab {cli.WORKER_VERB} --connect tcp/HOST:7447, which join this server's Zenoh router)",
     )  # fmt: skip
     classroom.add_argument(
+        "--workers", type=int, default=0, metavar="N",
+        help="start N world workers on this machine (processes of their own on this server's router, so "
+             "a class uses more cores); they stop with it (default 0)",
+    )  # fmt: skip
+    classroom.add_argument(
         "--worker-timeout", type=float, default=WORKER_TIMEOUT_S, metavar="S",
         help="a world worker that answers no hello for S seconds is gone: its worlds start again here "
              f"or on another worker, under the same names and tokens (default {WORKER_TIMEOUT_S:g})",
@@ -187,6 +192,10 @@ def classroom_banner(host: str, port: int, classroom: Any) -> str:
         lines.append(
             f"rosbridge, every world as /<world>/...: ws://{shown}:{rosbridge}/?token=<the instructor's token>"
         )
+    started = classroom.settings.local_workers
+    if started:
+        lines.append(f"World workers on this machine: {started} (local-1..local-{started}), started and stopped "
+                     "with this server")  # fmt: skip
     if zenoh is not None and zenoh.mode == "router":
         router = zenoh.listen[0].replace("0.0.0.0", "<this machine's address>")
         lines.append(f"More cores or machines: ROS2LAB_TOKEN=<the instructor's token> ros2lab {cli.WORKER_VERB} "
@@ -204,6 +213,14 @@ def main(argv: list[str] | None = None) -> int:
         zenoh = zenoh_settings(args)
     except ValueError as exc:
         parser.error(str(exc))
+    if args.workers and not (
+        0 < args.workers <= MAX_LOCAL_WORKERS
+        and args.classroom
+        and zenoh is not None
+        and zenoh.mode == "router"
+    ):
+        parser.error(f"--workers needs --classroom and this server's own Zenoh router (world workers join it), "
+                     f"and N in 0..{MAX_LOCAL_WORKERS}")  # fmt: skip
     settings = Settings(
         host=args.host, port=args.port, launch=args.launch, launch_args=dict(args.launch_args),
         workspace=Path(args.workspace), allowed_hosts=tuple(args.allow_host), allowed_origins=tuple(args.allow_origin),
@@ -211,7 +228,7 @@ def main(argv: list[str] | None = None) -> int:
         foxglove_port=None if args.no_foxglove else args.foxglove_port, rosbridge_port=args.rosbridge_port,
         bag_dir=Path(args.bag_dir), classroom=args.classroom, class_code=args.class_code,
         max_worlds=args.max_worlds, token=lab_token(args.token), local_worlds=args.local_worlds,
-        worker_timeout_s=args.worker_timeout,
+        worker_timeout_s=args.worker_timeout, local_workers=args.workers,
     )  # fmt: skip
     if not 2.0 <= args.worker_timeout <= 3600.0:
         parser.error("--worker-timeout must be in 2..3600 s")

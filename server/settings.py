@@ -13,6 +13,7 @@ LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
 # starts its worlds again elsewhere; a worker that hears no hello this long frees its worlds first.
 WORKER_TIMEOUT_S = 20.0
 ORPHAN_TIMEOUT_S = 12.0
+MAX_LOCAL_WORKERS = 32  # --workers: world workers a class server starts on its own machine
 
 
 @dataclass(frozen=True)
@@ -75,6 +76,8 @@ class Settings:
     world_samples_hz: float = 2000.0
     # Worlds the class server hosts itself; the rest go to world workers (None: up to max_worlds).
     local_worlds: int | None = None
+    # World workers the class server starts on its own machine (--workers), on its own router.
+    local_workers: int = 0  # at most MAX_LOCAL_WORKERS
     worker: WorkerSettings | None = None  # set on a world worker: worlds come from a class server
     worker_timeout_s: float = WORKER_TIMEOUT_S  # a world worker silent this long is gone: its worlds move
 
@@ -83,6 +86,8 @@ class Settings:
             port = getattr(self, name)
             if port is not None and not 0 <= port <= 65535:
                 raise ValueError(f"{name} must be in 0..65535, got {port}")
+        if not 0 <= self.local_workers <= MAX_LOCAL_WORKERS:
+            raise ValueError(f"local_workers must be in 0..{MAX_LOCAL_WORKERS}, got {self.local_workers}")
         if self.max_body_bytes < 1024 or self.max_ws_frame_bytes < 256:
             raise ValueError("size limits are too small to carry a message")
 

@@ -37,6 +37,7 @@ if TYPE_CHECKING:
 
     from .class_bridges import ClassBridges
     from .class_view import ClassView
+    from .local_workers import LocalWorkers
 
 log = logging.getLogger("classroom")
 CODE_ALPHABET = "ABCDEFGHJKLMNPQRSTUVWXYZ23456789"  # no 0/O, 1/I: read aloud or off a projector
@@ -143,6 +144,7 @@ class Classroom:
         self._hosting: set[tuple[str, str]] = set()  # (worker id, world) while it is placed there
         self._local_starting = 0  # worlds being started here
         self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
+        self.local_workers: LocalWorkers | None = None  # world workers started here (--workers)
         self.class_graph: DomainBridge | None = None  # every world under /<world> in the class's domain
         # The instructor's Foxglove and rosbridge ports on the class domain.
         self.bridges: ClassBridges | None = None
@@ -249,6 +251,14 @@ class Classroom:
         self.class_graph = DomainBridge(self._router, zenoh.domain_id)
         self._watch = asyncio.create_task(self._watch_workers())
         endpoint = self.router_endpoint()
+        if endpoint is not None and self.settings.local_workers > 0:
+            from .local_workers import LocalWorkers
+
+            self.local_workers = LocalWorkers(
+                self.settings.local_workers, endpoint, self.instructor_token, self.settings.max_worlds,
+                self.settings.workspace, self.settings.bag_dir,
+            )  # fmt: skip
+            self.local_workers.start()
         if endpoint is not None:  # the instructor's bridges: /class/rosbridge, and their ports if asked
             from .class_bridges import ClassBridges
 
@@ -714,6 +724,9 @@ class Classroom:
             self.view = None
         for name in list(self.worlds):
             await self._end(self.worlds.pop(name))
+        if self.local_workers is not None:
+            await self.local_workers.stop()
+            self.local_workers = None
         if self.bridges is not None:
             await self.bridges.close(self.executors)
             self.bridges = None

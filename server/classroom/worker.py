@@ -15,8 +15,11 @@ import argparse
 import contextlib
 import logging
 import os
+import signal
 import socket
 import sys
+import threading
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -28,6 +31,7 @@ from .workers import control_key, genuine_hello, seal
 
 log = logging.getLogger("classroom.worker")
 TOKEN_ENV = "ROS2LAB_TOKEN"
+PARENT_CHECK_S = 0.5
 
 
 class WorkerControl:
@@ -93,7 +97,22 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
     parser.add_argument("--log-level", default="info", choices=["debug", "info", "warning", "error"])
+    # Set by a class server that started this worker itself (--workers): end when that process is gone.
+    parser.add_argument("--parent-pid", type=int, help=argparse.SUPPRESS)
     return parser
+
+
+def _end_with_parent(parent_pid: int) -> None:
+    """Stop this worker (as a Ctrl-C would: its worlds end) once ``parent_pid`` is no longer its
+    parent, so a class server that was killed leaves no worker of its own behind."""
+
+    def watch() -> None:
+        while os.getppid() == parent_pid:
+            time.sleep(PARENT_CHECK_S)
+        log.warning("the class server that started this worker is gone: stopping")
+        os.kill(os.getpid(), signal.SIGTERM)
+
+    threading.Thread(target=watch, name="parent watch", daemon=True).start()
 
 
 def _worker_id(asked: str | None) -> str:
@@ -132,6 +151,9 @@ def main(argv: list[str] | None = None) -> int:
         parser.error("--max-worlds must be at least 1")
     if not 1.0 <= args.orphan_timeout <= 3600.0:
         parser.error("--orphan-timeout must be in 1..3600 s")
+    if args.parent_pid is not None and os.getppid() != args.parent_pid:
+        print("error: the class server that started this worker is gone", file=sys.stderr)
+        return 2
     advertise = args.advertise or args.host
     if advertise in ("0.0.0.0", "::"):
         parser.error(
@@ -177,6 +199,8 @@ def main(argv: list[str] | None = None) -> int:
     print(f"World worker {worker.id}: API at {worker.url}, class router {args.connect}, "
           f"up to {args.max_worlds} worlds (Ctrl-C stops it and its worlds)", flush=True)  # fmt: skip
     config = uvicorn.Config(app, log_level=args.log_level, timeout_graceful_shutdown=1, lifespan="on")
+    if args.parent_pid is not None:
+        _end_with_parent(args.parent_pid)
     with contextlib.suppress(KeyboardInterrupt):
         uvicorn.Server(config).run(sockets=[sock])
     return 0

@@ -1,0 +1,141 @@
+"""World workers a class server starts on its own machine (``--workers N``, issue 13).
+
+A class server runs its own worlds in one Python thread, so on its own it uses about one core. With
+``--workers N`` it starts N ``ros2lab world-worker`` processes next to itself, joined to its own
+Zenoh router, so a class spreads over the machine's other cores with one command. They are
+ordinary world workers: placement by load, the hello, failover and the proxy treat them as any
+other (``workers.py``).
+
+The class server owns them: each starts in a session of its own (a Ctrl-C in the terminal stops
+the class server, which then ends them, rather than reaching every process at once), gets the
+instructor's token in its environment (never on a command line another user could read), and
+ends with the class server: by its id when the class server stops, or by itself when its parent
+is gone (``--parent-pid``), so even a killed class server leaves none behind. One that dies is
+started again (its worlds start again meanwhile, as for any worker that goes), at most
+``MAX_RESTARTS`` times.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import os
+import signal
+import subprocess
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .worker import TOKEN_ENV
+
+log = logging.getLogger("classroom.local_workers")
+
+MAX_RESTARTS = 5  # per worker, over the class server's life: a worker that keeps dying is left down
+WATCH_PERIOD_S = 1.0
+STOP_WAIT_S = 5.0  # a worker ends its worlds in about a second; then it is killed
+
+
+@dataclass
+class _Child:
+    worker_id: str
+    proc: subprocess.Popen[bytes] | None = None
+    restarts: int = 0
+    given_up: bool = False
+
+
+@dataclass
+class LocalWorkers:
+    """``count`` world workers on this machine, joined to ``router`` (the class's own endpoint)."""
+
+    count: int
+    router: str
+    class_token: str
+    max_worlds: int
+    workspace: Path | None
+    bag_dir: Path
+    log_level: str = "warning"
+    _children: list[_Child] = field(default_factory=list)
+    _watch: asyncio.Task[None] | None = None
+    _stopping: bool = False
+
+    def start(self) -> None:
+        """Start every worker (they join the router and answer hellos a few seconds later)."""
+        self._children = [_Child(f"local-{i + 1}") for i in range(self.count)]
+        for child in self._children:
+            self._spawn(child)
+        self._watch = asyncio.get_running_loop().create_task(self._watch_loop(), name="local workers")
+
+    def pids(self) -> list[int]:
+        return [c.proc.pid for c in self._children if c.proc is not None and c.proc.poll() is None]
+
+    def describe(self) -> list[dict[str, object]]:
+        """Each worker's id, process id (None when down) and restarts, for the instructor."""
+        return [
+            {
+                "id": c.worker_id,
+                "pid": c.proc.pid if c.proc is not None and c.proc.poll() is None else None,
+                "restarts": c.restarts,
+                "given_up": c.given_up,
+            }
+            for c in self._children
+        ]
+
+    def _command(self, child: _Child) -> list[str]:
+        command = [
+            sys.executable, "-m", "server", "world-worker", "--connect", self.router, "--id", child.worker_id,
+            "--max-worlds", str(self.max_worlds), "--bag-dir", str(self.bag_dir.resolve()),
+            "--log-level", self.log_level, "--parent-pid", str(os.getpid()),
+        ]  # fmt: skip
+        if self.workspace is not None:
+            command += ["--workspace", str(self.workspace.resolve())]
+        return command
+
+    def _spawn(self, child: _Child) -> None:
+        env = {**os.environ, TOKEN_ENV: self.class_token}
+        try:
+            child.proc = subprocess.Popen(self._command(child), env=env, start_new_session=True)
+        except OSError as exc:
+            log.error("world worker %s not started: %s", child.worker_id, exc)
+            child.proc = None
+            child.given_up = True
+            return
+        log.info("world worker %s started (pid %d)", child.worker_id, child.proc.pid)
+
+    async def _watch_loop(self) -> None:
+        while not self._stopping:
+            await asyncio.sleep(WATCH_PERIOD_S)
+            for child in self._children:
+                if self._stopping or child.given_up or child.proc is None or child.proc.poll() is None:
+                    continue
+                code = child.proc.returncode
+                if child.restarts >= MAX_RESTARTS:
+                    log.error("world worker %s ended (exit %s) and has been started %d times: left down",
+                              child.worker_id, code, child.restarts + 1)  # fmt: skip
+                    child.given_up = True
+                    continue
+                child.restarts += 1
+                log.warning("world worker %s ended (exit %s): starting it again; its worlds start again "
+                            "once the class server finds it gone", child.worker_id, code)  # fmt: skip
+                self._spawn(child)
+
+    async def stop(self) -> None:
+        """End every worker by its id: a SIGTERM (it ends its worlds), then a kill if it lingers."""
+        self._stopping = True
+        if self._watch is not None:
+            self._watch.cancel()
+            await asyncio.gather(self._watch, return_exceptions=True)
+            self._watch = None
+        procs = [c.proc for c in self._children if c.proc is not None]
+        await asyncio.to_thread(_end_all, procs)
+
+
+def _end_all(procs: list[subprocess.Popen[bytes]]) -> None:
+    for proc in procs:
+        if proc.poll() is None:
+            proc.send_signal(signal.SIGTERM)
+    for proc in procs:
+        try:
+            proc.wait(timeout=STOP_WAIT_S)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait(timeout=STOP_WAIT_S)

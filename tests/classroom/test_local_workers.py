@@ -1,0 +1,176 @@
+"""``--workers N``: world workers a class server starts on its own machine (issue 13).
+
+The class server runs as a process of its own on loopback and starts its workers itself; the
+tests find them by the ids the server reports (``started_here``), check them in /proc, and end
+every process they saw by its id, whatever happens.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import httpx
+import pytest
+from support.app import READY_S, App, instructor_token, wait_for_workers
+
+from server.__main__ import main as server_main
+
+CODE = "LOC042"
+GONE_WAIT_S = 30.0  # a worker polls for its parent twice a second; its worlds then end
+
+
+@dataclass
+class Class:
+    app: App
+    instructor: str
+    seen_pids: set[int] = field(default_factory=set)
+
+    def get(self, path: str, token: str | None = None) -> httpx.Response:
+        headers = {"Authorization": f"Bearer {token or self.instructor}"}
+        return httpx.get(self.app.url + path, headers=headers, timeout=10)
+
+    def started_here(self) -> list[dict[str, Any]]:
+        reply = self.get("/api/classroom/workers")
+        assert reply.status_code == 200, reply.text
+        found: list[dict[str, Any]] = reply.json()["started_here"]
+        self.seen_pids |= {w["pid"] for w in found if w["pid"] is not None}
+        return found
+
+    def worlds(self) -> dict[str, dict[str, Any]]:
+        return {w["world"]: w for w in self.get("/api/classroom/worlds").json()["worlds"]}
+
+
+def alive(pid: int) -> bool:
+    """A process that exists and is not a zombie waiting for its (new) parent to reap it."""
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except (FileNotFoundError, ProcessLookupError):
+        return False
+    return state != "Z"
+
+
+def parent_of(pid: int) -> int:
+    return int(Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[1])
+
+
+def wait_until(condition: Callable[[], bool], what: str, timeout_s: float) -> None:
+    deadline = time.monotonic() + timeout_s
+    while not condition():
+        if time.monotonic() > deadline:
+            pytest.fail(f"not within {timeout_s} s: {what}")
+        time.sleep(0.2)
+
+
+def end_pids(pids: set[int]) -> None:
+    for pid in pids:
+        if alive(pid):
+            os.kill(pid, signal.SIGKILL)
+
+
+def start_class(root: Path, *extra: str) -> Class:
+    app = App(root, "--classroom", "--class-code", CODE, "--launch", "rocket", "--no-foxglove", *extra)
+    return Class(app, instructor_token(app.log_tail(10**6)))
+
+
+@pytest.fixture
+def klass(tmp_path: Path) -> Iterator[Class]:
+    # The class server keeps one world itself; its one worker takes the rest.
+    started = start_class(tmp_path, "--local-worlds", "1", "--workers", "1")
+    try:
+        wait_for_workers(started.app.url, started.instructor, {"local-1"})
+        yield started
+    finally:
+        started.app.stop()
+        end_pids(started.seen_pids)
+
+
+def test_a_class_server_starts_its_workers_places_worlds_on_them_and_ends_them_with_it(klass: Class) -> None:
+    (worker,) = klass.started_here()
+    assert worker["id"] == "local-1" and worker["restarts"] == 0
+    pid = worker["pid"]
+    assert parent_of(pid) == klass.app.proc.pid  # a child of the class server, not a stray process
+    command_line = Path(f"/proc/{pid}/cmdline").read_bytes().decode()
+    assert "world-worker" in command_line
+    assert klass.instructor not in command_line  # the token goes in its environment only
+    assert "World workers on this machine: 1" in klass.app.log_tail(10**6)
+
+    tokens = {}
+    for name in ("Ada", "Bob"):  # one at a time: each placement sees the one before
+        reply = httpx.post(
+            f"{klass.app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60
+        )
+        assert reply.status_code == 201, reply.text
+        tokens[reply.json()["world"]] = reply.json()["token"]
+    placed = {world: row["worker"] for world, row in klass.worlds().items()}
+    assert sorted(placed.values(), key=str) == [None, "local-1"]  # one on the worker, one at home
+    remote = next(world for world, where in placed.items() if where == "local-1")
+    nodes = klass.get("/api/nodes", tokens[remote])  # through the class server, as a local world
+    assert nodes.status_code == 200, nodes.text
+    assert "/CountDownNode" in {n["name"] for n in nodes.json()}
+
+    klass.app.stop()  # Ctrl-C: the class server ends its worker by its id
+    wait_until(lambda: not alive(pid), f"worker {pid} ends with its class server", GONE_WAIT_S)
+
+
+def test_a_worker_that_dies_is_started_again_and_its_world_comes_back(klass: Class) -> None:
+    reply = httpx.post(f"{klass.app.url}/api/classroom/join", json={"name": "Ada", "code": CODE}, timeout=60)
+    assert reply.status_code == 201, reply.text
+    world, token = reply.json()["world"], reply.json()["token"]
+    assert klass.worlds()[world]["worker"] == "local-1"
+    (first,) = klass.started_here()
+    os.kill(first["pid"], signal.SIGKILL)
+
+    def restarted() -> bool:
+        (now,) = klass.started_here()
+        return now["pid"] not in (None, first["pid"]) and now["restarts"] == 1
+
+    wait_until(restarted, "the class server starts its worker again", READY_S)
+    wait_for_workers(klass.app.url, klass.instructor, {"local-1"})
+
+    def back() -> bool:
+        row = klass.worlds()[world]
+        return (
+            row["moves"] == 1
+            and row["worker"] is not None
+            and klass.get("/api/nodes", token).status_code == 200
+        )
+
+    wait_until(back, f"world {world} hosted again", READY_S + GONE_WAIT_S)
+
+
+def test_a_killed_class_server_leaves_no_worker_behind(tmp_path: Path) -> None:
+    started = start_class(tmp_path, "--workers", "1")
+    try:
+        wait_for_workers(started.app.url, started.instructor, {"local-1"})
+        (worker,) = started.started_here()
+        started.app.proc.kill()  # no chance to end anything itself
+        started.app.proc.wait(timeout=10)
+        wait_until(lambda: not alive(worker["pid"]), "an orphaned worker ends by itself", GONE_WAIT_S)
+    finally:
+        started.app.stop()
+        end_pids(started.seen_pids)
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["--workers", "1"],  # no --classroom
+        ["--classroom", "--workers", "1", "--no-zenoh"],
+        ["--classroom", "--workers", "1", "--zenoh-connect", "tcp/127.0.0.1:7447"],  # not its own router
+        ["--classroom", "--workers", "33"],
+        ["--classroom", "--workers", "-1"],
+    ],
+)
+def test_workers_flag_refused_where_it_cannot_work(
+    argv: list[str], capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as exited:
+        server_main(argv)
+    assert exited.value.code == 2
+    assert "--workers needs --classroom" in capsys.readouterr().err
