@@ -128,7 +128,9 @@ def test_each_workers_hello_carries_its_cpu_and_the_class_server_shows_its_own(k
     assert len({place["cpu"]["machine"] for place in [listed["local"], *listed["workers"]]}) == 1, listed
     # Each worker hosts a fly world or two, so its process has used some CPU in its last window.
     workers = {w["id"]: w for w in listed["workers"]}
-    assert all(workers[wid]["cpu"]["process_cores"] > 0 for wid in ("wa", "wb")), [w["cpu"] for w in workers.values()]
+    assert all(workers[wid]["cpu"]["process_cores"] > 0 for wid in ("wa", "wb")), [
+        w["cpu"] for w in workers.values()
+    ]
 
 
 def test_a_hello_not_sealed_with_the_class_token_gets_no_answer_from_any_worker(klass: Class) -> None:
