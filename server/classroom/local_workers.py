@@ -65,9 +65,6 @@ class LocalWorkers:
             self._spawn(child)
         self._watch = asyncio.get_running_loop().create_task(self._watch_loop(), name="local workers")
 
-    def pids(self) -> list[int]:
-        return [c.proc.pid for c in self._children if c.proc is not None and c.proc.poll() is None]
-
     def describe(self) -> list[dict[str, object]]:
         """Each worker's id, process id (None when down) and restarts, for the instructor."""
         return [
