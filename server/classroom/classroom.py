@@ -251,14 +251,6 @@ class Classroom:
         self.class_graph = DomainBridge(self._router, zenoh.domain_id)
         self._watch = asyncio.create_task(self._watch_workers())
         endpoint = self.router_endpoint()
-        if endpoint is not None and self.settings.local_workers > 0:
-            from .local_workers import LocalWorkers
-
-            self.local_workers = LocalWorkers(
-                self.settings.local_workers, endpoint, self.instructor_token, self.settings.max_worlds,
-                self.settings.workspace, self.settings.bag_dir,
-            )  # fmt: skip
-            self.local_workers.start()
         if endpoint is not None:  # the instructor's bridges: /class/rosbridge, and their ports if asked
             from .class_bridges import ClassBridges
 
@@ -269,6 +261,15 @@ class Classroom:
                 )  # fmt: skip
             except TransportError as exc:
                 log.warning("the class's Foxglove and rosbridge ports not opened: %s", exc)
+        # Started last: a start-up that fails earlier leaves no worker behind to clean up.
+        if endpoint is not None and self.settings.local_workers > 0:
+            from .local_workers import LocalWorkers
+
+            self.local_workers = LocalWorkers(
+                self.settings.local_workers, endpoint, self.instructor_token, self.settings.max_worlds,
+                self.settings.workspace, self.settings.bag_dir,
+            )  # fmt: skip
+            self.local_workers.start()
 
     # -- the instructor's 3D view ------------------------------------------------------------------
     async def _view_loop(self) -> None:

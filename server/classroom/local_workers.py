@@ -54,9 +54,9 @@ class LocalWorkers:
     workspace: Path | None
     bag_dir: Path
     log_level: str = "warning"
-    _children: list[_Child] = field(default_factory=list)
-    _watch: asyncio.Task[None] | None = None
-    _stopping: bool = False
+    _children: list[_Child] = field(default_factory=list, init=False)
+    _watch: asyncio.Task[None] | None = field(default=None, init=False)
+    _stopping: bool = field(default=False, init=False)
 
     def start(self) -> None:
         """Start every worker (they join the router and answer hellos a few seconds later)."""
