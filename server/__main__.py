@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import logging
 import secrets
 import sys
 from pathlib import Path
 from typing import Any
 
 from server import cli
+from server.console import LEVELS, access_log, quiet_uvicorn, setup_logging
 from server.settings import LOOPBACK_HOSTS, MAX_LOCAL_WORKERS, WORKER_TIMEOUT_S, Settings
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env, is_loopback
 
@@ -49,7 +49,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--allow-host", action="append", default=[], help="another Host name to accept")
     parser.add_argument("--allow-origin", action="append", default=[], help="another page origin to accept")
-    parser.add_argument("--log-level", default="info", choices=["debug", "info", "warning", "error"])
+    parser.add_argument("--log-level", default="info", choices=list(LEVELS))
     zenoh = parser.add_argument_group(
         "the graph on Zenoh (rmw_zenoh's wire format; ROS_DOMAIN_ID is read from the environment)"
     )
@@ -107,6 +107,11 @@ def build_parser() -> argparse.ArgumentParser:
         "--workers", type=int, default=0, metavar="N",
         help="start N world workers on this machine (processes of their own on this server's router, so "
              "a class uses more cores); they stop with it (default 0)",
+    )  # fmt: skip
+    classroom.add_argument(
+        "--world-log-level", default="warning", choices=list(LEVELS),
+        help="the lowest level of the worlds' node log lines this console shows (default warning: a class "
+             "of 30 rockets at info is 300 lines a second); every line still goes to its world's /rosout",
     )  # fmt: skip
     classroom.add_argument(
         "--worker-timeout", type=float, default=WORKER_TIMEOUT_S, metavar="S",
@@ -194,12 +199,18 @@ def classroom_banner(host: str, port: int, classroom: Any) -> str:
         )
     started = classroom.settings.local_workers
     if started:
-        lines.append(f"World workers on this machine: {started} (local-1..local-{started}), started and stopped "
-                     "with this server")  # fmt: skip
+        ids = "local-1" if started == 1 else f"local-1..local-{started}"
+        lines.append(
+            f"World workers on this machine: {started} ({ids}), started and stopped with this server"
+        )
     if zenoh is not None and zenoh.mode == "router":
         router = zenoh.listen[0].replace("0.0.0.0", "<this machine's address>")
         lines.append(f"More cores or machines: ROS2LAB_TOKEN=<the instructor's token> ros2lab {cli.WORKER_VERB} "
                      f"--connect {router}")  # fmt: skip
+    level = classroom.settings.world_log_level
+    if level != "debug":
+        lines.append(f"This console shows the worlds' node lines at {level} and above, each under its world's "
+                     "name; every line is on its world's /rosout (--world-log-level to change)")  # fmt: skip
     return "\n".join(lines)
 
 
@@ -228,7 +239,7 @@ def main(argv: list[str] | None = None) -> int:
         foxglove_port=None if args.no_foxglove else args.foxglove_port, rosbridge_port=args.rosbridge_port,
         bag_dir=Path(args.bag_dir), classroom=args.classroom, class_code=args.class_code,
         max_worlds=args.max_worlds, token=lab_token(args.token), local_worlds=args.local_worlds,
-        worker_timeout_s=args.worker_timeout, local_workers=args.workers,
+        worker_timeout_s=args.worker_timeout, local_workers=args.workers, world_log_level=args.world_log_level,
     )  # fmt: skip
     if not 2.0 <= args.worker_timeout <= 3600.0:
         parser.error("--worker-timeout must be in 2..3600 s")
@@ -249,11 +260,7 @@ def main(argv: list[str] | None = None) -> int:
               "reaches it could join the graph and fly the drone. Add --token auto (the router then asks every "
               "session for the lab's login: GET /api/zenoh/join gives it) or --classroom.", file=sys.stderr)  # fmt: skip
         return 2
-    logging.basicConfig(
-        level=args.log_level.upper(),
-        format="%(asctime)s %(levelname)s %(name)s: %(message)s",
-        datefmt="%H:%M:%S",
-    )
+    setup_logging(args.log_level, classroom=args.classroom, world_level=args.world_log_level)
     error = check_launch(settings)
     if error:
         print(f"error: {error}", file=sys.stderr)
@@ -288,10 +295,12 @@ def main(argv: list[str] | None = None) -> int:
         host=args.host,
         port=args.port,
         log_level=args.log_level,
+        access_log=access_log(args.log_level, classroom=args.classroom),
         ws_max_size=settings.max_ws_frame_bytes * 64,
         timeout_graceful_shutdown=1,
         lifespan="on",
     )
+    quiet_uvicorn(args.log_level, classroom=args.classroom)
     with contextlib.suppress(KeyboardInterrupt):
         uvicorn.Server(config).run()
     return 0

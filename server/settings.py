@@ -80,6 +80,7 @@ class Settings:
     local_workers: int = 0  # at most MAX_LOCAL_WORKERS
     worker: WorkerSettings | None = None  # set on a world worker: worlds come from a class server
     worker_timeout_s: float = WORKER_TIMEOUT_S  # a world worker silent this long is gone: its worlds move
+    world_log_level: str = "warning"  # the lowest level of a class world's node lines on the console
 
     def __post_init__(self) -> None:
         for name in ("port", "foxglove_port", "rosbridge_port"):

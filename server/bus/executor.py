@@ -72,8 +72,8 @@ class Executor:
             if self.propagate_faults or not is_node_fault(exc):
                 raise
             log.error(
-                "node %s crashed in %s:\n%s",
-                node.fully_qualified_name,
+                "%s crashed in %s:\n%s",
+                self.bus.tagged(f"node {node.fully_qualified_name}"),
                 getattr(fn, "__qualname__", fn),
                 traceback.format_exc(),
             )

@@ -179,6 +179,12 @@ class Bus:
         # Prints a node's log line (level, node name, text); the app logs through Python's logging.
         self.console: Callable[[int, str, str], None] | None = None
         self.devices: dict[str, Any] = {}  # hardware the nodes may use: 'keyboard', 'display'
+        # A class server's world: its name, which its nodes' log lines carry (None: the lab alone).
+        self.label: str | None = None
+
+    def tagged(self, text: str) -> str:
+        """``text`` for the console, with the world's name in front in a class server."""
+        return f"[{self.label}] {text}" if self.label else text
 
     # -- membership ------------------------------------------------------
     @contextmanager

@@ -7,6 +7,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
+from ..console import WORLD_LOGGER
 from ..msgs import Log, Message, Service
 from .clock import NodeClock
 from .endpoints import Publisher, Subscription, Timer, qos_depth
@@ -27,12 +28,19 @@ class Parameter:
     value: Any
 
 
+def node_logger_name(world: str | None, fully_qualified_name: str) -> str:
+    """The Python logger of a node's lines: ``node.ns.name`` alone, ``world.<world>.ns.name`` in a
+    class server, so one level (``--world-log-level``) governs every world's nodes at once."""
+    dotted = fully_qualified_name.replace("/", ".")
+    return f"{WORLD_LOGGER}.{world}{dotted}" if world else f"node{dotted}"
+
+
 class NodeLogger:
     """``node.get_logger()``: Python logging under the node's name, echoed on /rosout."""
 
     def __init__(self, node: Node) -> None:
         self._node = node
-        self._py = logging.getLogger(f"node{node.fully_qualified_name.replace('/', '.')}")
+        self._py = logging.getLogger(node_logger_name(node.bus.label, node.fully_qualified_name))
 
     def _log(self, level: str, msg: Any) -> None:
         text = str(msg)

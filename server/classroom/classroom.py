@@ -267,7 +267,7 @@ class Classroom:
 
             self.local_workers = LocalWorkers(
                 self.settings.local_workers, endpoint, self.instructor_token, self.settings.max_worlds,
-                self.settings.workspace, self.settings.bag_dir,
+                self.settings.workspace, self.settings.bag_dir, world_log_level=self.settings.world_log_level,
             )  # fmt: skip
             self.local_workers.start()
 
@@ -499,6 +499,7 @@ class Classroom:
         self, name: str, domain_id: int, launch: tuple[str, dict[str, str]] | None = None
     ) -> Lab:
         lab = Lab(self._world_settings(name, domain_id, launch), self.clock, executors=self.executors)
+        lab.bus.label = name  # its nodes' console lines carry its name (server/console.py)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         lab.bus.devices["simple_sim_physics"] = self.simple_physics
         await lab.start()

@@ -54,6 +54,7 @@ class LocalWorkers:
     workspace: Path | None
     bag_dir: Path
     log_level: str = "warning"
+    world_log_level: str = "warning"
     _children: list[_Child] = field(default_factory=list, init=False)
     _watch: asyncio.Task[None] | None = field(default=None, init=False)
     _stopping: bool = field(default=False, init=False)
@@ -81,7 +82,8 @@ class LocalWorkers:
         command = [
             sys.executable, "-m", "server", "world-worker", "--connect", self.router, "--id", child.worker_id,
             "--max-worlds", str(self.max_worlds), "--bag-dir", str(self.bag_dir.resolve()),
-            "--log-level", self.log_level, "--parent-pid", str(os.getpid()),
+            "--log-level", self.log_level, "--world-log-level", self.world_log_level,
+            "--parent-pid", str(os.getpid()),
         ]  # fmt: skip
         if self.workspace is not None:
             command += ["--workspace", str(self.workspace.resolve())]

@@ -24,6 +24,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from server.console import LEVELS, access_log, quiet_uvicorn, setup_logging
 from server.settings import LOOPBACK_HOSTS, ORPHAN_TIMEOUT_S, Settings, WorkerSettings
 from server.transport.config import ZenohSettings
 
@@ -96,7 +97,12 @@ def build_parser() -> argparse.ArgumentParser:
         "--workspace", default="workspace", help="folder of students' packages (default ./workspace)"
     )
     parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
-    parser.add_argument("--log-level", default="info", choices=["debug", "info", "warning", "error"])
+    parser.add_argument("--log-level", default="info", choices=list(LEVELS))
+    parser.add_argument(
+        "--world-log-level", default="warning", choices=list(LEVELS),
+        help="the lowest level of its worlds' node log lines it prints (default warning); every line "
+             "still goes to its world's /rosout",
+    )  # fmt: skip
     # Set by a class server that started this worker itself (--workers): end when that process is gone.
     parser.add_argument("--parent-pid", type=int, help=argparse.SUPPRESS)
     return parser
@@ -184,11 +190,7 @@ def main(argv: list[str] | None = None) -> int:
         classroom=True, max_worlds=args.max_worlds, worker=worker,
         allowed_hosts=() if args.host in LOOPBACK_HOSTS else (advertise,),
     )  # fmt: skip
-    logging.basicConfig(
-        level=args.log_level.upper(),
-        format="%(asctime)s %(levelname)s %(name)s: %(message)s",
-        datefmt="%H:%M:%S",
-    )
+    setup_logging(args.log_level, classroom=True, world_level=args.world_log_level, who=worker.id)
     import rich
     import uvicorn
 
@@ -198,7 +200,11 @@ def main(argv: list[str] | None = None) -> int:
     app = create_app(settings)
     print(f"World worker {worker.id}: API at {worker.url}, class router {args.connect}, "
           f"up to {args.max_worlds} worlds (Ctrl-C stops it and its worlds)", flush=True)  # fmt: skip
-    config = uvicorn.Config(app, log_level=args.log_level, timeout_graceful_shutdown=1, lifespan="on")
+    config = uvicorn.Config(
+        app, log_level=args.log_level, access_log=access_log(args.log_level, classroom=True),
+        timeout_graceful_shutdown=1, lifespan="on",
+    )  # fmt: skip
+    quiet_uvicorn(args.log_level, classroom=True)
     if args.parent_pid is not None:
         _end_with_parent(args.parent_pid)
     with contextlib.suppress(KeyboardInterrupt):

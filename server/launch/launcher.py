@@ -217,6 +217,7 @@ class Launcher:
         if entry.respawn is None:
             entry.respawn = RespawnBackoff(self.respawn_policy, self.bus.clock)
         delay = entry.respawn.crashed(entry.action.respawn_delay_s)
+        who = self.bus.tagged(who)
         if delay is None:
             log.error("%s crashed %d times soon after starting; no more respawns", who,
                       entry.respawn.fast_failures - 1)  # fmt: skip

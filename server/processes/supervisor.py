@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from typing import IO, Literal
 
 from server.bus import Bus
+from server.console import WORLD_LOGGER
 
 from .command import NodeCommand
 
@@ -73,7 +74,7 @@ class Supervisor:
             command.argv, env=command.env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT, text=True, errors="replace", bufsize=1,
         )  # fmt: skip
-        log.info("[%s]: process started with pid [%d]", process.label, process.proc.pid)
+        log.info("%s: process started with pid [%d]", self.bus.tagged(f"[{process.label}]"), process.proc.pid)
         self.processes.append(process)
         threading.Thread(
             target=self._watch, args=(process,), name=f"out-{process.label}", daemon=True
@@ -84,12 +85,18 @@ class Supervisor:
         """The process's output, line by line, until it ends; then its exit, to the executor."""
         assert process.proc is not None and process.proc.stdout is not None
         stream: IO[str] = process.proc.stdout
+        # A class world's screen lines reach the console only when its nodes' info lines do
+        # (--world-log-level); they are kept for the API either way.
+        echo = process.screen and (
+            self.bus.label is None
+            or logging.getLogger(f"{WORLD_LOGGER}.{self.bus.label}").isEnabledFor(logging.INFO)
+        )
         for line in stream:
             text = line.rstrip("\n")
             process.lines.append(text)
-            if process.screen:
+            if echo:
                 with _print_lock:
-                    sys.stdout.write(f"[{process.label}] {text}\n")
+                    sys.stdout.write(self.bus.tagged(f"[{process.label}] {text}\n"))
                     sys.stdout.flush()
         stream.close()
         process.exit_code = process.proc.wait()
@@ -108,7 +115,7 @@ class Supervisor:
             process.state = "died"
             code = process.exit_code
             level = logging.INFO if code == 0 else logging.ERROR
-            log.log(level, "[%s]: process has died [pid %s, exit code %s, cmd '%s']", process.label,
+            log.log(level, "%s: process has died [pid %s, exit code %s, cmd '%s']", self.bus.tagged(f"[{process.label}]"),
                     process.pid, code, " ".join(process.command.argv[3:]))  # fmt: skip
             self.on_exit(process)
 

@@ -93,6 +93,24 @@ def test_callback_raises_error_logged_with_node_name(
     assert not any("Healthy" in r.getMessage() for r in errors)
 
 
+def test_a_class_worlds_crash_is_logged_under_its_worlds_name(
+    bus: Bus, executor: Executor, caplog: pytest.LogCaptureFixture
+) -> None:
+    bus.label = "ada"
+    _Faulty(bus)
+    with caplog.at_level(logging.ERROR):
+        executor.spin_until(1.0)
+    errors = {r.name: r.getMessage() for r in caplog.records if r.levelno >= logging.ERROR}
+    assert errors.keys() == {
+        "bus.executor",
+        "world.ada.Faulty",
+    }  # the traceback, and the node's own fatal line
+    assert (
+        errors["bus.executor"].startswith("[ada] node /Faulty crashed in")
+        and "boom" in errors["bus.executor"]
+    )
+
+
 def test_callback_raises_fatal_log_on_rosout(crashed: tuple[_Faulty, _Healthy, list[Log]]) -> None:
     _, _, logs = crashed
     fatal = [m for m in logs if m.level == Log.FATAL]

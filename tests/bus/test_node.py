@@ -7,6 +7,7 @@ import logging
 import pytest
 
 from server.bus import Bus, Executor, InvalidNameError, ManualClock, Node
+from server.bus.node import node_logger_name
 from server.msgs import Log, Time
 
 
@@ -79,6 +80,25 @@ def test_node_logger_info_goes_to_python_logging_and_rosout(
     messages = [r.getMessage() for r in caplog.records]
     assert "[talker] Rocket Ready for Countdown" in messages
     assert "[talker] low fuel" in messages
+
+
+def test_a_class_worlds_node_logs_under_its_worlds_logger_and_still_on_its_rosout(
+    bus: Bus, executor: Executor, caplog: pytest.LogCaptureFixture
+) -> None:
+    # A class server's console sets one level for every world's nodes (logger "world") and names
+    # the world; the lines on the world's own /rosout are as before.
+    bus.label = "ada"
+    logs: list[Log] = []
+    Node("rqt_console", context=bus).create_subscription(Log, "/rosout", logs.append, 100)
+    node = Node("talker", namespace="/ns", context=bus)
+    with caplog.at_level(logging.INFO):
+        node.get_logger().info("Countdown: 3s")
+    executor.spin_some()
+    assert [(r.name, r.getMessage()) for r in caplog.records] == [
+        ("world.ada.ns.talker", "[talker] Countdown: 3s")
+    ]
+    assert [(m.name, m.msg) for m in logs] == [("ns/talker", "Countdown: 3s")]
+    assert node_logger_name(None, "/ns/talker") == "node.ns.talker"  # the lab alone, as before
 
 
 def test_node_destroy_node_removes_it_from_bus(bus: Bus) -> None:

@@ -118,6 +118,34 @@ def test_a_class_server_starts_its_workers_places_worlds_on_them_and_ends_them_w
     wait_until(lambda: not alive(pid), f"worker {pid} ends with its class server", GONE_WAIT_S)
 
 
+def test_the_console_shows_the_class_not_every_worlds_node_lines_which_stay_on_their_rosout(
+    klass: Class,
+) -> None:
+    tokens = {}
+    for name in ("Ada", "Bob"):
+        reply = httpx.post(
+            f"{klass.app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60
+        )
+        assert reply.status_code == 201, reply.text
+        tokens[reply.json()["world"]] = reply.json()["token"]
+    assert sorted((row["worker"] for row in klass.worlds().values()), key=str) == [None, "local-1"]
+
+    def counting(world: str) -> bool:
+        # The rocket's main controller logs each second of the countdown (the handout's output).
+        reply = klass.get("/api/topics/rosout", tokens[world])
+        latest = reply.json().get("latest") if reply.status_code == 200 else None
+        return latest is not None and str(latest["msg"]).startswith("Countdown:")
+
+    for world in tokens:  # one world here, one on the worker: both proxied or served by the server
+        wait_until(lambda world=world: counting(world), f"{world}'s countdown on its /rosout", READY_S)
+    console = klass.app.log_tail(10**6)
+    assert "Ada joined: world ada" in console and "Bob joined: world bob" in console  # the class's own events
+    assert "at warning and above, each under its world's name" in console  # the banner says where the rest is
+    # Neither world's info lines, nor a line per request (the polls above), nor the proxy's own calls.
+    assert "Countdown:" not in console and "Rocket Ready for Countdown" not in console, console[-3000:]
+    assert "/api/topics/rosout" not in console and "httpx" not in console, console[-3000:]
+
+
 def test_a_worker_that_dies_is_started_again_and_its_world_comes_back(klass: Class) -> None:
     reply = httpx.post(f"{klass.app.url}/api/classroom/join", json={"name": "Ada", "code": CODE}, timeout=60)
     assert reply.status_code == 201, reply.text
