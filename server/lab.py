@@ -115,6 +115,9 @@ class LaunchGroup:
                     "pkg": e.action.pkg,
                     "exec": e.action.exec,
                     "error": e.error,
+                    # a node here: active, crashed or destroyed; a node process: running, died or stopped
+                    "state": e.node.state if e.node is not None else e.process.state if e.process else None,
+                    "exit_code": e.process.exit_code if e.process is not None else None,
                 }
                 for e in self.entries
             ],

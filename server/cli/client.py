@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import threading
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any, Self
@@ -143,11 +144,16 @@ class LabClient:
         scheme = "wss" if parts.scheme == "https" else "ws"
         return urlunsplit((scheme, parts.netloc, parts.path + path, urlencode(params), ""))
 
-    def subscribe(self, topic: str, params: Mapping[str, Any]) -> Iterator[dict[str, Any]]:
-        """Frames ``{topic, type, msg, received}`` of ``WS /ws/topics/{topic}``, as they come."""
+    def subscribe(
+        self, topic: str, params: Mapping[str, Any], opened: threading.Event | None = None
+    ) -> Iterator[dict[str, Any]]:
+        """Frames ``{topic, type, msg, received}`` of ``WS /ws/topics/{topic}``, as they come;
+        ``opened`` is set once the server accepted the socket (it subscribes as it accepts)."""
         url = self.ws_url("/ws/topics/" + topic.lstrip("/"), params)
         try:
             with connect(url, open_timeout=TIMEOUT_S, max_size=None, additional_headers=self._headers) as ws:
+                if opened is not None:
+                    opened.set()
                 for frame in ws:
                     yield json.loads(frame)
         except ConnectionClosed as exc:

@@ -1,10 +1,19 @@
-"""``launch``: start a launch file's nodes in the server's graph, keep them until Ctrl-C, then stop them."""
+"""``launch``: start a launch file's nodes in the server's graph, keep them until Ctrl-C, then stop them.
+
+As ``ros2 launch`` shows its processes' log lines, this prints the launched nodes' lines from the
+graph's ``/rosout`` (``[countdown-1] [INFO] [1700000000.123456789] [CountDownNode]: ...``), and
+says once when one of them crashes or its process dies. On a class server that is the only place a
+student sees them: the server's console keeps to the class.
+"""
 
 from __future__ import annotations
 
 import argparse
 import os
+import sys
+import threading
 import time
+from collections import deque
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
@@ -12,6 +21,95 @@ from .client import ApiError, CliError, LabClient
 
 Sleep = Callable[[float], None]
 CHECK_PERIOD_S = 2.0  # how often to check that the launch still exists on the server
+LOG_TYPE = "rcl_interfaces/msg/Log"
+SEVERITY = {10: "DEBUG", 20: "INFO", 30: "WARN", 40: "ERROR", 50: "FATAL"}
+OPEN_WAIT_S = 5.0  # how long a launch waits for /rosout before it starts without it
+EARLY_LINES = 1000  # /rosout lines kept while the server has not yet said which nodes are ours
+_print_lock = threading.Lock()
+
+
+def say(line: str) -> None:
+    """One whole line on stdout (the /rosout thread prints too)."""
+    with _print_lock:
+        sys.stdout.write(line + "\n")
+        sys.stdout.flush()
+
+
+def node_labels(group: Mapping[str, Any]) -> dict[str, str]:
+    """Each started node's name (as /rosout names it, no leading slash) → its label, numbered in
+    launch order as ros2 launch numbers its processes (``countdown-1``, ``main_controller-2``)."""
+    labels: dict[str, str] = {}
+    for node in group.get("nodes", []):
+        if not node.get("error"):
+            labels[str(node.get("name") or node.get("exec")).lstrip("/")] = (
+                f"{node.get('exec')}-{len(labels) + 1}"
+            )
+    return labels
+
+
+def log_line(label: str, msg: Mapping[str, Any]) -> str:
+    """A /rosout message as ROS 2's console prints it, behind ros2 launch's process label."""
+    stamp = msg.get("stamp") or {}
+    level = SEVERITY.get(int(msg.get("level", 20)), str(msg.get("level")))
+    when = f"{int(stamp.get('sec', 0))}.{int(stamp.get('nanosec', 0)):09d}"
+    return f"[{label}] [{level}] [{when}] [{msg.get('name')}]: {msg.get('msg')}"
+
+
+class NodeLines:
+    """Follows /rosout from before the launch (a node's first lines come as it starts) and prints
+    the lines of the launch's own nodes once the server has named them."""
+
+    def __init__(self, client: LabClient) -> None:
+        self._client = client
+        self._labels: dict[str, str] | None = None
+        self._early: deque[Mapping[str, Any]] = deque(maxlen=EARLY_LINES)
+        self._lock = threading.Lock()  # held while a line is sorted and printed: they keep their order
+        self._settled = threading.Event()  # following /rosout now, or never will
+
+    def start(self) -> None:
+        threading.Thread(target=self._follow, name="rosout", daemon=True).start()
+        self._settled.wait(OPEN_WAIT_S)
+
+    def ours(self, group: Mapping[str, Any]) -> None:
+        with self._lock:
+            self._labels = node_labels(group)
+            for msg in self._early:
+                self._print(msg)
+            self._early.clear()
+
+    def _follow(self) -> None:
+        try:
+            for frame in self._client.subscribe(
+                "/rosout", {"type": LOG_TYPE, "queue_length": 1000}, self._settled
+            ):
+                with self._lock:
+                    msg = frame.get("msg") or {}
+                    if self._labels is None:
+                        self._early.append(msg)
+                    else:
+                        self._print(msg)
+        except (CliError, ValueError, TypeError):
+            pass  # the launch goes on without its nodes' lines (an older server, or it stopped)
+        self._settled.set()
+
+    def _print(self, msg: Mapping[str, Any]) -> None:
+        label = (self._labels or {}).get(str(msg.get("name")))
+        if label is not None:
+            say(log_line(label, msg))
+
+
+def report_faults(group: Mapping[str, Any], reported: set[str]) -> None:
+    """ros2 launch's line for each node of ``group`` that crashed or whose process died, once."""
+    labels = node_labels(group)
+    for node in group.get("nodes", []):
+        name = str(node.get("name") or node.get("exec")).lstrip("/")
+        if node.get("state") not in ("crashed", "died") or name in reported or name not in labels:
+            continue
+        reported.add(name)
+        if node["state"] == "died":
+            say(f"[ERROR] [{labels[name]}]: process has died [exit code {node.get('exit_code')}]")
+        else:
+            say(f"[ERROR] [{labels[name]}]: node crashed (its last line says why)")
 
 
 def split_assignment(text: str, what: str) -> tuple[str, str]:
@@ -43,9 +141,9 @@ def report_started(group: Mapping[str, Any]) -> int:
     for node in group.get("nodes", []):
         what = f"{_node_label(node)} ({node.get('pkg')} {node.get('exec')})"
         if node.get("error"):
-            print(f"[ERROR] [launch]: {what} failed: {node['error']}", flush=True)
+            say(f"[ERROR] [launch]: {what} failed: {node['error']}")
         else:
-            print(f"[INFO] [launch]: process started: {what}", flush=True)
+            say(f"[INFO] [launch]: process started: {what}")
             started += 1
     return started
 
@@ -55,15 +153,18 @@ def hold_until_interrupted(client: LabClient, group: Mapping[str, Any], sleep: S
     try:
         if report_started(group) == 0 and group.get("nodes"):
             client.delete(f"/api/launches/{group['id']}")
-            print("[ERROR] [launch]: no node started", flush=True)
+            say("[ERROR] [launch]: no node started")
             return 1
+        reported: set[str] = set()
         while True:
             sleep(CHECK_PERIOD_S)
-            if not any(g.get("id") == group["id"] for g in client.get("/api/launches")):
-                print("[INFO] [launch]: the nodes were stopped by someone else", flush=True)
+            now = next((g for g in client.get("/api/launches") if g.get("id") == group["id"]), None)
+            if now is None:
+                say("[INFO] [launch]: the nodes were stopped by someone else")
                 return 0
+            report_faults(now, reported)
     except KeyboardInterrupt:
-        print("[WARNING] [launch]: user interrupted with ctrl-c (SIGINT)", flush=True)
+        say("[WARNING] [launch]: user interrupted with ctrl-c (SIGINT)")
     try:
         client.delete(f"/api/launches/{group['id']}")
     except ApiError as exc:
@@ -71,12 +172,16 @@ def hold_until_interrupted(client: LabClient, group: Mapping[str, Any], sleep: S
             raise
     for node in group.get("nodes", []):
         if not node.get("error"):
-            print(f"[INFO] [launch]: process has finished cleanly: {_node_label(node)}", flush=True)
+            say(f"[INFO] [launch]: process has finished cleanly: {_node_label(node)}")
     return 0
 
 
 def launch(args: argparse.Namespace, client: LabClient) -> int:
-    group = client.post("/api/launch", launch_request(args.launch_arguments))
+    request = launch_request(args.launch_arguments)
+    lines = NodeLines(client)
+    lines.start()  # before the launch: its nodes log as they start
+    group = client.post("/api/launch", request)
+    lines.ours(group)
     return hold_until_interrupted(client, group)
 
 

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import contextlib
+import io
+import re
 from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 
 from server.cli.client import CliError
-from server.cli.launch import launch_request
+from server.cli.launch import launch_request, log_line, node_labels, report_faults
 
 from .conftest import LiveServer, Result, Running
 
@@ -54,6 +57,66 @@ def test_launch_file_nodes_run_until_ctrl_c_then_stop(
     assert (code, err) == (0, "")
     assert "/CliCountDown" not in node_names(live_server)
     assert not [g for g in live_server.get("/api/launches") if "cli_test.launch" in g["file"]]
+
+
+def test_launch_prints_its_nodes_log_lines_from_the_first_as_ros2_launch_does(
+    live_server: LiveServer, tmp_path: Path, start: Callable[..., Running]
+) -> None:
+    # The rocket's controller, on topics of its own so the live server's rocket is left alone. Its
+    # first line is logged as it starts, before the server has even answered the launch request.
+    launch_file = tmp_path / "controller.launch"
+    launch_file.write_text(
+        '<launch>\n  <node pkg="rocketship" exec="main_controller" name="CliController">\n'
+        '    <remap from="/countdown" to="/cli_ctl_countdown"/>\n'
+        '    <remap from="/cmd_vel" to="/cli_ctl_cmd_vel"/>\n'
+        '    <remap from="/abort_takeoff" to="/cli_ctl_abort"/>\n  </node>\n</launch>\n'
+    )
+    launching = start("launch", str(launch_file))
+    first = launching.read_until(lambda line: "Rocket Ready for Countdown" in line)
+    assert re.fullmatch(
+        r"\[main_controller-1\] \[INFO\] \[\d+\.\d{9}\] \[CliController\]: Rocket Ready for Countdown", first
+    ), first
+    # A line it logs later, and nothing from the server's other nodes (its own rocket counts down too).
+    live_server.post(  # raises unless the server took it
+        "/api/publish", {"topic": "/cli_ctl_countdown", "msg": {"data": 3}, "type": "std_msgs/msg/Int64"}
+    )
+    launching.read_until(lambda line: line.endswith("[CliController]: Countdown: 3s"))
+    assert all(line.startswith(("[main_controller-1] ", "[INFO] [launch]")) for line in launching.seen), (
+        launching.seen
+    )
+    code, err = launching.interrupt()
+    assert (code, err) == (0, "")
+
+
+def test_a_launched_node_that_crashes_or_dies_is_reported_once() -> None:
+    group = {
+        "id": "g1",
+        "nodes": [
+            {"name": "/Countdown", "exec": "countdown", "state": "crashed", "error": None},
+            {"name": "broken", "exec": "broken.py", "state": None, "error": "no such executable"},
+            {"name": "Crasher", "exec": "crasher.py", "state": "died", "exit_code": 1, "error": None},
+            {"name": "/Fine", "exec": "fine", "state": "active", "error": None},
+        ],
+    }
+    assert node_labels(group) == {"Countdown": "countdown-1", "Crasher": "crasher.py-2", "Fine": "fine-3"}
+    reported: set[str] = set()
+    printed = []
+    for _ in range(2):  # the CLI asks every 2 s: the second time says nothing new
+        with contextlib.redirect_stdout(io.StringIO()) as out:
+            report_faults(group, reported)
+        printed.append(out.getvalue().splitlines())
+    assert printed == [
+        [
+            "[ERROR] [countdown-1]: node crashed (its last line says why)",
+            "[ERROR] [crasher.py-2]: process has died [exit code 1]",
+        ],
+        [],
+    ]
+    line = log_line(
+        "countdown-1",
+        {"stamp": {"sec": 12, "nanosec": 5}, "level": 50, "name": "Countdown", "msg": "crashed: boom"},
+    )
+    assert line == "[countdown-1] [FATAL] [12.000000005] [Countdown]: crashed: boom"
 
 
 def test_launch_package_file_error_is_one_line_with_file_and_line(

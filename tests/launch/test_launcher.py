@@ -95,7 +95,15 @@ def test_launch_with_unknown_executable_reports_that_node_and_starts_the_rest(tm
     lab = lab_for("rocket")
     nodes = lab.launch_group(path, {}).describe()["nodes"]
     assert nodes[0]["error"] is not None and "no executable 'nope'" in nodes[0]["error"]
-    assert nodes[1] == {"name": "/baro", "pkg": "sensor_simulation", "exec": "pressure.py", "error": None}
+    assert nodes[0]["state"] is None  # never started
+    assert nodes[1] == {
+        "name": "/baro",
+        "pkg": "sensor_simulation",
+        "exec": "pressure.py",
+        "error": None,
+        "state": "active",
+        "exit_code": None,
+    }
 
 
 def test_stopping_a_launch_group_removes_its_nodes_and_topics(tmp_path: Path) -> None:

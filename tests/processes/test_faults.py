@@ -27,7 +27,8 @@ def test_a_node_process_that_raises_dies_alone_listed_as_died_with_its_exit_code
     make_workspace(tmp_path, {"src/faults/crasher.py": CRASHES})
     app = App(tmp_path, "--launch", "rocket", "start_delay:=1", cwd=tmp_path)
     try:
-        assert app.post("/api/run", {"package": "faults", "executable": "crasher.py"}).status_code == 201
+        started = app.post("/api/run", {"package": "faults", "executable": "crasher.py"})
+        assert started.status_code == 201, started.text
 
         def died() -> bool:
             entry = node_entry(app, "/Crasher")
@@ -36,6 +37,9 @@ def test_a_node_process_that_raises_dies_alone_listed_as_died_with_its_exit_code
         app.wait_for(died, "the crashing node to be listed as died")
         entry = node_entry(app, "/Crasher")
         assert entry is not None and entry["exit_code"] == 1 and str(entry["location"]).startswith("process ")
+        # Its launch says so too (what ``ros2lab launch`` reports once, as ros2 launch does).
+        (launched,) = next(g for g in app.get("/api/launches") if g["id"] == started.json()["id"])["nodes"]
+        assert (launched["state"], launched["exit_code"]) == ("died", 1)
         graph = app.get("/api/graph")
         assert {"name": "/Crasher", "state": "died"}.items() <= next(
             n for n in graph["nodes"] if n["name"] == "/Crasher"
