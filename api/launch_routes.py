@@ -63,6 +63,14 @@ async def launches(lab: LabDep) -> list[dict[str, Any]]:
     return [g.describe() for g in lab.launch_groups.values()]
 
 
+@router.get("/launches/{group_id}/output", responses=responses(NOT_FOUND))
+async def output(group_id: str, lab: LabDep) -> dict[str, Any]:
+    """One launch or run as ``GET /launches`` gives it, and what each of its node processes
+    printed: the last 200 lines (each cut at 4096 characters) and how many in all, so a reader
+    that asks again knows which lines are new."""
+    return lab.group(group_id).output()
+
+
 @router.delete("/launches/{group_id}", responses=responses(NOT_FOUND, 403))
 async def stop(group_id: str, lab: LabDep) -> dict[str, Any]:
     """Stop the nodes of one launch or run, as Ctrl-C on ``ros2 launch`` does."""

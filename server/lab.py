@@ -118,10 +118,20 @@ class LaunchGroup:
                     # a node here: active, crashed or destroyed; a node process: running, died or stopped
                     "state": e.node.state if e.node is not None else e.process.state if e.process else None,
                     "exit_code": e.process.exit_code if e.process is not None else None,
+                    "process": e.process.label if e.process is not None else None,  # ros2 launch's label
                 }
                 for e in self.entries
             ],
         }
+
+    def output(self) -> dict[str, Any]:
+        """The group, and each node process's last lines with how many it printed in all."""
+        processes = []
+        for e in self.entries:
+            if e.process is not None:
+                lines, printed = e.process.output()
+                processes.append({"label": e.process.label, "lines": lines, "printed": printed})
+        return {"group": self.describe(), "processes": processes}
 
 
 class Lab:
@@ -335,6 +345,12 @@ class Lab:
     def _group(self, kind: str, source: str, entries: list[LaunchedNode]) -> LaunchGroup:
         group = LaunchGroup(f"{kind}{next(self._group_ids)}", source, entries)
         self.launch_groups[group.id] = group
+        return group
+
+    def group(self, group_id: str) -> LaunchGroup:
+        group = self.launch_groups.get(group_id)
+        if group is None:
+            raise UnknownLaunchError(group_id)
         return group
 
     def stop_group(self, group_id: str) -> LaunchGroup:

@@ -1,8 +1,9 @@
 """``launch``: start a launch file's nodes in the server's graph, keep them until Ctrl-C, then stop them.
 
-As ``ros2 launch`` shows its processes' log lines, this prints the launched nodes' lines from the
-graph's ``/rosout`` (``[countdown-1] [INFO] [1700000000.123456789] [CountDownNode]: ...``), and
-says once when one of them crashes or its process dies. On a class server that is the only place a
+As ``ros2 launch`` shows its processes' output, this prints the lines of the nodes it launched:
+those of nodes that run in the server from the graph's ``/rosout`` (``[countdown-1] [INFO]
+[1700000000.123456789] [CountDownNode]: ...``), what node processes print (tracebacks too) from
+the server, and once when a node crashes or its process dies. On a class server that is the only place a
 student sees them: the server's console keeps to the class.
 """
 
@@ -20,7 +21,7 @@ from typing import Any
 from .client import ApiError, CliError, LabClient
 
 Sleep = Callable[[float], None]
-CHECK_PERIOD_S = 2.0  # how often to check that the launch still exists on the server
+CHECK_PERIOD_S = 1.0  # how often to ask for the launch's output (and whether it still exists)
 LOG_TYPE = "rcl_interfaces/msg/Log"
 SEVERITY = {10: "DEBUG", 20: "INFO", 30: "WARN", 40: "ERROR", 50: "FATAL"}
 OPEN_WAIT_S = 5.0  # how long a launch waits for /rosout before it starts without it
@@ -36,14 +37,23 @@ def say(line: str) -> None:
 
 
 def node_labels(group: Mapping[str, Any]) -> dict[str, str]:
-    """Each started node's name (as /rosout names it, no leading slash) → its label, numbered in
-    launch order as ros2 launch numbers its processes (``countdown-1``, ``main_controller-2``)."""
+    """Each started node's name (as /rosout names it, no leading slash) → its label: a node
+    process's own (``keyboard_manager.py-3``), else numbered in launch order as ros2 launch
+    numbers its processes (``countdown-1``, ``main_controller-2``)."""
     labels: dict[str, str] = {}
     for node in group.get("nodes", []):
         if not node.get("error"):
-            labels[str(node.get("name") or node.get("exec")).lstrip("/")] = (
-                f"{node.get('exec')}-{len(labels) + 1}"
-            )
+            name = str(node.get("name") or node.get("exec")).lstrip("/")
+            labels[name] = str(node.get("process") or f"{node.get('exec')}-{len(labels) + 1}")
+    return labels
+
+
+def in_process_labels(group: Mapping[str, Any]) -> dict[str, str]:
+    """``node_labels`` of the nodes that run in the server: a node process prints its own lines."""
+    labels = node_labels(group)
+    for node in group.get("nodes", []):
+        if node.get("process"):
+            labels.pop(str(node.get("name") or node.get("exec")).lstrip("/"), None)
     return labels
 
 
@@ -72,7 +82,7 @@ class NodeLines:
 
     def ours(self, group: Mapping[str, Any]) -> None:
         with self._lock:
-            self._labels = node_labels(group)
+            self._labels = in_process_labels(group)
             for msg in self._early:
                 self._print(msg)
             self._early.clear()
@@ -98,9 +108,9 @@ class NodeLines:
             say(log_line(label, msg))
 
 
-def report_faults(group: Mapping[str, Any], reported: set[str]) -> None:
-    """ros2 launch's line for each node of ``group`` that crashed or whose process died, once."""
-    labels = node_labels(group)
+def report_faults(group: Mapping[str, Any], labels: Mapping[str, str], reported: set[str]) -> None:
+    """ros2 launch's line for each node of ``group`` that crashed or whose process died, once;
+    ``labels`` are the launch's as it started (a node that died since carries an error)."""
     for node in group.get("nodes", []):
         name = str(node.get("name") or node.get("exec")).lstrip("/")
         if node.get("state") not in ("crashed", "died") or name in reported or name not in labels:
@@ -148,21 +158,56 @@ def report_started(group: Mapping[str, Any]) -> int:
     return started
 
 
+class ProcessLines:
+    """What the launch's node processes print (their log lines and ``print``, a traceback), new
+    lines only, each behind its process's label: a process's log lines come this way, not from
+    /rosout, so ros2 launch's screen shows each once."""
+
+    def __init__(self) -> None:
+        self._printed: dict[str, int] = {}
+
+    def show(self, processes: Sequence[Mapping[str, Any]]) -> None:
+        for process in processes:
+            label, lines = str(process.get("label")), list(process.get("lines", []))
+            printed = int(process.get("printed", 0))
+            new = printed - self._printed.get(label, 0)
+            self._printed[label] = printed
+            if new > len(lines):
+                say(f"[{label}] ... ({new - len(lines)} lines not shown)")
+            for line in lines[len(lines) - min(new, len(lines)) :]:
+                say(f"[{label}] {line}")
+
+
+def _still_there(client: LabClient, group_id: str) -> Mapping[str, Any] | None:
+    """The launch's output as the server has it now; None once it is gone."""
+    try:
+        answer: Mapping[str, Any] = client.get(f"/api/launches/{group_id}/output")
+    except ApiError as exc:
+        if exc.status != 404 or exc.no_route:
+            raise
+        return None
+    return answer
+
+
 def hold_until_interrupted(client: LabClient, group: Mapping[str, Any], sleep: Sleep = time.sleep) -> int:
-    """Keep the nodes until Ctrl-C, then stop them, as ros2 launch does with its processes."""
+    """Keep the nodes until Ctrl-C, then stop them, as ros2 launch does with its processes; in
+    between, print what their processes print and say when one crashes or dies."""
     try:
         if report_started(group) == 0 and group.get("nodes"):
             client.delete(f"/api/launches/{group['id']}")
             say("[ERROR] [launch]: no node started")
             return 1
         reported: set[str] = set()
+        labels = node_labels(group)
+        printed = ProcessLines()
         while True:
-            sleep(CHECK_PERIOD_S)
-            now = next((g for g in client.get("/api/launches") if g.get("id") == group["id"]), None)
+            now = _still_there(client, group["id"])
             if now is None:
                 say("[INFO] [launch]: the nodes were stopped by someone else")
                 return 0
-            report_faults(now, reported)
+            printed.show(now.get("processes", []))
+            report_faults(now.get("group", {}), labels, reported)
+            sleep(CHECK_PERIOD_S)
     except KeyboardInterrupt:
         say("[WARNING] [launch]: user interrupted with ctrl-c (SIGINT)")
     try:

@@ -2,7 +2,8 @@
 
 Like ``ros2 launch``: each process is labelled ``<executable>-<n>``; with ``output="screen"`` its
 lines are printed with that label in front; its start and its death (pid, exit code) are logged.
-Output is read by a thread per process and kept (the last lines) for the API; an exit is handed
+Output is read by a thread per process and kept (the last lines) for the API
+(``GET /api/launches/{id}/output``, which ``ros2lab launch`` prints); an exit is handed
 to the bus's executor through a poller, so respawning happens on the executor's thread. Stopping
 sends Ctrl-C (SIGINT), then SIGTERM, then SIGKILL, each after a grace period.
 """
@@ -27,6 +28,7 @@ from .command import NodeCommand
 
 log = logging.getLogger("launch")
 KEEP_LINES = 200
+MAX_LINE_CHARS = 4096  # a longer line is kept cut (it still prints whole on the console)
 STOP_GRACE_S = 3.0
 ProcessState = Literal["running", "died", "stopped"]
 _labels = itertools.count(1)
@@ -46,6 +48,13 @@ class ProcessNode:
     state: ProcessState = "running"
     exit_code: int | None = None
     lines: deque[str] = field(default_factory=lambda: deque(maxlen=KEEP_LINES))
+    printed: int = 0  # lines it has printed in all (``lines`` keeps the last KEEP_LINES)
+    _lines_lock: threading.Lock = field(default_factory=threading.Lock, init=False, repr=False)
+
+    def output(self) -> tuple[list[str], int]:
+        """Its last lines and how many it has printed in all (a reader knows what is new)."""
+        with self._lines_lock:
+            return list(self.lines), self.printed
 
     @property
     def pid(self) -> int | None:
@@ -93,7 +102,9 @@ class Supervisor:
         )
         for line in stream:
             text = line.rstrip("\n")
-            process.lines.append(text)
+            with process._lines_lock:
+                process.lines.append(text[:MAX_LINE_CHARS])
+                process.printed += 1
             if echo:
                 with _print_lock:
                     sys.stdout.write(self.bus.tagged(f"[{process.label}] {text}\n"))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import copy
 import io
 import re
 from collections.abc import Callable
@@ -11,7 +12,14 @@ from pathlib import Path
 import pytest
 
 from server.cli.client import CliError
-from server.cli.launch import launch_request, log_line, node_labels, report_faults
+from server.cli.launch import (
+    ProcessLines,
+    in_process_labels,
+    launch_request,
+    log_line,
+    node_labels,
+    report_faults,
+)
 
 from .conftest import LiveServer, Result, Running
 
@@ -89,26 +97,38 @@ def test_launch_prints_its_nodes_log_lines_from_the_first_as_ros2_launch_does(
 
 
 def test_a_launched_node_that_crashes_or_dies_is_reported_once() -> None:
-    group = {
+    started = {  # as the launch request answered
         "id": "g1",
         "nodes": [
-            {"name": "/Countdown", "exec": "countdown", "state": "crashed", "error": None},
+            {"name": "/Countdown", "exec": "countdown", "state": "active", "error": None},
             {"name": "broken", "exec": "broken.py", "state": None, "error": "no such executable"},
-            {"name": "Crasher", "exec": "crasher.py", "state": "died", "exit_code": 1, "error": None},
+            {
+                "name": "Crasher",
+                "exec": "crasher.py",
+                "state": "running",
+                "error": None,
+                "process": "crasher.py-7",
+            },
             {"name": "/Fine", "exec": "fine", "state": "active", "error": None},
         ],
     }
-    assert node_labels(group) == {"Countdown": "countdown-1", "Crasher": "crasher.py-2", "Fine": "fine-3"}
+    labels = node_labels(started)
+    # A node process goes by the server's label; the others are numbered in launch order.
+    assert labels == {"Countdown": "countdown-1", "Crasher": "crasher.py-7", "Fine": "fine-3"}
+    assert in_process_labels(started) == {"Countdown": "countdown-1", "Fine": "fine-3"}  # /rosout's
+    later = copy.deepcopy(started)
+    later["nodes"][0]["state"] = "crashed"
+    later["nodes"][2].update(state="died", exit_code=1, error="died (exit code 1)")  # as the server says it
     reported: set[str] = set()
     printed = []
-    for _ in range(2):  # the CLI asks every 2 s: the second time says nothing new
+    for _ in range(2):  # the CLI asks every second: the second time says nothing new
         with contextlib.redirect_stdout(io.StringIO()) as out:
-            report_faults(group, reported)
+            report_faults(later, labels, reported)
         printed.append(out.getvalue().splitlines())
     assert printed == [
         [
             "[ERROR] [countdown-1]: node crashed (its last line says why)",
-            "[ERROR] [crasher.py-2]: process has died [exit code 1]",
+            "[ERROR] [crasher.py-7]: process has died [exit code 1]",
         ],
         [],
     ]
@@ -117,6 +137,28 @@ def test_a_launched_node_that_crashes_or_dies_is_reported_once() -> None:
         {"stamp": {"sec": 12, "nanosec": 5}, "level": 50, "name": "Countdown", "msg": "crashed: boom"},
     )
     assert line == "[countdown-1] [FATAL] [12.000000005] [Countdown]: crashed: boom"
+
+
+def test_a_node_processs_new_lines_are_printed_once_and_a_gap_is_said() -> None:
+    shown = ProcessLines()
+    answers = [
+        [{"label": "talky.py-1", "lines": ["a", "b"], "printed": 2}],
+        [{"label": "talky.py-1", "lines": ["a", "b", "c"], "printed": 3}],
+        # Five more, of which the server kept the last three (it keeps the last lines only).
+        [{"label": "talky.py-1", "lines": ["f", "g", "h"], "printed": 8}],
+        [{"label": "talky.py-1", "lines": ["f", "g", "h"], "printed": 8}],
+    ]
+    printed = []
+    for processes in answers:
+        with contextlib.redirect_stdout(io.StringIO()) as out:
+            shown.show(processes)
+        printed.append(out.getvalue().splitlines())
+    assert printed == [
+        ["[talky.py-1] a", "[talky.py-1] b"],
+        ["[talky.py-1] c"],
+        ["[talky.py-1] ... (2 lines not shown)", "[talky.py-1] f", "[talky.py-1] g", "[talky.py-1] h"],
+        [],
+    ]
 
 
 def test_launch_package_file_error_is_one_line_with_file_and_line(

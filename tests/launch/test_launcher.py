@@ -103,6 +103,7 @@ def test_launch_with_unknown_executable_reports_that_node_and_starts_the_rest(tm
         "error": None,
         "state": "active",
         "exit_code": None,
+        "process": None,
     }
 
 
