@@ -17,6 +17,11 @@ LEVELS = ("debug", "info", "warning", "error")
 _CHATTY = ("httpx", "websockets.server", "websockets.client")
 
 
+def world_logger(world: str) -> str:
+    """The logger a class world's node lines go under (its nodes' loggers are its children)."""
+    return f"{WORLD_LOGGER}.{world}"
+
+
 def setup_logging(
     level: str, *, classroom: bool = False, world_level: str = "warning", who: str = ""
 ) -> None:

@@ -7,7 +7,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from ..console import WORLD_LOGGER
+from ..console import world_logger
 from ..msgs import Log, Message, Service
 from .clock import NodeClock
 from .endpoints import Publisher, Subscription, Timer, qos_depth
@@ -32,7 +32,7 @@ def node_logger_name(world: str | None, fully_qualified_name: str) -> str:
     """The Python logger of a node's lines: ``node.ns.name`` alone, ``world.<world>.ns.name`` in a
     class server, so one level (``--world-log-level``) governs every world's nodes at once."""
     dotted = fully_qualified_name.replace("/", ".")
-    return f"{WORLD_LOGGER}.{world}{dotted}" if world else f"node{dotted}"
+    return f"{world_logger(world)}{dotted}" if world else f"node{dotted}"
 
 
 class NodeLogger:

@@ -36,6 +36,11 @@ def say(line: str) -> None:
         sys.stdout.flush()
 
 
+def _log_name(node: Mapping[str, Any]) -> str:
+    """A launched node's name as /rosout gives it: no leading slash."""
+    return str(node.get("name") or node.get("exec")).lstrip("/")
+
+
 def node_labels(group: Mapping[str, Any]) -> dict[str, str]:
     """Each started node's name (as /rosout names it, no leading slash) → its label: a node
     process's own (``keyboard_manager.py-3``), else numbered in launch order as ros2 launch
@@ -43,18 +48,14 @@ def node_labels(group: Mapping[str, Any]) -> dict[str, str]:
     labels: dict[str, str] = {}
     for node in group.get("nodes", []):
         if not node.get("error"):
-            name = str(node.get("name") or node.get("exec")).lstrip("/")
-            labels[name] = str(node.get("process") or f"{node.get('exec')}-{len(labels) + 1}")
+            labels[_log_name(node)] = str(node.get("process") or f"{node.get('exec')}-{len(labels) + 1}")
     return labels
 
 
 def in_process_labels(group: Mapping[str, Any]) -> dict[str, str]:
     """``node_labels`` of the nodes that run in the server: a node process prints its own lines."""
-    labels = node_labels(group)
-    for node in group.get("nodes", []):
-        if node.get("process"):
-            labels.pop(str(node.get("name") or node.get("exec")).lstrip("/"), None)
-    return labels
+    processes = {_log_name(node) for node in group.get("nodes", []) if node.get("process")}
+    return {name: label for name, label in node_labels(group).items() if name not in processes}
 
 
 def log_line(label: str, msg: Mapping[str, Any]) -> str:
@@ -112,7 +113,7 @@ def report_faults(group: Mapping[str, Any], labels: Mapping[str, str], reported:
     """ros2 launch's line for each node of ``group`` that crashed or whose process died, once;
     ``labels`` are the launch's as it started (a node that died since carries an error)."""
     for node in group.get("nodes", []):
-        name = str(node.get("name") or node.get("exec")).lstrip("/")
+        name = _log_name(node)
         if node.get("state") not in ("crashed", "died") or name in reported or name not in labels:
             continue
         reported.add(name)

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from typing import IO, Literal
 
 from server.bus import Bus
-from server.console import WORLD_LOGGER
+from server.console import world_logger
 
 from .command import NodeCommand
 
@@ -50,6 +50,12 @@ class ProcessNode:
     lines: deque[str] = field(default_factory=lambda: deque(maxlen=KEEP_LINES))
     printed: int = 0  # lines it has printed in all (``lines`` keeps the last KEEP_LINES)
     _lines_lock: threading.Lock = field(default_factory=threading.Lock, init=False, repr=False)
+
+    def keep(self, line: str) -> None:
+        """One more line it printed (from its output thread)."""
+        with self._lines_lock:
+            self.lines.append(line[:MAX_LINE_CHARS])
+            self.printed += 1
 
     def output(self) -> tuple[list[str], int]:
         """Its last lines and how many it has printed in all (a reader knows what is new)."""
@@ -98,13 +104,11 @@ class Supervisor:
         # (--world-log-level); they are kept for the API either way.
         echo = process.screen and (
             self.bus.label is None
-            or logging.getLogger(f"{WORLD_LOGGER}.{self.bus.label}").isEnabledFor(logging.INFO)
+            or logging.getLogger(world_logger(self.bus.label)).isEnabledFor(logging.INFO)
         )
         for line in stream:
             text = line.rstrip("\n")
-            with process._lines_lock:
-                process.lines.append(text[:MAX_LINE_CHARS])
-                process.printed += 1
+            process.keep(text)
             if echo:
                 with _print_lock:
                     sys.stdout.write(self.bus.tagged(f"[{process.label}] {text}\n"))
