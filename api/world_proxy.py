@@ -1,4 +1,4 @@
-"""A class server's calls for a world that runs on a world worker go to that worker (issue 13).
+"""A class server's calls for a world that runs on a world worker go to that worker.
 
 The class server keeps the student's page, the join form, the instructor's page and every
 access check (token, world, write limit) for itself; what acts on a world (``/api/...``, the

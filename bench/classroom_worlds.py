@@ -1,4 +1,4 @@
-"""A class server's cost against its number of worlds (issue 13).
+"""A class server's cost against its number of worlds.
 
 For each size N: ``python -m server --classroom --launch fly`` in a child process, N students
 joined through the REST API, one WebSocket per world echoing its drone's pose at 30 Hz (as the

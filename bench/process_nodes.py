@@ -1,4 +1,4 @@
-"""Bench (issue 9): student nodes as processes of their own, measured from outside the app.
+"""Bench: student nodes as processes of their own, measured from outside the app.
 
     .venv/bin/python bench/process_nodes.py [--run-tries 5] [--abort-samples 30] [--cpu-window-s 20]
                                             [--publishers 5] [--publish-hz 20]

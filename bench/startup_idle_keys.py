@@ -23,7 +23,7 @@ What is measured, exactly:
       SDL code; wrapped on the instance);
     - ``delivered``: a bench subscriber's callback on /keydown runs (the executor delivered the
       Key message the keyboard node published, like any node's subscription).
-  Reported: frame → delivered (the issue's "key frame received → Key message delivered") and
+  Reported: frame → delivered ("key frame received → Key message delivered") and
   parsed → delivered, p50 and p99 over ``--presses`` presses after ``--warmup`` unmeasured ones.
   Not included: the browser, the client's send and the loopback TCP hop.
 
@@ -58,7 +58,7 @@ RESULTS = REPO / "bench" / "results"
 READY_TIMEOUT_S = 60.0
 STOP_TIMEOUT_S = 10.0
 PRESS_TIMEOUT_S = 5.0
-AIMS = {"idle_cpu_pct": 5.0, "rss_mb": 150.0, "key_p99_ms": 2.0}  # from the issue
+AIMS = {"idle_cpu_pct": 5.0, "rss_mb": 150.0, "key_p99_ms": 2.0}  # the aims set for the lab
 
 
 # -- the machine -----------------------------------------------------------------------------

@@ -1,5 +1,5 @@
 """Bench: how soon the page answers a key, in a real headless Chromium on software WebGL
-(SwiftShader, as on a machine without GPU acceleration), at the window sizes of issue 11:
+(SwiftShader, as on a machine without GPU acceleration), at two common laptop window sizes:
 
 * key → answer drawn: from the keydown event's timeStamp to the end of the frame that showed the
   page's predicted setpoint marker (static/answer.js), for each of its two drawing paths (``dom``:

@@ -1,4 +1,4 @@
-"""Bench (issue 8): the lab's ROS graph on Zenoh, measured from outside the app.
+"""Bench: the lab's ROS graph on Zenoh, measured from outside the app.
 
     .venv/bin/python bench/zenoh_graph.py [--rate-s 20] [--flat-s 5] [--idle-s 15] [--idle-rounds 2]
                                           [--discovery-tries 5]

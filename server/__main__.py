@@ -74,7 +74,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="which nodes run as their own processes: your own files (default), or every node but the two "
              "that drive the page (keyboard, view), so the lesson shows in ps",
     )  # fmt: skip
-    # -- tools robotics people use (issue 12) --
+    # -- tools robotics people use --
     parser.add_argument(
         "--foxglove-port",
         type=int,
@@ -89,7 +89,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="serve rosbridge on this port too, as rosbridge_server does on 9090 (always at /rosbridge)",
     )  # fmt: skip
     parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
-    # -- a class on one server (issue 13) --
+    # -- a class on one server --
     classroom = parser.add_argument_group("a class on one server")
     classroom.add_argument(
         "--classroom", action="store_true",
@@ -282,7 +282,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"ROS graph on Zenoh ({where}, {domains})", flush=True)
         if wide:
             print(f"note: Zenoh listens on {', '.join(wide)}: other machines with the login can join this graph "
-                  "(GET /api/zenoh/join with the token gives it; see the README)", flush=True)  # fmt: skip
+                  "(GET /api/zenoh/join with the token gives it; see docs/zenoh.md)", flush=True)  # fmt: skip
     # viser prints a box with its own loopback port; the page is served on ours, so that box
     # would send a student to a page without the lab's keys and HUD. The app prints nothing else
     # through rich.

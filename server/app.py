@@ -44,7 +44,7 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         app.state.lab = lab
         await lab.start()
         try:
-            async with run_bridges(lab) as bridges:  # Foxglove, rosbridge's own port (issue 12)
+            async with run_bridges(lab) as bridges:  # Foxglove, rosbridge's own port
                 app.state.bridges = bridges
                 yield
         finally:

@@ -161,7 +161,7 @@ class Lab:
         self.publishers = PublisherManager(self, settings.max_publishers)
         self.service_caller = ServiceCaller(self.api_node)
         self.topic_watch = TopicWatch(self.bus)
-        self.bags = BagManager(self.bus, settings.bag_dir)  # ros2 bag record / play (issue 12)
+        self.bags = BagManager(self.bus, settings.bag_dir)  # ros2 bag record / play
         self.launch_groups: dict[str, LaunchGroup] = {}
         self._group_ids = itertools.count(1)
         self.stopped = asyncio.Event()  # set by stop(): open WebSockets close, and clients reconnect
@@ -182,7 +182,7 @@ class Lab:
             from server.viewer.publisher_panel import PageToolsNode
 
             self.page_tools = PageToolsNode(self)
-            from server.viewer.record_panel import RecordPanel  # issue 12: record, download
+            from server.viewer.record_panel import RecordPanel  # record a flight, download it
 
             self.record_panel = RecordPanel(self)
 

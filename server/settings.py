@@ -9,7 +9,7 @@ from typing import Literal
 from server.transport.config import ZenohSettings
 
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
-# A class's world workers (issue 13): the class server takes a worker silent this long as gone and
+# A class's world workers: the class server takes a worker silent this long as gone and
 # starts its worlds again elsewhere; a worker that hears no hello this long frees its worlds first.
 WORKER_TIMEOUT_S = 20.0
 ORPHAN_TIMEOUT_S = 12.0
@@ -55,7 +55,7 @@ class Settings:
     # Which nodes run as their own processes: a student's files always; "all" adds every lab node
     # but those that drive the app's devices (the page's keys, the 3D view).
     node_processes: Literal["student", "all"] = "student"
-    # -- tools robotics people use (issue 12) --
+    # -- tools robotics people use --
     bag_dir: Path = Path("bags")  # where recordings go, one folder per bag, as ros2 bag writes them
     # The Foxglove WebSocket server's port on ``host``; None: off (``python -m server`` uses 8765).
     foxglove_port: int | None = None
@@ -65,7 +65,7 @@ class Settings:
     # One lab behind a token (``--token``): every call, page and bridge port needs it. Required
     # (with --classroom the other way) when the app listens beyond loopback.
     token: str | None = None
-    # -- a class on one server (issue 13) --
+    # -- a class on one server --
     classroom: bool = False  # a world per student, behind signed tokens; the instructor sees all
     class_code: str | None = None  # what students type to join; None: a new random one
     max_worlds: int = 60

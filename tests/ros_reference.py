@@ -1,6 +1,6 @@
 """Facts from ROS 2 itself that tests check against."""
 
-# ROS 2's own values: the issue's, and those rosidl wrote into ROS 2 Kilted's packages
+# ROS 2's own values: those the lab's brief quotes, and those rosidl wrote into ROS 2 Kilted's packages
 # (share/<pkg>/msg/<Type>.json), read once; tf2_msgs/msg/TFMessage has no such file here.
 ROS_REFERENCE_HASHES = {
     "builtin_interfaces/msg/Duration": "e8d009f659816f758b75334ee1a9ca5b5c0b859843261f14c7f937349599d93b",

@@ -1,5 +1,5 @@
 """A class on one server: a world per student, signed tokens that scope every call, and the
-instructor's controls (issue 13)."""
+instructor's controls."""
 
 from .classroom import Classroom, World
 from .errors import ClassroomError

@@ -1,4 +1,4 @@
-"""The instructor's 3D view (issue 13): every world's drone in one viser scene.
+"""The instructor's 3D view: every world's drone in one viser scene.
 
 Each world gets an arena tile of its own, laid out in rows of ``COLUMNS`` (the worlds all fly
 around the same origin, so drawn in one place their drones would sit on one another at home). A

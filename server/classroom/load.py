@@ -1,5 +1,5 @@
 """How busy a process and its machine are: what a world worker's hello reports, and what the class
-server weighs before it places a new world (issue 13: "places new worlds on workers by load").
+server weighs before it places a new world on the place with the most room.
 
 - ``process_cores``: the CPU time this process used (every thread) over the last window, in cores.
   A process's worlds share one event loop, in one Python thread, so near one core it is full

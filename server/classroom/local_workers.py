@@ -1,4 +1,4 @@
-"""World workers a class server starts on its own machine (``--workers N``, issue 13).
+"""World workers a class server starts on its own machine (``--workers N``).
 
 A class server runs its own worlds in one Python thread, so on its own it uses about one core. With
 ``--workers N`` it starts N ``ros2lab world-worker`` processes next to itself, joined to its own

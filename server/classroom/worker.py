@@ -1,4 +1,4 @@
-"""``ros2lab world-worker --connect tcp/HOST:7447``: host worlds for a class server (issue 13).
+"""``ros2lab world-worker --connect tcp/HOST:7447``: host worlds for a class server.
 
 The worker joins the class's Zenoh router (logged in as the class, with a password derived from
 the instructor's token: the router lets nobody else in), serves its own HTTP API (loopback by default; every

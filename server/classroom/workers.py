@@ -1,4 +1,4 @@
-"""Worlds in other processes: world workers on the class's Zenoh router (issue 13).
+"""Worlds in other processes: world workers on the class's Zenoh router.
 
 A world worker (``ros2lab world-worker --connect tcp/HOST:7447``) is a class server of its own
 that hosts worlds it is asked to host and lets no student join it directly. It answers a *hello*

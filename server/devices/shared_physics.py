@@ -1,4 +1,4 @@
-"""Every world's drone in one batch (issue 13): the physics of a class server.
+"""Every world's drone in one batch: the physics of a class server.
 
 Each world's dynamics node (flightgoggles_uav_dynamics) finds this device on its bus and adds
 its drone here instead of building its own QuadrotorSim. A node's tick brings the whole batch up

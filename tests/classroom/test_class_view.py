@@ -1,4 +1,4 @@
-"""The instructor's 3D view (issue 13): every world's drone in one viser scene, an arena tile per
+"""The instructor's 3D view: every world's drone in one viser scene, an arena tile per
 world; its page and WebSocket open for the instructor only. Through the real app, on a manual
 clock; the view's viser server runs on loopback."""
 

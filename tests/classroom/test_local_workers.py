@@ -1,4 +1,4 @@
-"""``--workers N``: world workers a class server starts on its own machine (issue 13).
+"""``--workers N``: world workers a class server starts on its own machine.
 
 The class server runs as a process of its own on loopback and starts its workers itself; the
 tests find them by the ids the server reports (``started_here``), check them in /proc, and end

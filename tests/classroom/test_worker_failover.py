@@ -1,4 +1,4 @@
-"""When a world worker or the class server goes away (issue 13): a class server starts a gone
+"""When a world worker or the class server goes away: a class server starts a gone
 worker's worlds again elsewhere, under the same names and tokens; a worker frees its worlds when
 the class server has said no hello for its orphan timeout; hellos not sealed with the class's
 token get no answer.
