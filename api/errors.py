@@ -37,6 +37,7 @@ from server.launch.description import LaunchFileError
 from server.limits import LimitExceededError, ValueLimitError
 from server.msgs import MessageError, UnknownTypeError
 from server.packages import ExecutableNotFoundError, PackageNotFoundError
+from server.packages.launch_files import LaunchFileNotFoundError
 from server.publishers import PublisherError, UnknownPublisherError
 
 from .security import BodyTooLarge
@@ -72,6 +73,7 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (UnknownPublisherError, status.HTTP_404_NOT_FOUND),
     (UnknownLaunchError, status.HTTP_404_NOT_FOUND),
     (PackageNotFoundError, status.HTTP_404_NOT_FOUND),
+    (LaunchFileNotFoundError, status.HTTP_404_NOT_FOUND),
     (ExecutableNotFoundError, status.HTTP_404_NOT_FOUND),
     (TopicTypeError, status.HTTP_409_CONFLICT),
     (DestroyedError, status.HTTP_409_CONFLICT),
