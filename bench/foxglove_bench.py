@@ -8,7 +8,7 @@ Two servers, each in a subprocess of its own, the same client for both (in this 
 * ``sdk``: ``foxglove.start_server`` on loopback and a thread logging a geometry_msgs/PoseStamped
   in CDR on one channel, flat out, or at 100 Hz; nothing else.
 * ``lab``: the app's bridge as ``python -m server`` runs it (a bus, the bridge node subscribed on
-  demand, the SDK server on loopback, the guarded front the client connects to), with a node
+  demand, the app's own guarded Foxglove server the client connects to), with a node
   publishing PoseStamped on /bench/pose flat out (batches of 200, yielding to the loop between
   them) or at 100 Hz from a bus timer.
 

@@ -17,13 +17,14 @@ from typing import Any
 import pytest
 import websockets
 from fastapi.testclient import TestClient
-from handshake import handshake_status
+from handshake import handshake_refusal, handshake_status
 from mcap.records import Schema as McapSchema
 from mcap_ros2.decoder import DecoderFactory
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from websockets.asyncio.client import ClientConnection
-from websockets.exceptions import InvalidStatus
+from websockets.exceptions import ConnectionClosed
 
+from api.errors import CloseCode
 from server.app import create_app
 from server.settings import Settings
 
@@ -214,32 +215,39 @@ def test_client_publish_with_a_nan_setpoint_or_wrong_type_is_refused(lab: TestCl
 
 @pytest.mark.parametrize("origin", ["http://evil.example", "null", "https://127.0.0.1.evil.example"])
 def test_a_page_on_another_site_never_connects(lab: TestClient, origin: str) -> None:
-    front = lab.app.state.bridges.foxglove_front  # type: ignore[attr-defined]
-    refused = front.refused
+    server = lab.app.state.bridges.foxglove.server  # type: ignore[attr-defined]
+    refused = server.refused
 
-    async def scenario() -> None:
-        with pytest.raises(InvalidStatus) as caught:
-            await connect(lab, origin=origin)
-        assert caught.value.response.status_code == 403
+    async def scenario() -> ConnectionClosed:
+        async with await connect(lab, origin=origin) as ws:
+            with pytest.raises(ConnectionClosed) as caught:
+                await next_json(ws, "serverInfo")  # nothing comes before the close
+        return caught.value
 
-    run(scenario())
-    assert front.refused == refused + 1
+    closed = run(scenario())
+    assert closed.rcvd is not None and closed.rcvd.code == CloseCode.FORBIDDEN
+    assert "cross-site" in closed.rcvd.reason
+    assert server.refused == refused + 1
 
 
 @pytest.mark.parametrize(
-    ("headers", "status"),
+    ("headers", "code"),
     [
-        ((("Host", "evil.example"),), 421),  # a DNS-rebinding page
-        ((("Host", "rebound.example:8765"), ("Origin", "http://rebound.example:8765")), 421),
-        ((("Host", "127.0.0.1"), ("Host", "evil.example")), 400),
-        ((("Host", "127.0.0.1"),), 101),  # the same handshake with this machine's name goes through
+        ((("Host", "evil.example"),), CloseCode.MISDIRECTED),  # a DNS-rebinding page
+        (
+            (("Host", "rebound.example:8765"), ("Origin", "http://rebound.example:8765")),
+            CloseCode.MISDIRECTED,
+        ),
+        ((("Host", "127.0.0.1"), ("Host", "evil.example")), CloseCode.BAD_REQUEST),
     ],
 )
-def test_a_foreign_or_ambiguous_host_never_reaches_the_sdk(
-    lab: TestClient, headers: tuple[tuple[str, str], ...], status: int
+def test_a_foreign_or_ambiguous_host_is_refused(
+    lab: TestClient, headers: tuple[tuple[str, str], ...], code: int
 ) -> None:
-    headers = (*headers, ("Sec-WebSocket-Protocol", SUBPROTOCOL))
-    assert run(handshake_status(port(lab), "/", headers)) == status
+    protocol = ("Sec-WebSocket-Protocol", SUBPROTOCOL)
+    assert run(handshake_refusal(port(lab), "/", (*headers, protocol))) == code
+    # The same handshake with this machine's name goes through.
+    assert run(handshake_status(port(lab), "/", (("Host", "127.0.0.1"), protocol))) == 101
 
 
 def test_the_pages_own_origin_and_a_client_without_origin_connect(lab: TestClient) -> None:
@@ -249,12 +257,6 @@ def test_the_pages_own_origin_and_a_client_without_origin_connect(lab: TestClien
 
     assert run(scenario(None)) == "serverInfo"
     assert run(scenario(f"http://127.0.0.1:{port(lab)}")) == "serverInfo"
-
-
-def test_the_sdk_server_itself_listens_on_loopback_on_another_port(lab: TestClient) -> None:
-    bridges = lab.app.state.bridges  # type: ignore[attr-defined]
-    assert bridges.foxglove.port != bridges.foxglove_port
-    assert lab.app.state.lab.settings.host == "127.0.0.1"  # type: ignore[attr-defined]
 
 
 def test_tf_of_the_drone_follows_its_gps_pose(tmp_path: Path) -> None:
