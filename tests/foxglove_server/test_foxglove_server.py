@@ -279,3 +279,53 @@ def test_tf_of_the_drone_follows_its_gps_pose(tmp_path: Path) -> None:
     t, p = tf.transform.translation, gps.pose.position
     assert (t.x, t.y, t.z) == (p.x, p.y, p.z) and p.z > 0.5
     assert tf.transform.rotation.to_dict() == gps.pose.orientation.to_dict()
+
+
+def test_a_client_message_the_server_does_not_understand_gets_an_error_status_and_changes_nothing(
+    lab: TestClient,
+) -> None:
+    async def scenario() -> tuple[list[str], dict[str, Any]]:
+        async with await connect(lab) as ws:
+            gps = (await channels_until(ws, {"/uav/sensors/gps"}))["/uav/sensors/gps"]
+            errors = []
+            for bad in (
+                "not json",
+                json.dumps({"op": "getParameters", "parameterNames": []}),
+                json.dumps({"op": "subscribe", "subscriptions": [{"id": -1, "channelId": gps["id"]}]}),
+                json.dumps({"op": "subscribe", "subscriptions": [{"id": 1, "channelId": 99999}]}),
+            ):
+                await ws.send(bad)
+                errors.append((await next_json(ws, "status"))["message"])
+            await ws.send(struct.pack("<BI", CLIENT_MESSAGE_DATA, 42) + b"{}")  # a channel never advertised
+            errors.append((await next_json(ws, "status"))["message"])
+            # The same connection still serves: a good subscription's frames arrive.
+            await ws.send(
+                json.dumps({"op": "subscribe", "subscriptions": [{"id": 5, "channelId": gps["id"]}]})
+            )
+            async with asyncio.timeout(READ_S):
+                while not isinstance(frame := await ws.recv(), bytes):
+                    pass
+            return errors, {"sub": struct.unpack_from("<BI", frame)[1]}
+
+    errors, good = run(scenario())
+    assert "JSON" in errors[0] and "getParameters" in errors[1] and "uint32" in errors[2]
+    assert "99999" in errors[3] and "42" in errors[4]
+    assert good["sub"] == 5
+
+
+def test_unsubscribing_the_last_client_drops_the_bus_subscription(lab: TestClient) -> None:
+    node = lab.app.state.bridges.foxglove.node  # type: ignore[attr-defined]
+
+    async def scenario() -> None:
+        async with await connect(lab) as ws:
+            gps = (await channels_until(ws, {"/uav/sensors/gps"}))["/uav/sensors/gps"]
+            await ws.send(
+                json.dumps({"op": "subscribe", "subscriptions": [{"id": 1, "channelId": gps["id"]}]})
+            )
+            await asyncio.to_thread(
+                wait_for, lambda: "/uav/sensors/gps" in node.forwarding, "the subscription"
+            )
+            await ws.send(json.dumps({"op": "unsubscribe", "subscriptionIds": [1]}))
+            await asyncio.to_thread(wait_for, lambda: "/uav/sensors/gps" not in node.forwarding, "its end")
+
+    run(scenario())
