@@ -86,6 +86,7 @@ def serve_sdk(mode: str, port_file: Path) -> None:
 
 
 def serve_lab(mode: str, port_file: Path) -> None:
+    import api  # noqa: F401  # first: the bridges use api's guard, and api's package imports the bridges
     from server.bridges.runner import run_bridges
     from server.bus import Node
     from server.lab import Lab
