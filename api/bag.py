@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import asyncio
 import shutil
-from pathlib import Path
 from typing import Any
 
 from fastapi import APIRouter, HTTPException, status
@@ -44,7 +43,8 @@ class PlayRequest(BaseModel):
     bag: str = Field(
         min_length=1,
         max_length=4096,
-        description="a bag's name in the bag folder, or a path to a bag folder or .mcap file",
+        description="a bag's name in the bag folder; a single lab on loopback also takes a path "
+        "to a bag folder or .mcap file",
     )
     rate: float = Field(default=1.0, ge=MIN_RATE, le=MAX_RATE)
     loop: bool = False
@@ -109,11 +109,12 @@ async def metadata(name: str, lab: LabDep) -> FileResponse:
     return FileResponse(path, media_type="application/yaml", filename=path.name)
 
 
-@router.post("/players", status_code=status.HTTP_201_CREATED, responses=responses(TOO_MANY, body=True))
+@router.post(
+    "/players", status_code=status.HTTP_201_CREATED, responses=responses(NOT_FOUND, TOO_MANY, body=True)
+)
 async def play(body: PlayRequest, lab: LabDep) -> dict[str, Any]:
     """Publish a bag's messages back onto the bus with their timing (ros2 bag play)."""
-    in_folder = lab.settings.bag_dir / body.bag
-    path = in_folder if BAG_NAME.match(body.bag) and in_folder.exists() else Path(body.bag)
+    path = lab.bags.bag_to_play(body.bag, confined=lab.settings.confines_paths)
     player_id, node = lab.bags.play(path, rate=body.rate, loop=body.loop)
     return {"id": player_id, **node.describe()}
 

@@ -11,7 +11,6 @@ from __future__ import annotations
 import logging
 import uuid
 from collections.abc import Awaitable, Callable
-from enum import IntEnum
 
 from fastapi import FastAPI, Request, status
 from fastapi.exceptions import RequestValidationError
@@ -37,31 +36,14 @@ from server.launch.description import LaunchFileError
 from server.limits import LimitExceededError, ValueLimitError
 from server.msgs import MessageError, UnknownTypeError
 from server.packages import ExecutableNotFoundError, PackageNotFoundError
+from server.packages.launch_files import LaunchFileNotFoundError
 from server.publishers import PublisherError, UnknownPublisherError
 
+from .close_codes import CloseCode as CloseCode  # where the routes import it from
 from .security import BodyTooLarge
 from .strict_json import SafeJSONResponse
 
 log = logging.getLogger("api.errors")
-
-
-class CloseCode(IntEnum):
-    """WebSocket close codes this API uses (RFC 6455 names; 4xxx are the app's own)."""
-
-    NORMAL = 1000
-    GOING_AWAY = 1001
-    UNSUPPORTED_DATA = 1003
-    INVALID_PAYLOAD = 1007
-    POLICY_VIOLATION = 1008
-    MESSAGE_TOO_BIG = 1009
-    INTERNAL_ERROR = 1011
-    SERVICE_RESTART = 1012  # the lab behind the socket stopped (a class server reset its world)
-    TRY_AGAIN_LATER = 1013
-    BAD_REQUEST = 4400
-    UNAUTHORIZED = 4401  # a class server: no valid token
-    FORBIDDEN = 4403  # a class server: another student's world
-    NOT_FOUND = 4404  # an unknown topic (or node, service, bag), or a route this server does not serve
-    TYPE_CONFLICT = 4409
 
 
 # Checked in order, so a subclass must come before its base. Nothing broader than these.
@@ -72,6 +54,7 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (UnknownPublisherError, status.HTTP_404_NOT_FOUND),
     (UnknownLaunchError, status.HTTP_404_NOT_FOUND),
     (PackageNotFoundError, status.HTTP_404_NOT_FOUND),
+    (LaunchFileNotFoundError, status.HTTP_404_NOT_FOUND),
     (ExecutableNotFoundError, status.HTTP_404_NOT_FOUND),
     (TopicTypeError, status.HTTP_409_CONFLICT),
     (DestroyedError, status.HTTP_409_CONFLICT),

@@ -6,11 +6,12 @@ Errors are mapped in api/errors.py; handlers do not catch.
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Annotated, Any
 
 from fastapi import APIRouter, status
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
+
+from server.packages.launch_files import launch_file
 
 from .deps import LabDep
 from .responses import NOT_FOUND, TOO_MANY, responses
@@ -26,7 +27,9 @@ ParamValue = Scalar | Annotated[list[Scalar], Field(max_length=256)]
 class LaunchRequest(BaseModel):
     model_config = ConfigDict(extra="forbid", strict=True)
     file: Value = Field(
-        description="a launch file's path, or its name inside `package`", examples=["rocket.launch"]
+        description="a launch file's name inside `package`, or a path: inside the workspace where the "
+        "lab serves others (a class's worlds), any path on a single lab on loopback",
+        examples=["rocket.launch"],
     )
     package: Short | None = Field(default=None, examples=["rocketship"])
     args: dict[Short, Value] = Field(
@@ -48,7 +51,7 @@ class RunRequest(BaseModel):
 )
 async def launch(body: LaunchRequest, lab: LabDep) -> dict[str, Any]:
     """Start a launch file's nodes; a node that fails to start is reported, the others run."""
-    path = lab.packages.share_dir(body.package) / "launch" / body.file if body.package else Path(body.file)
+    path = launch_file(lab.packages, body.package, body.file, confined=lab.settings.confines_paths)
     return lab.launch_group(path, body.args).describe()
 
 

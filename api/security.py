@@ -15,6 +15,8 @@ from urllib.parse import urlsplit
 from starlette.exceptions import HTTPException
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from .close_codes import REFUSAL_FOR_STATUS
+
 SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
 
 
@@ -100,9 +102,8 @@ class GuardMiddleware:
         return bounded
 
     async def _refuse(self, scope: Scope, send: Send, status: int, detail: str) -> None:
-        if scope["type"] == "websocket":
-            # Closing before accepting makes the server answer the handshake with 403.
-            await send({"type": "websocket.close", "code": 1008, "reason": detail})
+        if scope["type"] == "websocket":  # api/ws_refusal.py: the close code arrives, not a bare 403
+            await send({"type": "websocket.close", "code": REFUSAL_FOR_STATUS[status], "reason": detail})
             return
         body = json.dumps({"detail": detail}).encode()
         await send(

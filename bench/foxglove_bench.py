@@ -8,7 +8,7 @@ Two servers, each in a subprocess of its own, the same client for both (in this 
 * ``sdk``: ``foxglove.start_server`` on loopback and a thread logging a geometry_msgs/PoseStamped
   in CDR on one channel, flat out, or at 100 Hz; nothing else.
 * ``lab``: the app's bridge as ``python -m server`` runs it (a bus, the bridge node subscribed on
-  demand, the SDK server on loopback, the guarded front the client connects to), with a node
+  demand, the app's own guarded Foxglove server the client connects to), with a node
   publishing PoseStamped on /bench/pose flat out (batches of 200, yielding to the loop between
   them) or at 100 Hz from a bus timer.
 
@@ -86,6 +86,7 @@ def serve_sdk(mode: str, port_file: Path) -> None:
 
 
 def serve_lab(mode: str, port_file: Path) -> None:
+    import api  # noqa: F401  # first: the bridges use api's guard, and api's package imports the bridges
     from server.bridges.runner import run_bridges
     from server.bus import Node
     from server.lab import Lab

@@ -15,6 +15,7 @@ from api.openapi import use_token_security
 from api.security import GuardMiddleware
 from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
 from api.world_proxy import WorldProxyMiddleware
+from api.ws_refusal import WebSocketRefusalMiddleware
 from server.bridges.runner import run_bridges
 from server.bus import Clock
 from server.classroom import Classroom
@@ -79,4 +80,5 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         max_body_bytes=settings.max_body_bytes,
     )
     app.add_middleware(ErrorMiddleware)
+    app.add_middleware(WebSocketRefusalMiddleware)  # outermost: every refused WebSocket gets its code
     return app

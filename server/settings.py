@@ -93,6 +93,14 @@ class Settings:
             raise ValueError("size limits are too small to carry a message")
 
     @property
+    def confines_paths(self) -> bool:
+        """Bag and launch files are names inside the world's own folders, never paths: on a class
+        server (and its world workers), and when a lab behind a token listens beyond loopback. A
+        single lab on loopback serves its user alone, whose own files it may open."""
+        loopback = self.host in LOOPBACK_HOSTS or self.host.startswith("127.")
+        return self.classroom or self.worker is not None or not loopback
+
+    @property
     def accepted_hosts(self) -> frozenset[str]:
         hosts = set(LOOPBACK_HOSTS) | set(self.allowed_hosts)
         if self.host not in ("0.0.0.0", "::"):

@@ -20,3 +20,27 @@ async def handshake_status(port: int, path: str = "/", headers: tuple[tuple[str,
         return int(status_line.split()[1])
     finally:
         writer.close()
+
+
+async def handshake_refusal(port: int, path: str = "/", headers: tuple[tuple[str, str], ...] = ()) -> int:
+    """How a server on 127.0.0.1:``port`` refuses a WebSocket handshake: the close code of the
+    first frame after a completed handshake (the app's rule for every WebSocket route), or the
+    HTTP status of a handshake it does not complete. Fails if a completed one sends anything but
+    a close first."""
+    reader, writer = await asyncio.open_connection("127.0.0.1", port)
+    try:
+        lines = [f"GET {path} HTTP/1.1", *(f"{k}: {v}" for k, v in headers)]
+        lines += ["Upgrade: websocket", "Connection: Upgrade", "Sec-WebSocket-Version: 13",
+                  "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ=="]  # fmt: skip
+        writer.write(("\r\n".join(lines) + "\r\n\r\n").encode())
+        async with asyncio.timeout(READ_S):
+            head = await reader.readuntil(b"\r\n\r\n")
+            status = int(head.split(b" ", 2)[1])
+            if status != 101:
+                return status
+            first, length = await reader.readexactly(2)
+            assert first & 0x0F == 0x8, f"the server sent a frame of opcode {first & 0x0F} before any close"
+            payload = await reader.readexactly(length & 0x7F)  # a server's frames are not masked
+            return int.from_bytes(payload[:2], "big")
+    finally:
+        writer.close()

@@ -30,6 +30,14 @@ KEPT_FINISHED = 16
 MAX_BAG_BYTES = 512 * 1024 * 1024
 
 
+def _inside(path: Path, folder: Path) -> bool:
+    """``path`` exists and is in ``folder`` once links are followed (a link to elsewhere is not)."""
+    try:
+        return path.exists() and path.resolve().is_relative_to(folder.resolve())
+    except OSError:
+        return False
+
+
 def default_bag_name(now_s: float | None = None) -> str:
     """``rosbag2_YYYY_MM_DD-HH_MM_SS``, as ros2 bag record names a bag it is not told a name for."""
     return time.strftime("rosbag2_%Y_%m_%d-%H_%M_%S", time.localtime(now_s))
@@ -152,6 +160,20 @@ class BagManager:
         return out
 
     # -- playing ---------------------------------------------------------
+    def bag_to_play(self, bag: str, *, confined: bool) -> Path:
+        """What ``ros2 bag play BAG`` opens: a bag's name in the bag folder, else (unless
+        ``confined``) a path to a bag folder or .mcap file. Confined, anything that is not a bag
+        of this folder gets one answer, so it tells nothing of what exists elsewhere."""
+        in_folder = self.folder / bag
+        if NAME.match(bag) and (_inside(in_folder, self.folder) if confined else in_folder.exists()):
+            return in_folder
+        if confined:
+            raise BagNotFoundError(
+                f"no bag named {bag[:200]!r} in this world's bag folder: play a bag by its name, "
+                "as GET /api/bag/recordings lists them"
+            )
+        return Path(bag)
+
     def play(self, path: Path, *, rate: float = 1.0, loop: bool = False) -> tuple[str, PlayerNode]:
         self.reap_players()
         if sum(not p.finished for p in self.players.values()) >= MAX_PLAYERS:

@@ -1,20 +1,26 @@
-"""A guarded front door for a WebSocket server the app cannot configure (foxglove-sdk's).
+"""A guarded front door onto a WebSocket route of the app: rosbridge on a port of its own.
 
-It listens where clients connect (127.0.0.1:8765 by default), reads the opening handshake,
-applies the app's own rules (api/security.py: a Host that names this machine, no Origin of
-another site) and only then joins the client to the upstream server on loopback, byte for
-byte in both directions. A refused handshake gets an HTTP 403 or 421 naming the reason, and
-never reaches upstream. Nothing here parses WebSocket frames, so the protocol stays the SDK's.
+It listens where clients connect (``--rosbridge-port``), reads the opening handshake, applies the
+app's own rules (api/security.py: a Host that names this machine, no Origin of another site, the
+token) and only then joins the client to the app's port, byte for byte in both directions.
+A refused WebSocket handshake completes and is closed at once with the close code that names why
+(4401, 4403, 4421: api/ws_refusal.py's rule for every route), and never reaches upstream; a
+request that is no WebSocket handshake gets an HTTP 400 or 426. Nothing here parses the frames
+that follow, so the protocol stays upstream's. ``check_handshake`` is also the Foxglove server's.
 """
 
 from __future__ import annotations
 
 import asyncio
+import base64
 import contextlib
+import hashlib
 import logging
+import struct
 from collections.abc import Iterable
 from urllib.parse import parse_qs, urlsplit
 
+from api.close_codes import REFUSAL_FOR_STATUS, CloseCode
 from api.security import bearer_token, host_allowed, origin_allowed, token_matches
 from server.tasks import cancel_and_wait
 
@@ -23,6 +29,8 @@ MAX_HEAD_BYTES = 16 * 1024
 HEAD_TIMEOUT_S = 10.0
 CHUNK_BYTES = 64 * 1024
 SINGLE_HEADERS = frozenset({"host", "origin", "upgrade"})
+WS_GUID = "258EAFA5-E914-47DA-95CA-C5AB0DC85B11"  # RFC 6455's, for Sec-WebSocket-Accept
+CLOSE_WAIT_S = 2.0  # how long a refused client has to answer the close
 
 
 class HandshakeRefused(Exception):
@@ -39,18 +47,26 @@ def parse_head(head: bytes) -> tuple[str, dict[str, str]]:
     except UnicodeDecodeError:  # pragma: no cover - latin-1 decodes any byte
         raise HandshakeRefused(400, "unreadable request") from None
     request_line, *lines = text.split("\r\n")
-    headers: dict[str, str] = {}
+    items: list[tuple[str, str]] = []
     for line in lines:
         if not line:
             continue
         name, sep, value = line.partition(":")
         if not sep:
             raise HandshakeRefused(400, "malformed header line")
+        items.append((name, value))
+    return request_line, single_headers(items)
+
+
+def single_headers(items: Iterable[tuple[str, str]]) -> dict[str, str]:
+    """Headers by lower-cased name; HandshakeRefused if one that must be single comes twice."""
+    headers: dict[str, str] = {}
+    for name, value in items:
         key = name.strip().lower()
         if key in headers and key in SINGLE_HEADERS:  # two Hosts: which one would upstream believe?
             raise HandshakeRefused(400, f"more than one {key} header")
         headers[key] = value.strip()
-    return request_line, headers
+    return headers
 
 
 def check_handshake(
@@ -139,6 +155,7 @@ class GuardedFront:
             head = await asyncio.wait_for(reader.readuntil(b"\r\n\r\n"), HEAD_TIMEOUT_S)
         except (asyncio.IncompleteReadError, asyncio.LimitOverrunError, TimeoutError, ConnectionError):
             return
+        headers: dict[str, str] = {}
         try:
             if len(head) > MAX_HEAD_BYTES:
                 raise HandshakeRefused(431, "request head too large")
@@ -146,12 +163,13 @@ class GuardedFront:
             check_handshake(request_line, headers, self.accepted_hosts, self.allowed_origins, self.token)
         except HandshakeRefused as exc:
             self.refused += 1
-            await _refuse(writer, exc)
+            await _refuse(reader, writer, exc, headers)
             return
         try:
             up_reader, up_writer = await asyncio.open_connection("127.0.0.1", self.upstream_port)
         except OSError:
-            await _refuse(writer, HandshakeRefused(502, "the server behind this port is not running"))
+            down = HandshakeRefused(502, "the server behind this port is not running")
+            await _refuse(reader, writer, down, headers)
             return
         up_writer.write(self._upstream_head(head, request_line))
         try:
@@ -170,7 +188,40 @@ class GuardedFront:
         return f"{method} {path} {version}".encode("latin-1") + head[len(request_line) :]
 
 
-async def _refuse(writer: asyncio.StreamWriter, exc: HandshakeRefused) -> None:
+async def _refuse(
+    reader: asyncio.StreamReader, writer: asyncio.StreamWriter, exc: HandshakeRefused, headers: dict[str, str]
+) -> None:
+    """A WebSocket handshake: completed, then closed with the refusal's close code. Anything
+    else: an HTTP error status."""
+    key = headers.get("sec-websocket-key", "")
+    code = REFUSAL_FOR_STATUS.get(exc.status, CloseCode.TRY_AGAIN_LATER if exc.status == 502 else None)
+    if code is None or headers.get("upgrade", "").lower() != "websocket" or len(key) != 24:
+        await _refuse_http(writer, exc)
+        return
+    accept = base64.b64encode(hashlib.sha1((key + WS_GUID).encode()).digest()).decode()
+    head = ["HTTP/1.1 101 Switching Protocols", "Upgrade: websocket", "Connection: Upgrade",
+            f"Sec-WebSocket-Accept: {accept}"]  # fmt: skip
+    offered = headers.get("sec-websocket-protocol", "").split(",")[0].strip()
+    if offered:  # a client that asked for a subprotocol gets it, so none fails before the close
+        head.append(f"Sec-WebSocket-Protocol: {offered}")
+    reason = close_reason_bytes(exc.reason)
+    close = struct.pack("!BBH", 0x88, 2 + len(reason), code) + reason  # FIN + close, unmasked
+    writer.write(("\r\n".join(head) + "\r\n\r\n").encode("latin-1") + close)
+    with contextlib.suppress(ConnectionError, TimeoutError, asyncio.IncompleteReadError):
+        await writer.drain()
+        # Read the client's close (and anything before it) so that closing sends no reset that
+        # could overtake the close frame.
+        async with asyncio.timeout(CLOSE_WAIT_S):
+            while await reader.read(CHUNK_BYTES):
+                pass
+
+
+def close_reason_bytes(text: str) -> bytes:
+    """A close frame's reason: at most 123 bytes of UTF-8."""
+    return text.encode("utf-8")[:123].decode("utf-8", "ignore").encode("utf-8")
+
+
+async def _refuse_http(writer: asyncio.StreamWriter, exc: HandshakeRefused) -> None:
     body = exc.reason.encode()
     writer.write(
         f"HTTP/1.1 {exc.status} Refused\r\nContent-Type: text/plain\r\nContent-Length: {len(body)}\r\n"

@@ -1,9 +1,9 @@
-"""Start and stop the bridges with the app: the Foxglove server behind its guarded front, and
-rosbridge on its own port when one is asked for (it is always at /rosbridge on the app's port)."""
+"""Start and stop the bridges with the app: the Foxglove server (guarded itself), and rosbridge
+on its own port behind the guarded front when one is asked for (it is always at /rosbridge on the
+app's port)."""
 
 from __future__ import annotations
 
-import asyncio
 import logging
 from collections.abc import AsyncIterator, Callable
 from contextlib import AsyncExitStack, asynccontextmanager
@@ -27,12 +27,11 @@ log = logging.getLogger("bridges")
 class Bridges:
     rosapi: RosapiNode | None = None
     foxglove: FoxgloveBridge | None = None
-    foxglove_front: GuardedFront | None = None
     rosbridge_front: GuardedFront | None = None
 
     @property
     def foxglove_port(self) -> int | None:
-        return self.foxglove_front.port if self.foxglove_front is not None else None
+        return self.foxglove.port if self.foxglove is not None else None
 
 
 @asynccontextmanager
@@ -47,9 +46,8 @@ async def run_bridges(lab: Lab) -> AsyncIterator[Bridges]:
         if settings.foxglove_port is not None:
             started = await start_foxglove(lab.bus, settings, settings.foxglove_port, settings.token)
             if started is not None:
-                bridges.foxglove, bridges.foxglove_front = started
-                stack.callback(started[0].stop)
-                stack.push_async_callback(started[1].stop)
+                bridges.foxglove = started
+                stack.push_async_callback(started.stop)
         if settings.rosbridge_port is not None:
             front = await start_rosbridge_front(settings, settings.rosbridge_port, settings.token)
             if front is not None:
@@ -65,23 +63,21 @@ async def start_foxglove(
     token: str | None,
     name: str = "teleop-lab",
     limits_name: Callable[[str], str] | None = None,
-) -> tuple[FoxgloveBridge, GuardedFront] | None:
-    """A Foxglove server for ``bus`` behind the guarded front on ``port`` (the app's Host, Origin
-    and ``token`` rules); None, with a warning, if the port is taken."""
-    from .foxglove import FoxgloveBridge  # the SDK loads only when asked for
+) -> FoxgloveBridge | None:
+    """A Foxglove server for ``bus`` on ``port``, admitting what the app's port admits (its Host
+    and Origin rules) and only holders of ``token``; None, with a warning, if the port is taken."""
+    from .foxglove import FoxgloveBridge
+    from .foxglove_server import Guard
 
-    foxglove = FoxgloveBridge(bus, asyncio.get_running_loop(), name, limits_name)
-    front = GuardedFront(
-        settings.host, port, foxglove.port, settings.accepted_hosts, settings.allowed_origins, token=token
-    )
+    guard = Guard(settings.accepted_hosts, frozenset(settings.allowed_origins), token)
+    foxglove = FoxgloveBridge(bus, guard, name, limits_name)
     try:
-        await front.start()
+        await foxglove.start(settings.host, port)
     except OSError as exc:  # another lab (or Foxglove bridge) has the port: run without
-        foxglove.stop()
         log.warning("Foxglove server (%s) not started: port %d: %s", name, port, exc.strerror)
         return None
-    log.info("Foxglove WebSocket server (%s) on ws://%s:%d", name, settings.host, front.port)
-    return foxglove, front
+    log.info("Foxglove WebSocket server (%s) on ws://%s:%d", name, settings.host, foxglove.port)
+    return foxglove
 
 
 async def start_rosbridge_front(

@@ -9,8 +9,9 @@ clients subscribe, publish and ask rosapi-style questions of the same bus. A top
 watches becomes a subscription in the class domain, so the domain bridge carries that world's
 samples only while someone watches them; what a client publishes on ``/ada/uav/input/position``
 goes into Ada's world only, within the limits the world's own ``/uav/input/position`` keeps. Both
-ports sit behind the guarded front with the instructor's token: a student's token, another site's
-page or a foreign Host never reach them.
+ports admit the instructor's token alone (the Foxglove server checks it itself, rosbridge's port
+sits behind the guarded front): a student's token, another site's page or a foreign Host never
+reach them.
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ from server.transport.acl import Credentials
 from server.transport.config import ZenohSettings
 from server.transport.link import ZenohLink
 
-if TYPE_CHECKING:  # typing only: the Foxglove SDK loads only when its port is asked for
+if TYPE_CHECKING:
     from server.bridges.foxglove import FoxgloveBridge
 
 log = logging.getLogger("classroom.bridges")
@@ -49,7 +50,6 @@ class ClassBridges:
     link: ZenohLink
     executor: Executor
     foxglove: FoxgloveBridge | None = None
-    foxglove_front: GuardedFront | None = None
     rosbridge_front: GuardedFront | None = None
     closed: asyncio.Event = field(default_factory=asyncio.Event)  # rosbridge sockets end with it
 
@@ -81,7 +81,7 @@ class ClassBridges:
                 await bridges._start_foxglove(settings, settings.foxglove_port, token)
             if settings.rosbridge_port is not None:
                 await bridges._start_rosbridge(settings, settings.rosbridge_port, token)
-        except BaseException:  # the SDK's server did not start: the class domain's session goes too
+        except BaseException:  # a port did not open: the class domain's session goes too
             await bridges._stop_ports()
             link.close()
             raise
@@ -89,9 +89,7 @@ class ClassBridges:
         return bridges
 
     async def _start_foxglove(self, settings: Settings, port: int, token: str) -> None:
-        started = await start_foxglove(self.bus, settings, port, token, "teleop-lab class", world_topic)
-        if started is not None:
-            self.foxglove, self.foxglove_front = started
+        self.foxglove = await start_foxglove(self.bus, settings, port, token, "teleop-lab class", world_topic)
 
     async def _start_rosbridge(self, settings: Settings, port: int, token: str) -> None:
         try:
@@ -100,12 +98,11 @@ class ClassBridges:
             log.warning("the class's rosbridge port not opened: port %d: %s", port, exc.strerror)
 
     async def _stop_ports(self) -> None:
-        for front in (self.rosbridge_front, self.foxglove_front):
-            if front is not None:
-                await front.stop()
+        if self.rosbridge_front is not None:
+            await self.rosbridge_front.stop()
         if self.foxglove is not None:
-            self.foxglove.stop()
-        self.foxglove = self.foxglove_front = self.rosbridge_front = None
+            await self.foxglove.stop()
+        self.foxglove = self.rosbridge_front = None
 
     async def close(self, executors: ExecutorGroup) -> None:
         self.closed.set()

@@ -13,6 +13,7 @@ from fastapi import APIRouter, Request, WebSocket, status
 from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
 from starlette.requests import HTTPConnection
 
+from api.close_codes import CloseCode
 from api.deps import classroom_of, keep_token_and_go, lab_of, token_of
 from api.security import token_matches
 from api.ws_relay import relay
@@ -154,8 +155,10 @@ async def instructor_view(request: Request) -> Response:
 async def instructor_view_proxy(websocket: WebSocket) -> None:
     view, refused = _instructors_view(websocket)
     if refused is not None:
-        reason = "the instructor's token is needed" if refused.status_code == 401 else "not a class server"
-        await websocket.close(status.WS_1008_POLICY_VIOLATION, reason)
+        if refused.status_code == status.HTTP_401_UNAUTHORIZED:
+            await websocket.close(CloseCode.UNAUTHORIZED, "the instructor's token is needed")
+        else:
+            await websocket.close(CloseCode.NOT_FOUND, "not a class server")
         return
     await _proxy_to(view.display if view is not None else None, websocket)
 

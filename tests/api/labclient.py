@@ -16,7 +16,7 @@ import pytest
 from fastapi.testclient import TestClient
 from starlette.testclient import WebSocketTestSession
 from starlette.websockets import WebSocketDisconnect
-from support.ws import receive_within
+from support.ws import receive_within, refusal
 
 from server.settings import Settings
 
@@ -108,7 +108,6 @@ def close_within(ws: WebSocketTestSession, timeout_s: float = WAIT_S) -> tuple[i
 
 
 def refused(client: TestClient, url: str, **kwargs: Any) -> WebSocketDisconnect:
-    """Open ``url`` expecting the server to refuse the handshake; returns the refusal."""
-    with pytest.raises(WebSocketDisconnect) as refusal, client.websocket_connect(url, **kwargs):
-        pass
-    return refusal.value
+    """Open ``url`` expecting the server to refuse it (accepted, then closed at once with a code);
+    returns the refusal."""
+    return refusal(client, url, **kwargs)

@@ -23,7 +23,7 @@ def _launched_nodes(lab: LabClient) -> list[int]:
 def test_websocket_cross_site_origin_refused(rocket_lab: LabClient, url: str, origin: str) -> None:
     refusal = refused(rocket_lab.http, url, headers={"origin": origin})
 
-    assert refusal.code == CloseCode.POLICY_VIOLATION
+    assert refusal.code == CloseCode.FORBIDDEN
     assert "cross-site origin" in refusal.reason
 
 
@@ -69,7 +69,7 @@ def test_foreign_host_refused_421_on_reads_and_writes(rocket_lab: LabClient, hos
 def test_websocket_foreign_host_refused(rocket_lab: LabClient, host: str) -> None:
     refusal = refused(rocket_lab.http, "/ws/keys", headers={"host": host})
 
-    assert refusal.code == CloseCode.POLICY_VIOLATION
+    assert refusal.code == CloseCode.MISDIRECTED
     assert host in refusal.reason
 
 

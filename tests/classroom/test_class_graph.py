@@ -21,7 +21,7 @@ from typing import Any
 import httpx
 import pytest
 import zenoh
-from handshake import handshake_status
+from handshake import handshake_refusal, handshake_status
 from interop.conftest import definitions, service_text
 from mcap.records import Schema as McapSchema
 from mcap_ros2.decoder import DecoderFactory
@@ -29,6 +29,7 @@ from ros_reference import rihs
 from support.app import REPO, App, JsonProcess, free_port, instructor_token
 from websockets.sync.client import connect
 
+from api.errors import CloseCode
 from server.transport.acl import Credentials
 from server.transport.config import ZenohSettings
 from server.transport.session import build_config
@@ -288,14 +289,16 @@ def test_a_setpoint_from_the_class_foxglove_keeps_the_worlds_limits(school: Clas
 def test_the_class_foxglove_port_refuses_a_student_and_another_site(school: Class) -> None:
     port = school.foxglove_port
 
-    def status(path: str, *headers: tuple[str, str], host: str = f"127.0.0.1:{port}") -> int:
-        return asyncio.run(handshake_status(port, path, (("Host", host), *headers)))
+    def refusal(path: str, *headers: tuple[str, str], host: str = f"127.0.0.1:{port}") -> int:
+        return asyncio.run(handshake_refusal(port, path, (("Host", host), *headers)))
 
-    assert status("/") == 401
-    assert status(f"/?token={school.tokens['ada']}") == 401  # a student's token: her world only
-    assert status("/", ("Authorization", f"Bearer {school.tokens['bob']}")) == 401
-    assert status(f"/?token={school.instructor}", ("Origin", "https://evil.example")) == 403
-    assert status(f"/?token={school.instructor}", host="evil.example") == 421  # DNS rebinding
+    assert refusal("/") == CloseCode.UNAUTHORIZED
+    assert refusal(f"/?token={school.tokens['ada']}") == CloseCode.UNAUTHORIZED  # a student's: her world only
+    assert refusal("/", ("Authorization", f"Bearer {school.tokens['bob']}")) == CloseCode.UNAUTHORIZED
+    assert refusal(f"/?token={school.instructor}", ("Origin", "https://evil.example")) == CloseCode.FORBIDDEN
+    assert (
+        refusal(f"/?token={school.instructor}", host="evil.example") == CloseCode.MISDIRECTED
+    )  # DNS rebinding
 
 
 def rosbridge_reply(ws: Any, wanted: Any, what: str) -> dict[str, Any]:
@@ -361,17 +364,21 @@ def test_the_instructors_rosbridge_sees_every_world_and_keeps_its_limits(school:
 def test_the_class_rosbridge_refuses_a_student_and_another_site(school: Class) -> None:
     port, app_port = school.rosbridge_port, school.app.port
 
-    def status(at: int, path: str, *headers: tuple[str, str], host: str | None = None) -> int:
-        return asyncio.run(handshake_status(at, path, (("Host", host or f"127.0.0.1:{at}"), *headers)))
+    def refusal(at: int, path: str, *headers: tuple[str, str], host: str | None = None) -> int:
+        return asyncio.run(handshake_refusal(at, path, (("Host", host or f"127.0.0.1:{at}"), *headers)))
 
-    assert status(port, "/") == 401
-    assert status(port, f"/?token={school.tokens['ada']}") == 401  # a student's token: her world only
-    assert status(port, f"/?token={school.instructor}", ("Origin", "https://evil.example")) == 403
-    assert status(port, f"/?token={school.instructor}", host="evil.example") == 421  # DNS rebinding
+    assert refusal(port, "/") == CloseCode.UNAUTHORIZED
+    assert refusal(port, f"/?token={school.tokens['ada']}") == CloseCode.UNAUTHORIZED  # her world only
+    assert (
+        refusal(port, f"/?token={school.instructor}", ("Origin", "https://evil.example"))
+        == CloseCode.FORBIDDEN
+    )
+    assert refusal(port, f"/?token={school.instructor}", host="evil.example") == CloseCode.MISDIRECTED
     # On the app's own port the path is the instructor's too; a student keeps /rosbridge, her world's.
-    assert status(app_port, f"/class/rosbridge?token={school.tokens['ada']}") == 403
-    assert status(app_port, "/class/rosbridge") == 403
-    assert status(app_port, f"/rosbridge?token={school.tokens['ada']}") == 101
+    assert refusal(app_port, f"/class/rosbridge?token={school.tokens['ada']}") == CloseCode.FORBIDDEN
+    assert refusal(app_port, "/class/rosbridge") == CloseCode.UNAUTHORIZED
+    host = ("Host", f"127.0.0.1:{app_port}")
+    assert asyncio.run(handshake_status(app_port, f"/rosbridge?token={school.tokens['ada']}", (host,))) == 101
 
 
 def test_a_students_login_does_not_reach_the_class_domain(school: Class) -> None:

@@ -10,8 +10,9 @@ from collections.abc import Iterator
 import pytest
 import viser
 from fastapi.testclient import TestClient
-from starlette.websockets import WebSocketDisconnect
+from support.ws import refusal
 
+from api.errors import CloseCode
 from server.app import create_app
 from server.bus import ManualClock
 from server.classroom.class_view import COLUMNS, GONE_COLOR, TILE_M, ClassView, tile_origin
@@ -120,14 +121,8 @@ def test_only_the_instructor_opens_the_class_view(client: TestClient) -> None:
     assert "/static/keys.js" not in page.text  # nothing on it flies a drone
     assert client.get("/instructor/view", headers=auth(student)).status_code == 401
     assert client.get("/instructor/view").status_code == 401
-    with (
-        pytest.raises(WebSocketDisconnect) as refused,
-        client.websocket_connect(
-            "/instructor/view", headers=auth(student), subprotocols=[VISER_PROTOCOL]
-        ) as ws,
-    ):
-        ws.receive_bytes()
-    assert refused.value.code == 1008 and "instructor" in refused.value.reason
+    refused = refusal(client, "/instructor/view", headers=auth(student), subprotocols=[VISER_PROTOCOL])
+    assert refused.code == CloseCode.UNAUTHORIZED and "instructor" in refused.reason
     with client.websocket_connect(
         "/instructor/view", headers=auth(instructor), subprotocols=[VISER_PROTOCOL]
     ) as ws:

@@ -17,13 +17,14 @@ from typing import Any
 import pytest
 import websockets
 from fastapi.testclient import TestClient
-from handshake import handshake_status
+from handshake import handshake_refusal, handshake_status
 from mcap.records import Schema as McapSchema
 from mcap_ros2.decoder import DecoderFactory
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from websockets.asyncio.client import ClientConnection
-from websockets.exceptions import InvalidStatus
+from websockets.exceptions import ConnectionClosed
 
+from api.errors import CloseCode
 from server.app import create_app
 from server.settings import Settings
 
@@ -214,32 +215,39 @@ def test_client_publish_with_a_nan_setpoint_or_wrong_type_is_refused(lab: TestCl
 
 @pytest.mark.parametrize("origin", ["http://evil.example", "null", "https://127.0.0.1.evil.example"])
 def test_a_page_on_another_site_never_connects(lab: TestClient, origin: str) -> None:
-    front = lab.app.state.bridges.foxglove_front  # type: ignore[attr-defined]
-    refused = front.refused
+    server = lab.app.state.bridges.foxglove.server  # type: ignore[attr-defined]
+    refused = server.refused
 
-    async def scenario() -> None:
-        with pytest.raises(InvalidStatus) as caught:
-            await connect(lab, origin=origin)
-        assert caught.value.response.status_code == 403
+    async def scenario() -> ConnectionClosed:
+        async with await connect(lab, origin=origin) as ws:
+            with pytest.raises(ConnectionClosed) as caught:
+                await next_json(ws, "serverInfo")  # nothing comes before the close
+        return caught.value
 
-    run(scenario())
-    assert front.refused == refused + 1
+    closed = run(scenario())
+    assert closed.rcvd is not None and closed.rcvd.code == CloseCode.FORBIDDEN
+    assert "cross-site" in closed.rcvd.reason
+    assert server.refused == refused + 1
 
 
 @pytest.mark.parametrize(
-    ("headers", "status"),
+    ("headers", "code"),
     [
-        ((("Host", "evil.example"),), 421),  # a DNS-rebinding page
-        ((("Host", "rebound.example:8765"), ("Origin", "http://rebound.example:8765")), 421),
-        ((("Host", "127.0.0.1"), ("Host", "evil.example")), 400),
-        ((("Host", "127.0.0.1"),), 101),  # the same handshake with this machine's name goes through
+        ((("Host", "evil.example"),), CloseCode.MISDIRECTED),  # a DNS-rebinding page
+        (
+            (("Host", "rebound.example:8765"), ("Origin", "http://rebound.example:8765")),
+            CloseCode.MISDIRECTED,
+        ),
+        ((("Host", "127.0.0.1"), ("Host", "evil.example")), CloseCode.BAD_REQUEST),
     ],
 )
-def test_a_foreign_or_ambiguous_host_never_reaches_the_sdk(
-    lab: TestClient, headers: tuple[tuple[str, str], ...], status: int
+def test_a_foreign_or_ambiguous_host_is_refused(
+    lab: TestClient, headers: tuple[tuple[str, str], ...], code: int
 ) -> None:
-    headers = (*headers, ("Sec-WebSocket-Protocol", SUBPROTOCOL))
-    assert run(handshake_status(port(lab), "/", headers)) == status
+    protocol = ("Sec-WebSocket-Protocol", SUBPROTOCOL)
+    assert run(handshake_refusal(port(lab), "/", (*headers, protocol))) == code
+    # The same handshake with this machine's name goes through.
+    assert run(handshake_status(port(lab), "/", (("Host", "127.0.0.1"), protocol))) == 101
 
 
 def test_the_pages_own_origin_and_a_client_without_origin_connect(lab: TestClient) -> None:
@@ -249,12 +257,6 @@ def test_the_pages_own_origin_and_a_client_without_origin_connect(lab: TestClien
 
     assert run(scenario(None)) == "serverInfo"
     assert run(scenario(f"http://127.0.0.1:{port(lab)}")) == "serverInfo"
-
-
-def test_the_sdk_server_itself_listens_on_loopback_on_another_port(lab: TestClient) -> None:
-    bridges = lab.app.state.bridges  # type: ignore[attr-defined]
-    assert bridges.foxglove.port != bridges.foxglove_port
-    assert lab.app.state.lab.settings.host == "127.0.0.1"  # type: ignore[attr-defined]
 
 
 def test_tf_of_the_drone_follows_its_gps_pose(tmp_path: Path) -> None:
@@ -277,3 +279,53 @@ def test_tf_of_the_drone_follows_its_gps_pose(tmp_path: Path) -> None:
     t, p = tf.transform.translation, gps.pose.position
     assert (t.x, t.y, t.z) == (p.x, p.y, p.z) and p.z > 0.5
     assert tf.transform.rotation.to_dict() == gps.pose.orientation.to_dict()
+
+
+def test_a_client_message_the_server_does_not_understand_gets_an_error_status_and_changes_nothing(
+    lab: TestClient,
+) -> None:
+    async def scenario() -> tuple[list[str], dict[str, Any]]:
+        async with await connect(lab) as ws:
+            gps = (await channels_until(ws, {"/uav/sensors/gps"}))["/uav/sensors/gps"]
+            errors = []
+            for bad in (
+                "not json",
+                json.dumps({"op": "getParameters", "parameterNames": []}),
+                json.dumps({"op": "subscribe", "subscriptions": [{"id": -1, "channelId": gps["id"]}]}),
+                json.dumps({"op": "subscribe", "subscriptions": [{"id": 1, "channelId": 99999}]}),
+            ):
+                await ws.send(bad)
+                errors.append((await next_json(ws, "status"))["message"])
+            await ws.send(struct.pack("<BI", CLIENT_MESSAGE_DATA, 42) + b"{}")  # a channel never advertised
+            errors.append((await next_json(ws, "status"))["message"])
+            # The same connection still serves: a good subscription's frames arrive.
+            await ws.send(
+                json.dumps({"op": "subscribe", "subscriptions": [{"id": 5, "channelId": gps["id"]}]})
+            )
+            async with asyncio.timeout(READ_S):
+                while not isinstance(frame := await ws.recv(), bytes):
+                    pass
+            return errors, {"sub": struct.unpack_from("<BI", frame)[1]}
+
+    errors, good = run(scenario())
+    assert "JSON" in errors[0] and "getParameters" in errors[1] and "uint32" in errors[2]
+    assert "99999" in errors[3] and "42" in errors[4]
+    assert good["sub"] == 5
+
+
+def test_unsubscribing_the_last_client_drops_the_bus_subscription(lab: TestClient) -> None:
+    node = lab.app.state.bridges.foxglove.node  # type: ignore[attr-defined]
+
+    async def scenario() -> None:
+        async with await connect(lab) as ws:
+            gps = (await channels_until(ws, {"/uav/sensors/gps"}))["/uav/sensors/gps"]
+            await ws.send(
+                json.dumps({"op": "subscribe", "subscriptions": [{"id": 1, "channelId": gps["id"]}]})
+            )
+            await asyncio.to_thread(
+                wait_for, lambda: "/uav/sensors/gps" in node.forwarding, "the subscription"
+            )
+            await ws.send(json.dumps({"op": "unsubscribe", "subscriptionIds": [1]}))
+            await asyncio.to_thread(wait_for, lambda: "/uav/sensors/gps" not in node.forwarding, "its end")
+
+    run(scenario())

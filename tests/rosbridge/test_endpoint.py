@@ -9,9 +9,10 @@ from collections.abc import Iterator
 import pytest
 import websockets
 from fastapi.testclient import TestClient
-from handshake import handshake_status
+from handshake import READ_S, handshake_refusal
 from starlette.websockets import WebSocketDisconnect
-from websockets.exceptions import InvalidStatus
+from support.ws import refusal
+from websockets.exceptions import ConnectionClosed
 
 from api.errors import CloseCode
 from api.rosbridge import MAX_FRAME_BYTES
@@ -66,34 +67,27 @@ def test_rosapi_over_the_endpoint(lab: TestClient) -> None:
 
 
 def test_a_foreign_origin_is_refused_at_the_handshake(lab: TestClient) -> None:
-    with (
-        pytest.raises(WebSocketDisconnect) as refused,
-        lab.websocket_connect("/rosbridge", headers={"origin": "http://evil.example"}),
-    ):
-        pytest.fail("a page on another site got a rosbridge connection")
-    assert refused.value.code == 1008
+    refused = refusal(lab, "/rosbridge", headers={"origin": "http://evil.example"})
+    assert refused.code == CloseCode.FORBIDDEN and "cross-site" in refused.reason
 
 
 @pytest.mark.parametrize("way", ["app", "port"])
 def test_live_server_refuses_a_foreign_origin_on_both_ports(
     rosbridge_server: RosbridgeServer, way: str
 ) -> None:
-    async def attempt() -> int:
-        with pytest.raises(InvalidStatus) as caught:
-            await websockets.connect(rosbridge_server.urls[way], origin="http://evil.example")
-        return int(caught.value.response.status_code)
+    async def attempt() -> int | None:
+        async with websockets.connect(rosbridge_server.urls[way], origin="http://evil.example") as ws:
+            with pytest.raises(ConnectionClosed) as caught:
+                await asyncio.wait_for(ws.recv(), READ_S)
+        return caught.value.rcvd.code if caught.value.rcvd is not None else None
 
-    assert asyncio.run(attempt()) == 403
+    assert asyncio.run(attempt()) == CloseCode.FORBIDDEN
 
 
 @pytest.mark.parametrize(
     ("headers", "app_status", "port_status"),
     [
-        (
-            (("Host", "evil.example"),),
-            403,
-            421,
-        ),  # a DNS-rebinding page: the app refuses every WebSocket with 403
+        ((("Host", "evil.example"),), CloseCode.MISDIRECTED, CloseCode.MISDIRECTED),  # a DNS-rebinding page
         (
             (("Host", "127.0.0.1"), ("Origin", "http://127.0.0.1"), ("Origin", "http://evil.example")),
             400,  # uvicorn itself refuses the second Origin
@@ -104,6 +98,6 @@ def test_live_server_refuses_a_foreign_origin_on_both_ports(
 def test_live_server_refuses_rebinding_and_ambiguous_handshakes(
     rosbridge_server: RosbridgeServer, headers: tuple[tuple[str, str], ...], app_status: int, port_status: int
 ) -> None:
-    app = asyncio.run(handshake_status(rosbridge_server.port, "/rosbridge", headers))
-    port = asyncio.run(handshake_status(rosbridge_server.rosbridge_port, "/", headers))
+    app = asyncio.run(handshake_refusal(rosbridge_server.port, "/rosbridge", headers))
+    port = asyncio.run(handshake_refusal(rosbridge_server.rosbridge_port, "/", headers))
     assert (app, port) == (app_status, port_status)

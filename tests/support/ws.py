@@ -7,8 +7,9 @@ import threading
 from typing import Any
 
 import pytest
-from starlette.testclient import WebSocketTestSession
+from starlette.testclient import TestClient, WebSocketTestSession
 from starlette.types import Message
+from starlette.websockets import WebSocketDisconnect
 
 WAIT_S = 10.0  # generous: a loaded 2-core CI machine; a passing read returns at once
 
@@ -35,3 +36,13 @@ def receive_within(ws: WebSocketTestSession, timeout_s: float = WAIT_S) -> Messa
     if not ok:
         raise value
     return value
+
+
+def refusal(client: TestClient, url: str, **kwargs: Any) -> WebSocketDisconnect:
+    """Open ``url`` expecting the app to refuse it: accepted, then closed at once with a code
+    (api/ws_refusal.py), nothing sent before the close. Returns the close as an exception."""
+    with client.websocket_connect(url, **kwargs) as ws:
+        message = receive_within(ws)
+        if message["type"] != "websocket.close":
+            pytest.fail(f"{url} was served: the app sent {message['type']} instead of a close")
+        return WebSocketDisconnect(message.get("code", 1000), message.get("reason") or "")

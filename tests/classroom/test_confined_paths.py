@@ -1,0 +1,135 @@
+"""On a class server, bag and launch paths are names inside the world's own folders: a student
+plays their own bag and launches the class's packages, never another world's bag or a file by its
+path on the server, and a refusal reads the same whether or not the path exists."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from fastapi.testclient import TestClient
+
+from classroom.test_classroom_api import auth, class_settings, join
+from server.app import create_app
+from server.bus import ManualClock
+from server.packages import HERE as BUILTIN_PACKAGES
+from server.settings import Settings
+
+MY_LAUNCH = """<launch>
+  <node pkg="sensor_simulation" exec="pressure.py" name="my_pressure"/>
+</launch>
+"""
+
+
+@pytest.fixture
+def folders(tmp_path: Path) -> tuple[Path, Path]:
+    workspace = tmp_path / "workspace"
+    (workspace / "src" / "mine" / "launch").mkdir(parents=True)
+    (workspace / "src" / "mine" / "launch" / "mine.launch").write_text(MY_LAUNCH)
+    return tmp_path / "bags", workspace
+
+
+@pytest.fixture
+def client(folders: tuple[Path, Path]) -> Iterator[TestClient]:
+    bags, workspace = folders
+    settings = class_settings(
+        bag_dir=bags, workspace=workspace, world_writes_hz=1000.0, world_writes_burst=1000
+    )
+    with TestClient(create_app(settings, ManualClock(1_000.0))) as test_client:
+        yield test_client
+
+
+def record_bag(client: TestClient, token: str, name: str) -> None:
+    started = client.post(
+        "/api/bag/recordings", headers=auth(token), json={"topics": ["/countdown"], "name": name}
+    )
+    assert started.status_code == 201, started.text
+    stopped = client.post(f"/api/bag/recordings/{name}/stop", headers=auth(token))
+    assert stopped.status_code == 200, stopped.text
+
+
+def players(client: TestClient, token: str) -> int:
+    world = client.get("/api/classroom/me", headers=auth(token)).json()["world"]
+    return len(client.app.state.classroom.worlds[world].lab.bags.players)  # type: ignore[attr-defined]
+
+
+def same_refusal(answers: dict[str, tuple[int, str]]) -> None:
+    """Every answer 404, with the same text once the path it names is taken out."""
+    texts = {(status, text.replace(repr(path), "<path>")) for path, (status, text) in answers.items()}
+    assert len(texts) == 1, answers
+    assert next(iter(texts))[0] == 404
+
+
+def test_a_student_plays_their_own_bag_and_no_other_path(
+    client: TestClient, folders: tuple[Path, Path]
+) -> None:
+    bags, _ = folders
+    ada, bob = join(client, "Ada"), join(client, "Bob")
+    record_bag(client, bob, "bobs")
+    record_bag(client, ada, "adas")
+    bobs_folder = bags / "bob" / "bobs"
+    assert any(bobs_folder.glob("*.mcap"))  # what a student reached by its path before
+    tried = [
+        str(bobs_folder), str(next(bobs_folder.glob("*.mcap"))), "../bob/bobs", "bobs",
+        "/etc", "/etc/hostname", "/no/such/folder", "../../nothing-here", str(bags / "bob" / "missing"),
+    ]  # fmt: skip
+    answers = {}
+    for path in tried:
+        reply = client.post("/api/bag/players", headers=auth(ada), json={"bag": path})
+        answers[path] = (reply.status_code, reply.json()["detail"])
+    same_refusal(answers)
+    assert players(client, ada) == 0
+
+    own = client.post("/api/bag/players", headers=auth(ada), json={"bag": "adas"})
+    assert own.status_code == 201, own.text
+    assert players(client, ada) == 1
+
+
+def test_a_student_launches_the_class_packages_and_no_other_path(client: TestClient) -> None:
+    ada = join(client, "Ada")
+    builtin = BUILTIN_PACKAGES / "sensor_simulation" / "launch" / "sensors.launch"
+    refused = {
+        str(builtin): None, "/etc/hostname": None, "/no/such.launch": None, "../workspace/src/mine/launch/mine.launch": None,
+        "src/mine/launch/missing.launch": None, "../../etc/hostname": "sensor_simulation",
+        "../launch/sensors.launch": "sensor_simulation", "missing.launch": "sensor_simulation",
+    }  # fmt: skip
+    answers = {}
+    for path, package in refused.items():
+        body = {"file": path} if package is None else {"file": path, "package": package}
+        reply = client.post("/api/launch", headers=auth(ada), json=body)
+        answers[path] = (reply.status_code, reply.json()["detail"])
+    same_refusal(answers)
+    assert client.get("/api/launches", headers=auth(ada)).json() == []
+
+    for body in (
+        {"package": "sensor_simulation", "file": "sensors.launch"},
+        {"package": "mine", "file": "mine.launch"},
+        {"file": "src/mine/launch/mine.launch"},
+    ):
+        reply = client.post("/api/launch", headers=auth(ada), json=body)
+        assert reply.status_code == 201, (body, reply.text)
+    assert len(client.get("/api/launches", headers=auth(ada)).json()) == 3
+
+
+def test_a_single_lab_on_loopback_keeps_paths_of_its_users_files(folders: tuple[Path, Path]) -> None:
+    bags, workspace = folders
+    settings = Settings(
+        launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, allowed_hosts=("testserver",),
+        bag_dir=bags, workspace=workspace,
+    )  # fmt: skip
+    assert not settings.confines_paths
+    with TestClient(create_app(settings, ManualClock(1_000.0))) as lab:
+        elsewhere = workspace / "src" / "mine" / "launch" / "mine.launch"
+        assert lab.post("/api/launch", json={"file": str(elsewhere)}).status_code == 201
+        assert (
+            lab.post("/api/bag/recordings", json={"topics": ["/countdown"], "name": "b"}).status_code == 201
+        )
+        assert lab.post("/api/bag/recordings/b/stop").status_code == 200
+        assert lab.post("/api/bag/players", json={"bag": str((bags / "b").resolve())}).status_code == 201
+
+
+def test_a_lab_beyond_loopback_confines_paths_as_a_class_does() -> None:
+    assert Settings(host="0.0.0.0", token="t").confines_paths
+    assert Settings(classroom=True).confines_paths
+    assert not Settings(host="127.0.0.2").confines_paths
