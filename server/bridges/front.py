@@ -2,9 +2,12 @@
 
 It listens where clients connect (127.0.0.1:8765 by default), reads the opening handshake,
 applies the app's own rules (api/security.py: a Host that names this machine, no Origin of
-another site) and only then joins the client to the upstream server on loopback, byte for
+another site, the token; api/canonical_path.py: a path as sent) and only then joins the client to the upstream server on loopback, byte for
 byte in both directions. A refused handshake gets an HTTP 403 or 421 naming the reason, and
 never reaches upstream. Nothing here parses WebSocket frames, so the protocol stays the SDK's.
+
+What is checked is what upstream reads: a head that two parsers could read differently (a bare
+line break, two Hosts or Authorizations, two ``token`` parameters) is refused, not guessed at.
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ import logging
 from collections.abc import Iterable
 from urllib.parse import parse_qs, urlsplit
 
+from api.canonical_path import path_problem
 from api.security import bearer_token, host_allowed, origin_allowed, token_matches
 from server.tasks import cancel_and_wait
 
@@ -22,7 +26,7 @@ log = logging.getLogger("bridges.front")
 MAX_HEAD_BYTES = 16 * 1024
 HEAD_TIMEOUT_S = 10.0
 CHUNK_BYTES = 64 * 1024
-SINGLE_HEADERS = frozenset({"host", "origin", "upgrade"})
+SINGLE_HEADERS = frozenset({"host", "origin", "upgrade", "authorization"})
 
 
 class HandshakeRefused(Exception):
@@ -38,6 +42,9 @@ def parse_head(head: bytes) -> tuple[str, dict[str, str]]:
         text = head.decode("latin-1")
     except UnicodeDecodeError:  # pragma: no cover - latin-1 decodes any byte
         raise HandshakeRefused(400, "unreadable request") from None
+    unfolded = text.replace("\r\n", "")
+    if "\x00" in text or "\n" in unfolded or "\r" in unfolded:  # parsers differ on these: refuse
+        raise HandshakeRefused(400, "a bare line break or NUL in the request head")
     request_line, *lines = text.split("\r\n")
     headers: dict[str, str] = {}
     for line in lines:
@@ -66,6 +73,9 @@ def check_handshake(
         raise HandshakeRefused(400, "only a WebSocket handshake (GET ... HTTP/1.1) is served here")
     if headers.get("upgrade", "").lower() != "websocket":
         raise HandshakeRefused(426, "this port speaks WebSocket only")
+    problem = path_problem(parts[1].split("?", 1)[0].encode("latin-1"))
+    if problem is not None:
+        raise HandshakeRefused(400, f"{problem}: send the path in canonical form")
     host = headers.get("host")
     if not host_allowed(host, accepted_hosts):
         raise HandshakeRefused(421, f"host {host!r} is not a name of this server")
@@ -78,7 +88,10 @@ def check_handshake(
 def _carries_token(target: str, headers: dict[str, str], token: str) -> bool:
     given = bearer_token(headers.get("authorization"))
     if given is None:
-        given = next(iter(parse_qs(urlsplit(target).query).get("token", [])), None)
+        tokens = parse_qs(urlsplit(target).query).get("token", [])
+        if len(tokens) > 1:  # upstream may read another one than the one checked here
+            raise HandshakeRefused(400, "more than one token parameter")
+        given = tokens[0] if tokens else None
     return token_matches(given, token)
 
 
