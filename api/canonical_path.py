@@ -5,8 +5,8 @@ call to a world worker) could be checked as one route and answered as another: t
 would authorise ``/api/./classroom/worlds`` as a world's call and a hop behind it would answer
 ``/api/classroom/worlds``. So such a path is refused, with a 400 that names what is wrong, before
 anything reads it: dot segments (``.``, ``..``), empty segments (``//``), backslashes, and
-percent-encoded dots, slashes, backslashes, percent signs and control characters. The console
-gets one warning line per refusal (the path only: a token is never in it).
+percent-encoded dots, slashes and backslashes (which some servers decode into separators). The
+console gets one warning line per refusal (the path only, escaped: a token is never in it).
 """
 
 from __future__ import annotations
@@ -22,9 +22,9 @@ from .errors import CloseCode, close_reason
 log = logging.getLogger("api.paths")
 BAD_REQUEST = 400
 LOGGED_PATH_CHARS = 200
-# Percent-encodings a server decodes into something that changes the path's segments:
-# %2e '.', %2f '/', %5c '\', %25 '%' (a second decoding), and control characters.
-_ENCODED = re.compile(rb"%(2e|2f|5c|25|[01][0-9a-f]|7f)", re.IGNORECASE)
+# Percent-encodings a normaliser decodes into something that changes the path's segments:
+# %2e '.' (then a dot segment), %2f '/' and %5c '\' (a separator to some servers).
+_ENCODED = re.compile(rb"%(2e|2f|5c)", re.IGNORECASE)
 _CONTROL = re.compile(rb"[\x00-\x20\x7f]")
 
 

@@ -43,7 +43,6 @@ NOT_CANONICAL = (
     "/api/.%2Fclassroom/worlds",
     "/api\\classroom/worlds",
     "/api/%5cclassroom/worlds",
-    "/api/%252e/classroom/worlds",
     "/api/classroom/worlds/.",
 )
 
