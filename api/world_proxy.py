@@ -7,8 +7,9 @@ worker that hosts it, naming the world. The student's cookie and token never lea
 server: a student's call goes on with a credential for their world alone
 (``world_call_token``), which the worker answers as that world's student; only the instructor's
 own calls go on as the instructor. The path goes on exactly as it was checked: one a normaliser
-would change never gets here (api/canonical_path.py), and the URL sent must carry the same path. A worker that does not answer is a 502 (HTTP) or close 1011 (WebSocket)
-that says so; a closed world's socket keeps its worker's close code (1012 on a reset).
+would change never gets here (api/canonical_path.py), and the URL sent must carry the same path.
+A worker that does not answer is a 502 (HTTP) or close 1011 (WebSocket) that says so; a closed
+world's socket keeps its worker's close code (1012 on a reset).
 """
 
 from __future__ import annotations
