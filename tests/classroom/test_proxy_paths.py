@@ -215,6 +215,10 @@ def test_a_student_cannot_host_a_world_on_the_worker(klass: Class) -> None:
     reply = klass.raw("POST", "/api/./classroom/host", klass.tokens["ada"], body)
     assert reply.status == 400, reply.text
     assert set(klass.worker_worlds()) == before  # no world was made
+    # A world is hosted there when the class server asks, for a student who joins.
+    joined = httpx.post(f"{klass.app.url}/api/classroom/join", json={"name": "Dee", "code": CODE}, timeout=60)
+    assert joined.status_code == 201, joined.text
+    assert set(klass.worker_worlds()) == before | {"dee"}
 
 
 def test_a_student_cannot_broadcast_to_every_drone(klass: Class) -> None:
