@@ -25,7 +25,8 @@ NO_ANSWER = 504
 BAD_GATEWAY = 502
 NO_ROOM = 503
 _DESCRIPTIONS = {
-    400: "the request is malformed",
+    400: "the request is malformed: a path a normaliser would change (./, ../, //, a backslash, "
+    "%2e, %2f, %5c), or what the detail names",
     401: "no valid token (a class server, or a lab started with --token): the lab_token cookie or "
     "Authorization: Bearer",
     403: "refused: another site's page may not write (Origin), or the token does not reach this "
@@ -44,7 +45,7 @@ _DESCRIPTIONS = {
     503: "no place in the class has room for another world, or the world is moving to another worker",
     504: "the service did not answer in time (its server is gone, busy or crashed)",
 }
-_ALWAYS = (421, 500)  # any route: the Host guard, and a bug
+_ALWAYS = (400, 421, 500)  # any route: the path check, the Host guard, and a bug
 _WRITES = (400, 403, 413, 422)  # any route with a JSON body: the Origin guard, size, strict JSON
 
 

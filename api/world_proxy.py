@@ -3,9 +3,13 @@
 The class server keeps the student's page, the join form, the instructor's page and every
 access check (token, world, write limit) for itself; what acts on a world (``/api/...``, the
 page's views, and every WebSocket: keys, echo, rosbridge, the 3D view) is passed on to the
-worker that hosts it, as its instructor, naming the world. The student's cookie and token never
-leave the class server. A worker that does not answer is a 502 (HTTP) or close 1011 (WebSocket)
-that says so; a closed world's socket keeps its worker's close code (1012 on a reset).
+worker that hosts it, naming the world. The student's cookie and token never leave the class
+server: a student's call goes on with a credential for their world alone
+(``world_call_token``), which the worker answers as that world's student; only the instructor's
+own calls go on as the instructor. The path goes on exactly as it was checked: one a normaliser
+would change never gets here (api/canonical_path.py), and the URL sent must carry the same path.
+A worker that does not answer is a 502 (HTTP) or close 1011 (WebSocket) that says so; a closed
+world's socket keeps its worker's close code (1012 on a reset).
 """
 
 from __future__ import annotations
@@ -18,12 +22,12 @@ from fastapi import WebSocket, status
 from starlette.requests import HTTPConnection
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from server.classroom import Classroom, ClassroomError, World
+from server.classroom import Classroom, ClassroomError, Grant, World
 from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH
-from server.classroom.workers import WorkerDirectory, WorkerRef
+from server.classroom.workers import WorkerDirectory, WorkerRef, world_call_token
 
 from .deps import SAFE_METHODS, WORLD_HEADER, token_of
-from .errors import close_reason
+from .errors import CloseCode, close_reason
 from .strict_json import SafeJSONResponse
 from .ws_relay import relay
 
@@ -34,13 +38,19 @@ DROP_REQUEST = frozenset({
 })  # fmt: skip
 DROP_RESPONSE = frozenset({"connection", "keep-alive", "transfer-encoding", "set-cookie", "server", "date"})
 WS_OPEN_TIMEOUT_S = 10.0
+# The class server's own sockets: the instructor's rosbridge on the class domain, the class view.
+CLASS_SOCKETS = frozenset({CLASS_ROSBRIDGE_PATH, "/instructor/view"})
+
+
+class PathChanged(ValueError):
+    """The URL to a worker would carry another path than the one that was checked."""
 
 
 def passed_on(scope: Scope) -> bool:
     """Whether a request acts on a world (and so goes where the world runs)."""
     path: str = scope["path"]
     if scope["type"] == "websocket":
-        return path != CLASS_ROSBRIDGE_PATH  # the instructor's, on the class's own domain
+        return path not in CLASS_SOCKETS
     if path.startswith("/api/classroom/") or path == "/api/classroom":
         return False
     return path.startswith("/api/") or path == "/page/views"
@@ -81,10 +91,10 @@ class WorldProxyMiddleware:
                     scope, receive, send
                 )
             return
-        if scope["type"] == "websocket":
-            await _forward_ws(world, world.worker, scope, receive, send)
-            return
         assert grant is not None
+        if scope["type"] == "websocket":
+            await _forward_ws(directory, grant, world, world.worker, scope, receive, send)
+            return
         if scope["method"] not in SAFE_METHODS and not grant.is_instructor and not world.writes.take():
             detail = (f"too many requests for world {world.name!r}: at most "
                       f"{classroom.settings.world_writes_hz:g} writes a second")  # fmt: skip
@@ -92,25 +102,38 @@ class WorldProxyMiddleware:
                 scope, receive, send
             )
             return
-        await _forward_http(directory, world, world.worker, scope, receive, send)
+        await _forward_http(directory, grant, world, world.worker, scope, receive, send)
 
 
-def _target(ref: WorkerRef, scope: Scope, websocket: bool) -> str:
+def target(ref: WorkerRef, scope: Scope, websocket: bool) -> str:
+    """The worker's URL for this request: the path as sent, the query without the caller's token
+    and world. PathChanged if the URL, as a client parses it, would name another path."""
     raw_path = scope.get("raw_path")
     path = raw_path.decode("latin-1") if isinstance(raw_path, bytes) else scope["path"]
     query = [(k, v) for k, v in parse_qsl(scope["query_string"].decode("latin-1"), keep_blank_values=True)
              if k not in ("token", "world")]  # fmt: skip
     base = ref.url.replace("http", "ws", 1) if websocket else ref.url
-    return base + path + (f"?{urlencode(query)}" if query else "")
+    url = base + path + (f"?{urlencode(query)}" if query else "")
+    if httpx.URL(url).raw_path.split(b"?", 1)[0] != path.encode("latin-1"):
+        raise PathChanged(f"the path {path!r} would reach the world worker as another path")
+    return url
 
 
-def _headers(scope: Scope, ref: WorkerRef, world: World) -> list[tuple[str, str]]:
+def credential(directory: WorkerDirectory, grant: Grant, world: World, ref: WorkerRef) -> str:
+    """What a call goes on to the worker with: the instructor's calls as the instructor, a
+    student's with a credential for their own world only."""
+    if grant.is_instructor:
+        return ref.token
+    return world_call_token(directory.class_token, ref.id, world.name)
+
+
+def _headers(scope: Scope, token: str, world: World) -> list[tuple[str, str]]:
     kept = [
         (k.decode("latin-1"), v.decode("latin-1"))
         for k, v in scope["headers"]
         if k.decode("latin-1").lower() not in DROP_REQUEST and not k.lower().startswith(b"sec-websocket")
     ]
-    return [*kept, ("authorization", f"Bearer {ref.token}"), (WORLD_HEADER, world.name)]
+    return [*kept, ("authorization", f"Bearer {token}"), (WORLD_HEADER, world.name)]
 
 
 async def _read_body(receive: Receive) -> bytes | None:
@@ -125,17 +148,24 @@ async def _read_body(receive: Receive) -> bytes | None:
 
 
 async def _forward_http(
-    directory: WorkerDirectory, world: World, ref: WorkerRef, scope: Scope, receive: Receive, send: Send
+    directory: WorkerDirectory,
+    grant: Grant,
+    world: World,
+    ref: WorkerRef,
+    scope: Scope,
+    receive: Receive,
+    send: Send,
 ) -> None:
+    try:
+        url = target(ref, scope, websocket=False)
+    except PathChanged as exc:
+        await SafeJSONResponse({"detail": str(exc)}, status.HTTP_400_BAD_REQUEST)(scope, receive, send)
+        return
     body = await _read_body(receive)  # the guard outside has already capped its size
     if body is None:
         return
-    request = directory.http.build_request(
-        scope["method"],
-        _target(ref, scope, websocket=False),
-        headers=_headers(scope, ref, world),
-        content=body,
-    )
+    sent = _headers(scope, credential(directory, grant, world, ref), world)
+    request = directory.http.build_request(scope["method"], url, headers=sent, content=body)
     try:
         response = await directory.http.send(request, stream=True)
     except httpx.HTTPError as exc:
@@ -156,13 +186,27 @@ async def _forward_http(
         await response.aclose()
 
 
-async def _forward_ws(world: World, ref: WorkerRef, scope: Scope, receive: Receive, send: Send) -> None:
+async def _forward_ws(
+    directory: WorkerDirectory,
+    grant: Grant,
+    world: World,
+    ref: WorkerRef,
+    scope: Scope,
+    receive: Receive,
+    send: Send,
+) -> None:
     websocket = WebSocket(scope, receive, send)
     subprotocols = scope.get("subprotocols") or None
-    headers = [(k, v) for k, v in _headers(scope, ref, world) if k.lower() != "user-agent"]
+    token = credential(directory, grant, world, ref)
+    headers = [(k, v) for k, v in _headers(scope, token, world) if k.lower() != "user-agent"]
+    try:
+        url = target(ref, scope, websocket=True)
+    except PathChanged as exc:
+        await websocket.close(CloseCode.BAD_REQUEST, close_reason(str(exc)))
+        return
     try:
         upstream = await websockets.connect(
-            _target(ref, scope, websocket=True),
+            url,
             subprotocols=subprotocols,
             additional_headers=headers,
             max_size=None,

@@ -10,6 +10,7 @@ from fastapi import FastAPI
 from fastapi.staticfiles import StaticFiles
 
 from api import build_router
+from api.canonical_path import CanonicalPathMiddleware
 from api.errors import ErrorMiddleware, register_error_handlers
 from api.openapi import use_token_security
 from api.security import GuardMiddleware
@@ -69,8 +70,9 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
     app.include_router(tools_router)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     register_error_handlers(app)
-    # Added innermost first: a request meets the error net, then the guard, then strict JSON, then
-    # (on a class server) the pass to the world worker that hosts the caller's world.
+    # Added innermost first: a request meets the error net, then the path check (as sent, never
+    # normalised), then the guard, then strict JSON, then (on a class server) the pass to the world
+    # worker that hosts the caller's world.
     app.add_middleware(WorldProxyMiddleware)
     app.add_middleware(StrictJsonMiddleware)
     app.add_middleware(
@@ -79,6 +81,7 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         allowed_origins=settings.allowed_origins,
         max_body_bytes=settings.max_body_bytes,
     )
+    app.add_middleware(CanonicalPathMiddleware)
     app.add_middleware(ErrorMiddleware)
     app.add_middleware(WebSocketRefusalMiddleware)  # outermost: every refused WebSocket gets its code
     return app

@@ -2,11 +2,15 @@
 
 It listens where clients connect (``--rosbridge-port``), reads the opening handshake, applies the
 app's own rules (api/security.py: a Host that names this machine, no Origin of another site, the
-token) and only then joins the client to the app's port, byte for byte in both directions.
+token; api/canonical_path.py: a path as sent) and only then joins the client to the app's port,
+byte for byte in both directions.
 A refused WebSocket handshake completes and is closed at once with the close code that names why
 (4401, 4403, 4421: api/ws_refusal.py's rule for every route), and never reaches upstream; a
 request that is no WebSocket handshake gets an HTTP 400 or 426. Nothing here parses the frames
 that follow, so the protocol stays upstream's. ``check_handshake`` is also the Foxglove server's.
+
+What is checked is what upstream reads: a head that two parsers could read differently (a bare
+line break, two Hosts or Authorizations, two ``token`` parameters) is refused, not guessed at.
 """
 
 from __future__ import annotations
@@ -20,6 +24,7 @@ import struct
 from collections.abc import Iterable
 from urllib.parse import parse_qs, urlsplit
 
+from api.canonical_path import path_problem
 from api.close_codes import REFUSAL_FOR_STATUS, CloseCode
 from api.security import bearer_token, host_allowed, origin_allowed, token_matches
 from server.tasks import cancel_and_wait
@@ -28,7 +33,7 @@ log = logging.getLogger("bridges.front")
 MAX_HEAD_BYTES = 16 * 1024
 HEAD_TIMEOUT_S = 10.0
 CHUNK_BYTES = 64 * 1024
-SINGLE_HEADERS = frozenset({"host", "origin", "upgrade"})
+SINGLE_HEADERS = frozenset({"host", "origin", "upgrade", "authorization"})
 WS_GUID = "258EAFA5-E914-47DA-95CA-C5AB0DC85B11"  # RFC 6455's, for Sec-WebSocket-Accept
 CLOSE_WAIT_S = 2.0  # how long a refused client has to answer the close
 
@@ -46,6 +51,9 @@ def parse_head(head: bytes) -> tuple[str, dict[str, str]]:
         text = head.decode("latin-1")
     except UnicodeDecodeError:  # pragma: no cover - latin-1 decodes any byte
         raise HandshakeRefused(400, "unreadable request") from None
+    unfolded = text.replace("\r\n", "")
+    if "\x00" in text or "\n" in unfolded or "\r" in unfolded:  # parsers differ on these: refuse
+        raise HandshakeRefused(400, "a bare line break or NUL in the request head")
     request_line, *lines = text.split("\r\n")
     items: list[tuple[str, str]] = []
     for line in lines:
@@ -82,6 +90,9 @@ def check_handshake(
         raise HandshakeRefused(400, "only a WebSocket handshake (GET ... HTTP/1.1) is served here")
     if headers.get("upgrade", "").lower() != "websocket":
         raise HandshakeRefused(426, "this port speaks WebSocket only")
+    problem = path_problem(parts[1].split("?", 1)[0].encode("latin-1"))
+    if problem is not None:
+        raise HandshakeRefused(400, f"{problem}: send the path in canonical form")
     host = headers.get("host")
     if not host_allowed(host, accepted_hosts):
         raise HandshakeRefused(421, f"host {host!r} is not a name of this server")
@@ -94,7 +105,10 @@ def check_handshake(
 def _carries_token(target: str, headers: dict[str, str], token: str) -> bool:
     given = bearer_token(headers.get("authorization"))
     if given is None:
-        given = next(iter(parse_qs(urlsplit(target).query).get("token", [])), None)
+        tokens = parse_qs(urlsplit(target).query).get("token", [])
+        if len(tokens) > 1:  # upstream may read another one than the one checked here
+            raise HandshakeRefused(400, "more than one token parameter")
+        given = tokens[0] if tokens else None
     return token_matches(given, token)
 
 

@@ -30,7 +30,14 @@ from server.transport.config import ZenohSettings, endpoint_host
 from .errors import ClassroomError
 from .load import Choice, CpuMeter, choose, machine_id
 from .tokens import Grant, TokenSigner
-from .workers import WATCH_PERIOD_S, Silence, WorkerDirectory, WorkerRef, worker_api_token
+from .workers import (
+    WATCH_PERIOD_S,
+    Silence,
+    WorkerDirectory,
+    WorkerRef,
+    worker_api_token,
+    world_of_call_token,
+)
 
 if TYPE_CHECKING:
     from server.transport.domain_bridge import DomainBridge
@@ -186,6 +193,11 @@ class Classroom:
         ):
             self.heard_from_class()
             return self.instructor  # the class server, calling its worker
+        if (forwarded := self._forwarded_world(token)) is not None:
+            self.heard_from_class()
+            world = self.worlds.get(forwarded)
+            # A student's call, forwarded by the class server: that world's student, nothing more.
+            return Grant("student", world.name, world.student, world.token_id) if world is not None else None
         grant = self.signer.verify(token)
         if grant is None or grant.token_id in self._revoked:
             return None
@@ -193,6 +205,11 @@ class Classroom:
             return grant
         world = self.worlds.get(grant.world or "")
         return grant if world is not None and world.token_id == grant.token_id else None
+
+    def _forwarded_world(self, token: str) -> str | None:
+        """On a worker: the world a class server's forwarded credential is for (None: not one)."""
+        worker = self.settings.worker
+        return world_of_call_token(worker.class_token, worker.id, token) if worker is not None else None
 
     def world_for(self, grant: Grant, asked: str | None) -> World:
         """The world a call acts on: a student's own (naming another is 403); the instructor's

@@ -14,7 +14,9 @@ no hello for its ``--orphan-timeout`` (shorter) frees its worlds, as nobody can 
 Trust comes from the instructor's token, which both sides know and which never crosses the wire:
 the class server seals its hellos with it and a worker seals its replies (so a stranger on the
 router can neither pose as a worker nor learn what one hosts), and the class server calls the
-worker's API with a token derived from it and the worker's id.
+worker's API with a token derived from it and the worker's id: as the instructor for its own
+calls and the instructor's, and with a credential for the one world a student's call is for
+(``world_call_token``), which the worker answers as that world's student and nothing more.
 """
 
 from __future__ import annotations
@@ -36,6 +38,8 @@ MAX_REPLY_BYTES = 16 * 1024
 HELLO_TIMEOUT_S = 3.0  # an upper bound: a get ends once every worker has answered
 WATCH_PERIOD_S = 2.0  # how often the class server says hello to its workers
 WORKER_CALL_TIMEOUT_S = 30.0  # starting a world with the whole lab takes a few seconds
+WORLD_CALL_PREFIX = "world:"
+MAX_WORLD_CALL_TOKEN_CHARS = 256
 
 
 def control_key(worker_id: str) -> str:
@@ -99,8 +103,27 @@ class Silence:
 
 
 def worker_api_token(class_token: str, worker_id: str) -> str:
-    """The token the class server calls a worker's API with: derived, never sent in a hello."""
+    """The token the class server calls a worker's API with as its instructor: derived, never sent
+    in a hello, and used for the class server's own calls and the instructor's, never a student's."""
     return hmac.new(class_token.encode(), f"world-worker:{worker_id}".encode(), hashlib.sha256).hexdigest()
+
+
+def world_call_token(class_token: str, worker_id: str, world: str) -> str:
+    """The credential a student's call to their world on a worker is forwarded with: it names that
+    one world (``world:<name>:<mac>``), and the worker answers it as that world's student only."""
+    mac = hmac.new(class_token.encode(), f"world-worker:{worker_id}:world:{world}".encode(), hashlib.sha256)
+    return f"{WORLD_CALL_PREFIX}{world}:{mac.hexdigest()}"
+
+
+def world_of_call_token(class_token: str, worker_id: str, token: str) -> str | None:
+    """The world a genuine ``world_call_token`` for this worker is for; None for anything else."""
+    if not token.startswith(WORLD_CALL_PREFIX) or len(token) > MAX_WORLD_CALL_TOKEN_CHARS:
+        return None
+    world, _, _mac = token[len(WORLD_CALL_PREFIX) :].rpartition(":")
+    if not world:
+        return None
+    expected = world_call_token(class_token, worker_id, world)
+    return world if hmac.compare_digest(token.encode(), expected.encode()) else None
 
 
 @dataclass(frozen=True)
