@@ -110,6 +110,11 @@ class ClassGraph(BaseModel):
     samples_in: int = Field(description="samples passed from the class domain into worlds")
     dropped: int = Field(description="samples dropped (no rmw_zenoh attachment, or a watcher too slow)")
     calls: int = Field(description="service calls in the class domain answered by a world's server")
+    names_refused: dict[str, int] = Field(
+        description="by world, its entities not bridged because their name is not a fully qualified ROS "
+        "name (or their type is not a plain type name): 'm/uav/sensors/gps' in world ada would be /adam/...",
+        examples=[{"ada": 1}],
+    )
     calls_refused: int = Field(
         description="service calls refused: no rmw_zenoh attachment, a key pattern instead of one service, "
         "or too many waiting on one world"
@@ -211,6 +216,7 @@ async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
         samples_in=bridge.stats.into,
         dropped=bridge.stats.dropped,
         calls=bridge.stats.calls,
+        names_refused=bridge.refused_names(),
         calls_refused=bridge.stats.refused,
     )
 
