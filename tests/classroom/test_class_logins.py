@@ -113,17 +113,19 @@ def setpoint(x: float, y: float, z: float, seq: int) -> tuple[bytes, bytes]:
 
 
 def test_a_removed_students_login_is_dropped_refused_and_useless_in_the_next_world(school: Class) -> None:
+    _, bea = school.join("Bea")  # a student who stays: her session comes back by itself
     eve_world, eve = school.join("Eve")
     old = login_of(eve)
-    heard_before = Heard()
-    with open_on(school, old) as session:
+    heard_before, heard_bea = Heard(), Heard()
+    with open_on(school, old) as session, open_on(school, login_of(bea)) as bea_session:
         session.declare_subscriber(gps_key(eve["domain_id"]), heard_before)
+        bea_session.declare_subscriber(gps_key(bea["domain_id"]), heard_bea)
         wait_until(lambda: heard_before.count > 0, "Eve's own login hearing her GPS")  # it works while hers
         reply = school.call("DELETE", f"/api/classroom/worlds/{eve_world}")
         assert reply.status_code == 200, reply.text
         # The router dropped her open session: it has no router any more, and hears nothing more.
         wait_until(lambda: not session.info.routers_zid(), "the router dropping Eve's open session")
-        cut = heard_before.count
+        cut, bea_cut = heard_before.count, heard_bea.count
         with pytest.raises(zenoh.ZError):  # and refuses her login from now on
             open_on(school, old).close()
         finn_world, finn = school.join("Finn")
@@ -158,6 +160,9 @@ def test_a_removed_students_login_is_dropped_refused_and_useless_in_the_next_wor
             health = school.call("GET", "/api/health", school.tokens[finn_world]).json()["zenoh"]
             assert health["received"] - received <= seq  # his setpoints only, none of Eve's twenty
         assert heard_before.count == cut and not session.info.routers_zid()
+        wait_until(lambda: heard_bea.count > bea_cut, "Bea's session back on the router, hearing her GPS")
+        wait_until(lambda: "bea" in school.call("GET", "/api/classroom/graph").json()["topics"],
+                   "Bea's world in the class graph again")  # fmt: skip
 
 
 def test_a_name_without_its_leading_slash_does_not_pass_for_another_worlds_topic(school: Class) -> None:
