@@ -726,6 +726,8 @@ class Classroom:
         world = self.worlds.pop(name, None)
         if world is None:
             raise ClassroomError(404, f"no world named {name!r}")
+        if self.router is not None:  # at once: a join while the world ends must not get its domain
+            self._revoking.add(world.domain_id)
         self._revoked.add(world.token_id)
         if self.class_graph is not None:
             self.class_graph.drop_world(world.domain_id)
