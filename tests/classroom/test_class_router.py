@@ -11,10 +11,15 @@ from typing import Any
 
 import pytest
 import zenoh
+from fastapi.testclient import TestClient
 from support.app import free_port
 
+from server.app import create_app
+from server.classroom import Classroom
 from server.classroom.class_router import ClassRouter
-from server.transport.acl import ClassAuth, Credentials
+from server.classroom.workers import worker_api_token
+from server.settings import Settings, WorkerSettings
+from server.transport.acl import ClassAuth, Credentials, new_world_login
 from server.transport.config import ZenohSettings
 from server.transport.session import build_config
 
@@ -71,3 +76,24 @@ def test_revoking_a_login_drops_its_sessions_refuses_it_and_keeps_the_others() -
             assert not removed.info.routers_zid()  # and the old one never got back in
     finally:
         router.close()
+
+
+def test_a_world_worker_keeps_the_login_its_class_server_drew_for_a_world() -> None:
+    settings = Settings(
+        launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, allowed_hosts=("testserver",),
+        classroom=True, max_worlds=2,
+        worker=WorkerSettings(id="wm", url="http://127.0.0.1:1", class_token="class-token", orphan_timeout_s=60.0),
+    )  # fmt: skip
+    login = new_world_login(3)
+    body = {"world": "ada", "student": "Ada", "domain_id": 3, "launch": "rocket", "launch_args": {}}
+    auth = {"Authorization": f"Bearer {worker_api_token('class-token', 'wm')}"}
+    with TestClient(create_app(settings)) as client:
+        classroom: Classroom = client.app.state.classroom  # type: ignore[attr-defined]
+        half = client.post("/api/classroom/host", json={**body, "zenoh_user": login.user}, headers=auth)
+        assert half.status_code == 422 and "come together" in half.text
+        assert classroom.worlds == {}
+        whole = {**body, "zenoh_user": login.user, "zenoh_password": login.password}
+        reply = client.post("/api/classroom/host", json=whole, headers=auth)
+        assert reply.status_code == 201, reply.text
+        assert classroom.worlds["ada"].login == login  # what its resets start the world with again
+        assert login.password not in reply.text
