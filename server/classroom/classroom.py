@@ -29,6 +29,7 @@ from server.transport.config import ZenohSettings, endpoint_host
 
 from .errors import ClassroomError
 from .load import Choice, CpuMeter, choose, machine_id
+from .router_gate import RouterGate
 from .tokens import Grant, TokenSigner
 from .workers import WATCH_PERIOD_S, Silence, WorkerDirectory, WorkerRef, worker_api_token
 
@@ -146,7 +147,7 @@ class Classroom:
         self._hosting: set[tuple[str, str]] = set()  # (worker id, world) while it is placed there
         self._local_starting = 0  # worlds being started here
         self.router: ClassRouter | None = None  # the class's Zenoh router and its logins
-        self._router_lock = asyncio.Lock()  # one reopening at a time
+        self._gate = RouterGate()  # worlds start while the router is open, never while it opens again
         self._revoking: set[int] = set()  # domains whose old login the router may still let in
         self.local_workers: LocalWorkers | None = None  # world workers started here (--workers)
         self.class_graph: DomainBridge | None = None  # every world under /<world> in the class's domain
@@ -397,15 +398,16 @@ class Classroom:
         )
         lab: Lab | None = None
         try:
-            place = await self._place(exclude=exclude)
-            if place is None:
-                self._local_starting += 1
-                try:
-                    lab = await self._start_lab(world.name, world.domain_id, login=world.login)
-                finally:
-                    self._local_starting -= 1
-            else:
-                await self._host_on(place, world.name, world.student, world.domain_id, world.login)
+            async with self._gate.use():
+                place = await self._place(exclude=exclude)
+                if place is None:
+                    self._local_starting += 1
+                    try:
+                        lab = await self._start_lab(world.name, world.domain_id, login=world.login)
+                    finally:
+                        self._local_starting -= 1
+                else:
+                    await self._host_on(place, world.name, world.student, world.domain_id, world.login)
         except ClassroomError as exc:
             world.lost = f"{world.lost}, when there is room ({exc})"
             return
@@ -535,16 +537,17 @@ class Classroom:
         login = self.router.login(domain_id) if self.router is not None else None
         self._starting[name] = domain_id  # held while the world starts: no two joins take one name
         try:
-            place = await self._place()
-            lab: Lab | None = None
-            if place is None:
-                self._local_starting += 1
-                try:
-                    lab = await self._start_lab(name, domain_id, login=login)
-                finally:
-                    self._local_starting -= 1
-            else:
-                await self._host_on(place, name, student, domain_id, login)
+            async with self._gate.use():
+                place = await self._place()
+                lab: Lab | None = None
+                if place is None:
+                    self._local_starting += 1
+                    try:
+                        lab = await self._start_lab(name, domain_id, login=login)
+                    finally:
+                        self._local_starting -= 1
+                else:
+                    await self._host_on(place, name, student, domain_id, login)
         finally:
             del self._starting[name]
         token, grant = self.signer.issue("student", name, student)
@@ -574,8 +577,7 @@ class Classroom:
         choices: list[Choice] = []
         if local < self.local_capacity:
             choices.append(Choice(local / max(self.local_capacity, 1), None, self.cpu.read()))
-        async with self._router_lock:  # not while the router opens again: no worker could answer
-            refs = await asyncio.to_thread(self.workers.discover) if self.workers is not None else []
+        refs = await asyncio.to_thread(self.workers.discover) if self.workers is not None else []
         on_workers = self._on_workers()
         for ref in refs:
             if ref.id == exclude:
@@ -707,13 +709,15 @@ class Classroom:
     async def reset(self, name: str) -> World:
         """A fresh world under the same name and token: every node starts over, the 3D view too."""
         world = self.get(name)
-        if world.worker is not None:
-            assert self.workers is not None
-            await self.workers.checked(world.worker, "POST", f"/api/classroom/worlds/{name}/reset")
-        else:
-            assert world.lab is not None
-            await world.lab.stop()  # first: the new world takes the same ROS domain on the graph
-            world.lab = await self._start_lab(name, world.domain_id, self._launch_of(world.lab), world.login)
+        async with self._gate.use():  # the world's graph joins the router again as it starts
+            if world.worker is not None:
+                assert self.workers is not None
+                await self.workers.checked(world.worker, "POST", f"/api/classroom/worlds/{name}/reset")
+            else:
+                assert world.lab is not None
+                await world.lab.stop()  # first: the new world takes the same ROS domain on the graph
+                launch = self._launch_of(world.lab)
+                world.lab = await self._start_lab(name, world.domain_id, launch, world.login)
         world.resets += 1
         log.info("world %s reset", name)
         return world
@@ -744,7 +748,7 @@ class Classroom:
             return
         self._revoking.add(domain_id)
         try:
-            async with self._router_lock:
+            async with self._gate.reopening():
                 if domain_id in self._revoking:  # not yet done by a reopening this one waited for
                     batch = set(self._revoking)
                     await self._reopen_router(batch)
@@ -820,6 +824,6 @@ class Classroom:
             self._control_session.close()
             self._control_session = None
         if self.router is not None:
-            async with self._router_lock:  # not while it opens again
+            async with self._gate.reopening():  # not while it opens again
                 self.router.close()
             self.router = None
