@@ -48,6 +48,7 @@ MAX_NAME_CHARS = 32
 MAX_DOMAIN_ID = 232  # ROS 2's highest ROS_DOMAIN_ID
 VIEW_HZ = 10.0  # the instructor's 3D view: local worlds' drones
 REMOTE_VIEW_HZ = 2.0  # and world workers' (one call per worker)
+WORKERS_BACK_S = 10.0  # how long a reopened router waits for its world workers to answer again
 # A world's name is a ROS namespace token: letters, digits and underscores, not starting with a digit.
 _NOT_NAME = re.compile(r"[^a-z0-9_]+")
 
@@ -770,11 +771,28 @@ class Classroom:
         except TransportError as exc:
             log.error("the class's Zenoh router did not open again (%s): the worlds are off Zenoh", exc)
             return
-        if self.workers is not None:
-            self.workers.session = session
         self._open_class_graph(session)
+        if self.workers is not None:
+            await self._workers_back(session)
         log.info("Zenoh logins of ROS domains %s revoked: the class's router opened again",
                  ", ".join(map(str, sorted(domains))))  # fmt: skip
+
+    async def _workers_back(self, session: Any) -> None:
+        """Until the workers found before the router opened again answer on the new one (their
+        sessions connect again by themselves), for at most WORKERS_BACK_S: a join meanwhile
+        would find no room on them."""
+        assert self.workers is not None
+        expected = set(self.workers.last_found)
+        self.workers.session = session
+        deadline = time.monotonic() + WORKERS_BACK_S
+        while expected and time.monotonic() < deadline:
+            found = {ref.id for ref in await asyncio.to_thread(self.workers.discover)}
+            if expected <= found:
+                return
+            await asyncio.sleep(0.1)
+        if expected:
+            log.warning("world workers %s did not answer within %g s of the router opening again",
+                        ", ".join(sorted(expected - self.workers.last_found)), WORKERS_BACK_S)  # fmt: skip
 
     def _open_class_graph(self, session: Any) -> None:
         from server.transport.domain_bridge import DomainBridge

@@ -145,6 +145,7 @@ class WorkerDirectory:
 
     def __init__(self, session: Any, class_token: str, hello_timeout_s: float = HELLO_TIMEOUT_S) -> None:
         self.session: Any = session  # the class's Zenoh router session (None while it opens again)
+        self.last_found: set[str] = set()  # the workers the last hello found
         self.class_token = class_token
         self.hello_timeout_s = hello_timeout_s
         self.http = httpx.AsyncClient(timeout=WORKER_CALL_TIMEOUT_S, trust_env=False)
@@ -169,6 +170,7 @@ class WorkerDirectory:
             ref = _worker_ref(body, self.class_token)
             if ref is not None:
                 found[ref.id] = ref
+        self.last_found = set(found)
         return sorted(found.values(), key=lambda r: r.id)
 
     async def call(
