@@ -10,9 +10,10 @@ import asyncio
 from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter, Depends, HTTPException, Request, Response, status
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from server.classroom import Classroom, Grant
+from server.transport.acl import Credentials
 
 from .deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie
 from .errors import status_for
@@ -56,6 +57,15 @@ class HostRequest(BaseModel):
     domain_id: int = Field(ge=1, le=232)
     launch: str = Field(min_length=1, max_length=256)
     launch_args: dict[str, str] = Field(default_factory=dict, max_length=32)
+    # The world's own Zenoh login, drawn by the class server (its graph joins the router with it).
+    zenoh_user: str | None = Field(None, min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_-]+$")
+    zenoh_password: str | None = Field(None, min_length=1, max_length=64, pattern=r"^[A-Za-z0-9]+$")
+
+    @model_validator(mode="after")
+    def _login_whole(self) -> HostRequest:
+        if (self.zenoh_user is None) != (self.zenoh_password is None):
+            raise ValueError("zenoh_user and zenoh_password come together")
+        return self
 
 
 class Joined(BaseModel):
@@ -110,6 +120,11 @@ class ClassGraph(BaseModel):
     samples_in: int = Field(description="samples passed from the class domain into worlds")
     dropped: int = Field(description="samples dropped (no rmw_zenoh attachment, or a watcher too slow)")
     calls: int = Field(description="service calls in the class domain answered by a world's server")
+    names_refused: dict[str, int] = Field(
+        description="by world, its entities not bridged because their name is not a fully qualified ROS "
+        "name (or their type is not a plain type name): 'm/uav/sensors/gps' in world ada would be /adam/...",
+        examples=[{"ada": 1}],
+    )
     calls_refused: int = Field(
         description="service calls refused: no rmw_zenoh attachment, a key pattern instead of one service, "
         "or too many waiting on one world"
@@ -211,6 +226,7 @@ async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
         samples_in=bridge.stats.into,
         dropped=bridge.stats.dropped,
         calls=bridge.stats.calls,
+        names_refused=bridge.refused_names(),
         calls_refused=bridge.stats.refused,
     )
 
@@ -222,7 +238,10 @@ async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
 )
 async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
     """On a world worker: start the world its class server placed here."""
-    world = await classroom.host(body.world, body.student, body.domain_id, body.launch, body.launch_args)
+    login = Credentials(body.zenoh_user, body.zenoh_password or "") if body.zenoh_user is not None else None
+    world = await classroom.host(
+        body.world, body.student, body.domain_id, body.launch, body.launch_args, login
+    )
     return world.describe()
 
 

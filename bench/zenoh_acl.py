@@ -32,11 +32,17 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from live_server import end, free_port
 from machine import machine_info, save_results
 
-from server.transport.acl import ClassAuth, Credentials
+from server.transport.acl import FIRST_WORLD_DOMAIN, LAST_DOMAIN, ClassAuth, Credentials, RouterAccess
 from server.transport.config import ZenohSettings
 from server.transport.session import build_config, open_session
 
 SECRET = "bench-instructor-token"
+# A class server draws its worlds' logins at random; the bench's two processes need to agree on
+# them, so these are fixed, one per world domain as in a full class.
+WORLDS = {
+    d: Credentials(f"ros2lab-world-{d}-bench", f"{SECRET}-{d}")
+    for d in range(FIRST_WORLD_DOMAIN, LAST_DOMAIN + 1)
+}
 KEY = "1/bench/chatter"
 READY_S = 20.0
 ROUND_TIMEOUT_S = 120.0
@@ -45,7 +51,12 @@ ROUND_TIMEOUT_S = 120.0
 def serve_router(kind: str, endpoint: str) -> None:
     """The child: a router, plain or as a class server opens it, until stdin closes."""
     session = open_session(
-        ZenohSettings(listen=(endpoint,), router_logins=ClassAuth(SECRET) if kind == "class" else None)
+        ZenohSettings(
+            listen=(endpoint,),
+            router_logins=RouterAccess(ClassAuth(SECRET).class_credentials(), WORLDS)
+            if kind == "class"
+            else None,
+        )
     )
     print("ready", flush=True)
     try:
@@ -126,7 +137,7 @@ def main() -> None:
     info = machine_info()
     print(json.dumps(info), flush=True)
     routers: dict[str, tuple[subprocess.Popen[str], str]] = {}
-    login = {"plain": None, "class": ClassAuth(SECRET).world_credentials(1)}
+    login = {"plain": None, "class": WORLDS[1]}
     rates: dict[str, list[float]] = {"plain": [], "class": []}
     try:
         for kind in ("plain", "class"):

@@ -218,10 +218,10 @@ class Lab:
         assert zenoh is not None
         if zenoh.mode != "router" or self.settings.token is None or self.settings.classroom:
             return zenoh
-        from server.transport.acl import ClassAuth
+        from server.transport.acl import ClassAuth, RouterAccess
 
-        auth = ClassAuth(self.settings.token)
-        return dataclasses.replace(zenoh, router_logins=auth, login=auth.class_credentials())
+        login = ClassAuth(self.settings.token).class_credentials()
+        return dataclasses.replace(zenoh, router_logins=RouterAccess(login), login=login)
 
     async def stop(self) -> None:
         self.stopped.set()

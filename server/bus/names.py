@@ -79,6 +79,19 @@ def validate_topic_name(name: str) -> str:
     return name
 
 
+def is_fully_qualified(name: str) -> bool:
+    """Whether ``name`` is a fully qualified topic or service name, as a graph carries one: ``/``
+    then valid tokens, with no ``~`` and no substitution left (``/uav/sensors/gps``, never
+    ``uav/sensors/gps``)."""
+    if not isinstance(name, str) or not name.startswith("/") or "~" in name or "{" in name:
+        return False
+    try:
+        validate_topic_name(name)
+    except InvalidNameError:
+        return False
+    return True
+
+
 def resolve_topic_name(
     name: str, node_name: str = "", namespace: str = "/", remappings: Mapping[str, str] | None = None
 ) -> str:

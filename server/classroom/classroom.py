@@ -24,11 +24,12 @@ from server.lab import Lab
 from server.limits import RateLimit
 from server.settings import Settings
 from server.tasks import cancel_and_wait
-from server.transport.acl import ClassAuth
+from server.transport.acl import ClassAuth, Credentials
 from server.transport.config import ZenohSettings, endpoint_host
 
 from .errors import ClassroomError
 from .load import Choice, CpuMeter, choose, machine_id
+from .router_gate import RouterGate
 from .tokens import Grant, TokenSigner
 from .workers import (
     WATCH_PERIOD_S,
@@ -40,9 +41,10 @@ from .workers import (
 )
 
 if TYPE_CHECKING:
-    from server.transport.domain_bridge import DomainBridge
+    from server.transport.domain_bridge import BridgeStats, DomainBridge
 
     from .class_bridges import ClassBridges
+    from .class_router import ClassRouter
     from .class_view import ClassView
     from .local_workers import LocalWorkers
 
@@ -53,6 +55,7 @@ MAX_NAME_CHARS = 32
 MAX_DOMAIN_ID = 232  # ROS 2's highest ROS_DOMAIN_ID
 VIEW_HZ = 10.0  # the instructor's 3D view: local worlds' drones
 REMOTE_VIEW_HZ = 2.0  # and world workers' (one call per worker)
+WORKERS_BACK_S = 10.0  # how long a reopened router waits for its world workers to answer again
 # A world's name is a ROS namespace token: letters, digits and underscores, not starting with a digit.
 _NOT_NAME = re.compile(r"[^a-z0-9_]+")
 
@@ -83,6 +86,7 @@ class World:
     moves: int = 0  # times it started again elsewhere because its world worker was gone
     placed_at: float = -math.inf  # when it was last started where it is (the class's clock)
     lost: str | None = None  # why it cannot be reached now (its worker is gone and it waits for room)
+    login: Credentials | None = field(default=None, repr=False)  # its Zenoh login (class_router.py)
 
     def describe(self) -> dict[str, Any]:
         """What the class server knows itself; a worker's world adds what its worker reports."""
@@ -150,9 +154,12 @@ class Classroom:
         self._starting: dict[str, int] = {}  # world → its ROS domain, while it starts
         self._hosting: set[tuple[str, str]] = set()  # (worker id, world) while it is placed there
         self._local_starting = 0  # worlds being started here
-        self._router: Any = None  # the class's Zenoh router session (zenoh.Session)
+        self.router: ClassRouter | None = None  # the class's Zenoh router and its logins
+        self._gate = RouterGate()  # worlds start while the router is open, never while it opens again
+        self._revoking: set[int] = set()  # domains whose old login the router may still let in
         self.local_workers: LocalWorkers | None = None  # world workers started here (--workers)
         self.class_graph: DomainBridge | None = None  # every world under /<world> in the class's domain
+        self._graph_stats: BridgeStats | None = None  # the class graph's counts, over every reopening
         # The instructor's Foxglove and rosbridge ports on the class domain.
         self.bridges: ClassBridges | None = None
         self._control: Any = None  # a worker's hello queryable (WorkerControl) and its session
@@ -256,16 +263,17 @@ class Classroom:
         if zenoh.mode != "router":
             return
         # The router logs every session in and holds each world's to its own ROS domain.
-        zenoh = dataclasses.replace(zenoh, router_logins=self.zenoh_auth)
+        from .class_router import ClassRouter
+
+        router = ClassRouter(zenoh, self.zenoh_auth.class_credentials())
         try:
-            self._router = await asyncio.to_thread(open_session, zenoh)
+            session = await router.open()
         except TransportError as exc:
             log.warning("%s; the worlds run without Zenoh", exc)
             return
-        self.workers = WorkerDirectory(self._router, self.instructor_token)
-        from server.transport.domain_bridge import DomainBridge
-
-        self.class_graph = DomainBridge(self._router, zenoh.domain_id)
+        self.router = router
+        self.workers = WorkerDirectory(session, self.instructor_token)
+        self._open_class_graph(session)
         self._watch = asyncio.create_task(self._watch_workers())
         endpoint = self.router_endpoint()
         if endpoint is not None:  # the instructor's bridges: /class/rosbridge, and their ports if asked
@@ -408,15 +416,16 @@ class Classroom:
         )
         lab: Lab | None = None
         try:
-            place = await self._place(exclude=exclude)
-            if place is None:
-                self._local_starting += 1
-                try:
-                    lab = await self._start_lab(world.name, world.domain_id)
-                finally:
-                    self._local_starting -= 1
-            else:
-                await self._host_on(place, world.name, world.student, world.domain_id)
+            async with self._gate.use():
+                place = await self._place(exclude=exclude)
+                if place is None:
+                    self._local_starting += 1
+                    try:
+                        lab = await self._start_lab(world.name, world.domain_id, login=world.login)
+                    finally:
+                        self._local_starting -= 1
+                else:
+                    await self._host_on(place, world.name, world.student, world.domain_id, world.login)
         except ClassroomError as exc:
             world.lost = f"{world.lost}, when there is room ({exc})"
             return
@@ -471,7 +480,7 @@ class Classroom:
     def router_endpoint(self) -> str | None:
         """Where worlds and node processes connect: the class's router, or the one it joined."""
         zenoh = self.settings.zenoh
-        if zenoh is None or (zenoh.mode == "router" and self._router is None):
+        if zenoh is None or (zenoh.mode == "router" and self.router is None):
             return None
         if zenoh.mode != "router":
             return zenoh.connect[0]
@@ -479,7 +488,7 @@ class Classroom:
         return f"{proto}/{'127.0.0.1' if host in ('0.0.0.0', '[::]', '::') else host}:{port}"
 
     def _free_domain(self) -> int:
-        taken = {w.domain_id for w in self.worlds.values()} | set(self._starting.values())
+        taken = {w.domain_id for w in self.worlds.values()} | set(self._starting.values()) | self._revoking
         if self.settings.zenoh is not None:
             taken.add(self.settings.zenoh.domain_id)  # the class's own domain stays empty
         free = (d for d in range(1, MAX_DOMAIN_ID + 1) if d not in taken)
@@ -489,7 +498,7 @@ class Classroom:
         return domain
 
     def _world_settings(
-        self, name: str, domain_id: int, launch: tuple[str, dict[str, str]] | None
+        self, name: str, domain_id: int, launch: tuple[str, dict[str, str]] | None, login: Credentials | None
     ) -> Settings:
         # A world's graph joins the class's router in a ROS domain of its own; the class server's
         # other ports (Foxglove, rosbridge) are not opened per world; bags go in a folder per world.
@@ -499,7 +508,7 @@ class Classroom:
             config_file = self.settings.zenoh.config_file if self.settings.zenoh is not None else None
             zenoh = ZenohSettings(
                 mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file,
-                login=self.zenoh_auth.world_credentials(domain_id), samples_hz=self.settings.world_samples_hz,
+                login=login, samples_hz=self.settings.world_samples_hz,
             )  # fmt: skip
         file, args = launch if launch is not None else (self.settings.launch, self.settings.launch_args)
         return dataclasses.replace(
@@ -513,9 +522,14 @@ class Classroom:
         )
 
     async def _start_lab(
-        self, name: str, domain_id: int, launch: tuple[str, dict[str, str]] | None = None
+        self,
+        name: str,
+        domain_id: int,
+        launch: tuple[str, dict[str, str]] | None = None,
+        login: Credentials | None = None,
     ) -> Lab:
-        lab = Lab(self._world_settings(name, domain_id, launch), self.clock, executors=self.executors)
+        settings = self._world_settings(name, domain_id, launch, login)
+        lab = Lab(settings, self.clock, executors=self.executors)
         lab.bus.label = name  # its nodes' console lines carry its name (server/console.py)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         lab.bus.devices["simple_sim_physics"] = self.simple_physics
@@ -538,18 +552,20 @@ class Classroom:
             raise ClassroomError(429, f"the class is full ({self.settings.max_worlds} worlds)")
         student = student.strip()[:64]
         domain_id = self._free_domain()
+        login = self.router.login(domain_id) if self.router is not None else None
         self._starting[name] = domain_id  # held while the world starts: no two joins take one name
         try:
-            place = await self._place()
-            lab: Lab | None = None
-            if place is None:
-                self._local_starting += 1
-                try:
-                    lab = await self._start_lab(name, domain_id)
-                finally:
-                    self._local_starting -= 1
-            else:
-                await self._host_on(place, name, student, domain_id)
+            async with self._gate.use():
+                place = await self._place()
+                lab: Lab | None = None
+                if place is None:
+                    self._local_starting += 1
+                    try:
+                        lab = await self._start_lab(name, domain_id, login=login)
+                    finally:
+                        self._local_starting -= 1
+                else:
+                    await self._host_on(place, name, student, domain_id, login)
         finally:
             del self._starting[name]
         token, grant = self.signer.issue("student", name, student)
@@ -562,6 +578,7 @@ class Classroom:
             domain_id,
             worker=place,
             placed_at=self.clock.now(),
+            login=login,
         )
         if self.class_graph is not None:
             self.class_graph.set_world(domain_id, name)
@@ -600,18 +617,28 @@ class Classroom:
             )
         return best.ref
 
-    async def _host_on(self, ref: WorkerRef, name: str, student: str, domain_id: int) -> None:
+    async def _host_on(
+        self, ref: WorkerRef, name: str, student: str, domain_id: int, login: Credentials | None
+    ) -> None:
         assert self.workers is not None
         self._hosting.add((ref.id, name))
         try:
-            body = {"world": name, "student": student, "domain_id": domain_id,
+            body: dict[str, Any] = {"world": name, "student": student, "domain_id": domain_id,
                     "launch": self.settings.launch, "launch_args": self.settings.launch_args}  # fmt: skip
+            if login is not None:  # the world's own login: its graph joins the router with it
+                body |= {"zenoh_user": login.user, "zenoh_password": login.password}
             await self.workers.checked(ref, "POST", "/api/classroom/host", body=body)
         finally:
             self._hosting.discard((ref.id, name))
 
     async def host(
-        self, name: str, student: str, domain_id: int, launch: str, launch_args: dict[str, str]
+        self,
+        name: str,
+        student: str,
+        domain_id: int,
+        launch: str,
+        launch_args: dict[str, str],
+        login: Credentials | None = None,
     ) -> World:
         """A world worker: start the world a class server placed here, in the domain it chose."""
         if not self.is_worker:
@@ -623,13 +650,15 @@ class Classroom:
             raise ClassroomError(429, f"this worker is full ({self.settings.max_worlds} worlds)")
         self._starting[name] = domain_id
         try:
-            lab = await self._start_lab(name, domain_id, (launch, launch_args))
+            lab = await self._start_lab(name, domain_id, (launch, launch_args), login)
         finally:
             del self._starting[name]
         _token, grant = self.signer.issue(
             "student", name, student
         )  # never handed out: the class server proxies
-        world = self.worlds[name] = World(name, student, grant.token_id, lab, self._limit(), domain_id)
+        world = self.worlds[name] = World(
+            name, student, grant.token_id, lab, self._limit(), domain_id, login=login
+        )
         log.info("hosting world %s (%s), ROS domain %d", name, student, domain_id)
         return world
 
@@ -698,13 +727,15 @@ class Classroom:
     async def reset(self, name: str) -> World:
         """A fresh world under the same name and token: every node starts over, the 3D view too."""
         world = self.get(name)
-        if world.worker is not None:
-            assert self.workers is not None
-            await self.workers.checked(world.worker, "POST", f"/api/classroom/worlds/{name}/reset")
-        else:
-            assert world.lab is not None
-            await world.lab.stop()  # first: the new world takes the same ROS domain on the graph
-            world.lab = await self._start_lab(name, world.domain_id, self._launch_of(world.lab))
+        async with self._gate.use():  # the world's graph joins the router again as it starts
+            if world.worker is not None:
+                assert self.workers is not None
+                await self.workers.checked(world.worker, "POST", f"/api/classroom/worlds/{name}/reset")
+            else:
+                assert world.lab is not None
+                await world.lab.stop()  # first: the new world takes the same ROS domain on the graph
+                launch = self._launch_of(world.lab)
+                world.lab = await self._start_lab(name, world.domain_id, launch, world.login)
         world.resets += 1
         log.info("world %s reset", name)
         return world
@@ -717,12 +748,77 @@ class Classroom:
         world = self.worlds.pop(name, None)
         if world is None:
             raise ClassroomError(404, f"no world named {name!r}")
+        if self.router is not None:  # at once: a join while the world ends must not get its domain
+            self._revoking.add(world.domain_id)
         self._revoked.add(world.token_id)
         if self.class_graph is not None:
             self.class_graph.drop_world(world.domain_id)
         await self._end(world)
+        await self._revoke_login(world.domain_id)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
+
+    async def _revoke_login(self, domain_id: int) -> None:
+        """Retire the login of the world that was in ``domain_id``: the router opens again without
+        it (class_router.py), which drops every session of it. Until then nobody gets the domain;
+        removals that wait meanwhile are done by the same reopening."""
+        if self.router is None:
+            return
+        self._revoking.add(domain_id)
+        try:
+            async with self._gate.reopening():
+                if domain_id in self._revoking:  # not yet done by a reopening this one waited for
+                    batch = set(self._revoking)
+                    await self._reopen_router(batch)
+                    self._revoking -= batch
+        finally:
+            self._revoking.discard(domain_id)
+
+    async def _reopen_router(self, domains: set[int]) -> None:
+        from server.transport.session import TransportError
+
+        assert self.router is not None
+        if self.workers is not None:
+            self.workers.session = None
+        if self.class_graph is not None:  # it lives on the router's session: built again on the new one
+            await asyncio.to_thread(self.class_graph.close)
+            self.class_graph = None
+        try:
+            session = await self.router.revoke(domains)
+        except TransportError as exc:
+            log.error("the class's Zenoh router did not open again (%s): the worlds are off Zenoh", exc)
+            return
+        self._open_class_graph(session)
+        if self.workers is not None:
+            await self._workers_back(session)
+        log.info("Zenoh logins of ROS domains %s revoked: the class's router opened again",
+                 ", ".join(map(str, sorted(domains))))  # fmt: skip
+
+    async def _workers_back(self, session: Any) -> None:
+        """Until the workers found before the router opened again answer on the new one (their
+        sessions connect again by themselves), for at most WORKERS_BACK_S: a join meanwhile
+        would find no room on them."""
+        assert self.workers is not None
+        expected = set(self.workers.last_found)
+        self.workers.session = session
+        deadline = time.monotonic() + WORKERS_BACK_S
+        while expected and time.monotonic() < deadline:
+            found = {ref.id for ref in await asyncio.to_thread(self.workers.discover)}
+            if expected <= found:
+                return
+            await asyncio.sleep(0.1)
+        if expected:
+            log.warning("world workers %s did not answer within %g s of the router opening again",
+                        ", ".join(sorted(expected - self.workers.last_found)), WORKERS_BACK_S)  # fmt: skip
+
+    def _open_class_graph(self, session: Any) -> None:
+        from server.transport.domain_bridge import DomainBridge
+
+        assert self.settings.zenoh is not None
+        self.class_graph = DomainBridge(session, self.settings.zenoh.domain_id, self._graph_stats)
+        self._graph_stats = self.class_graph.stats
+        for world in self.worlds.values():
+            self.class_graph.set_world(world.domain_id, world.name)
 
     async def _end(self, world: World) -> None:
         if world.lab is not None:
@@ -759,7 +855,10 @@ class Classroom:
         if self.class_graph is not None:
             await asyncio.to_thread(self.class_graph.close)
             self.class_graph = None
-        for session in (self._router, self._control_session):
-            if session is not None:
-                session.close()
-        self._router = self._control_session = None
+        if self._control_session is not None:
+            self._control_session.close()
+            self._control_session = None
+        if self.router is not None:
+            async with self._gate.reopening():  # not while it opens again
+                self.router.close()
+            self.router = None

@@ -167,13 +167,16 @@ class WorkerDirectory:
     """The class server's side: find workers on the router, and call their API."""
 
     def __init__(self, session: Any, class_token: str, hello_timeout_s: float = HELLO_TIMEOUT_S) -> None:
-        self.session = session  # the class's Zenoh router session
+        self.session: Any = session  # the class's Zenoh router session (None while it opens again)
+        self.last_found: set[str] = set()  # the workers the last hello found
         self.class_token = class_token
         self.hello_timeout_s = hello_timeout_s
         self.http = httpx.AsyncClient(timeout=WORKER_CALL_TIMEOUT_S, trust_env=False)
 
     def discover(self) -> list[WorkerRef]:
         """Every worker that answers a fresh hello in time (blocking: call it in a thread)."""
+        if self.session is None:  # the router is opening again (class_router.py): nobody to ask
+            return []
         nonce = secrets.token_hex(16)
         found: dict[str, WorkerRef] = {}
         replies = self.session.get(
@@ -190,6 +193,7 @@ class WorkerDirectory:
             ref = _worker_ref(body, self.class_token)
             if ref is not None:
                 found[ref.id] = ref
+        self.last_found = set(found)
         return sorted(found.values(), key=lambda r: r.id)
 
     async def call(

@@ -4,14 +4,16 @@ A class server's router asks every session for a user and password (Zenoh's ``us
 authentication) and checks every message against an access-control list whose default is deny:
 
 - ``ros2lab-class``: the class server's own sessions and its world workers, everything;
-- ``ros2lab-world-<d>``: a world's graph and its node processes, ROS domain ``d`` only: the
-  data keys ``<d>/**`` and the graph's liveliness tokens ``@ros2_lv/<d>/**``, as rmw_zenoh
-  names them.
+- ``ros2lab-world-<d>-<random>``: one world's graph and its node processes, ROS domain ``d``
+  only: the data keys ``<d>/**`` and the graph's liveliness tokens ``@ros2_lv/<d>/**``, as
+  rmw_zenoh names them.
 
-A student's process gets its world's user and password from ``GET /api/zenoh/join`` with the
-student's token, so a student reads and publishes in their own world only, as on the HTTP API.
-Passwords are HMACs of the instructor's token: the class server and its workers (which hold that
-token) derive them; nobody needs a list of them but the router. Plain data; no Zenoh import here.
+The class's login is an HMAC of the instructor's token: the class server and its workers (which
+hold that token) derive it. A world's login is random (``new_world_login``): nothing derives it,
+it belongs to one world and is never given to another (server/classroom/class_router.py draws
+and revokes them). A student's process gets their world's login from ``GET /api/zenoh/join``
+with the student's token, so a student reads and publishes in their own world only, as on the
+HTTP API. Plain data; no Zenoh import here.
 """
 
 from __future__ import annotations
@@ -21,8 +23,10 @@ import hashlib
 import hmac
 import json
 import os
+import secrets
 import tempfile
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from .keys import ADMIN_SPACE
@@ -69,8 +73,12 @@ def process_config(login: Credentials) -> dict[str, str]:
     return {"mode": json.dumps("client"), "listen/endpoints": "[]", **login.config()}
 
 
-def world_user(domain_id: int) -> str:
-    return f"{WORLD_USER_PREFIX}{domain_id}"
+def new_world_login(domain_id: int) -> Credentials:
+    """A fresh random login for a world in ``domain_id`` (the domain is in the user's name, for the
+    router's log; the password is 160 random bits that nothing derives)."""
+    if not FIRST_WORLD_DOMAIN <= domain_id <= LAST_DOMAIN:
+        raise ValueError(f"a world's ROS domain is in {FIRST_WORLD_DOMAIN}..{LAST_DOMAIN}, got {domain_id}")
+    return Credentials(f"{WORLD_USER_PREFIX}{domain_id}-{secrets.token_hex(4)}", secrets.token_hex(20))
 
 
 def world_keys(domain_id: int) -> list[str]:
@@ -80,37 +88,37 @@ def world_keys(domain_id: int) -> list[str]:
 
 @dataclass(frozen=True)
 class ClassAuth:
-    """A class's Zenoh logins, all derived from one secret (the instructor's token)."""
+    """The class's own login, derived from one secret (the instructor's token)."""
 
     secret: str
 
     def __repr__(self) -> str:
         return "ClassAuth(...)"
 
-    def _password(self, user: str) -> str:
-        return hmac.new(self.secret.encode(), f"zenoh-login/{user}".encode(), hashlib.sha256).hexdigest()[:40]
-
     def class_credentials(self) -> Credentials:
-        return Credentials(CLASS_USER, self._password(CLASS_USER))
+        mac = hmac.new(self.secret.encode(), f"zenoh-login/{CLASS_USER}".encode(), hashlib.sha256)
+        return Credentials(CLASS_USER, mac.hexdigest()[:40])
 
-    def world_credentials(self, domain_id: int) -> Credentials:
-        if not FIRST_WORLD_DOMAIN <= domain_id <= LAST_DOMAIN:
-            raise ValueError(
-                f"a world's ROS domain is in {FIRST_WORLD_DOMAIN}..{LAST_DOMAIN}, got {domain_id}"
-            )
-        user = world_user(domain_id)
-        return Credentials(user, self._password(user))
+
+@dataclass(frozen=True)
+class RouterAccess:
+    """Every login a router lets in: the class's (everything), and one per world domain (that
+    domain only). Zenoh reads them once, when the router opens."""
+
+    class_login: Credentials
+    worlds: Mapping[int, Credentials] = field(default_factory=dict)  # ROS domain → its login
+
+    def __repr__(self) -> str:
+        return f"RouterAccess(worlds={sorted(self.worlds)})"
 
     def dictionary(self) -> str:
         """The router's ``user:password`` lines: the class's, then one per world domain."""
-        logins = [self.class_credentials()] + [
-            self.world_credentials(d) for d in range(FIRST_WORLD_DOMAIN, LAST_DOMAIN + 1)
-        ]
+        logins = [self.class_login, *(self.worlds[d] for d in sorted(self.worlds))]
         return "".join(f"{c.user}:{c.password}\n" for c in logins)
 
     def access_control(self) -> dict[str, object]:
         """The router's access-control list: the class everything, each world its own domain."""
-        domains = range(FIRST_WORLD_DOMAIN, LAST_DOMAIN + 1)
+        domains = sorted(self.worlds)
         rule = {"messages": list(MESSAGES), "flows": list(FLOWS), "permission": "allow"}
         return {
             "enabled": True,
@@ -118,8 +126,8 @@ class ClassAuth:
             # "@" chunks are verbatim: "**" does not match the graph's "@ros2_lv/..." keys.
             "rules": [{"id": "class", **rule, "key_exprs": ["**", f"{ADMIN_SPACE}/**"]}]
             + [{"id": f"domain{d}", **rule, "key_exprs": world_keys(d)} for d in domains],
-            "subjects": [{"id": "class", "usernames": [CLASS_USER]}]
-            + [{"id": f"world{d}", "usernames": [world_user(d)]} for d in domains],
+            "subjects": [{"id": "class", "usernames": [self.class_login.user]}]
+            + [{"id": f"world{d}", "usernames": [self.worlds[d].user]} for d in domains],
             "policies": [{"rules": ["class"], "subjects": ["class"]}]
             + [{"rules": [f"domain{d}"], "subjects": [f"world{d}"]} for d in domains],
         }
@@ -130,15 +138,15 @@ class RouterLogins:
     router's config keys that turn authentication and access control on. Zenoh reads the file
     while the router opens, so ``open_session`` removes it as soon as the router is open."""
 
-    def __init__(self, auth: ClassAuth) -> None:
+    def __init__(self, access: RouterAccess) -> None:
         self._dir = tempfile.mkdtemp(prefix="ros2lab-zenoh-")
         self.path = Path(self._dir) / "logins.txt"
         fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
         with os.fdopen(fd, "w") as out:
-            out.write(auth.dictionary())
+            out.write(access.dictionary())
         self.config: dict[str, str] = {
             "transport/auth/usrpwd/dictionary_file": json.dumps(str(self.path)),
-            "access_control": json.dumps(auth.access_control()),
+            "access_control": json.dumps(access.access_control()),
         }
 
     def close(self) -> None:

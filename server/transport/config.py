@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Literal
 
 if TYPE_CHECKING:
-    from .acl import ClassAuth, Credentials
+    from .acl import Credentials, RouterAccess
 
 DEFAULT_ROUTER_PORT = 7447
 DEFAULT_ROUTER_ENDPOINT = f"tcp/127.0.0.1:{DEFAULT_ROUTER_PORT}"
@@ -25,7 +25,7 @@ class ZenohSettings:
     config_file: Path | None = None  # a Zenoh JSON5 config (TLS, user/password ...), applied first
     extra: dict[str, str] = field(default_factory=dict)  # more config keys: path → JSON5 value
     login: Credentials | None = None  # the user and password the router asks for (a class's)
-    router_logins: ClassAuth | None = None  # a router: who may log in, and what each may touch
+    router_logins: RouterAccess | None = None  # a router: who may log in, and what each may touch
     samples_hz: float | None = None  # samples a second taken from other processes (None: all)
 
     def __post_init__(self) -> None:

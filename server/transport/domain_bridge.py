@@ -16,6 +16,9 @@ on the class server's Zenoh session.
   answers the caller with the world's reply, under the caller's sequence number and GID, as
   rmw_zenoh's client matches it. At most ``MAX_CALLS_PER_WORLD`` calls wait on one world at once;
   one more is refused with an error reply.
+- A world's entity is bridged only under a fully qualified ROS name (server/bus/names.py) and a
+  type and hash of plain name characters: ``/ada`` + ``m/uav/sensors/gps`` would otherwise be world
+  ``adam``'s GPS. Any other is ignored and counted, by world (``refused_names``).
 - Samples and requests cross as bytes, so no type needs to be known; each gets a new rmw_zenoh
   attachment (the bridge's own GID and sequence numbers, the source timestamp kept), and one
   without an attachment is dropped, as rmw_zenoh drops it.
@@ -29,6 +32,7 @@ from __future__ import annotations
 
 import itertools
 import logging
+import re
 import struct
 import threading
 import time
@@ -39,6 +43,7 @@ from typing import Any
 
 import zenoh
 
+from ..bus.names import is_fully_qualified
 from .attachment import ATTACHMENT_BYTES
 from .keys import ADMIN_SPACE, GID_BYTES, EntityKind, EntityToken, QoS, data_key
 
@@ -50,6 +55,8 @@ MAX_CALLS_PER_WORLD = 32  # service calls waiting on one world's servers at once
 CALL_TIMEOUT_S = 60.0  # a call the world has not answered by then is given up
 BRIDGED = (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION, EntityKind.SERVICE)
 _SEQUENCE = struct.Struct("<q")
+# What a type or type hash may hold as it goes into a key: no "/", no wildcard, no "@" or "$".
+_PLAIN = re.compile(r"[A-Za-z0-9_]+(::[A-Za-z0-9_]+)*\Z")
 
 
 @dataclass(frozen=True)
@@ -72,6 +79,7 @@ class BridgeStats:
     dropped: int = 0  # without rmw_zenoh's attachment, or a put that failed
     calls: int = 0  # service calls answered with a world's reply
     refused: int = 0  # service calls refused: no attachment, or too many waiting on the world
+    bad_names: Counter[int] = field(default_factory=Counter)  # entities ignored for their names, by domain
 
 
 @dataclass
@@ -94,11 +102,11 @@ class _Mirror:
 class DomainBridge:
     """Mirrors the worlds ``set_world`` names into ``class_domain`` until ``close``."""
 
-    def __init__(self, session: zenoh.Session, class_domain: int) -> None:
+    def __init__(self, session: zenoh.Session, class_domain: int, stats: BridgeStats | None = None) -> None:
         self.session: Any = session
         self.class_domain = class_domain
         self.zid = str(session.zid())
-        self.stats = BridgeStats()
+        self.stats = stats if stats is not None else BridgeStats()  # the caller's, to outlive this bridge
         self._lock = threading.Lock()  # guards what Zenoh's threads and the callers change
         self._worlds: dict[int, str] = {}  # ROS domain → world name
         self._endpoints: dict[str, tuple[Route, QoS]] = {}  # token key → what it asks to bridge
@@ -148,6 +156,13 @@ class DomainBridge:
             out.setdefault(mirror.namespace.strip("/"), []).append(f"{way} {mirror.token.topic}")
         return {world: sorted(names) for world, names in sorted(out.items())}
 
+    def refused_names(self) -> dict[str, int]:
+        """Entities ignored for their names, by world (``domain <d>`` where no world is known)."""
+        with self._lock:
+            worlds = dict(self._worlds)
+            counts = dict(self.stats.bad_names)
+        return {worlds.get(d, f"domain {d}"): n for d, n in sorted(counts.items())}
+
     def close(self) -> None:
         self._closed = True
         self._wake.set()
@@ -182,6 +197,12 @@ class DomainBridge:
             or token.type_hash is None
             or token.qos is None
         ):
+            return
+        if not (
+            is_fully_qualified(token.topic) and _PLAIN.match(token.dds_type) and _PLAIN.match(token.type_hash)
+        ):
+            with self._lock:
+                self.stats.bad_names[token.domain_id] += 1
             return
         route = Route(token.domain_id, token.kind, token.topic, token.dds_type, token.type_hash)
         with self._lock:

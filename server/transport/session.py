@@ -50,9 +50,11 @@ def build_config(settings: ZenohSettings) -> zenoh.Config:
     return config
 
 
-def open_session(settings: ZenohSettings) -> zenoh.Session:
-    """Open the session; a TransportError (one line, what to do) if it cannot listen or connect."""
-    if settings.mode == "router":
+def open_session(settings: ZenohSettings, *, check_port: bool = True) -> zenoh.Session:
+    """Open the session; a TransportError (one line, what to do) if it cannot listen or connect.
+    ``check_port=False``: a router opening again on the port it just closed (its old connections
+    may still hold it in TIME_WAIT, which Zenoh's own listener allows)."""
+    if settings.mode == "router" and check_port:
         for endpoint in settings.listen:
             _check_port_free(endpoint)
     try:

@@ -235,3 +235,23 @@ def test_a_call_in_the_class_domain_is_answered_by_the_worlds_server_as_rmw_zeno
     server.undeclare()
     token.undeclare()
     wait_for(lambda: net.bridge.routes() == {}, "the service gone with its server")
+
+
+def test_a_name_that_is_not_fully_qualified_is_never_bridged_under_another_worlds_prefix(net: Net) -> None:
+    # In world ada, "m/chatter" would be joined as /ada + m/chatter = /adam/chatter: world adam's.
+    net.bridge.set_world(1, "ada")
+    net.bridge.set_world(2, "adam")
+    keep = [net.declare(EntityKind.PUBLISHER, "/chatter", 2, domain_id=2)]
+    keep += [net.declare(kind, "m/chatter", 3 + i) for i, kind in enumerate(domain_bridge.BRIDGED)]
+    keep += [
+        net.declare(EntityKind.PUBLISHER, topic, 10 + i) for i, topic in enumerate(("/a//b", "/x/", "~/x"))
+    ]
+    keep.append(
+        net.declare(EntityKind.PUBLISHER, "/probe", 20)
+    )  # after the others: once it shows, all were read
+    wait_for(lambda: "ada" in net.bridge.routes() and "adam" in net.bridge.routes(), "both worlds bridged")
+    assert net.bridge.routes() == {"ada": ["out /ada/probe"], "adam": ["out /adam/chatter"]}
+    assert net.bridge.refused_names() == {"ada": 6}
+    assert not [t for t in net.class_tokens() if "%ada/domain_bridge/%adam" in t]
+    for token in keep:
+        token.undeclare()
