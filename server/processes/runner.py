@@ -157,8 +157,9 @@ def run_entry_point(point: EntryPoint, args: list[str]) -> int:
     sys.path.insert(0, str(point.root))
 
     def call() -> int:
-        module = importlib.import_module(point.module)
-        function = getattr(module, point.function, None)
+        function: object = importlib.import_module(point.module)
+        for attr in point.function.split("."):  # ``module:Class.method`` as setuptools allows
+            function = getattr(function, attr, None)
         if not callable(function):
             _say(f"{point.declared_at}: {script}: {path} has no function '{point.function}'")
             return EXIT_USAGE
