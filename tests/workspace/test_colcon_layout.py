@@ -10,6 +10,7 @@ import pytest
 
 from server.packages import ExecutableNotFoundError, PackageIndex, WorkspaceError
 from server.packages.workspace import find_packages
+from server.processes.command import node_command
 from server.processes.runner import EntryPoint
 
 from .tutorial_packages import examples_clone, manifest, python_package, write
@@ -126,3 +127,20 @@ def test_a_console_script_that_is_not_name_equals_module_colon_function(tmp_path
     python_package(tmp_path / "src" / "p", "p", ["talker = p.talker"], {})
     with pytest.raises(WorkspaceError, match=r"setup\.py:\d+: console script 'talker = p\.talker' is not"):
         PackageIndex(workspace=tmp_path).executables_of("p")
+
+
+def test_a_setup_py_that_does_not_parse_names_its_line(tmp_path: Path) -> None:
+    python_package(tmp_path / "src" / "p", "p", [], {})
+    (tmp_path / "src/p/setup.py").write_text("from setuptools import setup\nsetup(\n")
+    with pytest.raises(WorkspaceError, match=r"p/setup\.py:2: SyntaxError"):
+        PackageIndex(workspace=tmp_path).executables_of("p")
+
+
+def test_a_console_script_runs_through_the_runners_entry_point_mode(tmp_path: Path) -> None:
+    examples_clone(tmp_path)
+    exe = PackageIndex(workspace=tmp_path).resolve("examples_rclpy_executors", "composed")
+    argv = node_command(exe.target, ["--ros-args", "-r", "__node:=n"]).argv
+    root = tmp_path / "src/examples/rclpy/executors"
+    assert argv[-8:] == ["--entry-point", str(root), "examples_rclpy_executors.composed:main", "composed",
+                         f"{root / 'setup.py'}:11", "--ros-args", "-r", "__node:=n"]  # fmt: skip
+    assert argv[argv.index("-m") + 1] == "server.processes.runner"

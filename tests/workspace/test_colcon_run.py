@@ -146,3 +146,20 @@ def test_colcon_is_a_one_line_hint(tmp_path: Path) -> None:
         len(done.stdout.splitlines()) == 1 and "colcon build" in done.stdout and "not needed" in done.stdout
     )
     assert not (tmp_path / "build").exists()
+
+
+def test_the_lab_starts_a_console_script_as_a_process(lab: tuple[App, Path]) -> None:
+    app, _ws = lab  # as a launch file's <node pkg="examples_rclpy_executors" exec="composed"/> would
+    started = app.post("/api/run", {"package": "examples_rclpy_executors", "executable": "composed"})
+    assert started.status_code == 201, started.text
+    group = started.json()["id"]
+
+    def printed() -> list[str]:
+        return [line for p in app.get(f"/api/launches/{group}/output")["processes"] for line in p["lines"]]
+
+    app.wait_for(
+        lambda: any(line.endswith("composed: done") for line in printed()), "the process's last line", RUN_S
+    )
+    lines = printed()
+    assert any("I heard: [Hello World: " in line for line in lines), lines
+    app.delete(f"/api/launches/{group}")
