@@ -19,7 +19,6 @@ launch folder is used when it has one. A student's file always runs as its own p
 
 from __future__ import annotations
 
-import logging
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,7 +28,6 @@ from server.processes.runner import EntryPoint
 from .entry_points import cmake_programs, setup_cfg_scripts, setup_py_scripts
 from .manifest import MANIFEST, WorkspaceError, read_manifest
 
-log = logging.getLogger("workspace")
 SKIP_FILES = {"setup.py", "__init__.py", "conftest.py"}
 NOT_ENTERED = {"build", "install", "log"}  # colcon's own output, next to src/
 IGNORE_MARKER = "COLCON_IGNORE"
