@@ -35,7 +35,7 @@ from server.lab import UnknownLaunchError
 from server.launch.description import LaunchFileError
 from server.limits import LimitExceededError, ValueLimitError
 from server.msgs import MessageError, UnknownTypeError
-from server.packages import ExecutableNotFoundError, PackageNotFoundError
+from server.packages import ExecutableNotFoundError, PackageNotFoundError, WorkspaceError
 from server.packages.launch_files import LaunchFileNotFoundError
 from server.publishers import PublisherError, UnknownPublisherError
 
@@ -66,6 +66,10 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (MessageError, status.HTTP_422_UNPROCESSABLE_CONTENT),
     (UnknownTypeError, status.HTTP_422_UNPROCESSABLE_CONTENT),
     (LaunchFileError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (
+        WorkspaceError,
+        status.HTTP_422_UNPROCESSABLE_CONTENT,
+    ),  # a student's package.xml, setup.py, duplicate name
     (ValueLimitError, status.HTTP_422_UNPROCESSABLE_CONTENT),
     (PublisherError, status.HTTP_422_UNPROCESSABLE_CONTENT),
     (BagNotFoundError, status.HTTP_404_NOT_FOUND),

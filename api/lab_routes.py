@@ -13,7 +13,7 @@ from server.transport.acl import Credentials
 
 from .deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_request, token_of
 from .responses import responses
-from .schemas import Health, ZenohJoin
+from .schemas import Health, WorkspaceInfo, ZenohJoin
 
 # Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
 # handler would run in a worker thread and race the executor (timer heap, wake-up future).
@@ -92,6 +92,14 @@ def _join(router: str, domain_id: int, login: Credentials | None) -> dict[str, A
             "ZENOH_CONFIG_OVERRIDE": ";".join(graph_overrides(router, login)),
         },
     }
+
+
+@router.get("/workspace", response_model=WorkspaceInfo)
+async def workspace(lab: LabDep) -> dict[str, Any]:
+    """The folder of students' packages this lab runs from, so ``ros2lab run`` on this machine
+    finds the same packages (null: the lab has none)."""
+    folder = lab.settings.workspace
+    return {"path": str(folder.resolve()) if folder is not None else None}
 
 
 @router.post("/rocket/reset", responses=responses(403))

@@ -76,6 +76,12 @@ class ZenohStatus(BaseModel):
     )
 
 
+class WorkspaceInfo(BaseModel):
+    """Where the lab's students' packages are, for ``ros2lab run`` and ``ros2lab pkg`` on its machine."""
+
+    path: str | None = Field(description="the workspace folder's absolute path on the lab's machine, or null")
+
+
 class ZenohJoin(BaseModel):
     """How a node process joins this lab's graph on Zenoh (a student's: their world's; the instructor
     naming no world: the class's own, every world under its name)."""

@@ -216,7 +216,7 @@ def classroom_banner(host: str, port: int, classroom: Any) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
-    if argv and (argv[0] in (*cli.VERBS, cli.WORKER_VERB) or argv[0].startswith("--url")):
+    if argv and (argv[0] in (*cli.VERBS, cli.WORKER_VERB, cli.COLCON_VERB) or argv[0].startswith("--url")):
         return cli.main(argv)  # ros2's verbs, against a running server
     parser = build_parser()
     args = parser.parse_args(argv)

@@ -1,5 +1,5 @@
 """``ros2lab``: ros2's command-line verbs against a running lab server (``topic``, ``node``, ``service``,
-``launch``, ``run``, ``interface``, ``bag``, and the lab's own ``env``), with ros2's options and output, over the server's HTTP/WebSocket API.
+``launch``, ``run``, ``pkg``, ``interface``, ``bag``, and the lab's own ``env``), with ros2's options and output, over the server's HTTP/WebSocket API.
 
 It imports nothing of the server: everything goes over the wire, so it works against any lab
 server it can reach (``--url``, or ``TELEOP_URL``).
@@ -13,10 +13,15 @@ import signal
 import sys
 from types import FrameType
 
-from . import bag, env, interface, launch, node, run, service, topic
+from . import bag, env, interface, launch, node, pkg, run, service, topic
 from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
 
-VERBS = ("topic", "node", "service", "launch", "run", "interface", "bag", "env")
+VERBS = ("topic", "node", "service", "launch", "run", "pkg", "interface", "bag", "env")
+COLCON_VERB = "colcon"  # not a verb: a student used to ROS types it, and is told it is not needed
+COLCON_HINT = (
+    "colcon build and `source install/setup.bash` are not needed here: `ros2lab run PKG EXEC` runs a "
+    "workspace's packages from their source folders, and edits take effect at the next start"
+)
 WORKER_VERB = "world-worker"  # ros2lab world-worker: host a class server's worlds (server.classroom.worker)
 
 __all__ = ["VERBS", "build_parser", "main"]
@@ -40,6 +45,7 @@ def build_parser() -> argparse.ArgumentParser:
     service.add_parser(verbs, common)
     launch.add_parsers(verbs, common)
     run.add_parser(verbs, common)
+    pkg.add_parser(verbs, common)
     interface.add_parser(verbs, common)
     bag.add_parser(verbs, common)
     env.add_parser(verbs, common)
@@ -57,6 +63,9 @@ def main(argv: list[str] | None = None) -> int:
         from .world_worker import main as worker_main
 
         return worker_main(argv[1:])
+    if argv and argv[0] == COLCON_VERB:
+        print(COLCON_HINT)
+        return 0
     args = build_parser().parse_args(argv)
     url = args.url or os.environ.get(URL_ENV) or DEFAULT_URL
     # SIGTERM cleans up as Ctrl-C does: a launch's nodes and a periodic publisher are stopped.

@@ -12,15 +12,15 @@ import argparse
 import signal
 import subprocess
 import sys
-from pathlib import Path
 from typing import Any
 
-from server.packages import ExecutableNotFoundError, PackageIndex, PackageNotFoundError
+from server.packages import ExecutableNotFoundError, PackageIndex, PackageNotFoundError, WorkspaceError
 from server.processes.command import node_command
 from server.transport.acl import Credentials
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT, domain_id_from_env
 
 from .client import CliError, LabClient
+from .workspace import add_workspace_option, workspace_of
 
 STOP_GRACE_S = 10.0
 
@@ -44,7 +44,7 @@ def graph_of(client: LabClient) -> tuple[str, int, Credentials | None]:
 
 
 def run(args: argparse.Namespace, client: LabClient) -> int:
-    packages = PackageIndex(workspace=Path(args.workspace))
+    packages = PackageIndex(workspace=workspace_of(args, client))
     try:
         exe = packages.resolve(args.package_name, args.executable_name)
     except PackageNotFoundError:
@@ -53,9 +53,11 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
     except ExecutableNotFoundError as exc:
         print(f"No executable found: {exc}", file=sys.stderr)
         return 1
-    target: Path | str = exe.file if exe.file is not None else str(exe.builtin)
+    except WorkspaceError as exc:
+        print(exc, file=sys.stderr)
+        return 1
     router, domain_id, login = graph_of(client)
-    command = node_command(target, list(args.argv), router=router, domain_id=domain_id, login=login)
+    command = node_command(exe.target, list(args.argv), router=router, domain_id=domain_id, login=login)
     child = subprocess.Popen(command.argv, env=command.env, process_group=0)
     interrupted = False
     while True:
@@ -74,10 +76,6 @@ def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
     p = verbs.add_parser("run", parents=[common], help="Run a package specific executable")
     p.add_argument("package_name", help="Name of the ROS package")
     p.add_argument("executable_name", help="Name of the executable")
-    p.add_argument(
-        "--workspace",
-        default="workspace",
-        help="folder of your own packages (src/<pkg>/...), default ./workspace",
-    )
+    add_workspace_option(p)
     p.add_argument("argv", nargs=argparse.REMAINDER, help="--ros-args -p NAME:=VALUE -r FROM:=TO")
     p.set_defaults(handler=run)

@@ -99,9 +99,8 @@ class Launcher:
     def _start_process(self, action: NodeAction, exe: Executable, entry: LaunchedNode) -> LaunchedNode:
         if self.transport is None:
             raise NoGraphError(str(exe.file or f"{exe.pkg} {exe.name}"))
-        target = exe.file if exe.file is not None else str(exe.builtin)
         command = node_command(
-            target, ros_args(action.name, action.namespace, action.parameters, action.remappings),
+            exe.target, ros_args(action.name, action.namespace, action.parameters, action.remappings),
             router=self.transport.router, domain_id=self.transport.domain_id, login=self.transport.login,
         )  # fmt: skip
         entry.process = self.supervisor.start(

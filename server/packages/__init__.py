@@ -11,6 +11,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from server.bus import Node
+from server.processes.runner import EntryPoint
+
+from .manifest import WorkspaceError
+from .workspace import Workspace, WorkspacePackage, find_packages
 
 HERE = Path(__file__).resolve().parent
 
@@ -39,6 +43,10 @@ BUILTIN: dict[str, dict[str, str]] = {
 }
 
 
+__all__ = ["BUILTIN", "Executable", "ExecutableNotFoundError", "NotInProcessError", "PackageIndex",
+           "PackageNotFoundError", "WorkspaceError"]  # fmt: skip
+
+
 class PackageNotFoundError(LookupError):
     def __init__(self, pkg: str, known: list[str]) -> None:
         self.pkg = pkg
@@ -58,7 +66,13 @@ class Executable:
     pkg: str
     name: str
     builtin: str | None = None  # "module:Class"
-    file: Path | None = None
+    file: Path | None = None  # a student's file (for a console script: its module's file)
+    entry_point: EntryPoint | None = None  # a student's console script
+
+    @property
+    def target(self) -> Path | str | EntryPoint:
+        """What a node process runs (server.processes.command.node_command)."""
+        return self.entry_point or self.file or str(self.builtin)
 
 
 class NotInProcessError(LookupError):
@@ -77,33 +91,32 @@ class PackageIndex:
         default_factory=lambda: {pkg: dict(exes) for pkg, exes in BUILTIN.items()}
     )
 
-    def _workspace_packages(self) -> dict[str, Path]:
-        from .workspace import packages_in
+    def student_workspace(self) -> Workspace:
+        """The workspace's packages, found afresh (a student adds packages while the lab runs)."""
+        return find_packages(self.workspace) if self.workspace is not None else Workspace()
 
-        return packages_in(self.workspace) if self.workspace is not None else {}
+    def _student(self, pkg: str) -> WorkspacePackage | None:
+        return self.student_workspace().get(pkg)  # WorkspaceError: a duplicate name, a bad package.xml
 
     def names(self) -> list[str]:
-        return sorted(set(self.executables) | set(self._workspace_packages()))
+        return sorted(set(self.executables) | set(self.student_workspace().packages))
 
     def share_dir(self, pkg: str) -> Path:
-        student = self._workspace_packages().get(pkg)
-        if student is not None and ((student / "launch").is_dir() or pkg not in self.executables):
-            return student
+        student = self._student(pkg)
+        if student is not None and ((student.path / "launch").is_dir() or pkg not in self.executables):
+            return student.path
         if pkg in self.executables:
             return HERE / pkg
         raise PackageNotFoundError(pkg, self.names())
 
     def executables_of(self, pkg: str) -> dict[str, Executable]:
         """A package's executables by name; a student's files win over the lab's of the same name."""
-        from .workspace import executables_in
-
         exes = {name: Executable(pkg, name, builtin=t) if isinstance(t, str) else Executable(pkg, name)
                 for name, t in self.executables.get(pkg, {}).items()}  # fmt: skip
-        student = self._workspace_packages().get(pkg)
+        student = self._student(pkg)
         if student is not None:
-            exes.update(
-                {name: Executable(pkg, name, file=path) for name, path in executables_in(student).items()}
-            )
+            exes.update({name: Executable(pkg, name, file=exe.file, entry_point=exe.entry_point)
+                         for name, exe in student.executables().items()})  # fmt: skip
         elif pkg not in self.executables:
             raise PackageNotFoundError(pkg, self.names())
         return exes

@@ -14,7 +14,7 @@ from typing import Any
 from server.transport.acl import Credentials, process_config
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT
 
-from .runner import PARENT_ENV
+from .runner import PARENT_ENV, EntryPoint
 
 CLIENT_DIR = Path(__file__).resolve().parents[2] / "client"
 
@@ -61,7 +61,7 @@ def graph_overrides(router: str, login: Credentials | None) -> list[str]:
 
 
 def node_command(
-    target: Path | str,
+    target: Path | str | EntryPoint,
     args: list[str],
     *,
     router: str | None = None,
@@ -69,12 +69,17 @@ def node_command(
     login: Credentials | None = None,
     env: Mapping[str, str] | None = None,
 ) -> NodeCommand:
-    """Run ``target`` (a student's file, or ``module:Class`` of a built-in node) in its own process,
-    joined to the router at ``router`` (``tcp/HOST:PORT``)."""
+    """Run ``target`` (a student's file or console script, or ``module:Class`` of a built-in node) in
+    its own process, joined to the router at ``router`` (``tcp/HOST:PORT``)."""
     runner = [sys.executable, "-u", "-m", "server.processes.runner"]
-    argv = (
-        [*runner, str(target), *args] if isinstance(target, Path) else [*runner, "--builtin", target, *args]
-    )
+    if isinstance(target, EntryPoint):
+        argv = [*runner, *target.argv(), *args]
+    else:
+        argv = (
+            [*runner, str(target), *args]
+            if isinstance(target, Path)
+            else [*runner, "--builtin", target, *args]
+        )
     zid = new_zid()
     overrides = [*graph_overrides(router or DEFAULT_ROUTER_ENDPOINT, login), f'id="{zid}"']
     base = dict(os.environ if env is None else env)

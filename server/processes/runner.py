@@ -1,10 +1,16 @@
-"""What a node process runs: ``python -m server.processes.runner FILE [ARGS]`` or ``--builtin PKG EXEC``.
+"""What a node process runs: ``python -m server.processes.runner FILE [ARGS]``, ``--entry-point ROOT
+MODULE:FUNCTION NAME WHERE [ARGS]`` or ``--builtin MODULE:CLASS [ARGS]``.
 
 For a student's file it does what ``ros2 run`` does with a Python executable, with a clearer word
 when the file cannot run at all: a syntax error, a missing import, or a file that would do nothing
 (no ``main()`` and no ``if __name__ == '__main__':`` block) is one line naming the file and line,
 and a non-zero exit. Otherwise the file runs as ``__main__`` (so its ``main()`` runs, and its own
 ``time.sleep`` sleeps), and an exception in it prints its traceback and ends the process.
+
+An ament_python package's console script runs as its installed script would: the package's folder
+is on ``sys.path`` (so its modules import each other, relative imports included), the module is
+imported and its function called, with ``sys.argv`` as ``ros2 run`` gives it. A module or function
+that does not exist is one line naming where the script is declared (``setup.py:LINE``).
 
 A lab's built-in node runs with rclpy's usual ``init``/``spin``/``try_shutdown``.
 
@@ -22,11 +28,33 @@ import runpy
 import signal
 import sys
 import traceback
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
 PARENT_ENV = "ROS2LAB_PARENT_PID"
+
+
+@dataclass(frozen=True)
+class EntryPoint:
+    """A console script: ``name = module:function``, declared at ``declared_at``, of the package in ``root``."""
+
+    root: Path
+    module: str
+    function: str
+    name: str
+    declared_at: str
+
+    def argv(self) -> list[str]:
+        return [
+            "--entry-point",
+            str(self.root),
+            f"{self.module}:{self.function}",
+            self.name,
+            self.declared_at,
+        ]
 
 
 def _die_with_parent() -> None:
@@ -78,6 +106,16 @@ def _import_problem(path: Path, exc: ImportError) -> str:
     return f"{where}: {type(exc).__name__}: {exc}"
 
 
+def _exit_code(result: object) -> int:
+    """What ``sys.exit(main())`` of an installed console script makes of ``main``'s result."""
+    if result is None:
+        return 0
+    if isinstance(result, int):
+        return result
+    _say(str(result))
+    return EXIT_FAILED
+
+
 def run_file(path: Path, args: list[str]) -> int:
     checked = check_file(path)
     if isinstance(checked, str):
@@ -86,11 +124,54 @@ def run_file(path: Path, args: list[str]) -> int:
     _tree, has_block, has_main = checked
     sys.argv = [str(path), *args]
     sys.path.insert(0, str(path.parent))
+    return _guarded(path, lambda: _run_path(path, has_block, has_main))
+
+
+def _run_path(path: Path, has_block: bool, has_main: bool) -> int:
+    namespace = runpy.run_path(str(path), run_name="__main__" if has_block else "__lab_node__")
+    if not has_block and has_main:
+        return _exit_code(namespace["main"]())  # as an ament_python entry point calls it
+    return 0
+
+
+def _module_file(root: Path, module: str) -> Path | None:
+    base = root.joinpath(*module.split("."))
+    for candidate in (base.with_suffix(".py"), base / "__init__.py"):
+        if candidate.is_file():
+            return candidate
+    return None
+
+
+def run_entry_point(point: EntryPoint, args: list[str]) -> int:
+    """Import ``point.module`` with its package importable and call ``point.function()``."""
+    script = f"console script '{point.name} = {point.module}:{point.function}'"
+    path = _module_file(point.root, point.module)
+    if path is None:
+        _say(f"{point.declared_at}: {script}: no module '{point.module}' in {point.root}")
+        return EXIT_USAGE
+    checked = check_file(path) if path.name != "__init__.py" else None
+    if isinstance(checked, str) and "SyntaxError" in checked:
+        _say(checked)
+        return EXIT_USAGE
+    sys.argv = [point.name, *args]
+    sys.path.insert(0, str(point.root))
+
+    def call() -> int:
+        function: object = importlib.import_module(point.module)
+        for attr in point.function.split("."):  # ``module:Class.method`` as setuptools allows
+            function = getattr(function, attr, None)
+        if not callable(function):
+            _say(f"{point.declared_at}: {script}: {path} has no function '{point.function}'")
+            return EXIT_USAGE
+        return _exit_code(function())
+
+    return _guarded(path, call)
+
+
+def _guarded(path: Path, body: Callable[[], int]) -> int:
+    """Run a student's code as Python would, with one line for an import it cannot make."""
     try:
-        namespace = runpy.run_path(str(path), run_name="__main__" if has_block else "__lab_node__")
-        if not has_block and has_main:
-            result = namespace["main"]()  # as an ament_python entry point calls it
-            return result if isinstance(result, int) else 0
+        return body()
     except ImportError as exc:
         if any(Path(f.filename) == path for f in traceback.extract_tb(exc.__traceback__)):
             _say(_import_problem(path, exc))
@@ -104,7 +185,6 @@ def run_file(path: Path, args: list[str]) -> int:
     except BaseException:
         traceback.print_exc()  # as Python prints an uncaught exception, and ends with 1
         return EXIT_FAILED
-    return 0
 
 
 def run_builtin(target: str, args: list[str]) -> int:
@@ -127,8 +207,14 @@ def main(argv: list[str] | None = None) -> int:
     _die_with_parent()
     if len(argv) >= 2 and argv[0] == "--builtin":
         return run_builtin(argv[1], argv[2:])
+    if len(argv) >= 5 and argv[0] == "--entry-point":
+        module, _, function = argv[2].partition(":")
+        return run_entry_point(EntryPoint(Path(argv[1]), module, function, argv[3], argv[4]), argv[5:])
     if not argv:
-        _say("usage: python -m server.processes.runner FILE [ARGS] | --builtin MODULE:CLASS [ARGS]")
+        _say(
+            "usage: python -m server.processes.runner FILE [ARGS] | --builtin MODULE:CLASS [ARGS] "
+            "| --entry-point ROOT MODULE:FUNCTION NAME WHERE [ARGS]"
+        )
         return EXIT_USAGE
     return run_file(Path(argv[0]).resolve(), argv[1:])
 
