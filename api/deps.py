@@ -68,7 +68,8 @@ def lab_of(conn: HTTPConnection) -> Lab:
     writing = conn.scope["type"] == "http" and conn.scope["method"] not in SAFE_METHODS
     if writing and not grant.is_instructor and not world.writes.take():
         raise ClassroomError(429, f"too many requests for world {world.name!r}: at most "
-                                  f"{classroom.settings.world_writes_hz:g} writes a second")  # fmt: skip
+                                  f"{classroom.settings.world_writes_hz:g} writes a second",
+                             world.writes.retry_after_s())  # fmt: skip
     return world.lab
 
 

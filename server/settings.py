@@ -27,6 +27,23 @@ class WorkerSettings:
 
 
 @dataclass(frozen=True)
+class JoinLimits:
+    """How fast a class takes joins and wrong class codes, per client address and for the whole
+    class (over it: 429 with Retry-After), and how many worlds one address may hold (None: any,
+    for a class behind one NAT address)."""
+
+    per_address_hz: float = 1.0  # a class behind one NAT address: 30 at once, then one a second
+    per_address_burst: int = 30
+    class_hz: float = 2.0
+    class_burst: int = 60
+    wrong_codes_per_address_hz: float = 0.1  # one guess in 10 s, after a burst of typos
+    wrong_codes_per_address_burst: int = 5
+    wrong_codes_class_hz: float = 1.0  # every address together: ~30 years for the code space
+    wrong_codes_class_burst: int = 30
+    max_worlds_per_address: int | None = None
+
+
+@dataclass(frozen=True)
 class Settings:
     host: str = "127.0.0.1"
     port: int = 8000
@@ -71,6 +88,14 @@ class Settings:
     max_worlds: int = 60
     world_writes_hz: float = 20.0  # a student's REST writes per second in their world, bursts of:
     world_writes_burst: int = 40
+    # What one student's world may hold, so its load stays its own: launches and runs started
+    # through the API (and nodes in each), resets (also writes), and WebSockets of every kind.
+    world_launches: int = 4
+    world_launch_nodes: int = 16
+    world_resets_hz: float = 0.2
+    world_resets_burst: int = 3
+    world_sockets: int = 24
+    joins: JoinLimits = field(default_factory=JoinLimits)
     # Samples a second a class world takes from other processes on Zenoh (its student's nodes);
     # a flood beyond that is dropped as it arrives, so it costs the shared loop nothing.
     world_samples_hz: float = 2000.0
