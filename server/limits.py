@@ -48,6 +48,11 @@ class RateLimit:
         return min(self.burst, self._tokens + (self.clock.now() - self._at) * self.rate_hz)
 
 
+def per_second(clock: Clock, rate_hz: float | None) -> RateLimit | None:
+    """``rate_hz`` a second in bursts of a second's worth; None (no limit) for None."""
+    return None if rate_hz is None else RateLimit(clock, rate_hz, max(1, math.ceil(rate_hz)))
+
+
 class KeyedRateLimit:
     """A ``RateLimit`` per key (a client's address), at most ``max_keys`` of them: the oldest key
     is forgotten first, so a stream of new keys cannot grow memory."""

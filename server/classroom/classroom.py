@@ -500,6 +500,8 @@ class Classroom:
             launch_args=args,
             max_launch_groups=min(self.settings.max_launch_groups, self.settings.world_launches),
             max_nodes_per_launch=min(self.settings.max_nodes_per_launch, self.settings.world_launch_nodes),
+            socket_frames_hz=self.settings.world_socket_frames_hz,
+            socket_requests_hz=self.settings.world_socket_requests_hz,
         )
 
     async def _start_lab(

@@ -4,6 +4,7 @@ the same use under the cap, another student's and the instructor's still work.""
 
 from __future__ import annotations
 
+import asyncio
 import json
 from collections.abc import Iterator
 from contextlib import ExitStack
@@ -183,3 +184,57 @@ def test_a_socket_past_the_worlds_cap_is_closed_1013_and_opens_nothing(
             == 200
         )
         assert json.loads(receive_within(echo)["text"])["msg"] == {"data": 7}
+
+
+# -- what a world's sockets send and take ------------------------------------------------------------
+FRAMES_HZ = 5
+
+
+def echo_outbox(client: TestClient, world: str) -> int:
+    lab = classroom(client).worlds[world].lab
+    assert lab is not None and client.portal is not None
+    return int(client.portal.call(lambda: sum(len(n.outbox) for n in lab.bus.nodes if hasattr(n, "outbox"))))
+
+
+def test_a_worlds_sockets_send_within_its_frame_budget_and_the_rest_waits(clock: ManualClock) -> None:
+    with class_app(clock, world_socket_frames_hz=FRAMES_HZ, world_writes_burst=50) as client:
+        ada = join(client, "Ada")
+        with client.websocket_connect("/ws/topics/countdown?queue_length=50", headers=ada) as echo:
+            for i in range(2 * FRAMES_HZ):
+                reply = client.post(
+                    "/api/publish", json={"topic": "/countdown", "msg": {"data": i}}, headers=ada
+                )
+                assert reply.status_code == 200
+            first = [json.loads(receive_within(echo)["text"])["msg"]["data"] for _ in range(FRAMES_HZ)]
+            assert first == list(range(FRAMES_HZ))
+            # The budget is spent: the rest waits in the socket's own queue, none of it sent.
+            assert echo_outbox(client, "ada") == FRAMES_HZ
+            clock.advance(1.0)
+            rest = [json.loads(receive_within(echo)["text"])["msg"]["data"] for _ in range(FRAMES_HZ)]
+            assert rest == list(range(FRAMES_HZ, 2 * FRAMES_HZ))
+
+
+def test_a_worlds_rosbridge_requests_wait_for_its_budget_and_none_is_lost(clock: ManualClock) -> None:
+    with class_app(clock, world_socket_requests_hz=2) as client:
+        ada = join(client, "Ada")
+        lab = classroom(client).worlds["ada"].lab
+        assert lab is not None and lab.socket_requests is not None and client.portal is not None
+
+        def latest() -> int | None:
+            topic = lab.bus.topics.get("/countdown")
+            return None if topic is None or topic.latest is None else int(topic.latest.data)
+
+        def wait_for(value: int) -> None:
+            for _ in range(200):
+                if client.portal.call(latest) == value:  # type: ignore[union-attr]
+                    return
+                client.portal.call(asyncio.sleep, 0.01)  # type: ignore[union-attr]
+            pytest.fail(f"/countdown never reached {value}")
+
+        with client.websocket_connect("/rosbridge", headers=ada) as bridge:
+            for i in range(1, 5):
+                bridge.send_json({"op": "publish", "topic": "/countdown", "msg": {"data": i}})
+            wait_for(2)
+            assert not lab.socket_requests.ready()  # two taken, two waiting in the socket
+            clock.advance(1.0)
+            wait_for(4)
