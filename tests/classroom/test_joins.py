@@ -10,11 +10,14 @@ header the test sends, as each student's machine would have its own on a real ne
 from __future__ import annotations
 
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
+import httpx
 import pytest
 from fastapi.testclient import TestClient
 from starlette.types import ASGIApp, Receive, Scope, Send
+from support.app import App
 
 from server.app import create_app
 from server.bus import ManualClock
@@ -165,3 +168,36 @@ def test_a_name_with_a_control_character_is_422_naming_it(
     assert classroom(guarded).worlds == {}
     joined = attempt(guarded, "Ada Lovelace-Byron, Jr.", "10.0.0.9")
     assert joined.status_code == 201 and joined.json()["student"] == "Ada Lovelace-Byron, Jr."
+
+
+def test_a_live_class_server_tells_client_addresses_apart(tmp_path: Path) -> None:
+    """``--max-worlds-per-address`` and the wrong-code throttle on a real server, each client
+    speaking from its own loopback address (Linux answers all of 127.0.0.0/8)."""
+    app = App(tmp_path, "--classroom", "--class-code", CODE, "--launch", "rocket", "--no-foxglove",
+              "--max-worlds-per-address", "1")  # fmt: skip
+    clients = {
+        host: httpx.Client(base_url=app.url, transport=httpx.HTTPTransport(local_address=host), timeout=30)
+        for host in ("127.0.0.1", "127.0.0.2", "127.0.0.3", "127.0.0.4")
+    }
+    try:
+
+        def join(host: str, name: str, code: str = CODE) -> httpx.Response:
+            return clients[host].post("/api/classroom/join", json={"name": name, "code": code})
+
+        assert join("127.0.0.1", "Ada").status_code == 201
+        second = join("127.0.0.1", "Al")
+        assert second.status_code == 429 and "at most 1 worlds per client address" in second.json()["detail"]
+        assert join("127.0.0.2", "Bob").status_code == 201
+        guesses = [join("127.0.0.3", "Eve", f"GUESS{i}").status_code for i in range(6)]
+        assert guesses == [403] * 5 + [429]
+        throttled = join("127.0.0.3", "Eve")  # the right code, from the guessing address
+        assert throttled.status_code == 429 and int(throttled.headers["Retry-After"]) >= 1
+        forged = join("127.0.0.4", "Cy\r\n00:00:00 INFO classroom: Mallory joined: world mallory")
+        assert forged.status_code == 422 and "U+000D" in forged.json()["detail"]
+        assert join("127.0.0.4", "Cy").status_code == 201
+        console = app.log_tail(100_000)
+        assert "Ada joined" in console and "Cy joined" in console and "Mallory" not in console
+    finally:
+        for client in clients.values():
+            client.close()
+        app.stop()
