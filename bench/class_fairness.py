@@ -19,6 +19,7 @@ against the better quiet window; writes bench/results/class_fairness.json.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import statistics
@@ -135,7 +136,7 @@ class Worst:
                     ws = connect(
                         f"{self.server.ws_url}/rosbridge", additional_headers=self.headers, max_size=None
                     )
-                except (OSError, InvalidStatus) as exc:  # refused at the handshake
+                except (OSError, InvalidStatus, ConnectionClosed) as exc:  # refused, or closed by a reset
                     self._count(f"socket refused {type(exc).__name__}")
                     self.stop.wait(0.05)
                     continue
@@ -152,7 +153,8 @@ class Worst:
                 open_.append(ws)
         finally:
             for ws in open_:
-                ws.close()
+                with contextlib.suppress(ConnectionClosed):
+                    ws.close()
 
 
 def attack(url: str, token: str, seconds: float, sockets: int, attacks: list[str]) -> None:
@@ -165,7 +167,11 @@ def attack(url: str, token: str, seconds: float, sockets: int, attacks: list[str
     worst = Worst(server, token, sockets, attacks)
     worst.start()
     time.sleep(seconds)
-    print(json.dumps(worst.end()), flush=True)
+    attempts = worst.end()
+    with httpx.Client(base_url=url, headers=worst.headers, timeout=30) as http:  # quiet again: stop them
+        for group in http.get("/api/launches").json():
+            http.delete(f"/api/launches/{group['id']}")
+    print(json.dumps(attempts), flush=True)
 
 
 def run(quiet: int, window_s: float, ramp_s: float, sockets: int, attacks: list[str]) -> dict[str, Any]:

@@ -61,6 +61,9 @@ class KeyedRateLimit:
         self.clock, self.rate_hz, self.burst, self.max_keys = clock, rate_hz, burst, max_keys
         self._limits: OrderedDict[str, RateLimit] = OrderedDict()
 
+    def __len__(self) -> int:
+        return len(self._limits)
+
     def __getitem__(self, key: str) -> RateLimit:
         limit = self._limits.get(key)
         if limit is None:

@@ -22,6 +22,7 @@ from support.app import App
 from server.app import create_app
 from server.bus import ManualClock
 from server.classroom import Classroom
+from server.limits import KeyedRateLimit
 from server.settings import JoinLimits, Settings
 
 CODE = "JOIN42"
@@ -201,3 +202,13 @@ def test_a_live_class_server_tells_client_addresses_apart(tmp_path: Path) -> Non
         for client in clients.values():
             client.close()
         app.stop()
+
+
+def test_addresses_held_for_their_limits_are_bounded_and_the_oldest_forgotten(clock: ManualClock) -> None:
+    limits = KeyedRateLimit(clock, rate_hz=0.1, burst=1, max_keys=3)
+    assert limits["10.0.0.1"].take()
+    assert not limits["10.0.0.1"].take()  # spent, while remembered
+    for i in range(2, 6):
+        limits[f"10.0.0.{i}"].take()
+    assert len(limits) == 3
+    assert limits["10.0.0.1"].take()  # forgotten first: a new key's bucket, full again
