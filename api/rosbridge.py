@@ -124,10 +124,10 @@ async def _send_loop(websocket: WebSocket, session: RosbridgeSession, frames: Ra
     loop = asyncio.get_running_loop()
     try:
         while True:
-            await spend(frames)  # before a frame is taken and encoded: over budget, none is
             session.ready.clear()  # before looking, so a message arriving meanwhile sets it again
             text, wait_s = session.next_frame(loop.time())
             if text is not None:
+                await spend(frames)  # over the lab's budget this session waits, one frame in hand
                 await websocket.send_text(text)
                 continue
             with contextlib.suppress(TimeoutError):

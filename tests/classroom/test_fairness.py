@@ -238,3 +238,25 @@ def test_a_worlds_rosbridge_requests_wait_for_its_budget_and_none_is_lost(clock:
             assert not lab.socket_requests.ready()  # two taken, two waiting in the socket
             clock.advance(1.0)
             wait_for(4)
+
+
+def test_a_worlds_rosbridge_sockets_spend_the_same_frame_budget(clock: ManualClock) -> None:
+    with class_app(clock, world_socket_frames_hz=FRAMES_HZ, world_writes_burst=50) as client:
+        ada = join(client, "Ada")
+        lab = classroom(client).worlds["ada"].lab
+        assert lab is not None and lab.socket_frames is not None
+        with client.websocket_connect("/rosbridge", headers=ada) as bridge:
+            bridge.send_json({"op": "subscribe", "topic": "/countdown", "queue_length": 50})
+            for i in range(2 * FRAMES_HZ):
+                reply = client.post(
+                    "/api/publish", json={"topic": "/countdown", "msg": {"data": i}}, headers=ada
+                )
+                assert reply.status_code == 200
+
+            def frames() -> list[int]:
+                return [json.loads(receive_within(bridge)["text"])["msg"]["data"] for _ in range(FRAMES_HZ)]
+
+            assert frames() == list(range(FRAMES_HZ))
+            assert not lab.socket_frames.ready()  # spent by this socket: the rest waits for time
+            clock.advance(1.0)
+            assert frames() == list(range(FRAMES_HZ, 2 * FRAMES_HZ))
