@@ -166,9 +166,11 @@ InstructorDep = Annotated[Grant, Depends(_instructor)]
     responses=responses(FORBIDDEN, TYPE_CONFLICT, TOO_MANY, BAD_GATEWAY, NO_ROOM, body=True),
     openapi_extra=OPEN,
 )
-async def join(body: JoinRequest, classroom: ClassroomDep, response: Response) -> Joined:
-    """A world of one's own: the rocket and drone launches, under a token for this world only."""
-    world, token = await classroom.join(body.name, body.code)
+async def join(body: JoinRequest, classroom: ClassroomDep, request: Request, response: Response) -> Joined:
+    """A world of one's own: the rocket and drone launches, under a token for this world only.
+    Joins and wrong codes are rate-limited per client address and per class (429, Retry-After)."""
+    address = request.client.host if request.client is not None else "unknown"
+    world, token = await classroom.join(body.name, body.code, address)
     set_token_cookie(response, token)
     return Joined(world=world.name, student=world.student, token=token)
 
@@ -245,13 +247,18 @@ async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> 
     return world.describe()
 
 
-@router.post("/worlds/{name}/reset", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, BAD_GATEWAY))
+@router.post(
+    "/worlds/{name}/reset", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, TOO_MANY, BAD_GATEWAY)
+)
 async def reset_world(name: str, grant: GrantDep, classroom: ClassroomDep) -> dict[str, Any]:
-    """Start a world over (every node, the 3D view): the instructor any, a student their own."""
+    """Start a world over (every node, the 3D view): the instructor any, a student their own, as
+    one of their writes and at most ``world_resets_hz`` a second."""
     if not grant.is_instructor and grant.world != name:
         raise HTTPException(
             status.HTTP_403_FORBIDDEN, f"your token is for world {grant.world!r}, not {name!r}"
         )
+    if not grant.is_instructor:
+        classroom.charge_reset(name)
     world = await classroom.reset(name)
     return world.describe()
 

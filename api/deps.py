@@ -69,7 +69,8 @@ def lab_of(conn: HTTPConnection) -> Lab:
     # A world worker's calls come from its class server, which charged the write already.
     if writing and not grant.is_instructor and not classroom.is_worker and not world.writes.take():
         raise ClassroomError(429, f"too many requests for world {world.name!r}: at most "
-                                  f"{classroom.settings.world_writes_hz:g} writes a second")  # fmt: skip
+                                  f"{classroom.settings.world_writes_hz:g} writes a second",
+                             world.writes.retry_after_s())  # fmt: skip
     return world.lab
 
 

@@ -9,6 +9,7 @@ request id, logs it with its traceback under that id, and never sends its text t
 from __future__ import annotations
 
 import logging
+import math
 import uuid
 from collections.abc import Awaitable, Callable
 
@@ -153,7 +154,9 @@ def register_error_handlers(app: FastAPI) -> None:
 async def _classroom_error(_request: Request, exc: Exception) -> SafeJSONResponse:
     """A class server's refusal carries its own status (401 no token, 403 another world, ...)."""
     code = exc.status if isinstance(exc, ClassroomError) else status.HTTP_500_INTERNAL_SERVER_ERROR
-    return SafeJSONResponse({"detail": str(exc)}, status_code=code)
+    after = exc.retry_after_s if isinstance(exc, ClassroomError) else None
+    headers = {"Retry-After": str(max(1, math.ceil(after)))} if after is not None else None
+    return SafeJSONResponse({"detail": str(exc)}, status_code=code, headers=headers)
 
 
 class ErrorMiddleware:

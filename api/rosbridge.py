@@ -15,15 +15,18 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import json
+from dataclasses import dataclass
 
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect, WebSocketException
 
 from server.bridges.rosbridge import RosbridgeSession
 from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH, world_topic
+from server.limits import RateLimit
 from server.tasks import cancel_and_wait
 
 from .deps import WsLabDep, classroom_of, token_of
 from .errors import CloseCode, close_reason
+from .ws_budget import spend
 from .ws_life import closed_when, closed_when_lab_stops
 
 router = APIRouter(tags=["websockets"])
@@ -34,7 +37,8 @@ MAX_FRAME_BYTES = 1 << 20  # a publish of the largest message any lab type can h
 @router.websocket("/rosbridge")
 async def rosbridge(websocket: WebSocket, lab: WsLabDep) -> None:
     await websocket.accept()
-    await _serve(websocket, RosbridgeSession(lab.bus), closed_when_lab_stops(websocket, lab))
+    budget = Budget(lab.socket_frames, lab.socket_requests)
+    await _serve(websocket, RosbridgeSession(lab.bus), closed_when_lab_stops(websocket, lab), budget)
 
 
 @router.websocket(CLASS_ROSBRIDGE_PATH)
@@ -65,14 +69,25 @@ def _refused(code: int, reason: str) -> WebSocketException:
     return WebSocketException(code, close_reason(reason))
 
 
+@dataclass(frozen=True)
+class Budget:
+    """The lab's WebSocket budgets this session spends: frames it sends, requests it takes."""
+
+    frames: RateLimit | None = None
+    requests: RateLimit | None = None
+
+
 async def _serve(
-    websocket: WebSocket, session: RosbridgeSession, lifetime: contextlib.AbstractAsyncContextManager[None]
+    websocket: WebSocket,
+    session: RosbridgeSession,
+    lifetime: contextlib.AbstractAsyncContextManager[None],
+    budget: Budget = Budget(),
 ) -> None:
     """Run an accepted client's session until it leaves, breaks a rule, or ``lifetime`` closes it."""
-    sender = asyncio.create_task(_send_loop(websocket, session))
+    sender = asyncio.create_task(_send_loop(websocket, session, budget.frames))
     try:
         async with lifetime:
-            close = await _receive_loop(websocket, session)
+            close = await _receive_loop(websocket, session, budget.requests)
     finally:
         await cancel_and_wait(sender)
         session.close()
@@ -81,10 +96,13 @@ async def _serve(
             await websocket.close(*close)
 
 
-async def _receive_loop(websocket: WebSocket, session: RosbridgeSession) -> tuple[int, str] | None:
+async def _receive_loop(
+    websocket: WebSocket, session: RosbridgeSession, requests: RateLimit | None
+) -> tuple[int, str] | None:
     """Handle requests until the client leaves (None) or must be closed (code, reason)."""
     try:
         while (frame := await websocket.receive())["type"] != "websocket.disconnect":
+            await spend(requests)
             text = frame.get("text")
             if text is None:
                 return CloseCode.UNSUPPORTED_DATA, "rosbridge frames are JSON text"
@@ -102,13 +120,14 @@ async def _receive_loop(websocket: WebSocket, session: RosbridgeSession) -> tupl
     return None
 
 
-async def _send_loop(websocket: WebSocket, session: RosbridgeSession) -> None:
+async def _send_loop(websocket: WebSocket, session: RosbridgeSession, frames: RateLimit | None) -> None:
     loop = asyncio.get_running_loop()
     try:
         while True:
             session.ready.clear()  # before looking, so a message arriving meanwhile sets it again
             text, wait_s = session.next_frame(loop.time())
             if text is not None:
+                await spend(frames)  # over the lab's budget this session waits, one frame in hand
                 await websocket.send_text(text)
                 continue
             with contextlib.suppress(TimeoutError):

@@ -18,12 +18,13 @@ from fastapi import APIRouter, Query, WebSocket, WebSocketDisconnect
 
 from server.bus import Bus, Node, UnknownTopicError, validate_topic_name
 from server.lab import Lab
-from server.limits import LimitExceededError
+from server.limits import LimitExceededError, RateLimit
 from server.msgs import Message
 
 from .deps import WsLabDep
 from .errors import CloseCode, close_code, close_reason
 from .strict_json import dumps
+from .ws_budget import spend
 from .ws_life import closed_when_lab_stops
 
 router = APIRouter(tags=["websockets"])
@@ -116,7 +117,7 @@ async def echo(
         code, reason = _refusal(exc, "/" + name.lstrip("/"))
         await websocket.close(code, close_reason(reason))
         return
-    sender = asyncio.create_task(_send_loop(websocket, node, throttle_ms / 1000.0))
+    sender = asyncio.create_task(_send_loop(websocket, node, throttle_ms / 1000.0, lab.socket_frames))
     try:
         async with closed_when_lab_stops(websocket, lab):
             await _receive_until_closed(websocket, lab.settings.max_ws_frame_bytes)
@@ -126,13 +127,16 @@ async def echo(
         await asyncio.gather(sender, return_exceptions=True)
 
 
-async def _send_loop(websocket: WebSocket, node: EchoNode, throttle_s: float) -> None:
+async def _send_loop(
+    websocket: WebSocket, node: EchoNode, throttle_s: float, frames: RateLimit | None
+) -> None:
     topic, type_name = node.sub.topic_name, node.sub.msg_type.TYPE
     try:
         while True:
             await node.ready.wait()
             node.ready.clear()
             while node.outbox:
+                await spend(frames)  # the lab's budget: over it this echo waits, its oldest messages drop
                 msg, received = node.outbox.popleft()
                 frame: dict[str, Any] = {
                     "topic": topic,

@@ -12,7 +12,7 @@ from typing import Any
 
 from server import cli
 from server.console import LEVELS, access_log, quiet_uvicorn, setup_logging
-from server.settings import LOOPBACK_HOSTS, MAX_LOCAL_WORKERS, WORKER_TIMEOUT_S, Settings
+from server.settings import LOOPBACK_HOSTS, MAX_LOCAL_WORKERS, WORKER_TIMEOUT_S, JoinLimits, Settings
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env, is_loopback
 
 
@@ -98,6 +98,11 @@ def build_parser() -> argparse.ArgumentParser:
     )  # fmt: skip
     classroom.add_argument("--class-code", help="the code students type to join (default: a new random one)")
     classroom.add_argument("--max-worlds", type=int, default=60, help="worlds at most (default 60)")
+    classroom.add_argument(
+        "--max-worlds-per-address", type=int, metavar="N",
+        help="worlds at most joined from one client address (default: any; a class behind one NAT "
+             "address shares one)",
+    )  # fmt: skip
     classroom.add_argument(
         "--local-worlds", type=int, metavar="N",
         help="worlds this server hosts itself (default: all); the rest go to world workers "
@@ -240,7 +245,10 @@ def main(argv: list[str] | None = None) -> int:
         bag_dir=Path(args.bag_dir), classroom=args.classroom, class_code=args.class_code,
         max_worlds=args.max_worlds, token=lab_token(args.token), local_worlds=args.local_worlds,
         worker_timeout_s=args.worker_timeout, local_workers=args.workers, world_log_level=args.world_log_level,
+        joins=JoinLimits(max_worlds_per_address=args.max_worlds_per_address),
     )  # fmt: skip
+    if args.max_worlds_per_address is not None and (args.max_worlds_per_address < 1 or not args.classroom):
+        parser.error("--max-worlds-per-address needs --classroom, and N >= 1")
     if not 2.0 <= args.worker_timeout <= 3600.0:
         parser.error("--worker-timeout must be in 2..3600 s")
     if args.local_worlds is not None and (args.local_worlds < 0 or not args.classroom or zenoh is None):

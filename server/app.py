@@ -16,6 +16,7 @@ from api.openapi import use_token_security
 from api.security import GuardMiddleware
 from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
 from api.world_proxy import WorldProxyMiddleware
+from api.ws_cap import SocketCapMiddleware
 from api.ws_refusal import WebSocketRefusalMiddleware
 from server.bridges.runner import run_bridges
 from server.bus import Clock
@@ -71,9 +72,10 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     register_error_handlers(app)
     # Added innermost first: a request meets the error net, then the path check (as sent, never
-    # normalised), then the guard, then strict JSON, then (on a class server) the pass to the world
-    # worker that hosts the caller's world.
+    # normalised), then the guard, then strict JSON, then (on a class server) a student's cap of
+    # WebSockets and the pass to the world worker that hosts the caller's world.
     app.add_middleware(WorldProxyMiddleware)
+    app.add_middleware(SocketCapMiddleware)
     app.add_middleware(StrictJsonMiddleware)
     app.add_middleware(
         GuardMiddleware,

@@ -9,12 +9,32 @@ A class world's nodes log under ``world.<world>`` (``server.bus.node.node_logger
 from __future__ import annotations
 
 import logging
+import unicodedata
 
 WORLD_LOGGER = "world"  # the parent logger of every class world's nodes
 LEVELS = ("debug", "info", "warning", "error")
 # Libraries whose routine lines say nothing to a user: the class server's calls to its workers
 # (httpx), and each viser server's own loopback socket opening (websockets).
 _CHATTY = ("httpx", "websockets.server", "websockets.client")
+_BREAKING = frozenset({"Cc", "Cf", "Zl", "Zp"})  # control, format (bidi overrides), line separators
+
+
+def one_line(text: str) -> str:
+    """``text`` with every control or line-breaking character escaped (``\\n``, ``\\x1b``): a
+    client's value or a student node's message in a log line can never start a line of its own."""
+    if text.isprintable():
+        return text
+    return "".join(
+        c if c == "\t" or unicodedata.category(c) not in _BREAKING else repr(c)[1:-1] for c in text
+    )
+
+
+class OneLineFormatter(logging.Formatter):
+    """A record's message on one line (its traceback, the formatter's own, still below it)."""
+
+    def formatMessage(self, record: logging.LogRecord) -> str:
+        record.message = one_line(record.message)
+        return super().formatMessage(record)
 
 
 def world_logger(world: str) -> str:
@@ -28,11 +48,11 @@ def setup_logging(
     """The process's logging: ``level`` for the app, ``world_level`` for a class's worlds' nodes,
     and ``who`` (a world worker's id) in front of every line when several processes share a console."""
     prefix = f"[{who}] " if who else ""
-    logging.basicConfig(
-        level=level.upper(),
-        format=f"%(asctime)s {prefix}%(levelname)s %(name)s: %(message)s",
-        datefmt="%H:%M:%S",
+    handler = logging.StreamHandler()
+    handler.setFormatter(
+        OneLineFormatter(f"%(asctime)s {prefix}%(levelname)s %(name)s: %(message)s", "%H:%M:%S")
     )
+    logging.basicConfig(level=level.upper(), handlers=[handler])
     if level != "debug":
         for name in _CHATTY:
             logging.getLogger(name).setLevel(logging.WARNING)

@@ -34,7 +34,7 @@ from server.devices.keyboard import KeyboardDevice
 from server.introspection.merged import topic_views
 from server.launch.description import NodeAction, SourceLocation
 from server.launch.launcher import LaunchedNode, Launcher, ProcessTransport
-from server.limits import LimitExceededError, RateLimit, check_finite_json, check_topic_limits
+from server.limits import LimitExceededError, RateLimit, check_finite_json, check_topic_limits, per_second
 from server.msgs import Message, get_service_type, get_type
 from server.packages import PackageIndex
 from server.publishers import PublisherManager
@@ -150,6 +150,8 @@ class Lab:
         self.bus.devices["keyboard"] = self.keyboard
         self.key_deadman = KeyDeadMan(self.keyboard, self.bus, settings.deadman_s)
         self.key_frames = RateLimit(self.bus.clock, settings.key_frames_hz, settings.key_frames_burst)
+        self.socket_frames = per_second(self.bus.clock, settings.socket_frames_hz)
+        self.socket_requests = per_second(self.bus.clock, settings.socket_requests_hz)
         self.display: Any = None
         self.rocket_view: Any = None
         self.started_at = time.monotonic()

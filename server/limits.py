@@ -9,6 +9,7 @@ mistaken for a client's mistake.
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
@@ -28,14 +29,50 @@ class RateLimit:
         self.refused = 0
 
     def take(self) -> bool:
-        now = self.clock.now()
-        self._tokens = min(self.burst, self._tokens + (now - self._at) * self.rate_hz)
-        self._at = now
+        self._tokens, self._at = self._level(), self.clock.now()
         if self._tokens >= 1.0:
             self._tokens -= 1.0
             return True
         self.refused += 1
         return False
+
+    def ready(self) -> bool:
+        """Whether ``take`` would succeed now, without taking."""
+        return self._level() >= 1.0
+
+    def retry_after_s(self) -> float:
+        """Seconds until one call is allowed again (0 when one is now)."""
+        return max(0.0, (1.0 - self._level()) / self.rate_hz) if self.rate_hz > 0 else math.inf
+
+    def _level(self) -> float:
+        return min(self.burst, self._tokens + (self.clock.now() - self._at) * self.rate_hz)
+
+
+def per_second(clock: Clock, rate_hz: float | None) -> RateLimit | None:
+    """``rate_hz`` a second in bursts of a second's worth; None (no limit) for None."""
+    return None if rate_hz is None else RateLimit(clock, rate_hz, max(1, math.ceil(rate_hz)))
+
+
+class KeyedRateLimit:
+    """A ``RateLimit`` per key (a client's address), at most ``max_keys`` of them: the oldest key
+    is forgotten first, so a stream of new keys cannot grow memory."""
+
+    def __init__(self, clock: Clock, rate_hz: float, burst: int, max_keys: int = 4096) -> None:
+        self.clock, self.rate_hz, self.burst, self.max_keys = clock, rate_hz, burst, max_keys
+        self._limits: OrderedDict[str, RateLimit] = OrderedDict()
+
+    def __len__(self) -> int:
+        return len(self._limits)
+
+    def __getitem__(self, key: str) -> RateLimit:
+        limit = self._limits.get(key)
+        if limit is None:
+            limit = self._limits[key] = RateLimit(self.clock, self.rate_hz, self.burst)
+            while len(self._limits) > self.max_keys:
+                self._limits.popitem(last=False)
+        else:
+            self._limits.move_to_end(key)
+        return limit
 
 
 class LimitExceededError(Exception):

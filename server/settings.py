@@ -27,6 +27,23 @@ class WorkerSettings:
 
 
 @dataclass(frozen=True)
+class JoinLimits:
+    """How fast a class takes joins and wrong class codes, per client address and for the whole
+    class (over it: 429 with Retry-After), and how many worlds one address may hold (None: any,
+    for a class behind one NAT address)."""
+
+    per_address_hz: float = 1.0  # a class behind one NAT address: 30 at once, then one a second
+    per_address_burst: int = 30
+    class_hz: float = 2.0
+    class_burst: int = 60
+    wrong_codes_per_address_hz: float = 0.1  # one guess in 10 s, after a burst of typos
+    wrong_codes_per_address_burst: int = 5
+    wrong_codes_class_hz: float = 1.0  # every address together: ~30 years for the code space
+    wrong_codes_class_burst: int = 30
+    max_worlds_per_address: int | None = None
+
+
+@dataclass(frozen=True)
 class Settings:
     host: str = "127.0.0.1"
     port: int = 8000
@@ -43,6 +60,11 @@ class Settings:
     # are dropped (keyups and release_all never are, so no key sticks).
     key_frames_hz: float = 200.0
     key_frames_burst: int = 400
+    # Frames a lab's WebSockets send a second, all together (topic echoes and rosbridge), and
+    # rosbridge requests they take; None: no limit. Over it a socket waits its turn (its oldest
+    # messages drop as for a slow client; a client's requests wait in its own TCP buffer).
+    socket_frames_hz: float | None = None
+    socket_requests_hz: float | None = None
     deadman_s: float = 0.5  # a key channel silent this long with keys held has them released
     max_api_topics: int = 256  # topics the REST API may create, so a loop of typos cannot grow memory
     max_publishers: int = 64  # periodic publishers running at once
@@ -71,6 +93,16 @@ class Settings:
     max_worlds: int = 60
     world_writes_hz: float = 20.0  # a student's REST writes per second in their world, bursts of:
     world_writes_burst: int = 40
+    # What one student's world may hold, so its load stays its own: launches and runs started
+    # through the API (and nodes in each), resets (also writes), and WebSockets of every kind.
+    world_launches: int = 4
+    world_launch_nodes: int = 16
+    world_resets_hz: float = 1 / 30  # a reset blocks the shared loop ~0.1 s: a world starts over
+    world_resets_burst: int = 2
+    world_sockets: int = 24
+    world_socket_frames_hz: float = 400.0  # a page's pose stream is 100; bursts of a second's worth
+    world_socket_requests_hz: float = 200.0
+    joins: JoinLimits = field(default_factory=JoinLimits)
     # Samples a second a class world takes from other processes on Zenoh (its student's nodes);
     # a flood beyond that is dropped as it arrives, so it costs the shared loop nothing.
     world_samples_hz: float = 2000.0

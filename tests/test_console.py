@@ -51,3 +51,29 @@ def test_debug_shows_everything_and_one_lab_logs_every_request() -> None:
     assert len(lines) == 5 and "HTTP Request" in lines[-1]
     assert access_log("info", classroom=False) and access_log("debug", classroom=True)
     assert not access_log("info", classroom=True)  # a class's pages poll: 30 students would flood it
+
+
+def test_a_message_with_line_breaks_or_escapes_stays_on_its_one_line() -> None:
+    script = textwrap.dedent("""
+        import logging
+        from server.console import setup_logging
+        setup_logging('info', classroom=True, world_level='info')
+        logging.getLogger("classroom").info("%s joined", "Eve\\r\\n12:00:00 INFO classroom: Mallory joined")
+        logging.getLogger("world.ada.talker").warning("[talker] a\\nb\\x1b[2J\\u2028c\\u202ed\\tе")
+        logging.getLogger("classroom").info("Ada joined: world ada")
+        try:
+            raise ValueError("boom")
+        except ValueError:
+            logging.getLogger("classroom").exception("it failed")
+    """)
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=60, check=True
+    )
+    lines = done.stderr.splitlines()
+    assert lines[0].endswith("INFO classroom: Eve\\r\\n12:00:00 INFO classroom: Mallory joined joined")
+    assert lines[1].endswith("WARNING world.ada.talker: [talker] a\\nb\\x1b[2J\\u2028c\\u202ed\tе")
+    assert lines[2].endswith("INFO classroom: Ada joined: world ada")  # a clean line as it was
+    assert (
+        lines[3].endswith("ERROR classroom: it failed") and lines[4] == "Traceback (most recent call last):"
+    )
+    assert lines[-1] == "ValueError: boom"  # a traceback keeps its own lines

@@ -27,6 +27,7 @@ from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth, Credentials
 from server.transport.config import ZenohSettings, endpoint_host
 
+from .admission import Admission, check_student_name
 from .errors import ClassroomError
 from .load import Choice, CpuMeter, choose, machine_id
 from .router_gate import RouterGate
@@ -87,6 +88,9 @@ class World:
     placed_at: float = -math.inf  # when it was last started where it is (the class's clock)
     lost: str | None = None  # why it cannot be reached now (its worker is gone and it waits for room)
     login: Credentials | None = field(default=None, repr=False)  # its Zenoh login (class_router.py)
+    address: str | None = None  # the client address it was joined from (a class server's)
+    reset_limit: RateLimit | None = None  # a student's resets, besides their writes
+    sockets: int = 0  # a student's WebSockets open on it now (api/ws_cap.py)
 
     def describe(self) -> dict[str, Any]:
         """What the class server knows itself; a worker's world adds what its worker reports."""
@@ -146,6 +150,7 @@ class Classroom:
         self.signer = signer or TokenSigner()
         self.instructor_token, self.instructor = self.signer.issue("instructor", None, "instructor")
         self.worlds: dict[str, World] = {}
+        self.admission = Admission(settings.joins, self.clock)
         self.physics = SharedQuadrotorPhysics(self.clock)
         self.simple_physics = SharedSimpleSim(self.clock)  # the worlds flown with simple:=true
         self.executors = ExecutorGroup()  # one task runs every world's callbacks here
@@ -519,6 +524,10 @@ class Classroom:
             bag_dir=self.settings.bag_dir / name,
             launch=file,
             launch_args=args,
+            max_launch_groups=min(self.settings.max_launch_groups, self.settings.world_launches),
+            max_nodes_per_launch=min(self.settings.max_nodes_per_launch, self.settings.world_launch_nodes),
+            socket_frames_hz=self.settings.world_socket_frames_hz,
+            socket_requests_hz=self.settings.world_socket_requests_hz,
         )
 
     async def _start_lab(
@@ -537,11 +546,14 @@ class Classroom:
         return lab
 
     # -- worlds ----------------------------------------------------------------
-    async def join(self, student: str, code: str) -> tuple[World, str]:
+    async def join(self, student: str, code: str, address: str = "unknown") -> tuple[World, str]:
+        """A new world for ``student``, joined from client ``address`` (its limits: admission.py)."""
         if self.is_worker:
             raise ClassroomError(403, "this is a world worker: students join through the class server")
+        self.admission.check(address)
         if not hmac.compare_digest(code.strip().upper().encode(), self.code.encode()):
-            raise ClassroomError(403, "wrong class code")
+            raise self.admission.wrong_code(address)
+        check_student_name(student)
         try:
             name = world_name(student)
         except ValueError as exc:
@@ -553,6 +565,7 @@ class Classroom:
         student = student.strip()[:64]
         domain_id = self._free_domain()
         login = self.router.login(domain_id) if self.router is not None else None
+        self.admission.hold(address)
         self._starting[name] = domain_id  # held while the world starts: no two joins take one name
         try:
             async with self._gate.use():
@@ -566,6 +579,9 @@ class Classroom:
                         self._local_starting -= 1
                 else:
                     await self._host_on(place, name, student, domain_id, login)
+        except BaseException:
+            self.admission.release(address)
+            raise
         finally:
             del self._starting[name]
         token, grant = self.signer.issue("student", name, student)
@@ -579,6 +595,10 @@ class Classroom:
             worker=place,
             placed_at=self.clock.now(),
             login=login,
+            address=address,
+            reset_limit=RateLimit(
+                self.clock, self.settings.world_resets_hz, self.settings.world_resets_burst
+            ),
         )
         if self.class_graph is not None:
             self.class_graph.set_world(domain_id, name)
@@ -724,6 +744,23 @@ class Classroom:
             refused |= {n: str(why) for n, why in answer.get("refused", {}).items() if n in names}
         return reached, refused
 
+    def charge_reset(self, name: str) -> None:
+        """A student's reset: one of their world's few resets, and one of its writes (429 over
+        either, which charges neither)."""
+        world = self.get(name)
+        settings, resets = self.settings, world.reset_limit
+        if resets is not None and not resets.ready():
+            resets.refused += 1
+            raise ClassroomError(
+                429, f"too many resets of world {name!r}: at most {settings.world_resets_burst} in a row, "
+                f"then one in {1 / settings.world_resets_hz:g} s", resets.retry_after_s(),
+            )  # fmt: skip
+        if not world.writes.take():
+            raise ClassroomError(429, f"too many requests for world {name!r}: at most "
+                                      f"{settings.world_writes_hz:g} writes a second", world.writes.retry_after_s())  # fmt: skip
+        if resets is not None:
+            resets.take()
+
     async def reset(self, name: str) -> World:
         """A fresh world under the same name and token: every node starts over, the 3D view too."""
         world = self.get(name)
@@ -751,6 +788,7 @@ class Classroom:
         if self.router is not None:  # at once: a join while the world ends must not get its domain
             self._revoking.add(world.domain_id)
         self._revoked.add(world.token_id)
+        self.admission.release(world.address)
         if self.class_graph is not None:
             self.class_graph.drop_world(world.domain_id)
         await self._end(world)
