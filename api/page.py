@@ -14,8 +14,8 @@ from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Resp
 from starlette.requests import HTTPConnection
 
 from api.deps import classroom_of, keep_token_and_go, lab_of, token_of
-from api.security import token_matches
 from api.ws_relay import relay
+from server.access import token_matches
 from server.classroom import ClassroomError
 from server.viewer.views import ViewRegistry
 from server.viewer.viser_guard import PROXY_TOKEN_HEADER

@@ -1,7 +1,7 @@
 """A guarded front door for a WebSocket server the app cannot configure (foxglove-sdk's).
 
 It listens where clients connect (127.0.0.1:8765 by default), reads the opening handshake,
-applies the app's own rules (api/security.py: a Host that names this machine, no Origin of
+applies the app's own rules (server/access.py: a Host that names this machine, no Origin of
 another site) and only then joins the client to the upstream server on loopback, byte for
 byte in both directions. A refused handshake gets an HTTP 403 or 421 naming the reason, and
 never reaches upstream. Nothing here parses WebSocket frames, so the protocol stays the SDK's.
@@ -15,7 +15,7 @@ import logging
 from collections.abc import Iterable
 from urllib.parse import parse_qs, urlsplit
 
-from api.security import bearer_token, host_allowed, origin_allowed, token_matches
+from server.access import bearer_token, host_allowed, origin_allowed, token_matches
 from server.tasks import cancel_and_wait
 
 log = logging.getLogger("bridges.front")
