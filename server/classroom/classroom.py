@@ -227,7 +227,7 @@ class Classroom:
         from server.transport.session import TransportError, open_session
 
         if self.settings.worker is not None:
-            from .worker import WorkerControl
+            from .worker_control import WorkerControl
 
             zenoh = dataclasses.replace(zenoh, login=self.zenoh_auth.class_credentials())
             self._control_session = await asyncio.to_thread(open_session, zenoh)

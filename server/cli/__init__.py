@@ -17,7 +17,7 @@ from . import bag, env, interface, launch, node, run, service, topic
 from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
 
 VERBS = ("topic", "node", "service", "launch", "run", "interface", "bag", "env")
-WORKER_VERB = "world-worker"  # ros2lab world-worker: host a class server's worlds (server.classroom.worker)
+WORKER_VERB = "world-worker"  # ros2lab world-worker: host a class server's worlds (server/world_worker.py)
 
 __all__ = ["VERBS", "build_parser", "main"]
 
