@@ -9,10 +9,10 @@ from pathlib import Path
 from fastapi import FastAPI
 from fastapi.staticfiles import StaticFiles
 
-from api import build_router
 from api.errors import ErrorMiddleware, register_error_handlers
 from api.openapi import use_token_security
 from api.page import router as page_router
+from api.routes import build_router
 from api.security import GuardMiddleware
 from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
 from api.tools_page import router as tools_router
