@@ -32,8 +32,8 @@ from server.bus import (
     UnknownTopicError,
 )  # fmt: skip
 from server.classroom import ClassroomError
-from server.lab import UnknownLaunchError
 from server.launch.description import LaunchFileError
+from server.launch.groups import UnknownLaunchError
 from server.limits import LimitExceededError, ValueLimitError
 from server.msgs import MessageError, UnknownTypeError
 from server.packages import ExecutableNotFoundError, PackageNotFoundError

@@ -144,7 +144,7 @@ def zenoh_settings(args: argparse.Namespace) -> ZenohSettings | None:
 
 def check_launch(settings: Settings) -> str | None:
     """Parse the launch file before anything starts, so a mistake is one clear line."""
-    from server.lab import resolve_launch
+    from server.launch.aliases import resolve_launch
     from server.launch.description import LaunchFileError
     from server.launch.launcher import parse_launch
     from server.packages import PackageIndex

@@ -93,7 +93,7 @@ class World:
         lab = self.lab
         if lab is None:
             return out
-        rocket = lab.rocket_view.tracker if lab.rocket_view is not None else None
+        rocket = lab.rocket.view.tracker if lab.rocket.view is not None else None
         return {
             **out,
             "domain_id": self.domain_id if lab.zenoh is not None else None,
