@@ -12,7 +12,6 @@ domains the class server gives them, so a student's node processes find them as 
 from __future__ import annotations
 
 import argparse
-import contextlib
 import logging
 import os
 import signal
@@ -24,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from server.classroom.worker_control import TOKEN_ENV
-from server.console import LEVELS, access_log, quiet_uvicorn, setup_logging
+from server.console import LEVELS, setup_logging
 from server.settings import LOOPBACK_HOSTS, ORPHAN_TIMEOUT_S, Settings, WorkerSettings
 from server.transport.config import ZenohSettings
 
@@ -157,22 +156,13 @@ def main(argv: list[str] | None = None) -> int:
         allowed_hosts=() if args.host in LOOPBACK_HOSTS else (advertise,),
     )  # fmt: skip
     setup_logging(args.log_level, classroom=True, world_level=args.world_log_level, who=worker.id)
-    import rich
-    import uvicorn
+    from server.serve import serve
 
-    from server.app import create_app
+    def announce(_app: Any) -> None:
+        print(f"World worker {worker.id}: API at {worker.url}, class router {args.connect}, "
+              f"up to {args.max_worlds} worlds (Ctrl-C stops it and its worlds)", flush=True)  # fmt: skip
+        if args.parent_pid is not None:
+            _end_with_parent(args.parent_pid)
 
-    rich.get_console().quiet = True  # viser's banner names its own loopback port: not for anyone here
-    app = create_app(settings)
-    print(f"World worker {worker.id}: API at {worker.url}, class router {args.connect}, "
-          f"up to {args.max_worlds} worlds (Ctrl-C stops it and its worlds)", flush=True)  # fmt: skip
-    config = uvicorn.Config(
-        app, log_level=args.log_level, access_log=access_log(args.log_level, classroom=True),
-        timeout_graceful_shutdown=1, lifespan="on",
-    )  # fmt: skip
-    quiet_uvicorn(args.log_level, classroom=True)
-    if args.parent_pid is not None:
-        _end_with_parent(args.parent_pid)
-    with contextlib.suppress(KeyboardInterrupt):
-        uvicorn.Server(config).run(sockets=[sock])
+    serve(settings, args.log_level, sock=sock, announce=announce)
     return 0
