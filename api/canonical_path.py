@@ -13,37 +13,16 @@ from __future__ import annotations
 
 import json
 import logging
-import re
 
 from starlette.types import ASGIApp, Receive, Scope, Send
+
+from server.access import path_problem
 
 from .errors import CloseCode, close_reason
 
 log = logging.getLogger("api.paths")
 BAD_REQUEST = 400
 LOGGED_PATH_CHARS = 200
-# Percent-encodings a normaliser decodes into something that changes the path's segments:
-# %2e '.' (then a dot segment), %2f '/' and %5c '\' (a separator to some servers).
-_ENCODED = re.compile(rb"%(2e|2f|5c)", re.IGNORECASE)
-_CONTROL = re.compile(rb"[\x00-\x20\x7f]")
-
-
-def path_problem(raw_path: bytes) -> str | None:
-    """What in a request's path (as sent, before decoding) a normaliser would change; None if nothing."""
-    if not raw_path.startswith(b"/"):
-        return "the path must start with /"
-    if b"\\" in raw_path:
-        return "a backslash in the path"
-    if _CONTROL.search(raw_path):
-        return "a space or control character in the path"
-    if (encoded := _ENCODED.search(raw_path)) is not None:
-        return f"a percent-encoded {encoded.group(0).decode('ascii')!r} in the path"
-    segments = raw_path.split(b"/")[1:]
-    if any(segment in (b".", b"..") for segment in segments):
-        return "a dot segment (. or ..) in the path"
-    if any(not segment for segment in segments[:-1]):
-        return "an empty segment (//) in the path"
-    return None
 
 
 def _raw_path(scope: Scope) -> bytes:

@@ -1,6 +1,6 @@
 """REST for a class server (``--classroom``): join, who am I, and the instructor's controls.
 
-In the OpenAPI document of a class server only (api.build_router); on an app without
+In the OpenAPI document of a class server only (api.routes.build_router); on an app without
 ``--classroom`` every route here answers 404.
 """
 

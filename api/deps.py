@@ -13,11 +13,11 @@ from fastapi import Depends, Request, Response, WebSocket, WebSocketException, s
 from fastapi.responses import RedirectResponse
 from starlette.requests import HTTPConnection
 
+from server.access import bearer_token, token_matches
 from server.classroom import Classroom, ClassroomError, Grant
 from server.lab import Lab
 
 from .errors import CloseCode, close_reason
-from .security import bearer_token, token_matches
 
 TOKEN_COOKIE = "lab_token"
 COOKIE_MAX_AGE_S = 12 * 3600  # a school day

@@ -32,15 +32,15 @@ from server.bus import (
     UnknownTopicError,
 )  # fmt: skip
 from server.classroom import ClassroomError
-from server.lab import UnknownLaunchError
+from server.close_codes import CloseCode as CloseCode  # where the routes import it from
 from server.launch.description import LaunchFileError
+from server.launch.groups import UnknownLaunchError
 from server.limits import LimitExceededError, ValueLimitError
 from server.msgs import MessageError, UnknownTypeError
 from server.packages import ExecutableNotFoundError, PackageNotFoundError, WorkspaceError
 from server.packages.launch_files import LaunchFileNotFoundError
 from server.publishers import PublisherError, UnknownPublisherError
 
-from .close_codes import CloseCode as CloseCode  # where the routes import it from
 from .security import BodyTooLarge
 from .strict_json import SafeJSONResponse
 

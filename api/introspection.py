@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any, Literal
 
 from fastapi import APIRouter, HTTPException, Query, status
@@ -123,7 +124,7 @@ async def graph(lab: LabDep, hidden: bool = False) -> dict[str, Any]:
     shown = {n.name for n in snap.nodes}
     died = [
         {"name": n["name"], "state": "died", "hidden": is_hidden(n["name"]), "location": n["location"]}
-        for n in lab.died_nodes()
+        for n in died_nodes(lab)
         if n["name"] not in shown and (hidden or not is_hidden(n["name"]))
     ]
     return {
@@ -145,7 +146,7 @@ async def list_nodes(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
         for n in (remote.nodes() if remote is not None else [])
         if hidden or not is_hidden(n.name)
     ]
-    died = [n for n in lab.died_nodes() if hidden or not is_hidden(n["name"])]
+    died = [n for n in died_nodes(lab) if hidden or not is_hidden(n["name"])]
     return sorted(local + others + died, key=lambda n: (n["name"], n["location"]))
 
 
@@ -221,3 +222,24 @@ async def type_default(type_name: str) -> dict[str, Any]:
 async def type_info(type_name: str) -> dict[str, Any]:
     """A JSON Schema (draft 2020-12) of the type's JSON form, with ROS integer ranges and defaults."""
     return type_schema(_type(type_name))
+
+
+def died_nodes(lab: Lab) -> list[dict[str, Any]]:
+    """Node processes that ended and are not running again (yet), for the node list."""
+    out = []
+    remote = lab.remote_graph()
+    for entry in lab.launcher.launched:
+        process = entry.process
+        if process is None or process.state != "died":
+            continue
+        action = entry.action
+        namespace = action.namespace or "/"
+        names = remote.names_seen(process.command.zid) if remote is not None else []
+        fallback = namespace.rstrip("/") + "/" + (action.name or Path(action.exec).stem).split("/")[-1]
+        for name in names or [fallback]:
+            out.append({
+                "name": name, "namespace": name.rsplit("/", 1)[0] or "/", "state": "died",
+                "location": f"process {process.pid}", "exit_code": process.exit_code,
+                "respawn": None if entry.respawn is None else entry.respawn.describe(),
+            })  # fmt: skip
+    return out

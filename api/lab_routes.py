@@ -105,5 +105,5 @@ async def workspace(lab: LabDep) -> dict[str, Any]:
 @router.post("/rocket/reset", responses=responses(403))
 async def reset_rocket(lab: LabDep) -> dict[str, str]:
     """Put the rocket back on the pad and restart the countdown (the rocket's nodes restart)."""
-    lab.reset_rocket()
+    lab.rocket.reset()
     return {"status": "reset"}

@@ -52,13 +52,15 @@ class RunRequest(BaseModel):
 async def launch(body: LaunchRequest, lab: LabDep) -> dict[str, Any]:
     """Start a launch file's nodes; a node that fails to start is reported, the others run."""
     path = launch_file(lab.packages, body.package, body.file, confined=lab.settings.confines_paths)
-    return lab.launch_group(path, body.args).describe()
+    return lab.launch_groups.launch(path, body.args).describe()
 
 
 @router.post("/run", status_code=status.HTTP_201_CREATED, responses=responses(NOT_FOUND, TOO_MANY, body=True))
 async def run(body: RunRequest, lab: LabDep) -> dict[str, Any]:
     """Start one node from a package, as ``ros2 run`` (``--ros-args -p`` / ``-r`` as fields)."""
-    return lab.run_node(body.package, body.executable, body.name, body.parameters, body.remappings).describe()
+    return lab.launch_groups.run(
+        body.package, body.executable, body.name, body.parameters, body.remappings
+    ).describe()
 
 
 @router.get("/launches")
@@ -71,10 +73,10 @@ async def output(group_id: str, lab: LabDep) -> dict[str, Any]:
     """One launch or run as ``GET /launches`` gives it, and what each of its node processes
     printed: the last 200 lines (each cut at 4096 characters) and how many in all, so a reader
     that asks again knows which lines are new."""
-    return lab.group(group_id).output()
+    return lab.launch_groups.get(group_id).output()
 
 
 @router.delete("/launches/{group_id}", responses=responses(NOT_FOUND, 403))
 async def stop(group_id: str, lab: LabDep) -> dict[str, Any]:
     """Stop the nodes of one launch or run, as Ctrl-C on ``ros2 launch`` does."""
-    return lab.stop_group(group_id).describe()
+    return lab.launch_groups.stop(group_id).describe()

@@ -2,56 +2,22 @@
 
 A page on another site must never be able to fly the drone: WebSockets and state-changing
 requests carrying another site's Origin are refused, and a Host header that is not a name of
-this machine (DNS rebinding) is refused outright.
+this machine (DNS rebinding) is refused outright. The rules themselves are server/access.py's,
+which the bridges' guarded fronts apply too.
 """
 
 from __future__ import annotations
 
-import hmac
 import json
 from collections.abc import Iterable
-from urllib.parse import urlsplit
 
 from starlette.exceptions import HTTPException
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from .close_codes import REFUSAL_FOR_STATUS
+from server.access import host_allowed, origin_allowed
+from server.close_codes import REFUSAL_FOR_STATUS
 
 SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
-
-
-def _host_name(host_header: str) -> str:
-    host = host_header.strip().lower()
-    if host.startswith("["):  # [::1]:8000
-        return host[1:].split("]", 1)[0]
-    return host.rsplit(":", 1)[0] if host.count(":") == 1 else host
-
-
-def host_allowed(host_header: str | None, accepted: Iterable[str]) -> bool:
-    return host_header is not None and _host_name(host_header) in set(accepted)
-
-
-def origin_allowed(origin: str | None, host_header: str | None, allowed_origins: Iterable[str]) -> bool:
-    """No Origin (a non-browser client) or the page's own origin; anything else must be listed."""
-    if origin is None:
-        return True
-    if origin in set(allowed_origins):
-        return True
-    parts = urlsplit(origin)
-    if parts.scheme not in ("http", "https") or not parts.netloc or host_header is None:
-        return False
-    return parts.netloc.lower() == host_header.strip().lower()
-
-
-def bearer_token(authorization: str | None) -> str | None:
-    """The token of an ``Authorization: Bearer TOKEN`` header, else None."""
-    auth = authorization or ""
-    return auth[7:].strip() if auth[:7].lower() == "bearer " else None
-
-
-def token_matches(given: str | None, expected: str) -> bool:
-    """Compared in constant time, so the answer's timing tells nothing of the token."""
-    return given is not None and hmac.compare_digest(given.encode(), expected.encode())
 
 
 def _header(scope: Scope, name: bytes) -> str | None:

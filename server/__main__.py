@@ -4,14 +4,13 @@ topic list`` and the other ros2 verbs run the command-line tools against a runni
 from __future__ import annotations
 
 import argparse
-import contextlib
 import secrets
 import sys
 from pathlib import Path
 from typing import Any
 
 from server import cli
-from server.console import LEVELS, access_log, quiet_uvicorn, setup_logging
+from server.console import LEVELS, setup_logging
 from server.settings import LOOPBACK_HOSTS, MAX_LOCAL_WORKERS, WORKER_TIMEOUT_S, JoinLimits, Settings
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env, is_loopback
 
@@ -149,7 +148,7 @@ def zenoh_settings(args: argparse.Namespace) -> ZenohSettings | None:
 
 def check_launch(settings: Settings) -> str | None:
     """Parse the launch file before anything starts, so a mistake is one clear line."""
-    from server.lab import resolve_launch
+    from server.launch.aliases import resolve_launch
     from server.launch.description import LaunchFileError
     from server.launch.launcher import parse_launch
     from server.packages import PackageIndex
@@ -278,11 +277,6 @@ def main(argv: list[str] | None = None) -> int:
         shown = "127.0.0.1" if args.host in ("0.0.0.0", "::") else args.host
         print(f"This lab needs its token: open http://{shown}:{args.port}/?token={settings.token} "
               "(bridges: ?token= or Authorization: Bearer)", flush=True)  # fmt: skip
-    import rich
-    import uvicorn
-
-    from server.app import create_app
-
     if zenoh is not None:
         wide = [e for e in zenoh.listen if not is_loopback(e)] if zenoh.mode == "router" else []
         where = ", ".join(zenoh.listen) if zenoh.mode == "router" else "router " + ", ".join(zenoh.connect)
@@ -291,26 +285,13 @@ def main(argv: list[str] | None = None) -> int:
         if wide:
             print(f"note: Zenoh listens on {', '.join(wide)}: other machines with the login can join this graph "
                   "(GET /api/zenoh/join with the token gives it; see docs/zenoh.md)", flush=True)  # fmt: skip
-    # viser prints a box with its own loopback port; the page is served on ours, so that box
-    # would send a student to a page without the lab's keys and HUD. The app prints nothing else
-    # through rich.
-    rich.get_console().quiet = True
-    app = create_app(settings)
-    if app.state.classroom is not None:
-        print(classroom_banner(args.host, args.port, app.state.classroom), flush=True)
-    config = uvicorn.Config(
-        app,
-        host=args.host,
-        port=args.port,
-        log_level=args.log_level,
-        access_log=access_log(args.log_level, classroom=args.classroom),
-        ws_max_size=settings.max_ws_frame_bytes * 64,
-        timeout_graceful_shutdown=1,
-        lifespan="on",
-    )
-    quiet_uvicorn(args.log_level, classroom=args.classroom)
-    with contextlib.suppress(KeyboardInterrupt):
-        uvicorn.Server(config).run()
+    from server.serve import serve
+
+    def announce(app: Any) -> None:
+        if app.state.classroom is not None:
+            print(classroom_banner(args.host, args.port, app.state.classroom), flush=True)
+
+    serve(settings, args.log_level, announce=announce)
     return 0
 
 

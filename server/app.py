@@ -9,12 +9,14 @@ from pathlib import Path
 from fastapi import FastAPI
 from fastapi.staticfiles import StaticFiles
 
-from api import build_router
 from api.canonical_path import CanonicalPathMiddleware
 from api.errors import ErrorMiddleware, register_error_handlers
 from api.openapi import use_token_security
+from api.page import router as page_router
+from api.routes import build_router
 from api.security import GuardMiddleware
 from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
+from api.tools_page import router as tools_router
 from api.world_proxy import WorldProxyMiddleware
 from api.ws_cap import SocketCapMiddleware
 from api.ws_refusal import WebSocketRefusalMiddleware
@@ -23,8 +25,6 @@ from server.bus import Clock
 from server.classroom import Classroom
 from server.lab import Lab
 from server.settings import Settings
-from server.viewer.page import router as page_router
-from server.viewer.tools_page import router as tools_router
 
 STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 

@@ -8,13 +8,9 @@ from __future__ import annotations
 
 import asyncio
 import dataclasses
-import itertools
-import logging
 import time
-from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from server.bag.manager import BagManager
 from server.bus import (
@@ -22,116 +18,33 @@ from server.bus import (
     Clock,
     Executor,
     ExecutorGroup,
-    Node,
-    Publisher,
     SystemClock,
     TopicTypeError,
     UnknownTopicError,
-    validate_node_name,
 )
 from server.devices.deadman import KeyDeadMan
 from server.devices.keyboard import KeyboardDevice
 from server.introspection.merged import topic_views
-from server.launch.description import NodeAction, SourceLocation
-from server.launch.launcher import LaunchedNode, Launcher, ProcessTransport
-from server.limits import LimitExceededError, RateLimit, check_finite_json, check_topic_limits, per_second
-from server.msgs import Message, get_service_type, get_type
+from server.launch.aliases import resolve_launch
+from server.launch.groups import LaunchGroups
+from server.launch.launcher import Launcher, ProcessTransport
+from server.limits import RateLimit, check_finite_json, check_topic_limits, per_second
+from server.msgs import Message, get_type
 from server.packages import PackageIndex
+from server.packages.rocketship.controls import RocketControls
 from server.publishers import PublisherManager
+from server.rest_node import ApiNode
 from server.service_calls import ServiceCaller
 from server.settings import Settings
 from server.topic_watch import TopicWatch
 from server.transport.config import ZenohSettings
 from server.transport.remote_graph import RemoteGraph
 
-log = logging.getLogger("lab")
-Trigger = get_service_type("std_srvs/srv/Trigger")
-
-LAUNCH_ALIASES = {
-    "rocket": ("rocketship", "rocket.launch"),
-    "fly": ("flightcontroller", "fly.launch"),
-    "all": ("lab", "all.launch"),
-}
-
-
-def resolve_launch(launch: str, packages: PackageIndex) -> Path:
-    """``rocket``, ``fly``, ``all`` or a path → the launch file's path."""
-    if launch in LAUNCH_ALIASES:
-        pkg, file = LAUNCH_ALIASES[launch]
-        return packages.share_dir(pkg) / "launch" / file
-    return Path(launch)
-
-
-RESET_SERVICE = "/rocket/reset"
-
-
-class ApiNode(Node):
-    """Hidden node ``_rest_api`` that owns the publishers REST calls use (like rqt's publisher),
-    and serves the lab's own controls as ROS services (``/rocket/reset``)."""
-
-    def __init__(self, max_topics: int, reset_rocket: Callable[[], bool]) -> None:
-        super().__init__("_rest_api")
-        self.max_topics = max_topics
-        self.pubs: dict[str, Publisher] = {}
-        self._reset_rocket = reset_rocket
-        self.create_service(Trigger, RESET_SERVICE, self._on_reset)
-
-    def _on_reset(self, request: Any, response: Any) -> Any:
-        response.success = self._reset_rocket()
-        response.message = "rocket back on the pad" if response.success else "no rocket in this launch"
-        return response
-
-    def publisher_for(self, topic: str, msg_type: type[Message]) -> Publisher:
-        pub = self.pubs.get(topic)
-        if pub is not None and pub.msg_type is msg_type:
-            return pub
-        if pub is None and len(self.pubs) >= self.max_topics:
-            raise LimitExceededError("topics published by the API", self.max_topics)
-        pub = self.create_publisher(msg_type, topic, 10)
-        self.pubs[topic] = pub
-        return pub
-
-
-class UnknownLaunchError(LookupError):
-    def __init__(self, group_id: str) -> None:
-        super().__init__(f"no launch or run with id {group_id!r}")
-
-
-@dataclass
-class LaunchGroup:
-    """Nodes started together by one launch or run request, stopped together."""
-
-    id: str
-    source: str
-    entries: list[LaunchedNode]
-
-    def describe(self) -> dict[str, Any]:
-        return {
-            "id": self.id,
-            "file": self.source,
-            "nodes": [
-                {
-                    "name": e.node.fully_qualified_name if e.node else (e.action.name or e.action.exec),
-                    "pkg": e.action.pkg,
-                    "exec": e.action.exec,
-                    "error": e.error,
-                    # a node here: active, crashed or destroyed; a node process: running, died or stopped
-                    "state": e.node.state if e.node is not None else e.process.state if e.process else None,
-                    "exit_code": e.process.exit_code if e.process is not None else None,
-                    "process": e.process.label if e.process is not None else None,  # ros2 launch's label
-                }
-                for e in self.entries
-            ],
-        }
-
-    def output(self) -> dict[str, Any]:
-        """The group, and each node process's last lines with how many it printed in all."""
-        processes = []
-        for e in self.entries:
-            if e.process is not None:
-                lines, printed = e.process.output()
-                processes.append({"label": e.process.label, "lines": lines, "printed": printed})
-        return {"group": self.describe(), "processes": processes}
+if TYPE_CHECKING:
+    from server.transport.link import ZenohLink
+    from server.viewer.display import Display
+    from server.viewer.publisher_panel import PageToolsNode
+    from server.viewer.record_panel import RecordPanel
 
 
 class Lab:
@@ -152,20 +65,24 @@ class Lab:
         self.key_frames = RateLimit(self.bus.clock, settings.key_frames_hz, settings.key_frames_burst)
         self.socket_frames = per_second(self.bus.clock, settings.socket_frames_hz)
         self.socket_requests = per_second(self.bus.clock, settings.socket_requests_hz)
-        self.display: Any = None
-        self.rocket_view: Any = None
+        self.display: Display | None = None
+        self.page_tools: PageToolsNode | None = None
+        self.record_panel: RecordPanel | None = None
         self.started_at = time.monotonic()
         self._spin_task: asyncio.Task[None] | None = None
-        self.zenoh: Any = None  # server.transport.link.ZenohLink while the graph is on Zenoh
+        self.zenoh: ZenohLink | None = None  # while the graph is on Zenoh
         self.zenoh_error: str | None = None
+        self.rocket = RocketControls(self.launcher)
         with self.bus.activate():
-            self.api_node = ApiNode(settings.max_api_topics, self.reset_rocket)
+            self.api_node = ApiNode(settings.max_api_topics)
+        self.rocket.serve(self.api_node)
         self.publishers = PublisherManager(self, settings.max_publishers)
         self.service_caller = ServiceCaller(self.api_node)
         self.topic_watch = TopicWatch(self.bus)
         self.bags = BagManager(self.bus, settings.bag_dir)  # ros2 bag record / play
-        self.launch_groups: dict[str, LaunchGroup] = {}
-        self._group_ids = itertools.count(1)
+        self.launch_groups = LaunchGroups(
+            self.launcher, self.packages, settings.max_launch_groups, settings.max_nodes_per_launch
+        )
         self.stopped = asyncio.Event()  # set by stop(): open WebSockets close, and clients reconnect
 
     # -- life ----------------------------------------------------------------
@@ -175,17 +92,12 @@ class Lab:
     def start_nodes(self) -> None:
         """Launch the configured launch file and the tool nodes (views); no event loop needed."""
         self.launcher.launch_file(self.launch_path(self.settings.launch), self.settings.launch_args)
-        if any(e.action.pkg == "rocketship" for e in self.launcher.launched):
-            from server.viewer.rocket_view import RocketViewNode
-
-            with self.bus.activate():
-                self.rocket_view = RocketViewNode(self.display, self.reset_rocket)
+        self.rocket.start_view(self.bus, self.display, self.launcher.launched)
         if self.display is not None:
             from server.viewer.publisher_panel import PageToolsNode
+            from server.viewer.record_panel import RecordPanel
 
             self.page_tools = PageToolsNode(self)
-            from server.viewer.record_panel import RecordPanel  # record a flight, download it
-
             self.record_panel = RecordPanel(self)
 
     async def start(self) -> None:
@@ -247,26 +159,6 @@ class Lab:
         """Nodes and endpoints of other processes, while the graph is on Zenoh."""
         return self.zenoh.bridge.remote if self.zenoh is not None else None
 
-    def died_nodes(self) -> list[dict[str, Any]]:
-        """Node processes that ended and are not running again (yet), for the node list."""
-        out = []
-        for entry in self.launcher.launched:
-            process = entry.process
-            if process is None or process.state != "died":
-                continue
-            action = entry.action
-            namespace = action.namespace or "/"
-            remote = self.remote_graph()
-            names = remote.names_seen(process.command.zid) if remote is not None else []
-            fallback = namespace.rstrip("/") + "/" + (action.name or Path(action.exec).stem).split("/")[-1]
-            for name in names or [fallback]:
-                out.append({
-                    "name": name, "namespace": name.rsplit("/", 1)[0] or "/", "state": "died",
-                    "location": f"process {process.pid}", "exit_code": process.exit_code,
-                    "respawn": None if entry.respawn is None else entry.respawn.describe(),
-                })  # fmt: skip
-        return out
-
     def topic_type(self, name: str, type_name: str | None) -> type[Message]:
         """The type ``name`` carries: ``type_name`` if given (it must agree with the graph), else the
         type this process or another process uses on it. UnknownTopicError if none does."""
@@ -301,74 +193,3 @@ class Lab:
         name, message = self.prepare(topic, msg, type_name)
         pub = self.api_node.publisher_for(name, type(message))
         return name, message.TYPE, pub.publish(message)
-
-    def launch_group(self, path: Path, args: dict[str, str]) -> LaunchGroup:
-        """Launch a file into the running graph, as ``ros2 launch`` does; LaunchFileError if it is bad.
-        Everything is checked before the first node starts."""
-        self._check_group_limit()
-        description = self.launcher.parse(path, args)
-        if len(description.nodes) > self.settings.max_nodes_per_launch:
-            raise LimitExceededError("nodes in one launch", self.settings.max_nodes_per_launch)
-        return self._group("launch", str(path), self.launcher.launch(description))
-
-    def run_node(
-        self,
-        pkg: str,
-        exe: str,
-        name: str | None = None,
-        parameters: dict[str, Any] | None = None,
-        remappings: dict[str, str] | None = None,
-    ) -> LaunchGroup:
-        """Start one node, as ``ros2 run PKG EXEC --ros-args ...`` does."""
-        self._check_group_limit()
-        if name is not None:
-            validate_node_name(name)
-        self.packages.resolve(pkg, exe)  # an unknown package or executable is an error, not a failed node
-        action = NodeAction(
-            pkg=pkg,
-            exec=exe,
-            name=name,
-            namespace=None,
-            output="screen",
-            respawn=False,
-            respawn_delay_s=0.0,
-            parameters=tuple((parameters or {}).items()),
-            remappings=tuple((remappings or {}).items()),
-            location=SourceLocation(f"<run {pkg} {exe}>", 0),
-        )
-        entry = self.launcher.start(action)
-        self.launcher.launched.append(entry)
-        return self._group("run", f"{pkg} {exe}", [entry])
-
-    def _check_group_limit(self) -> None:
-        if len(self.launch_groups) >= self.settings.max_launch_groups:
-            raise LimitExceededError("launches and runs", self.settings.max_launch_groups)
-
-    def _group(self, kind: str, source: str, entries: list[LaunchedNode]) -> LaunchGroup:
-        group = LaunchGroup(f"{kind}{next(self._group_ids)}", source, entries)
-        self.launch_groups[group.id] = group
-        return group
-
-    def group(self, group_id: str) -> LaunchGroup:
-        group = self.launch_groups.get(group_id)
-        if group is None:
-            raise UnknownLaunchError(group_id)
-        return group
-
-    def stop_group(self, group_id: str) -> LaunchGroup:
-        group = self.launch_groups.pop(group_id, None)
-        if group is None:
-            raise UnknownLaunchError(group_id)
-        self.launcher.stop_all(group.entries)
-        return group
-
-    def reset_rocket(self) -> bool:
-        """Put the rocket back on the pad: restart the rocket launch's nodes, as a student would.
-        Returns whether there was a rocket to reset."""
-        restarted = self.launcher.restart(
-            lambda e: Path(e.file).name == "rocket.launch" and e.action.pkg == "rocketship"
-        )
-        if self.rocket_view is not None:
-            self.rocket_view.reset()
-        log.info("rocket reset: back on the pad, countdown restarted")
-        return bool(restarted)

@@ -1,39 +1,170 @@
-"""One dependency direction: sim/ knows nothing of the server; the bus knows nothing of the web."""
+"""One import direction over the whole graph: every module of server/, api/, sim/ and client/ imports
+only its own unit or a lower layer, as docs/architecture.md writes the layers down."""
 
 from __future__ import annotations
 
-import ast
 from pathlib import Path
 
+import pytest
+from support.layers import Layer, check, loaded_by, parse_layers, read_tree
+
 ROOT = Path(__file__).resolve().parents[1]
+PACKAGES = ("server", "api", "sim", "client")
+WEB = {"fastapi", "starlette", "uvicorn", "viser", "websockets"}
 
 
-def imported_roots(folder: Path) -> dict[str, set[str]]:
-    found: dict[str, set[str]] = {}
-    for path in folder.rglob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text(), str(path))):
-            if isinstance(node, ast.Import):
-                names = [a.name for a in node.names]
-            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
-                names = [node.module]
-            else:
-                continue
-            for name in names:
-                found.setdefault(name.split(".")[0], set()).add(str(path.relative_to(ROOT)))
-    return found
+def written_layers() -> list[Layer]:
+    return parse_layers((ROOT / "docs" / "architecture.md").read_text(encoding="utf-8"))
 
 
-def test_sim_imports_no_server_api_or_web_packages() -> None:
-    roots = imported_roots(ROOT / "sim")
-    assert not {"server", "api", "fastapi", "starlette", "viser", "uvicorn", "websockets"} & set(roots)
+def test_architecture_every_import_follows_the_written_layers() -> None:
+    violations = check(ROOT, written_layers(), PACKAGES)
+    assert not violations, "\n".join(map(str, violations))
 
 
-def test_bus_and_messages_import_no_web_sim_or_viewer() -> None:
-    for folder in ("server/bus", "server/msgs"):
-        roots = imported_roots(ROOT / folder)
-        assert not {"api", "fastapi", "starlette", "viser", "uvicorn", "sim"} & set(roots), folder
+def test_architecture_every_unit_written_down_exists_once() -> None:
+    units = [unit for layer in written_layers() for unit in layer.units]
+    assert len(units) == len(set(units))
+    for unit in units:
+        path = ROOT.joinpath(*unit.split("."))
+        assert path.is_dir() or path.with_suffix(".py").is_file(), unit
 
 
-def test_api_is_the_only_layer_using_fastapi_routes() -> None:
-    roots = imported_roots(ROOT / "server" / "packages")
-    assert not {"fastapi", "api", "viser"} & set(roots), "nodes talk to the bus, not to the web"
+def test_architecture_sim_loads_only_numpy_and_the_standard_library() -> None:
+    modules, outside = loaded_by(ROOT, PACKAGES, "sim")
+    assert {m.split(".")[0] for m in modules} == {"sim"}
+    assert outside <= {"numpy"}, outside
+
+
+@pytest.mark.parametrize("module", ["server.bus", "server.msgs", "server.transport", "client"])
+def test_architecture_the_graph_below_the_web_loads_no_web_package(module: str) -> None:
+    _, outside = loaded_by(ROOT, PACKAGES, module)
+    assert not WEB & outside, f"importing {module} loads {sorted(WEB & outside)}"
+
+
+def test_architecture_bus_and_messages_load_no_sim_viewer_or_api() -> None:
+    for module in ("server.bus", "server.msgs"):
+        loaded, _ = loaded_by(ROOT, PACKAGES, module)
+        assert not {m for m in loaded if m.split(".")[0] in ("api", "sim") or m.startswith("server.viewer")}
+
+
+def test_architecture_packages_import_no_web_or_api_themselves() -> None:
+    """Nodes talk to the bus, not to the web (the visualizer draws through server/viewer)."""
+    _, edges, external = read_tree(ROOT, PACKAGES)
+    for module in external:
+        if module.startswith("server.packages"):
+            assert not {"fastapi", "viser"} & external[module], module
+    assert not [
+        e for e in edges if e.source.startswith("server.packages") and e.target.split(".")[0] == "api"
+    ]
+
+
+# The checker itself, on small trees written here: it must see what it is there to see.
+
+FAKE_LAYERS = """# A house
+```layers
+web: top.web
+logic: top.logic top.store
+base: top.base
+namespace: top
+```
+"""
+
+
+def write_tree(root: Path, files: dict[str, str]) -> None:
+    for name, text in files.items():
+        path = root / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+
+
+CLEAN = {
+    "top/__init__.py": "",
+    "top/web/__init__.py": "from top.logic import run\n",
+    "top/web/routes.py": "from ..logic import run\nfrom . import helpers\n",
+    "top/web/helpers.py": "import fastapi\n",
+    "top/logic/__init__.py": "from .core import run\n",
+    "top/logic/core.py": "from top.base.values import Value\n\ndef run() -> None:\n    import top.base\n",
+    "top/store/__init__.py": "import top.base.values\n",
+    "top/base/__init__.py": "",
+    "top/base/values.py": "import json\nimport numpy\nValue = int\n",
+}
+
+
+def fake_check(root: Path, files: dict[str, str]) -> list[str]:
+    write_tree(root, files)
+    return [str(v) for v in check(root, parse_layers(FAKE_LAYERS), ["top"])]
+
+
+def test_checker_clean_tree_reports_nothing(tmp_path: Path) -> None:
+    assert fake_check(tmp_path, CLEAN) == []
+
+
+def test_checker_lower_layer_importing_a_higher_one_is_reported(tmp_path: Path) -> None:
+    found = fake_check(tmp_path, {**CLEAN, "top/base/values.py": "from top.web.routes import x\n"})
+    assert len(found) == 2  # the package top.web runs too
+    assert all("top.base.values (base) imports top.web" in f for f in found)
+    assert "lower layer imports a higher one" in found[0]
+    assert str(tmp_path / "top/base/values.py") + ":1" in found[0]
+
+
+@pytest.mark.parametrize(
+    ("source", "where"),
+    [
+        ("def later() -> None:\n    from top.logic import core\n", "inside a function"),
+        (
+            "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from top.logic.core import run\n",
+            "TYPE_CHECKING",
+        ),
+        ("from ...logic import core\n", "relative"),
+        ("from ..logic import core\n", "relative, to a package"),
+        ("import top.logic.core as c\n", "import ... as"),
+        ("from top import logic\n", "a subpackage named in from-import"),
+    ],
+)
+def test_checker_every_kind_of_import_is_seen(tmp_path: Path, source: str, where: str) -> None:
+    files = {**CLEAN, "top/base/deep/__init__.py": "", "top/base/deep/mod.py": source}
+    if where == "relative, to a package":
+        files["top/base/mod.py"] = files.pop("top/base/deep/mod.py")
+    found = fake_check(tmp_path, files)
+    assert found, where
+    assert all("(base) imports top.logic" in f for f in found), found
+
+
+def test_checker_a_package_that_runs_a_higher_layer_is_reported_for_its_importers(tmp_path: Path) -> None:
+    """``import top.base.values`` runs ``top/base/__init__.py`` first: what that imports counts."""
+    found = fake_check(tmp_path, {**CLEAN, "top/base/__init__.py": "from top import web\n"})
+    assert found == [f"{tmp_path / 'top/base/__init__.py'}:1: top.base (base) imports top.web (web): "
+                     "a lower layer imports a higher one"]  # fmt: skip
+
+
+def test_checker_peers_of_one_layer_may_not_import_each_other(tmp_path: Path) -> None:
+    found = fake_check(tmp_path, {**CLEAN, "top/store/__init__.py": "from top.logic import run\n"})
+    assert found and all("top.store and top.logic are peers" in f for f in found)
+
+
+def test_checker_a_module_in_no_layer_is_reported(tmp_path: Path) -> None:
+    files = {**CLEAN, "other/__init__.py": "", "top/logic/core.py": "import other\n"}
+    write_tree(tmp_path, files)
+    found = [str(v) for v in check(tmp_path, parse_layers(FAKE_LAYERS), ["top", "other"])]
+    assert any("other is in no layer" in f for f in found)
+
+
+def test_checker_a_new_module_beside_the_units_of_a_package_is_in_no_layer(tmp_path: Path) -> None:
+    """``top`` holds only its ``__init__``: a module added beside ``top.web`` must be placed."""
+    found = fake_check(tmp_path, {**CLEAN, "top/extra.py": "from top.base import values\n"})
+    assert found and all("top.extra is in no layer" in f for f in found)
+
+
+def test_checker_loaded_by_follows_imports_through(tmp_path: Path) -> None:
+    write_tree(tmp_path, CLEAN)
+    modules, outside = loaded_by(tmp_path, ["top"], "top.web.routes")
+    assert {"top", "top.web", "top.web.helpers", "top.logic.core", "top.base.values"} <= modules
+    assert outside == {"fastapi", "numpy"}  # json is the standard library's
+    modules, outside = loaded_by(tmp_path, ["top"], "top.store")
+    assert "top.web" not in modules and outside == {"numpy"}
+
+
+def test_checker_needs_the_layers_block() -> None:
+    with pytest.raises(ValueError, match="no ```layers block"):
+        parse_layers("# no block here\n")

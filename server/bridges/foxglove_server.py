@@ -28,7 +28,7 @@ from websockets.asyncio.server import Server, ServerConnection, serve
 from websockets.exceptions import ConnectionClosed
 from websockets.typing import Subprotocol
 
-from api.close_codes import REFUSAL_FOR_STATUS, CloseCode
+from server.close_codes import REFUSAL_FOR_STATUS, CloseCode
 from server.tasks import cancel_and_wait
 
 from . import foxglove_protocol as proto

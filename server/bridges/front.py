@@ -1,8 +1,8 @@
 """A guarded front door onto a WebSocket route of the app: rosbridge on a port of its own.
 
 It listens where clients connect (``--rosbridge-port``), reads the opening handshake, applies the
-app's own rules (api/security.py: a Host that names this machine, no Origin of another site, the
-token; api/canonical_path.py: a path as sent) and only then joins the client to the app's port,
+app's own rules (server/access.py: a Host that names this machine, no Origin of another site, the
+token, a path as sent) and only then joins the client to the app's port,
 byte for byte in both directions.
 A refused WebSocket handshake completes and is closed at once with the close code that names why
 (4401, 4403, 4421: api/ws_refusal.py's rule for every route), and never reaches upstream; a
@@ -24,9 +24,8 @@ import struct
 from collections.abc import Iterable
 from urllib.parse import parse_qs, urlsplit
 
-from api.canonical_path import path_problem
-from api.close_codes import REFUSAL_FOR_STATUS, CloseCode
-from api.security import bearer_token, host_allowed, origin_allowed, token_matches
+from server.access import bearer_token, host_allowed, origin_allowed, path_problem, token_matches
+from server.close_codes import REFUSAL_FOR_STATUS, CloseCode
 from server.tasks import cancel_and_wait
 
 log = logging.getLogger("bridges.front")

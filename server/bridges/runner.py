@@ -8,14 +8,13 @@ import logging
 from collections.abc import AsyncIterator, Callable
 from contextlib import AsyncExitStack, asynccontextmanager
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 from .front import GuardedFront
 from .rosapi import RosapiNode
 
 if TYPE_CHECKING:
     from server.bus import Bus
-    from server.lab import Lab
     from server.settings import Settings
 
     from .foxglove import FoxgloveBridge
@@ -34,8 +33,18 @@ class Bridges:
         return self.foxglove.port if self.foxglove is not None else None
 
 
+class BridgedLab(Protocol):
+    """What the bridges need of a lab (server/lab.py's ``Lab``): its bus and its settings."""
+
+    @property
+    def bus(self) -> Bus: ...
+
+    @property
+    def settings(self) -> Settings: ...
+
+
 @asynccontextmanager
-async def run_bridges(lab: Lab) -> AsyncIterator[Bridges]:
+async def run_bridges(lab: BridgedLab) -> AsyncIterator[Bridges]:
     """The bridges the settings ask for, running on the app's loop; stopped in reverse order."""
     settings = lab.settings
     bridges = Bridges()

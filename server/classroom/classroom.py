@@ -108,7 +108,7 @@ class World:
         lab = self.lab
         if lab is None:
             return out
-        rocket = lab.rocket_view.tracker if lab.rocket_view is not None else None
+        rocket = lab.rocket.view.tracker if lab.rocket.view is not None else None
         return {
             **out,
             "domain_id": self.domain_id if lab.zenoh is not None else None,
@@ -256,7 +256,7 @@ class Classroom:
         from server.transport.session import TransportError, open_session
 
         if self.settings.worker is not None:
-            from .worker import WorkerControl
+            from .worker_control import WorkerControl
 
             zenoh = dataclasses.replace(zenoh, login=self.zenoh_auth.class_credentials())
             self._control_session = await asyncio.to_thread(open_session, zenoh)

@@ -26,7 +26,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .worker import TOKEN_ENV
+from .worker_control import TOKEN_ENV
 
 log = logging.getLogger("classroom.local_workers")
 

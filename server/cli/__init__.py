@@ -22,7 +22,7 @@ COLCON_HINT = (
     "colcon build and `source install/setup.bash` are not needed here: `ros2lab run PKG EXEC` runs a "
     "workspace's packages from their source folders, and edits take effect at the next start"
 )
-WORKER_VERB = "world-worker"  # ros2lab world-worker: host a class server's worlds (server.classroom.worker)
+WORKER_VERB = "world-worker"  # ros2lab world-worker: host a class server's worlds (server/world_worker.py)
 
 __all__ = ["VERBS", "build_parser", "main"]
 

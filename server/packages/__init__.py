@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from server.bus import Node
-from server.processes.runner import EntryPoint
 
+from .entry_points import EntryPoint
 from .manifest import WorkspaceError
 from .workspace import Workspace, WorkspacePackage, find_packages
 

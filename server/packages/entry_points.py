@@ -31,6 +31,26 @@ class ConsoleScript:
     declared_at: str  # "setup.py:LINE", where a wrong module or function is reported
 
 
+@dataclass(frozen=True)
+class EntryPoint:
+    """A console script: ``name = module:function``, declared at ``declared_at``, of the package in ``root``."""
+
+    root: Path
+    module: str
+    function: str
+    name: str
+    declared_at: str
+
+    def argv(self) -> list[str]:
+        return [
+            "--entry-point",
+            str(self.root),
+            f"{self.module}:{self.function}",
+            self.name,
+            self.declared_at,
+        ]
+
+
 def parse_script(text: str, where: str) -> ConsoleScript:
     match = SCRIPT.match(text)
     if match is None:

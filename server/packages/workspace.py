@@ -23,9 +23,7 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from server.processes.runner import EntryPoint
-
-from .entry_points import cmake_programs, setup_cfg_scripts, setup_py_scripts
+from .entry_points import EntryPoint, cmake_programs, setup_cfg_scripts, setup_py_scripts
 from .manifest import MANIFEST, WorkspaceError, read_manifest
 
 SKIP_FILES = {"setup.py", "__init__.py", "conftest.py"}

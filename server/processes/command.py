@@ -11,10 +11,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from server.packages.entry_points import EntryPoint
 from server.transport.acl import Credentials, process_config
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT
 
-from .runner import PARENT_ENV, EntryPoint
+from .runner import PARENT_ENV
 
 CLIENT_DIR = Path(__file__).resolve().parents[2] / "client"
 

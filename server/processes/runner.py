@@ -29,32 +29,13 @@ import signal
 import sys
 import traceback
 from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
+
+from server.packages.entry_points import EntryPoint
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
 PARENT_ENV = "ROS2LAB_PARENT_PID"
-
-
-@dataclass(frozen=True)
-class EntryPoint:
-    """A console script: ``name = module:function``, declared at ``declared_at``, of the package in ``root``."""
-
-    root: Path
-    module: str
-    function: str
-    name: str
-    declared_at: str
-
-    def argv(self) -> list[str]:
-        return [
-            "--entry-point",
-            str(self.root),
-            f"{self.module}:{self.function}",
-            self.name,
-            self.declared_at,
-        ]
 
 
 def _die_with_parent() -> None:

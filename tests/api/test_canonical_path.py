@@ -8,8 +8,8 @@ import pytest
 from labclient import LabClient
 from starlette.testclient import WebSocketDenialResponse
 
-from api.canonical_path import path_problem
 from api.world_proxy import PathChanged, target
+from server.access import path_problem
 from server.classroom.workers import WorkerRef
 
 REFUSED = {

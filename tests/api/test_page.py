@@ -11,7 +11,7 @@ import websockets
 from labclient import LabClient, receive_within, refused, wait_until
 from starlette.testclient import WebSocketTestSession
 
-from server.viewer.page import PROXY_MAX_FRAME_BYTES
+from api.page import PROXY_MAX_FRAME_BYTES
 from server.viewer.viser_guard import PROXY_TOKEN_HEADER
 
 

@@ -58,7 +58,7 @@ def test_handout_fly_launch_snippet_parses_and_launches(tmp_path: Path) -> None:
     path = tmp_path / "fly.launch"
     path.write_text(HANDOUT_FLY)
     lab = lab_for("rocket")
-    group = lab.launch_group(path, {})
+    group = lab.launch_groups.launch(path, {})
     started = {n["name"] for n in group.describe()["nodes"]}
     assert {
         "/GUI_Controller_Node",
@@ -81,7 +81,7 @@ def test_launch_error_names_file_line_and_problem_and_changes_nothing(tmp_path: 
     lab = lab_for("rocket")
     before = names(lab)
     with pytest.raises(LaunchFileError) as info:
-        lab.launch_group(path, {})
+        lab.launch_groups.launch(path, {})
     assert info.value.file == str(path) and info.value.line == 3 and "exe" in info.value.problem
     assert names(lab) == before
 
@@ -93,7 +93,7 @@ def test_launch_with_unknown_executable_reports_that_node_and_starts_the_rest(tm
         '  <node pkg="sensor_simulation" exec="pressure.py" name="baro"/>\n</launch>\n'
     )
     lab = lab_for("rocket")
-    nodes = lab.launch_group(path, {}).describe()["nodes"]
+    nodes = lab.launch_groups.launch(path, {}).describe()["nodes"]
     assert nodes[0]["error"] is not None and "no executable 'nope'" in nodes[0]["error"]
     assert nodes[0]["state"] is None  # never started
     assert nodes[1] == {
@@ -111,12 +111,12 @@ def test_stopping_a_launch_group_removes_its_nodes_and_topics(tmp_path: Path) ->
     path = tmp_path / "baro.launch"
     path.write_text('<launch><node pkg="sensor_simulation" exec="pressure.py" name="baro"/></launch>')
     lab = lab_for("rocket")
-    group = lab.launch_group(path, {})
+    group = lab.launch_groups.launch(path, {})
     assert "/uav/sensors/pressure" in lab.bus.topics
-    lab.stop_group(group.id)
+    lab.launch_groups.stop(group.id)
     assert "/baro" not in names(lab) and "/uav/sensors/pressure" not in lab.bus.topics
     with pytest.raises(LookupError):
-        lab.stop_group(group.id)
+        lab.launch_groups.stop(group.id)
 
 
 def test_rocket_reset_restarts_countdown_without_touching_other_nodes() -> None:
@@ -124,7 +124,7 @@ def test_rocket_reset_restarts_countdown_without_touching_other_nodes() -> None:
     keyboard = lab.bus.get_node("keyboard")
     lab.executor.spin_until(12.0)
     assert lab.bus.topics["/countdown"].latest.data == 0
-    lab.reset_rocket()
+    lab.rocket.reset()
     lab.executor.spin_until(12.5)
     assert lab.bus.topics["/countdown"].latest.data == 10
     assert lab.bus.get_node("keyboard") is keyboard, "the shared keyboard is not restarted"

@@ -85,7 +85,7 @@ def test_respawn_launcher_backs_off_and_gives_up_shown_in_the_node_list(tmp_path
     lab = Lab(Settings(launch="rocket", viewer=False, workspace=None), ManualClock(0.0))
     lab.packages.executables["my_pkg"] = {"flaky": Flaky}
     lab.start_nodes()
-    lab.launch_group(launch, {})
+    lab.launch_groups.launch(launch, {})
     entry = next(e for e in lab.launcher.launched if e.action.exec == "flaky")
 
     lab.executor.spin_until(20.0)

@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 
 from server.packages import ExecutableNotFoundError, PackageIndex, WorkspaceError
+from server.packages.entry_points import EntryPoint
 from server.packages.workspace import find_packages
 from server.processes.command import node_command
-from server.processes.runner import EntryPoint
 
 from .tutorial_packages import examples_clone, manifest, python_package, write
 

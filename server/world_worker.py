@@ -12,7 +12,6 @@ domains the class server gives them, so a student's node processes find them as 
 from __future__ import annotations
 
 import argparse
-import contextlib
 import logging
 import os
 import signal
@@ -20,50 +19,16 @@ import socket
 import sys
 import threading
 import time
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from server.console import LEVELS, access_log, quiet_uvicorn, setup_logging
+from server.classroom.worker_control import TOKEN_ENV
+from server.console import LEVELS, setup_logging
 from server.settings import LOOPBACK_HOSTS, ORPHAN_TIMEOUT_S, Settings, WorkerSettings
 from server.transport.config import ZenohSettings
 
-from .workers import control_key, genuine_hello, seal
-
 log = logging.getLogger("classroom.worker")
-TOKEN_ENV = "ROS2LAB_TOKEN"
 PARENT_CHECK_S = 0.5
-
-
-class WorkerControl:
-    """Answers hellos on the router: sealed with the class's token, so only its server trusts them."""
-
-    def __init__(
-        self,
-        session: Any,
-        settings: WorkerSettings,
-        describe: Callable[[], dict[str, Any]],
-        on_hello: Callable[[], None],
-    ) -> None:
-        self._describe = describe
-        self._on_hello = on_hello
-        self._settings = settings
-        self._queryable = session.declare_queryable(control_key(settings.id), self._on_query, complete=True)
-
-    def _on_query(self, query: Any) -> None:  # Zenoh's thread: answer at once, block nothing
-        try:
-            raw = query.payload.to_bytes() if query.payload is not None else b""
-            nonce = genuine_hello(self._settings.class_token, raw)
-            if nonce is None:
-                return  # not this class's server: no answer (the querier's timeout ends it)
-            self._on_hello()
-            body = {**self._describe(), "id": self._settings.id, "url": self._settings.url, "nonce": nonce}
-            query.reply(control_key(self._settings.id), seal(self._settings.class_token, body))
-        finally:
-            query.drop()
-
-    def close(self) -> None:
-        self._queryable.undeclare()
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -191,22 +156,13 @@ def main(argv: list[str] | None = None) -> int:
         allowed_hosts=() if args.host in LOOPBACK_HOSTS else (advertise,),
     )  # fmt: skip
     setup_logging(args.log_level, classroom=True, world_level=args.world_log_level, who=worker.id)
-    import rich
-    import uvicorn
+    from server.serve import serve
 
-    from server.app import create_app
+    def announce(_app: Any) -> None:
+        print(f"World worker {worker.id}: API at {worker.url}, class router {args.connect}, "
+              f"up to {args.max_worlds} worlds (Ctrl-C stops it and its worlds)", flush=True)  # fmt: skip
+        if args.parent_pid is not None:
+            _end_with_parent(args.parent_pid)
 
-    rich.get_console().quiet = True  # viser's banner names its own loopback port: not for anyone here
-    app = create_app(settings)
-    print(f"World worker {worker.id}: API at {worker.url}, class router {args.connect}, "
-          f"up to {args.max_worlds} worlds (Ctrl-C stops it and its worlds)", flush=True)  # fmt: skip
-    config = uvicorn.Config(
-        app, log_level=args.log_level, access_log=access_log(args.log_level, classroom=True),
-        timeout_graceful_shutdown=1, lifespan="on",
-    )  # fmt: skip
-    quiet_uvicorn(args.log_level, classroom=True)
-    if args.parent_pid is not None:
-        _end_with_parent(args.parent_pid)
-    with contextlib.suppress(KeyboardInterrupt):
-        uvicorn.Server(config).run(sockets=[sock])
+    serve(settings, args.log_level, sock=sock, announce=announce)
     return 0

@@ -13,14 +13,13 @@ from fastapi import APIRouter, Request, WebSocket, status
 from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Response
 from starlette.requests import HTTPConnection
 
-from api.close_codes import CloseCode
 from api.deps import classroom_of, keep_token_and_go, lab_of, token_of
-from api.security import token_matches
 from api.ws_relay import relay
+from server.access import token_matches
 from server.classroom import ClassroomError
-
-from .views import ViewRegistry
-from .viser_guard import PROXY_TOKEN_HEADER
+from server.close_codes import CloseCode
+from server.viewer.views import ViewRegistry
+from server.viewer.viser_guard import PROXY_TOKEN_HEADER
 
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
@@ -38,7 +37,7 @@ PROXY_MAX_FRAME_BYTES = 1 << 20  # browser → viser: camera moves and GUI click
 # Cross-origin isolation, so the page may share memory with its pose worker (static/poses.js):
 # everything the page loads comes from this origin, and it opens other pages only as new tabs.
 ISOLATED = {"Cross-Origin-Opener-Policy": "same-origin", "Cross-Origin-Embedder-Policy": "require-corp"}
-STATIC = Path(__file__).resolve().parents[2] / "static"
+STATIC = Path(__file__).resolve().parents[1] / "static"
 POSES_WORKER = STATIC / "poses.worker.js"
 
 

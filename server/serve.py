@@ -1,0 +1,47 @@
+"""Run the app under uvicorn: the one way both ``python -m server`` and a world worker serve."""
+
+from __future__ import annotations
+
+import contextlib
+import socket
+from collections.abc import Callable
+
+from fastapi import FastAPI
+
+from server.app import create_app
+from server.console import access_log, quiet_uvicorn
+from server.settings import Settings
+
+
+def serve(
+    settings: Settings,
+    log_level: str,
+    *,
+    sock: socket.socket | None = None,
+    announce: Callable[[FastAPI], None] | None = None,
+) -> None:
+    """Serve the app for ``settings`` until Ctrl-C or SIGTERM: on ``sock`` when given (a world worker
+    binds its port first, to say where it listens), else on the settings' host and port.
+    ``announce`` runs once the app exists (the banner that says where to go)."""
+    import rich
+    import uvicorn
+
+    # viser prints a box with its own loopback port; the page is served on ours, so that box would
+    # send a student to a page without the lab's keys and HUD. The app prints nothing else through rich.
+    rich.get_console().quiet = True
+    app = create_app(settings)
+    if announce is not None:
+        announce(app)
+    config = uvicorn.Config(
+        app,
+        host=settings.host,
+        port=settings.port,
+        log_level=log_level,
+        access_log=access_log(log_level, classroom=settings.classroom),
+        ws_max_size=settings.max_ws_frame_bytes * 64,
+        timeout_graceful_shutdown=1,
+        lifespan="on",
+    )
+    quiet_uvicorn(log_level, classroom=settings.classroom)
+    with contextlib.suppress(KeyboardInterrupt):
+        uvicorn.Server(config).run(sockets=[sock] if sock is not None else None)
