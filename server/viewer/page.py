@@ -18,27 +18,24 @@ from api.security import token_matches
 from api.ws_relay import relay
 from server.classroom import ClassroomError
 
-from .views import ViewRegistry
+from .views import PageViews, ViewRegistry
 from .viser_guard import PROXY_TOKEN_HEADER
 
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
 INJECT_STYLES = ("page.css",)
-# Key capture first: it must see keys before viser does. Then the pose stream, the setpoint
-# prediction, the scene driver (views, follow), the drawn answer to a key, the drawing quality,
-# the HUD, the tools link, and the layout of these overlays.
-INJECT_SCRIPTS = (
-    "keys.js", "poses.js", "predict.js", "scene.js", "answer.js", "quality.js", "hud.js", "nav.js", "layout.js",
-)  # fmt: skip
+# The page's bundle (web/src/lab, built into static/build at set-up): a classic script in <head>,
+# so its key capture is in place before viser's scripts run and see keys.
+INJECT_SCRIPTS = ("build/lab.js",)
 INJECT = "".join(f'<link rel="stylesheet" href="/static/{name}">' for name in INJECT_STYLES) + "".join(
     f'<script src="/static/{name}"></script>' for name in INJECT_SCRIPTS
 )
 PROXY_MAX_FRAME_BYTES = 1 << 20  # browser → viser: camera moves and GUI clicks, all small
-# Cross-origin isolation, so the page may share memory with its pose worker (static/poses.js):
+# Cross-origin isolation, so the page may share memory with its pose worker (web/src/lab/poses.ts):
 # everything the page loads comes from this origin, and it opens other pages only as new tabs.
 ISOLATED = {"Cross-Origin-Opener-Policy": "same-origin", "Cross-Origin-Embedder-Policy": "require-corp"}
 STATIC = Path(__file__).resolve().parents[2] / "static"
-POSES_WORKER = STATIC / "poses.worker.js"
+POSES_WORKER = STATIC / "build" / "poses.worker.js"
 
 
 @cache
@@ -108,7 +105,7 @@ async def poses_worker() -> Response:
 
 
 @router.get("/page/views")
-async def views(request: Request) -> dict[str, Any]:
+async def views(request: Request) -> PageViews:
     """The labs' camera views for the page, and the one a page with no remembered choice opens on."""
     display = _display_of(request)
     if display is None:

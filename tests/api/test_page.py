@@ -24,11 +24,11 @@ def test_index_serves_viser_page_with_key_script_injected(make_lab: Callable[...
     assert response.headers["content-type"].startswith("text/html")
     html = response.text
     head, _, body = html.partition("</head>")
-    assert '<script src="/static/keys.js"></script>' in head
+    assert '<script src="/static/build/lab.js"></script>' in head
     assert '<div id="root"></div>' in body  # viser's client mounts here
-    script = lab.http.get("/static/keys.js")
+    script = lab.http.get("/static/build/lab.js")
     assert script.status_code == 200
-    assert "window.__teleopKeys" in script.text
+    assert "/ws/keys" in script.text and "window.__teleop" in script.text
 
 
 def test_index_and_pose_worker_are_cross_origin_isolated(make_lab: Callable[..., LabClient]) -> None:
@@ -39,7 +39,7 @@ def test_index_and_pose_worker_are_cross_origin_isolated(make_lab: Callable[...,
 
     assert worker.status_code == 200
     assert worker.headers["content-type"].startswith("text/javascript")
-    assert "SharedArrayBuffer" in lab.http.get("/static/poses.js").text
+    assert "SharedArrayBuffer" in lab.http.get("/static/build/lab.js").text
     for response in (page, worker):
         assert response.headers["cross-origin-opener-policy"] == "same-origin"
         assert response.headers["cross-origin-embedder-policy"] == "require-corp"
