@@ -3,6 +3,7 @@ proxy that carries it to the viser server on loopback: one port for everything."
 
 from __future__ import annotations
 
+import logging
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -21,6 +22,7 @@ from server.classroom import ClassroomError
 from .views import PageViews, ViewRegistry
 from .viser_guard import PROXY_TOKEN_HEADER
 
+log = logging.getLogger(__name__)
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
 INJECT_STYLES = ("page.css",)
@@ -48,6 +50,8 @@ def index_html() -> str:
     html = viser_html()
     if "</head>" not in html:
         raise RuntimeError(f"viser's page at {VISER_INDEX} changed shape; pin viser==1.1.1")
+    if not all((STATIC / name).is_file() for name in INJECT_SCRIPTS):
+        log.warning("the page's scripts are not built (static/build): run scripts/run.sh, which builds them")
     return html.replace("</head>", INJECT + "</head>", 1)
 
 
@@ -101,6 +105,8 @@ def _display_of(conn: HTTPConnection) -> Any:
 @router.get("/page/poses.worker.js")
 async def poses_worker() -> Response:
     """The pose stream's worker, with the isolation its page has (a dedicated worker needs its own)."""
+    if not POSES_WORKER.is_file():
+        return Response("the page's scripts are not built: run scripts/run.sh", status.HTTP_404_NOT_FOUND)
     return Response(POSES_WORKER.read_bytes(), media_type="text/javascript", headers=ISOLATED)
 
 

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Callable
+from pathlib import Path
 
 import httpx
+import pytest
 import viser
 import websockets
 from labclient import LabClient, receive_within, refused, wait_until
@@ -43,6 +45,18 @@ def test_index_and_pose_worker_are_cross_origin_isolated(make_lab: Callable[...,
     for response in (page, worker):
         assert response.headers["cross-origin-opener-policy"] == "same-origin"
         assert response.headers["cross-origin-embedder-policy"] == "require-corp"
+
+
+def test_pose_worker_not_built_is_404_naming_the_set_up(
+    make_lab: Callable[..., LabClient], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    lab = make_lab(viewer=True)
+    assert lab.http.get("/page/poses.worker.js").status_code == 200  # built at set-up
+    monkeypatch.setattr("server.viewer.page.POSES_WORKER", tmp_path / "poses.worker.js")
+
+    response = lab.http.get("/page/poses.worker.js")
+
+    assert response.status_code == 404 and "scripts/run.sh" in response.text
 
 
 def test_viser_proxy_with_viser_subprotocol_receives_scene(make_lab: Callable[..., LabClient]) -> None:
