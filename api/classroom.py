@@ -7,10 +7,11 @@ In the OpenAPI document of a class server only (api.routes.build_router); on an 
 from __future__ import annotations
 
 import asyncio
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, Required
 
 from fastapi import APIRouter, Depends, HTTPException, Request, Response, status
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, model_validator, with_config
+from typing_extensions import TypedDict
 
 from server.classroom import Classroom, Grant
 from server.transport.acl import Credentials
@@ -81,10 +82,31 @@ class Me(BaseModel):
     class_code: str | None = Field(default=None, description="only for the instructor")
 
 
+class RocketState(TypedDict):
+    phase: str
+    altitude_m: float
+
+
+@with_config(ConfigDict(extra="allow"))
+class ClassWorld(TypedDict, total=False):
+    """One world as the instructor's page shows it; the lab's own figures only while it runs,
+    and a world on a world worker as its worker reports them."""
+
+    world: Required[str]
+    student: Required[str]
+    worker: Required[str | None]  # the world worker hosting it; null on this server
+    lost: Required[str | None]  # why it cannot be reached now
+    worker_error: str  # why its world worker did not answer
+    keys_held: list[str]
+    rocket: RocketState | None
+    drone: list[float] | None  # x, y, z (m); null before the first fix
+    crashed_nodes: list[str]
+
+
 class ClassWorlds(BaseModel):
     class_code: str
     max_worlds: int
-    worlds: list[dict[str, Any]] = Field(
+    worlds: list[ClassWorld] = Field(
         description="each world: student, where it runs, keys held, rocket phase, drone, crashed nodes"
     )
 
@@ -192,10 +214,9 @@ async def me(grant: GrantDep, classroom: ClassroomDep) -> Me:
 @router.get("/worlds", responses=responses(UNAUTHORIZED, FORBIDDEN))
 async def worlds(_: InstructorDep, classroom: ClassroomDep) -> ClassWorlds:
     """Every world: its student, keys held, rocket phase, drone position, crashed nodes."""
-    return ClassWorlds(
-        class_code=classroom.code,
-        max_worlds=classroom.settings.max_worlds,
-        worlds=await classroom.describe_all(),
+    worlds = await classroom.describe_all()  # checked against ClassWorld here
+    return ClassWorlds.model_validate(
+        {"class_code": classroom.code, "max_worlds": classroom.settings.max_worlds, "worlds": worlds}
     )
 
 

@@ -3,6 +3,7 @@ proxy that carries it to the viser server on loopback: one port for everything."
 
 from __future__ import annotations
 
+import logging
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -18,27 +19,25 @@ from api.ws_relay import relay
 from server.access import token_matches
 from server.classroom import ClassroomError
 from server.close_codes import CloseCode
-from server.viewer.views import ViewRegistry
+from server.viewer.views import PageViews, ViewRegistry
 from server.viewer.viser_guard import PROXY_TOKEN_HEADER
 
+log = logging.getLogger(__name__)
 router = APIRouter(include_in_schema=False)
 VISER_INDEX = Path(viser.__file__).parent / "client" / "build" / "index.html"
 INJECT_STYLES = ("page.css",)
-# Key capture first: it must see keys before viser does. Then the pose stream, the setpoint
-# prediction, the scene driver (views, follow), the drawn answer to a key, the drawing quality,
-# the HUD, the tools link, and the layout of these overlays.
-INJECT_SCRIPTS = (
-    "keys.js", "poses.js", "predict.js", "scene.js", "answer.js", "quality.js", "hud.js", "nav.js", "layout.js",
-)  # fmt: skip
+# The page's bundle (web/src/lab, built into static/build at set-up): a classic script in <head>,
+# so its key capture is in place before viser's scripts run and see keys.
+INJECT_SCRIPTS = ("build/lab.js",)
 INJECT = "".join(f'<link rel="stylesheet" href="/static/{name}">' for name in INJECT_STYLES) + "".join(
     f'<script src="/static/{name}"></script>' for name in INJECT_SCRIPTS
 )
 PROXY_MAX_FRAME_BYTES = 1 << 20  # browser → viser: camera moves and GUI clicks, all small
-# Cross-origin isolation, so the page may share memory with its pose worker (static/poses.js):
+# Cross-origin isolation, so the page may share memory with its pose worker (web/src/lab/poses.ts):
 # everything the page loads comes from this origin, and it opens other pages only as new tabs.
 ISOLATED = {"Cross-Origin-Opener-Policy": "same-origin", "Cross-Origin-Embedder-Policy": "require-corp"}
 STATIC = Path(__file__).resolve().parents[1] / "static"
-POSES_WORKER = STATIC / "poses.worker.js"
+POSES_WORKER = STATIC / "build" / "poses.worker.js"
 
 
 @cache
@@ -51,6 +50,8 @@ def index_html() -> str:
     html = viser_html()
     if "</head>" not in html:
         raise RuntimeError(f"viser's page at {VISER_INDEX} changed shape; pin viser==1.1.1")
+    if not all((STATIC / name).is_file() for name in INJECT_SCRIPTS):
+        log.warning("the page's scripts are not built (static/build): run scripts/run.sh, which builds them")
     return html.replace("</head>", INJECT + "</head>", 1)
 
 
@@ -104,11 +105,13 @@ def _display_of(conn: HTTPConnection) -> Any:
 @router.get("/page/poses.worker.js")
 async def poses_worker() -> Response:
     """The pose stream's worker, with the isolation its page has (a dedicated worker needs its own)."""
+    if not POSES_WORKER.is_file():
+        return Response("the page's scripts are not built: run scripts/run.sh", status.HTTP_404_NOT_FOUND)
     return Response(POSES_WORKER.read_bytes(), media_type="text/javascript", headers=ISOLATED)
 
 
 @router.get("/page/views")
-async def views(request: Request) -> dict[str, Any]:
+async def views(request: Request) -> PageViews:
     """The labs' camera views for the page, and the one a page with no remembered choice opens on."""
     display = _display_of(request)
     if display is None:

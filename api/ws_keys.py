@@ -14,9 +14,10 @@ from __future__ import annotations
 
 import itertools
 import math
-from typing import Any
+from typing import Any, Literal, NotRequired
 
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect
+from typing_extensions import TypedDict
 
 from server.devices.keymap import MODIFIER_FLAG_NAMES, UnknownKeyError, modifier_bits, sdl_code
 
@@ -25,10 +26,51 @@ from .errors import CloseCode, close_reason
 from .strict_json import JsonRejected, loads
 from .ws_life import closed_when_lab_stops
 
+
+class KeyFrame(TypedDict):
+    """A key going down or up, as the page sends it; the flags are the modifiers held then
+    (server/devices/keymap.py's names: sided, or unsided when the side is unknown)."""
+
+    type: Literal["keydown", "keyup"]
+    key: str  # KeyboardEvent.key
+    code: NotRequired[str]  # KeyboardEvent.code
+    location: NotRequired[int]  # KeyboardEvent.location: 0 standard, 1 left, 2 right, 3 keypad
+    repeat: NotRequired[bool]
+    t: NotRequired[float]  # the page's performance.now() (ms), for its own timing
+    lshift: NotRequired[bool]
+    rshift: NotRequired[bool]
+    lctrl: NotRequired[bool]
+    rctrl: NotRequired[bool]
+    lalt: NotRequired[bool]
+    ralt: NotRequired[bool]
+    lmeta: NotRequired[bool]
+    rmeta: NotRequired[bool]
+    num: NotRequired[bool]
+    caps: NotRequired[bool]
+    mode: NotRequired[bool]
+    shift: NotRequired[bool]
+    ctrl: NotRequired[bool]
+    alt: NotRequired[bool]
+    meta: NotRequired[bool]
+
+
+class ControlFrame(TypedDict):
+    """``release_all``: release every key this channel holds; ``heartbeat``: the page is there."""
+
+    type: Literal["release_all", "heartbeat"]
+
+
+class KeyChannelError(TypedDict):
+    """The server's only frame on this channel: why a frame did nothing."""
+
+    type: Literal["error"]
+    error: str
+
+
 router = APIRouter(tags=["websockets"])
 FRAME_MAX_DEPTH = 2  # a frame is one flat object
 _ids = itertools.count(1)
-FRAME_FIELDS = frozenset({"type", "key", "code", "location", "repeat", "t", *MODIFIER_FLAG_NAMES})
+FRAME_FIELDS = KeyFrame.__required_keys__ | KeyFrame.__optional_keys__
 MAX_KEY_CHARS = 32
 FLOOD_ERROR = "too many key frames: at most {:g} keydowns a second; keydowns dropped"
 
@@ -107,13 +149,16 @@ async def _key_loop(websocket: WebSocket, lab: Any, source: str) -> None:
             now = lab.bus.clock.now()
             if now - last_flood_notice >= 1.0:
                 last_flood_notice = now
-                await websocket.send_json(
-                    {"type": "error", "error": FLOOD_ERROR.format(lab.settings.key_frames_hz)}
-                )
+                flood: KeyChannelError = {
+                    "type": "error",
+                    "error": FLOOD_ERROR.format(lab.settings.key_frames_hz),
+                }
+                await websocket.send_json(flood)
             continue
         error = handle_frame(lab, source, frame)
         if error is not None:
-            await websocket.send_json({"type": "error", "error": error})
+            refused: KeyChannelError = {"type": "error", "error": error}
+            await websocket.send_json(refused)
 
 
 def handle_frame(lab: Any, source: str, frame: dict[str, Any]) -> str | None:

@@ -12,9 +12,10 @@ from __future__ import annotations
 
 import asyncio
 from collections import deque
-from typing import Any
+from typing import Any, NotRequired
 
 from fastapi import APIRouter, Query, WebSocket, WebSocketDisconnect
+from typing_extensions import TypedDict
 
 from server.bus import Bus, Node, UnknownTopicError, validate_topic_name
 from server.lab import Lab
@@ -30,6 +31,16 @@ from .ws_life import closed_when_lab_stops
 router = APIRouter(tags=["websockets"])
 MAX_QUEUE = 1000
 NODE_PREFIX = "_ws_echo_"
+
+
+class EchoFrame(TypedDict):
+    """One message on ``/ws/topics/{topic}``, as the page reads it."""
+
+    topic: str
+    type: str  # the message type, e.g. geometry_msgs/msg/PoseStamped
+    msg: dict[str, Any]  # the message's JSON form
+    received: float  # when the bus delivered it here (s, Unix epoch)
+    dropped: NotRequired[int]  # messages this channel dropped so far (a slow client), when any
 
 
 class EchoRequestError(ValueError):
@@ -138,7 +149,7 @@ async def _send_loop(
             while node.outbox:
                 await spend(frames)  # the lab's budget: over it this echo waits, its oldest messages drop
                 msg, received = node.outbox.popleft()
-                frame: dict[str, Any] = {
+                frame: EchoFrame = {
                     "topic": topic,
                     "type": type_name,
                     "msg": msg.to_dict(),

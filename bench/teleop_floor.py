@@ -1,5 +1,5 @@
 """The floor under the page's key-to-motion latency: the same press and the same "drone answering"
-criterion as static/hud.js, in process on a ManualClock (``Settings(launch='fly', viewer=False)``),
+criterion as web/src/lab/hud.ts, in process on a ManualClock (``Settings(launch='fly', viewer=False)``),
 stepped by hand in 0.5 ms steps after ``lab.keyboard.key_down``: the physics and control chain
 alone, with no network, browser, rendering or scheduling. bench/teleop_latency.py reports it beside
 what the page measures.
@@ -23,7 +23,7 @@ STEP_S = 0.0005
 TICK_S = 0.05  # lab mode's 20 Hz timer
 WARMUP_S = 8.0  # the drone takes off to (0, 0, 3) and hovers
 SETTLE_S = 2.5  # simulated settling between presses
-MOTION_M = 0.02  # the HUD's criteria (static/hud.js)
+MOTION_M = 0.02  # the HUD's criteria (web/src/lab/hud.ts)
 TILT_RAD = math.radians(0.3)
 
 
@@ -36,7 +36,7 @@ def percentiles(values: list[float]) -> dict[str, float | None]:
 
 
 def tilt_toward_x(q: Any) -> float:
-    """static/hud.js's tiltToward(q, 0): the pitch that moves the drone towards +x."""
+    """web/src/lab/hud.ts's tiltToward(q, 0): the pitch that moves the drone towards +x."""
     return math.asin(max(-1.0, min(1.0, 2 * (q.w * q.y - q.z * q.x))))
 
 

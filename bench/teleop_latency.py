@@ -2,13 +2,13 @@
 (SwiftShader, as on a machine without GPU acceleration), at two common laptop window sizes:
 
 * key → answer drawn: from the keydown event's timeStamp to the end of the frame that showed the
-  page's predicted setpoint marker (static/answer.js), for each of its two drawing paths (``dom``:
+  page's predicted setpoint marker (web/src/lab/answer.ts), for each of its two drawing paths (``dom``:
   a disc over the canvas, the next 3D frame skipped; ``scene``: the 3D marker in the next 3D frame),
   and in how many animation frames;
-* key → drone moving: static/hud.js's figure, to the first drone pose, received in the page, that
+* key → drone moving: web/src/lab/hud.ts's figure, to the first drone pose, received in the page, that
   shows the drone answering (tilted 0.3° more towards the key, or moved 2 cm);
-* the page's frame rate and what a frame costs its main thread (static/scene.js), the pixel ratio
-  static/quality.js chose, and the poses per second the page receives;
+* the page's frame rate and what a frame costs its main thread (web/src/lab/scene.ts), the pixel ratio
+  web/src/lab/quality.ts chose, and the poses per second the page receives;
 * beside them, the in-process floor of key → drone moving (bench/teleop_floor.py).
 
     .venv/bin/python bench/teleop_latency.py [--presses 60] [--viewports 1000x650 1366x768]
@@ -76,8 +76,8 @@ LEGS_JS = """(() => {
   window.__bench = log;
   addEventListener('keydown', (e) => { if (!e.repeat) log.keys.push(e.timeStamp); }, true);
   const hook = () => {
-    if (!window.__teleopPoses) { setTimeout(hook, 50); return; }
-    window.__teleopPoses.listeners.push((samples, _sp, received) => {
+    if (!window.__teleop) { setTimeout(hook, 50); return; }
+    window.__teleop.poses.listeners.push((samples, _sp, received) => {
       for (const s of samples) log.poses.push([received, s.stamp, s.arrived]);
       if (log.poses.length > 3000) log.poses.splice(0, 1000);
     });
@@ -93,7 +93,7 @@ LEG_OF_PRESS_JS = """(latency) => {
 # Settled: the HUD's pose within 2 cm for 3 windows of 200 ms in a row and within 10 cm of the
 # setpoint (one still window is not enough: an overshoot's turning point is still for a moment).
 DRONE_SETTLED_JS = """async (timeoutMs) => {
-  const hud = window.__teleopHud, t0 = performance.now();
+  const hud = window.__teleop.hud, t0 = performance.now();
   let prev = hud.pose, still = 0;
   while (performance.now() - t0 < timeoutMs) {
     await new Promise((r) => setTimeout(r, 200));
@@ -106,8 +106,8 @@ DRONE_SETTLED_JS = """async (timeoutMs) => {
   }
   return false;
 }"""
-PAGE_STATE_JS = """() => ({ fps: window.__teleopQuality.fps, frameMs: window.__teleopQuality.frameMs,
-  dpr: window.__teleopQuality.dpr, poseRate: window.__teleopHud.poseRate })"""
+PAGE_STATE_JS = """() => ({ fps: window.__teleop.quality.fps, frameMs: window.__teleop.quality.frameMs,
+  dpr: window.__teleop.quality.dpr, poseRate: window.__teleop.hud.poseRate })"""
 
 
 class FlyServer(ServerProcess):
@@ -158,9 +158,9 @@ def bench_browser(mode: str, viewport: tuple[int, int], presses: int) -> dict[st
                 page = context.new_page()
                 page.set_default_timeout(PAGE_TIMEOUT_MS)
                 page.goto(server.url + "/")
-                page.wait_for_function("() => window.__teleopScene && window.__teleopScene.ready")
+                page.wait_for_function("() => window.__teleop && window.__teleop.scene.ready")
                 page.wait_for_function(
-                    "() => window.__teleopHud.pose !== null && window.__teleopPredict.params !== null"
+                    "() => window.__teleop.hud.pose !== null && window.__teleop.predict.params !== null"
                 )
                 try:
                     page.wait_for_function(STEADY_JS, polling=100, timeout=STEADY_TIMEOUT_MS)
@@ -192,9 +192,9 @@ def _press_loop(
     cpu0, chrome0, wall0 = cpu_seconds(server.proc.pid), chromium_cpu_s(), time.monotonic()
     for i in range(presses):
         key, path = KEYS[i % 2], PATHS[(i // 2) % 2]
-        page.evaluate(f"window.__teleopAnswer.setPath('{path}')")
+        page.evaluate(f"window.__teleop.answer.setPath('{path}')")
         n_drawn, n_moving = page.evaluate(
-            "[window.__teleopAnswer.drawn.length, window.__teleopHud.latencies.length]"
+            "[window.__teleop.answer.drawn.length, window.__teleop.hud.latencies.length]"
         )
         pressed = time.monotonic()
         page.keyboard.down(key)
@@ -203,18 +203,18 @@ def _press_loop(
         page.keyboard.up(key)
         try:
             page.wait_for_function(
-                f"() => window.__teleopAnswer.drawn.length > {n_drawn}", timeout=_left_ms(pressed)
+                f"() => window.__teleop.answer.drawn.length > {n_drawn}", timeout=_left_ms(pressed)
             )
-            entry = page.evaluate(f"window.__teleopAnswer.drawn[{n_drawn}]")
+            entry = page.evaluate(f"window.__teleop.answer.drawn[{n_drawn}]")
             drawn[entry["path"]].append(entry["latencyMs"])
             frames[entry["path"]].append(entry["frames"])
         except error:
             no_answer += 1
         try:
             page.wait_for_function(
-                f"() => window.__teleopHud.latencies.length > {n_moving}", timeout=_left_ms(pressed)
+                f"() => window.__teleop.hud.latencies.length > {n_moving}", timeout=_left_ms(pressed)
             )
-            latency = page.evaluate(f"window.__teleopHud.latencies[{n_moving}]")
+            latency = page.evaluate(f"window.__teleop.hud.latencies[{n_moving}]")
             moving.append(latency)
             _split(page, server, latency, legs)
         except error:

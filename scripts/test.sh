@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Set up what the tests need (the app, pytest, Playwright, Debian's Chromium, the linters) and run
-# the check gate (scripts/check: ruff, ruff format, mypy --strict, then the whole suite). Extra
-# arguments go to pytest. CI runs exactly this (.ci/run).
+# Set up what the tests need (the app, pytest, Playwright, Debian's Chromium, the linters, the page's
+# scripts) and run the check gate (scripts/check: ruff, ruff format, mypy --strict, tsc, eslint,
+# then the whole suite). Extra arguments go to pytest. CI runs exactly this (.ci/run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/_venv.sh
+source scripts/_web.sh
 install_once '.[test]'
 
 if ! command -v chromium >/dev/null 2>&1; then
@@ -18,17 +19,9 @@ if ! command -v chromium >/dev/null 2>&1; then
   fi
 fi
 
-# npm's roslib for the rosbridge client test (tests/js, pinned by its lock file).
-if ! command -v npm >/dev/null 2>&1 && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-  echo "Installing Debian's nodejs and npm for the roslib test ..."
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq nodejs npm >/dev/null
-fi
-if command -v npm >/dev/null 2>&1; then
-  npm ci --prefix tests/js --no-audit --no-fund --loglevel=error >/dev/null
-else
-  echo "No npm on PATH: the roslib test will be skipped (install Debian's 'nodejs' and 'npm')." >&2
-fi
+# The page's scripts (web/ → static/build), with Node from the machine or from PyPI; the same
+# npm then installs roslib for the rosbridge client test (tests/js, pinned by its lock file).
+web_build
+npm ci --prefix tests/js --no-audit --no-fund --loglevel=error >/dev/null
 
 exec env TELEOP_VENV="$VENV" bash scripts/check "$@"

@@ -46,7 +46,7 @@ class Display:
         follow: Follow | None = None,
         busy: Callable[[], bool] | None = None,
     ) -> None:
-        """A camera view of one lab, switched in the page (static/scene.js); ``initial``: where
+        """A camera view of one lab, switched in the page (web/src/lab/scene.ts); ``initial``: where
         viser's camera starts before the page picks its view."""
         self.views.add(CameraView(name, position, look_at, follow, busy))
         if initial or len(self.views) == 1:

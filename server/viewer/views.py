@@ -1,6 +1,6 @@
 """Camera views of the page: one per lab (Rocket, Quadrotor), switched and followed in the page.
 
-The page (static/scene.js) asks for them at ``GET /page/views``, opens on the view the browser
+The page (web/src/lab/scene.ts) asks for them at ``GET /page/views``, opens on the view the browser
 remembers, else on the one suggested here, and moves viser's camera itself: a switch costs no
 round trip and leaves the keyboard where it was.
 """
@@ -9,9 +9,36 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+
+from typing_extensions import TypedDict
 
 Vec3 = tuple[float, float, float]
+
+
+class FollowJson(TypedDict):
+    """A followed vehicle as the page reads it: viser scene node names, and the camera's offset
+    from the vehicle (m, world frame, z up)."""
+
+    node: str
+    offset: Vec3
+    setpoint: str | None
+    trail: str | None
+
+
+class ViewJson(TypedDict):
+    """A camera view as the page reads it (m, world frame, z up)."""
+
+    name: str
+    position: Vec3
+    look_at: Vec3
+    follow: FollowJson | None
+
+
+class PageViews(TypedDict):
+    """``GET /page/views``: every view, and the one a page with no remembered choice opens on."""
+
+    views: list[ViewJson]
+    suggested: str | None
 
 
 @dataclass(frozen=True)
@@ -38,9 +65,9 @@ class CameraView:
     # so a page with no remembered choice opens on it.
     busy: Callable[[], bool] | None = None
 
-    def to_json(self) -> dict[str, Any]:
+    def to_json(self) -> ViewJson:
         f = self.follow
-        follow = None
+        follow: FollowJson | None = None
         if f is not None:
             follow = {
                 "node": f.node,
@@ -84,5 +111,5 @@ class ViewRegistry:
                 return view.name
         return views[0].name if views else None
 
-    def to_json(self) -> dict[str, Any]:
+    def to_json(self) -> PageViews:
         return {"views": [v.to_json() for v in self._views.values()], "suggested": self.suggested()}

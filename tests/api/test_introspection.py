@@ -237,7 +237,7 @@ def test_types_unknown_type_is_404(client: TestClient, path: str) -> None:
 def test_tools_page_is_served_with_its_scripts_and_a_same_origin_only_policy(client: TestClient) -> None:
     response = client.get("/tools")
     assert response.status_code == 200 and response.headers["content-type"].startswith("text/html")
-    assert "/static/tools.js" in response.text and "/static/tools.layout.js" in response.text
+    assert "/static/build/tools.js" in response.text
     assert "default-src 'self'" in response.headers["content-security-policy"]
-    for asset in ("tools.js", "tools.layout.js", "tools.css", "nav.js"):
+    for asset in ("build/tools.js", "tools.css", "build/lab.js"):
         assert client.get(f"/static/{asset}").status_code == 200, asset

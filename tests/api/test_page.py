@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Callable
+from pathlib import Path
 
 import httpx
+import pytest
 import viser
 import websockets
 from labclient import LabClient, receive_within, refused, wait_until
@@ -24,11 +26,11 @@ def test_index_serves_viser_page_with_key_script_injected(make_lab: Callable[...
     assert response.headers["content-type"].startswith("text/html")
     html = response.text
     head, _, body = html.partition("</head>")
-    assert '<script src="/static/keys.js"></script>' in head
+    assert '<script src="/static/build/lab.js"></script>' in head
     assert '<div id="root"></div>' in body  # viser's client mounts here
-    script = lab.http.get("/static/keys.js")
+    script = lab.http.get("/static/build/lab.js")
     assert script.status_code == 200
-    assert "window.__teleopKeys" in script.text
+    assert "/ws/keys" in script.text and "window.__teleop" in script.text
 
 
 def test_index_and_pose_worker_are_cross_origin_isolated(make_lab: Callable[..., LabClient]) -> None:
@@ -39,10 +41,22 @@ def test_index_and_pose_worker_are_cross_origin_isolated(make_lab: Callable[...,
 
     assert worker.status_code == 200
     assert worker.headers["content-type"].startswith("text/javascript")
-    assert "SharedArrayBuffer" in lab.http.get("/static/poses.js").text
+    assert "SharedArrayBuffer" in lab.http.get("/static/build/lab.js").text
     for response in (page, worker):
         assert response.headers["cross-origin-opener-policy"] == "same-origin"
         assert response.headers["cross-origin-embedder-policy"] == "require-corp"
+
+
+def test_pose_worker_not_built_is_404_naming_the_set_up(
+    make_lab: Callable[..., LabClient], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    lab = make_lab(viewer=True)
+    assert lab.http.get("/page/poses.worker.js").status_code == 200  # built at set-up
+    monkeypatch.setattr("server.viewer.page.POSES_WORKER", tmp_path / "poses.worker.js")
+
+    response = lab.http.get("/page/poses.worker.js")
+
+    assert response.status_code == 404 and "scripts/run.sh" in response.text
 
 
 def test_viser_proxy_with_viser_subprotocol_receives_scene(make_lab: Callable[..., LabClient]) -> None:

@@ -59,7 +59,7 @@ def test_the_printed_link_sets_the_cookie_and_the_page_then_opens(client: TestCl
     assert link.status_code == 303 and link.headers["location"] == "/"
     assert "httponly" in link.headers["set-cookie"].lower()
     page = client.get("/")  # with the cookie
-    assert page.status_code == 200 and "/static/keys.js" in page.text
+    assert page.status_code == 200 and "/static/build/lab.js" in page.text
     assert client.get("/api/topics").status_code == 200  # the page's own calls carry the cookie
 
 

@@ -1,6 +1,6 @@
 """/ws/keys: browser key events become keyboard_msgs/Key messages on /keydown and /keyup.
 
-The frames are the ones static/keys.js sends. Garbage closes the channel with a named code;
+The frames are the ones web/src/lab/keys.ts sends. Garbage closes the channel with a named code;
 an unknown key only gets an error frame; a channel that goes away releases its keys.
 """
 

@@ -115,10 +115,10 @@ def open_lab_page(
         page.goto(server.url + "/", timeout=LOAD_WAIT_MS)
     page.wait_for_function("() => document.body.innerText.includes('Connected')", timeout=LOAD_WAIT_MS)
     page.wait_for_function(
-        "() => window.__teleopKeys !== undefined && window.__teleopKeys.connected", timeout=LOAD_WAIT_MS
+        "() => window.__teleop !== undefined && window.__teleop.keys.connected", timeout=LOAD_WAIT_MS
     )
     page.wait_for_function(
-        "() => window.__teleopScene !== undefined && window.__teleopScene.ready", timeout=LOAD_WAIT_MS
+        "() => window.__teleop !== undefined && window.__teleop.scene.ready", timeout=LOAD_WAIT_MS
     )
     try:
         if settle_ms:

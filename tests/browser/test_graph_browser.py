@@ -123,7 +123,7 @@ LAYOUT_CASE = """() => {
   const vertices = ["a", "b", "c", "d", "e"].map((id) => ({ id, w: 40 + 10 * id.charCodeAt(0) % 3, h: 20 }));
   const edges = [["a", "b"], ["b", "c"], ["c", "a"], ["a", "d"], ["d", "e"], ["a", "e"], ["d", "d"]]
     .map(([from, to]) => ({ from, to }));
-  const out = window.ToolsLayout.layout(vertices, edges);
+  const out = window.__tools.layout.layout(vertices, edges);
   return { boxes: Object.fromEntries(out.boxes), routes: out.routes, width: out.width, height: out.height };
 }"""
 

@@ -57,7 +57,7 @@ CENTRED = 0.15  # in follow, the hub within this fraction of the canvas's size o
 MAX_FRAMES_TO_ANSWER = 2
 MARKER_TOLERANCE_M = 0.05
 STRIP_MAX_PX = 60
-NARROW_PX = 1000  # static/layout.js: narrower than this, the panel starts as a strip
+NARROW_PX = 1000  # web/src/lab/layout.ts: narrower than this, the panel starts as a strip
 ARRIVED_M = 0.15
 FLIGHT_WAIT_S = 40.0
 MIN_POSE_RATE_HZ = 20  # the dynamics publish at 100 Hz; a loaded machine delivers fewer, never none
@@ -144,7 +144,7 @@ def test_page_each_view_frames_its_vehicle_and_overlays_never_overlap(
             page.wait_for_function(
                 f"() => {{ const p = ({OVERLAYS_JS})().panel; return p && p[3] - p[1] <= {STRIP_MAX_PX}; }}"
             )
-        page.evaluate("window.__teleopLayout.layout()")  # the help placed around the panel as it is now
+        page.evaluate("window.__teleop.layout.layout()")  # the help placed around the panel as it is now
         wait_frames(page)
         boxes = page.evaluate(OVERLAYS_JS)
         save_screenshot(page, screenshot_dir, f"help_{width}x{height}.png", capsys)
@@ -202,14 +202,14 @@ def test_keydown_moves_setpoint_marker_within_two_animation_frames(
     with lab_page(chromium) as page:
         open_lab_page(page, lab_server)
         choose(page, "Quadrotor", "follow")
-        page.evaluate(f"window.__teleopAnswer.setPath('{path}')")
+        page.evaluate(f"window.__teleop.answer.setPath('{path}')")
         page.wait_for_function(
-            "() => window.__teleopPredict.params !== null && window.__teleopPredict.params.mode === 'adopt'"
+            "() => window.__teleop.predict.params !== null && window.__teleop.predict.params.mode === 'adopt'"
         )
-        before = page.evaluate("window.__teleopAnswer.drawn.length")
+        before = page.evaluate("window.__teleop.answer.drawn.length")
         page.keyboard.press("ArrowRight")
-        page.wait_for_function(f"() => window.__teleopAnswer.drawn.length > {before}")
-        answer = page.evaluate("window.__teleopAnswer.drawn[window.__teleopAnswer.drawn.length - 1]")
+        page.wait_for_function(f"() => window.__teleop.answer.drawn.length > {before}")
+        answer = page.evaluate("window.__teleop.answer.drawn[window.__teleop.answer.drawn.length - 1]")
         bus = wait_until(
             lambda: (
                 (sp := topic(lab_server, "/uav/input/position")["latest"])
@@ -236,13 +236,13 @@ def test_new_page_opens_on_lab_under_way_remembers_the_view_chosen_and_keys_fly_
     fly_to(lab_server, HOME_M)
     with lab_page(chromium) as page:
         open_lab_page(page, lab_server)
-        first = page.evaluate("window.__teleopScene.view.name")  # the rocket waits on its pad: under way
-        isolated = page.evaluate("window.crossOriginIsolated && window.__teleopPoses.shared")
-        page.wait_for_function(f"() => window.__teleopHud.poseRate >= {MIN_POSE_RATE_HZ}")
+        first = page.evaluate("window.__teleop.scene.view.name")  # the rocket waits on its pad: under way
+        isolated = page.evaluate("window.crossOriginIsolated && window.__teleop.poses.shared")
+        page.wait_for_function(f"() => window.__teleop.hud.poseRate >= {MIN_POSE_RATE_HZ}")
         choose(page, "Quadrotor")
         page.reload()
         open_lab_page(page, lab_server)
-        remembered = page.evaluate("window.__teleopScene.view.name")
+        remembered = page.evaluate("window.__teleop.scene.view.name")
         pressed = (
             page.locator("#teleop-hud")
             .get_by_role("button", name="Quadrotor", exact=True)

@@ -1,7 +1,7 @@
 """Lab 2 checkpoint 1 in a real headless Chromium: press "a" on the page during the countdown
 and the rocket stays on the pad.
 
-The key goes page → static/keys.js → /ws/keys → keyboard node → /keydown → KeyboardManager →
+The key goes page → web/src/lab/keys.ts → /ws/keys → keyboard node → /keydown → KeyboardManager →
 /abort_takeoff → MainControllerNode, which must then never publish /cmd_vel. Every wait is
 bounded: Playwright's own waits, or a polled deadline on the server's topics.
 
@@ -70,7 +70,7 @@ def open_lab_page(page: Page, server: LabServer) -> None:
     """Load the page, wait for viser and the key channel, and close viser's notifications."""
     page.goto(server.url + "/", timeout=LOAD_WAIT_MS)
     page.wait_for_function("() => document.body.innerText.includes('Connected')", timeout=LOAD_WAIT_MS)
-    page.wait_for_function("() => window.__teleopKeys !== undefined && window.__teleopKeys.connected")
+    page.wait_for_function("() => window.__teleop !== undefined && window.__teleop.keys.connected")
     # Clicked from the page's script: they slide in, so Playwright's click waits for them to hold still.
     close_all = "() => document.querySelectorAll('.mantine-Notification-closeButton').forEach(b => b.click())"
     page.evaluate(close_all)

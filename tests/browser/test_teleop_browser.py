@@ -230,7 +230,7 @@ class TestHoldMode:
             hold_page.evaluate("window.dispatchEvent(new Event('blur'))")
             went_s = time.monotonic() - going
             wait_keyup(hold_server, before)
-            assert hold_page.evaluate("window.__teleopKeys.held.size") == 0
+            assert hold_page.evaluate("window.__teleop.keys.held.size") == 0
             assert_stopped_promptly(hold_server, x0)
             if lost_race_to_deadman(hold_server, deadman_before, went_s):
                 hold_page.keyboard.up("ArrowRight")
@@ -266,8 +266,8 @@ class TestHoldMode:
                 cdp.send("Debugger.resume")
                 cdp.detach()
             # The page never released the key, and its channel was never closed.
-            assert hold_page.evaluate("[...window.__teleopKeys.held]") == ["ArrowRight"]
-            assert hold_page.evaluate("window.__teleopKeys.connected") is True
+            assert hold_page.evaluate("[...window.__teleop.keys.held]") == ["ArrowRight"]
+            assert hold_page.evaluate("window.__teleop.keys.connected") is True
             hold_page.keyboard.up("ArrowRight")
             return
         pytest.fail(f"in each of {HOLD_ATTEMPTS} holds the page stalled and the dead-man released the key")

@@ -118,7 +118,7 @@ def test_only_the_instructor_opens_the_class_view(client: TestClient) -> None:
     page = client.get("/instructor/view", headers=auth(instructor))
     assert page.status_code == 200 and "<html" in page.text.lower()
     assert page.headers["content-security-policy"] == "frame-ancestors 'self'"  # no other site frames it
-    assert "/static/keys.js" not in page.text  # nothing on it flies a drone
+    assert "/static/build/lab.js" not in page.text  # nothing on it flies a drone
     assert client.get("/instructor/view", headers=auth(student)).status_code == 401
     assert client.get("/instructor/view").status_code == 401
     refused = refusal(client, "/instructor/view", headers=auth(student), subprotocols=[VISER_PROTOCOL])

@@ -254,7 +254,7 @@ def test_the_page_is_the_join_form_until_the_browser_has_a_world(client: TestCli
     reply = client.post("/api/classroom/join", json={"name": "Bea", "code": CODE})
     assert reply.status_code == 201
     page = client.get("/")  # the cookie the join set
-    assert 'id="join"' not in page.text and "/static/keys.js" in page.text
+    assert 'id="join"' not in page.text and "/static/build/lab.js" in page.text
 
 
 def test_the_instructors_link_sets_the_cookie_and_leaves_the_address_bar(client: TestClient) -> None:
@@ -265,7 +265,7 @@ def test_the_instructors_link_sets_the_cookie_and_leaves_the_address_bar(client:
     assert reply.status_code == 303 and reply.headers["location"] == "/instructor"
     assert "httponly" in reply.headers["set-cookie"].lower()
     page = client.get("/instructor")
-    assert page.status_code == 200 and "/static/instructor.js" in page.text
+    assert page.status_code == 200 and "/static/build/instructor.js" in page.text
 
 
 def test_a_single_lab_app_has_no_classroom() -> None:

@@ -2,7 +2,7 @@
 red arm along body y, L = 1 m) at its true (x, y, z), in the lab's arena, at 30 Hz rather than
 the lab's 2 Hz; plus the setpoint marker, a short trail and a telemetry panel.
 
-The page (static/scene.js) draws the drone between these updates from the pose stream, at the
+The page (web/src/lab/scene.ts) draws the drone between these updates from the pose stream, at the
 display's rate, and moves the setpoint marker itself the moment a key goes down.
 """
 

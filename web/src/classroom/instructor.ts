@@ -1,0 +1,102 @@
+// The instructor's page: every world once a second (GET /api/classroom/worlds) in a table, and
+// the controls (reset one or all, remove a student, publish in all worlds). Every drone in 3D is
+// the class view's own viser page, in a frame (/instructor/view). The token is the page's
+// HTTP-only cookie; these requests are same-origin.
+import type { BroadcastRequest, ClassWorld, ClassWorlds, ErrorBody } from "../protocol.gen";
+
+const $ = <E extends HTMLElement = HTMLElement>(id: string): E => document.getElementById(id) as E;
+const say = (text: string): void => { $("status").textContent = text; };
+const messageOf = (err: unknown): string => (err instanceof Error ? err.message : String(err));
+
+async function call<T>(method: string, url: string, body?: BroadcastRequest): Promise<T> {
+  const reply = await fetch(url, {
+    method,
+    headers: body ? { "Content-Type": "application/json" } : {},
+    body: body ? JSON.stringify(body) : null,
+  });
+  const data = await reply.json().catch(() => ({})) as T | Partial<ErrorBody>;
+  if (!reply.ok) {
+    const detail = (data as Partial<ErrorBody>).detail;
+    throw new Error(typeof detail === "string" ? detail : `HTTP ${reply.status}`);
+  }
+  return data as T;
+}
+
+function cell(row: HTMLTableRowElement, text: string, cls?: string): HTMLTableCellElement {
+  const td = row.insertCell();
+  td.textContent = text;
+  if (cls) td.className = cls;
+  return td;
+}
+
+function button(td: HTMLTableCellElement, label: string, onClick: () => void): void {
+  const b = document.createElement("button");
+  b.type = "button";
+  b.textContent = label;
+  b.addEventListener("click", onClick);
+  td.append(b, " ");
+}
+
+function draw(worlds: ClassWorld[]): void {
+  const body = $<HTMLTableSectionElement>("worlds");
+  body.replaceChildren();
+  for (const w of worlds) {
+    const row = body.insertRow();
+    row.dataset.world = w.world;
+    cell(row, w.student);
+    cell(row, w.worker ? `${w.world} (on worker ${w.worker})` : w.world);
+    const keys = w.keys_held ?? [];
+    const crashed = w.crashed_nodes ?? [];
+    cell(row, keys.length ? keys.join(", ") : "–", "num");
+    cell(row, w.rocket ? `${w.rocket.phase} ${w.rocket.altitude_m} m` : "–");
+    cell(row, w.drone ? w.drone.map((v) => v.toFixed(2)).join(", ") : "–", "num");
+    if (w.lost) cell(row, w.lost, "bad");
+    else if (w.worker_error) cell(row, w.worker_error, "bad");
+    else cell(row, crashed.length ? crashed.join(", ") : "none", crashed.length ? "bad" : "");
+    const actions = row.insertCell();
+    const world = encodeURIComponent(w.world);
+    button(actions, "Reset", () => void act("POST", `/api/classroom/worlds/${world}/reset`, `reset ${w.world}`));
+    button(actions, "Remove", () => {
+      if (confirm(`Remove ${w.student}'s world? Their page stops working until they join again.`)) {
+        void act("DELETE", `/api/classroom/worlds/${world}`, `removed ${w.world}`);
+      }
+    });
+  }
+}
+
+async function act(method: string, url: string, done: string, body?: BroadcastRequest): Promise<void> {
+  try {
+    await call<unknown>(method, url, body);
+    say(done);
+    await refresh();
+  } catch (err) {
+    say(messageOf(err));
+  }
+}
+
+async function refresh(): Promise<void> {
+  try {
+    const data = await call<ClassWorlds>("GET", "/api/classroom/worlds");
+    $("code").textContent = data.class_code;
+    $("count").textContent = `${data.worlds.length} / ${data.max_worlds} worlds`;
+    draw(data.worlds);
+  } catch (err) {
+    say(messageOf(err));
+  }
+}
+
+$("reset-all").addEventListener("click", () => void act("POST", "/api/classroom/reset", "every world reset"));
+$("broadcast").addEventListener("click", () => {
+  let msg: Record<string, unknown>;
+  try {
+    msg = JSON.parse($<HTMLInputElement>("b-msg").value) as Record<string, unknown>;
+  } catch (err) {
+    say(`the message is not JSON: ${messageOf(err)}`);
+    return;
+  }
+  const type = $<HTMLInputElement>("b-type").value.trim() || null;
+  const body: BroadcastRequest = { topic: $<HTMLInputElement>("b-topic").value.trim(), msg, type };
+  void act("POST", "/api/classroom/broadcast", "published in every world", body);
+});
+void refresh();
+setInterval(() => void refresh(), 1000);

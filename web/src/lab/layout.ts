@@ -1,0 +1,121 @@
+// Where the page's overlays go, so that none covers another at any window size: a column on the
+// left (the tools link, then the HUD, then viser's notices, moved below the HUD), viser's control
+// panel on the right (minimised to a strip when the window is narrow), and the help overlay in
+// the largest free area between them. It runs on resize, when the help opens or closes, and
+// twice a second (notices and the panel come and go on their own).
+import { scene } from "./scene";
+
+/** Dispatch this on window to lay the overlays out again now (the help opened or closed). */
+export const LAYOUT_EVENT = "teleop-layout";
+const GAP = 8;
+const MARGIN = 16;
+const COLLAPSE_BELOW_PX = 1000;  // narrower than this, the panel starts as a strip
+const HELP_WIDTH = 460;
+const MIN_HELP_WIDTH = 280;
+const STRIP_MAX_PX = 60;  // a minimised panel is about 41 px high
+const CLICK_AGAIN_MS = 1500;  // a click toggles: never a second one before the first has shown
+
+export const layout = {
+  collapsedPanel: false,
+  lastWidth: null as number | null,
+  boxes: null as Record<string, DOMRect | null> | null,
+  layout: (): void => layOut(),
+};
+
+const rect = (e: Element | null): DOMRect | null => (e ? e.getBoundingClientRect() : null);
+const panelEl = (): Element | null => document.querySelector('[data-testid="floating-panel"]');
+
+// Minimise the panel when the page opens narrow, or is made narrow; what the student does with
+// it afterwards is theirs. viser resets the panel when it connects, so the wish stands until
+// the panel is a strip.
+let wantStrip = false, clickedAt = -Infinity;
+const collapsePanelIfNarrow = (): void => {
+  const w = window.innerWidth;
+  if (!panelEl() || !scene.ready) return;  // viser rebuilds its panel when it connects
+  if (w < COLLAPSE_BELOW_PX && (layout.lastWidth === null || layout.lastWidth >= COLLAPSE_BELOW_PX)) wantStrip = true;
+  layout.lastWidth = w;
+  if (!wantStrip) return;
+  const expand = document.querySelector<HTMLElement>('[aria-label="Expand panel"]');
+  if (expand) {
+    wantStrip = false; layout.collapsedPanel = true;
+    if (document.activeElement === expand) expand.blur();  // viser hands it focus; Space would reopen it
+    return;
+  }
+  const minimise = document.querySelector<HTMLElement>('[aria-label="Minimize panel"]');
+  if (minimise && performance.now() - clickedAt > CLICK_AGAIN_MS) { minimise.click(); clickedAt = performance.now(); }
+};
+
+// The HUD grows when its telemetry arrives: lay out again at once, so viser's notices below it
+// never sit under it until the next interval.
+const resized = typeof ResizeObserver === "function" ? new ResizeObserver(() => layOut()) : null;
+let observedHud: HTMLElement | null = null;
+
+const placeColumn = (): number | null => {
+  const nav = document.getElementById("teleop-nav-tools");
+  const hud = document.getElementById("teleop-hud");
+  if (!hud) return null;
+  if (resized && hud !== observedHud) {
+    if (observedHud) resized.unobserve(observedHud);
+    resized.observe(hud);
+    observedHud = hud;
+  }
+  const top = nav ? rect(nav)!.bottom + GAP : MARGIN;
+  hud.style.top = `${top}px`;
+  const notices = document.querySelector<HTMLElement>(".mantine-Notifications-root");
+  const below = rect(hud)!.bottom + GAP;
+  if (notices?.offsetParent) {
+    const origin = rect(notices.offsetParent)!.top;
+    document.documentElement.style.setProperty("--teleop-notices-top", `${below - origin}px`);
+  }
+  const boxes = [nav, hud, notices].map(rect).filter((r): r is DOMRect => !!r && r.width > 0);
+  return Math.max(...boxes.map((r) => r.right));
+};
+
+interface Region { x0: number; x1: number; y0: number; y1: number }
+interface Fit { r: Region; width: number; height: number }
+
+// The help overlay in the free area right of the column: beside the panel, or below it when the
+// panel is a strip; whichever lets it be widest.
+const placeHelp = (columnRight: number): void => {
+  const help = document.getElementById("teleop-help");
+  if (!help || help.hidden) return;
+  const W = window.innerWidth, H = window.innerHeight;
+  const panel = rect(panelEl());
+  const left = columnRight + MARGIN;
+  const regions: Region[] = [{ x0: left, x1: W - MARGIN, y0: MARGIN, y1: H - MARGIN }];
+  if (panel?.width) {
+    regions[0]!.x1 = Math.min(regions[0]!.x1, panel.left - MARGIN);
+    regions.push({ x0: left, x1: W - MARGIN, y0: panel.bottom + MARGIN, y1: H - MARGIN });
+  }
+  const fits: Fit[] = regions.map((r) => {
+    const width = Math.max(0, Math.min(HELP_WIDTH, r.x1 - r.x0));
+    help.style.width = `${width}px`;
+    return { r, width, height: help.offsetHeight };
+  });
+  const fitting = fits.filter((f) => f.width >= MIN_HELP_WIDTH && f.height <= f.r.y1 - f.r.y0);
+  if (!fitting.length && panel && panel.height > STRIP_MAX_PX) {
+    wantStrip = true;  // no room beside the panel: the help asked for is worth more than the panel
+    return;
+  }
+  const best = fitting.sort((a, b) => b.width - a.width)[0]
+    ?? fits.sort((a, b) => b.width * (b.r.y1 - b.r.y0) - a.width * (a.r.y1 - a.r.y0))[0]!;
+  help.style.width = `${best.width}px`;
+  help.style.maxHeight = `${best.r.y1 - best.r.y0}px`;
+  help.style.left = `${(best.r.x0 + best.r.x1 - best.width) / 2}px`;
+  help.style.top = `${Math.max(best.r.y0, (best.r.y0 + best.r.y1 - Math.min(best.height, best.r.y1 - best.r.y0)) / 2)}px`;
+};
+
+function layOut(): void {
+  collapsePanelIfNarrow();
+  const columnRight = placeColumn();
+  if (columnRight !== null) placeHelp(columnRight);
+  const ids = ["teleop-nav-tools", "teleop-hud", "teleop-help"];
+  layout.boxes = Object.fromEntries(ids.map((id) => [id, rect(document.getElementById(id))]));
+}
+
+/** Lay the overlays out on resize, on LAYOUT_EVENT and twice a second. */
+export function startLayout(): void {
+  addEventListener("resize", layOut);
+  addEventListener(LAYOUT_EVENT, layOut);
+  setInterval(layOut, 500);
+}

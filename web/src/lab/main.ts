@@ -1,0 +1,32 @@
+// The lab page's script, injected into viser's own page before its scripts (server: the page's
+// routes). Key capture first: it must see keys before viser does. Then the pose stream, the
+// setpoint prediction, the scene driver (views, follow), the drawn answer to a key, the drawing
+// quality, the HUD, the tools link, and the layout of these overlays.
+//
+// The modules share their state through imports. window.__teleop exposes the same objects to
+// the browser tests and benches (bench/teleop_latency.py), and to a curious student's console.
+import { answer, startAnswer } from "./answer";
+import { hud, startHud } from "./hud";
+import { keys, startKeys } from "./keys";
+import { layout, startLayout } from "./layout";
+import { startNav } from "./nav";
+import { poses, startPoses } from "./poses";
+import { predict, startPredict } from "./predict";
+import { quality, startQuality } from "./quality";
+import { scene, startScene } from "./scene";
+
+const teleop = { keys, poses, predict, scene, answer, quality, hud, layout };
+declare global {
+  interface Window { __teleop?: typeof teleop }
+}
+
+startKeys();
+startPoses();
+startPredict();
+startScene();
+startAnswer();
+startQuality();
+startHud();
+startNav();
+startLayout();
+window.__teleop = teleop;
