@@ -61,6 +61,7 @@ def _gps_error_m(client: TestClient) -> float:
 
 
 # -- through the real app ------------------------------------------------------------------------
+@pytest.mark.timing  # the flight is timed on the wall clock
 def test_publishers_post_5_5_10_at_1hz_drone_gets_within_10cm(client: TestClient) -> None:
     response = _start(client)
     assert response.status_code == 201
