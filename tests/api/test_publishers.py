@@ -16,9 +16,9 @@ from typing import Any
 
 import pytest
 from fastapi.testclient import TestClient
+from support.app_pool import lab_client
 from support.wait import wait_until
 
-from server.app import create_app
 from server.bus import ManualClock, Node
 from server.lab import Lab
 from server.msgs import Vector3
@@ -31,8 +31,7 @@ FLIGHT_DEADLINE_S = 20.0
 
 @pytest.fixture
 def client() -> Iterator[TestClient]:
-    app = create_app(Settings(launch="fly", viewer=False, allowed_hosts=("testserver",)))
-    with TestClient(app) as test_client:
+    with lab_client(Settings(launch="fly", viewer=False, allowed_hosts=("testserver",))) as test_client:
         yield test_client
 
 
