@@ -129,7 +129,11 @@ class App(LoggedProcess):
              "--zenoh-listen", f"tcp/{self.router}", *launch],
             cwd=cwd or REPO, stdout=self._log, stderr=subprocess.STDOUT,
         )  # fmt: skip
-        wait_healthy(self.url, self.proc, READY_S, self.log_tail)
+        try:
+            wait_healthy(self.url, self.proc, READY_S, self.log_tail)
+        except BaseException:  # the test fails here, and has no App to stop: end the process now
+            self.stop()
+            raise
 
     def get(self, path: str, **params: Any) -> Any:
         response = httpx.get(self.url + path, params=params, timeout=5.0)
