@@ -7,10 +7,8 @@ from contextlib import ExitStack
 from typing import Any
 
 import pytest
-from fastapi.testclient import TestClient
 from labclient import QUIET_START_DELAY, LabClient, rocket_settings
-
-from server.app import create_app
+from support.app_pool import lab_client
 
 
 @pytest.fixture
@@ -19,8 +17,7 @@ def make_lab() -> Iterator[Callable[..., LabClient]]:
     with ExitStack() as stack:
 
         def make(start_delay: str = QUIET_START_DELAY, **overrides: Any) -> LabClient:
-            app = create_app(rocket_settings(start_delay, **overrides))
-            return LabClient(stack.enter_context(TestClient(app)))
+            return LabClient(stack.enter_context(lab_client(rocket_settings(start_delay, **overrides))))
 
         yield make
 

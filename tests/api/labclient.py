@@ -8,21 +8,18 @@ read gives up after a deadline instead of blocking the run forever.
 from __future__ import annotations
 
 import json
-import time
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import Any
 
-import pytest
 from fastapi.testclient import TestClient
 from starlette.testclient import WebSocketTestSession
 from starlette.websockets import WebSocketDisconnect
+from support.wait import wait_until
 from support.ws import receive_within, refusal
 
 from server.settings import Settings
 
-T = TypeVar("T")
 WAIT_S = 10.0  # generous: a loaded 2-core CI machine; a passing test returns as soon as it can
-POLL_S = 0.02
 QUIET_START_DELAY = "3600"  # the countdown never starts while the test runs
 
 
@@ -33,18 +30,6 @@ def rocket_settings(start_delay: str = QUIET_START_DELAY, **overrides: Any) -> S
         "allowed_hosts": ("testserver",), "viewer": False,
     }  # fmt: skip
     return Settings(**{**base, **overrides})
-
-
-def wait_until(check: Callable[[], T], what: str, timeout_s: float = WAIT_S) -> T:
-    """Poll ``check`` until it returns something truthy (returned); fail after ``timeout_s``."""
-    deadline = time.monotonic() + timeout_s
-    while True:
-        value = check()
-        if value:
-            return value
-        if time.monotonic() > deadline:
-            pytest.fail(f"gave up after {timeout_s} s waiting for {what} (last: {value!r})")
-        time.sleep(POLL_S)
 
 
 class LabClient:

@@ -11,13 +11,14 @@ import itertools
 import json
 import math
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 import pytest
 from fastapi.testclient import TestClient
+from support.app_pool import lab_client
+from support.wait import wait_until
 
-from server.app import create_app
 from server.bus import ManualClock, Node
 from server.lab import Lab
 from server.msgs import Vector3
@@ -26,13 +27,11 @@ from server.settings import Settings
 POSITION = "/uav/input/position"
 TARGET = {"x": 5.0, "y": 5.0, "z": 10.0}
 FLIGHT_DEADLINE_S = 20.0
-POLL_S = 0.05  # a real-time app: the test can only look again a little later
 
 
 @pytest.fixture
 def client() -> Iterator[TestClient]:
-    app = create_app(Settings(launch="fly", viewer=False, allowed_hosts=("testserver",)))
-    with TestClient(app) as test_client:
+    with lab_client(Settings(launch="fly", viewer=False, allowed_hosts=("testserver",))) as test_client:
         yield test_client
 
 
@@ -44,16 +43,6 @@ def _publish_count(client: TestClient, topic: str = POSITION) -> int:
     return client.get(f"/api/topics{topic}").json()["publish_count"]
 
 
-def _wait_until(predicate: Callable[[], bool], deadline_s: float) -> bool:
-    """Poll ``predicate`` on the real clock until it holds or ``deadline_s`` passes."""
-    end = time.monotonic() + deadline_s
-    while time.monotonic() < end:
-        if predicate():
-            return True
-        time.sleep(POLL_S)
-    return predicate()
-
-
 def _gps_error_m(client: TestClient) -> float:
     latest = client.get("/api/topics/uav/sensors/gps").json()["latest"]
     position = latest["pose"]["position"]
@@ -61,6 +50,7 @@ def _gps_error_m(client: TestClient) -> float:
 
 
 # -- through the real app ------------------------------------------------------------------------
+@pytest.mark.timing  # the flight is timed on the wall clock
 def test_publishers_post_5_5_10_at_1hz_drone_gets_within_10cm(client: TestClient) -> None:
     response = _start(client)
     assert response.status_code == 201
@@ -70,7 +60,7 @@ def test_publishers_post_5_5_10_at_1hz_drone_gets_within_10cm(client: TestClient
     assert item["count"] == 1  # the first one goes at once
     started = time.monotonic()
 
-    assert _wait_until(lambda: _gps_error_m(client) < 0.1, FLIGHT_DEADLINE_S)
+    wait_until(lambda: _gps_error_m(client) < 0.1, "the drone within 10 cm of (5, 5, 10)", FLIGHT_DEADLINE_S)
     flown_s = time.monotonic() - started
     assert flown_s < 10.0
     listed = client.get("/api/publishers").json()
@@ -136,17 +126,26 @@ def test_publishers_type_conflict_409(client: TestClient) -> None:
 def test_publishers_patch_enabled_false_stops_counting_true_resumes(client: TestClient) -> None:
     item = _start(client, rate_hz=50.0).json()
     url = f"/api/publishers/{item['id']}"
-    assert _wait_until(lambda: client.get(url).json()["count"] >= 5, 5.0)
+    wait_until(lambda: client.get(url).json()["count"] >= 5, "five publications at 50 Hz", 5.0)
 
     paused = client.patch(url, json={"enabled": False})
     assert paused.status_code == 200 and paused.json()["enabled"] is False
     count, published = paused.json()["count"], _publish_count(client)
-    time.sleep(0.3)  # 15 periods at 50 Hz: long enough to see a message that should not come
+    # A marker publisher at the same rate on a topic of its own: once it has published 15 times,
+    # the paused one has had 15 periods in which to publish, and must not have.
+    marker = _start(
+        client, topic="/pause_marker", type="std_msgs/msg/Float64", msg={"data": 1.0}, rate_hz=50.0
+    )
+    assert marker.status_code == 201, marker.text
+    marker_url = f"/api/publishers/{marker.json()['id']}"
+    wait_until(
+        lambda: client.get(marker_url).json()["count"] >= 15, "15 periods of the marker publisher", 5.0
+    )
     assert client.get(url).json()["count"] == count
     assert _publish_count(client) == published
 
     assert client.patch(url, json={"enabled": True}).json()["enabled"] is True
-    assert _wait_until(lambda: client.get(url).json()["count"] >= count + 5, 5.0)
+    wait_until(lambda: client.get(url).json()["count"] >= count + 5, "five more once resumed", 5.0)
 
 
 @pytest.mark.parametrize("body", [{"rate_hz": 0}, {"rate_hz": 1001}, {"msg": {"x": 1e9, "y": 0, "z": 3}}])

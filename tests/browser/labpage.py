@@ -16,6 +16,7 @@ import pytest
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
 from playwright.sync_api import Error as PlaywrightError
+from support.wait import wait_until as support_wait_until
 
 WAIT_S = 15.0
 STILL_M_S = 0.1
@@ -47,13 +48,8 @@ SETTLED_JS = "() => window.__frames.count > 20 && performance.now() - window.__f
 
 # -- the server's topics -------------------------------------------------------------------------
 def wait_until(check: Callable[[], Any], what: str, timeout_s: float = WAIT_S, poll_s: float = 0.05) -> Any:
-    """Poll ``check`` until it returns something truthy (returned); fail after ``timeout_s``."""
-    deadline = time.monotonic() + timeout_s
-    while not (value := check()):
-        if time.monotonic() > deadline:
-            pytest.fail(f"gave up after {timeout_s} s waiting for {what} (last: {value!r})")
-        time.sleep(poll_s)
-    return value
+    """support.wait's wait, with the browser tests' longer default (a page drawing beside the server)."""
+    return support_wait_until(check, what, timeout_s, poll_s=poll_s)
 
 
 def topic(server: LabServer, name: str) -> dict[str, Any]:

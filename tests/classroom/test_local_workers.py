@@ -9,8 +9,7 @@ from __future__ import annotations
 
 import os
 import signal
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -18,6 +17,7 @@ from typing import Any
 import httpx
 import pytest
 from support.app import READY_S, App, instructor_token, wait_for_workers
+from support.wait import wait_until
 
 from server.__main__ import main as server_main
 
@@ -57,14 +57,6 @@ def alive(pid: int) -> bool:
 
 def parent_of(pid: int) -> int:
     return int(Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[1])
-
-
-def wait_until(condition: Callable[[], bool], what: str, timeout_s: float) -> None:
-    deadline = time.monotonic() + timeout_s
-    while not condition():
-        if time.monotonic() > deadline:
-            pytest.fail(f"not within {timeout_s} s: {what}")
-        time.sleep(0.2)
 
 
 def end_pids(pids: set[int]) -> None:
@@ -115,7 +107,7 @@ def test_a_class_server_starts_its_workers_places_worlds_on_them_and_ends_them_w
     assert "/CountDownNode" in {n["name"] for n in nodes.json()}
 
     klass.app.stop()  # Ctrl-C: the class server ends its worker by its id
-    wait_until(lambda: not alive(pid), f"worker {pid} ends with its class server", GONE_WAIT_S)
+    wait_until(lambda: not alive(pid), f"worker {pid} ends with its class server", GONE_WAIT_S, poll_s=0.2)
 
 
 def test_the_console_shows_the_class_not_every_worlds_node_lines_which_stay_on_their_rosout(
@@ -137,7 +129,9 @@ def test_the_console_shows_the_class_not_every_worlds_node_lines_which_stay_on_t
         return latest is not None and str(latest["msg"]).startswith("Countdown:")
 
     for world in tokens:  # one world here, one on the worker: both proxied or served by the server
-        wait_until(lambda world=world: counting(world), f"{world}'s countdown on its /rosout", READY_S)
+        wait_until(
+            lambda world=world: counting(world), f"{world}'s countdown on its /rosout", READY_S, poll_s=0.2
+        )
     console = klass.app.log_tail(10**6)
     assert "Ada joined: world ada" in console and "Bob joined: world bob" in console  # the class's own events
     assert "at warning and above, each under its world's name" in console  # the banner says where the rest is
@@ -158,7 +152,7 @@ def test_a_worker_that_dies_is_started_again_and_its_world_comes_back(klass: Cla
         (now,) = klass.started_here()
         return now["pid"] not in (None, first["pid"]) and now["restarts"] == 1
 
-    wait_until(restarted, "the class server starts its worker again", READY_S)
+    wait_until(restarted, "the class server starts its worker again", READY_S, poll_s=0.2)
     wait_for_workers(klass.app.url, klass.instructor, {"local-1"})
 
     def back() -> bool:
@@ -169,7 +163,7 @@ def test_a_worker_that_dies_is_started_again_and_its_world_comes_back(klass: Cla
             and klass.get("/api/nodes", token).status_code == 200
         )
 
-    wait_until(back, f"world {world} hosted again", READY_S + GONE_WAIT_S)
+    wait_until(back, f"world {world} hosted again", READY_S + GONE_WAIT_S, poll_s=0.2)
 
 
 def test_a_killed_class_server_leaves_no_worker_behind(tmp_path: Path) -> None:
@@ -179,7 +173,9 @@ def test_a_killed_class_server_leaves_no_worker_behind(tmp_path: Path) -> None:
         (worker,) = started.started_here()
         started.app.proc.kill()  # no chance to end anything itself
         started.app.proc.wait(timeout=10)
-        wait_until(lambda: not alive(worker["pid"]), "an orphaned worker ends by itself", GONE_WAIT_S)
+        wait_until(
+            lambda: not alive(worker["pid"]), "an orphaned worker ends by itself", GONE_WAIT_S, poll_s=0.2
+        )
     finally:
         started.app.stop()
         end_pids(started.seen_pids)

@@ -21,6 +21,8 @@ import httpx
 import pytest
 from support.app import REPO, App, WorldWorker, instructor_token, wait_for_workers
 
+pytestmark = pytest.mark.timing  # its rates are the point: measured with nothing else running
+
 CODE = "CLS030"
 WORLDS = 30
 WINDOW_S = 30.0

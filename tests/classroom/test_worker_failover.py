@@ -13,7 +13,6 @@ import json
 import math
 import os
 import signal
-import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -22,6 +21,7 @@ import httpx
 import pytest
 from fastapi.testclient import TestClient
 from support.app import App, WorldWorker, instructor_token, wait_for_workers
+from support.wait import wait_until as support_wait_until
 
 from server.app import create_app
 from server.bus import ManualClock
@@ -131,12 +131,8 @@ def api(url: str, path: str, token: str, **headers: str) -> httpx.Response:
 
 
 def wait_until(check: Any, what: str, logs: Any, timeout_s: float = GONE_WAIT_S) -> Any:
-    deadline = time.monotonic() + timeout_s
-    while not (value := check()):
-        if time.monotonic() > deadline:
-            pytest.fail(f"gave up after {timeout_s} s waiting for {what}\n{logs()}")
-        time.sleep(0.25)
-    return value
+    """support.wait's wait, with a failover's long default and the class server's log on failure."""
+    return support_wait_until(check, what, timeout_s, poll_s=0.25, detail=logs)
 
 
 @pytest.fixture

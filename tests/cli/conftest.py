@@ -21,6 +21,7 @@ from typing import IO, Any
 import httpx
 import pytest
 from support.app import end, free_ports, wait_healthy
+from support.wait import wait_until
 
 SERVER_READY_S = 30.0
 SERVER_STOP_S = 10.0
@@ -49,11 +50,7 @@ class LiveServer:
 
     def wait_until(self, condition: Callable[[], bool], what: str, timeout_s: float = READ_TIMEOUT_S) -> None:
         """Poll the server until ``condition`` holds (a subprocess offers nothing to await)."""
-        deadline = time.monotonic() + timeout_s
-        while not condition():
-            if time.monotonic() > deadline:
-                pytest.fail(f"timed out after {timeout_s} s waiting for {what}")
-            time.sleep(0.05)
+        wait_until(condition, what, timeout_s, poll_s=0.05, detail=self.log_tail)
 
 
 @pytest.fixture(scope="session")

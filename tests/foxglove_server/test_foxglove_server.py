@@ -9,8 +9,7 @@ from __future__ import annotations
 import asyncio
 import json
 import struct
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -21,6 +20,7 @@ from handshake import handshake_refusal, handshake_status
 from mcap.records import Schema as McapSchema
 from mcap_ros2.decoder import DecoderFactory
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from support.wait import wait_until
 from websockets.asyncio.client import ClientConnection
 from websockets.exceptions import ConnectionClosed
 
@@ -76,15 +76,6 @@ async def channels_until(ws: ClientConnection, topics: set[str]) -> dict[str, di
         for channel in (await next_json(ws, "advertise"))["channels"]:
             seen[channel["topic"]] = channel
     return seen
-
-
-def wait_for(check: Callable[[], bool], what: str) -> None:
-    """Poll state the app's thread changes (nothing there to await from here), for READ_S at most."""
-    deadline = time.monotonic() + READ_S
-    while not check():
-        if time.monotonic() > deadline:
-            pytest.fail(f"gave up after {READ_S} s waiting for {what}")
-        time.sleep(0.02)
 
 
 def run(coro: Any) -> Any:
@@ -173,7 +164,7 @@ def test_client_published_key_a_aborts_the_rocket(lab: TestClient) -> None:
             advertise = {"id": 3, "topic": "/keydown", "encoding": "cdr", "schemaName": keydown["schemaName"]}
             await ws.send(json.dumps({"op": "advertise", "channels": [advertise]}))
             await ws.send(struct.pack("<BI", CLIENT_MESSAGE_DATA, 3) + key_cdr(keydown["schema"], 97))
-            await asyncio.to_thread(wait_for, lambda: main.abort_mission, "the rocket to abort")
+            await asyncio.to_thread(wait_until, lambda: main.abort_mission, "the rocket to abort", READ_S)
 
     run(scenario())
     assert lab.get("/api/topics/abort_takeoff").json()["latest"] == {"data": True}
@@ -205,7 +196,9 @@ def test_client_publish_with_a_nan_setpoint_or_wrong_type_is_refused(lab: TestCl
             await ws.send(json.dumps({"op": "advertise", "channels": channels}))
             await ws.send(struct.pack("<BI", CLIENT_MESSAGE_DATA, 1) + b'{"x": NaN, "y": 0, "z": 1}')
             await ws.send(struct.pack("<BI", CLIENT_MESSAGE_DATA, 2) + b'{"data": true}')
-            await asyncio.to_thread(wait_for, lambda: bridge.refused == refused + 2, "both messages refused")
+            await asyncio.to_thread(
+                wait_until, lambda: bridge.refused == refused + 2, "both messages refused", READ_S
+            )
             status = await next_json(ws, "status")
             assert "/uav/input/position" in status["message"]
 

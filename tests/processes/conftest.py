@@ -73,6 +73,7 @@ class Busy(Node):
         self.create_timer(0.2, self.tick)
 
     def tick(self):
+        self.get_logger().info('into the endless callback')
         while True:
             pass
 

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import os
 import signal
-import time
 from pathlib import Path
 
 from support.app import App
@@ -56,12 +55,17 @@ def test_a_node_process_that_raises_dies_alone_listed_as_died_with_its_exit_code
 
 def test_a_node_process_that_never_returns_from_a_callback_leaves_the_rest_running(tmp_path: Path) -> None:
     make_workspace(tmp_path, {"src/faults/busy.py": SPINS_FOREVER})
-    app = App(tmp_path, "--launch", "rocket", "start_delay:=1", cwd=tmp_path)
+    # The countdown (10 s from 8 s after start) runs while the busy node, whose process may take
+    # seconds to start on a loaded machine, sits in its callback.
+    app = App(tmp_path, "--launch", "rocket", "start_delay:=8", cwd=tmp_path)
     try:
         started = app.post("/api/run", {"package": "faults", "executable": "busy.py"})
         assert started.status_code == 201
         app.wait_for(lambda: node_entry(app, "/Busy") is not None, "the busy node in the graph")
-        time.sleep(0.5)  # well into its endless callback
+        app.wait_for(
+            lambda: "into the endless callback" in app.log_tail(50000),
+            "the busy node inside its endless callback",
+        )
         before = _countdown_count(app)
         app.wait_for(lambda: _countdown_count(app) >= before + 3, "the countdown to go on meanwhile")
         assert app.get("/api/health")["status"] == "ok"

@@ -82,6 +82,7 @@ def test_part2_drone_keyboard_manager_moves_the_setpoint_a_metre_per_press(
         app.stop()
 
 
+@pytest.mark.timing
 def test_method1_rate_loop_in_main_publishes_at_5_hz(tmp_path: Path) -> None:
     make_workspace(tmp_path, {"src/rates/rate_node.py": RATE_NODE})
     app = App(tmp_path, "--launch", "rocket", cwd=tmp_path)

@@ -21,6 +21,8 @@ from typing import IO, Any
 import httpx
 import pytest
 
+from support.wait import wait_until
+
 REPO = Path(__file__).resolve().parents[2]
 READY_S = 40.0
 WAIT_S = 20.0
@@ -88,11 +90,13 @@ def wait_healthy(
 ) -> None:
     """Until the app at ``url`` answers /api/health; the test fails, with the log's tail, if its
     process ends first or ``timeout_s`` passes."""
-    deadline = time.monotonic() + timeout_s
-    while not healthy(url):
-        if proc.poll() is not None or time.monotonic() > deadline:
-            pytest.fail(f"the app did not come up within {timeout_s} s:\n{log_tail()}")
-        time.sleep(0.1)
+
+    def up() -> bool:
+        if proc.poll() is not None:
+            pytest.fail(f"the app ended (code {proc.returncode}) before it came up:\n{log_tail()}")
+        return healthy(url)
+
+    wait_until(up, "the app to answer /api/health", timeout_s, poll_s=0.1, detail=log_tail)
 
 
 class LoggedProcess:
@@ -125,7 +129,11 @@ class App(LoggedProcess):
              "--zenoh-listen", f"tcp/{self.router}", *launch],
             cwd=cwd or REPO, stdout=self._log, stderr=subprocess.STDOUT,
         )  # fmt: skip
-        wait_healthy(self.url, self.proc, READY_S, self.log_tail)
+        try:
+            wait_healthy(self.url, self.proc, READY_S, self.log_tail)
+        except BaseException:  # the test fails here, and has no App to stop: end the process now
+            self.stop()
+            raise
 
     def get(self, path: str, **params: Any) -> Any:
         response = httpx.get(self.url + path, params=params, timeout=5.0)
@@ -139,11 +147,7 @@ class App(LoggedProcess):
         return httpx.delete(self.url + path, timeout=30.0)
 
     def wait_for(self, condition: Callable[[], bool], what: str, timeout_s: float = WAIT_S) -> None:
-        deadline = time.monotonic() + timeout_s
-        while not condition():
-            if time.monotonic() > deadline:
-                pytest.fail(f"timed out after {timeout_s} s waiting for {what}\n{self.log_tail()}")
-            time.sleep(0.05)
+        wait_until(condition, what, timeout_s, poll_s=0.05, detail=self.log_tail)
 
 
 class JsonProcess:
@@ -269,14 +273,12 @@ class WorldWorker(LoggedProcess):
 
 def wait_for_workers(url: str, token: str, ids: set[str], timeout_s: float = READY_S) -> list[dict[str, Any]]:
     """Until the class server at ``url`` finds every worker in ``ids`` on its router."""
-    deadline = time.monotonic() + timeout_s
-    seen: list[dict[str, Any]] = []
-    while time.monotonic() < deadline:
+
+    def found() -> list[dict[str, Any]] | None:
         reply = httpx.get(
             f"{url}/api/classroom/workers", headers={"Authorization": f"Bearer {token}"}, timeout=10
         )
-        seen = reply.json()["workers"] if reply.status_code == 200 else []
-        if ids <= {w["id"] for w in seen}:
-            return seen
-        time.sleep(0.2)
-    pytest.fail(f"the class server found workers {seen}, not all of {sorted(ids)}, within {timeout_s} s")
+        seen: list[dict[str, Any]] = reply.json()["workers"] if reply.status_code == 200 else []
+        return seen if ids <= {w["id"] for w in seen} else None
+
+    return wait_until(found, f"the class server to find workers {sorted(ids)}", timeout_s, poll_s=0.2)

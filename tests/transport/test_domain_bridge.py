@@ -4,14 +4,14 @@ domain 0. Zenoh delivers on its own threads, so each wait is bounded."""
 
 from __future__ import annotations
 
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
 import pytest
 import zenoh
 from support.app import free_port
+from support.wait import wait_until
 
 from server.transport import domain_bridge
 from server.transport.attachment import Attachment
@@ -23,14 +23,6 @@ from server.transport.session import open_session
 WAIT_S = 5.0
 TYPE, HASH = "std_msgs::msg::dds_::Int64_", "RIHS01_" + "ab" * 32
 GID = bytes(range(16))
-
-
-def wait_for(condition: Callable[[], bool], what: str) -> None:
-    deadline = time.monotonic() + WAIT_S
-    while not condition():
-        if time.monotonic() > deadline:
-            pytest.fail(f"timed out after {WAIT_S} s waiting for {what}")
-        time.sleep(0.005)
 
 
 @dataclass
@@ -70,18 +62,26 @@ def net() -> Iterator[Net]:
 
 def test_a_world_shows_only_once_named_and_leaves_when_dropped(net: Net) -> None:
     keep = net.declare(EntityKind.PUBLISHER, "/chatter", 2)
-    time.sleep(0.2)  # the bridge has heard the token by now, but the world has no name yet
-    assert net.bridge.routes() == {}
+    # A marker: a named world's token, declared after the unnamed one by the same session, so the
+    # bridge hears it second. Once the marker is bridged, the unnamed world has been heard, and
+    # shows nothing.
+    net.bridge.set_world(2, "marker")
+    marker = net.declare(EntityKind.PUBLISHER, "/chatter", 3, domain_id=2)
+    wait_until(lambda: net.bridge.routes() != {}, "the marker world's /chatter bridged")
+    assert net.bridge.routes() == {"marker": ["out /marker/chatter"]}
+    marker.undeclare()
+    net.bridge.drop_world(2)
+    wait_until(lambda: net.bridge.routes() == {}, "the marker gone")
     net.bridge.set_world(1, "ada")
-    wait_for(lambda: net.bridge.routes() == {"ada": ["out /ada/chatter"]}, "ada's /chatter bridged")
+    wait_until(lambda: net.bridge.routes() == {"ada": ["out /ada/chatter"]}, "ada's /chatter bridged")
     tokens = net.class_tokens()
     assert any(t.endswith("/NN/%/%ada/domain_bridge") for t in tokens), tokens
     assert any("/MP/%/%ada/domain_bridge/%ada%chatter/" in t for t in tokens), tokens
     net.bridge.set_world(1, "bea")  # the domain taken by another world: renamed, not both
-    wait_for(lambda: net.bridge.routes() == {"bea": ["out /bea/chatter"]}, "the domain under its new name")
+    wait_until(lambda: net.bridge.routes() == {"bea": ["out /bea/chatter"]}, "the domain under its new name")
     net.bridge.drop_world(1)
-    wait_for(lambda: net.bridge.routes() == {}, "nothing bridged once the world is gone")
-    wait_for(lambda: net.class_tokens() == [], "the class domain's graph empty again")
+    wait_until(lambda: net.bridge.routes() == {}, "nothing bridged once the world is gone")
+    wait_until(lambda: net.class_tokens() == [], "the class domain's graph empty again")
     keep.undeclare()
 
 
@@ -91,7 +91,7 @@ def test_samples_cross_while_watched_with_the_bridges_attachment_and_never_loop(
         net.declare(EntityKind.PUBLISHER, "/chatter", 2),
         net.declare(EntityKind.SUBSCRIPTION, "/chatter", 3),
     ]
-    wait_for(lambda: len(net.bridge.routes().get("ada", [])) == 2, "both ways of /chatter bridged")
+    wait_until(lambda: len(net.bridge.routes().get("ada", [])) == 2, "both ways of /chatter bridged")
     # REMOTE, as a world's bus publishes: its own process hears it on the bus, not through Zenoh.
     world_pub = net.world.declare_publisher(
         data_key(1, "/chatter", TYPE, HASH), allowed_destination=zenoh.Locality.REMOTE
@@ -106,12 +106,12 @@ def test_samples_cross_while_watched_with_the_bridges_attachment_and_never_loop(
     world_sub = net.world.declare_subscriber(
         data_key(1, "/chatter", TYPE, HASH), lambda s: back.append(s.payload.to_bytes())
     )
-    wait_for(lambda: world_pub.matching_status.matching, "the bridge subscribing in the world once watched")
+    wait_until(lambda: world_pub.matching_status.matching, "the bridge subscribing in the world once watched")
     assert "out* /ada/chatter" in net.bridge.routes()["ada"]
     world_pub.put(b"no attachment")  # rmw_zenoh drops it; so does the bridge
     for seq in (1, 2, 3):
         world_pub.put(b"sample %d" % seq, attachment=Attachment(seq, 1000 + seq, GID).pack())
-    wait_for(lambda: len(out) == 3, "three samples in the class domain")
+    wait_until(lambda: len(out) == 3, "three samples in the class domain")
     assert [payload for payload, _ in out] == [b"sample 1", b"sample 2", b"sample 3"]
     attachments = [a for _, a in out]
     assert all(a is not None for a in attachments)
@@ -119,19 +119,23 @@ def test_samples_cross_while_watched_with_the_bridges_attachment_and_never_loop(
     assert [a.source_timestamp_ns for a in attachments if a] == [1001, 1002, 1003]  # the source's time
     assert {a.gid for a in attachments if a} != {GID}  # the bridge's own publisher, as a ROS bridge is
     assert net.bridge.stats.dropped == 1
-    # What crossed out is not sent back in.
-    time.sleep(0.2)
-    assert back == []
-    # And into the world: a sample published in the class domain, once.
+    # What crossed out is not sent back in: an echo would reach the world before this sample from
+    # the class domain, which takes the same way from the router to the world after it.
     class_pub = net.watcher.declare_publisher(
         data_key(0, "/ada/chatter", TYPE, HASH), allowed_destination=zenoh.Locality.REMOTE
     )
     class_pub.put(b"from the class", attachment=Attachment(1, 5, GID).pack())
-    wait_for(lambda: b"from the class" in back, "the class's sample in the world")
-    time.sleep(0.2)
-    assert back == [b"from the class"] and len(out) == 3  # once, and not echoed back out
+    wait_until(lambda: b"from the class" in back, "the class's sample in the world")
+    assert back == [b"from the class"]
+    # And into the world once, and not echoed back out: markers after it, one each way, come next.
+    class_pub.put(b"class marker", attachment=Attachment(2, 6, GID).pack())
+    wait_until(lambda: b"class marker" in back, "the class's marker in the world")
+    world_pub.put(b"world marker", attachment=Attachment(4, 1004, GID).pack())
+    wait_until(lambda: len(out) >= 4, "the world's marker in the class domain")
+    assert back == [b"from the class", b"class marker"]
+    assert [payload for payload, _ in out] == [b"sample 1", b"sample 2", b"sample 3", b"world marker"]
     watcher_sub.undeclare()
-    wait_for(lambda: not world_pub.matching_status.matching, "the bridge leaving the world once unwatched")
+    wait_until(lambda: not world_pub.matching_status.matching, "the bridge leaving the world once unwatched")
     for entity in (class_pub, world_sub, world_pub, *keep):
         entity.undeclare()
 
@@ -145,15 +149,16 @@ def test_what_one_world_can_make_the_bridge_declare_is_bounded(
     net.bridge.set_world(2, "bob")
     keep = [net.declare(EntityKind.PUBLISHER, f"/flood{i}", 10 + i) for i in range(8)]
     keep.append(net.declare(EntityKind.PUBLISHER, "/fine", 2, domain_id=2))
-    wait_for(lambda: len(net.bridge.routes().get("ada", [])) == 3, "ada's first three topics")
-    wait_for(
+    wait_until(lambda: len(net.bridge.routes().get("ada", [])) == 3, "ada's first three topics")
+    wait_until(
         lambda: net.bridge.routes().get("bob") == ["out /bob/fine"], "bob's topic, untouched by ada's flood"
     )
-    time.sleep(0.2)
+    # bob's token was declared after all of ada's by the same session: with it bridged, the bridge
+    # has heard every one of ada's, and still bridges only three.
     assert len(net.bridge.routes()["ada"]) == 3
     for token in keep:
         token.undeclare()
-    wait_for(lambda: net.bridge.routes() == {}, "the flood gone with its tokens")
+    wait_until(lambda: net.bridge.routes() == {}, "the flood gone with its tokens")
 
 
 def test_the_class_domain_itself_is_never_bridged(net: Net) -> None:
@@ -162,7 +167,7 @@ def test_the_class_domain_itself_is_never_bridged(net: Net) -> None:
     net.bridge.set_world(1, "ada")
     keep = net.declare(EntityKind.PUBLISHER, "/in_class", 2, domain_id=0)
     mark = net.declare(EntityKind.PUBLISHER, "/marker", 3)
-    wait_for(lambda: net.bridge.routes() == {"ada": ["out /ada/marker"]}, "the world's marker bridged")
+    wait_until(lambda: net.bridge.routes() == {"ada": ["out /ada/marker"]}, "the world's marker bridged")
     assert "/in_class" not in str(net.bridge.routes())
     keep.undeclare()
     mark.undeclare()
@@ -191,7 +196,7 @@ def test_a_call_in_the_class_domain_is_answered_by_the_worlds_server_as_rmw_zeno
         query.drop()
 
     server = net.world.declare_queryable(data_key(1, "/double", TYPE, HASH), serve, complete=True)
-    wait_for(lambda: net.bridge.routes() == {"ada": ["srv /ada/double"]}, "ada's service bridged")
+    wait_until(lambda: net.bridge.routes() == {"ada": ["srv /ada/double"]}, "ada's service bridged")
     assert any("/SS/%/%ada/domain_bridge/%ada%double/" in t for t in net.class_tokens())
 
     def call(payload: bytes, attachment: bytes | None) -> list[Any]:
@@ -223,7 +228,7 @@ def test_a_call_in_the_class_domain_is_answered_by_the_worlds_server_as_rmw_zeno
         data_key(0, "/ada/double", TYPE, HASH), payload=b"hold", attachment=Attachment(50, 5, GID).pack(),
         target=zenoh.QueryTarget.ALL_COMPLETE, consolidation=zenoh.ConsolidationMode.NONE, timeout=WAIT_S,
     )  # fmt: skip
-    wait_for(lambda: len(held) == 1, "the held call at the world's server")
+    wait_until(lambda: len(held) == 1, "the held call at the world's server")
     busy = call(b"3", Attachment(51, 5, GID).pack())
     assert [r.ok for r in busy] == [None] and b"calls are waiting on /ada" in busy[0].err.payload.to_bytes()
     first = held.pop()
@@ -234,7 +239,7 @@ def test_a_call_in_the_class_domain_is_answered_by_the_worlds_server_as_rmw_zeno
     assert (net.bridge.stats.calls, net.bridge.stats.refused) == (3, 3)
     server.undeclare()
     token.undeclare()
-    wait_for(lambda: net.bridge.routes() == {}, "the service gone with its server")
+    wait_until(lambda: net.bridge.routes() == {}, "the service gone with its server")
 
 
 def test_a_name_that_is_not_fully_qualified_is_never_bridged_under_another_worlds_prefix(net: Net) -> None:
@@ -249,7 +254,7 @@ def test_a_name_that_is_not_fully_qualified_is_never_bridged_under_another_world
     keep.append(
         net.declare(EntityKind.PUBLISHER, "/probe", 20)
     )  # after the others: once it shows, all were read
-    wait_for(lambda: "ada" in net.bridge.routes() and "adam" in net.bridge.routes(), "both worlds bridged")
+    wait_until(lambda: "ada" in net.bridge.routes() and "adam" in net.bridge.routes(), "both worlds bridged")
     assert net.bridge.routes() == {"ada": ["out /ada/probe"], "adam": ["out /adam/chatter"]}
     assert net.bridge.refused_names() == {"ada": 6}
     assert not [t for t in net.class_tokens() if "%ada/domain_bridge/%adam" in t]
