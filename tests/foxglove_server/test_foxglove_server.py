@@ -316,9 +316,11 @@ def test_unsubscribing_the_last_client_drops_the_bus_subscription(lab: TestClien
                 json.dumps({"op": "subscribe", "subscriptions": [{"id": 1, "channelId": gps["id"]}]})
             )
             await asyncio.to_thread(
-                wait_for, lambda: "/uav/sensors/gps" in node.forwarding, "the subscription"
+                wait_until, lambda: "/uav/sensors/gps" in node.forwarding, "the subscription", READ_S
             )
             await ws.send(json.dumps({"op": "unsubscribe", "subscriptionIds": [1]}))
-            await asyncio.to_thread(wait_for, lambda: "/uav/sensors/gps" not in node.forwarding, "its end")
+            await asyncio.to_thread(
+                wait_until, lambda: "/uav/sensors/gps" not in node.forwarding, "its end", READ_S
+            )
 
     run(scenario())
