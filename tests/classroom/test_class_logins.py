@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -16,7 +16,8 @@ from typing import Any
 import httpx
 import pytest
 import zenoh
-from support.app import WAIT_S, App, instructor_token
+from support.app import App, instructor_token
+from support.wait import wait_until
 
 from server.msgs import PoseStamped, Vector3
 from server.msgs.wire import dds_type_name, serialize, type_hash
@@ -94,14 +95,6 @@ class Heard:
     def count(self) -> int:
         with self._lock:
             return len(self.payloads)
-
-
-def wait_until(condition: Callable[[], bool], what: str, timeout_s: float = WAIT_S) -> None:
-    deadline = time.monotonic() + timeout_s
-    while not condition():
-        if time.monotonic() > deadline:
-            pytest.fail(f"timed out after {timeout_s} s waiting for {what}")
-        time.sleep(0.02)
 
 
 def gps_key(domain_id: int, world: str = "") -> str:

@@ -5,14 +5,13 @@ other's for good. Real Zenoh sessions on loopback, multicast scouting off."""
 from __future__ import annotations
 
 import asyncio
-import time
-from collections.abc import Callable
 from typing import Any
 
 import pytest
 import zenoh
 from fastapi.testclient import TestClient
 from support.app import free_port
+from support.wait import wait_until
 
 from server.app import create_app
 from server.classroom import Classroom
@@ -23,15 +22,6 @@ from server.transport.acl import ClassAuth, Credentials, new_world_login
 from server.transport.config import ZenohSettings
 from server.transport.session import build_config
 
-WAIT_S = 10.0
-
-
-def wait_until(condition: Callable[[], bool], what: str) -> None:
-    deadline = time.monotonic() + WAIT_S
-    while not condition():
-        if time.monotonic() > deadline:
-            pytest.fail(f"timed out after {WAIT_S} s waiting for {what}")
-        time.sleep(0.02)
 
 
 def client(endpoint: str, login: Credentials) -> Any:
