@@ -23,7 +23,6 @@ from server.transport.config import ZenohSettings
 from server.transport.session import build_config
 
 
-
 def client(endpoint: str, login: Credentials) -> Any:
     return zenoh.open(build_config(ZenohSettings(mode="client", listen=(), connect=(endpoint,), login=login)))
 
