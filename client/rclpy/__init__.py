@@ -14,6 +14,7 @@ from server.bus import Future
 
 from ._context import Context, RCLError, default_context
 from .executors import Executor, ExternalShutdownException, SingleThreadedExecutor
+from .parameter import Parameter
 
 _global_executor: Executor | None = None
 
@@ -107,6 +108,7 @@ __all__ = [
     "ExternalShutdownException",
     "Future",
     "InitContextManager",
+    "Parameter",
     "RCLError",
     "create_node",
     "get_default_context",

@@ -6,15 +6,17 @@ from collections.abc import Callable
 from typing import Any
 
 from server.bus import Node as BusNode
-from server.bus import Parameter, Publisher, ServiceServer, Subscription, Timer
+from server.bus import Publisher, ServiceServer, Subscription, Timer
 from server.msgs import Message, Service
 
 from ._context import Context, default_context
+from ._parameters import ParameterAPI
 from .callback_groups import CallbackGroup, GroupedCallback, MutuallyExclusiveCallbackGroup
 from .client import Client
 from .clock import ROSClock
 from .guard_condition import GuardCondition
 from .logging import NodeRcutilsLogger
+from .parameter import Parameter
 from .qos import QoSProfile, WireQoS, keep_depth
 from .rate import Rate
 
@@ -27,7 +29,7 @@ def _for_bus(qos_profile: Any) -> Any:
     return qos_profile
 
 
-class Node(BusNode):
+class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter API over the bus's
     """Subclass it as the handout does: ``super().__init__('KeyboardManagerNode')``."""
 
     def __init__(self, node_name: str, *, context: Context | None = None, **kwargs: Any) -> None:
@@ -202,10 +204,6 @@ class Node(BusNode):
             else sum(1 for e in bridge.remote.endpoints() if e.name == name and e.kind == kind)
         )
         return local + remote
-
-    def declare_parameters(self, namespace: str, parameters: list[tuple[str, Any]]) -> list[Parameter]:
-        prefix = f"{namespace}." if namespace else ""
-        return [self.declare_parameter(prefix + name, value) for name, value, *_ in parameters]
 
 
 __all__ = ["Node", "Parameter"]

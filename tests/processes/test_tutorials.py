@@ -124,3 +124,15 @@ def test_a_transient_local_late_joiner_gets_the_sample_published_before_it_came(
     listener.wait_for(rf'^\[INFO\] {STAMP} \[late_subscriber\]: Late joiner got: "the lab floor"$')
     stopped_cleanly(listener)
     stopped_cleanly(talker)
+
+
+def test_parameters_in_a_class_take_ros_args_and_a_callback_refuses_with_its_reason(
+    run: type[NodeProcess],
+) -> None:
+    node = run("parameter_node.py", "--ros-args", "-p", "my_parameter:=earth")
+    node.wait_for(rf"^\[INFO\] {STAMP} \[minimal_param_node\]: Hello earth!$")
+    node.wait_for(
+        rf"^\[INFO\] {STAMP} \[minimal_param_node\]: Setting it empty: False, my_parameter must not be empty$"
+    )
+    node.wait_for(rf"^\[INFO\] {STAMP} \[minimal_param_node\]: Hello world!$")  # the node set it back
+    stopped_cleanly(node)
