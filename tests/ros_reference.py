@@ -38,6 +38,13 @@ ROS_REFERENCE_HASHES = {
     "std_msgs/msg/UInt32": "a5c874829b752bc5fa190024b0ad76f578cc278271e855c7d02a818b3516fb4a",
     "std_msgs/msg/UInt64": "fbdc52018fc13755dce18024d1a671c856aa8b4aaf63adfb095b608f98e8c943",
     "std_msgs/msg/UInt8": "6138bd83d8c3569cb80a667db03cfc1629f529fee79d944c39c34e352e72f010",
+    # The parameter services, as independent rmw_zenoh peers list them for ROS 2's parameter tools.
+    "rcl_interfaces/srv/DescribeParameters": "845b484d71eb0673dae682f2e3ba3c4851a65a3dcfb97bddd82c5b57e91e4cff",
+    "rcl_interfaces/srv/GetParameterTypes": "da199c878688b3e530bdfe3ca8f74cb9fa0c303101e980a9e8f260e25e1c80ca",
+    "rcl_interfaces/srv/GetParameters": "bf9803d5c74cf989a5de3e0c2e99444599a627c7ff75f97b8c05b01003675cbc",
+    "rcl_interfaces/srv/ListParameters": "3e6062bfbb27bfb8730d4cef2558221f51a11646d78e7bb30a1e83afac3aad9d",
+    "rcl_interfaces/srv/SetParameters": "56eed9a67e169f9cb6c1f987bc88f868c14a8fc9f743a263bc734c154015d7e0",
+    "rcl_interfaces/srv/SetParametersAtomically": "0e192ef259c07fc3c07a13191d27002222e65e00ccec653ca05e856f79285fcd",
     "std_srvs/srv/Empty": "5888399dedec5ccc85ea6451949fd2c9f97bfdf963f9a588821639fcd31b5d19",
     "std_srvs/srv/SetBool": "abe9e4bb6b41b40e6789712c00ec8871923e089af3f667a79992a428cff2da0a",
     "std_srvs/srv/Trigger": "eeff2cd6fa5ad9d27cdf4dec64818317839b62f212a91e6b5304b634b2062c5f",

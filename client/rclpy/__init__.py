@@ -14,15 +14,36 @@ from server.bus import Future
 
 from ._context import Context, RCLError, default_context
 from .executors import Executor, ExternalShutdownException, SingleThreadedExecutor
+from .parameter import Parameter
 
 _global_executor: Executor | None = None
 
 
+class InitContextManager:
+    """What ``rclpy.init()`` returns: ``with rclpy.init(args=args):`` shuts down on leaving, as
+    Kilted's examples start; a plain ``rclpy.init()`` ignores it."""
+
+    def __init__(self, context: Context) -> None:
+        self.context = context
+
+    def __enter__(self) -> InitContextManager:
+        return self
+
+    def __exit__(self, *_exc: object) -> None:
+        try_shutdown(context=self.context)
+
+
 def init(
-    *, args: Sequence[str] | None = None, context: Context | None = None, domain_id: int | None = None
-) -> None:
+    *,
+    args: Sequence[str] | None = None,
+    context: Context | None = None,
+    domain_id: int | None = None,
+    signal_handler_options: Any = None,
+) -> InitContextManager:
     """Join the lab's graph (``--ros-args`` from ``args``, else from ``sys.argv``)."""
-    (context or default_context).init(args, domain_id)
+    ctx = context or default_context
+    ctx.init(args, domain_id)
+    return InitContextManager(ctx)
 
 
 def ok(*, context: Context | None = None) -> bool:
@@ -71,10 +92,11 @@ def spin_until_future_complete(
     executor.spin_until_future_complete(future, timeout_sec)
 
 
-def create_node(node_name: str, **kwargs: Any) -> Any:
+def create_node(node_name: str, *, context: Context | None = None, **kwargs: Any) -> Any:
+    """``rclpy.create_node('name')``: a plain Node, for code that composes instead of subclassing."""
     from .node import Node
 
-    return Node(node_name, **kwargs)
+    return Node(node_name, context=context, **kwargs)
 
 
 def get_default_context() -> Context:
@@ -85,6 +107,8 @@ __all__ = [
     "Context",
     "ExternalShutdownException",
     "Future",
+    "InitContextManager",
+    "Parameter",
     "RCLError",
     "create_node",
     "get_default_context",

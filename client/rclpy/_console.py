@@ -7,6 +7,7 @@ import time
 
 SEVERITY = {10: "DEBUG", 20: "INFO", 30: "WARN", 40: "ERROR", 50: "FATAL"}
 _threshold = 20
+_levels: dict[str, int] = {}  # per logger name, as rcutils keeps them
 
 
 def set_threshold(level: int) -> None:
@@ -14,8 +15,20 @@ def set_threshold(level: int) -> None:
     _threshold = level
 
 
+def set_level(name: str, level: int) -> None:
+    """A logger's own level; 0 (UNSET) makes it follow the process's again."""
+    if level:
+        _levels[name] = level
+    else:
+        _levels.pop(name, None)
+
+
+def effective_level(name: str) -> int:
+    return _levels.get(name, _threshold)
+
+
 def console_line(level: int, name: str, text: str) -> None:
-    if level < _threshold:
+    if level < effective_level(name):
         return
     stamp = time.time_ns()
     sys.stderr.write(

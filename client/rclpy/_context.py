@@ -49,6 +49,8 @@ def open_peer_session(domain_id: int) -> Any:
     config = zenoh.Config.from_file(uri) if uri else zenoh.Config()
     config.insert_json5("mode", json.dumps("peer"))
     config.insert_json5("scouting/multicast/enabled", "false")
+    # As rmw_zenoh's session: timestamps on samples (transient-local publishers' caches need them).
+    config.insert_json5("timestamping/enabled", '{"router": true, "peer": true, "client": true}')
     if not uri:
         config.insert_json5("listen/endpoints", json.dumps(["tcp/127.0.0.1:0"]))
         config.insert_json5("connect/endpoints", json.dumps([DEFAULT_ROUTER_ENDPOINT]))

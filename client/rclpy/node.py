@@ -2,23 +2,161 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 from server.bus import Node as BusNode
-from server.bus import Parameter
+from server.bus import Publisher, ServiceServer, Subscription, Timer
+from server.msgs import Message, Service
 
 from ._context import Context, default_context
+from ._parameters import ParameterAPI
+from .callback_groups import CallbackGroup, GroupedCallback, MutuallyExclusiveCallbackGroup
+from .client import Client
+from .clock import ROSClock
+from .guard_condition import GuardCondition
+from .logging import NodeRcutilsLogger
+from .parameter import Parameter
+from .qos import QoSProfile, WireQoS, keep_depth
 from .rate import Rate
 
 
-class Node(BusNode):
+def _for_bus(qos_profile: Any) -> Any:
+    """A bare depth stays one; a profile goes to the bus with the depth its queue keeps (and its
+    reliability and durability, which the Zenoh transport writes into the endpoint's token)."""
+    if isinstance(qos_profile, QoSProfile):
+        return WireQoS(keep_depth(qos_profile), int(qos_profile.reliability), int(qos_profile.durability))
+    return qos_profile
+
+
+class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter API over the bus's
     """Subclass it as the handout does: ``super().__init__('KeyboardManagerNode')``."""
 
     def __init__(self, node_name: str, *, context: Context | None = None, **kwargs: Any) -> None:
         self._rcl_context = context or default_context
         bus, _executor = self._rcl_context.require()
+        self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
+        self.guards: list[GuardCondition] = []
         super().__init__(node_name, context=bus, **kwargs)
+        self._ros_clock = ROSClock(source=bus.clock)
+        self._logger: NodeRcutilsLogger = NodeRcutilsLogger(self)
         self._warn_if_name_taken()
+
+    # -- entities, with rclpy's keywords -----------------------------------------------------
+    def _grouped(self, callback: Callable[..., Any], group: CallbackGroup | None, entity: object) -> Any:
+        group = group or self.default_callback_group
+        group.add_entity(entity)
+        return GroupedCallback(callback, group)
+
+    def create_publisher(
+        self,
+        msg_type: type[Message],
+        topic: str,
+        qos_profile: Any,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: Any = None,
+        qos_overriding_options: Any = None,
+        publisher_class: Any = None,
+        hand_over: bool = False,
+    ) -> Publisher:
+        """rclpy's call; ``event_callbacks`` are accepted (the lab raises no QoS events)."""
+        pub = super().create_publisher(msg_type, topic, _for_bus(qos_profile), hand_over=hand_over)
+        (callback_group or self.default_callback_group).add_entity(pub)
+        return pub
+
+    def create_subscription(
+        self,
+        msg_type: type[Message],
+        topic: str,
+        callback: Callable[[Any], Any],
+        qos_profile: Any,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: Any = None,
+        qos_overriding_options: Any = None,
+        raw: bool = False,
+        read_only: bool = False,
+    ) -> Subscription:
+        sub = super().create_subscription(
+            msg_type, topic, callback, _for_bus(qos_profile), read_only=read_only
+        )
+        sub.callback = self._grouped(callback, callback_group, sub)
+        return sub
+
+    def create_timer(
+        self,
+        timer_period_sec: float,
+        callback: Callable[[], Any],
+        callback_group: CallbackGroup | None = None,
+        clock: Any = None,
+        autostart: bool = True,
+    ) -> Timer:
+        timer = super().create_timer(timer_period_sec, callback)
+        timer.callback = self._grouped(callback, callback_group, timer)
+        if not autostart:
+            timer.cancel()
+        return timer
+
+    def create_service(  # type: ignore[override]
+        self,
+        srv_type: type[Service],
+        srv_name: str,
+        callback: Callable[[Any, Any], Any],
+        *,
+        qos_profile: Any = None,
+        callback_group: CallbackGroup | None = None,
+    ) -> ServiceServer:
+        server = super().create_service(srv_type, srv_name, callback)
+        server.callback = self._grouped(callback, callback_group, server)
+        return server
+
+    def create_client(  # type: ignore[override]
+        self,
+        srv_type: type[Service],
+        srv_name: str,
+        *,
+        qos_profile: Any = None,
+        callback_group: CallbackGroup | None = None,
+    ) -> Client:
+        self._check_alive()
+        channel = self.bus.service(self.resolve_topic_name(srv_name), srv_type)
+        client = Client(self, channel)
+        channel.clients.append(client)
+        self.clients.append(client)
+        self.bus.endpoint_added(client)
+        (callback_group or self.default_callback_group).add_entity(client)
+        return client
+
+    def create_guard_condition(
+        self, callback: Callable[[], Any] | None, callback_group: CallbackGroup | None = None
+    ) -> GuardCondition:
+        self._check_alive()
+        guard = GuardCondition(self, callback, callback_group or self.default_callback_group)
+        guard.callback_group.add_entity(guard)
+        self.guards.append(guard)
+        return guard
+
+    def destroy_guard_condition(self, guard: GuardCondition) -> bool:
+        if guard not in self.guards:
+            return False
+        guard.destroy()
+        self.guards.remove(guard)
+        return True
+
+    def create_callback_group(self, group_type: type[CallbackGroup]) -> CallbackGroup:
+        return group_type()
+
+    def get_clock(self) -> ROSClock:  # type: ignore[override]
+        return self._ros_clock
+
+    def get_logger(self) -> NodeRcutilsLogger:
+        return self._logger
+
+    def destroy_node(self) -> bool:
+        for guard in list(self.guards):
+            self.destroy_guard_condition(guard)
+        return super().destroy_node()
 
     def _warn_if_name_taken(self) -> None:
         bridge = self._rcl_context.bridge
@@ -66,10 +204,6 @@ class Node(BusNode):
             else sum(1 for e in bridge.remote.endpoints() if e.name == name and e.kind == kind)
         )
         return local + remote
-
-    def declare_parameters(self, namespace: str, parameters: list[tuple[str, Any]]) -> list[Parameter]:
-        prefix = f"{namespace}." if namespace else ""
-        return [self.declare_parameter(prefix + name, value) for name, value, *_ in parameters]
 
 
 __all__ = ["Node", "Parameter"]

@@ -45,6 +45,7 @@ class Publisher:
         self.hand_over = hand_over  # every message published is new and never changed after: no copy
         self.destroyed = False
         self.remote: RemoteOut | None = None
+        self.qos: Any = None  # the QoS profile it was made with, when not a bare depth (for the wire)
 
     @property
     def topic_name(self) -> str:
@@ -97,6 +98,7 @@ class Subscription:
         self.callback = callback
         self.depth = depth
         self.read_only = read_only  # the callback never changes a message: it gets the shared one
+        self.qos: Any = None  # the QoS profile it was made with, when not a bare depth (for the wire)
         self.queue: deque[Message] = deque(maxlen=depth)
         self.dropped = 0
         self.destroyed = False

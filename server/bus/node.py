@@ -143,6 +143,7 @@ class Node:
         depth = qos_depth(qos_profile)
         t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
         pub = Publisher(self, t, msg_type, depth, hand_over=hand_over)
+        pub.qos = None if isinstance(qos_profile, int) else qos_profile
         t.publishers.append(pub)
         self.publishers.append(pub)
         self.bus.endpoint_added(pub)
@@ -163,6 +164,7 @@ class Node:
         depth = qos_depth(qos_profile)
         t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
         sub = Subscription(self, t, msg_type, callback, depth, read_only=read_only)
+        sub.qos = None if isinstance(qos_profile, int) else qos_profile
         t.subscriptions.append(sub)
         self.subscriptions.append(sub)
         self.bus.endpoint_added(sub)

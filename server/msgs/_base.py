@@ -318,7 +318,9 @@ def _compile_methods(cls: type[Message]) -> None:
     names = [f.name for f in cls.FIELDS]
     if any(keyword.iskeyword(n) or n in ("self", "new") or n.startswith("_") for n in names):
         return  # a name Python would not take as a parameter: the generic methods serve
-    env: dict[str, Any] = {"_new": object.__new__, "_missing": _MISSING, "_type": cls.TYPE, "_sorted": sorted}
+    env: dict[str, Any] = {
+        "_new": object.__new__, "_missing": _MISSING, "_type": cls.TYPE, "_sorted": sorted, "_type_of": type,
+    }  # fmt: skip
     params, init_lines, copy_lines = [], [], []
     for i, f in enumerate(cls.FIELDS):
         env[f"_set{i}"] = cls.__dict__[f.name].__set__  # the slot's own setter
@@ -336,7 +338,7 @@ def _compile_methods(cls: type[Message]) -> None:
         value = f"{initial} if {f.name} is _missing else _check{i}({f.name}, {f.name!r})"
         if f.exact is not None:  # Field.check's first test, inline: a float, a bool, a nested message
             env[f"_exact{i}"] = f.exact
-            value = f"{f.name} if type({f.name}) is _exact{i} else {value}"
+            value = f"{f.name} if _type_of({f.name}) is _exact{i} else {value}"  # a field may be named type
         init_lines.append(f"    _set{i}(self, {value})")
         copy_lines.append(f"    _set{i}(new, {_copy_expression(f, 'self.' + f.name)})")
     source = "\n".join([

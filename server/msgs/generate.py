@@ -15,6 +15,7 @@ from pathlib import Path
 
 from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, Definitions, FieldSpec, MessageSpec, lab_definitions
 
+LINE_LENGTH = 110  # ruff's, in pyproject.toml
 GENERATED_DIR = Path(__file__).resolve().parent / "generated"
 HEADER = (
     '"""{package}: generated from server/msgs/interfaces/{package} by `python -m server.msgs.generate`; '
@@ -65,7 +66,10 @@ def _doc(spec: MessageSpec) -> str:
 
 def _message_class(spec: MessageSpec) -> list[str]:
     name = _class_name(spec.name)
-    lines = [f'class {name}(Message, type_name="{spec.name}"):', f'    """{_doc(spec)}"""', ""]
+    header = f'class {name}(Message, type_name="{spec.name}"):'
+    if len(header) > LINE_LENGTH:  # as ruff format wraps it
+        header = f'class {name}(\n    Message, type_name="{spec.name}"\n):'
+    lines = [header, f'    """{_doc(spec)}"""', ""]
     if len(spec.fields) == 1:
         lines.append(f'    __slots__ = ("{spec.fields[0].name}",)')
     elif spec.fields:

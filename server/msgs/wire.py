@@ -39,10 +39,17 @@ def _for_rosbags(text: str, *, byte_as_uint8: bool = False) -> str:
 
 
 def _fix_srv_names(types: dict[str, Any]) -> dict[str, Any]:
+    """rosbags names a service's parts, and the messages a ``.srv`` names bare, ``pkg/srv/msg/X``:
+    the parts are ``pkg/srv/X``, the messages of the package ``pkg/msg/X``."""
+    parts = {name.replace("/srv/msg/", "/srv/") for name in types}
+
     def fix(value: Any) -> Any:
         if isinstance(value, tuple):
             return tuple(fix(v) for v in value)
-        return value.replace("/srv/msg/", "/srv/") if isinstance(value, str) else value
+        if not isinstance(value, str) or "/srv/msg/" not in value:
+            return value
+        part = value.replace("/srv/msg/", "/srv/")
+        return part if part in parts else value.replace("/srv/msg/", "/msg/")
 
     return {fix(name): (consts, [(n, fix(d)) for n, d in fields]) for name, (consts, fields) in types.items()}
 

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 from typing import Any, cast
 
 import zenoh
+import zenoh.ext
 
 from ..bus import Bus, Clock, Future, Node, Publisher, ServiceClient, ServiceServer, Subscription, SystemClock
 from ..bus.services import PendingCall
@@ -31,7 +32,16 @@ from ..msgs import Message, Service
 from ..msgs.wire import WireError, dds_type_name, deserialize, prepare, serialize, type_hash
 from .attachment import Attachment
 from .inbox import Inbox
-from .keys import EntityKind, EntityToken, data_key, keep_last, liveliness_prefix
+from .keys import (
+    BEST_EFFORT,
+    TRANSIENT_LOCAL,
+    EntityKind,
+    EntityToken,
+    QoS,
+    data_key,
+    keep_last,
+    liveliness_prefix,
+)
 from .remote_graph import RemoteGraph
 
 log = logging.getLogger("transport")
@@ -50,16 +60,30 @@ class Stats:
     replies: int = 0
 
 
+def _wire_qos(depth: int, qos: Any) -> QoS:
+    """The token's QoS: keep-last ``depth``, and the profile's reliability and durability (rmw's
+    enum values; 0, the system's default, is rmw_zenoh's: reliable, volatile)."""
+    return keep_last(
+        depth,
+        best_effort=getattr(qos, "reliability", 0) == BEST_EFFORT,
+        transient_local=getattr(qos, "durability", 0) == TRANSIENT_LOCAL,
+    )
+
+
 class _RemotePublisher:
     """The Zenoh side of one bus publisher: its own GID and sequence numbers from 1."""
 
-    def __init__(self, zpub: zenoh.Publisher, gid: bytes, stats: Stats) -> None:
+    def __init__(self, zpub: zenoh.Publisher | zenoh.ext.AdvancedPublisher, gid: bytes, stats: Stats) -> None:
         self.zpub: Any = cast(Any, zpub)  # its stubs call matching_status a bool; it is a MatchingStatus
         self.gid = gid
         self.seq = 0
-        self.matching = bool(self.zpub.matching_status.matching)
         self.stats = stats
-        self.listener: Any = zpub.declare_matching_listener(self._on_matching)
+        self.listener: Any = None
+        if isinstance(zpub, zenoh.Publisher):
+            self.matching = bool(self.zpub.matching_status.matching)
+            self.listener = zpub.declare_matching_listener(self._on_matching)
+        else:  # a transient-local publisher's cache keeps samples for subscribers still to come
+            self.matching = True
 
     def _on_matching(self, status: zenoh.MatchingStatus) -> None:  # Zenoh's thread: one attribute
         self.matching = bool(status.matching)
@@ -73,7 +97,8 @@ class _RemotePublisher:
         self.stats.sent += 1
 
     def close(self) -> None:
-        self.listener.undeclare()
+        if self.listener is not None:
+            self.listener.undeclare()
         self.zpub.undeclare()
 
 
@@ -118,6 +143,7 @@ class ZenohBridge:
         self._node_ids: dict[int, int] = {}
         self._entities: dict[int, _Entity] = {}
         self._topic_subscribers: dict[str, Any] = {}
+        self._history_topics: set[str] = set()  # those whose subscriber asks publishers for history
         self._keep: dict[str, int] = {}  # samples an inbox queue keeps per topic: its deepest subscription
         self._client_seq: dict[int, int] = {}
         self._closed = False
@@ -160,13 +186,13 @@ class ZenohBridge:
         self._node_ids.pop(id(node), None)
 
     def _endpoint_token(
-        self, node: Node, kind: EntityKind, name: str, type_name: str, depth: int
+        self, node: Node, kind: EntityKind, name: str, type_name: str, depth: int, qos: Any = None
     ) -> EntityToken:
         node_token = self._entities[id(node)].token
         return EntityToken(
             self.domain_id, self.zid, node_token.node_id, next(self._ids), kind, node_token.namespace,
             node_token.node_name, enclave=self.enclave, topic=name, dds_type=dds_type_name(type_name),
-            type_hash=type_hash(type_name), qos=keep_last(depth),
+            type_hash=type_hash(type_name), qos=_wire_qos(depth, qos),
         )  # fmt: skip
 
     def endpoint_added(self, endpoint: object) -> None:
@@ -197,6 +223,7 @@ class ZenohBridge:
             topic = endpoint.topic
             if not any(s is not endpoint and not s.destroyed for s in topic.subscriptions):
                 subscriber = self._topic_subscribers.pop(topic.name, None)
+                self._history_topics.discard(topic.name)
                 if subscriber is not None:
                     subscriber.undeclare()
                 self._keep.pop(topic.name, None)
@@ -220,30 +247,62 @@ class ZenohBridge:
 
     def _add_publisher(self, pub: Publisher) -> None:
         token = self._endpoint_token(
-            pub.node, EntityKind.PUBLISHER, pub.topic_name, pub.msg_type.TYPE, pub.depth
+            pub.node, EntityKind.PUBLISHER, pub.topic_name, pub.msg_type.TYPE, pub.depth, pub.qos
         )
         key = data_key(self.domain_id, pub.topic_name, token.dds_type or "", token.type_hash or "")
-        # REMOTE: this process's own subscriptions get the message from the bus, and only other
-        # processes count as matching (so a topic nobody else wants is never serialized).
-        zpub = self.session.declare_publisher(
-            key,
-            congestion_control=zenoh.CongestionControl.DROP,
-            reliability=zenoh.Reliability.RELIABLE,
-            allowed_destination=zenoh.Locality.REMOTE,
+        assert token.qos is not None
+        reliability = (
+            zenoh.Reliability.BEST_EFFORT
+            if token.qos.reliability == BEST_EFFORT
+            else zenoh.Reliability.RELIABLE
         )
+        zpub: zenoh.Publisher | zenoh.ext.AdvancedPublisher
+        if token.qos.durability == TRANSIENT_LOCAL:
+            # As rmw_zenoh: an advanced publisher whose cache answers late subscribers' history queries.
+            zpub = zenoh.ext.declare_advanced_publisher(
+                self.session, key, congestion_control=zenoh.CongestionControl.DROP, reliability=reliability,
+                allowed_destination=zenoh.Locality.REMOTE, cache=zenoh.ext.CacheConfig(max_samples=pub.depth),
+                publisher_detection=True,
+            )  # fmt: skip
+        else:
+            # REMOTE: this process's own subscriptions get the message from the bus, and only other
+            # processes count as matching (so a topic nobody else wants is never serialized).
+            zpub = self.session.declare_publisher(
+                key,
+                congestion_control=zenoh.CongestionControl.DROP,
+                reliability=reliability,
+                allowed_destination=zenoh.Locality.REMOTE,
+            )
         remote = _RemotePublisher(zpub, token.gid, self.stats)
         pub.remote = remote
         self._declare(pub, token, remote)
 
     def _add_subscription(self, sub: Subscription) -> None:
         token = self._endpoint_token(
-            sub.node, EntityKind.SUBSCRIPTION, sub.topic_name, sub.msg_type.TYPE, sub.depth
+            sub.node, EntityKind.SUBSCRIPTION, sub.topic_name, sub.msg_type.TYPE, sub.depth, sub.qos
         )
         self._declare(sub, token)
         name = sub.topic_name
         self._keep[name] = max(self._keep.get(name, 1), sub.depth)
-        if name not in self._topic_subscribers:
-            key = data_key(self.domain_id, name, token.dds_type or "", token.type_hash or "")
+        key = data_key(self.domain_id, name, token.dds_type or "", token.type_hash or "")
+        assert token.qos is not None
+        if token.qos.durability == TRANSIENT_LOCAL and name not in self._history_topics:
+            # As rmw_zenoh: an advanced subscriber that asks late-found publishers' caches for history.
+            old = self._topic_subscribers.pop(name, None)
+
+            def on_sample(sample: zenoh.Sample, name: str = name) -> None:
+                self._on_sample(name, sample)
+
+            self._topic_subscribers[name] = zenoh.ext.declare_advanced_subscriber(
+                self.session, key, on_sample,
+                allowed_origin=zenoh.Locality.REMOTE,
+                history=zenoh.ext.HistoryConfig(detect_late_publishers=True, max_samples=sub.depth),
+                subscriber_detection=True,
+            )  # fmt: skip
+            self._history_topics.add(name)
+            if old is not None:
+                old.undeclare()
+        elif name not in self._topic_subscribers:
             self._topic_subscribers[name] = self.session.declare_subscriber(
                 key,
                 lambda sample, name=name: self._on_sample(name, sample),

@@ -13,6 +13,7 @@ import hashlib
 import json
 import math
 import random
+import re
 import struct
 from pathlib import Path
 from types import SimpleNamespace
@@ -85,10 +86,21 @@ def _all_descriptions() -> dict[str, list[tuple[str, Any]]]:
         whole = (
             f"{name}_Request request_message\n{name}_Response response_message\n{name}_Event event_message"
         )
-        for suffix, text in (("_Request", srv.request.text), ("_Response", srv.response.text),
-                             ("_Event", event), ("", whole)):  # fmt: skip
+        parts = (
+            ("_Request", srv.request.text),
+            ("_Response", srv.response.text),
+            ("_Event", event),
+            ("", whole),
+        )
+        own = {f"{name}{suffix}" for suffix, _ in parts}
+
+        def fix(match: re.Match[str], own: set[str] = own) -> str:  # a part, or a message of the package
+            part = f"{match[1]}/srv/{match[2]}"
+            return part if part in own else f"{match[1]}/msg/{match[2]}"
+
+        for suffix, text in parts:
             for n, f in _rosbags_fields(f"{name}{suffix}", text).items():
-                fixed = json.loads(json.dumps(f).replace("/srv/msg/", "/srv/"))
+                fixed = json.loads(re.sub(r"(\w+)/srv/msg/(\w+)", fix, json.dumps(f)))
                 out[n.replace("/srv/msg/", "/srv/")] = [(fn, _tuples(fd)) for fn, fd in fixed]
     return out
 
