@@ -52,7 +52,7 @@ def test_pose_worker_not_built_is_404_naming_the_set_up(
 ) -> None:
     lab = make_lab(viewer=True)
     assert lab.http.get("/page/poses.worker.js").status_code == 200  # built at set-up
-    monkeypatch.setattr("server.viewer.page.POSES_WORKER", tmp_path / "poses.worker.js")
+    monkeypatch.setattr("api.page.POSES_WORKER", tmp_path / "poses.worker.js")
 
     response = lab.http.get("/page/poses.worker.js")
 
