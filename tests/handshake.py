@@ -8,14 +8,22 @@ import asyncio
 READ_S = 10.0
 
 
+async def _send_handshake(
+    port: int, path: str, headers: tuple[tuple[str, str], ...]
+) -> tuple[asyncio.StreamReader, asyncio.StreamWriter]:
+    """Connect to 127.0.0.1:``port`` and send a WebSocket opening handshake with ``headers``."""
+    reader, writer = await asyncio.open_connection("127.0.0.1", port)
+    lines = [f"GET {path} HTTP/1.1", *(f"{k}: {v}" for k, v in headers)]
+    lines += ["Upgrade: websocket", "Connection: Upgrade", "Sec-WebSocket-Version: 13",
+              "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ=="]  # fmt: skip
+    writer.write(("\r\n".join(lines) + "\r\n\r\n").encode())
+    return reader, writer
+
+
 async def handshake_status(port: int, path: str = "/", headers: tuple[tuple[str, str], ...] = ()) -> int:
     """The HTTP status a server on 127.0.0.1:``port`` answers a WebSocket handshake with."""
-    reader, writer = await asyncio.open_connection("127.0.0.1", port)
+    reader, writer = await _send_handshake(port, path, headers)
     try:
-        lines = [f"GET {path} HTTP/1.1", *(f"{k}: {v}" for k, v in headers)]
-        lines += ["Upgrade: websocket", "Connection: Upgrade", "Sec-WebSocket-Version: 13",
-                  "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ=="]  # fmt: skip
-        writer.write(("\r\n".join(lines) + "\r\n\r\n").encode())
         status_line = await asyncio.wait_for(reader.readline(), READ_S)
         return int(status_line.split()[1])
     finally:
@@ -27,12 +35,8 @@ async def handshake_refusal(port: int, path: str = "/", headers: tuple[tuple[str
     first frame after a completed handshake (the app's rule for every WebSocket route), or the
     HTTP status of a handshake it does not complete. Fails if a completed one sends anything but
     a close first."""
-    reader, writer = await asyncio.open_connection("127.0.0.1", port)
+    reader, writer = await _send_handshake(port, path, headers)
     try:
-        lines = [f"GET {path} HTTP/1.1", *(f"{k}: {v}" for k, v in headers)]
-        lines += ["Upgrade: websocket", "Connection: Upgrade", "Sec-WebSocket-Version: 13",
-                  "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ=="]  # fmt: skip
-        writer.write(("\r\n".join(lines) + "\r\n\r\n").encode())
         async with asyncio.timeout(READ_S):
             head = await reader.readuntil(b"\r\n\r\n")
             status = int(head.split(b" ", 2)[1])
