@@ -57,6 +57,7 @@ class Lab:
         # A class server's worlds share one task that runs their executors; alone, the lab has its own.
         self.executors = executors
         self.packages = PackageIndex(workspace=settings.workspace)
+        self.packages.interfaces(log_problems=True)  # a student's own .msg/.srv types, with no build
         self.launcher = Launcher(self.bus, self.packages)
         self.launcher.all_processes = settings.node_processes == "all"
         self.keyboard = KeyboardDevice()

@@ -44,7 +44,8 @@ def graph_of(client: LabClient) -> tuple[str, int, Credentials | None]:
 
 
 def run(args: argparse.Namespace, client: LabClient) -> int:
-    packages = PackageIndex(workspace=workspace_of(args, client))
+    workspace = workspace_of(args, client)
+    packages = PackageIndex(workspace=workspace)
     try:
         exe = packages.resolve(args.package_name, args.executable_name)
     except PackageNotFoundError:
@@ -57,7 +58,9 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
         print(exc, file=sys.stderr)
         return 1
     router, domain_id, login = graph_of(client)
-    command = node_command(exe.target, list(args.argv), router=router, domain_id=domain_id, login=login)
+    command = node_command(
+        exe.target, list(args.argv), router=router, domain_id=domain_id, login=login, workspace=workspace
+    )
     child = subprocess.Popen(command.argv, env=command.env, process_group=0)
     interrupted = False
     while True:

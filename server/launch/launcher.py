@@ -102,6 +102,7 @@ class Launcher:
         command = node_command(
             exe.target, ros_args(action.name, action.namespace, action.parameters, action.remappings),
             router=self.transport.router, domain_id=self.transport.domain_id, login=self.transport.login,
+            workspace=self.packages.workspace,
         )  # fmt: skip
         entry.process = self.supervisor.start(
             command, action.exec, screen=action.output in SCREEN_OUTPUTS, node_name=action.name

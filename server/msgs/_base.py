@@ -5,204 +5,26 @@ type_name="geometry_msgs/msg/Vector3")``); its fields, defaults and constants co
 interface definition (server.msgs.idl), so the generated classes only add what mypy needs to
 see. Messages stay mutable like rclpy's (lab code does ``self.abort.data = True``); the bus
 copies a message when it is published, so a subscriber never sees a later change made by the
-publisher. Numeric arrays are numpy arrays (as rclpy's fixed-size arrays are); arrays of strings
-and of messages are lists.
+publisher. Classes are also made at run time from parsed definitions (a student's own
+interfaces): :func:`define_message` and :func:`define_service`.
 """
 
 from __future__ import annotations
 
-import keyword
-import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping
 from typing import Any, ClassVar
 
-import numpy as np
+from .compiled import compile_methods
+from .definitions import lab_definitions
+from .field import FLOAT32_MAX, MAX_ARRAY_ITEMS, MAX_STRING_CHARS, Field, MessageError
+from .idl import MessageSpec, ServiceSpec
 
-from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, FieldSpec, MessageSpec, lab_definitions
+__all__ = ["FLOAT32_MAX", "MAX_ARRAY_ITEMS", "MAX_STRING_CHARS", "Field", "Message", "MessageError",
+           "Service", "define_message", "define_service", "message_class", "message_classes",
+           "service_classes"]  # fmt: skip
 
-MAX_STRING_CHARS = 65536
-MAX_ARRAY_ITEMS = 65536
-FLOAT32_MAX = 3.4028234663852886e38
-NUMPY_DTYPES: dict[str, type[np.generic]] = {
-    "bool": np.bool_,
-    "byte": np.uint8,
-    "char": np.uint8,
-    "int8": np.int8,
-    "uint8": np.uint8,
-    "int16": np.int16,
-    "uint16": np.uint16,
-    "int32": np.int32,
-    "uint32": np.uint32,
-    "int64": np.int64,
-    "uint64": np.uint64,
-    "float32": np.float32,
-    "float64": np.float64,
-}
 _CLASSES: dict[str, type[Message]] = {}
-
-
-class MessageError(ValueError):
-    """A message value does not fit its type; ``path`` names the field (``pose.position.x``)."""
-
-    def __init__(self, path: str, problem: str) -> None:
-        self.path = path
-        self.problem = problem
-        super().__init__(f"{path}: {problem}" if path else problem)
-
-
-def check_primitive(kind: str, value: Any, path: str, bound: int | None = None) -> Any:
-    """``value`` as a field of ROS type ``kind`` holds it, or a MessageError naming ``path``."""
-    if kind == "bool":
-        if not isinstance(value, bool | np.bool_):
-            raise MessageError(path, f"expected a bool, got {type(value).__name__}")
-        return bool(value)
-    if kind in INT_RANGES:
-        if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
-            raise MessageError(path, f"expected an integer ({kind}), got {type(value).__name__} {value!r}")
-        lo, hi = INT_RANGES[kind]
-        if not lo <= value <= hi:
-            raise MessageError(path, f"{value} is out of range for {kind} ({lo}..{hi})")
-        return int(value)
-    if kind in FLOAT_TYPES:
-        if isinstance(value, bool | np.bool_) or not isinstance(
-            value, int | float | np.integer | np.floating
-        ):
-            raise MessageError(path, f"expected a number ({kind}), got {type(value).__name__}")
-        try:
-            number = float(value)
-        except OverflowError:
-            raise MessageError(path, f"{value} is out of range for {kind}") from None
-        if kind == "float32" and math.isfinite(number) and abs(number) > FLOAT32_MAX:
-            raise MessageError(path, f"{number} is out of range for float32")
-        return number
-    if kind in STRING_TYPES:
-        if not isinstance(value, str):
-            raise MessageError(path, f"expected a string, got {type(value).__name__}")
-        limit = MAX_STRING_CHARS if bound is None else bound
-        if len(value) > limit:
-            raise MessageError(path, f"string longer than {limit} characters")
-        return value
-    raise MessageError(path, f"unsupported field kind {kind}")
-
-
-class Field:
-    """One field of a message class: its spec, and ``kind``, the primitive name or message class
-    of one value (of one element, for an array)."""
-
-    __slots__ = ("array", "bound", "default", "exact", "kind", "name", "size", "spec", "string_bound")
-
-    def __init__(self, spec: FieldSpec, kind: str | type[Message]) -> None:
-        self.spec = spec
-        self.name = spec.name
-        self.kind = kind
-        self.array = spec.is_array
-        self.size = spec.array_size
-        self.bound = spec.array_bound
-        self.string_bound = spec.string_bound
-        if spec.default is not None:
-            self.default: Any = spec.default
-        elif isinstance(kind, str):
-            self.default = (
-                False if kind == "bool" else "" if kind in STRING_TYPES else 0.0 if kind in FLOAT_TYPES else 0
-            )
-        else:
-            self.default = None
-        # A value of exactly this type is stored as it is: a float for float64, a bool, a message of
-        # the field's own class. check_primitive would return it unchanged; this skips its tests.
-        self.exact: type | None = None
-        if not self.array:
-            self.exact = float if kind == "float64" else bool if kind == "bool" else None
-            if not isinstance(kind, str):
-                self.exact = kind
-
-    @property
-    def type_name(self) -> str:
-        """The field's ROS type: ``float64``, ``std_msgs/msg/Header``, ``float64[9]``, ``int32[<=5]``."""
-        return self.spec.type_text
-
-    @property
-    def numeric_array(self) -> bool:
-        return self.array and isinstance(self.kind, str) and self.kind not in STRING_TYPES
-
-    def initial(self) -> Any:
-        """A fresh default value for a new message."""
-        if not self.array:
-            return self.default if isinstance(self.kind, str) else self.kind()
-        if self.numeric_array:
-            kind = str(self.kind)
-            if isinstance(self.default, list):
-                return np.array(self.default, dtype=NUMPY_DTYPES[kind])
-            return np.zeros(self.size or 0, dtype=NUMPY_DTYPES[kind])
-        if isinstance(self.kind, str):
-            return list(self.default) if isinstance(self.default, list) else [""] * (self.size or 0)
-        return [self.kind() for _ in range(self.size or 0)]
-
-    def check(self, value: Any, path: str) -> Any:
-        """``value`` as this field stores it (a MessageError naming ``path`` if it does not fit)."""
-        if type(value) is self.exact:
-            return value
-        if not self.array:
-            if isinstance(self.kind, str):
-                return check_primitive(self.kind, value, path, self.string_bound)
-            if not isinstance(value, self.kind):
-                raise MessageError(path, f"expected {self.kind.TYPE}, got {type(value).__name__}")
-            return value
-        items = self._check_length(value, path)
-        if self.numeric_array:
-            return self._numeric_array(items, path)
-        kind = self.kind
-        if isinstance(kind, str):
-            return [check_primitive(kind, v, f"{path}[{i}]", self.string_bound) for i, v in enumerate(items)]
-        for i, item in enumerate(items):
-            if not isinstance(item, kind):
-                raise MessageError(f"{path}[{i}]", f"expected {kind.TYPE}, got {type(item).__name__}")
-        return list(items)
-
-    def _check_length(self, value: Any, path: str) -> Sequence[Any] | np.ndarray[Any, Any]:
-        if isinstance(value, str | bytes | Mapping) or not isinstance(value, Sequence | np.ndarray):
-            raise MessageError(path, f"expected an array ({self.type_name}), got {type(value).__name__}")
-        if isinstance(value, np.ndarray) and value.ndim != 1:
-            raise MessageError(path, f"expected a one-dimensional array, got shape {value.shape}")
-        n = len(value)
-        if self.size is not None and n != self.size:
-            raise MessageError(path, f"expected exactly {self.size} items, got {n}")
-        limit = self.bound if self.bound is not None else MAX_ARRAY_ITEMS
-        if n > limit:
-            raise MessageError(path, f"more than {limit} items ({n})")
-        return value
-
-    def _numeric_array(self, items: Sequence[Any] | np.ndarray[Any, Any], path: str) -> np.ndarray[Any, Any]:
-        kind = str(self.kind)
-        dtype = NUMPY_DTYPES[kind]
-        if isinstance(items, np.ndarray) and items.dtype == dtype:
-            return items.copy()
-        checked = [check_primitive(kind, v, f"{path}[{i}]") for i, v in enumerate(items)]
-        return np.array(checked, dtype=dtype)
-
-    def copy_value(self, value: Any) -> Any:
-        if not self.array:
-            return value if isinstance(self.kind, str) else value.copy()
-        if self.numeric_array:
-            return value.copy()
-        return list(value) if isinstance(self.kind, str) else [v.copy() for v in value]
-
-    def to_json(self, value: Any) -> Any:
-        if not self.array:
-            return value if isinstance(self.kind, str) else value.to_dict()
-        if self.numeric_array:
-            return value.tolist()
-        return list(value) if isinstance(self.kind, str) else [v.to_dict() for v in value]
-
-    def from_json(self, value: Any, path: str) -> Any:
-        if self.array and not isinstance(self.kind, str):
-            items = self._check_length(value, path)
-            return [self.kind.from_dict(v, f"{path}[{i}]") for i, v in enumerate(items)]
-        if not self.array and not isinstance(self.kind, str):
-            return self.kind.from_dict(value, path)
-        return self.check(value, path)
-
-    def equal(self, a: Any, b: Any) -> bool:
-        return bool(np.array_equal(a, b)) if self.numeric_array else bool(a == b)
+_SERVICES: dict[str, type[Service]] = {}
 
 
 class Message:
@@ -241,7 +63,7 @@ class Message:
         cls._FIELD_MAP = {f.name: f for f in fields}
         for constant in spec.constants:
             setattr(cls, constant.name, constant.value)
-        _compile_methods(cls)
+        compile_methods(cls)
         _CLASSES[type_name] = cls
 
     def __init__(self, **kwargs: Any) -> None:
@@ -301,66 +123,6 @@ class Message:
         return f"{pkg}.{kind}.{name}({inner})"
 
 
-def _copy_expression(field: Field, value: str) -> str:
-    """Python source for what ``field.copy_value(value)`` returns."""
-    if not field.array:
-        return value if isinstance(field.kind, str) else f"{value}.copy()"
-    if field.numeric_array:
-        return f"{value}.copy()"
-    return f"list({value})" if isinstance(field.kind, str) else f"[v.copy() for v in {value}]"
-
-
-def _compile_methods(cls: type[Message]) -> None:
-    """``__init__`` and ``copy`` written out for this class's fields, as dataclasses writes its
-    methods: the same results as Message's loops over FIELDS, without their per-field overhead
-    (messages are built and copied on every publish). Slots are set through their descriptors,
-    past the checking ``__setattr__``; values given to ``__init__`` still go through Field.check."""
-    names = [f.name for f in cls.FIELDS]
-    if any(keyword.iskeyword(n) or n in ("self", "new") or n.startswith("_") for n in names):
-        return  # a name Python would not take as a parameter: the generic methods serve
-    env: dict[str, Any] = {
-        "_new": object.__new__, "_missing": _MISSING, "_type": cls.TYPE, "_sorted": sorted, "_type_of": type,
-    }  # fmt: skip
-    params, init_lines, copy_lines = [], [], []
-    for i, f in enumerate(cls.FIELDS):
-        env[f"_set{i}"] = cls.__dict__[f.name].__set__  # the slot's own setter
-        env[f"_check{i}"] = f.check
-        if not f.array and isinstance(f.kind, str):
-            env[f"_default{i}"] = f.default  # immutable: shared by every message
-            initial = f"_default{i}"
-        elif not f.array:
-            env[f"_kind{i}"] = f.kind
-            initial = f"_kind{i}()"
-        else:
-            env[f"_initial{i}"] = f.initial
-            initial = f"_initial{i}()"
-        params.append(f"{f.name}=_missing")
-        value = f"{initial} if {f.name} is _missing else _check{i}({f.name}, {f.name!r})"
-        if f.exact is not None:  # Field.check's first test, inline: a float, a bool, a nested message
-            env[f"_exact{i}"] = f.exact
-            value = f"{f.name} if _type_of({f.name}) is _exact{i} else {value}"  # a field may be named type
-        init_lines.append(f"    _set{i}(self, {value})")
-        copy_lines.append(f"    _set{i}(new, {_copy_expression(f, 'self.' + f.name)})")
-    source = "\n".join([
-        f"def __init__(self, {', '.join(['*', *params, '**unknown'] if params else ['**unknown'])}):",
-        *init_lines,
-        "    if unknown:",
-        "        raise TypeError(f\"{_type} has no field(s) {', '.join(_sorted(unknown))}\")",
-        "def copy(self):",
-        "    new = _new(type(self))",
-        *copy_lines,
-        "    return new",
-    ])  # fmt: skip
-    exec(compile(source, f"<{cls.TYPE} methods>", "exec"), env)
-    for name in ("__init__", "copy"):
-        method: Callable[..., Any] = env[name]
-        method.__qualname__ = f"{cls.__qualname__}.{name}"
-        setattr(cls, name, method)
-
-
-_MISSING: Any = object()
-
-
 class Service:
     """Base of every service type: ``Request`` and ``Response`` message classes, as in rclpy."""
 
@@ -368,20 +130,34 @@ class Service:
     Request: ClassVar[type[Message]]
     Response: ClassVar[type[Message]]
 
-    def __init_subclass__(cls, type_name: str | None = None, **kwargs: Any) -> None:
+    def __init_subclass__(
+        cls, type_name: str | None = None, spec: ServiceSpec | None = None, **kwargs: Any
+    ) -> None:
         super().__init_subclass__(**kwargs)
         if type_name is None:
             return
-        spec = lab_definitions().services[type_name]
+        spec = spec or lab_definitions().services[type_name]
         if spec.request.name != cls.Request.TYPE or spec.response.name != cls.Response.TYPE:
             raise TypeError(f"{cls.__name__}: Request/Response do not match {type_name}")
         cls.TYPE = type_name
+        _SERVICES[type_name] = cls
 
 
-def define_message(spec: MessageSpec) -> type[Message]:
-    """A message class made at run time from a parsed definition (its nested types must exist)."""
-    namespace = {"__slots__": tuple(f.name for f in spec.fields), "__module__": __name__}
+def define_message(spec: MessageSpec, module: str = __name__) -> type[Message]:
+    """A message class made at run time from a parsed definition (its nested types must exist);
+    ``module`` is where it says it lives (``tutorial_interfaces.msg``)."""
+    namespace = {"__slots__": tuple(f.name for f in spec.fields), "__module__": module}
     return type(spec.name.rsplit("/", 1)[1], (Message,), namespace, type_name=spec.name, spec=spec)
+
+
+def define_service(spec: ServiceSpec, module: str = __name__) -> type[Service]:
+    """A service class and its Request and Response classes, made at run time from a definition."""
+    namespace = {
+        "Request": define_message(spec.request, module),
+        "Response": define_message(spec.response, module),
+        "__module__": module,
+    }
+    return type(spec.name.rsplit("/", 1)[1], (Service,), namespace, type_name=spec.name, spec=spec)
 
 
 def message_class(type_name: str) -> type[Message]:
@@ -391,3 +167,7 @@ def message_class(type_name: str) -> type[Message]:
 
 def message_classes() -> dict[str, type[Message]]:
     return dict(_CLASSES)
+
+
+def service_classes() -> dict[str, type[Service]]:
+    return dict(_SERVICES)

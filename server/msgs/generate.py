@@ -13,7 +13,8 @@ import sys
 from collections.abc import Iterable
 from pathlib import Path
 
-from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, Definitions, FieldSpec, MessageSpec, lab_definitions
+from .definitions import Definitions, lab_definitions
+from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, FieldSpec, MessageSpec
 
 LINE_LENGTH = 110  # ruff's, in pyproject.toml
 GENERATED_DIR = Path(__file__).resolve().parent / "generated"

@@ -12,13 +12,9 @@ from __future__ import annotations
 
 import ast
 import re
-from collections.abc import Iterator
-from dataclasses import dataclass
-from functools import cache
-from pathlib import Path
+from dataclasses import dataclass, field
 from typing import Any
 
-INTERFACES_DIR = Path(__file__).resolve().parent / "interfaces"
 INT_RANGES: dict[str, tuple[int, int]] = {
     "byte": (0, 2**8 - 1),
     "char": (0, 2**8 - 1),
@@ -59,6 +55,7 @@ class FieldSpec:
     is_sequence: bool = False
     string_bound: int | None = None
     default: Any = None
+    line: int = field(default=0, compare=False)  # where the definition declares it (1-based)
 
     @property
     def is_array(self) -> bool:
@@ -84,6 +81,7 @@ class ConstantSpec:
     name: str
     base: str
     value: Any
+    line: int = field(default=0, compare=False)
 
 
 @dataclass(frozen=True)
@@ -94,6 +92,7 @@ class MessageSpec:
     fields: tuple[FieldSpec, ...]
     constants: tuple[ConstantSpec, ...]
     text: str
+    source: str = field(default="", compare=False)  # the file, as errors name it
 
     @property
     def package(self) -> str:
@@ -102,6 +101,11 @@ class MessageSpec:
     def dependencies(self) -> tuple[str, ...]:
         """Nested message types, each once, in order of first use."""
         return tuple(dict.fromkeys(f.base for f in self.fields if not f.is_primitive))
+
+    def where(self, dependency: str) -> str:
+        """``source:line`` of the first field that nests ``dependency``."""
+        line = next((f.line for f in self.fields if f.base == dependency), 0)
+        return f"{self.source or self.name}:{line}" if line else self.source or self.name
 
 
 @dataclass(frozen=True)
@@ -112,6 +116,7 @@ class ServiceSpec:
     request: MessageSpec
     response: MessageSpec
     text: str
+    source: str = field(default="", compare=False)
 
 
 def _full_type_name(base: str, package: str) -> str:
@@ -179,7 +184,7 @@ def _strip_comment(line: str) -> str:
     return line
 
 
-def _parse_line(line: str, package: str) -> FieldSpec | ConstantSpec:
+def _parse_line(line: str, package: str, number: int) -> FieldSpec | ConstantSpec:
     type_text, _, rest = line.strip().partition(" ")
     rest = rest.strip()
     match = _TYPE.match(type_text)
@@ -196,7 +201,7 @@ def _parse_line(line: str, package: str) -> FieldSpec | ConstantSpec:
             raise ValueError(f"constant {name} must have a primitive type")
         if not re.fullmatch(r"[A-Z][A-Z0-9_]*", name):
             raise ValueError(f"constant names are UPPER_CASE, got {name!r}")
-        return ConstantSpec(name, base, _literal(base, value))
+        return ConstantSpec(name, base, _literal(base, value), number)
     name, _, default_text = rest.partition(" ")
     if not _NAME.match(name) or "__" in name:
         raise ValueError(f"bad field name {name!r}")
@@ -219,29 +224,31 @@ def _parse_line(line: str, package: str) -> FieldSpec | ConstantSpec:
         is_sequence=array is not None and size is None,
         string_bound=string_bound,
         default=default,
+        line=number,
     )
 
 
-def parse_message(name: str, text: str, *, source: str | None = None) -> MessageSpec:
-    """Parse one message definition; ``name`` is its full type name (``pkg/msg/Name``)."""
+def parse_message(name: str, text: str, *, source: str | None = None, first_line: int = 1) -> MessageSpec:
+    """Parse one message definition; ``name`` is its full type name (``pkg/msg/Name``). Errors
+    name ``source`` (else ``name``) and the line, counted from ``first_line``."""
     package = name.split("/")[0]
     fields: list[FieldSpec] = []
     constants: list[ConstantSpec] = []
-    for number, raw in enumerate(text.splitlines(), start=1):
+    for number, raw in enumerate(text.splitlines(), start=first_line):
         line = _strip_comment(raw).strip()
         if not line:
             continue
         try:
-            item = _parse_line(line, package)
+            item = _parse_line(line, package, number)
         except (ValueError, SyntaxError) as exc:
             raise DefinitionError(f"{source or name}:{number}: {exc}") from None
+        if any(f.name == item.name for f in fields) or any(c.name == item.name for c in constants):
+            raise DefinitionError(f"{source or name}:{number}: {item.name!r} defined twice")
         if isinstance(item, ConstantSpec):
             constants.append(item)
         else:
-            if any(f.name == item.name for f in fields):
-                raise DefinitionError(f"{source or name}:{number}: field {item.name!r} defined twice")
             fields.append(item)
-    return MessageSpec(name, tuple(fields), tuple(constants), text)
+    return MessageSpec(name, tuple(fields), tuple(constants), text, source or name)
 
 
 def parse_service(name: str, text: str, *, source: str | None = None) -> ServiceSpec:
@@ -249,77 +256,14 @@ def parse_service(name: str, text: str, *, source: str | None = None) -> Service
     lines = text.splitlines()
     marks = [i for i, line in enumerate(lines) if _strip_comment(line).strip() == SERVICE_SEPARATOR]
     if len(marks) != 1:
-        raise DefinitionError(f"{source or name}: a service has one '---' line, found {len(marks)}")
+        where = f"{source or name}:{marks[1] + 1}" if len(marks) > 1 else source or name
+        raise DefinitionError(f"{where}: a service has one '---' line, found {len(marks)}")
     request = "\n".join(lines[: marks[0]])
     response = "\n".join(lines[marks[0] + 1 :])
     return ServiceSpec(
         name,
         parse_message(f"{name}_Request", request, source=source),
-        parse_message(f"{name}_Response", response, source=source),
+        parse_message(f"{name}_Response", response, source=source, first_line=marks[0] + 2),
         text,
+        source or name,
     )
-
-
-@dataclass(frozen=True)
-class Definitions:
-    """Every interface found under a directory, by full type name."""
-
-    messages: dict[str, MessageSpec]
-    services: dict[str, ServiceSpec]
-
-    def message(self, name: str) -> MessageSpec:
-        spec = self.messages.get(name)
-        if spec is None:
-            for service in self.services.values():
-                for part in (service.request, service.response):
-                    if part.name == name:
-                        return part
-            raise KeyError(name)
-        return spec
-
-    def closure(self, name: str) -> list[MessageSpec]:
-        """``name``'s spec and every type it depends on, depth first, each once."""
-        seen: dict[str, MessageSpec] = {}
-
-        def visit(type_name: str) -> None:
-            if type_name in seen:
-                return
-            spec = self.message(type_name)
-            seen[type_name] = spec
-            for dep in spec.dependencies():
-                visit(dep)
-
-        visit(name)
-        return list(seen.values())
-
-
-def _interface_files(root: Path) -> Iterator[tuple[str, str, Path]]:
-    for path in sorted(root.glob("*/msg/*.msg")) + sorted(root.glob("*/srv/*.srv")):
-        package, kind = path.parts[-3], path.parts[-2]
-        yield f"{package}/{kind}/{path.stem}", kind, path
-
-
-def load_definitions(root: Path) -> Definitions:
-    """Read every ``<pkg>/msg/*.msg`` and ``<pkg>/srv/*.srv`` under ``root``; checks references."""
-    messages: dict[str, MessageSpec] = {}
-    services: dict[str, ServiceSpec] = {}
-    for name, kind, path in _interface_files(root):
-        text = path.read_text(encoding="utf-8")
-        source = f"{path.parts[-3]}/{kind}/{path.name}"
-        if kind == "msg":
-            messages[name] = parse_message(name, text, source=source)
-        else:
-            services[name] = parse_service(name, text, source=source)
-    definitions = Definitions(messages, services)
-    known = set(messages) | {p.name for s in services.values() for p in (s.request, s.response)}
-    for spec in list(messages.values()) + [p for s in services.values() for p in (s.request, s.response)]:
-        for dep in spec.dependencies():
-            if dep not in known:
-                raise DefinitionError(f"{spec.name}: unknown type {dep}")
-    return definitions
-
-
-@cache
-def lab_definitions() -> Definitions:
-    """The lab's own interfaces (this package's ``interfaces/`` folder)."""
-    return load_definitions(INTERFACES_DIR)

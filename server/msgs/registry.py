@@ -1,18 +1,14 @@
-"""Look message and service types up by their ROS name; ``std_msgs/Bool`` and ``std_msgs/msg/Bool`` both work."""
+"""Look message and service types up by their ROS name; ``std_msgs/Bool`` and ``std_msgs/msg/Bool`` both work.
+
+The names are the lab's own types and those added at run time (server.msgs.catalog); a name not
+known yet asks the catalog to refresh (a package a student just wrote) before it is refused.
+"""
 
 from __future__ import annotations
 
-from . import generated as _generated  # declares every class
-from ._base import Message, Service, message_classes
-from .idl import lab_definitions
-
-# Every service any package declares (std_srvs, example_interfaces, rosapi_msgs ...).
-_SERVICES: dict[str, type[Service]] = {
-    s.TYPE: s
-    for module_name in _generated.__all__
-    for s in vars(getattr(_generated, module_name)).values()
-    if isinstance(s, type) and issubclass(s, Service) and s is not Service
-}
+from . import catalog
+from . import generated as _generated  # declares every class  # noqa: F401
+from ._base import Message, Service, message_class, service_classes
 
 
 class UnknownTypeError(LookupError):
@@ -20,7 +16,7 @@ class UnknownTypeError(LookupError):
 
     def __init__(self, name: str, kind: str = "message") -> None:
         self.name = name
-        known = type_names() if kind == "message" else service_names()
+        known = _message_names() if kind == "message" else _service_names()
         super().__init__(f"unknown {kind} type {name!r} (known: {', '.join(known)})")
 
 
@@ -32,28 +28,56 @@ def normalize_type_name(name: str, kind: str = "msg") -> str:
     return name.strip()
 
 
-def _messages() -> dict[str, type[Message]]:
-    classes = message_classes()
-    return {n: classes[n] for n in lab_definitions().messages}
+def _message(name: str) -> type[Message] | None:
+    if name not in catalog.definitions().messages:
+        return None
+    try:
+        return message_class(name)
+    except KeyError:
+        return None
+
+
+def _service(name: str) -> type[Service] | None:
+    return service_classes().get(name) if name in catalog.definitions().services else None
+
+
+def _message_names() -> list[str]:
+    return sorted(catalog.definitions().messages)
+
+
+def _service_names() -> list[str]:
+    return sorted(catalog.definitions().services)
 
 
 def get_type(name: str) -> type[Message]:
-    try:
-        return _messages()[normalize_type_name(name)]
-    except KeyError:
-        raise UnknownTypeError(name) from None
+    full = normalize_type_name(name)
+    found = _message(full)
+    if found is None:
+        catalog.refresh()
+        found = _message(full)
+    if found is None:
+        raise UnknownTypeError(name)
+    return found
 
 
 def type_names() -> list[str]:
-    return sorted(_messages())
+    """Every message type known now (refreshed first)."""
+    catalog.refresh()
+    return _message_names()
 
 
 def get_service_type(name: str) -> type[Service]:
-    try:
-        return _SERVICES[normalize_type_name(name, "srv")]
-    except KeyError:
-        raise UnknownTypeError(name, "service") from None
+    full = normalize_type_name(name, "srv")
+    found = _service(full)
+    if found is None:
+        catalog.refresh()
+        found = _service(full)
+    if found is None:
+        raise UnknownTypeError(name, "service")
+    return found
 
 
 def service_names() -> list[str]:
-    return sorted(_SERVICES)
+    """Every service type known now (refreshed first)."""
+    catalog.refresh()
+    return _service_names()

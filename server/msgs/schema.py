@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Any
 
+from . import catalog
 from ._base import FLOAT32_MAX, MAX_ARRAY_ITEMS, MAX_STRING_CHARS, Field, Message
-from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, lab_definitions
+from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES
 
 JSON_SCHEMA_DIALECT = "https://json-schema.org/draft/2020-12/schema"
 
@@ -66,7 +67,7 @@ def type_schema(msg_type: type[Message]) -> dict[str, Any]:
 def interface_text(type_name: str, *, depth: int = 0) -> str:
     """The definition as ``ros2 interface show`` prints it: each nested type's definition follows
     the field that uses it, indented one tab further."""
-    definitions = lab_definitions()
+    definitions = catalog.definitions()
     if type_name in definitions.services:
         service = definitions.services[type_name]
         request = _expanded(service.request.name, depth)
@@ -76,7 +77,7 @@ def interface_text(type_name: str, *, depth: int = 0) -> str:
 
 
 def _expanded(type_name: str, depth: int) -> list[str]:
-    spec = lab_definitions().message(type_name)
+    spec = catalog.definitions().message(type_name)
     by_name = {f.name: f for f in spec.fields}
     lines: list[str] = []
     for raw in spec.text.splitlines():

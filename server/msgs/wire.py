@@ -16,8 +16,9 @@ from typing import Any
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.store import Typestore
 
+from . import catalog
 from ._base import Field, Message, MessageError, message_class, message_classes
-from .idl import Definitions, lab_definitions
+from .definitions import Definitions
 
 CDR_LE_HEADER = b"\x00\x01\x00\x00"
 SERVICE_EVENT_INFO = "service_msgs/msg/ServiceEventInfo"
@@ -80,23 +81,40 @@ def build_typestore(definitions: Definitions, *, for_hashing: bool = False) -> T
 EMPTY_STRUCT_MEMBER = "structure_needs_at_least_one_member"
 
 
-@cache
+# The typestores of the catalog's current generation: (generation, for CDR, for hashing).
+_stores: tuple[int, Typestore, Typestore] | None = None
+
+
+def _current_stores() -> tuple[Typestore, Typestore]:
+    """The typestores for what the catalog holds now, built again when it changes."""
+    global _stores
+    generation = catalog.generation()
+    stores = _stores
+    if stores is None or stores[0] != generation:
+        for cls in message_classes().values():
+            if not cls.FIELDS:
+                setattr(cls, EMPTY_STRUCT_MEMBER, 0)
+        definitions = catalog.definitions()
+        stores = _stores = (
+            generation,
+            build_typestore(definitions),
+            build_typestore(definitions, for_hashing=True),
+        )
+    return stores[1], stores[2]
+
+
 def typestore() -> Typestore:
-    for cls in message_classes().values():
-        if not cls.FIELDS:
-            setattr(cls, EMPTY_STRUCT_MEMBER, 0)
-    return build_typestore(lab_definitions())
+    return _current_stores()[0]
 
 
 @cache
-def _hashing_typestore() -> Typestore:
-    return build_typestore(lab_definitions(), for_hashing=True)
+def _hash(type_name: str, generation: int) -> str:
+    return str(_current_stores()[1].hash_rihs01(type_name))
 
 
-@cache
 def type_hash(type_name: str) -> str:
     """``RIHS01_<sha256 hex>`` of a message or service type, computed from its definition."""
-    return str(_hashing_typestore().hash_rihs01(type_name))
+    return _hash(type_name, catalog.generation())
 
 
 def dds_type_name(type_name: str) -> str:
@@ -224,8 +242,7 @@ def deserialize(
 def definition_closure_text(type_name: str) -> str:
     """The type's definition followed by each nested type's, as ROS 2's MCAP and Foxglove's
     ``ros2msg`` schemas carry it (sections ``MSG: pkg/Type`` between lines of ``=``)."""
-    definitions = lab_definitions()
-    specs = definitions.closure(type_name)
+    specs = catalog.definitions().closure(type_name)
     parts = [specs[0].text.rstrip("\n")]
     for spec in specs[1:]:
         pkg, _, name = spec.name.split("/")

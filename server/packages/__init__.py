@@ -13,6 +13,7 @@ from pathlib import Path
 from server.bus import Node
 
 from .entry_points import EntryPoint
+from .interfaces import WorkspaceInterfaces, workspace_interfaces
 from .manifest import WorkspaceError
 from .workspace import Workspace, WorkspacePackage, find_packages
 
@@ -94,6 +95,13 @@ class PackageIndex:
     def student_workspace(self) -> Workspace:
         """The workspace's packages, found afresh (a student adds packages while the lab runs)."""
         return find_packages(self.workspace) if self.workspace is not None else Workspace()
+
+    def interfaces(self, *, log_problems: bool = False) -> WorkspaceInterfaces | None:
+        """The workspace's interface packages, read now and again whenever a type name is not known
+        (server.packages.interfaces); None without a workspace."""
+        if self.workspace is None:
+            return None
+        return workspace_interfaces(self.workspace, log_problems=log_problems)
 
     def _student(self, pkg: str) -> WorkspacePackage | None:
         return self.student_workspace().get(pkg)  # WorkspaceError: a duplicate name, a bad package.xml

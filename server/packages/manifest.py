@@ -1,6 +1,7 @@
 """A package's ``package.xml``, read as colcon reads it: the name and the build type.
 
-Only what finding and running a package needs is read; a file that does not parse, or has no
+Only what finding and running a package needs is read (and whether it is an interface package,
+a member of ``rosidl_interface_packages``); a file that does not parse, or has no
 ``<name>``, is a :class:`WorkspaceError` naming the file and line.
 """
 
@@ -12,6 +13,7 @@ from pathlib import Path
 
 MANIFEST = "package.xml"
 DEFAULT_BUILD_TYPE = "ament_cmake"  # what colcon assumes when the export names none, as ROS does
+INTERFACE_GROUP = "rosidl_interface_packages"
 
 
 class WorkspaceError(LookupError):
@@ -28,6 +30,7 @@ class Manifest:
     name: str
     build_type: str
     path: Path  # the package.xml
+    interfaces: bool = False  # <member_of_group>rosidl_interface_packages</member_of_group>
 
 
 def read_manifest(path: Path) -> Manifest:
@@ -45,4 +48,5 @@ def read_manifest(path: Path) -> Manifest:
     if not name:
         raise WorkspaceError(str(path), "it has no <name>")
     build_type = (root.findtext("export/build_type") or DEFAULT_BUILD_TYPE).strip()
-    return Manifest(name, build_type, path)
+    groups = {(g.text or "").strip() for g in root.findall("member_of_group")}
+    return Manifest(name, build_type, path, INTERFACE_GROUP in groups)

@@ -15,6 +15,7 @@ from server.packages.entry_points import EntryPoint
 from server.transport.acl import Credentials, process_config
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT
 
+from .interface_modules import WORKSPACE_ENV
 from .runner import PARENT_ENV
 
 CLIENT_DIR = Path(__file__).resolve().parents[2] / "client"
@@ -69,9 +70,11 @@ def node_command(
     domain_id: int = 0,
     login: Credentials | None = None,
     env: Mapping[str, str] | None = None,
+    workspace: Path | None = None,
 ) -> NodeCommand:
     """Run ``target`` (a student's file or console script, or ``module:Class`` of a built-in node) in
-    its own process, joined to the router at ``router`` (``tcp/HOST:PORT``)."""
+    its own process, joined to the router at ``router`` (``tcp/HOST:PORT``); the interface packages
+    of ``workspace`` import in it."""
     runner = [sys.executable, "-u", "-m", "server.processes.runner"]
     if isinstance(target, EntryPoint):
         argv = [*runner, *target.argv(), *args]
@@ -92,4 +95,6 @@ def node_command(
         "ZENOH_CONFIG_OVERRIDE": ";".join(filter(None, [inherited, *overrides])),
         PARENT_ENV: str(os.getpid()),
     }
+    if workspace is not None:
+        child_env[WORKSPACE_ENV] = str(workspace.resolve())
     return NodeCommand(argv, child_env, zid)

@@ -14,6 +14,9 @@ that does not exist is one line naming where the script is declared (``setup.py:
 
 A lab's built-in node runs with rclpy's usual ``init``/``spin``/``try_shutdown``.
 
+The workspace's interface packages import as their generated modules would
+(server.processes.interface_modules), from ``$ROS2LAB_WORKSPACE``.
+
 The process ends when the lab that started it does (Linux's parent-death signal), so no node
 outlives a killed app.
 """
@@ -32,6 +35,8 @@ from collections.abc import Callable
 from pathlib import Path
 
 from server.packages.entry_points import EntryPoint
+
+from . import interface_modules
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
@@ -186,6 +191,7 @@ def run_builtin(target: str, args: list[str]) -> int:
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     _die_with_parent()
+    interface_modules.install()
     if len(argv) >= 2 and argv[0] == "--builtin":
         return run_builtin(argv[1], argv[2:])
     if len(argv) >= 5 and argv[0] == "--entry-point":

@@ -1,4 +1,4 @@
-"""Every message class's written-out ``__init__`` and ``copy`` (msgs/_base.py) give what Message's
+"""Every message class's written-out ``__init__`` and ``copy`` (msgs/compiled.py) give what Message's
 generic loops over FIELDS give: the same defaults, the same checks, deep copies."""
 
 from __future__ import annotations

@@ -38,7 +38,7 @@ from server.msgs import (
     type_names,
 )
 from server.msgs._base import define_message
-from server.msgs.idl import lab_definitions, load_definitions
+from server.msgs.definitions import lab_definitions, load_definitions
 from server.msgs.wire import (
     WireError,
     build_typestore,

@@ -1,0 +1,148 @@
+"""The interface types this process knows: the lab's own, and those added while it runs.
+
+A student's interface packages (read from a workspace by server.packages.interfaces) are added
+here as parsed definitions. Their messages and services become classes like the lab's own, found
+by name (server.msgs.registry), with their CDR layout and RIHS01 hash (server.msgs.wire) and their
+text (``interface show``, bags, Foxglove), with no build step. A type that cannot load (it nests a
+type no package declares, or one that did not load itself, or it has a name of the lab's own) is
+left out and named in one line with its file and line; every other type loads.
+
+``generation()`` changes whenever the added types do, so what is computed from the definitions
+(typestores, hashes) is computed again. Lookups that miss call the refreshers (a lab registers
+its workspace's), so a package a student adds while the lab runs is found on first use.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable, Iterable
+
+from ._base import define_message, define_service
+from .definitions import Definitions, lab_definitions
+from .idl import MessageSpec, ServiceSpec
+
+_lock = threading.Lock()
+_added: dict[str, Definitions] = {}  # by source (a workspace's path)
+_merged = lab_definitions()
+_generation = 0
+_refreshers: list[Callable[[], object]] = []
+
+
+def definitions() -> Definitions:
+    """Every type known now: the lab's own and the added ones."""
+    return _merged
+
+
+def added(source: str) -> Definitions:
+    """The types added at run time from ``source`` (a workspace)."""
+    return _added.get(source, Definitions({}, {}))
+
+
+def generation() -> int:
+    """A number that changes whenever the known types change."""
+    return _generation
+
+
+def _parts(services: Iterable[ServiceSpec]) -> list[MessageSpec]:
+    return [part for s in services for part in (s.request, s.response)]
+
+
+def _resolve(
+    source: str, messages: list[MessageSpec], services: list[ServiceSpec]
+) -> tuple[dict[str, MessageSpec], dict[str, ServiceSpec], list[str]]:
+    """The types that can load, in dependency order, and one line for each that cannot; they may
+    nest the lab's types and those of other sources."""
+    lab = lab_definitions()
+    available = set(lab.messages) | {p.name for p in _parts(lab.services.values())}
+    for other, defs in _added.items():
+        if other != source:
+            available |= set(defs.messages) | {p.name for p in _parts(defs.services.values())}
+    problems: list[str] = []
+    pending: dict[str, MessageSpec] = {}
+    for spec in messages:
+        if spec.name not in available:
+            pending[spec.name] = spec
+        elif _differs(spec, lab.messages.get(spec.name)):
+            problems.append(f"{spec.source}: {spec.name} differs from the lab's own; the lab's is used")
+    loaded: dict[str, MessageSpec] = {}
+    progress = True
+    while progress:
+        progress = False
+        for name, spec in list(pending.items()):
+            if all(dep in available for dep in spec.dependencies()):
+                loaded[name] = pending.pop(name)
+                available.add(name)
+                progress = True
+    declared = {s.name for s in messages}
+    for spec in pending.values():
+        problems.append(_missing(spec, available, declared))
+    loaded_services: dict[str, ServiceSpec] = {}
+    for service in services:
+        if service.name in lab.services:
+            own = lab.services[service.name]
+            if _differs(service.request, own.request) or _differs(service.response, own.response):
+                problems.append(
+                    f"{service.source}: {service.name} differs from the lab's own; the lab's is used"
+                )
+            continue
+        missing = [_missing(p, available, declared) for p in (service.request, service.response)
+                   if not all(dep in available for dep in p.dependencies())]  # fmt: skip
+        if missing:
+            problems.append(missing[0])
+        else:
+            loaded_services[service.name] = service
+    return loaded, loaded_services, problems
+
+
+def _differs(spec: MessageSpec, own: MessageSpec | None) -> bool:
+    """A copy of one of the lab's own types (keyboard_msgs from the course) is the lab's; a
+    different definition under its name is refused, since the lab's nodes use the lab's."""
+    return own is None or (spec.fields, spec.constants) != (own.fields, own.constants)
+
+
+def _missing(spec: MessageSpec, available: set[str], declared: set[str]) -> str:
+    dep = next(d for d in spec.dependencies() if d not in available)
+    if dep in declared:
+        return f"{spec.where(dep)}: {dep} did not load (see its own error)"
+    return f"{spec.where(dep)}: unknown type {dep}"
+
+
+def replace_added(source: str, messages: Iterable[MessageSpec], services: Iterable[ServiceSpec]) -> list[str]:
+    """Make these the types added from ``source``, in place of those it added before; returns one
+    line per type left out. Definitions the same as before keep their classes."""
+    global _merged, _generation
+    with _lock:
+        loaded, loaded_services, problems = _resolve(source, list(messages), list(services))
+        before = added(source)
+        if loaded == before.messages and loaded_services == before.services:
+            return problems
+        for spec in loaded.values():
+            define_message(spec, module=f"{spec.package}.msg")
+        for service in loaded_services.values():
+            define_service(service, module=f"{service.name.split('/')[0]}.srv")
+        _added[source] = Definitions(loaded, loaded_services)
+        lab = lab_definitions()
+        messages_now, services_now = dict(lab.messages), dict(lab.services)
+        for defs in _added.values():
+            messages_now.update(defs.messages)
+            services_now.update(defs.services)
+        _merged = Definitions(messages_now, services_now)
+        _generation += 1
+    return problems
+
+
+def add_refresher(refresh: Callable[[], object]) -> None:
+    """Call ``refresh`` when a lookup misses (once per function, however often it is added)."""
+    if refresh not in _refreshers:
+        _refreshers.append(refresh)
+
+
+def remove_refresher(refresh: Callable[[], object]) -> None:
+    if refresh in _refreshers:
+        _refreshers.remove(refresh)
+
+
+def refresh() -> None:
+    """Let every refresher add what is new (a package a student just wrote)."""
+    for refresher in list(_refreshers):
+        refresher()
