@@ -1,97 +1,103 @@
-"""``interface list | show``: the lab's message types, shown as ``ros2 interface show`` prints a .msg.
+"""``interface list | packages | package PKG | show TYPE``, as ``ros2 interface`` prints them.
 
-The server describes a type as a JSON Schema: a message is an object whose ``title`` is its ROS
-type, and a primitive field's ``description`` is its ROS type (``float64``).
+Like ros2's, this reads the definitions where they are, not the graph: the lab's own interfaces
+and the interface packages of the workspace (:mod:`server.cli.workspace` says which), read from
+their ``.msg``/``.srv`` files with no build step. ``show`` prints the definition with its comments
+and constants, each nested type's definition indented one tab under the field that uses it. A
+workspace definition that cannot load is one line on stderr naming its file and line, and exit
+code 1; everything else is still listed.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Mapping
 from typing import Any
 
-from .client import ApiError, LabClient
+from server.msgs import catalog
+from server.msgs.registry import normalize_type_name
+from server.msgs.schema import interface_text
+from server.packages import PackageIndex, WorkspaceInterfaces
 
-JSON_TO_ROS = {"boolean": "bool", "integer": "int64", "number": "float64", "string": "string"}
-ROS_PRIMITIVES = frozenset({
-    "bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16", "int32", "uint32",
-    "int64", "uint64", "string", "wstring",
-})  # fmt: skip
+from .client import LabClient
+from .workspace import add_workspace_option, workspace_of
 
-
-def _resolve(schema: Mapping[str, Any], root: Mapping[str, Any]) -> Mapping[str, Any]:
-    """Follow a local ``$ref`` (``#/$defs/...``), in case the server factors nested types out."""
-    ref = schema.get("$ref")
-    if not isinstance(ref, str) or not ref.startswith("#/"):
-        return schema
-    target: Any = root
-    for part in ref[2:].split("/"):
-        target = target.get(part, {}) if isinstance(target, Mapping) else {}
-    return target if isinstance(target, Mapping) else schema
+KIND_TITLES = {"msg": "Messages", "srv": "Services"}
 
 
-def _is_message(schema: Mapping[str, Any]) -> bool:
-    return schema.get("type") == "object" or "properties" in schema
+def _load(args: argparse.Namespace, client: LabClient) -> WorkspaceInterfaces | None:
+    return PackageIndex(workspace=workspace_of(args, client)).interfaces()
 
 
-def _short_name(type_name: str, parent_pkg: str) -> str:
-    """As a .msg file writes a field's type: ``Vector3`` in its own package, else ``std_msgs/Header``."""
-    parts = type_name.split("/")
-    if len(parts) != 3:
-        return type_name
-    return parts[2] if parts[0] == parent_pkg else f"{parts[0]}/{parts[2]}"
+def _report(problems: list[str]) -> int:
+    for problem in problems:
+        print(problem, file=sys.stderr)
+    return 1 if problems else 0
 
 
-def _field_type(schema: Mapping[str, Any], root: Mapping[str, Any], parent_pkg: str) -> str:
-    schema = _resolve(schema, root)
-    if schema.get("type") == "array":
-        return _field_type(schema.get("items", {}), root, parent_pkg) + "[]"
-    if _is_message(schema):
-        return _short_name(str(schema.get("title", "object")), parent_pkg)
-    described = str(schema.get("description", "")).split()
-    if described and described[0] in ROS_PRIMITIVES:
-        return described[0]
-    return JSON_TO_ROS.get(str(schema.get("type")), str(schema.get("type", "?")))
-
-
-def schema_lines(
-    schema: Mapping[str, Any], root: Mapping[str, Any] | None = None, depth: int = 0
-) -> list[str]:
-    """``float64 x`` per field; a nested message's fields follow it, one tab further in."""
-    root = root if root is not None else schema
-    schema = _resolve(schema, root)
-    package = str(schema.get("title", "")).split("/")[0]
-    lines: list[str] = []
-    for name, field in schema.get("properties", {}).items():
-        lines.append("\t" * depth + f"{_field_type(field, root, package)} {name}")
-        inner = _resolve(field, root)
-        if inner.get("type") == "array":
-            inner = _resolve(inner.get("items", {}), root)
-        if _is_message(inner):
-            lines += schema_lines(inner, root, depth + 1)
-    return lines
+def _names(kind: str) -> list[str]:
+    definitions = catalog.definitions()
+    return sorted(definitions.messages if kind == "msg" else definitions.services)
 
 
 def interface_list(args: argparse.Namespace, client: LabClient) -> int:
-    types = client.get("/api/types")
-    names = sorted(t if isinstance(t, str) else t.get("name", "") for t in types)
-    print("Messages:")
+    reader = _load(args, client)
+    kinds = ["msg"] if args.only_msgs else ["srv"] if args.only_srvs else ["msg", "srv"]
+    for kind in kinds:
+        print(f"{KIND_TITLES[kind]}:")
+        for name in _names(kind):
+            print(f"    {name}")
+    return _report(reader.problems if reader is not None else [])
+
+
+def _packages() -> list[str]:
+    return sorted({n.split("/")[0] for kind in KIND_TITLES for n in _names(kind)})
+
+
+def interface_packages(args: argparse.Namespace, client: LabClient) -> int:
+    reader = _load(args, client)
+    for name in _packages():
+        print(name)
+    return _report(reader.problems if reader is not None else [])
+
+
+def interface_package(args: argparse.Namespace, client: LabClient) -> int:
+    reader = _load(args, client)
+    problems = reader.package_problems(args.package_name) if reader is not None else []
+    names = [n for kind in KIND_TITLES for n in _names(kind) if n.split("/")[0] == args.package_name]
+    if not names and not problems:
+        print(f"Unknown package '{args.package_name}'", file=sys.stderr)
+        return 1
     for name in names:
-        print(f"    {name}")
-    return 0
+        print(name)
+    return _report(problems)
 
 
 def interface_show(args: argparse.Namespace, client: LabClient) -> int:
-    try:
-        schema = client.get("/api/types/" + args.type.strip("/"))
-    except ApiError as exc:
-        if exc.status == 404 and not exc.no_route:
-            print(f"Unknown interface '{args.type}': {exc.detail}", file=sys.stderr)
-            return 1
-        raise
-    print("\n".join(schema_lines(schema)))
+    reader = _load(args, client)
+    wanted = args.type.strip().strip("/")
+    definitions = catalog.definitions()
+    candidates = [normalize_type_name(wanted), normalize_type_name(wanted, "srv"), wanted]
+    name = next((n for n in candidates if n in definitions.messages or n in definitions.services), None)
+    if name is None:
+        problem = _problem_of(reader, wanted)
+        print(problem or f"Unknown interface '{args.type}': no such message or service type", file=sys.stderr)
+        return 1
+    sys.stdout.write(interface_text(name))
     return 0
+
+
+def _problem_of(reader: WorkspaceInterfaces | None, wanted: str) -> str | None:
+    """The error of a workspace type that did not load, if ``wanted`` names one."""
+    parts = wanted.split("/")
+    if reader is None or len(parts) not in (2, 3) or parts[0] not in reader.packages:
+        return None
+    stem = parts[-1]
+    for problem in reader.package_problems(parts[0]):
+        file = problem.split(":", 1)[0]
+        if file.endswith((f"/{stem}.msg", f"/{stem}.srv")) and (len(parts) == 2 or f"/{parts[1]}/" in file):
+            return problem
+    return None
 
 
 def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
@@ -99,9 +105,24 @@ def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
     sub = parser.add_subparsers(dest="interface_verb", required=True, metavar="VERB")
 
     p = sub.add_parser("list", parents=[common], help="List all interface types available")
-    p.add_argument("-m", "--only-msgs", action="store_true", help="Print out only the messages (all are)")
+    only = p.add_mutually_exclusive_group()
+    only.add_argument("-m", "--only-msgs", action="store_true", help="Print out only the messages")
+    only.add_argument("-s", "--only-srvs", action="store_true", help="Print out only the services")
+    add_workspace_option(p)
     p.set_defaults(handler=interface_list)
+
+    p = sub.add_parser("packages", parents=[common], help="Output a list of packages that provide interfaces")
+    add_workspace_option(p)
+    p.set_defaults(handler=interface_packages)
+
+    p = sub.add_parser(
+        "package", parents=[common], help="Output a list of available interface types within one package"
+    )
+    p.add_argument("package_name", help="Name of the ROS package")
+    add_workspace_option(p)
+    p.set_defaults(handler=interface_package)
 
     p = sub.add_parser("show", parents=[common], help="Output the interface definition")
     p.add_argument("type", help="Show an interface definition (e.g. 'std_msgs/msg/String')")
+    add_workspace_option(p)
     p.set_defaults(handler=interface_show)

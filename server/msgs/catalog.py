@@ -48,19 +48,21 @@ def _parts(services: Iterable[ServiceSpec]) -> list[MessageSpec]:
 
 
 def _resolve(
-    source: str, messages: list[MessageSpec], services: list[ServiceSpec]
+    source: str, messages: list[MessageSpec], services: list[ServiceSpec], broken: frozenset[str]
 ) -> tuple[dict[str, MessageSpec], dict[str, ServiceSpec], list[str]]:
     """The types that can load, in dependency order, and one line for each that cannot; they may
     nest the lab's types and those of other sources."""
     lab = lab_definitions()
-    available = set(lab.messages) | {p.name for p in _parts(lab.services.values())}
+    lab_names = set(lab.messages) | {p.name for p in _parts(lab.services.values())}
+    own = {s.name for s in messages} | {p.name for p in _parts(services)}
+    available = set(lab_names)
     for other, defs in _added.items():
         if other != source:
-            available |= set(defs.messages) | {p.name for p in _parts(defs.services.values())}
+            available |= (set(defs.messages) | {p.name for p in _parts(defs.services.values())}) - own
     problems: list[str] = []
     pending: dict[str, MessageSpec] = {}
     for spec in messages:
-        if spec.name not in available:
+        if spec.name not in lab_names:
             pending[spec.name] = spec
         elif _differs(spec, lab.messages.get(spec.name)):
             problems.append(f"{spec.source}: {spec.name} differs from the lab's own; the lab's is used")
@@ -73,14 +75,16 @@ def _resolve(
                 loaded[name] = pending.pop(name)
                 available.add(name)
                 progress = True
-    declared = {s.name for s in messages}
+    declared = {s.name for s in messages} | broken
     for spec in pending.values():
         problems.append(_missing(spec, available, declared))
     loaded_services: dict[str, ServiceSpec] = {}
     for service in services:
         if service.name in lab.services:
-            own = lab.services[service.name]
-            if _differs(service.request, own.request) or _differs(service.response, own.response):
+            lab_service = lab.services[service.name]
+            if _differs(service.request, lab_service.request) or _differs(
+                service.response, lab_service.response
+            ):
                 problems.append(
                     f"{service.source}: {service.name} differs from the lab's own; the lab's is used"
                 )
@@ -107,12 +111,20 @@ def _missing(spec: MessageSpec, available: set[str], declared: set[str]) -> str:
     return f"{spec.where(dep)}: unknown type {dep}"
 
 
-def replace_added(source: str, messages: Iterable[MessageSpec], services: Iterable[ServiceSpec]) -> list[str]:
+def replace_added(
+    source: str,
+    messages: Iterable[MessageSpec],
+    services: Iterable[ServiceSpec],
+    broken: Iterable[str] = (),
+) -> list[str]:
     """Make these the types added from ``source``, in place of those it added before; returns one
-    line per type left out. Definitions the same as before keep their classes."""
+    line per type left out. ``broken`` names types whose files did not parse (a type that nests
+    one is said not to have loaded). Definitions the same as before keep their classes."""
     global _merged, _generation
     with _lock:
-        loaded, loaded_services, problems = _resolve(source, list(messages), list(services))
+        loaded, loaded_services, problems = _resolve(
+            source, list(messages), list(services), frozenset(broken)
+        )
         before = added(source)
         if loaded == before.messages and loaded_services == before.services:
             return problems

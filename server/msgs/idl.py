@@ -149,7 +149,11 @@ def _literal(base: str, text: str) -> Any:
         if lowered in ("false", "0"):
             return False
         raise ValueError(f"{text!r} is not a bool")
-    value = ast.literal_eval(text)
+    expected = "a number" if base in FLOAT_TYPES else "an integer"
+    try:
+        value = ast.literal_eval(text)
+    except (ValueError, SyntaxError):
+        raise ValueError(f"{text!r} is not {expected}") from None
     if base in FLOAT_TYPES:
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise ValueError(f"{text!r} is not a number")

@@ -18,7 +18,7 @@ from rosbags.typesys.store import Typestore
 
 from . import catalog
 from ._base import Field, Message, MessageError, message_class, message_classes
-from .definitions import Definitions
+from .definitions import Definitions, lab_definitions
 
 CDR_LE_HEADER = b"\x00\x01\x00\x00"
 SERVICE_EVENT_INFO = "service_msgs/msg/ServiceEventInfo"
@@ -64,17 +64,49 @@ def _service_types(name: str, request: str, response: str, byte_as_uint8: bool) 
     return _fix_srv_names(types)
 
 
-def build_typestore(definitions: Definitions, *, for_hashing: bool = False) -> Typestore:
-    """A rosbags typestore holding exactly ``definitions`` (and the event types of its services),
-    laid out for CDR, or ``for_hashing`` with byte kept as rosidl's BYTE."""
-    store = get_typestore(Stores.EMPTY)
+@cache
+def _parsed(name: str, text: str, for_hashing: bool) -> dict[str, Any]:
+    """rosbags' parse of one definition (the slow part of a typestore), kept: a typestore is built
+    again whenever a student's types change, and the lab's own are the same every time."""
+    return dict(get_types_from_msg(_for_rosbags(text, byte_as_uint8=not for_hashing), name))
+
+
+@cache
+def _parsed_service(name: str, request: str, response: str, for_hashing: bool) -> dict[str, Any]:
+    return _service_types(name, request, response, not for_hashing)
+
+
+def _types(definitions: Definitions, for_hashing: bool) -> dict[str, Any]:
     types: dict[str, Any] = {}
     for name, spec in definitions.messages.items():
-        types.update(get_types_from_msg(_for_rosbags(spec.text, byte_as_uint8=not for_hashing), name))
+        types.update(_parsed(name, spec.text, for_hashing))
     for name, service in definitions.services.items():
-        types.update(_service_types(name, service.request.text, service.response.text, not for_hashing))
-    store.register(types)
+        types.update(_parsed_service(name, service.request.text, service.response.text, for_hashing))
+    return types
+
+
+def build_typestore(
+    definitions: Definitions, *, for_hashing: bool = False, base: Typestore | None = None
+) -> Typestore:
+    """A rosbags typestore holding exactly ``definitions`` (and the event types of its services),
+    laid out for CDR, or ``for_hashing`` with byte kept as rosidl's BYTE. With ``base``, its types
+    are copied and only those ``definitions`` adds are registered (rosbags writes and runs code for
+    every type it registers, which takes long for the lab's dozens)."""
+    store = get_typestore(Stores.EMPTY)
+    types = _types(definitions, for_hashing)
+    if base is not None:
+        store.fielddefs.update(base.fielddefs)
+        store.types.update(base.types)
+        store.cache.update(base.cache)
+        types = {name: t for name, t in types.items() if name not in base.fielddefs}
+    if types:
+        store.register(types)
     return store
+
+
+@cache
+def _lab_store(for_hashing: bool) -> Typestore:
+    return build_typestore(lab_definitions(), for_hashing=for_hashing)
 
 
 # rosbags gives a message without fields one uint8 member of this name, as IDL structs need one.
@@ -97,8 +129,8 @@ def _current_stores() -> tuple[Typestore, Typestore]:
         definitions = catalog.definitions()
         stores = _stores = (
             generation,
-            build_typestore(definitions),
-            build_typestore(definitions, for_hashing=True),
+            build_typestore(definitions, base=_lab_store(False)),
+            build_typestore(definitions, for_hashing=True, base=_lab_store(True)),
         )
     return stores[1], stores[2]
 

@@ -45,7 +45,7 @@ BUILTIN: dict[str, dict[str, str]] = {
 
 
 __all__ = ["BUILTIN", "Executable", "ExecutableNotFoundError", "NotInProcessError", "PackageIndex",
-           "PackageNotFoundError", "WorkspaceError"]  # fmt: skip
+           "PackageNotFoundError", "WorkspaceError", "WorkspaceInterfaces"]  # fmt: skip
 
 
 class PackageNotFoundError(LookupError):

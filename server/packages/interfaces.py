@@ -109,9 +109,11 @@ def package_interfaces(name: str, folder: Path, member: bool) -> InterfacePackag
     return package
 
 
-def _parse(package: InterfacePackage) -> tuple[list[MessageSpec], list[ServiceSpec]]:
+def _parse(package: InterfacePackage) -> tuple[list[MessageSpec], list[ServiceSpec], list[str]]:
+    """The package's messages and services, and the names of those that did not parse."""
     messages: list[MessageSpec] = []
     services: list[ServiceSpec] = []
+    broken: list[str] = []
     for item in package.files:
         try:
             text = item.path.read_text(encoding="utf-8")
@@ -121,9 +123,11 @@ def _parse(package: InterfacePackage) -> tuple[list[MessageSpec], list[ServiceSp
                 services.append(parse_service(item.type_name, text, source=str(item.path)))
         except DefinitionError as exc:
             package.problems.append(str(exc))
+            broken.append(item.type_name)
         except (OSError, UnicodeDecodeError) as exc:
             package.problems.append(f"{item.path}: cannot read it: {exc}")
-    return messages, services
+            broken.append(item.type_name)
+    return messages, services, broken
 
 
 class WorkspaceInterfaces:
@@ -163,6 +167,7 @@ class WorkspaceInterfaces:
             packages: dict[str, InterfacePackage] = {}
             messages: list[MessageSpec] = []
             services: list[ServiceSpec] = []
+            broken: list[str] = []
             for pkg in members:
                 try:
                     manifest = read_manifest(pkg.path / MANIFEST)
@@ -175,7 +180,8 @@ class WorkspaceInterfaces:
                 parsed = _parse(interfaces)
                 messages += parsed[0]
                 services += parsed[1]
-            left_out = catalog.replace_added(self.source, messages, services)
+                broken += parsed[2]
+            left_out = catalog.replace_added(self.source, messages, services, broken)
             self.packages = packages
             self._left_out = left_out
             before, self.problems = (
