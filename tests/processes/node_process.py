@@ -16,11 +16,12 @@ from support.app import WAIT_S, App
 
 
 class NodeProcess:
-    def __init__(self, app: App, file: Path, *args: str) -> None:
+    def __init__(self, app: App, file: Path, *args: str, argv: list[str] | None = None) -> None:
+        """``python FILE ARGS``, or ``argv`` when given (``file`` then only names it)."""
         env = {**os.environ, "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["tcp/{app.router}"]'}
         self.name = file.name
         self.proc = subprocess.Popen(
-            [sys.executable, "-u", str(file), *args], env=env, text=True,
+            argv or [sys.executable, "-u", str(file), *args], env=env, text=True,
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
         )  # fmt: skip
         self.lines: list[str] = []

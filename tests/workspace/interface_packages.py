@@ -278,8 +278,8 @@ class TelemetrySubscriber(Node):
 
     def listener_callback(self, msg):
         self.get_logger().info('I heard: %s %s z=%.1f codes=%s tags=%s samples=%s counts=%s corner=%.1f' % (
-            msg.header.frame_id, msg.callsign, msg.position[2], list(msg.codes), msg.tags,
-            list(msg.samples), [c.num for c in msg.counts], msg.corners[1].y))
+            msg.header.frame_id, msg.callsign, msg.position[2], msg.codes.tolist(), msg.tags,
+            msg.samples.tolist(), [c.num for c in msg.counts], msg.corners[1].y))
 
 
 def main(args=None):
