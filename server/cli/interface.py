@@ -80,24 +80,11 @@ def interface_show(args: argparse.Namespace, client: LabClient) -> int:
     candidates = [normalize_type_name(wanted), normalize_type_name(wanted, "srv"), wanted]
     name = next((n for n in candidates if n in definitions.messages or n in definitions.services), None)
     if name is None:
-        problem = _problem_of(reader, wanted)
+        problem = next(filter(None, (reader.problem_of(n) for n in candidates)), None) if reader else None
         print(problem or f"Unknown interface '{args.type}': no such message or service type", file=sys.stderr)
         return 1
     sys.stdout.write(interface_text(name))
     return 0
-
-
-def _problem_of(reader: WorkspaceInterfaces | None, wanted: str) -> str | None:
-    """The error of a workspace type that did not load, if ``wanted`` names one."""
-    parts = wanted.split("/")
-    if reader is None or len(parts) not in (2, 3) or parts[0] not in reader.packages:
-        return None
-    stem = parts[-1]
-    for problem in reader.package_problems(parts[0]):
-        file = problem.split(":", 1)[0]
-        if file.endswith((f"/{stem}.msg", f"/{stem}.srv")) and (len(parts) == 2 or f"/{parts[1]}/" in file):
-            return problem
-    return None
 
 
 def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:

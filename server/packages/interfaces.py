@@ -194,6 +194,15 @@ class WorkspaceInterfaces:
                         log.error(problem)
             return self.problems
 
+    def problem_of(self, type_name: str) -> str | None:
+        """Why ``pkg/msg/Name`` (or ``pkg/srv/Name``) of this workspace did not load, if it did not."""
+        package = self.packages.get(type_name.split("/")[0])
+        if package is None:
+            return None
+        files = [str(f.path) for f in package.files if f.type_name == type_name]
+        problems = self.package_problems(package.name)
+        return next((p for p in problems if p.split(":", 1)[0] in files), None)
+
     def package_problems(self, name: str) -> list[str]:
         """The problems of one package: its own, and its types the catalog left out."""
         package = self.packages.get(name)

@@ -40,12 +40,6 @@ def _types_of(reader: WorkspaceInterfaces, package: str, kind: str) -> dict[str,
     return {n.rsplit("/", 1)[1]: services[n] for n in added.services if n.startswith(prefix)}
 
 
-def _problem_of(reader: WorkspaceInterfaces, package: InterfacePackage, kind: str, name: str) -> str | None:
-    """The error that kept ``<package>/<kind>/<name>`` from loading, if its file is there."""
-    path = package.path / kind / f"{name}.{kind}"
-    return next((p for p in reader.package_problems(package.name) if p.startswith(f"{path}:")), None)
-
-
 class _Loader(importlib.abc.Loader):
     def __init__(self, reader: WorkspaceInterfaces, package: InterfacePackage, kind: str | None) -> None:
         self.reader, self.package, self.kind = reader, package, kind
@@ -62,7 +56,7 @@ class _Loader(importlib.abc.Loader):
         reader, package, kind = self.reader, self.package, self.kind
 
         def __getattr__(name: str) -> Any:
-            problem = _problem_of(reader, package, kind, name)
+            problem = reader.problem_of(f"{package.name}/{kind}/{name}")
             if problem is not None:
                 raise ImportError(problem, name=module.__name__)
             raise AttributeError(f"module {module.__name__!r} has no attribute {name!r}")
