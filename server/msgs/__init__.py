@@ -1,5 +1,6 @@
 """Message and service types with their ROS 2 names (``std_msgs/msg/Bool`` ...), declared once in
-``.msg``/``.srv`` files (server/msgs/interfaces) and looked up by name."""
+``.msg``/``.srv`` files (server/msgs/interfaces, and a workspace's interface packages added at run
+time through server.msgs.catalog) and looked up by name."""
 
 from ._base import Field, Message, MessageError, Service
 from .registry import (

@@ -96,7 +96,8 @@ def test_tutorial_publisher_and_subscriber_and_a_rest_publish(run: Any, lab: tup
     assert "Traceback" not in listener.text + talker.text
 
 
-def test_service_between_two_processes(run: Any) -> None:
+def test_service_between_two_processes_and_called_from_the_cli(run: Any, lab: tuple[App, Path]) -> None:
+    app, _ws = lab
     server = run("py_custom", "service")
     client = run("py_custom", "client", "2", "3", "4")
     assert client.finish(START_S) == 0, client.text[-2000:]
@@ -104,6 +105,12 @@ def test_service_between_two_processes(run: Any) -> None:
                      re.MULTILINE), client.text  # fmt: skip
     server.wait_for(r"\[minimal_service\]: Incoming request$")
     server.wait_for(r"^a: 2 b: 3 c: 4$")
+    call = subprocess.run([sys.executable, "-m", "server", "--url", app.url, "service", "call", "/add_three_ints",
+                           "tutorial_interfaces/srv/AddThreeInts", "{a: 10, b: 20, c: -5}"],
+                          capture_output=True, text=True, timeout=START_S, check=False)  # fmt: skip
+    assert call.returncode == 0, call.stderr
+    assert "tutorial_interfaces.srv.AddThreeInts_Response(sum=25)" in call.stdout, call.stdout
+    server.wait_for(r"^a: 10 b: 20 c: -5$")
     assert server.interrupt() == 0, server.text[-2000:]
 
 
