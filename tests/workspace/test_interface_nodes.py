@@ -1,26 +1,31 @@
 """Students' own interfaces against a live lab, as ROS 2's custom msg and srv tutorial uses them:
 nodes started with ``ros2lab run`` talk with ``tutorial_interfaces`` and ``fleet_interfaces``
-types, the lab publishes them from REST, echoes them and records them to a bag, and on the wire
-they carry the RIHS01 hashes rosbags computes from the definitions."""
+types, the lab publishes them from REST, echoes them (CLI and Foxglove) and records them to a
+bag, and on the wire they carry the RIHS01 hashes rosbags computes from the definitions."""
 
 from __future__ import annotations
 
+import asyncio
 import json
 import re
+import struct
 import subprocess
 import sys
 import threading
 from collections.abc import Iterator
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import pytest
+import websockets
 import zenoh
 from mcap.reader import make_reader
+from mcap.records import Schema as McapSchema
 from mcap_ros2.decoder import DecoderFactory
 from processes.node_process import NodeProcess
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
-from support.app import REPO, App
+from support.app import REPO, App, free_port
 
 from .interface_packages import NUM, TELEMETRY, interface_package, tutorial_workspace
 
@@ -35,25 +40,33 @@ TELEMETRY_HEARD = (
 )
 
 
+@dataclass(frozen=True)
+class LiveLab:
+    app: App
+    ws: Path
+    foxglove_port: int
+
+
 @pytest.fixture(scope="module")
-def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, Path]]:
+def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LiveLab]:
     root = tmp_path_factory.mktemp("interface_nodes")
     ws = root / "ws"
     tutorial_workspace(ws)
     interface_package(ws / "src/broken_interfaces", "broken_interfaces", BROKEN_CMAKE,
                       {"msg/Bad.msg": "int32 ok\nint32 LIMIT=1.5\n", "msg/Fine.msg": "int32 fine\n"})  # fmt: skip
+    fox = free_port()
     app = App(root, "--launch", str(REPO / "server/packages/rocketship/launch/rocket.launch"),
-              "--workspace", str(ws), "start_delay:=600", cwd=root)  # fmt: skip
+              "--workspace", str(ws), "--foxglove-port", str(fox), "start_delay:=600", cwd=root)  # fmt: skip
     try:
-        yield app, ws
+        yield LiveLab(app, ws, fox)
     finally:
         app.stop()
 
 
 @pytest.fixture
-def run(lab: tuple[App, Path], tmp_path: Path) -> Iterator[Any]:
+def run(lab: LiveLab, tmp_path: Path) -> Iterator[Any]:
     """``ros2lab run PKG EXEC ARGS`` as a student types it, from a folder with no ./workspace."""
-    app, _ws = lab
+    app = lab.app
     started: list[NodeProcess] = []
 
     def start(pkg: str, exe: str, *args: str) -> NodeProcess:
@@ -74,8 +87,8 @@ def rosbags_store(*definitions: tuple[str, str]) -> Any:
     return store
 
 
-def test_tutorial_publisher_and_subscriber_and_a_rest_publish(run: Any, lab: tuple[App, Path]) -> None:
-    app, _ws = lab
+def test_tutorial_publisher_and_subscriber_and_a_rest_publish(run: Any, lab: LiveLab) -> None:
+    app = lab.app
     listener = run("py_custom", "listener")
     talker = run("py_custom", "talker")
     numbers = [int(m[1]) for m in listener.wait_for(HEARD, 3, START_S)]
@@ -96,8 +109,8 @@ def test_tutorial_publisher_and_subscriber_and_a_rest_publish(run: Any, lab: tup
     assert "Traceback" not in listener.text + talker.text
 
 
-def test_service_between_two_processes_and_called_from_the_cli(run: Any, lab: tuple[App, Path]) -> None:
-    app, _ws = lab
+def test_service_between_two_processes_and_called_from_the_cli(run: Any, lab: LiveLab) -> None:
+    app = lab.app
     server = run("py_custom", "service")
     client = run("py_custom", "client", "2", "3", "4")
     assert client.finish(START_S) == 0, client.text[-2000:]
@@ -114,8 +127,10 @@ def test_service_between_two_processes_and_called_from_the_cli(run: Any, lab: tu
     assert server.interrupt() == 0, server.text[-2000:]
 
 
-def test_telemetry_echoed_recorded_and_on_the_wire_with_rosbags_hash(run: Any, lab: tuple[App, Path]) -> None:
-    app, _ws = lab
+def test_telemetry_echoed_in_foxglove_recorded_and_on_the_wire_with_rosbags_hash(
+    run: Any, lab: LiveLab
+) -> None:
+    app = lab.app
     store = rosbags_store(("tutorial_interfaces/msg/Num", NUM), ("fleet_interfaces/msg/Telemetry", TELEMETRY))
     expected_hash = store.hash_rihs01("fleet_interfaces/msg/Telemetry")
     session = raw_session(app)
@@ -142,6 +157,15 @@ def test_telemetry_echoed_recorded_and_on_the_wire_with_rosbags_hash(run: Any, l
         assert echo.returncode == 0, echo.stderr
         assert "callsign: uav_1" in echo.stdout and "frame_id: map" in echo.stdout, echo.stdout
         assert "- red" in echo.stdout and "mode: 1" in echo.stdout, echo.stdout
+
+        channel, frame = asyncio.run(foxglove_first(lab.foxglove_port, "/telemetry"))
+        assert (channel["schemaName"], channel["schemaEncoding"], channel["encoding"]) == (
+            "fleet_interfaces/msg/Telemetry", "ros2msg", "cdr")  # fmt: skip
+        schema = McapSchema(
+            id=1, name=channel["schemaName"], encoding="ros2msg", data=channel["schema"].encode()
+        )
+        shown = DecoderFactory().decoder_for("cdr", schema)(frame)
+        assert (shown.callsign, list(shown.codes), shown.corners[1].y) == ("uav_1", [7, 8, 9], 2.0)
 
         recording = app.post("/api/bag/recordings", {"topics": ["/telemetry"], "name": "telemetry"})
         assert recording.status_code == 201, recording.text
@@ -185,6 +209,24 @@ def test_telemetry_echoed_recorded_and_on_the_wire_with_rosbags_hash(run: Any, l
     )
 
 
+async def foxglove_first(port: int, topic: str) -> tuple[dict[str, Any], bytes]:
+    """A Foxglove client's view of ``topic``: its channel and the payload of its first message."""
+    async with websockets.connect(f"ws://127.0.0.1:{port}", subprotocols=["foxglove.sdk.v1"],
+                                  open_timeout=START_S, max_size=None) as ws, asyncio.timeout(START_S):  # fmt: skip
+        channel: dict[str, Any] | None = None
+        while channel is None:
+            frame = await ws.recv()
+            if isinstance(frame, str) and json.loads(frame)["op"] == "advertise":
+                channel = next((c for c in json.loads(frame)["channels"] if c["topic"] == topic), None)
+        await ws.send(
+            json.dumps({"op": "subscribe", "subscriptions": [{"id": 7, "channelId": channel["id"]}]})
+        )
+        while True:
+            frame = await ws.recv()
+            if isinstance(frame, bytes) and frame[0] == 0x01 and struct.unpack_from("<I", frame, 1)[0] == 7:
+                return channel, frame[13:]  # opcode, subscription id, log time, then the CDR
+
+
 def raw_session(app: App) -> Any:
     config = zenoh.Config()
     config.insert_json5("mode", json.dumps("client"))
@@ -193,8 +235,8 @@ def raw_session(app: App) -> Any:
     return zenoh.open(config)
 
 
-def test_broken_definition_is_logged_and_the_lab_and_other_types_work(lab: tuple[App, Path]) -> None:
-    app, ws = lab
+def test_broken_definition_is_logged_and_the_lab_and_other_types_work(lab: LiveLab) -> None:
+    app, ws = lab.app, lab.ws
     bad = ws / "src/broken_interfaces/msg/Bad.msg"
     assert f"{bad}:2: '1.5' is not an integer" in app.log_tail(20000)
     fine = app.post(
