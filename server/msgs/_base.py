@@ -11,14 +11,15 @@ and of messages are lists.
 
 from __future__ import annotations
 
+import array
 import keyword
 import math
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, TypeAlias
 
 import numpy as np
 
-from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, FieldSpec, MessageSpec, lab_definitions
+from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, FieldSpec, MessageSpec, ServiceSpec, lab_definitions
 
 MAX_STRING_CHARS = 65536
 MAX_ARRAY_ITEMS = 65536
@@ -38,6 +39,17 @@ NUMPY_DTYPES: dict[str, type[np.generic]] = {
     "float32": np.float32,
     "float64": np.float64,
 }
+# A sequence (``T[]``, ``T[<=N]``) of numbers is an ``array.array`` of this type code, as rclpy
+# makes it (so ``append`` works and it prints as ``array('i', [0, 1])``); fixed-size arrays are numpy.
+ARRAY_TYPECODES = {
+    "int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i", "uint32": "I",
+    "int64": "q", "uint64": "Q", "float32": "f", "float64": "d",
+}  # fmt: skip
+if TYPE_CHECKING:  # what the generated classes annotate a sequence field with
+    IntArray: TypeAlias = array.array[int]
+    FloatArray: TypeAlias = array.array[float]
+else:  # array.array takes no subscript at run time before Python 3.12
+    IntArray = FloatArray = array.array
 _CLASSES: dict[str, type[Message]] = {}
 
 
@@ -89,7 +101,9 @@ class Field:
     """One field of a message class: its spec, and ``kind``, the primitive name or message class
     of one value (of one element, for an array)."""
 
-    __slots__ = ("array", "bound", "default", "exact", "kind", "name", "size", "spec", "string_bound")
+    __slots__ = (
+        "array", "bound", "default", "exact", "kind", "name", "size", "spec", "string_bound", "typecode",
+    )  # fmt: skip
 
     def __init__(self, spec: FieldSpec, kind: str | type[Message]) -> None:
         self.spec = spec
@@ -99,6 +113,7 @@ class Field:
         self.size = spec.array_size
         self.bound = spec.array_bound
         self.string_bound = spec.string_bound
+        self.typecode = ARRAY_TYPECODES.get(kind) if spec.is_sequence and isinstance(kind, str) else None
         if spec.default is not None:
             self.default: Any = spec.default
         elif isinstance(kind, str):
@@ -128,6 +143,8 @@ class Field:
         """A fresh default value for a new message."""
         if not self.array:
             return self.default if isinstance(self.kind, str) else self.kind()
+        if self.typecode is not None:
+            return array.array(self.typecode, self.default or [])
         if self.numeric_array:
             kind = str(self.kind)
             if isinstance(self.default, list):
@@ -158,8 +175,10 @@ class Field:
                 raise MessageError(f"{path}[{i}]", f"expected {kind.TYPE}, got {type(item).__name__}")
         return list(items)
 
-    def _check_length(self, value: Any, path: str) -> Sequence[Any] | np.ndarray[Any, Any]:
-        if isinstance(value, str | bytes | Mapping) or not isinstance(value, Sequence | np.ndarray):
+    def _check_length(self, value: Any, path: str) -> Any:
+        if isinstance(value, str | bytes | Mapping) or not isinstance(
+            value, Sequence | np.ndarray | array.array
+        ):
             raise MessageError(path, f"expected an array ({self.type_name}), got {type(value).__name__}")
         if isinstance(value, np.ndarray) and value.ndim != 1:
             raise MessageError(path, f"expected a one-dimensional array, got shape {value.shape}")
@@ -171,9 +190,16 @@ class Field:
             raise MessageError(path, f"more than {limit} items ({n})")
         return value
 
-    def _numeric_array(self, items: Sequence[Any] | np.ndarray[Any, Any], path: str) -> np.ndarray[Any, Any]:
+    def _numeric_array(self, items: Any, path: str) -> Any:
         kind = str(self.kind)
         dtype = NUMPY_DTYPES[kind]
+        code = self.typecode
+        if code is not None:
+            if isinstance(items, array.array) and items.typecode == code:
+                return array.array(code, items)
+            if isinstance(items, np.ndarray) and items.dtype == dtype:
+                return array.array(code, items.tobytes())
+            return array.array(code, [check_primitive(kind, v, f"{path}[{i}]") for i, v in enumerate(items)])
         if isinstance(items, np.ndarray) and items.dtype == dtype:
             return items.copy()
         checked = [check_primitive(kind, v, f"{path}[{i}]") for i, v in enumerate(items)]
@@ -182,6 +208,8 @@ class Field:
     def copy_value(self, value: Any) -> Any:
         if not self.array:
             return value if isinstance(self.kind, str) else value.copy()
+        if self.typecode is not None:
+            return array.array(self.typecode, value)
         if self.numeric_array:
             return value.copy()
         return list(value) if isinstance(self.kind, str) else [v.copy() for v in value]
@@ -305,6 +333,8 @@ def _copy_expression(field: Field, value: str) -> str:
     """Python source for what ``field.copy_value(value)`` returns."""
     if not field.array:
         return value if isinstance(field.kind, str) else f"{value}.copy()"
+    if field.typecode is not None:
+        return f"_array({field.typecode!r}, {value})"
     if field.numeric_array:
         return f"{value}.copy()"
     return f"list({value})" if isinstance(field.kind, str) else f"[v.copy() for v in {value}]"
@@ -319,7 +349,7 @@ def _compile_methods(cls: type[Message]) -> None:
     if any(keyword.iskeyword(n) or n in ("self", "new") or n.startswith("_") for n in names):
         return  # a name Python would not take as a parameter: the generic methods serve
     env: dict[str, Any] = {
-        "_new": object.__new__, "_missing": _MISSING, "_type": cls.TYPE, "_sorted": sorted, "_type_of": type,
+        "_new": object.__new__, "_array": array.array, "_missing": _MISSING, "_type": cls.TYPE, "_sorted": sorted, "_type_of": type,
     }  # fmt: skip
     params, init_lines, copy_lines = [], [], []
     for i, f in enumerate(cls.FIELDS):
@@ -368,11 +398,13 @@ class Service:
     Request: ClassVar[type[Message]]
     Response: ClassVar[type[Message]]
 
-    def __init_subclass__(cls, type_name: str | None = None, **kwargs: Any) -> None:
+    def __init_subclass__(
+        cls, type_name: str | None = None, spec: ServiceSpec | None = None, **kwargs: Any
+    ) -> None:
         super().__init_subclass__(**kwargs)
         if type_name is None:
             return
-        spec = lab_definitions().services[type_name]
+        spec = spec or lab_definitions().services[type_name]
         if spec.request.name != cls.Request.TYPE or spec.response.name != cls.Response.TYPE:
             raise TypeError(f"{cls.__name__}: Request/Response do not match {type_name}")
         cls.TYPE = type_name
