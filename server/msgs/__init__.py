@@ -2,7 +2,8 @@
 ``.msg``/``.srv`` files (server/msgs/interfaces) and looked up by name."""
 
 from ._action import Action
-from ._base import Field, Message, MessageError, Service
+from ._base import Message, Service
+from ._field import Field, MessageError
 from .registry import (
     UnknownTypeError,
     action_names,

@@ -13,7 +13,7 @@ import sys
 from collections.abc import Iterable
 from pathlib import Path
 
-from ._base import ARRAY_TYPECODES
+from ._field import ARRAY_TYPECODES
 from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, Definitions, FieldSpec, MessageSpec, lab_definitions
 
 LINE_LENGTH = 110  # ruff's, in pyproject.toml
@@ -178,9 +178,11 @@ def package_module(package: str, definitions: Definitions) -> str:
         imports += [*numpy, ""]
     if actions:
         imports.append("from .._action import Action")
-    bases = [a for a in ("FloatArray", "IntArray") if f": {a}" in text]
-    bases += ["Message"] + (["Service"] if services else [])
+    bases = ["Message"] + (["Service"] if services else [])
     imports.append(f"from .._base import {', '.join(bases)}")
+    arrays = [a for a in ("FloatArray", "IntArray") if f": {a}" in text]
+    if arrays:
+        imports.append(f"from .._field import {', '.join(arrays)}")
     by_package: dict[str, list[str]] = {}
     for dep in sorted(foreign):
         by_package.setdefault(dep.split("/")[0], []).append(_class_name(dep))

@@ -19,7 +19,8 @@ import numpy as np
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.store import Typestore
 
-from ._base import Field, Message, MessageError, message_class, message_classes
+from ._base import Message, message_class, message_classes
+from ._field import Field, MessageError
 from .action_spec import action_description_text
 from .idl import Definitions, lab_definitions
 

@@ -8,7 +8,8 @@ from typing import TYPE_CHECKING, Any
 import numpy.typing as npt
 
 from .._action import Action
-from .._base import IntArray, Message, Service
+from .._base import Message, Service
+from .._field import IntArray
 from .action_msgs import CancelGoal, GoalStatusArray
 from .builtin_interfaces import Time
 from .unique_identifier_msgs import UUID

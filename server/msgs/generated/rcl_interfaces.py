@@ -8,7 +8,8 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 import numpy.typing as npt
 
-from .._base import FloatArray, IntArray, Message, Service
+from .._base import Message, Service
+from .._field import FloatArray, IntArray
 from .builtin_interfaces import Time
 
 
