@@ -102,7 +102,14 @@ def action_send_goal(args: argparse.Namespace, client: LabClient) -> int:
     name = "/" + args.action_name.lstrip("/")
     action_type = args.action_type.replace("/action/", "/").replace("/", "/action/", 1)
     given = parse_message(sys.stdin.read() if args.stdin else args.goal)
-    goal = filled_message(client.get(f"/api/types/{action_type}_Goal/default"), given)
+    try:
+        default = client.get(f"/api/types/{action_type}_Goal/default")
+    except ApiError as exc:
+        if exc.status != 404 or exc.no_route:
+            raise
+        print(f"The passed action type is invalid: {args.action_type}", file=sys.stderr)
+        return 1
+    goal = filled_message(default, given)
     print("Waiting for an action server to become available...", flush=True)
     _wait_for_server(client, name)
     print(f"Sending goal:\n     {message_to_yaml(goal, truncate_length=None)}", flush=True)

@@ -6,7 +6,7 @@ from __future__ import annotations
 from typing import Any, ClassVar
 
 from ._base import Message, Service, define_message
-from .action_spec import CANCEL_GOAL, GOAL_STATUS_ARRAY, ActionSpec
+from .action_spec import CANCEL_GOAL, GOAL_STATUS_ARRAY, ActionSpec, parse_action
 from .idl import lab_definitions
 
 _ACTIONS: dict[str, type[Action]] = {}
@@ -96,9 +96,18 @@ def define_action(spec: ActionSpec) -> type[Action]:
     return cls
 
 
+def action_type_from_text(package: str, name: str, text: str) -> type[Action]:
+    """The action class of ``<package>/action/<name>`` defined by ``text`` (a ``.action`` file's),
+    with its messages and services; a DefinitionError names what does not parse."""
+    full = f"{package}/action/{name}"
+    return define_action(parse_action(full, text, source=f"{package}/action/{name}.action"))
+
+
 def defined_service(type_name: str) -> type[Service] | None:
     """A service class :func:`define_action` made (None if it made none of that name)."""
     return _SERVICES.get(type_name)
 
 
-__all__ = ["Action", "action_class", "action_classes", "define_action", "defined_service"]
+__all__ = [
+    "Action", "action_class", "action_classes", "action_type_from_text", "define_action", "defined_service",
+]  # fmt: skip

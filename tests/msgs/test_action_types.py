@@ -10,7 +10,7 @@ import pytest
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
 from server.msgs import get_action_type, type_names
-from server.msgs._action import define_action
+from server.msgs._action import action_type_from_text
 from server.msgs.action_spec import parse_action
 from server.msgs.idl import DefinitionError, Definitions
 from server.msgs.wire import build_typestore, dds_type_name, deserialize, ros_type_name, serialize
@@ -73,7 +73,7 @@ def test_sequences_are_arrays_that_append_and_print_as_rclpy_and_fixed_arrays_st
 def test_action_defined_from_text_at_run_time_gets_classes_and_hashes_as_rosbags_does() -> None:
     text = "# count up to\nint32 target\n---\nbool done\n---\nint32 at\n"
     spec = parse_action("counter_msgs/action/Count", text)
-    count = define_action(spec)
+    count = action_type_from_text("counter_msgs", "Count", text)
     assert count.Goal(target=3).target == 3 and count.Impl.SendGoalService.TYPE.endswith("Count_SendGoal")
     assert get_action_type("counter_msgs/Count") is count
     # rosbags' own typestore, fed by hand, agrees with the one the lab builds from the definition

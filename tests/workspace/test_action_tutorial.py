@@ -141,6 +141,8 @@ def test_ros2lab_action_verbs_find_the_server_process_and_send_it_a_goal(
         "Result:\n    sequence:\n- 0\n- 1\n- 1\n- 2\n\n"
         "Goal finished with status: SUCCEEDED\n"
     )
+    code, out, err = finish(ros2lab(app, root, "action", "send_goal", "/fibonacci", "no_msgs/action/Nope"))
+    assert (code, out) == (1, "") and "The passed action type is invalid: no_msgs/action/Nope" in err, err
     code, out, err = finish(ros2lab(app, root, "action", "list", "-t"))
     assert code == 0, err
     assert "/fibonacci [action_tutorials_interfaces/action/Fibonacci]\n" in out
