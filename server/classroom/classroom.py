@@ -42,7 +42,8 @@ from .workers import (
 )
 
 if TYPE_CHECKING:
-    from server.transport.domain_bridge import BridgeStats, DomainBridge
+    from server.transport.domain_bridge import DomainBridge
+    from server.transport.domain_routes import BridgeStats
 
     from .class_bridges import ClassBridges
     from .class_router import ClassRouter
