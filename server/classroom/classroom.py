@@ -15,6 +15,7 @@ import math
 import re
 import secrets
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -44,10 +45,10 @@ from .workers import (
 if TYPE_CHECKING:
     from server.transport.domain_bridge import DomainBridge
     from server.transport.domain_routes import BridgeStats
+    from server.viewer.class_view import ClassView
 
     from .class_bridges import ClassBridges
     from .class_router import ClassRouter
-    from .class_view import ClassView
     from .local_workers import LocalWorkers
 
 log = logging.getLogger("classroom")
@@ -55,8 +56,6 @@ CODE_ALPHABET = "ABCDEFGHJKLMNPQRSTUVWXYZ23456789"  # no 0/O, 1/I: read aloud or
 CODE_CHARS = 6
 MAX_NAME_CHARS = 32
 MAX_DOMAIN_ID = 232  # ROS 2's highest ROS_DOMAIN_ID
-VIEW_HZ = 10.0  # the instructor's 3D view: local worlds' drones
-REMOTE_VIEW_HZ = 2.0  # and world workers' (one call per worker)
 WORKERS_BACK_S = 10.0  # how long a reopened router waits for its world workers to answer again
 # A world's name is a ROS namespace token: letters, digits and underscores, not starting with a digit.
 _NOT_NAME = re.compile(r"[^a-z0-9_]+")
@@ -173,7 +172,6 @@ class Classroom:
         self._watch: asyncio.Task[None] | None = None  # the class server's hellos, or a worker's orphan check
         self.view: ClassView | None = None  # the instructor's 3D view of every world (a class server's)
         self._view_task: asyncio.Task[None] | None = None
-        self._remote_drones: dict[str, list[float] | None] = {}  # worker worlds' drones, last fetched
         self._silent_workers = Silence(settings.worker_timeout_s)
         # This process's and machine's CPU: a worker's hello, the class server's placing. Each reads
         # it every WATCH_PERIOD_S (a hello, a watch round), so a load covers the last seconds.
@@ -247,10 +245,10 @@ class Classroom:
         its own, so students' node processes join their world with its ROS_DOMAIN_ID. On a world
         worker: join the class's router and answer the class server's hellos."""
         if not self.is_worker and self.settings.viewer:
-            from .class_view import ClassView
+            from server.viewer.class_view import ClassView, run_class_view
 
             self.view = ClassView(asyncio.get_running_loop())
-            self._view_task = asyncio.create_task(self._view_loop())
+            self._view_task = asyncio.create_task(run_class_view(self.view, self.clock, self))
         zenoh = self.settings.zenoh
         if zenoh is None:
             return
@@ -302,37 +300,23 @@ class Classroom:
             )  # fmt: skip
             self.local_workers.start()
 
-    # -- the instructor's 3D view ------------------------------------------------------------------
-    async def _view_loop(self) -> None:
-        """Move the class view's drones while the instructor's page shows it: local worlds' at
-        VIEW_HZ from their latest GPS fix, workers' as often as REMOTE_VIEW_HZ asks them."""
-        assert self.view is not None
-        remote_at = -math.inf
-        while True:
-            await asyncio.sleep(1.0 / VIEW_HZ)
-            if not self.view.watched():
-                continue
-            try:
-                now = self.clock.now()
-                if now - remote_at >= 1.0 / REMOTE_VIEW_HZ or now < remote_at:
-                    remote_at = now
-                    self._remote_drones = await self._fetch_remote_drones()
-                self.view.show(self.drones())
-            except Exception:  # the view must outlive any one round
-                log.exception("updating the class view failed; trying again")
-
-    def drones(self) -> dict[str, tuple[str, list[float] | None]]:
-        """Every world's student and drone position, as the class view shows them (None: not known now)."""
+    # -- the instructor's 3D view: its drones (server/viewer/class_view.py moves them) -------------
+    def drones(
+        self, remote: Mapping[str, list[float] | None] | None = None
+    ) -> dict[str, tuple[str, list[float] | None]]:
+        """Every world's student and drone position, as the class view shows them (None: not known
+        now); a worker's world's from ``remote`` (the latest its worker reported)."""
+        remote = remote or {}
         out: dict[str, tuple[str, list[float] | None]] = {}
         for world in self.worlds.values():
             if world.lab is not None:
                 position = drone_position(world.lab)
             else:
-                position = None if world.lost is not None else self._remote_drones.get(world.name)
+                position = None if world.lost is not None else remote.get(world.name)
             out[world.name] = (world.student, position)
         return out
 
-    async def _fetch_remote_drones(self) -> dict[str, list[float] | None]:
+    async def remote_drones(self) -> dict[str, list[float] | None]:
         reports, _errors = await self._worker_reports()
         found: dict[str, list[float] | None] = {}
         for (_wid, name), report in reports.items():
