@@ -22,17 +22,24 @@ from api.ws_cap import SocketCapMiddleware
 from api.ws_refusal import WebSocketRefusalMiddleware
 from server.bridges.runner import run_bridges
 from server.bus import Clock
-from server.classroom import Classroom
+from server.classroom import Classroom, ClassServer, WorldWorker
 from server.lab import Lab
 from server.settings import Settings
 
 STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 
 
+def _classroom(settings: Settings, clock: Clock | None) -> Classroom:
+    """A class server, or on a world worker (server/world_worker.py) the worlds it hosts."""
+    if settings.worker is not None:
+        return WorldWorker(settings, clock, code=settings.class_code)
+    return ClassServer(settings, clock, code=settings.class_code)
+
+
 def create_app(settings: Settings | None = None, clock: Clock | None = None) -> FastAPI:
     settings = settings or Settings()
 
-    classroom = Classroom(settings, clock, code=settings.class_code) if settings.classroom else None
+    classroom = _classroom(settings, clock) if settings.classroom else None
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:

@@ -60,6 +60,7 @@ class Lab:
         self.packages.interfaces(log_problems=True)  # a student's own .msg/.srv types, with no build
         self.launcher = Launcher(self.bus, self.packages)
         self.launcher.all_processes = settings.node_processes == "all"
+        self.launcher.confined = settings.confines_paths
         self.keyboard = KeyboardDevice()
         self.bus.devices["keyboard"] = self.keyboard
         self.key_deadman = KeyDeadMan(self.keyboard, self.bus, settings.deadman_s)

@@ -5,7 +5,7 @@ type_name="geometry_msgs/msg/Vector3")``); its fields, defaults and constants co
 interface definition (server.msgs.idl), so the generated classes only add what mypy needs to
 see. Messages stay mutable like rclpy's (lab code does ``self.abort.data = True``); the bus
 copies a message when it is published, so a subscriber never sees a later change made by the
-publisher. Classes are also made at run time from parsed definitions (a student's own
+publisher. How each field holds its value is server.msgs._field's. Classes are also made at run time from parsed definitions (a student's own
 interfaces): :func:`define_message` and :func:`define_service`.
 """
 
@@ -14,9 +14,9 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any, ClassVar
 
+from ._field import FLOAT32_MAX, MAX_ARRAY_ITEMS, MAX_STRING_CHARS, Field, MessageError
 from .compiled import compile_methods
 from .definitions import lab_definitions
-from .field import FLOAT32_MAX, MAX_ARRAY_ITEMS, MAX_STRING_CHARS, Field, MessageError
 from .idl import MessageSpec, ServiceSpec
 
 __all__ = ["FLOAT32_MAX", "MAX_ARRAY_ITEMS", "MAX_STRING_CHARS", "Field", "Message", "MessageError",

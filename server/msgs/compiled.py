@@ -3,11 +3,12 @@ methods (messages are built and copied on every publish)."""
 
 from __future__ import annotations
 
+import array
 import keyword
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from .field import Field
+from ._field import Field
 
 if TYPE_CHECKING:
     from ._base import Message
@@ -17,6 +18,8 @@ def _copy_expression(field: Field, value: str) -> str:
     """Python source for what ``field.copy_value(value)`` returns."""
     if not field.array:
         return value if isinstance(field.kind, str) else f"{value}.copy()"
+    if field.typecode is not None:
+        return f"_array({field.typecode!r}, {value})"
     if field.numeric_array:
         return f"{value}.copy()"
     return f"list({value})" if isinstance(field.kind, str) else f"[v.copy() for v in {value}]"
@@ -31,7 +34,7 @@ def compile_methods(cls: type[Message]) -> None:
     if any(keyword.iskeyword(n) or n in ("self", "new") or n.startswith("_") for n in names):
         return  # a name Python would not take as a parameter: the generic methods serve
     env: dict[str, Any] = {
-        "_new": object.__new__, "_missing": _MISSING, "_type": cls.TYPE, "_sorted": sorted, "_type_of": type,
+        "_new": object.__new__, "_array": array.array, "_missing": _MISSING, "_type": cls.TYPE, "_sorted": sorted, "_type_of": type,
     }  # fmt: skip
     params, init_lines, copy_lines = [], [], []
     for i, f in enumerate(cls.FIELDS):

@@ -130,7 +130,7 @@ def _full_type_name(base: str, package: str) -> str:
         return f"{package}/msg/{base}"
     if len(parts) == 2:
         return f"{parts[0]}/msg/{parts[1]}"
-    if len(parts) == 3 and parts[1] in ("msg", "srv"):
+    if len(parts) == 3 and parts[1] in ("msg", "srv", "action"):
         return base
     raise ValueError(f"bad type name {base!r}")
 

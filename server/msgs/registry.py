@@ -1,4 +1,5 @@
-"""Look message and service types up by their ROS name; ``std_msgs/Bool`` and ``std_msgs/msg/Bool`` both work.
+"""Look message, service and action types up by their ROS name; ``std_msgs/Bool`` and
+``std_msgs/msg/Bool`` both work.
 
 The names are the lab's own types and those added at run time (server.msgs.catalog); a name not
 known yet asks the catalog to refresh (a package a student just wrote) before it is refused.
@@ -8,20 +9,21 @@ from __future__ import annotations
 
 from . import catalog
 from . import generated as _generated  # declares every class  # noqa: F401
+from ._action import Action, action_classes
 from ._base import Message, Service, message_class, service_classes
 
 
 class UnknownTypeError(LookupError):
-    """No message (or service) type of that name."""
+    """No message (or service, or action) type of that name."""
 
     def __init__(self, name: str, kind: str = "message") -> None:
         self.name = name
-        known = _message_names() if kind == "message" else _service_names()
+        known = {"message": _message_names, "service": _service_names, "action": _action_names}[kind]()
         super().__init__(f"unknown {kind} type {name!r} (known: {', '.join(known)})")
 
 
 def normalize_type_name(name: str, kind: str = "msg") -> str:
-    """``pkg/Name`` → ``pkg/msg/Name`` (or ``pkg/srv/Name``), as ros2 accepts both spellings."""
+    """``pkg/Name`` → ``pkg/msg/Name`` (or ``pkg/srv/Name``, ``pkg/action/Name``), as ros2 accepts both."""
     parts = name.strip().split("/")
     if len(parts) == 2 and all(parts):
         return f"{parts[0]}/{kind}/{parts[1]}"
@@ -41,12 +43,21 @@ def _service(name: str) -> type[Service] | None:
     return service_classes().get(name) if name in catalog.definitions().services else None
 
 
+def _action(name: str) -> type[Action] | None:
+    return action_classes().get(name)  # the catalog's, and any made straight from a text
+
+
 def _message_names() -> list[str]:
-    return sorted(catalog.definitions().messages)
+    """The message types (an action's own messages are found by name, not listed)."""
+    return sorted(n for n in catalog.definitions().messages if "/msg/" in n)
 
 
 def _service_names() -> list[str]:
-    return sorted(catalog.definitions().services)
+    return sorted(n for n in catalog.definitions().services if "/srv/" in n)
+
+
+def _action_names() -> list[str]:
+    return sorted(action_classes())
 
 
 def get_type(name: str) -> type[Message]:
@@ -81,3 +92,21 @@ def service_names() -> list[str]:
     """Every service type known now (refreshed first)."""
     catalog.refresh()
     return _service_names()
+
+
+def get_action_type(name: str) -> type[Action]:
+    """``pkg/action/Name`` (or ``pkg/Name``) → its action class."""
+    full = normalize_type_name(name, "action")
+    found = _action(full)
+    if found is None:
+        catalog.refresh()
+        found = _action(full)
+    if found is None:
+        raise UnknownTypeError(name, "action")
+    return found
+
+
+def action_names() -> list[str]:
+    """Every action type known now (refreshed first)."""
+    catalog.refresh()
+    return _action_names()

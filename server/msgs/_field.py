@@ -1,14 +1,13 @@
-"""One field of a message type: its checks on assignment, its default, its JSON and copies.
-
-Numeric arrays are numpy arrays (as rclpy's fixed-size arrays are); arrays of strings and of
-messages are lists. A value that does not fit is a :class:`MessageError` naming the field's path.
-"""
+"""One field of a message class: what a value must be to fit it, and how it is copied, compared
+and turned into JSON. Fixed-size numeric arrays are numpy arrays, numeric sequences
+``array.array``s (as rclpy makes them), arrays of strings and of messages lists."""
 
 from __future__ import annotations
 
+import array
 import math
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
@@ -35,6 +34,17 @@ NUMPY_DTYPES: dict[str, type[np.generic]] = {
     "float32": np.float32,
     "float64": np.float64,
 }
+# A sequence (``T[]``, ``T[<=N]``) of numbers is an ``array.array`` of this type code, as rclpy
+# makes it (so ``append`` works and it prints as ``array('i', [0, 1])``); fixed-size arrays are numpy.
+ARRAY_TYPECODES = {
+    "int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i", "uint32": "I",
+    "int64": "q", "uint64": "Q", "float32": "f", "float64": "d",
+}  # fmt: skip
+if TYPE_CHECKING:  # what the generated classes annotate a sequence field with
+    IntArray: TypeAlias = array.array[int]
+    FloatArray: TypeAlias = array.array[float]
+else:  # array.array takes no subscript at run time before Python 3.12
+    IntArray = FloatArray = array.array
 
 
 class MessageError(ValueError):
@@ -85,7 +95,9 @@ class Field:
     """One field of a message class: its spec, and ``kind``, the primitive name or message class
     of one value (of one element, for an array)."""
 
-    __slots__ = ("array", "bound", "default", "exact", "kind", "name", "size", "spec", "string_bound")
+    __slots__ = (
+        "array", "bound", "default", "exact", "kind", "name", "size", "spec", "string_bound", "typecode",
+    )  # fmt: skip
 
     def __init__(self, spec: FieldSpec, kind: str | type[Message]) -> None:
         self.spec = spec
@@ -95,6 +107,7 @@ class Field:
         self.size = spec.array_size
         self.bound = spec.array_bound
         self.string_bound = spec.string_bound
+        self.typecode = ARRAY_TYPECODES.get(kind) if spec.is_sequence and isinstance(kind, str) else None
         if spec.default is not None:
             self.default: Any = spec.default
         elif isinstance(kind, str):
@@ -124,6 +137,8 @@ class Field:
         """A fresh default value for a new message."""
         if not self.array:
             return self.default if isinstance(self.kind, str) else self.kind()
+        if self.typecode is not None:
+            return array.array(self.typecode, self.default or [])
         if self.numeric_array:
             kind = str(self.kind)
             if isinstance(self.default, list):
@@ -154,8 +169,10 @@ class Field:
                 raise MessageError(f"{path}[{i}]", f"expected {kind.TYPE}, got {type(item).__name__}")
         return list(items)
 
-    def _check_length(self, value: Any, path: str) -> Sequence[Any] | np.ndarray[Any, Any]:
-        if isinstance(value, str | bytes | Mapping) or not isinstance(value, Sequence | np.ndarray):
+    def _check_length(self, value: Any, path: str) -> Any:
+        if isinstance(value, str | bytes | Mapping) or not isinstance(
+            value, Sequence | np.ndarray | array.array
+        ):
             raise MessageError(path, f"expected an array ({self.type_name}), got {type(value).__name__}")
         if isinstance(value, np.ndarray) and value.ndim != 1:
             raise MessageError(path, f"expected a one-dimensional array, got shape {value.shape}")
@@ -167,9 +184,16 @@ class Field:
             raise MessageError(path, f"more than {limit} items ({n})")
         return value
 
-    def _numeric_array(self, items: Sequence[Any] | np.ndarray[Any, Any], path: str) -> np.ndarray[Any, Any]:
+    def _numeric_array(self, items: Any, path: str) -> Any:
         kind = str(self.kind)
         dtype = NUMPY_DTYPES[kind]
+        code = self.typecode
+        if code is not None:
+            if isinstance(items, array.array) and items.typecode == code:
+                return array.array(code, items)
+            if isinstance(items, np.ndarray) and items.dtype == dtype:
+                return array.array(code, items.tobytes())
+            return array.array(code, [check_primitive(kind, v, f"{path}[{i}]") for i, v in enumerate(items)])
         if isinstance(items, np.ndarray) and items.dtype == dtype:
             return items.copy()
         checked = [check_primitive(kind, v, f"{path}[{i}]") for i, v in enumerate(items)]
@@ -178,6 +202,8 @@ class Field:
     def copy_value(self, value: Any) -> Any:
         if not self.array:
             return value if isinstance(self.kind, str) else value.copy()
+        if self.typecode is not None:
+            return array.array(self.typecode, value)
         if self.numeric_array:
             return value.copy()
         return list(value) if isinstance(self.kind, str) else [v.copy() for v in value]
