@@ -2,7 +2,7 @@
 
 Like ros2's, this reads the definitions where they are, not the graph: the lab's own interfaces
 and the interface packages of the workspace (:mod:`server.cli.workspace` says which), read from
-their ``.msg``/``.srv`` files with no build step. ``show`` prints the definition with its comments
+their ``.msg``/``.srv``/``.action`` files with no build step. ``show`` prints the definition with its comments
 and constants, each nested type's definition indented one tab under the field that uses it. A
 workspace definition that cannot load is one line on stderr naming its file and line, and exit
 code 1; everything else is still listed.
@@ -22,7 +22,7 @@ from server.packages import PackageIndex, WorkspaceInterfaces
 from .client import LabClient
 from .workspace import add_workspace_option, workspace_of
 
-KIND_TITLES = {"msg": "Messages", "srv": "Services"}
+KIND_TITLES = {"msg": "Messages", "srv": "Services", "action": "Actions"}
 
 
 def _load(args: argparse.Namespace, client: LabClient) -> WorkspaceInterfaces | None:
@@ -36,13 +36,25 @@ def _report(problems: list[str]) -> int:
 
 
 def _names(kind: str) -> list[str]:
+    """The types of one kind (an action's own messages and services are not listed, as in ROS)."""
     definitions = catalog.definitions()
-    return sorted(definitions.messages if kind == "msg" else definitions.services)
+    found: dict[str, list[str]] = {
+        "msg": list(definitions.messages), "srv": list(definitions.services), "action": list(definitions.actions),
+    }  # fmt: skip
+    return sorted(n for n in found[kind] if f"/{kind}/" in n)
 
 
 def interface_list(args: argparse.Namespace, client: LabClient) -> int:
     reader = _load(args, client)
-    kinds = ["msg"] if args.only_msgs else ["srv"] if args.only_srvs else ["msg", "srv"]
+    kinds = (
+        ["msg"]
+        if args.only_msgs
+        else ["srv"]
+        if args.only_srvs
+        else ["action"]
+        if args.only_actions
+        else list(KIND_TITLES)
+    )
     for kind in kinds:
         print(f"{KIND_TITLES[kind]}:")
         for name in _names(kind):
@@ -77,8 +89,9 @@ def interface_show(args: argparse.Namespace, client: LabClient) -> int:
     reader = _load(args, client)
     wanted = args.type.strip().strip("/")
     definitions = catalog.definitions()
-    candidates = [normalize_type_name(wanted), normalize_type_name(wanted, "srv"), wanted]
-    name = next((n for n in candidates if n in definitions.messages or n in definitions.services), None)
+    candidates = [normalize_type_name(wanted, kind) for kind in KIND_TITLES] + [wanted]
+    known = (definitions.messages, definitions.services, definitions.actions)
+    name = next((n for n in candidates if any(n in kind for kind in known)), None)
     if name is None:
         problem = next(filter(None, (reader.problem_of(n) for n in candidates)), None) if reader else None
         print(problem or f"Unknown interface '{args.type}': no such message or service type", file=sys.stderr)
@@ -95,6 +108,7 @@ def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
     only = p.add_mutually_exclusive_group()
     only.add_argument("-m", "--only-msgs", action="store_true", help="Print out only the messages")
     only.add_argument("-s", "--only-srvs", action="store_true", help="Print out only the services")
+    only.add_argument("-a", "--only-actions", action="store_true", help="Print out only the actions")
     add_workspace_option(p)
     p.set_defaults(handler=interface_list)
 

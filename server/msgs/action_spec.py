@@ -62,9 +62,10 @@ def parse_action(name: str, text: str, *, source: str | None = None) -> ActionSp
         raise DefinitionError(f"{source or name}: an action has two '---' lines, found {len(marks)}")
     sections = ["\n".join(lines[: marks[0]]), "\n".join(lines[marks[0] + 1 : marks[1]])]
     sections.append("\n".join(lines[marks[1] + 1 :]))
+    firsts = (1, marks[0] + 2, marks[1] + 2)  # each section's first line in the file
     goal, result, feedback = (
-        parse_message(f"{name}_{part}", section, source=source)
-        for part, section in zip(("Goal", "Result", "Feedback"), sections, strict=True)
+        parse_message(f"{name}_{part}", section, source=source, first_line=first)
+        for part, section, first in zip(("Goal", "Result", "Feedback"), sections, firsts, strict=True)
     )
     send_goal = _service(
         f"{name}_SendGoal", f"{UUID} goal_id\n{goal.name} goal", f"bool accepted\n{TIME} stamp"

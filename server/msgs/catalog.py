@@ -17,7 +17,9 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable, Iterable
 
+from ._action import define_action
 from ._base import define_message, define_service
+from .action_spec import ActionSpec
 from .definitions import Definitions, lab_definitions
 from .idl import MessageSpec, ServiceSpec
 
@@ -98,6 +100,28 @@ def _resolve(
     return loaded, loaded_services, problems
 
 
+def _resolve_actions(
+    actions: list[ActionSpec], available: set[str], declared: set[str]
+) -> tuple[dict[str, ActionSpec], list[str]]:
+    """The actions whose parts nest only known types (their own parts among them)."""
+    loaded: dict[str, ActionSpec] = {}
+    problems: list[str] = []
+    lab = lab_definitions().actions
+    for action in actions:
+        if action.name in lab:
+            continue  # the lab's own (a course's copy): the lab's is used
+        parts = [*action.messages, *_parts(action.services)]
+        known = available | {p.name for p in parts}
+        missing = [
+            _missing(p, known, declared) for p in parts if not all(d in known for d in p.dependencies())
+        ]
+        if missing:
+            problems.append(missing[0])
+        else:
+            loaded[action.name] = action
+    return loaded, problems
+
+
 def _differs(spec: MessageSpec, own: MessageSpec | None) -> bool:
     """A copy of one of the lab's own types (keyboard_msgs from the course) is the lab's; a
     different definition under its name is refused, since the lab's nodes use the lab's."""
@@ -115,6 +139,7 @@ def replace_added(
     source: str,
     messages: Iterable[MessageSpec],
     services: Iterable[ServiceSpec],
+    actions: Iterable[ActionSpec] = (),
     broken: Iterable[str] = (),
 ) -> list[str]:
     """Make these the types added from ``source``, in place of those it added before; returns one
@@ -125,22 +150,35 @@ def replace_added(
         loaded, loaded_services, problems = _resolve(
             source, list(messages), list(services), frozenset(broken)
         )
-        before = added(source)
-        if loaded == before.messages and loaded_services == before.services:
-            return problems
+        lab = lab_definitions()
+        available = set(lab.messages) | {p.name for p in _parts(lab.services.values())} | set(loaded)
+        available |= {p.name for p in _parts(loaded_services.values())}
+        for other, defs in _added.items():
+            if other != source:
+                available |= set(defs.messages) | {p.name for p in _parts(defs.services.values())}
+        loaded_actions, action_problems = _resolve_actions(list(actions), available, set(broken))
+        now = Definitions(
+            {**loaded, **{m.name: m for a in loaded_actions.values() for m in a.messages}},
+            {**loaded_services, **{s.name: s for a in loaded_actions.values() for s in a.services}},
+            loaded_actions,
+        )
+        if now == added(source):
+            return problems + action_problems
         for spec in loaded.values():
             define_message(spec, module=f"{spec.package}.msg")
         for service in loaded_services.values():
             define_service(service, module=f"{service.name.split('/')[0]}.srv")
-        _added[source] = Definitions(loaded, loaded_services)
-        lab = lab_definitions()
-        messages_now, services_now = dict(lab.messages), dict(lab.services)
+        for action in loaded_actions.values():
+            define_action(action)
+        _added[source] = now
+        merged = Definitions(dict(lab.messages), dict(lab.services), dict(lab.actions))
         for defs in _added.values():
-            messages_now.update(defs.messages)
-            services_now.update(defs.services)
-        _merged = Definitions(messages_now, services_now)
+            merged.messages.update(defs.messages)
+            merged.services.update(defs.services)
+            merged.actions.update(defs.actions)
+        _merged = merged
         _generation += 1
-    return problems
+    return problems + action_problems
 
 
 def add_refresher(refresh: Callable[[], object]) -> None:

@@ -69,6 +69,10 @@ def interface_text(type_name: str, *, depth: int = 0) -> str:
     """The definition as ``ros2 interface show`` prints it: each nested type's definition follows
     the field that uses it, indented one tab further."""
     definitions = catalog.definitions()
+    if type_name in definitions.actions:
+        action = definitions.actions[type_name]
+        parts = [_expanded(part.name, depth) for part in (action.goal, action.result, action.feedback)]
+        return "\n".join([*parts[0], "---", *parts[1], "---", *parts[2]]) + "\n"
     if type_name in definitions.services:
         service = definitions.services[type_name]
         request = _expanded(service.request.name, depth)

@@ -3,7 +3,7 @@
 A package declares its interfaces as ROS 2 does: the files named in ``rosidl_generate_interfaces``
 of its ``CMakeLists.txt`` (``${VAR}`` of a ``set(VAR ...)`` expanded); without that call, a package
 that is a member of ``rosidl_interface_packages`` (package.xml) has every ``msg/*.msg`` and
-``srv/*.srv``. The types are added to this process's catalog (server.msgs.catalog), so they are
+``srv/*.srv`` and ``action/*.action``. The types are added to this process's catalog (server.msgs.catalog), so they are
 found by name like the lab's own. A file that does not parse, a type it nests that no package
 declares, or a file the CMakeLists names that is not there, is one line naming the file and line
 (``problems``); the package's other types and the rest of the workspace still load.
@@ -21,13 +21,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from server.msgs import catalog
+from server.msgs.action_spec import ActionSpec, parse_action
 from server.msgs.idl import DefinitionError, MessageSpec, ServiceSpec, parse_message, parse_service
 
 from .manifest import MANIFEST, WorkspaceError, read_manifest
 from .workspace import find_packages
 
 CMAKE = "CMakeLists.txt"
-KINDS = {".msg": "msg", ".srv": "srv"}
+KINDS = {".msg": "msg", ".srv": "srv", ".action": "action"}
 _ROSIDL = re.compile(r"\brosidl_generate_interfaces\s*\(([^)]*)\)", re.IGNORECASE)
 _SET = re.compile(r"\bset\s*\(\s*(\w+)([^)]*)\)", re.IGNORECASE)
 _VAR = re.compile(r"\$\{(\w+)\}")
@@ -83,7 +84,7 @@ def _declared_files(package: str, folder: Path) -> tuple[list[tuple[str, str]], 
             if whole is not None:
                 expanded = variables.get(whole[1], [])
             for item in expanded:
-                if item.endswith(tuple(KINDS)) or item.endswith(".action"):
+                if item.endswith(tuple(KINDS)):
                     found.append((item, f"{cmake}:{first_line + offset - 1}"))
     return found, called
 
@@ -94,12 +95,10 @@ def package_interfaces(name: str, folder: Path, member: bool) -> InterfacePackag
     declared, called = _declared_files(name, folder)
     if not called and member:
         declared = [(str(p.relative_to(folder)), str(folder / MANIFEST))
-                    for kind in ("msg", "srv") for p in sorted((folder / kind).glob(f"*.{kind}"))]  # fmt: skip
+                    for kind in KINDS.values() for p in sorted((folder / kind).glob(f"*.{kind}"))]  # fmt: skip
     for rel, where in declared:
         path = folder / rel
-        kind = KINDS.get(path.suffix)
-        if kind is None:
-            continue  # an .action: not a message or service type
+        kind = KINDS[path.suffix]
         if not path.is_file():
             package.problems.append(f"{where}: no file {rel} in {folder}")
         elif path.parent.name != kind or not _TYPE_NAME.match(path.stem):
@@ -109,25 +108,33 @@ def package_interfaces(name: str, folder: Path, member: bool) -> InterfacePackag
     return package
 
 
-def _parse(package: InterfacePackage) -> tuple[list[MessageSpec], list[ServiceSpec], list[str]]:
-    """The package's messages and services, and the names of those that did not parse."""
-    messages: list[MessageSpec] = []
-    services: list[ServiceSpec] = []
-    broken: list[str] = []
+@dataclass
+class Parsed:
+    """What a workspace's interface files hold, and the names of those that did not parse."""
+
+    messages: list[MessageSpec] = field(default_factory=list)
+    services: list[ServiceSpec] = field(default_factory=list)
+    actions: list[ActionSpec] = field(default_factory=list)
+    broken: list[str] = field(default_factory=list)
+
+
+def _parse(package: InterfacePackage, parsed: Parsed) -> None:
     for item in package.files:
         try:
             text = item.path.read_text(encoding="utf-8")
-            if item.type_name.split("/")[1] == "msg":
-                messages.append(parse_message(item.type_name, text, source=str(item.path)))
+            kind, source = item.type_name.split("/")[1], str(item.path)
+            if kind == "msg":
+                parsed.messages.append(parse_message(item.type_name, text, source=source))
+            elif kind == "srv":
+                parsed.services.append(parse_service(item.type_name, text, source=source))
             else:
-                services.append(parse_service(item.type_name, text, source=str(item.path)))
+                parsed.actions.append(parse_action(item.type_name, text, source=source))
         except DefinitionError as exc:
             package.problems.append(str(exc))
-            broken.append(item.type_name)
+            parsed.broken.append(item.type_name)
         except (OSError, UnicodeDecodeError) as exc:
             package.problems.append(f"{item.path}: cannot read it: {exc}")
-            broken.append(item.type_name)
-    return messages, services, broken
+            parsed.broken.append(item.type_name)
 
 
 class WorkspaceInterfaces:
@@ -146,7 +153,11 @@ class WorkspaceInterfaces:
     def _fingerprint(self, folders: list[Path]) -> tuple[tuple[str, int, int], ...]:
         stamps = []
         for folder in folders:
-            paths = [folder / MANIFEST, folder / CMAKE, *folder.glob("msg/*"), *folder.glob("srv/*")]
+            paths = [
+                folder / MANIFEST,
+                folder / CMAKE,
+                *(p for kind in KINDS.values() for p in folder.glob(f"{kind}/*")),
+            ]
             for path in paths:
                 try:
                     stat = path.stat()
@@ -165,9 +176,7 @@ class WorkspaceInterfaces:
                 return self.problems
             self._seen = fingerprint
             packages: dict[str, InterfacePackage] = {}
-            messages: list[MessageSpec] = []
-            services: list[ServiceSpec] = []
-            broken: list[str] = []
+            parsed = Parsed()
             for pkg in members:
                 try:
                     manifest = read_manifest(pkg.path / MANIFEST)
@@ -177,11 +186,10 @@ class WorkspaceInterfaces:
                 if not interfaces.files and not interfaces.problems:
                     continue
                 packages[pkg.name] = interfaces
-                parsed = _parse(interfaces)
-                messages += parsed[0]
-                services += parsed[1]
-                broken += parsed[2]
-            left_out = catalog.replace_added(self.source, messages, services, broken)
+                _parse(interfaces, parsed)
+            left_out = catalog.replace_added(
+                self.source, parsed.messages, parsed.services, parsed.actions, parsed.broken
+            )
             self.packages = packages
             self._left_out = left_out
             before, self.problems = (
@@ -195,7 +203,8 @@ class WorkspaceInterfaces:
             return self.problems
 
     def problem_of(self, type_name: str) -> str | None:
-        """Why ``pkg/msg/Name`` (or ``pkg/srv/Name``) of this workspace did not load, if it did not."""
+        """Why ``pkg/msg/Name`` (``pkg/srv/Name``, ``pkg/action/Name``) of this workspace did not
+        load, if it did not."""
         package = self.packages.get(type_name.split("/")[0])
         if package is None:
             return None

@@ -1,7 +1,8 @@
 """A node process imports a workspace's interface packages as rclpy imports generated ones:
-``from tutorial_interfaces.msg import Num``, ``from tutorial_interfaces.srv import AddThreeInts``.
+``from tutorial_interfaces.msg import Num``, ``from tutorial_interfaces.srv import AddThreeInts``,
+``from my_action_interfaces.action import Fibonacci``.
 
-A finder at the front of ``sys.meta_path`` answers for ``<pkg>``, ``<pkg>.msg`` and ``<pkg>.srv``
+A finder at the front of ``sys.meta_path`` answers for ``<pkg>``, ``<pkg>.msg``, ``.srv`` and ``.action``
 of each interface package of the workspace the lab gives its node processes (``$ROS2LAB_WORKSPACE``,
 read on the first import that could be one), and for nothing else: the lab's own message packages
 and every other module are found as before. A type whose definition cannot load is an ImportError
@@ -21,12 +22,13 @@ from types import ModuleType
 from typing import Any
 
 from server.msgs import catalog
+from server.msgs._action import action_classes
 from server.msgs._base import message_class, service_classes
 from server.msgs.definitions import lab_definitions
 from server.packages.interfaces import InterfacePackage, WorkspaceInterfaces, workspace_interfaces
 
 WORKSPACE_ENV = "ROS2LAB_WORKSPACE"
-KINDS = ("msg", "srv")
+KINDS = ("msg", "srv", "action")
 LAB_PACKAGES = frozenset(n.split("/")[0] for n in [*lab_definitions().messages, *lab_definitions().services])
 
 
@@ -36,7 +38,10 @@ def _types_of(reader: WorkspaceInterfaces, package: str, kind: str) -> dict[str,
     prefix = f"{package}/{kind}/"
     if kind == "msg":
         return {n.rsplit("/", 1)[1]: message_class(n) for n in added.messages if n.startswith(prefix)}
-    services = service_classes()
+    if kind == "action":
+        actions = action_classes()
+        return {n.rsplit("/", 1)[1]: actions[n] for n in added.actions if n.startswith(prefix)}
+    services = service_classes()  # not an action's own services (pkg/action/Name_SendGoal)
     return {n.rsplit("/", 1)[1]: services[n] for n in added.services if n.startswith(prefix)}
 
 

@@ -68,6 +68,12 @@ def test_package_and_list_and_packages_name_the_students_types(
     assert listed.index("Messages:") < listed.index("    fleet_interfaces/msg/Telemetry") < listed.index(
         "Services:") < listed.index("    tutorial_interfaces/srv/AddThreeInts")  # fmt: skip
     assert "    std_msgs/msg/String" in listed and "    std_srvs/srv/Trigger" in listed
+    assert listed.index("Actions:") < listed.index("    custom_action_interfaces/action/Fibonacci")
+    assert not any("Fibonacci_" in line for line in listed)  # an action's own types are not listed
+    actions = interface(capsys, "package", "custom_action_interfaces", "--workspace", str(ws))
+    assert (actions.code, actions.out) == (0, "custom_action_interfaces/action/Fibonacci\n")
+    shown = interface(capsys, "show", "custom_action_interfaces/action/Fibonacci", "--workspace", str(ws))
+    assert shown.out == "int32 order\n---\nint32[] sequence\n---\nint32[] partial_sequence\n"
     only = interface(capsys, "list", "-s", "--workspace", str(ws)).out.splitlines()
     assert only[0] == "Services:" and "Messages:" not in only
     packages = interface(capsys, "packages", "--workspace", str(ws)).out.split()

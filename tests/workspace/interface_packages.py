@@ -1,12 +1,15 @@
 """Students' interface packages, as ROS 2's "Creating custom msg and srv files" tutorial lays them
-out (``tutorial_interfaces``, ament_cmake), a package of richer definitions that nests it, and
-the tutorial's nodes rewritten to use them, as ament_python packages."""
+out (``tutorial_interfaces``, ament_cmake), a package of richer definitions that nests it, the
+action tutorial's ``custom_action_interfaces``, and the tutorials' nodes rewritten to use them,
+as ament_python packages."""
 
 from __future__ import annotations
 
 import textwrap
 from pathlib import Path
 
+from .action_packages import CLIENT as ACTION_CLIENT
+from .action_packages import SERVER as ACTION_SERVER
 from .tutorial_packages import python_package, write
 
 INTERFACE_MANIFEST = """\
@@ -89,6 +92,22 @@ set(msg_files
 rosidl_generate_interfaces(${PROJECT_NAME}
   ${msg_files}
   DEPENDENCIES std_msgs geometry_msgs tutorial_interfaces
+)
+
+ament_package()
+"""
+
+# ROS 2's "Creating an action" tutorial: custom_action_interfaces with action/Fibonacci.action.
+FIBONACCI = "int32 order\n---\nint32[] sequence\n---\nint32[] partial_sequence\n"
+ACTION_CMAKE = """\
+cmake_minimum_required(VERSION 3.8)
+project(custom_action_interfaces)
+
+find_package(ament_cmake REQUIRED)
+find_package(rosidl_default_generators REQUIRED)
+
+rosidl_generate_interfaces(${PROJECT_NAME}
+  "action/Fibonacci.action"
 )
 
 ament_package()
@@ -303,13 +322,20 @@ def tutorial_workspace(ws: Path) -> None:
     })  # fmt: skip
     interface_package(ws / "src/tutorials/fleet_interfaces", "fleet_interfaces", FLEET_CMAKE,
                       {"msg/Telemetry.msg": TELEMETRY})  # fmt: skip
+    interface_package(ws / "src/tutorials/custom_action_interfaces", "custom_action_interfaces", ACTION_CMAKE,
+                      {"action/Fibonacci.action": FIBONACCI})  # fmt: skip
+    students = "from custom_action_interfaces.action import Fibonacci"
+    action_nodes = {"fibonacci_server": ACTION_SERVER, "fibonacci_client": ACTION_CLIENT}
     modules = {"publisher_member_function": NUM_PUBLISHER, "subscriber_member_function": NUM_SUBSCRIBER,
                "service_member_function": THREE_INTS_SERVICE, "client_member_function": THREE_INTS_CLIENT,
-               "telemetry_publisher": TELEMETRY_PUBLISHER, "telemetry_subscriber": TELEMETRY_SUBSCRIBER}  # fmt: skip
+               "telemetry_publisher": TELEMETRY_PUBLISHER, "telemetry_subscriber": TELEMETRY_SUBSCRIBER,
+               **{m: t.replace("from action_tutorials_interfaces.action import Fibonacci", students)
+                  for m, t in action_nodes.items()}}  # fmt: skip
     scripts = [f"{short} = py_custom.{module}:main" for short, module in [
         ("talker", "publisher_member_function"), ("listener", "subscriber_member_function"),
         ("service", "service_member_function"), ("client", "client_member_function"),
         ("telemetry_talker", "telemetry_publisher"), ("telemetry_listener", "telemetry_subscriber"),
+        ("fibonacci_server", "fibonacci_server"), ("fibonacci_client", "fibonacci_client"),
     ]]  # fmt: skip
     python_package(
         ws / "src/py_custom", "py_custom", scripts, {m: textwrap.dedent(t) for m, t in modules.items()}

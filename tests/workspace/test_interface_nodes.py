@@ -127,6 +127,18 @@ def test_service_between_two_processes_and_called_from_the_cli(run: Any, lab: Li
     assert server.interrupt() == 0, server.text[-2000:]
 
 
+def test_students_action_between_two_processes(run: Any) -> None:
+    server = run("py_custom", "fibonacci_server")
+    client = run("py_custom", "fibonacci_client", "--ros-args", "-p", "order:=5")
+    assert client.finish(START_S) == 0, client.text[-2000:]
+    assert re.search(r"\[fibonacci_action_client\]: Received feedback: array\('i', \[0, 1, 1, 2\]\)$", client.text,
+                     re.MULTILINE), client.text  # fmt: skip
+    assert re.search(r"\[fibonacci_action_client\]: Result: array\('i', \[0, 1, 1, 2, 3, 5\]\)$", client.text,
+                     re.MULTILINE), client.text  # fmt: skip
+    server.wait_for(r"\[fibonacci_action_server\]: Executing goal\.\.\.$")
+    assert server.interrupt() == 0, server.text[-2000:]
+
+
 def test_telemetry_echoed_in_foxglove_recorded_and_on_the_wire_with_rosbags_hash(
     run: Any, lab: LiveLab
 ) -> None:

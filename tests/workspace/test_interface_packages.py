@@ -15,11 +15,13 @@ import pytest
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from support.app import REPO
 
-from server.msgs import MessageError, UnknownTypeError, get_service_type, get_type
+from server.msgs import MessageError, UnknownTypeError, get_action_type, get_service_type, get_type
+from server.msgs.schema import interface_text
 from server.msgs.wire import deserialize, serialize, type_hash
 from server.packages.interfaces import workspace_interfaces
 
 from .interface_packages import (
+    ACTION_CMAKE,
     ADD_THREE_INTS,
     NUM,
     SPHERE,
@@ -53,7 +55,31 @@ def test_tutorial_interfaces_nested_below_src_load_as_types(ws: Path) -> None:
     service = get_service_type("tutorial_interfaces/srv/AddThreeInts")
     assert service.Request(a=1, b=2, c=3).to_dict() == {"a": 1, "b": 2, "c": 3}
     assert service.Response().sum == 0
-    assert sorted(workspace_interfaces(ws).packages) == ["fleet_interfaces", "tutorial_interfaces"]
+    assert sorted(workspace_interfaces(ws).packages) == [
+        "custom_action_interfaces", "fleet_interfaces", "tutorial_interfaces"]  # fmt: skip
+
+
+def test_students_action_has_its_parts_wire_types_hash_and_definition(ws: Path) -> None:
+    fibonacci = get_action_type("custom_action_interfaces/Fibonacci")
+    assert fibonacci.Goal(order=5).order == 5 and list(fibonacci.Result(sequence=[0, 1]).sequence) == [0, 1]
+    assert fibonacci.Impl.SendGoalService.TYPE == "custom_action_interfaces/action/Fibonacci_SendGoal"
+    assert fibonacci.Impl.FeedbackMessage().feedback.partial_sequence.tolist() == []
+    goal = "custom_action_interfaces/action/Fibonacci_Goal"
+    assert type_hash(goal) == rosbags_hash({goal: "int32 order"}, goal)
+    assert (
+        interface_text(fibonacci.TYPE)
+        == "int32 order\n---\nint32[] sequence\n---\nint32[] partial_sequence\n"
+    )
+
+
+def test_bad_action_names_its_file_and_the_line_in_its_section(tmp_path: Path) -> None:
+    folder = tmp_path / "src/custom_action_interfaces"
+    interface_package(folder, "custom_action_interfaces", ACTION_CMAKE,
+                      {"action/Fibonacci.action": "int32 order\n---\n# the answer\nNope sequence\n---\n"})  # fmt: skip
+    problems = workspace_interfaces(tmp_path).problems
+    assert problems == [
+        f"{folder / 'action/Fibonacci.action'}:4: unknown type custom_action_interfaces/msg/Nope"
+    ]
 
 
 def test_telemetry_has_its_constants_defaults_and_bounds(ws: Path) -> None:
@@ -213,9 +239,11 @@ IMPORTS = """
 from tutorial_interfaces.msg import Num, Sphere
 from tutorial_interfaces.srv import AddThreeInts
 from fleet_interfaces.msg import Telemetry
+from custom_action_interfaces.action import Fibonacci
 import tutorial_interfaces.msg as module
 
 print(Num(num=4), Sphere().radius, AddThreeInts.Request(c=2).c, Telemetry.MODE_FLYING, module.__all__)
+print(Fibonacci.Goal(order=3))
 if __name__ == '__main__':
     pass
 """
@@ -241,7 +269,10 @@ def run_node_file(ws: Path, source: str) -> subprocess.CompletedProcess[str]:
 def test_node_process_imports_the_workspaces_types(ws: Path) -> None:
     done = run_node_file(ws, IMPORTS)
     assert done.returncode == 0, done.stderr
-    assert done.stdout.strip() == "tutorial_interfaces.msg.Num(num=4) 0.0 2 1 ['Num', 'Sphere']"
+    assert done.stdout.splitlines() == [
+        "tutorial_interfaces.msg.Num(num=4) 0.0 2 1 ['Num', 'Sphere']",
+        "custom_action_interfaces.action.Fibonacci_Goal(order=3)",
+    ]
 
 
 def test_node_importing_a_broken_type_exits_1_with_one_line_naming_the_definition(ws: Path) -> None:
