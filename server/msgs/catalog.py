@@ -1,11 +1,11 @@
 """The interface types this process knows: the lab's own, and those added while it runs.
 
 A student's interface packages (read from a workspace by server.packages.interfaces) are added
-here as parsed definitions. Their messages and services become classes like the lab's own, found
+here as parsed definitions. Their messages, services and actions become classes like the lab's own, found
 by name (server.msgs.registry), with their CDR layout and RIHS01 hash (server.msgs.wire) and their
 text (``interface show``, bags, Foxglove), with no build step. A type that cannot load (it nests a
-type no package declares, or one that did not load itself, or it has a name of the lab's own) is
-left out and named in one line with its file and line; every other type loads.
+type no package declares, or one that did not load itself, or it redefines one of the lab's own)
+is left out and named in one line with its file and line; every other type loads.
 
 ``generation()`` changes whenever the added types do, so what is computed from the definitions
 (typestores, hashes) is computed again. Lookups that miss call the refreshers (a lab registers
@@ -185,11 +185,6 @@ def add_refresher(refresh: Callable[[], object]) -> None:
     """Call ``refresh`` when a lookup misses (once per function, however often it is added)."""
     if refresh not in _refreshers:
         _refreshers.append(refresh)
-
-
-def remove_refresher(refresh: Callable[[], object]) -> None:
-    if refresh in _refreshers:
-        _refreshers.remove(refresh)
 
 
 def refresh() -> None:
