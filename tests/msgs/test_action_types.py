@@ -91,7 +91,7 @@ def test_action_defined_from_text_at_run_time_gets_classes_and_hashes_as_rosbags
     [
         ("int32 a\n---\nint32 b\n", "an action has two '---' lines, found 1"),
         ("int32 a\n---\nint32 b\n---\nint32 c\n---\n", "an action has two '---' lines, found 3"),
-        ("int32 a\n---\nbadtype! b\n---\n", "counter_msgs/action/Bad_Result:1: expected 'TYPE NAME'"),
+        ("int32 a\n---\nbadtype! b\n---\n", "counter_msgs/action/Bad_Result:3: expected 'TYPE NAME'"),
     ],
 )
 def test_bad_action_definition_names_what_is_wrong(text: str, problem: str) -> None:
