@@ -197,6 +197,11 @@ def test_the_tutorial_prints_hello_and_takes_param_set_from_ros2lab(
     node.wait_for(r"Hello earth!\n(.*\n)*.*Hello world!$")  # the node set it back, as the tutorial's does
     listed = param(app, "list", "/minimal_param_node")
     assert listed.stdout == "  my_parameter\n  use_sim_time\n"
+    every = param(app, "list", "--param-type")  # every node process, each under its name
+    assert (
+        "/minimal_param_node:\n  my_parameter (type: string)\n  use_sim_time (type: boolean)\n"
+        in every.stdout
+    )
     described = param(app, "describe", "/minimal_param_node", "my_parameter")
     assert described.stdout == (
         "Parameter name: my_parameter\n  Type: string\n  Description: This parameter is mine!\n  Constraints:\n"
