@@ -33,6 +33,11 @@ def summary(view: TopicView) -> dict[str, Any]:
     }
 
 
+def _views(lab: Lab) -> list[TopicView]:
+    """The graph's topics, but one that only the app's watch holds (its other endpoints are gone)."""
+    return [v for v in topic_views(lab.bus, lab.remote_graph()) if v.publishers or _subscribers(v)]
+
+
 def _subscribers(view: TopicView) -> list[EndpointView]:
     """The topic's subscriptions but the app's own watch: asking about a topic does not change what
     ``topic info`` counts."""
@@ -43,7 +48,7 @@ def _subscribers(view: TopicView) -> list[EndpointView]:
 async def list_topics(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
     """Every topic in the graph, this process's and other processes', with its type, publishers and
     subscribers (``hidden=true`` adds /rosout and the like)."""
-    return [summary(v) for v in topic_views(lab.bus, lab.remote_graph()) if hidden or not v.hidden]
+    return [summary(v) for v in _views(lab) if hidden or not v.hidden]
 
 
 @router.get("/topics/{name:path}", response_model=TopicDetail, responses=responses(NOT_FOUND, 422))
@@ -52,7 +57,7 @@ async def topic_info(name: str, lab: LabDep) -> dict[str, Any]:
     with where it runs. For a topic only other processes use, the first request starts listening,
     as ``ros2 topic echo`` does (``watch`` says so; ``latest`` is null until a message comes)."""
     full = "/" + validate_topic_name(name).lstrip("/")
-    views = [v for v in topic_views(lab.bus, lab.remote_graph()) if v.name == full]
+    views = [v for v in _views(lab) if v.name == full]
     if not views:
         raise UnknownTopicError(full)
     view = next((v for v in views if v.local), views[0])
