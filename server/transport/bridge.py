@@ -26,8 +26,9 @@ import zenoh.ext
 from ..bus import Bus, Clock, Future, Node, Publisher, ServiceClient, ServiceServer, Subscription, SystemClock
 from ..limits import RateLimit
 from ..msgs import Message, Service
-from ..msgs.wire import WireError, dds_type_name, deserialize, prepare, type_hash
+from ..msgs.wire import WireError, dds_type_name, type_hash
 from .attachment import Attachment
+from .cdr import decode
 from .inbox import Inbox
 from .keys import TRANSIENT_LOCAL, EntityKind, EntityToken, data_key, liveliness_prefix
 from .publishing import RemotePublisher, Stats, declare_remote_publisher, wire_qos
@@ -133,11 +134,8 @@ class ZenohBridge:
     def endpoint_added(self, endpoint: object) -> None:
         if self._closed:
             return
-        if isinstance(endpoint, Publisher | Subscription):
-            prepare(endpoint.msg_type.TYPE)
-        elif isinstance(endpoint, ServiceServer | ServiceClient):
-            prepare(endpoint.srv_type.Request.TYPE)
-            prepare(endpoint.srv_type.Response.TYPE)
+        # Messages go through cdr.py, which generates no code: nothing to prepare before a
+        # Ctrl-C can land (rosbags' generated code once had to be built here).
         if isinstance(endpoint, Publisher):
             self._add_publisher(endpoint)
         elif isinstance(endpoint, Subscription):
@@ -275,7 +273,7 @@ class ZenohBridge:
                 continue
             for payload, stamp_ns in payloads:
                 try:
-                    msg = deserialize(topic.msg_type.TYPE, payload)
+                    msg = decode(topic.msg_type, payload)
                 except WireError as exc:
                     self.stats.undecodable += 1
                     log.debug("dropped a sample on %s: %s", name, exc)

@@ -16,8 +16,8 @@ import zenoh
 import zenoh.ext
 
 from ..msgs import Message
-from ..msgs.wire import serialize
 from .attachment import Attachment
+from .cdr import encode
 from .keys import BEST_EFFORT, TRANSIENT_LOCAL, QoS, keep_last
 
 
@@ -67,7 +67,7 @@ class RemotePublisher:
             return
         self.seq += 1
         attachment = Attachment(self.seq, time.time_ns(), self.gid).pack()
-        self.zpub.put(serialize(msg), attachment=attachment)
+        self.zpub.put(encode(msg), attachment=attachment)
         self.stats.sent += 1
 
     def close(self) -> None:

@@ -18,8 +18,9 @@ import zenoh
 from ..bus import Bus, Future, ServiceClient, ServiceServer
 from ..bus.services import PendingCall
 from ..msgs import Message, Service
-from ..msgs.wire import WireError, dds_type_name, deserialize, serialize
+from ..msgs.wire import WireError, dds_type_name
 from .attachment import Attachment
+from .cdr import decode, encode
 from .inbox import Inbox
 from .keys import EntityToken, data_key
 from .publishing import Stats
@@ -60,7 +61,7 @@ class ServiceLink:
             query.drop()
             return
         try:
-            request = deserialize(server.srv_type.Request.TYPE, query.payload.to_bytes())
+            request = decode(server.srv_type.Request, query.payload.to_bytes())
         except WireError as exc:
             query.reply_err(str(exc).encode())
             query.drop()
@@ -72,7 +73,7 @@ class ServiceLink:
             response = done.result()
             if response is not None:
                 att = Attachment(request_att.sequence_number, time.time_ns(), request_att.gid).pack()
-                query.reply(key, serialize(response), attachment=att)
+                query.reply(key, encode(response), attachment=att)
             query.drop()
 
         future.add_done_callback(reply)
@@ -89,13 +90,13 @@ class ServiceLink:
         self._client_seq[id(client)] = seq
         att = Attachment(seq, time.time_ns(), token.gid).pack()
         key = data_key(token.domain_id, client.srv_name, token.dds_type or "", token.type_hash or "")
-        response_type = client.srv_type.Response.TYPE
+        response_type = client.srv_type.Response
         self.session.get(
             key,
             lambda reply: self.inbox.post(("reply", future, reply, response_type)),
             target=zenoh.QueryTarget.ALL_COMPLETE,
             consolidation=zenoh.ConsolidationMode.NONE,
-            payload=serialize(request),
+            payload=encode(request),
             attachment=att,
             timeout=QUERY_TIMEOUT_S,
         )
@@ -103,11 +104,11 @@ class ServiceLink:
     def forget(self, client: ServiceClient) -> None:
         self._client_seq.pop(id(client), None)
 
-    def complete(self, future: Future[Message], reply: zenoh.Reply, response_type: str) -> None:
+    def complete(self, future: Future[Message], reply: zenoh.Reply, response_type: type[Message]) -> None:
         if future.done() or reply.ok is None:
             return
         try:
-            future.set_result(deserialize(response_type, reply.ok.payload.to_bytes()))
+            future.set_result(decode(response_type, reply.ok.payload.to_bytes()))
             self.stats.replies += 1
         except WireError as exc:
             log.warning("undecodable service reply: %s", exc)
