@@ -144,8 +144,8 @@ def package_module(package: str, definitions: Definitions) -> str:
         imports.append("from collections.abc import Sequence")
     imports.append(f"from typing import {', '.join(['TYPE_CHECKING', *typing_names])}")
     imports.append("")
-    if "np." in text:
-        imports += ["import numpy as np", "import numpy.typing as npt", ""]
+    if "np." in text:  # for the annotations only: numpy loads at the first numeric array
+        imports += ["if TYPE_CHECKING:", "    import numpy as np", "    import numpy.typing as npt", ""]
     bases = ["Message"] + (["Service"] if services else [])
     imports.append(f"from .._base import {', '.join(bases)}")
     by_package: dict[str, list[str]] = {}
