@@ -27,6 +27,7 @@ bench/results/node_client.json.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import select
 import shutil
@@ -82,6 +83,7 @@ def role_rclpy_sub(args: argparse.Namespace) -> int:
     import threading
 
     import rclpy
+    from rclpy.executors import ExternalShutdownException
     from rclpy.node import Node
     from std_msgs.msg import String
 
@@ -89,7 +91,12 @@ def role_rclpy_sub(args: argparse.Namespace) -> int:
     rclpy.init(args=["bench_sub"])
     node = Node("bench_sub")
     node.create_subscription(String, TOPIC, lambda msg: got.append((time.time_ns(), msg.data.encode())), 1000)
-    spinner = threading.Thread(target=rclpy.spin, args=(node,), daemon=True)
+
+    def spin() -> None:
+        with contextlib.suppress(ExternalShutdownException):  # the shutdown below ends it
+            rclpy.spin(node)
+
+    spinner = threading.Thread(target=spin, daemon=True)
     spinner.start()
     _serve_until_stop(got, args.max_s)
     rclpy.shutdown()
