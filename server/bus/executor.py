@@ -6,14 +6,13 @@ with the node's name and marks that node crashed; every other node keeps running
 
 from __future__ import annotations
 
-import asyncio
 import contextlib
 import heapq
 import logging
 import math
 import traceback
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .endpoints import Subscription
 from .faults import is_node_fault
@@ -21,6 +20,11 @@ from .graph import Bus
 from .node import Node
 from .services import PendingCall
 
+if TYPE_CHECKING:
+    import asyncio
+
+# asyncio (with ssl, about 10 MiB) is imported where the loop is used: a node process's executor
+# blocks a thread instead and never loads it.
 log = logging.getLogger("bus.executor")
 MAX_CALLBACKS_PER_PASS = 10_000  # bounds a node that keeps re-triggering itself
 
@@ -36,6 +40,8 @@ class _Sleep:
             self._waiter.set_result(None)
 
     async def __call__(self, delay: float) -> None:
+        import asyncio
+
         if delay <= 0:
             await asyncio.sleep(0)  # let the API and WebSockets in between bursts
             return
@@ -169,6 +175,8 @@ class Executor:
     # -- the asyncio loop ----------------------------------------------------
     async def spin(self) -> None:
         """Run callbacks as they come due until ``stop()``; sleeps between them, never busy-waits."""
+        import asyncio
+
         loop = asyncio.get_running_loop()
         self._stopping = False
         self.bus.add_waker(self._wake)
@@ -219,6 +227,8 @@ class ExecutorGroup:
         """Run ``executor``'s bus from now on (on the running loop; starts the group's task)."""
         if executor in self._wakers:
             return
+        import asyncio
+
         loop = asyncio.get_running_loop()
 
         def wake() -> None:
