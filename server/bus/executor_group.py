@@ -58,9 +58,10 @@ class ExecutorGroup:
     def __len__(self) -> int:
         return len(self._members)
 
-    def add(self, executor: Executor) -> None:
+    def add(self, executor: Executor, charge_s: float = 0.0) -> None:
         """Run ``executor``'s bus from now on (on the running loop; starts the group's task). Its
-        time is charged to its bus's label (a world's name) if it has one."""
+        time is charged to its bus's label (a world's name) if it has one, starting with
+        ``charge_s`` (what its start took of the loop)."""
         if executor in self._wakers:
             return
         loop = asyncio.get_running_loop()
@@ -75,7 +76,8 @@ class ExecutorGroup:
 
         self._wakers[executor] = wake
         self._members.append(executor)
-        self._account[executor] = executor.bus.label or executor
+        key = self._account[executor] = executor.bus.label or executor
+        self._usage[key] = self._usage.get(key, 0.0) + max(0.0, charge_s)
         executor.bus.add_waker(wake)
         executor.bus.threadsafe_waker = wake_from_thread
         wake()

@@ -126,7 +126,8 @@ def test_each_world_is_charged_what_its_callbacks_took_and_the_charge_decays() -
 
 def test_the_least_used_world_has_the_first_turn_and_a_reset_keeps_the_charge() -> None:
     """Two worlds both due: the one that used less goes first. A world started again under the
-    same name (a reset gives it a new bus and executor) keeps its charge; a new name starts at 0."""
+    same name (a reset gives it a new bus and executor) keeps its charge and is charged what its
+    start took; a new name starts at 0."""
 
     async def scenario() -> None:
         clock, cost = ManualClock(), ManualClock()
@@ -145,10 +146,10 @@ def test_the_least_used_world_has_the_first_turn_and_a_reset_keeps_the_charge() 
         assert light.ran_at[-1] < heavy.ran_at[-1]  # added second, ran first: it used less
         charged = group.usage_s(heavy.executor)
 
-        group.remove(heavy.executor)  # the reset: the same world, a new bus
+        group.remove(heavy.executor)  # the reset: the same world, a new bus, charged its start
         again = Quiet(clock, cost, "heavy")
-        group.add(again.executor)
-        assert group.usage_s(again.executor) == pytest.approx(charged)
+        group.add(again.executor, charge_s=0.1)
+        assert group.usage_s(again.executor) == pytest.approx(charged + 0.1)
         clock.set(0.03)
         group.wake()
         await settle()
