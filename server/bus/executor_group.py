@@ -50,6 +50,8 @@ class ExecutorGroup:
         self._account: dict[Executor, Hashable] = {}  # whose usage a member's time goes to
         self._usage: dict[Hashable, float] = {}  # decayed seconds of callbacks, by account
         self._decayed_at = cost_clock()
+        self._turn_end = 0.0  # on the cost clock: when the running turn is over
+        self._over = self._turn_over  # bound once: asked between every two callbacks of a turn
         self._woken: set[Executor] = set()  # had news (a message, a timer, a thread's hand-in)
         self._sleep = _Sleep()
         self._task: asyncio.Task[None] | None = None
@@ -128,16 +130,18 @@ class ExecutorGroup:
             else:
                 self._usage[key] = used
 
+    def _turn_over(self) -> bool:
+        return self.cost_clock() >= self._turn_end
+
     def _turn(self, executor: Executor) -> None:
         """One turn of ``executor``: at most ``turn_s`` of its callbacks (at least one), charged."""
-        clock = self.cost_clock
-        start = clock()
-        end = start + self.turn_s
+        start = self.cost_clock()
+        self._turn_end = start + self.turn_s
         try:
-            executor.spin_some(lambda: clock() >= end)
+            executor.spin_some(self._over)
         finally:
             key = self._account.get(executor, executor)
-            self._usage[key] = self._usage.get(key, 0.0) + max(0.0, clock() - start)
+            self._usage[key] = self._usage.get(key, 0.0) + max(0.0, self.cost_clock() - start)
 
     # -- the rounds --------------------------------------------------------
     def _round(self) -> tuple[bool, float]:
@@ -145,10 +149,14 @@ class ExecutorGroup:
         has work, seconds to the soonest deadline)."""
         self._decay(self.cost_clock())
         woken, due = self._woken, []
+        busy, soonest = False, math.inf
         for executor in self._members:
             bus = executor.bus
-            if executor in woken or bus._ready or bus._calls or executor.next_deadline_s() <= bus.clock.now():
+            deadline, now = executor.next_deadline_s(), bus.clock.now()
+            if executor in woken or bus._ready or bus._calls or deadline <= now:
                 due.append(executor)
+            else:
+                soonest = min(soonest, deadline - now)
         if len(due) > 1:
             usage, account = self._usage, self._account
             due.sort(key=lambda e: usage.get(account.get(e, e), 0.0))
@@ -162,14 +170,12 @@ class ExecutorGroup:
                 self.remove(executor)
                 continue
             woken.discard(executor)  # what it published in its turn it has delivered, or left queued
-        busy, soonest = bool(woken), math.inf
-        for executor in self._members:
             bus = executor.bus
             if bus._ready or bus._calls:
                 busy = True
-            else:
+            else:  # a timer its turn left due makes this 0 or less: the next round comes at once
                 soonest = min(soonest, executor.next_deadline_s() - bus.clock.now())
-        return busy, soonest
+        return busy or bool(woken), soonest
 
     async def _spin(self) -> None:
         while not self._stopping:
