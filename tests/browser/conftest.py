@@ -24,8 +24,10 @@ def rocket_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LabServe
         server.stop()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def chromium() -> Iterator[Browser]:
+    """One Chromium for the session (a pytest-xdist worker's share of it); each test's page has a
+    browser context of its own, so no cookie, storage or view choice passes from one to the next."""
     executable = find_chromium()
     with sync_playwright() as playwright:
         browser = playwright.chromium.launch(executable_path=executable, args=CHROMIUM_ARGS)

@@ -16,6 +16,7 @@ Screenshots go to artifacts/screenshots (see conftest.py). Every wait is bounded
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import math
 from collections.abc import Iterator
@@ -87,13 +88,36 @@ def lab_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LabServer]:
         server.stop()
 
 
-def fly_to(server: LabServer, target: tuple[float, float, float]) -> None:
+def send_to(server: LabServer, target: tuple[float, float, float]) -> None:
+    """Publish ``target`` as the drone's setpoint (the keyboard manager adopts it too)."""
     body = {"topic": "/uav/input/position", "msg": dict(zip("xyz", target, strict=True))}
     assert httpx.post(f"{server.url}/api/publish", json=body, timeout=HTTP_TIMEOUT_S).status_code == 200
+
+
+def wait_at(server: LabServer, target: tuple[float, float, float]) -> None:
+    """Until the drone is at ``target`` and still."""
     wait_until(
         lambda: math.dist(position(server), target) < ARRIVED_M, f"the drone at {target}", FLIGHT_WAIT_S
     )
     wait_stopped(server)
+
+
+def fly_to(server: LabServer, target: tuple[float, float, float]) -> None:
+    send_to(server, target)
+    wait_at(server, target)
+
+
+@contextlib.contextmanager
+def page_at_home(
+    chromium: Browser, server: LabServer, viewport: dict[str, int] | None = None
+) -> Iterator[Page]:
+    """A lab page loaded while the drone flies home, handed over once it hovers still at home: the
+    flight and the page's load (10-30 s in software WebGL) go on at the same time."""
+    send_to(server, HOME_M)
+    with lab_page(chromium, viewport) as page:
+        open_lab_page(page, server)
+        wait_at(server, HOME_M)
+        yield page
 
 
 def choose(page: Page, *buttons: str) -> None:
@@ -121,9 +145,10 @@ def test_page_each_view_frames_its_vehicle_and_overlays_never_overlap(
     capsys: pytest.CaptureFixture[str],
 ) -> None:  # fmt: skip
     width, height = size
-    fly_to(lab_server, HOME_M)
+    send_to(lab_server, HOME_M)  # it flies home while the page loads
     with lab_page(chromium, {"width": width, "height": height}) as page:
         open_lab_page(page, lab_server, close_notices=False)
+        wait_at(lab_server, HOME_M)
         page.wait_for_function("() => document.body.innerText.includes('Software WebGL rendering detected')")
 
         choose(page, "Quadrotor", "follow")
@@ -167,9 +192,7 @@ def test_follow_camera_keeps_drone_framed_as_it_flies_to_5_5_10(
     chromium: Browser, lab_server: LabServer, screenshot_dir: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     width, height = 1366, 768
-    fly_to(lab_server, HOME_M)
-    with lab_page(chromium, {"width": width, "height": height}) as page:
-        open_lab_page(page, lab_server)
+    with page_at_home(chromium, lab_server, {"width": width, "height": height}) as page:
         choose(page, "Quadrotor", "follow")
         fly_to(lab_server, FAR_M)
         wait_frames(page, 20)  # the camera catches up (it lags the drone by 0.15 s)
@@ -183,7 +206,7 @@ def test_follow_camera_keeps_drone_framed_as_it_flies_to_5_5_10(
         canvas = page.evaluate(
             "(() => { const r = window.__viserMutable.canvas.getBoundingClientRect(); return [r.width, r.height]; })()"
         )
-    fly_to(lab_server, HOME_M)
+    send_to(lab_server, HOME_M)  # the next test waits for it there, while its page loads
 
     assert_drone_seen(there, "follow at (5, 5, 10)", least(FOLLOW_LEAST, height))
     assert abs(there.centre[0] - canvas[0] / 2) < CENTRED * canvas[0], (there, canvas)
@@ -198,9 +221,7 @@ def test_follow_camera_keeps_drone_framed_as_it_flies_to_5_5_10(
 def test_keydown_moves_setpoint_marker_within_two_animation_frames(
     chromium: Browser, lab_server: LabServer, path: str
 ) -> None:
-    fly_to(lab_server, HOME_M)
-    with lab_page(chromium) as page:
-        open_lab_page(page, lab_server)
+    with page_at_home(chromium, lab_server) as page:
         choose(page, "Quadrotor", "follow")
         page.evaluate(f"window.__teleop.answer.setPath('{path}')")
         page.wait_for_function(
@@ -233,9 +254,7 @@ def test_keydown_moves_setpoint_marker_within_two_animation_frames(
 def test_new_page_opens_on_lab_under_way_remembers_the_view_chosen_and_keys_fly_after_a_switch(
     chromium: Browser, lab_server: LabServer
 ) -> None:
-    fly_to(lab_server, HOME_M)
-    with lab_page(chromium) as page:
-        open_lab_page(page, lab_server)
+    with page_at_home(chromium, lab_server) as page:
         first = page.evaluate("window.__teleop.scene.view.name")  # the rocket waits on its pad: under way
         isolated = page.evaluate("window.crossOriginIsolated && window.__teleop.poses.shared")
         page.wait_for_function(f"() => window.__teleop.hud.poseRate >= {MIN_POSE_RATE_HZ}")

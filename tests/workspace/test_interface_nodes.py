@@ -71,7 +71,7 @@ def run(lab: LiveLab, tmp_path: Path) -> Iterator[Any]:
 
     def start(pkg: str, exe: str, *args: str) -> NodeProcess:
         argv = [sys.executable, "-m", "server", "--url", app.url, "run", pkg, exe, *args]
-        proc = NodeProcess(app, tmp_path / exe, argv=argv)
+        proc = NodeProcess(app, tmp_path / exe, command=argv)
         started.append(proc)
         return proc
 
