@@ -32,7 +32,9 @@ STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 def create_app(settings: Settings | None = None, clock: Clock | None = None) -> FastAPI:
     settings = settings or Settings()
 
-    classroom = Classroom(settings, clock, code=settings.class_code) if settings.classroom else None
+    klass = settings.classroom
+    classroom = Classroom(settings, clock, code=klass.code) if klass is not None else None
+    class_server = klass is not None
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -62,11 +64,10 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
     )
     app.state.classroom = classroom
     app.state.settings = settings
-    app.include_router(build_router(classroom=settings.classroom))
-    if settings.classroom or settings.token is not None:
-        use_token_security(
-            app, classroom=settings.classroom
-        )  # the document says how to show the token, and where it is needed
+    app.include_router(build_router(classroom=class_server))
+    if class_server or settings.listen.token is not None:
+        # the document says how to show the token, and where it is needed
+        use_token_security(app, classroom=class_server)
     app.include_router(page_router)
     app.include_router(tools_router)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
@@ -79,9 +80,9 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
     app.add_middleware(StrictJsonMiddleware)
     app.add_middleware(
         GuardMiddleware,
-        accepted_hosts=settings.accepted_hosts,
-        allowed_origins=settings.allowed_origins,
-        max_body_bytes=settings.max_body_bytes,
+        accepted_hosts=settings.listen.accepted_hosts,
+        allowed_origins=settings.listen.allowed_origins,
+        max_body_bytes=settings.listen.max_body_bytes,
     )
     app.add_middleware(CanonicalPathMiddleware)
     app.add_middleware(ErrorMiddleware)
