@@ -60,6 +60,7 @@ class Lab:
         self.packages = PackageIndex(workspace=settings.lab.workspace)
         self.launcher = Launcher(self.bus, self.packages)
         self.launcher.all_processes = settings.lab.node_processes == "all"
+        self.launcher.confined = settings.confines_paths
         self.keyboard = KeyboardDevice()
         self.bus.devices["keyboard"] = self.keyboard
         self.key_deadman = KeyDeadMan(self.keyboard, self.bus, limits.deadman_s)

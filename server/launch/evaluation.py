@@ -28,9 +28,21 @@ FindPackageShare = Callable[[str], Path]
 class Session:
     find_package_share: FindPackageShare
     environ: Mapping[str, str]
+    # Where included files may lie (resolved, links followed); None: anywhere. A file elsewhere is
+    # refused as a missing one is, so the answer tells nothing of what exists outside.
+    roots: tuple[Path, ...] | None = None
     nodes: list[NodeAction] = field(default_factory=list)
     files: list[str] = field(default_factory=list)
     files_read: int = 1
+
+    def may_read(self, path: Path) -> bool:
+        if self.roots is None:
+            return True
+        try:
+            resolved = path.resolve()
+        except (OSError, RuntimeError):  # a link loop, a name too long
+            return False
+        return any(resolved.is_relative_to(root.resolve()) for root in self.roots)
 
     def note_file(self, file: str) -> None:
         if file not in self.files:
@@ -275,6 +287,8 @@ class FileEvaluator:
         self.session.files_read += 1
         if self.session.files_read > MAX_FILES_READ:
             raise self._error(element, f"more than {MAX_FILES_READ} files included in one launch")
+        if not self.session.may_read(path):
+            raise self._error(element, f"included file not found: {path}")
         try:
             data = read_bytes(path)
         except FileNotFoundError:
@@ -290,8 +304,10 @@ def evaluate(
     args: Mapping[str, str],
     find_package_share: FindPackageShare,
     environ: Mapping[str, str] | None,
+    roots: tuple[Path, ...] | None = None,
 ) -> LaunchDescription:
-    """Evaluate a checked tree from ``file`` with the caller's ``args`` into one flat description."""
+    """Evaluate a checked tree from ``file`` with the caller's ``args`` into one flat description;
+    with ``roots``, an include outside them is refused as a missing file."""
     declared = declared_names(root)
     for name in args:
         if name not in declared:
@@ -299,7 +315,7 @@ def evaluate(
             raise LaunchFileError(
                 file, 0, f"argument '{name}' was given but the file declares no such argument{hint}"
             )
-    session = Session(find_package_share, os.environ if environ is None else environ)
+    session = Session(find_package_share, os.environ if environ is None else environ, roots)
     session.note_file(file)
     evaluator = FileEvaluator(session, file, dict(args), (Path(file).resolve(),), "the caller")
     values = evaluator.run(root, None)

@@ -44,10 +44,17 @@ class ProcessTransport:
 
 
 def parse_launch(
-    path: str | Path, args: Mapping[str, str] | None, packages: PackageIndex
+    path: str | Path, args: Mapping[str, str] | None, packages: PackageIndex, *, confined: bool = False
 ) -> LaunchDescription:
-    """Read a launch file, resolving ``$(find-pkg-share PKG)`` through ``packages``."""
-    return parse_launch_file(Path(path), args=dict(args or {}), find_package_share=packages.share_dir)
+    """Read a launch file, resolving ``$(find-pkg-share PKG)`` through ``packages``. A confined
+    launch (a lab that serves others) includes only files of the world's packages, and
+    ``$(env NAME)`` sees no variable of the server's environment (a default given still applies)."""
+    if not confined:
+        return parse_launch_file(Path(path), args=dict(args or {}), find_package_share=packages.share_dir)
+    return parse_launch_file(
+        Path(path), args=dict(args or {}), find_package_share=packages.share_dir, environ={},
+        roots=packages.roots(),
+    )  # fmt: skip
 
 
 @dataclass
@@ -79,11 +86,12 @@ class Launcher:
         bus.crash_handlers.append(self._on_crash)
         self.transport: ProcessTransport | None = None  # set once the app's graph is on Zenoh
         self.all_processes = False  # every lab node in its own process too (but the device nodes)
+        self.confined = False  # includes and $(env) kept to the world's own packages (parse_launch)
         self.supervisor = Supervisor(bus, self._on_process_exit)
         self.on_process_start: list[Callable[[ProcessNode], None]] = []
 
     def parse(self, path: str | Path, args: Mapping[str, str] | None = None) -> LaunchDescription:
-        return parse_launch(path, args, self.packages)
+        return parse_launch(path, args, self.packages, confined=self.confined)
 
     def launch_file(self, path: str | Path, args: Mapping[str, str] | None = None) -> list[LaunchedNode]:
         return self.launch(self.parse(path, args))

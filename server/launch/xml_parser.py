@@ -29,12 +29,14 @@ def parse_launch_file(
     args: Mapping[str, str] = _NO_ARGS,
     find_package_share: FindPackageShare,
     environ: Mapping[str, str] | None = None,
+    roots: tuple[Path, ...] | None = None,
 ) -> LaunchDescription:
     """Parse a launch XML file and the files it includes into one flat ``LaunchDescription``.
 
     ``args`` plays the role of ``ros2 launch ... name:=value``; every name must be declared by
     the file. ``environ`` (default ``os.environ``) answers ``$(env ...)``. Raises
-    ``LaunchFileError`` naming the file and line of the first problem.
+    ``LaunchFileError`` naming the file and line of the first problem. With ``roots``, a file
+    included from outside them is refused as a missing one.
     """
     file = os.fspath(path)
     try:
@@ -45,7 +47,7 @@ def parse_launch_file(
         raise LaunchFileError(file, 0, f"cannot read launch file: {err.strerror}") from None
     except ValueError as err:  # a NUL byte in the path
         raise LaunchFileError(file[:200], 0, f"not a file path: {err}") from None
-    return evaluate(load_tree(data, file), file, args, find_package_share, environ)
+    return evaluate(load_tree(data, file), file, args, find_package_share, environ, roots)
 
 
 def parse_launch_string(

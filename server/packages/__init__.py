@@ -101,6 +101,10 @@ class PackageIndex:
     def names(self) -> list[str]:
         return sorted(set(self.executables) | set(self.student_workspace().packages))
 
+    def roots(self) -> tuple[Path, ...]:
+        """The folders every package's files lie in: the lab's own packages and the workspace."""
+        return (HERE,) if self.workspace is None else (HERE, self.workspace)
+
     def share_dir(self, pkg: str) -> Path:
         student = self._student(pkg)
         if student is not None and ((student.path / "launch").is_dir() or pkg not in self.executables):

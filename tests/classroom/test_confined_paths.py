@@ -139,3 +139,90 @@ def test_a_lab_beyond_loopback_confines_paths_as_a_class_does() -> None:
     assert Settings(listen=Listening(host="0.0.0.0", token="t")).confines_paths
     assert Settings(classroom=ClassroomSettings()).confines_paths
     assert not Settings(listen=Listening(host="127.0.0.2")).confines_paths
+
+
+INCLUDES = """<launch>
+  <include file="{file}"/>
+</launch>
+"""
+ENV_LAUNCH = """<launch>
+  <node pkg="sensor_simulation" exec="pressure.py" name="$(env {variable})"/>
+</launch>
+"""
+
+
+def write_including(workspace: Path, name: str, file: str) -> str:
+    """A launch file of the student's package that includes ``file``; its path in the workspace."""
+    (workspace / "src" / "mine" / "launch" / name).write_text(INCLUDES.format(file=file))
+    return f"src/mine/launch/{name}"
+
+
+def test_an_include_reaches_the_worlds_packages_and_no_file_elsewhere(
+    client: TestClient, folders: tuple[Path, Path], tmp_path: Path
+) -> None:
+    _, workspace = folders
+    outside = tmp_path / "outside.launch"  # a launch file on the server, outside the world's folders
+    outside.write_text(MY_LAUNCH)
+    secret = tmp_path / "secret.txt"  # not XML: reading it would quote its first line in the error
+    secret.write_text("the first line of a file on the server\n")
+    ada = join(client, "Ada")
+    answers = {}
+    for i, target in enumerate((outside, secret, tmp_path / "missing.launch", Path("/etc/hostname"))):
+        file = write_including(workspace, f"out{i}.launch", str(target))
+        reply = client.post("/api/launch", headers=auth(ada), json={"file": file})
+        detail = reply.json()["detail"]
+        assert "first line" not in str(detail)
+        answers[str(target)] = (reply.status_code, str(detail).replace(file, "<file>"))
+    texts = {(status, text.replace(path, "<path>")) for path, (status, text) in answers.items()}
+    assert len(texts) == 1, answers
+    status, text = next(iter(texts))
+    assert 400 <= status < 500 and "included file not found" in text
+    assert client.get("/api/launches", headers=auth(ada)).json() == []
+
+    for i, target in enumerate(("$(find-pkg-share sensor_simulation)/launch/sensors.launch", "mine.launch")):
+        file = write_including(workspace, f"in{i}.launch", target)
+        reply = client.post("/api/launch", headers=auth(ada), json={"file": file})
+        assert reply.status_code == 201, (target, reply.text)
+    assert len(client.get("/api/launches", headers=auth(ada)).json()) == 2
+
+
+def test_a_worlds_launch_sees_no_variable_of_the_servers_environment(
+    client: TestClient, folders: tuple[Path, Path], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    _, workspace = folders
+    monkeypatch.setenv("SERVER_SECRET", "hunter2")
+    launch = workspace / "src" / "mine" / "launch"
+    (launch / "env.launch").write_text(ENV_LAUNCH.format(variable="SERVER_SECRET"))
+    (launch / "default.launch").write_text(ENV_LAUNCH.format(variable="SERVER_SECRET from_default"))
+    ada = join(client, "Ada")
+    refused = client.post("/api/launch", headers=auth(ada), json={"file": "src/mine/launch/env.launch"})
+    assert 400 <= refused.status_code < 500 and "SERVER_SECRET" in str(refused.json()["detail"])
+    assert "hunter2" not in refused.text
+    taken = client.post("/api/launch", headers=auth(ada), json={"file": "src/mine/launch/default.launch"})
+    assert taken.status_code == 201, taken.text
+    assert [node["name"] for node in taken.json()["nodes"]] == ["/from_default"]
+    assert "hunter2" not in taken.text
+
+
+def test_a_single_lab_on_loopback_includes_its_users_files_anywhere(
+    folders: tuple[Path, Path], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    bags, workspace = folders
+    outside = tmp_path / "outside.launch"
+    outside.write_text(ENV_LAUNCH.format(variable="MY_NODE_NAME"))
+    monkeypatch.setenv("MY_NODE_NAME", "named_from_env")
+    settings = Settings(
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(
+            launch="rocket",
+            launch_args={"start_delay": "3600"},
+            viewer=False,
+            bag_dir=bags,
+            workspace=workspace,
+        ),
+    )
+    with TestClient(create_app(settings, ManualClock(1_000.0))) as lab:
+        file = write_including(workspace, "out.launch", str(outside))
+        reply = lab.post("/api/launch", json={"file": str(workspace / file)})
+        assert reply.status_code == 201, reply.text
+        assert [node["name"] for node in reply.json()["nodes"]] == ["/named_from_env"]
