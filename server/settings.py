@@ -223,7 +223,7 @@ class ClassroomSettings(Section):
         return _log_level(value)
 
     @property
-    def hosted_here(self) -> int:
+    def local_capacity(self) -> int:
         """Worlds this process hosts at most; the rest go to world workers."""
         return self.max_worlds if self.local_worlds is None else min(self.local_worlds, self.max_worlds)
 
@@ -314,7 +314,7 @@ class Settings(Section):
         """Bag and launch files are names inside the world's own folders, never paths: on a class
         server (and its world workers), and when a lab behind a token listens beyond loopback. A
         single lab on loopback serves its user alone, whose own files it may open."""
-        return self.classroom is not None or self.worker is not None or not self.listen.on_loopback
+        return self.classroom is not None or not self.listen.on_loopback
 
 
 def _log_level(value: str) -> str:

@@ -87,9 +87,9 @@ def test_local_worlds_need_zenoh_and_a_count_of_at_least_zero() -> None:
         good = Settings(
             lab=LabSettings(zenoh=zenoh), classroom=ClassroomSettings(local_worlds=0, max_worlds=5)
         )
-        assert good.classroom is not None and good.classroom.hosted_here == 0
-    assert ClassroomSettings(local_worlds=9, max_worlds=5).hosted_here == 5
-    assert ClassroomSettings(max_worlds=5).hosted_here == 5
+        assert good.classroom is not None and good.classroom.local_capacity == 0
+    assert ClassroomSettings(local_worlds=9, max_worlds=5).local_capacity == 5
+    assert ClassroomSettings(max_worlds=5).local_capacity == 5
 
 
 def test_a_class_holds_at_least_one_world_and_one_per_address() -> None:
