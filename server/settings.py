@@ -309,6 +309,26 @@ class Settings(Section):
             )
         return self
 
+    def for_world(
+        self, name: str, zenoh: ZenohSettings | None, launch: str, launch_args: dict[str, str]
+    ) -> Settings:
+        """A class world's lab: its own graph session (``zenoh``), launch and bag folder, no bridge
+        port of its own (the class's serve every world), and the smaller of each lab limit and the
+        class's limit per world."""
+        if self.classroom is None:
+            raise ValueError("only a class server or a world worker has worlds")
+        world, limits = self.classroom.world, self.limits
+        lab = self.lab.model_copy(update={
+            "zenoh": zenoh, "foxglove_port": None, "rosbridge_port": None, "bag_dir": self.lab.bag_dir / name,
+            "launch": launch, "launch_args": launch_args,
+        })  # fmt: skip
+        limits = limits.model_copy(update={
+            "max_launch_groups": min(limits.max_launch_groups, world.launches),
+            "max_nodes_per_launch": min(limits.max_nodes_per_launch, world.launch_nodes),
+            "socket_frames_hz": world.socket_frames_hz, "socket_requests_hz": world.socket_requests_hz,
+        })  # fmt: skip
+        return self.model_copy(update={"lab": lab, "limits": limits})
+
     @property
     def confines_paths(self) -> bool:
         """Bag and launch files are names inside the world's own folders, never paths: on a class

@@ -183,3 +183,23 @@ def test_explain_gives_one_line_per_error() -> None:
         "--max-worlds must be at least 1",
     ]
     assert not is_refusal(error)
+
+
+def test_a_worlds_lab_takes_the_smaller_of_each_limit_and_no_bridge_port() -> None:
+    klass = Settings(
+        lab=LabSettings(foxglove_port=8765, rosbridge_port=9090, launch="all"),
+        limits={"max_launch_groups": 2, "max_nodes_per_launch": 64},
+        classroom=ClassroomSettings(world={"launches": 4, "launch_nodes": 16, "socket_frames_hz": 300.0}),
+    )
+    world = klass.for_world("ada", CLIENT, "fly", {"simple": "true"})
+    assert (world.lab.foxglove_port, world.lab.rosbridge_port, world.lab.zenoh) == (None, None, CLIENT)
+    assert (world.lab.launch, world.lab.launch_args, world.lab.bag_dir) == (
+        "fly",
+        {"simple": "true"},
+        klass.lab.bag_dir / "ada",
+    )
+    assert (world.limits.max_launch_groups, world.limits.max_nodes_per_launch) == (2, 16)
+    assert (world.limits.socket_frames_hz, world.limits.socket_requests_hz) == (300.0, 200.0)
+    assert world.classroom == klass.classroom and klass.lab.launch == "all"  # the class's own are untouched
+    with pytest.raises(ValueError, match="only a class server or a world worker has worlds"):
+        Settings().for_world("ada", None, "fly", {})
