@@ -13,7 +13,7 @@ from fastapi import APIRouter, Depends, HTTPException, Request, Response, status
 from pydantic import BaseModel, ConfigDict, Field, model_validator, with_config
 from typing_extensions import TypedDict
 
-from server.classroom import Classroom, Grant
+from server.classroom import Classroom, ClassroomError, ClassServer, Grant, WorldWorker
 from server.transport.acl import Credentials
 
 from .deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie
@@ -191,6 +191,8 @@ InstructorDep = Annotated[Grant, Depends(_instructor)]
 async def join(body: JoinRequest, classroom: ClassroomDep, request: Request, response: Response) -> Joined:
     """A world of one's own: the rocket and drone launches, under a token for this world only.
     Joins and wrong codes are rate-limited per client address and per class (429, Retry-After)."""
+    if not isinstance(classroom, ClassServer):
+        raise ClassroomError(403, "this is a world worker: students join through the class server")
     address = request.client.host if request.client is not None else "unknown"
     world, token = await classroom.join(body.name, body.code, address)
     set_token_cookie(response, token)
@@ -223,7 +225,9 @@ async def worlds(_: InstructorDep, classroom: ClassroomDep) -> ClassWorlds:
 @router.get("/workers", responses=responses(UNAUTHORIZED, FORBIDDEN))
 async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
     """Where worlds can go: this server's own room, and each world worker that answers now."""
-    found = await asyncio.to_thread(classroom.workers.discover) if classroom.workers is not None else []
+    directory = classroom.workers if isinstance(classroom, ClassServer) else None
+    started = classroom.local_workers if isinstance(classroom, ClassServer) else None
+    found = await asyncio.to_thread(directory.discover) if directory is not None else []
     return ClassWorkers(
         local={
             "worlds": classroom.hosted_here,
@@ -231,7 +235,7 @@ async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
             "cpu": classroom.cpu.read().describe(),
         },
         workers=[ref.describe() for ref in found],
-        started_here=classroom.local_workers.describe() if classroom.local_workers is not None else [],
+        started_here=started.describe() if started is not None else [],
     )
 
 
@@ -239,7 +243,7 @@ async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
 async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
     """The class's own ROS domain (``GET /api/zenoh/join`` without a world gives its login): what is
     bridged from each world, as ROS 2's domain_bridge with a namespace per world."""
-    bridge = classroom.class_graph
+    bridge = classroom.class_graph if isinstance(classroom, ClassServer) else None
     if bridge is None or classroom.settings.lab.zenoh is None:
         raise HTTPException(status.HTTP_404_NOT_FOUND, "this class server has no Zenoh graph of its own")
     return ClassGraph(
@@ -261,6 +265,8 @@ async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
 )
 async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
     """On a world worker: start the world its class server placed here."""
+    if not isinstance(classroom, WorldWorker):
+        raise ClassroomError(404, "only a world worker hosts worlds for a class server")
     login = Credentials(body.zenoh_user, body.zenoh_password or "") if body.zenoh_user is not None else None
     world = await classroom.host(
         body.world, body.student, body.domain_id, body.launch, body.launch_args, login
@@ -317,9 +323,10 @@ async def broadcast(body: BroadcastRequest, _: InstructorDep, classroom: Classro
             refused[name] = str(exc)
         else:
             reached.append(name)
-    far_reached, far_refused = await classroom.broadcast_on_workers(body.model_dump())
-    reached += far_reached
-    refused |= far_refused
+    if isinstance(classroom, ClassServer):  # its workers publish in the worlds they host
+        far_reached, far_refused = await classroom.broadcast_on_workers(body.model_dump())
+        reached += far_reached
+        refused |= far_refused
     if refused and not reached:
         raise HTTPException(status.HTTP_422_UNPROCESSABLE_CONTENT, f"no world took the message: {refused}")
     return Broadcast(reached=reached, refused=refused)

@@ -14,7 +14,7 @@ from fastapi.responses import RedirectResponse
 from starlette.requests import HTTPConnection
 
 from server.access import bearer_token, token_matches
-from server.classroom import Classroom, ClassroomError, Grant
+from server.classroom import Classroom, ClassroomError, ClassServer, Grant
 from server.lab import Lab
 
 from .errors import CloseCode, close_reason
@@ -68,7 +68,8 @@ def lab_of(conn: HTTPConnection) -> Lab:
         raise ClassroomError(404, f"world {world.name!r} runs on world worker {where!r}: nothing here for it")
     writing = conn.scope["type"] == "http" and conn.scope["method"] not in SAFE_METHODS
     # A world worker's calls come from its class server, which charged the write already.
-    if writing and not grant.is_instructor and not classroom.is_worker and not world.writes.take():
+    charged = isinstance(classroom, ClassServer)
+    if writing and not grant.is_instructor and charged and not world.writes.take():
         raise ClassroomError(429, f"too many requests for world {world.name!r}: at most "
                                   f"{classroom.class_settings.world.writes_hz:g} writes a second",
                              world.writes.retry_after_s())  # fmt: skip

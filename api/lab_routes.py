@@ -7,7 +7,7 @@ from typing import Any
 
 from fastapi import APIRouter, HTTPException, Request, status
 
-from server.classroom import Classroom
+from server.classroom import Classroom, ClassServer
 from server.processes.command import graph_overrides
 from server.transport.acl import Credentials
 
@@ -76,7 +76,12 @@ async def zenoh_join(request: Request) -> dict[str, Any]:
 
 def _class_graph_join(classroom: Classroom) -> dict[str, Any]:
     router = classroom.router_endpoint()
-    if classroom.class_graph is None or router is None or classroom.settings.lab.zenoh is None:
+    if (
+        not isinstance(classroom, ClassServer)  # a world worker's class graph is its class server's
+        or classroom.class_graph is None
+        or router is None
+        or classroom.settings.lab.zenoh is None
+    ):
         raise HTTPException(status.HTTP_404_NOT_FOUND, "this class server has no Zenoh graph of its own")
     return _join(router, classroom.settings.lab.zenoh.domain_id, classroom.zenoh_auth.class_credentials())
 

@@ -17,7 +17,7 @@ from starlette.requests import HTTPConnection
 from api.deps import classroom_of, keep_token_and_go, lab_of, token_of
 from api.ws_relay import relay
 from server.access import token_matches
-from server.classroom import ClassroomError
+from server.classroom import ClassroomError, ClassServer
 from server.close_codes import CloseCode
 from server.viewer.views import PageViews, ViewRegistry
 from server.viewer.viser_guard import PROXY_TOKEN_HEADER
@@ -135,7 +135,7 @@ def _instructors_view(conn: HTTPConnection) -> tuple[Any, Response | None]:
         return None, Response(
             "open the instructor's link the class server printed", status.HTTP_401_UNAUTHORIZED
         )
-    return classroom.view, None
+    return (classroom.view if isinstance(classroom, ClassServer) else None), None
 
 
 @router.get("/instructor/view")

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect, WebSocketException
 
 from server.bridges.rosbridge import RosbridgeSession
+from server.classroom import ClassServer
 from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH, world_topic
 from server.limits import RateLimit
 from server.tasks import cancel_and_wait
@@ -54,7 +55,7 @@ async def class_rosbridge(websocket: WebSocket) -> None:
         raise _refused(
             CloseCode.FORBIDDEN, "the class's rosbridge is the instructor's: a student's is /rosbridge"
         )
-    bridges = classroom.bridges
+    bridges = classroom.bridges if isinstance(classroom, ClassServer) else None
     if bridges is None:
         raise _refused(CloseCode.TRY_AGAIN_LATER, "the class's graph is not up (no Zenoh router)")
     await websocket.accept()

@@ -22,7 +22,7 @@ from fastapi import WebSocket, status
 from starlette.requests import HTTPConnection
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from server.classroom import Classroom, ClassroomError, Grant, World
+from server.classroom import Classroom, ClassroomError, ClassServer, Grant, World
 from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH
 from server.classroom.workers import WorkerDirectory, WorkerRef, world_call_token
 
@@ -64,7 +64,8 @@ class WorldProxyMiddleware:
         classroom: Classroom | None = None
         if scope["type"] in ("http", "websocket"):
             classroom = getattr(scope["app"].state, "classroom", None)
-        if classroom is None or classroom.workers is None or not passed_on(scope):
+        # Only a class server has workers to pass a call on to.
+        if not isinstance(classroom, ClassServer) or classroom.workers is None or not passed_on(scope):
             await self.app(scope, receive, send)
             return
         conn = HTTPConnection(scope)

@@ -22,19 +22,27 @@ from api.ws_cap import SocketCapMiddleware
 from api.ws_refusal import WebSocketRefusalMiddleware
 from server.bridges.runner import run_bridges
 from server.bus import Clock
-from server.classroom import Classroom
+from server.classroom import Classroom, ClassServer, WorldWorker
 from server.lab import Lab
 from server.settings import Settings
 
 STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 
 
+def _classroom(settings: Settings, clock: Clock | None) -> Classroom | None:
+    """A class server, or on a world worker (server/world_worker.py) the worlds it hosts; None: one lab."""
+    if settings.classroom is None:
+        return None
+    if settings.worker is not None:
+        return WorldWorker(settings, clock, code=settings.classroom.code)
+    return ClassServer(settings, clock, code=settings.classroom.code)
+
+
 def create_app(settings: Settings | None = None, clock: Clock | None = None) -> FastAPI:
     settings = settings or Settings()
 
-    klass = settings.classroom
-    classroom = Classroom(settings, clock, code=klass.code) if klass is not None else None
-    class_server = klass is not None
+    classroom = _classroom(settings, clock)
+    class_server = classroom is not None
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:

@@ -337,6 +337,14 @@ class Settings(Section):
         return self.classroom is not None or not self.listen.on_loopback
 
 
+def class_section(settings: Settings) -> ClassroomSettings:
+    """The class's section of a class server's or a world worker's settings (ValueError on a
+    single lab's, which has no class)."""
+    if settings.classroom is None:
+        raise ValueError("a class server or world worker needs settings with a classroom section")
+    return settings.classroom
+
+
 def _log_level(value: str) -> str:
     if value not in LEVELS:
         raise ValueError(f"a log level is one of {', '.join(LEVELS)}, got {value!r}")

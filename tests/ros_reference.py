@@ -38,6 +38,21 @@ ROS_REFERENCE_HASHES = {
     "std_msgs/msg/UInt32": "a5c874829b752bc5fa190024b0ad76f578cc278271e855c7d02a818b3516fb4a",
     "std_msgs/msg/UInt64": "fbdc52018fc13755dce18024d1a671c856aa8b4aaf63adfb095b608f98e8c943",
     "std_msgs/msg/UInt8": "6138bd83d8c3569cb80a667db03cfc1629f529fee79d944c39c34e352e72f010",
+    # action_msgs and unique_identifier_msgs as rosidl wrote them into ROS 2 Kilted's packages.
+    "action_msgs/msg/GoalInfo": "6398fe763154554353930716b225947f93b672f0fb2e49fdd01bb7a7e37933e9",
+    "action_msgs/msg/GoalStatus": "32f4cfd717735d17657e1178f24431c1ce996c878c515230f6c5b3476819dbb9",
+    "action_msgs/msg/GoalStatusArray": "6c1684b00f177d37438febe6e709fc4e2b0d4248dca4854946f9ed8b30cda83e",
+    "action_msgs/srv/CancelGoal": "573d8b0a534451d7bc2ac8c5ffde8ac14b8593b7001175d0cd6516dcbeb8689a",
+    "unique_identifier_msgs/msg/UUID": "1b8e8aca958cbea28fe6ef60bf6c19b683c97a9ef60bb34752067d0f2f7ab437",
+    # example_interfaces' Fibonacci action as rosidl hashes it (quoted alike by two independent
+    # implementations checked against rosidl's output).
+    "example_interfaces/action/Fibonacci": "9508051da1ea4658de144b09bd0690ff3de52104683d847aed764d2915906f51",
+    "example_interfaces/action/Fibonacci_Goal": "226cb437e4355dcd3e914f930382a3b0cc1da81545bd319ed554e95a03255f51",
+    "example_interfaces/action/Fibonacci_SendGoal": "d1a57fb2a4afe8c21e34fb10db206f16ce6729b28531141472df92277c55b557",
+    "example_interfaces/action/Fibonacci_GetResult": "1b0de0d5d29dc955d92f546706568428632771db13ec84c15ec1c1a59f424a57",
+    "example_interfaces/action/Fibonacci_FeedbackMessage": (
+        "c1de71afd52e49a89c53d8262366884185bc0a02f78ce051c4e46b0a7fe59bb2"
+    ),
     # The parameter services, as independent rmw_zenoh peers list them for ROS 2's parameter tools.
     "rcl_interfaces/srv/DescribeParameters": "845b484d71eb0673dae682f2e3ba3c4851a65a3dcfb97bddd82c5b57e91e4cff",
     "rcl_interfaces/srv/GetParameterTypes": "da199c878688b3e530bdfe3ca8f74cb9fa0c303101e980a9e8f260e25e1c80ca",

@@ -113,7 +113,7 @@ class Executor:
                 return False  # the server went away: the client keeps waiting, as in ROS 2
 
             def answer() -> None:
-                call.future.set_result(server.handle(call.request))
+                server.answer(call)
 
             answer.callback_group = getattr(server.callback, "callback_group", None)  # type: ignore[attr-defined]
             got.append(Handler(server.node, answer, ()))

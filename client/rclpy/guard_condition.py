@@ -34,6 +34,9 @@ class GuardCondition:
         self.callback()
         return None
 
+    def answer(self, _call: PendingCall) -> None:
+        self.handle(None)
+
     def trigger(self) -> None:
         if self.destroyed or self._pending:
             return

@@ -15,7 +15,6 @@ import traceback
 from collections.abc import Callable
 from typing import Any
 
-from ..msgs import Message
 from .endpoints import Subscription
 from .faults import is_node_fault
 from .graph import Bus
@@ -109,10 +108,7 @@ class Executor:
         server = call.server
         if not server.active:
             return False  # the server went away: the client keeps waiting, as in ROS 2
-        outcome: list[Message] = []
-        self._run(server.node, lambda: outcome.append(server.handle(call.request)))
-        if outcome:
-            call.future.set_result(outcome[0])
+        self._run(server.node, server.answer, call)
         return True
 
     def _drain(self) -> int:

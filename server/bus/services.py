@@ -133,6 +133,11 @@ class ServiceServer:
             )
         return response
 
+    def answer(self, call: PendingCall) -> None:
+        """Answer a queued call (a server that answers later, as an action's result service does,
+        overrides this and completes ``call.future`` itself)."""
+        call.future.set_result(self.handle(call.request))
+
     def destroy(self) -> None:
         self.node.destroy_service(self)
 

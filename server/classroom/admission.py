@@ -9,6 +9,7 @@ still joins while one address is throttled.
 
 from __future__ import annotations
 
+import secrets
 import unicodedata
 from collections import Counter
 
@@ -18,9 +19,16 @@ from server.settings import JoinLimits
 
 from .errors import ClassroomError
 
+CODE_ALPHABET = "ABCDEFGHJKLMNPQRSTUVWXYZ23456789"  # no 0/O, 1/I: read aloud or off a projector
+CODE_CHARS = 6
 # Control, format, surrogate, private and unassigned characters, and line or paragraph
 # separators: none belongs in a name that the console, the pages and the logs print on one line.
 _NOT_PRINTABLE = frozenset({"Cc", "Cf", "Cs", "Co", "Cn", "Zl", "Zp"})
+
+
+def new_code() -> str:
+    """A class code: what a student types to join."""
+    return "".join(secrets.choice(CODE_ALPHABET) for _ in range(CODE_CHARS))
 
 
 def check_student_name(name: str) -> None:

@@ -1,9 +1,13 @@
 """Message and service types with their ROS 2 names (``std_msgs/msg/Bool`` ...), declared once in
 ``.msg``/``.srv`` files (server/msgs/interfaces) and looked up by name."""
 
-from ._base import Field, Message, MessageError, Service
+from ._action import Action
+from ._base import Message, Service
+from ._field import Field, MessageError
 from .registry import (
     UnknownTypeError,
+    action_names,
+    get_action_type,
     get_service_type,
     get_type,
     normalize_type_name,
@@ -42,10 +46,45 @@ from .types import (
 )  # fmt: skip
 
 __all__ = [
-    "ALL_TYPES", "KEY_CONSTANTS", "Bool", "ColorRGBA", "Duration", "Empty", "Field", "Float32",
-    "Float64", "Header", "Imu", "Int32", "Int64", "Key", "Log", "Message", "MessageError", "Point",
-    "PointStamped", "Pose", "PoseStamped", "Quaternion", "Service", "String", "TFMessage", "Time",
-    "Transform", "TransformStamped", "Twist", "TwistStamped", "UnknownTypeError", "Vector3",
-    "Vector3Stamped", "get_service_type", "get_type", "normalize_type_name", "service_names",
+    "ALL_TYPES",
+    "KEY_CONSTANTS",
+    "Action",
+    "Bool",
+    "ColorRGBA",
+    "Duration",
+    "Empty",
+    "Field",
+    "Float32",
+    "Float64",
+    "Header",
+    "Imu",
+    "Int32",
+    "Int64",
+    "Key",
+    "Log",
+    "Message",
+    "MessageError",
+    "Point",
+    "PointStamped",
+    "Pose",
+    "PoseStamped",
+    "Quaternion",
+    "Service",
+    "String",
+    "TFMessage",
+    "Time",
+    "Transform",
+    "TransformStamped",
+    "Twist",
+    "TwistStamped",
+    "UnknownTypeError",
+    "Vector3",
+    "Vector3Stamped",
+    "action_names",
+    "get_action_type",
+    "get_service_type",
+    "get_type",
+    "normalize_type_name",
+    "service_names",
     "type_names",
 ]  # fmt: skip

@@ -13,6 +13,7 @@ import sys
 from collections.abc import Iterable
 from pathlib import Path
 
+from ._field import ARRAY_TYPECODES
 from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, Definitions, FieldSpec, MessageSpec, lab_definitions
 
 LINE_LENGTH = 110  # ruff's, in pyproject.toml
@@ -52,6 +53,9 @@ def _python_types(field: FieldSpec) -> tuple[str, str]:
     if not field.is_array:
         t = _scalar_python_type(field.base)
         return t, t
+    if field.is_sequence and field.base in ARRAY_TYPECODES:
+        element = _scalar_python_type(field.base)
+        return f"{element.capitalize()}Array", f"Sequence[{element}] | npt.NDArray[Any]"
     if field.is_primitive and field.base not in STRING_TYPES:
         element = _scalar_python_type(field.base)
         return f"npt.NDArray[{NUMPY_SCALARS[field.base]}]", f"Sequence[{element}] | npt.NDArray[Any]"
@@ -106,6 +110,25 @@ def _service_class(name: str) -> list[str]:
     ]
 
 
+def _action_class(name: str) -> list[str]:
+    short = _class_name(name)
+    return [
+        f'class {short}(Action, type_name="{name}"):',
+        f'    """{name}: a {short}.Goal, answered with a {short}.Result, {short}.Feedback meanwhile."""',
+        "",
+        f"    Goal = {short}_Goal",
+        f"    Result = {short}_Result",
+        f"    Feedback = {short}_Feedback",
+        "",
+        "    class Impl:",
+        f"        SendGoalService = {short}_SendGoal",
+        f"        GetResultService = {short}_GetResult",
+        f"        FeedbackMessage = {short}_FeedbackMessage",
+        "        CancelGoalService = CancelGoal",
+        "        GoalStatusMessage = GoalStatusArray",
+    ]
+
+
 def _ordered(specs: Iterable[MessageSpec]) -> list[MessageSpec]:
     """Dependencies first, so that a class exists before a class that nests it."""
     pending = {s.name: s for s in specs}
@@ -129,13 +152,18 @@ def package_module(package: str, definitions: Definitions) -> str:
     """The source of ``generated/<package>.py``."""
     messages = [s for n, s in definitions.messages.items() if n.startswith(package + "/")]
     services = [s for n, s in definitions.services.items() if n.startswith(package + "/")]
+    actions = [a for n, a in definitions.actions.items() if n.startswith(package + "/")]
     specs = _ordered(messages + [p for s in services for p in (s.request, s.response)])
-    foreign = sorted({d for s in specs for d in s.dependencies() if not d.startswith(package + "/")})
+    foreign = {d for s in specs for d in s.dependencies() if not d.startswith(package + "/")}
+    if actions:
+        foreign |= {"action_msgs/srv/CancelGoal", "action_msgs/msg/GoalStatusArray"}
     body: list[str] = []
     for spec in specs:
         body += ["", "", *_message_class(spec)]
     for service in services:
         body += ["", "", *_service_class(service.name)]
+    for action in actions:
+        body += ["", "", *_action_class(action.name)]
     text = "\n".join(body)
     imports = ["from __future__ import annotations", ""]
     typing_names = ["Any"] if "Any]" in text else []
@@ -144,16 +172,26 @@ def package_module(package: str, definitions: Definitions) -> str:
         imports.append("from collections.abc import Sequence")
     imports.append(f"from typing import {', '.join(['TYPE_CHECKING', *typing_names])}")
     imports.append("")
-    if "np." in text:
-        imports += ["import numpy as np", "import numpy.typing as npt", ""]
+    numpy = ["import numpy as np"] if "np." in text else []
+    numpy += ["import numpy.typing as npt"] if "npt." in text else []
+    if numpy:
+        imports += [*numpy, ""]
+    if actions:
+        imports.append("from .._action import Action")
     bases = ["Message"] + (["Service"] if services else [])
     imports.append(f"from .._base import {', '.join(bases)}")
+    arrays = [a for a in ("FloatArray", "IntArray") if f": {a}" in text]
+    if arrays:
+        imports.append(f"from .._field import {', '.join(arrays)}")
     by_package: dict[str, list[str]] = {}
-    for dep in foreign:
+    for dep in sorted(foreign):
         by_package.setdefault(dep.split("/")[0], []).append(_class_name(dep))
     for pkg, names in sorted(by_package.items()):
         imports.append(f"from .{pkg} import {', '.join(sorted(set(names)))}")
-    names = [_class_name(s.name) for s in specs] + [_class_name(s.name) for s in services]
+    names = [
+        _class_name(n)
+        for n in [s.name for s in specs] + [s.name for s in services] + [a.name for a in actions]
+    ]
     exports = "\n\n__all__ = [\n" + "".join(f'    "{n}",\n' for n in sorted(names)) + "]\n"
     return HEADER.format(package=package) + "\n".join(imports) + "\n" + text + "\n" + exports
 

@@ -13,10 +13,13 @@ from __future__ import annotations
 import ast
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .action_spec import ActionSpec
 
 INTERFACES_DIR = Path(__file__).resolve().parent / "interfaces"
 INT_RANGES: dict[str, tuple[int, int]] = {
@@ -125,7 +128,7 @@ def _full_type_name(base: str, package: str) -> str:
         return f"{package}/msg/{base}"
     if len(parts) == 2:
         return f"{parts[0]}/msg/{parts[1]}"
-    if len(parts) == 3 and parts[1] in ("msg", "srv"):
+    if len(parts) == 3 and parts[1] in ("msg", "srv", "action"):
         return base
     raise ValueError(f"bad type name {base!r}")
 
@@ -266,6 +269,7 @@ class Definitions:
 
     messages: dict[str, MessageSpec]
     services: dict[str, ServiceSpec]
+    actions: dict[str, ActionSpec] = field(default_factory=dict)
 
     def message(self, name: str) -> MessageSpec:
         spec = self.messages.get(name)
@@ -294,23 +298,32 @@ class Definitions:
 
 
 def _interface_files(root: Path) -> Iterator[tuple[str, str, Path]]:
-    for path in sorted(root.glob("*/msg/*.msg")) + sorted(root.glob("*/srv/*.srv")):
+    found = sorted(root.glob("*/msg/*.msg")) + sorted(root.glob("*/srv/*.srv"))
+    for path in found + sorted(root.glob("*/action/*.action")):
         package, kind = path.parts[-3], path.parts[-2]
         yield f"{package}/{kind}/{path.stem}", kind, path
 
 
 def load_definitions(root: Path) -> Definitions:
-    """Read every ``<pkg>/msg/*.msg`` and ``<pkg>/srv/*.srv`` under ``root``; checks references."""
+    """Read every ``<pkg>/msg/*.msg``, ``<pkg>/srv/*.srv`` and ``<pkg>/action/*.action`` under
+    ``root``; an action adds the messages and services derived from it. Checks references."""
+    from .action_spec import parse_action  # it builds on this module's grammar
+
     messages: dict[str, MessageSpec] = {}
     services: dict[str, ServiceSpec] = {}
+    actions: dict[str, ActionSpec] = {}
     for name, kind, path in _interface_files(root):
         text = path.read_text(encoding="utf-8")
         source = f"{path.parts[-3]}/{kind}/{path.name}"
         if kind == "msg":
             messages[name] = parse_message(name, text, source=source)
-        else:
+        elif kind == "srv":
             services[name] = parse_service(name, text, source=source)
-    definitions = Definitions(messages, services)
+        else:
+            action = actions[name] = parse_action(name, text, source=source)
+            messages.update((m.name, m) for m in action.messages)
+            services.update((s.name, s) for s in action.services)
+    definitions = Definitions(messages, services, actions)
     known = set(messages) | {p.name for s in services.values() for p in (s.request, s.response)}
     for spec in list(messages.values()) + [p for s in services.values() for p in (s.request, s.response)]:
         for dep in spec.dependencies():

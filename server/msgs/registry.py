@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from . import generated as _generated  # declares every class
+from ._action import Action, action_class, action_classes
 from ._base import Message, Service, message_classes
 from .idl import lab_definitions
 
@@ -20,12 +21,12 @@ class UnknownTypeError(LookupError):
 
     def __init__(self, name: str, kind: str = "message") -> None:
         self.name = name
-        known = type_names() if kind == "message" else service_names()
+        known = {"message": type_names, "service": service_names, "action": action_names}[kind]()
         super().__init__(f"unknown {kind} type {name!r} (known: {', '.join(known)})")
 
 
 def normalize_type_name(name: str, kind: str = "msg") -> str:
-    """``pkg/Name`` → ``pkg/msg/Name`` (or ``pkg/srv/Name``), as ros2 accepts both spellings."""
+    """``pkg/Name`` → ``pkg/msg/Name`` (or ``pkg/srv/Name``, ``pkg/action/Name``), as ros2 accepts both."""
     parts = name.strip().split("/")
     if len(parts) == 2 and all(parts):
         return f"{parts[0]}/{kind}/{parts[1]}"
@@ -45,7 +46,8 @@ def get_type(name: str) -> type[Message]:
 
 
 def type_names() -> list[str]:
-    return sorted(_messages())
+    """The message types (an action's own messages are found by name, not listed)."""
+    return sorted(n for n in _messages() if "/msg/" in n)
 
 
 def get_service_type(name: str) -> type[Service]:
@@ -56,4 +58,16 @@ def get_service_type(name: str) -> type[Service]:
 
 
 def service_names() -> list[str]:
-    return sorted(_SERVICES)
+    return sorted(n for n in _SERVICES if "/srv/" in n)
+
+
+def get_action_type(name: str) -> type[Action]:
+    """``pkg/action/Name`` (or ``pkg/Name``) → its action class."""
+    try:
+        return action_class(normalize_type_name(name, "action"))
+    except KeyError:
+        raise UnknownTypeError(name, "action") from None
+
+
+def action_names() -> list[str]:
+    return sorted(action_classes())

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ._base import FLOAT32_MAX, MAX_ARRAY_ITEMS, MAX_STRING_CHARS, Field, Message
+from ._base import Message
+from ._field import FLOAT32_MAX, MAX_ARRAY_ITEMS, MAX_STRING_CHARS, Field
 from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, lab_definitions
 
 JSON_SCHEMA_DIALECT = "https://json-schema.org/draft/2020-12/schema"

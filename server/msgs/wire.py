@@ -9,14 +9,19 @@ response and event message (REP-2016), so the event type is declared here as ros
 
 from __future__ import annotations
 
+import array
 import re
 from functools import cache
+from types import SimpleNamespace
 from typing import Any
 
+import numpy as np
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.store import Typestore
 
-from ._base import Field, Message, MessageError, message_class, message_classes
+from ._base import Message, message_class, message_classes
+from ._field import Field, MessageError
+from .action_spec import action_description_text
 from .idl import Definitions, lab_definitions
 
 CDR_LE_HEADER = b"\x00\x01\x00\x00"
@@ -72,6 +77,9 @@ def build_typestore(definitions: Definitions, *, for_hashing: bool = False) -> T
         types.update(get_types_from_msg(_for_rosbags(spec.text, byte_as_uint8=not for_hashing), name))
     for name, service in definitions.services.items():
         types.update(_service_types(name, service.request.text, service.response.text, not for_hashing))
+    if for_hashing:  # an action's own type is never on the wire; only its hash is asked for
+        for name, action in definitions.actions.items():
+            types.update(get_types_from_msg(action_description_text(action), name))
     store.register(types)
     return store
 
@@ -108,7 +116,12 @@ def dds_type_name(type_name: str) -> str:
 def ros_type_name(dds_name: str) -> str | None:
     """The inverse of :func:`dds_type_name`; None if ``dds_name`` is not of that shape."""
     parts = dds_name.split("::")
-    if len(parts) != 4 or parts[2] != "dds_" or not parts[3].endswith("_") or parts[1] not in ("msg", "srv"):
+    if (
+        len(parts) != 4
+        or parts[2] != "dds_"
+        or not parts[3].endswith("_")
+        or parts[1] not in ("msg", "srv", "action")
+    ):
         return None
     return f"{parts[0]}/{parts[1]}/{parts[3][:-1]}"
 
@@ -135,9 +148,40 @@ def prepare(type_name: str) -> None:
                 stack.extend(item)
 
 
+_HOLDS_SEQUENCES: dict[str, bool] = {}
+
+
+def _holds_sequences(cls: type[Message]) -> bool:
+    """Whether a message of ``cls`` holds (at any depth) a sequence of numbers: an ``array.array``,
+    which rosbags cannot write (it takes numpy arrays)."""
+    known = _HOLDS_SEQUENCES.get(cls.TYPE)
+    if known is None:
+        known = _HOLDS_SEQUENCES[cls.TYPE] = any(
+            f.typecode is not None or (not isinstance(f.kind, str) and _holds_sequences(f.kind))
+            for f in cls.FIELDS
+        )
+    return known
+
+
+def _numpy_view(value: Any) -> Any:
+    """What rosbags writes for a message value: ``array.array`` fields as numpy arrays over the
+    same memory, nested messages converted alike."""
+    if isinstance(value, array.array):
+        return (
+            np.frombuffer(value, dtype=value.typecode) if len(value) else np.array([], dtype=value.typecode)
+        )
+    if isinstance(value, list):
+        return [_numpy_view(v) for v in value]
+    if isinstance(value, Message):
+        if not _holds_sequences(type(value)):
+            return value
+        return SimpleNamespace(**{f.name: _numpy_view(getattr(value, f.name)) for f in value.FIELDS})
+    return value
+
+
 def serialize(msg: Message) -> bytes:
     """Little-endian CDR with its 4-byte header and no trailing padding, as rmw_zenoh sends it."""
-    return bytes(typestore().serialize_cdr(msg, msg.TYPE))
+    return bytes(typestore().serialize_cdr(_numpy_view(msg), msg.TYPE))
 
 
 def _nested(path: str, exc: MessageError) -> MessageError:

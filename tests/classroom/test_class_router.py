@@ -14,7 +14,7 @@ from support.app import free_port
 from support.wait import wait_until
 
 from server.app import create_app
-from server.classroom import Classroom
+from server.classroom import ClassServer
 from server.classroom.class_router import ClassRouter
 from server.classroom.workers import worker_api_token
 from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorkerSettings
@@ -80,7 +80,7 @@ def test_a_world_worker_keeps_the_login_its_class_server_drew_for_a_world() -> N
     body = {"world": "ada", "student": "Ada", "domain_id": 3, "launch": "rocket", "launch_args": {}}
     auth = {"Authorization": f"Bearer {worker_api_token('class-token', 'wm')}"}
     with TestClient(create_app(settings)) as client:
-        classroom: Classroom = client.app.state.classroom  # type: ignore[attr-defined]
+        classroom: ClassServer = client.app.state.classroom  # type: ignore[attr-defined]
         half = client.post("/api/classroom/host", json={**body, "zenoh_user": login.user}, headers=auth)
         assert half.status_code == 422 and "come together" in half.text
         assert classroom.worlds == {}

@@ -15,7 +15,7 @@ from support.ws import refusal
 from api.errors import CloseCode
 from server.app import create_app
 from server.bus import ManualClock
-from server.classroom.class_view import COLUMNS, GONE_COLOR, TILE_M, ClassView, tile_origin
+from server.viewer.class_view import COLUMNS, GONE_COLOR, TILE_M, ClassView, tile_origin
 
 from .test_classroom_api import advance, auth, class_settings, classroom, join
 

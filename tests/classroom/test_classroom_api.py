@@ -13,7 +13,7 @@ from support.ws import receive_within, refusal
 from api.errors import CloseCode
 from server.app import create_app
 from server.bus import ManualClock
-from server.classroom import Classroom
+from server.classroom import ClassServer
 from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorldLimits
 
 CODE = "TEST42"
@@ -50,7 +50,7 @@ def client(clock: ManualClock) -> Iterator[TestClient]:
         yield test_client
 
 
-def classroom(client: TestClient) -> Classroom:
+def classroom(client: TestClient) -> ClassServer:
     return client.app.state.classroom  # type: ignore[attr-defined,no-any-return]
 
 
@@ -352,7 +352,7 @@ def fly(others: list[str], simple: bool = False) -> list[tuple[float, float, flo
             advance(client, clock, 0.013)
             if i < len(others):
                 tokens[others[i]] = join(client, others[i])
-        shared = classroom(client).simple_physics if simple else classroom(client).physics
+        shared = classroom(client).labs.simple_physics if simple else classroom(client).labs.physics
         assert len(shared) == len(tokens)  # every drone in the one batch
         track = []
         for step in range(16):
@@ -394,7 +394,7 @@ def test_a_reset_world_leaves_the_simple_batch_and_comes_back_at_the_origin(cloc
         assert drone(client, ada)[2] > 1.0 and drone(client, bob)[2] > 1.0
         teacher = classroom(client).instructor_token
         assert client.post("/api/classroom/worlds/bob/reset", headers=auth(teacher)).status_code == 200
-        assert len(classroom(client).simple_physics) == 2  # Bob's old drone left, his new one joined
+        assert len(classroom(client).labs.simple_physics) == 2  # Bob's old drone left, his new one joined
         advance(client, clock, 0.2)
         assert abs(drone(client, bob)[2]) < 0.1  # Bob starts over at the origin (GPS noise is 0.01 m)
         assert drone(client, ada)[2] > 1.0  # Ada keeps her flight

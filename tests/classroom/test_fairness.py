@@ -17,7 +17,7 @@ from support.ws import receive_within
 from api.errors import CloseCode
 from server.app import create_app
 from server.bus import ManualClock
-from server.classroom import Classroom
+from server.classroom import ClassServer
 from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorldLimits
 
 CODE = "FAIR42"
@@ -54,7 +54,7 @@ def client(clock: ManualClock) -> Iterator[TestClient]:
         yield test_client
 
 
-def classroom(client: TestClient) -> Classroom:
+def classroom(client: TestClient) -> ClassServer:
     return client.app.state.classroom  # type: ignore[attr-defined,no-any-return]
 
 

@@ -21,7 +21,7 @@ from support.app import App
 
 from server.app import create_app
 from server.bus import ManualClock
-from server.classroom import Classroom
+from server.classroom import ClassServer
 from server.limits import KeyedRateLimit
 from server.settings import ClassroomSettings, JoinLimits, LabSettings, Listening, Settings
 
@@ -60,7 +60,7 @@ def class_client(clock: ManualClock, **limits: Any) -> TestClient:
     return client
 
 
-def classroom(client: TestClient) -> Classroom:
+def classroom(client: TestClient) -> ClassServer:
     return client.app_state.classroom  # type: ignore[attr-defined,no-any-return]
 
 

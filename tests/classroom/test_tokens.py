@@ -8,7 +8,7 @@ import json
 import pytest
 
 from server.classroom import TokenSigner
-from server.classroom.classroom import world_name
+from server.classroom.world import world_name
 
 
 def test_a_token_carries_its_grant() -> None:

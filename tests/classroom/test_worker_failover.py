@@ -25,7 +25,7 @@ from support.wait import wait_until as support_wait_until
 
 from server.app import create_app
 from server.bus import ManualClock
-from server.classroom import Classroom
+from server.classroom import WorldWorker as WorkerWorlds
 from server.classroom.workers import (
     MAX_REPLY_BYTES,
     Silence,
@@ -103,7 +103,7 @@ def worker_auth(worker_id: str, class_token: str = CLASS_TOKEN) -> dict[str, str
 def test_a_worker_frees_its_worlds_once_the_class_server_is_silent_for_its_orphan_timeout(
     worker_client: TestClient, clock: ManualClock
 ) -> None:
-    classroom: Classroom = worker_client.app.state.classroom  # type: ignore[attr-defined]
+    classroom: WorkerWorlds = worker_client.app.state.classroom  # type: ignore[attr-defined]
     portal = worker_client.portal
     assert portal is not None
     host(worker_client, "ada", 3)

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from server.msgs import Message, PoseStamped, Vector3
-from server.msgs._base import MessageError, message_classes
+from server.msgs._base import message_classes
+from server.msgs._field import MessageError
 
 CLASSES = sorted(message_classes().items())
 

@@ -82,26 +82,52 @@ def _all_descriptions() -> dict[str, list[tuple[str, Any]]]:
     for name, spec in defs.messages.items():
         out.update(_rosbags_fields(name, spec.text))
     for name, srv in defs.services.items():
-        event = f"service_msgs/msg/ServiceEventInfo info\n{name}_Request[<=1] request\n{name}_Response[<=1] response"
-        whole = (
-            f"{name}_Request request_message\n{name}_Response response_message\n{name}_Event event_message"
-        )
-        parts = (
-            ("_Request", srv.request.text),
-            ("_Response", srv.response.text),
-            ("_Event", event),
-            ("", whole),
-        )
-        own = {f"{name}{suffix}" for suffix, _ in parts}
+        out.update(_service_fields(name, srv.request.text, srv.response.text))
+    for name, action in defs.actions.items():
+        out.update(_action_fields(name, action.text))
+    return out
 
-        def fix(match: re.Match[str], own: set[str] = own) -> str:  # a part, or a message of the package
-            part = f"{match[1]}/srv/{match[2]}"
-            return part if part in own else f"{match[1]}/msg/{match[2]}"
 
-        for suffix, text in parts:
-            for n, f in _rosbags_fields(f"{name}{suffix}", text).items():
-                fixed = json.loads(re.sub(r"(\w+)/srv/msg/(\w+)", fix, json.dumps(f)))
-                out[n.replace("/srv/msg/", "/srv/")] = [(fn, _tuples(fd)) for fn, fd in fixed]
+def _action_fields(name: str, text: str) -> dict[str, list[tuple[str, Any]]]:
+    """An action's types expanded here from its ``.action`` text, as rosidl expands one (apart
+    from server.msgs.action_spec): its parts, two services, feedback message and the action."""
+    goal, result, feedback = re.split(r"^---[ \t]*$", text, flags=re.MULTILINE)
+    uuid = "unique_identifier_msgs/UUID goal_id"
+    out: dict[str, list[tuple[str, Any]]] = {}
+    for suffix, part in (("_Goal", goal), ("_Result", result), ("_Feedback", feedback),
+                         ("_FeedbackMessage", f"{uuid}\n{name}_Feedback feedback")):  # fmt: skip
+        out.update(_rosbags_fields(name + suffix, part))
+    out.update(_service_fields(f"{name}_SendGoal", f"{uuid}\n{name}_Goal goal",
+                               "bool accepted\nbuiltin_interfaces/Time stamp"))  # fmt: skip
+    out.update(_service_fields(f"{name}_GetResult", uuid, f"int8 status\n{name}_Result result"))
+    members = ("_Goal goal", "_Result result", "_Feedback feedback", "_SendGoal send_goal_service",
+               "_GetResult get_result_service", "_FeedbackMessage feedback_message")  # fmt: skip
+    out.update(_rosbags_fields(name, "\n".join(name + m for m in members)))
+    return out
+
+
+def _service_fields(name: str, request: str, response: str) -> dict[str, list[tuple[str, Any]]]:
+    out: dict[str, list[tuple[str, Any]]] = {}
+    event = (
+        f"service_msgs/msg/ServiceEventInfo info\n{name}_Request[<=1] request\n{name}_Response[<=1] response"
+    )
+    whole = f"{name}_Request request_message\n{name}_Response response_message\n{name}_Event event_message"
+    parts = (
+        ("_Request", request),
+        ("_Response", response),
+        ("_Event", event),
+        ("", whole),
+    )
+    own = {f"{name}{suffix}" for suffix, _ in parts}
+
+    def fix(match: re.Match[str], own: set[str] = own) -> str:  # a part, or a message of the package
+        part = f"{match[1]}/srv/{match[2]}"
+        return part if part in own else f"{match[1]}/msg/{match[2]}"
+
+    for suffix, text in parts:
+        for n, f in _rosbags_fields(f"{name}{suffix}", text).items():
+            fixed = json.loads(re.sub(r"(\w+)/srv/msg/(\w+)", fix, json.dumps(f)))
+            out[n.replace("/srv/msg/", "/srv/")] = [(fn, _tuples(fd)) for fn, fd in fixed]
     return out
 
 
@@ -149,7 +175,12 @@ def test_reference_hasher_here_agrees_with_ros_2_too(name: str, expected: str) -
     assert rep2016_hash(name) == "RIHS01_" + expected
 
 
-@pytest.mark.parametrize("name", sorted(lab_definitions().messages) + sorted(lab_definitions().services))
+@pytest.mark.parametrize(
+    "name",
+    sorted(lab_definitions().messages)
+    + sorted(lab_definitions().services)
+    + sorted(lab_definitions().actions),
+)
 def test_type_hash_of_every_type_equals_rep2016_computed_apart(name: str) -> None:
     assert type_hash(name) == rep2016_hash(name)
 

@@ -13,7 +13,7 @@ import zenoh
 from support.app import free_port
 from support.wait import wait_until
 
-from server.transport import domain_bridge
+from server.transport import domain_crossing, domain_routes
 from server.transport.attachment import Attachment
 from server.transport.config import ZenohSettings
 from server.transport.domain_bridge import DomainBridge
@@ -143,8 +143,8 @@ def test_samples_cross_while_watched_with_the_bridges_attachment_and_never_loop(
 def test_what_one_world_can_make_the_bridge_declare_is_bounded(
     net: Net, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr(domain_bridge, "MAX_ROUTES_PER_WORLD", 3)
-    monkeypatch.setattr(domain_bridge, "MAX_TOKENS_PER_DOMAIN", 5)
+    monkeypatch.setattr(domain_routes, "MAX_ROUTES_PER_WORLD", 3)
+    monkeypatch.setattr(domain_routes, "MAX_TOKENS_PER_DOMAIN", 5)
     net.bridge.set_world(1, "ada")
     net.bridge.set_world(2, "bob")
     keep = [net.declare(EntityKind.PUBLISHER, f"/flood{i}", 10 + i) for i in range(8)]
@@ -176,7 +176,7 @@ def test_the_class_domain_itself_is_never_bridged(net: Net) -> None:
 def test_a_call_in_the_class_domain_is_answered_by_the_worlds_server_as_rmw_zenoh_matches_it(
     net: Net, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr(domain_bridge, "MAX_CALLS_PER_WORLD", 1)
+    monkeypatch.setattr(domain_crossing, "MAX_CALLS_PER_WORLD", 1)
     net.bridge.set_world(1, "ada")
     token = net.declare(EntityKind.SERVICE, "/double", 2)
     held: list[Any] = []  # calls the world's server has not answered yet
@@ -247,7 +247,7 @@ def test_a_name_that_is_not_fully_qualified_is_never_bridged_under_another_world
     net.bridge.set_world(1, "ada")
     net.bridge.set_world(2, "adam")
     keep = [net.declare(EntityKind.PUBLISHER, "/chatter", 2, domain_id=2)]
-    keep += [net.declare(kind, "m/chatter", 3 + i) for i, kind in enumerate(domain_bridge.BRIDGED)]
+    keep += [net.declare(kind, "m/chatter", 3 + i) for i, kind in enumerate(domain_routes.BRIDGED)]
     keep += [
         net.declare(EntityKind.PUBLISHER, topic, 10 + i) for i, topic in enumerate(("/a//b", "/x/", "~/x"))
     ]

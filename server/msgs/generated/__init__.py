@@ -1,6 +1,8 @@
 """The message and service classes, one module per ROS package (see server/msgs/generate.py)."""
 
 from . import (
+    action_msgs,
+    action_tutorials_interfaces,
     builtin_interfaces,
     example_interfaces,
     geometry_msgs,
@@ -12,9 +14,12 @@ from . import (
     std_msgs,
     std_srvs,
     tf2_msgs,
+    unique_identifier_msgs,
 )
 
 __all__ = [
+    "action_msgs",
+    "action_tutorials_interfaces",
     "builtin_interfaces",
     "example_interfaces",
     "geometry_msgs",
@@ -26,4 +31,5 @@ __all__ = [
     "std_msgs",
     "std_srvs",
     "tf2_msgs",
+    "unique_identifier_msgs",
 ]

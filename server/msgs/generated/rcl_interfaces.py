@@ -9,6 +9,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .._base import Message, Service
+from .._field import FloatArray, IntArray
 from .builtin_interfaces import Time
 
 
@@ -140,8 +141,8 @@ class ParameterValue(Message, type_name="rcl_interfaces/msg/ParameterValue"):
     string_value: str
     byte_array_value: npt.NDArray[np.uint8]
     bool_array_value: npt.NDArray[np.bool_]
-    integer_array_value: npt.NDArray[np.int64]
-    double_array_value: npt.NDArray[np.float64]
+    integer_array_value: IntArray
+    double_array_value: FloatArray
     string_array_value: list[str]
 
     if TYPE_CHECKING:
@@ -334,7 +335,7 @@ class GetParameterTypes_Response(Message, type_name="rcl_interfaces/srv/GetParam
     """rcl_interfaces/srv/GetParameterTypes_Response"""
 
     __slots__ = ("types",)
-    types: npt.NDArray[np.uint8]
+    types: IntArray
 
     if TYPE_CHECKING:
 

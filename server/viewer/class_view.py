@@ -4,18 +4,25 @@ Each world gets an arena tile of its own, laid out in rows of ``COLUMNS`` (the w
 around the same origin, so drawn in one place their drones would sit on one another at home). A
 tile is the world's 20 m arena with its student's name; its drone is a sphere that carries a label
 with the name and altitude. The instructor's page shows it in a frame (``/instructor/view``),
-proxied like a student's 3D view; the class server moves the drones from each world's latest GPS
-fix while the page is open (``Classroom._view_loop``), so it costs nothing when nobody looks.
+proxied like a student's 3D view; ``run_class_view`` moves the drones from each world's latest GPS
+fix while the page is open, so it costs nothing when nobody looks. The class server hands it its
+worlds' drones (``DroneSource``): this layer knows nothing of worlds, labs or workers.
 """
 
 from __future__ import annotations
 
 import asyncio
+import logging
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
-from server.viewer.display import Display
+from server.bus import Clock
+
+from .display import Display
+
+log = logging.getLogger("classroom.view")
 
 ARENA_M = 20.0
 TILE_M = 26.0  # an arena and a walkway
@@ -24,6 +31,9 @@ DRONE_RADIUS_M = 1.0  # larger than the drone, so a class of small arenas still 
 MOVED_M = 0.005  # a drone that moved less is not sent again
 DRONE_COLOR = (40, 170, 90)
 GONE_COLOR = (200, 60, 60)  # a world whose drone is not known now (its worker is gone)
+VIEW_HZ = 10.0  # the instructor's 3D view: local worlds' drones
+REMOTE_VIEW_HZ = 2.0  # and world workers' (one call per worker)
+Position = list[float] | None  # a drone's x, y, z in its world (m), None when not known now
 
 
 @dataclass
@@ -148,3 +158,35 @@ class ClassView:
 
     def stop(self) -> None:
         self.display.stop()
+
+
+class DroneSource(Protocol):
+    """Where the class view's drones are: those the class server can read itself, and those it
+    must ask its world workers for."""
+
+    def drones(self, remote: Mapping[str, Position]) -> dict[str, tuple[str, Position]]:
+        """Each world's student and drone, the workers' worlds' taken from ``remote``."""
+        ...
+
+    async def remote_drones(self) -> dict[str, Position]:
+        """The drones of the worlds on world workers, by world, as their workers report them now."""
+        ...
+
+
+async def run_class_view(view: ClassView, clock: Clock, source: DroneSource) -> None:
+    """Move the class view's drones while the instructor's page shows it: local worlds' at
+    VIEW_HZ from their latest GPS fix, workers' as often as REMOTE_VIEW_HZ asks them."""
+    remote_at = -math.inf
+    remote: dict[str, Position] = {}
+    while True:
+        await asyncio.sleep(1.0 / VIEW_HZ)
+        if not view.watched():
+            continue
+        try:
+            now = clock.now()
+            if now - remote_at >= 1.0 / REMOTE_VIEW_HZ or now < remote_at:
+                remote_at = now
+                remote = await source.remote_drones()
+            view.show(source.drones(remote))
+        except Exception:  # the view must outlive any one round
+            log.exception("updating the class view failed; trying again")

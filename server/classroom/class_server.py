@@ -1,0 +1,273 @@
+"""The class server: a world per student, joined with the class code, placed here or on a world
+worker, shown to the instructor in one 3D view and in the class's own ROS domain.
+
+It is the one place the class's parts meet: who may do what (grants.py), the worlds' labs
+(worlds.py), the class's Zenoh graph (class_graph.py), where worlds run (placement.py), what its
+workers' worlds report (remote_worlds.py) and the instructor's view (server/viewer/class_view.py).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import hmac
+import logging
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+from server.bus import Clock, ExecutorGroup, SystemClock
+from server.limits import RateLimit
+from server.settings import Settings, class_section
+from server.tasks import cancel_and_wait
+from server.transport.acl import ClassAuth
+
+from . import remote_worlds
+from .admission import Admission, check_student_name, new_code
+from .class_graph import ClassGraph
+from .errors import ClassroomError
+from .grants import Grants, world_for
+from .load import CpuMeter, machine_id
+from .placement import Placement
+from .tokens import Grant, TokenSigner
+from .world import World, drone_position, world_name
+from .worlds import WorldLabs
+
+if TYPE_CHECKING:
+    from server.transport.domain_bridge import DomainBridge
+    from server.viewer.class_view import ClassView
+
+    from .class_bridges import ClassBridges
+    from .local_workers import LocalWorkers
+    from .workers import WorkerDirectory
+
+log = logging.getLogger("classroom")
+
+
+class ClassServer:
+    """The worlds of one class, and who may do what in them."""
+
+    def __init__(
+        self,
+        settings: Settings,
+        clock: Clock | None = None,
+        *,
+        code: str | None = None,
+        signer: TokenSigner | None = None,
+    ) -> None:
+        self.settings = settings
+        self.class_settings = class_section(settings)
+        self.clock: Clock = clock or SystemClock()
+        self.code = code or new_code()
+        self.grants = Grants(signer)
+        self.admission = Admission(self.class_settings.joins, self.clock)
+        self.labs = WorldLabs(settings, self.clock, lambda: self.graph.endpoint())
+        self.graph = ClassGraph(settings, self.labs.worlds, self.grants.instructor_token)
+        # This process's and machine's CPU, read every WATCH_PERIOD_S (a watch round): a
+        # placement weighs the last seconds.
+        self.cpu = CpuMeter(machine=machine_id())
+        self.placement = Placement(settings, self.labs, self.graph, self.cpu, self._end)
+        self.local_workers: LocalWorkers | None = None  # world workers started here (--workers)
+        self.view: ClassView | None = None  # the instructor's 3D view of every world
+        self._tasks: list[asyncio.Task[None]] = []  # the watch over the workers, the view's loop
+
+    # -- what the routes read ------------------------------------------------------------------
+    @property
+    def worlds(self) -> dict[str, World]:
+        return self.labs.worlds
+
+    @property
+    def executors(self) -> ExecutorGroup:
+        return self.labs.executors
+
+    @property
+    def instructor_token(self) -> str:
+        return self.grants.instructor_token
+
+    @property
+    def workers(self) -> WorkerDirectory | None:
+        return self.graph.workers
+
+    @property
+    def class_graph(self) -> DomainBridge | None:
+        return self.graph.bridge
+
+    @property
+    def bridges(self) -> ClassBridges | None:
+        return self.graph.bridges
+
+    @property
+    def hosted_here(self) -> int:
+        return self.labs.hosted_here
+
+    @property
+    def local_capacity(self) -> int:
+        return self.labs.local_capacity
+
+    @property
+    def zenoh_auth(self) -> ClassAuth:
+        """The class's Zenoh logins, from the instructor's token."""
+        return self.graph.auth
+
+    def router_endpoint(self) -> str | None:
+        return self.graph.endpoint()
+
+    # -- who is calling ------------------------------------------------------------------------
+    def grant(self, token: str | None) -> Grant | None:
+        """The grant of a genuine, current token: a student's world must still be theirs."""
+        return self.grants.check(token, self.worlds) if token else None
+
+    def world_for(self, grant: Grant, asked: str | None) -> World:
+        return world_for(grant, asked, self.worlds)
+
+    def get(self, name: str) -> World:
+        return self.labs.get(name)
+
+    def charge_reset(self, name: str) -> None:
+        self.labs.charge_reset(name)
+
+    # -- start and stop ------------------------------------------------------------------------
+    async def open(self) -> None:
+        """Open the instructor's view and the class's Zenoh graph (if Zenoh is on), then start the
+        watch over the world workers and those started here."""
+        if self.settings.lab.viewer:
+            from server.viewer.class_view import ClassView, run_class_view
+
+            self.view = ClassView(asyncio.get_running_loop())
+            self._tasks.append(asyncio.create_task(run_class_view(self.view, self.clock, self)))
+        if not await self.graph.open(self.clock, self.executors):
+            return
+        self._tasks.append(asyncio.create_task(self.placement.watch()))
+        endpoint = self.graph.endpoint()
+        # Started last: a start-up that fails earlier leaves no worker behind to clean up.
+        if endpoint is not None and self.class_settings.local_workers > 0:
+            from .local_workers import LocalWorkers
+
+            self.local_workers = LocalWorkers(
+                self.class_settings.local_workers, endpoint, self.instructor_token, self.class_settings.max_worlds,
+                self.settings.lab.workspace, self.settings.lab.bag_dir, world_log_level=self.class_settings.world_log_level,
+            )  # fmt: skip
+            self.local_workers.start()
+
+    async def stop(self) -> None:
+        for task in self._tasks:
+            await cancel_and_wait(task)
+        self._tasks.clear()
+        if self.view is not None:
+            self.view.stop()
+            self.view = None
+        for name in list(self.worlds):
+            await self._end(self.worlds.pop(name))
+        if self.local_workers is not None:
+            await self.local_workers.stop()
+            self.local_workers = None
+        await self.graph.close_bridges(self.executors)
+        await self.executors.close()
+        await self.graph.close()
+
+    # -- worlds --------------------------------------------------------------------------------
+    async def join(self, student: str, code: str, address: str = "unknown") -> tuple[World, str]:
+        """A new world for ``student``, joined from client ``address`` (its limits: admission.py)."""
+        self.admission.check(address)
+        if not hmac.compare_digest(code.strip().upper().encode(), self.code.encode()):
+            raise self.admission.wrong_code(address)
+        check_student_name(student)
+        try:
+            name = world_name(student)
+        except ValueError as exc:
+            raise ClassroomError(422, str(exc)) from None
+        if self.labs.taken(name):
+            raise ClassroomError(409, f"the name {student!r} is taken in this class (world {name!r})")
+        if self.labs.full():
+            raise ClassroomError(429, f"the class is full ({self.class_settings.max_worlds} worlds)")
+        student = student.strip()[:64]
+        domain_id = self.labs.free_domain(self.graph.revoking)
+        login = self.graph.login(domain_id)
+        self.admission.hold(address)
+        self.labs.starting[name] = domain_id  # held while the world starts: no two joins take one name
+        try:
+            async with self.graph.gate.use():
+                lab, place = await self.placement.start(name, student, domain_id, login)
+        except BaseException:
+            self.admission.release(address)
+            raise
+        finally:
+            del self.labs.starting[name]
+        token, grant = self.grants.issue(name, student)
+        resets = RateLimit(
+            self.clock, self.class_settings.world.resets_hz, self.class_settings.world.resets_burst
+        )
+        world = self.worlds[name] = World(
+            name, student, grant.token_id, lab, self.labs.write_limit(), domain_id, worker=place,
+            placed_at=self.clock.now(), login=login, address=address, reset_limit=resets,
+        )  # fmt: skip
+        self.graph.show(world)
+        where = f" on world worker {place.id}" if place is not None else ""
+        log.info("%s joined: world %s%s", student, name, where)
+        return world, token
+
+    async def reset(self, name: str) -> World:
+        """A fresh world under the same name and token: every node starts over, the 3D view too."""
+        world = self.get(name)
+        async with self.graph.gate.use():  # the world's graph joins the router again as it starts
+            if world.worker is not None:
+                assert self.workers is not None
+                await self.workers.checked(world.worker, "POST", f"/api/classroom/worlds/{name}/reset")
+            else:
+                await self.labs.restart(world)
+        world.resets += 1
+        log.info("world %s reset", name)
+        return world
+
+    async def kick(self, name: str) -> World:
+        world = self.worlds.pop(name, None)
+        if world is None:
+            raise ClassroomError(404, f"no world named {name!r}")
+        self.graph.hold(world)  # at once: a join while the world ends must not get its domain
+        self.grants.revoke(world)
+        self.admission.release(world.address)
+        await self._end(world)
+        await self.graph.revoke_login(world.domain_id)
+        log.info("%s kicked: world %s removed", world.student, name)
+        return world
+
+    async def _end(self, world: World) -> None:
+        if world.lab is not None:
+            await world.lab.stop()
+        elif world.worker is not None and self.workers is not None:
+            await remote_worlds.end_remote(self.workers, world)
+
+    # -- what the instructor sees --------------------------------------------------------------
+    async def describe_all(self) -> list[dict[str, Any]]:
+        """Every world as the instructor's page shows it; a worker's worlds as their worker reports."""
+        reports, errors = await remote_worlds.worker_reports(self.workers, self.worlds)
+        out = []
+        for world in self.worlds.values():
+            mine = world.describe()
+            if world.worker is not None:
+                reported = reports.get((world.worker.id, world.name), {})
+                mine = {**reported, **mine}
+                if world.worker.id in errors:
+                    mine["worker_error"] = errors[world.worker.id]
+            out.append(mine)
+        return out
+
+    async def broadcast_on_workers(self, body: dict[str, Any]) -> tuple[list[str], dict[str, str]]:
+        """The instructor's broadcast, published by each world worker in the worlds it hosts."""
+        return await remote_worlds.broadcast(self.workers, self.worlds, body)
+
+    def drones(
+        self, remote: Mapping[str, list[float] | None] | None = None
+    ) -> dict[str, tuple[str, list[float] | None]]:
+        """Every world's student and drone position, as the class view shows them (None: not known
+        now); a worker's world's from ``remote`` (the latest its worker reported)."""
+        remote = remote or {}
+        out: dict[str, tuple[str, list[float] | None]] = {}
+        for world in self.worlds.values():
+            if world.lab is not None:
+                position = drone_position(world.lab)
+            else:
+                position = None if world.lost is not None else remote.get(world.name)
+            out[world.name] = (world.student, position)
+        return out
+
+    async def remote_drones(self) -> dict[str, list[float] | None]:
+        return await remote_worlds.remote_drones(self.workers, self.worlds)

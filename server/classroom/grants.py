@@ -1,0 +1,59 @@
+"""Who may do what: the instructor's grant, a student's grant to their own world, and revocation.
+
+Every call carries a signed token (tokens.py). A student's token grants their world while that
+world is still theirs: a removed world's token is revoked, and a world of the same name made
+later has a token of its own. The instructor's grant reaches every world, but a call must name
+the world it acts on.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from .errors import ClassroomError
+from .tokens import Grant, TokenSigner
+from .world import World
+
+
+class Grants:
+    """The tokens ``signer`` issues, the instructor's among them, and those revoked since."""
+
+    def __init__(self, signer: TokenSigner | None = None) -> None:
+        self.signer = signer or TokenSigner()
+        self.instructor_token, self.instructor = self.signer.issue("instructor", None, "instructor")
+        self._revoked: set[str] = set()
+
+    def issue(self, world: str, student: str) -> tuple[str, Grant]:
+        """A student's token for ``world``, and its grant."""
+        return self.signer.issue("student", world, student)
+
+    def revoke(self, world: World) -> None:
+        """``world``'s token grants nothing from now on."""
+        self._revoked.add(world.token_id)
+
+    def check(self, token: str, worlds: Mapping[str, World]) -> Grant | None:
+        """The grant of a genuine, current token: a student's world must still be theirs."""
+        grant = self.signer.verify(token)
+        if grant is None or grant.token_id in self._revoked:
+            return None
+        if grant.is_instructor:
+            return grant
+        world = worlds.get(grant.world or "")
+        return grant if world is not None and world.token_id == grant.token_id else None
+
+
+def world_for(grant: Grant, asked: str | None, worlds: Mapping[str, World]) -> World:
+    """The world a call acts on: a student's own (naming another is 403); the instructor's
+    must be named."""
+    if grant.is_instructor:
+        if asked is None:
+            raise ClassroomError(400, "name a world (the X-Lab-World header or ?world=)")
+        name = asked
+    elif asked is not None and asked != grant.world:
+        raise ClassroomError(403, f"your token is for world {grant.world!r}, not {asked!r}")
+    else:
+        name = grant.world or ""
+    world = worlds.get(name)
+    if world is None:
+        raise ClassroomError(404, f"no world named {name!r}")
+    return world

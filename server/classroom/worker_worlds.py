@@ -1,0 +1,237 @@
+"""A world worker's worlds: those a class server placed here, in the ROS domains it chose.
+
+A world worker (``ros2lab world-worker``, server/world_worker.py) runs the app as this role: it
+answers the class server's hellos on the class's router (worker_control.py), starts the worlds
+the class server asks it to host and ends them when asked. Every call comes from the class
+server: its own and the instructor's with the worker's API token, a student's forwarded with a
+credential for that world alone (workers.py). When the class server has been silent for the
+worker's orphan timeout, every world here is freed: nobody can reach them, and its replacement
+starts them anew.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import dataclasses
+import hmac
+import logging
+from typing import Any
+
+from server.bus import Clock, ExecutorGroup, SystemClock
+from server.settings import Settings, class_section
+from server.tasks import cancel_and_wait
+from server.transport.acl import ClassAuth, Credentials
+
+from .admission import new_code
+from .errors import ClassroomError
+from .grants import Grants, world_for
+from .load import CpuMeter, machine_id
+from .tokens import Grant, TokenSigner
+from .workers import WATCH_PERIOD_S, worker_api_token, world_of_call_token
+from .world import World
+from .worlds import WorldLabs
+
+log = logging.getLogger("classroom")
+
+
+class WorldWorker:
+    """The worlds hosted for one class server; ``settings.worker`` says which and how."""
+
+    def __init__(
+        self,
+        settings: Settings,
+        clock: Clock | None = None,
+        *,
+        code: str | None = None,
+        signer: TokenSigner | None = None,
+    ) -> None:
+        if settings.worker is None:
+            raise ValueError("a world worker needs its worker settings (settings.worker)")
+        self.settings = settings
+        self.class_settings = class_section(settings)
+        self.role = settings.worker
+        self.clock: Clock = clock or SystemClock()
+        self.code = code or new_code()  # joins go to the class server: nobody is told this one
+        self.grants = Grants(signer)
+        self.labs = WorldLabs(settings, self.clock, self.router_endpoint)
+        # This process's and machine's CPU: each hello (every WATCH_PERIOD_S) reads it, so a
+        # load covers the last seconds.
+        self.cpu = CpuMeter(machine=machine_id())
+        self._worker_token = worker_api_token(self.role.class_token, self.role.id)
+        self._class_heard_at = self.clock.now()  # the class server's last hello or call
+        self._control: Any = None  # the hello queryable (WorkerControl) and its session
+        self._control_session: Any = None
+        self._watch: asyncio.Task[None] | None = None
+
+    @property
+    def worlds(self) -> dict[str, World]:
+        return self.labs.worlds
+
+    @property
+    def executors(self) -> ExecutorGroup:
+        return self.labs.executors
+
+    @property
+    def instructor_token(self) -> str:
+        return self.grants.instructor_token
+
+    @property
+    def hosted_here(self) -> int:
+        return self.labs.hosted_here
+
+    @property
+    def local_capacity(self) -> int:
+        return self.labs.local_capacity
+
+    @property
+    def zenoh_auth(self) -> ClassAuth:
+        """The class's Zenoh logins, from the instructor's token (held here as the class token)."""
+        return ClassAuth(self.role.class_token)
+
+    def router_endpoint(self) -> str | None:
+        """Where worlds and node processes connect: the class's router this worker joined."""
+        zenoh = self.settings.lab.zenoh
+        return zenoh.connect[0] if zenoh is not None and zenoh.mode != "router" else None
+
+    # -- who is calling ------------------------------------------------------------------------
+    def grant(self, token: str | None) -> Grant | None:
+        """The class server's own calls (and the instructor's) with the worker's API token; a
+        student's, forwarded by the class server, for their world alone; else a signed token's."""
+        if not token:
+            return None
+        if hmac.compare_digest(token.encode(), self._worker_token.encode()):
+            self.heard_from_class()
+            return self.grants.instructor  # the class server, calling its worker
+        forwarded = world_of_call_token(self.role.class_token, self.role.id, token)
+        if forwarded is not None:
+            self.heard_from_class()
+            world = self.worlds.get(forwarded)
+            # A student's call, forwarded by the class server: that world's student, nothing more.
+            return Grant("student", world.name, world.student, world.token_id) if world is not None else None
+        return self.grants.check(token, self.worlds)
+
+    def world_for(self, grant: Grant, asked: str | None) -> World:
+        return world_for(grant, asked, self.worlds)
+
+    def get(self, name: str) -> World:
+        return self.labs.get(name)
+
+    def charge_reset(self, name: str) -> None:
+        self.labs.charge_reset(name)
+
+    # -- start and stop ------------------------------------------------------------------------
+    async def open(self) -> None:
+        """Join the class's router (if Zenoh is on) and answer the class server's hellos."""
+        zenoh = self.settings.lab.zenoh
+        if zenoh is None:
+            return
+        from server.transport.session import open_session
+
+        from .worker_control import WorkerControl
+
+        zenoh = dataclasses.replace(zenoh, login=self.zenoh_auth.class_credentials())
+        self._control_session = await asyncio.to_thread(open_session, zenoh)
+        self._control = WorkerControl(self._control_session, self.role, self._load, self.heard_from_class)
+        self._watch = asyncio.create_task(self._watch_class(self.role.orphan_timeout_s))
+
+    async def stop(self) -> None:
+        if self._watch is not None:
+            await cancel_and_wait(self._watch)
+            self._watch = None
+        for name in list(self.worlds):
+            await self._end(self.worlds.pop(name))
+        await self.executors.close()
+        if self._control is not None:
+            self._control.close()
+            self._control = None
+        if self._control_session is not None:
+            self._control_session.close()
+            self._control_session = None
+
+    # -- worlds --------------------------------------------------------------------------------
+    async def host(
+        self,
+        name: str,
+        student: str,
+        domain_id: int,
+        launch: str,
+        launch_args: dict[str, str],
+        login: Credentials | None = None,
+    ) -> World:
+        """Start the world a class server placed here, in the domain it chose."""
+        self.heard_from_class()
+        if self.labs.taken(name):
+            raise ClassroomError(409, f"world {name!r} is already here")
+        if self.labs.full():
+            raise ClassroomError(429, f"this worker is full ({self.class_settings.max_worlds} worlds)")
+        self.labs.starting[name] = domain_id
+        try:
+            lab = await self.labs.start(name, domain_id, (launch, launch_args), login)
+        finally:
+            del self.labs.starting[name]
+        _token, grant = self.grants.issue(name, student)  # never handed out: the class server proxies
+        world = self.worlds[name] = World(
+            name, student, grant.token_id, lab, self.labs.write_limit(), domain_id, login=login
+        )
+        log.info("hosting world %s (%s), ROS domain %d", name, student, domain_id)
+        return world
+
+    async def reset(self, name: str) -> World:
+        """A fresh world under the same name: every node starts over, the 3D view too."""
+        world = self.get(name)
+        await self.labs.restart(world)
+        world.resets += 1
+        log.info("world %s reset", name)
+        return world
+
+    async def kick(self, name: str) -> World:
+        """End a world the class server removed (or moved elsewhere)."""
+        world = self.worlds.pop(name, None)
+        if world is None:
+            raise ClassroomError(404, f"no world named {name!r}")
+        self.grants.revoke(world)
+        await self._end(world)
+        log.info("%s kicked: world %s removed", world.student, name)
+        return world
+
+    async def _end(self, world: World) -> None:
+        if world.lab is not None:
+            await world.lab.stop()
+
+    async def describe_all(self) -> list[dict[str, Any]]:
+        """Every world here, as the class server asks for it."""
+        return [world.describe() for world in self.worlds.values()]
+
+    # -- a class server that goes --------------------------------------------------------------
+    def heard_from_class(self) -> None:
+        """The class server said hello or called (Zenoh's thread or the loop)."""
+        self._class_heard_at = self.clock.now()
+
+    async def _watch_class(self, timeout_s: float) -> None:
+        """Free every world when the class server has been silent for ``timeout_s`` (it stopped or
+        lost the network): nobody can reach them, and its replacement starts them anew."""
+        while True:
+            await asyncio.sleep(min(WATCH_PERIOD_S, timeout_s / 2))
+            try:
+                await self.free_if_orphaned(timeout_s)
+            except Exception:
+                log.exception("checking on the class server failed; trying again")
+
+    async def free_if_orphaned(self, timeout_s: float) -> list[str]:
+        """The worlds freed because the class server has said nothing for ``timeout_s``."""
+        silent_s = self.clock.now() - self._class_heard_at
+        if not self.worlds or silent_s < timeout_s:
+            return []
+        names = list(self.worlds)
+        log.warning(
+            "no hello from the class server for %.0f s: freeing worlds %s", silent_s, ", ".join(names)
+        )
+        for name in names:
+            await self._end(self.worlds.pop(name))
+        return names
+
+    def _load(self) -> dict[str, Any]:
+        """A worker's hello: how full it is, and which worlds it hosts (Zenoh's thread: a copy)."""
+        hosted = sorted(self.worlds)
+        return {"worlds": len(hosted) + len(self.labs.starting), "max_worlds": self.class_settings.max_worlds,
+                "hosted": hosted, "cpu": self.cpu.read().describe()}  # fmt: skip

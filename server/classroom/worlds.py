@@ -1,0 +1,131 @@
+"""The worlds one process knows and the labs it runs for them: what a class server and a world
+worker share.
+
+Every world's lab runs on the one clock, in one executor group (one task runs every world's
+callbacks) and with the drones of all stepped in one batch (server/devices/shared_physics.py). A
+world's graph joins the class's router in a ROS domain of its own; its other ports (Foxglove,
+rosbridge) are not opened per world; its bags go in a folder of its own.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from server.bus import Clock, ExecutorGroup
+from server.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
+from server.lab import Lab
+from server.limits import RateLimit
+from server.settings import Settings, class_section
+from server.transport.acl import Credentials
+from server.transport.config import ZenohSettings
+
+from .errors import ClassroomError
+from .world import World
+
+MAX_DOMAIN_ID = 232  # ROS 2's highest ROS_DOMAIN_ID
+Launch = tuple[str, dict[str, str]]  # a launch file and its arguments
+
+
+class WorldLabs:
+    """The worlds by name, those starting, and the labs of those that run here. ``endpoint``
+    says where a world's graph connects now (None: no Zenoh)."""
+
+    def __init__(self, settings: Settings, clock: Clock, endpoint: Callable[[], str | None]) -> None:
+        self.settings = settings
+        self.class_settings = class_section(settings)
+        self.clock = clock  # every world's, the physics' and the limits'
+        self.endpoint = endpoint
+        self.worlds: dict[str, World] = {}
+        self.starting: dict[str, int] = {}  # world → its ROS domain, while it starts
+        self.physics = SharedQuadrotorPhysics(clock)
+        self.simple_physics = SharedSimpleSim(clock)  # the worlds flown with simple:=true
+        self.executors = ExecutorGroup()
+
+    def get(self, name: str) -> World:
+        world = self.worlds.get(name)
+        if world is None:
+            raise ClassroomError(404, f"no world named {name!r}")
+        return world
+
+    def taken(self, name: str) -> bool:
+        return name in self.worlds or name in self.starting
+
+    def full(self) -> bool:
+        return len(self.worlds) + len(self.starting) >= self.class_settings.max_worlds
+
+    @property
+    def hosted_here(self) -> int:
+        """Worlds this process runs itself (not on a world worker)."""
+        return sum(1 for w in self.worlds.values() if w.worker is None)
+
+    @property
+    def local_capacity(self) -> int:
+        return self.class_settings.local_capacity
+
+    def write_limit(self) -> RateLimit:
+        return RateLimit(
+            self.clock, self.class_settings.world.writes_hz, self.class_settings.world.writes_burst
+        )
+
+    def free_domain(self, also_taken: set[int]) -> int:
+        """The lowest ROS domain no world, starting world, nor ``also_taken`` holds."""
+        taken = {w.domain_id for w in self.worlds.values()} | set(self.starting.values()) | also_taken
+        if self.settings.lab.zenoh is not None:
+            taken.add(self.settings.lab.zenoh.domain_id)  # the class's own domain stays empty
+        free = (d for d in range(1, MAX_DOMAIN_ID + 1) if d not in taken)
+        domain = next(free, None)
+        if domain is None:
+            raise ClassroomError(429, f"every ROS domain (1..{MAX_DOMAIN_ID}) is taken")
+        return domain
+
+    def charge_reset(self, name: str) -> None:
+        """A student's reset: one of their world's few resets, and one of its writes (429 over
+        either, which charges neither)."""
+        world = self.get(name)
+        limits, resets = self.class_settings.world, world.reset_limit
+        if resets is not None and not resets.ready():
+            resets.refused += 1
+            raise ClassroomError(
+                429, f"too many resets of world {name!r}: at most {limits.resets_burst} in a row, "
+                f"then one in {1 / limits.resets_hz:g} s", resets.retry_after_s(),
+            )  # fmt: skip
+        if not world.writes.take():
+            raise ClassroomError(429, f"too many requests for world {name!r}: at most "
+                                      f"{limits.writes_hz:g} writes a second", world.writes.retry_after_s())  # fmt: skip
+        if resets is not None:
+            resets.take()
+
+    async def start(
+        self, name: str, domain_id: int, launch: Launch | None = None, login: Credentials | None = None
+    ) -> Lab:
+        """Start world ``name``'s lab in ``domain_id`` (the class's launch unless ``launch``)."""
+        settings = self._world_settings(name, domain_id, launch, login)
+        lab = Lab(settings, self.clock, executors=self.executors)
+        lab.bus.label = name  # its nodes' console lines carry its name (server/console.py)
+        lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
+        lab.bus.devices["simple_sim_physics"] = self.simple_physics
+        await lab.start()
+        return lab
+
+    async def restart(self, world: World) -> None:
+        """A world that runs here, fresh: same name, domain, login and launch, every node anew."""
+        assert world.lab is not None
+        await world.lab.stop()  # first: the new world takes the same ROS domain on the graph
+        launch = world.lab.settings.lab.launch, world.lab.settings.lab.launch_args
+        world.lab = await self.start(world.name, world.domain_id, launch, world.login)
+
+    def _world_settings(
+        self, name: str, domain_id: int, launch: Launch | None, login: Credentials | None
+    ) -> Settings:
+        endpoint = self.endpoint()
+        zenoh = None
+        if endpoint is not None:
+            config_file = self.settings.lab.zenoh.config_file if self.settings.lab.zenoh is not None else None
+            zenoh = ZenohSettings(
+                mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file,
+                login=login, samples_hz=self.class_settings.world.samples_hz,
+            )  # fmt: skip
+        file, args = (
+            launch if launch is not None else (self.settings.lab.launch, self.settings.lab.launch_args)
+        )
+        return self.settings.for_world(name, zenoh, file, args)

@@ -1,0 +1,31 @@
+"""unique_identifier_msgs: generated from server/msgs/interfaces/unique_identifier_msgs by `python -m server.msgs.generate`; do not edit."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
+
+from .._base import Message
+
+
+class UUID(Message, type_name="unique_identifier_msgs/msg/UUID"):
+    """unique_identifier_msgs/msg/UUID: A universally unique identifier (UUID)."""
+
+    __slots__ = ("uuid",)
+    uuid: npt.NDArray[np.uint8]
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            uuid: Sequence[int] | npt.NDArray[Any] = ...,
+        ) -> None: ...
+
+
+__all__ = [
+    "UUID",
+]
