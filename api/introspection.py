@@ -15,9 +15,11 @@ from server.introspection import graph_snapshot, node_info, rate_stats, type_sch
 from server.introspection.merged import remote_node_endpoints
 from server.lab import Lab
 from server.msgs import Message, UnknownTypeError, get_type, type_names
+from server.topic_watch import WatchState
 
 from .deps import LabDep
 from .responses import NOT_FOUND, responses
+from .schemas import WATCH
 
 # Handlers are ``async def`` so that they read the bus on the event loop that owns it, never
 # from a worker thread while the executor changes it.
@@ -115,6 +117,7 @@ class RateOut(BaseModel):
     max_s: float | None
     std_dev_s: float | None
     count: int = Field(description="messages published on the topic so far")
+    watch: WatchState | None = WATCH
 
 
 @router.get("/graph", response_model=GraphOut)
@@ -189,13 +192,15 @@ async def topic_hz(
     window: int = Query(HZ_WINDOW_DEFAULT, ge=2, le=HZ_WINDOW_MAX, description="periods"),
 ) -> dict[str, Any]:
     """A topic's publishing rate over its last ``window`` periods, as ``ros2 topic hz``. For a topic
-    only other processes use, the first request starts listening (``window`` 0 until messages come)."""
+    only other processes use, the first request starts listening (``watch`` says so; ``window`` is 0
+    until messages come)."""
     full = "/" + validate_topic_name(name).lstrip("/")
-    if full not in lab.bus.topics or full in lab.topic_watch.watched():
-        lab.topic_watch.watch(full, lab.topic_type(full, None))
+    watch = None
+    if lab.topic_watch.needed(full):
+        watch = lab.topic_watch.watch(full, lab.topic_type(full, None))
     topic = lab.bus.get_topic(full)
     stats = rate_stats(topic.publish_times_s, window)
-    return {"topic": topic.name, **vars(stats), "count": topic.publish_count}
+    return {"topic": topic.name, **vars(stats), "count": topic.publish_count, "watch": watch}
 
 
 def _type(name: str) -> type[Message]:

@@ -7,8 +7,15 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field
 
 from server.publishers import MAX_RATE_HZ, MIN_RATE_HZ
+from server.topic_watch import WatchState
 
 MAX_NAME_CHARS = 256  # topic and type names
+WATCH = Field(
+    default=None,
+    description="for a topic only other processes use: 'started' when this request began listening "
+    "to it, as ros2 topic echo does (its messages show from now on), 'running' while an earlier "
+    "request's listening goes on (until 30 s after the last); null when the app itself subscribes",
+)
 
 
 class TopicSummary(BaseModel):
@@ -37,6 +44,7 @@ class TopicDetail(TopicSummary):
     latest: dict[str, Any] | None = Field(description="the last message published, or null")
     latest_time: float | None = Field(description="when it was published (s, Unix epoch)")
     publish_count: int
+    watch: WatchState | None = WATCH
     publisher_depths: list[int] = Field(description="QoS depth (keep-last) of each publisher")
     subscriber_depths: list[int] = Field(description="QoS depth (keep-last) of each subscription")
 

@@ -121,9 +121,10 @@ class Lab:
 
             self.display = Display(asyncio.get_running_loop())
             self.bus.devices["display"] = self.display
+        started = time.perf_counter()
         self.start_nodes()
-        if self.executors is not None:
-            self.executors.add(self.executor)
+        if self.executors is not None:  # a class world's start (a join, a reset) is charged to it
+            self.executors.add(self.executor, charge_s=time.perf_counter() - started)
         else:
             self._spin_task = asyncio.create_task(self.executor.spin(), name="executor")
 

@@ -1,5 +1,7 @@
 """``--ros-args`` as ``ros2 run`` and ``ros2 launch`` pass them: ``-r``/``--remap``, ``-p``/``--param``,
-``--log-level``; ``__node``/``__ns`` remaps rename the node and its namespace."""
+``--params-file``, ``--log-level``; ``__node``/``__ns`` remaps rename the node and its namespace.
+A parameters file is read here, so one that does not parse stops ``rclpy.init()`` with one line
+naming the file (and line)."""
 
 from __future__ import annotations
 
@@ -8,6 +10,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import yaml
+
+from server.bus.params_file import ParamsFile, ParamsFileError, read_params_file
 
 LOG_LEVELS = {"debug": 10, "info": 20, "warn": 30, "warning": 30, "error": 40, "fatal": 50}
 
@@ -22,8 +26,17 @@ class RosArgs:
     namespace: str | None = None
     remappings: dict[str, str] = field(default_factory=dict)
     parameters: dict[str, Any] = field(default_factory=dict)
+    params_files: list[ParamsFile] = field(default_factory=list)
     log_level: int | None = None  # the console's threshold (``--log-level``), as rcutils' severities
     rest: list[str] = field(default_factory=list)  # what is not a ROS argument (the program's own)
+
+    def parameters_for(self, fully_qualified_name: str) -> dict[str, Any]:
+        """A node's overrides: its sections of the parameters files, in order, then ``-p``."""
+        out: dict[str, Any] = {}
+        for params_file in self.params_files:
+            out.update(params_file.for_node(fully_qualified_name))
+        out.update(self.parameters)
+        return out
 
 
 def _value(text: str) -> Any:
@@ -80,7 +93,15 @@ def parse_ros_args(argv: Sequence[str]) -> RosArgs:
             else:
                 name, value = _pair(arg, text)
                 out.parameters[name] = _value(value)
-        elif arg in ("--params-file", "-e", "--enclave"):
+        elif arg == "--params-file":
+            if i + 1 >= len(argv):
+                raise RosArgsError(f"{arg} needs a value")
+            i += 1
+            try:
+                out.params_files.append(read_params_file(argv[i]))
+            except ParamsFileError as exc:
+                raise RosArgsError(str(exc)) from None
+        elif arg in ("-e", "--enclave"):
             i += 1  # accepted, not used by the lab
         else:
             raise RosArgsError(f"unknown ROS argument {arg!r}")

@@ -17,6 +17,7 @@ from .clock import ROSClock
 from .guard_condition import GuardCondition
 from .logging import NodeRcutilsLogger
 from .parameter import Parameter
+from .parameter_service import ParameterService
 from .qos import QoSProfile, WireQoS, keep_depth
 from .rate import Rate
 
@@ -32,7 +33,17 @@ def _for_bus(qos_profile: Any) -> Any:
 class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter API over the bus's
     """Subclass it as the handout does: ``super().__init__('KeyboardManagerNode')``."""
 
-    def __init__(self, node_name: str, *, context: Context | None = None, **kwargs: Any) -> None:
+    def __init__(
+        self,
+        node_name: str,
+        *,
+        context: Context | None = None,
+        start_parameter_services: bool = True,
+        parameter_overrides: list[Parameter] | None = None,
+        allow_undeclared_parameters: bool = False,
+        automatically_declare_parameters_from_overrides: bool = False,
+        **kwargs: Any,
+    ) -> None:
         self._rcl_context = context or default_context
         bus, _executor = self._rcl_context.require()
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
@@ -40,6 +51,13 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
         super().__init__(node_name, context=bus, **kwargs)
         self._ros_clock = ROSClock(source=bus.clock)
         self._logger: NodeRcutilsLogger = NodeRcutilsLogger(self)
+        overrides = self._rcl_context.args.parameters_for(self.fully_qualified_name)
+        overrides.update({p.name: p.value for p in parameter_overrides or []})
+        self._init_parameters(
+            overrides, allow_undeclared_parameters, automatically_declare_parameters_from_overrides
+        )
+        if start_parameter_services:
+            self._parameter_service = ParameterService(self)
         self._warn_if_name_taken()
 
     # -- entities, with rclpy's keywords -----------------------------------------------------

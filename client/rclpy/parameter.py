@@ -8,6 +8,10 @@ from typing import Any
 from rcl_interfaces.msg import Parameter as ParameterMsg
 from rcl_interfaces.msg import ParameterType, ParameterValue
 
+from server.bus.params_file import SEPARATOR, read_params_file, value_from_text
+
+PARAMETER_SEPARATOR_STRING = SEPARATOR
+
 _ARRAYS = {
     "BYTE_ARRAY": bytes,
     "BOOL_ARRAY": bool,
@@ -110,4 +114,55 @@ class Parameter:
         return f"Parameter(name={self._name!r}, type_={self._type.name}, value={self._value!r})"
 
 
-__all__ = ["Parameter"]
+def parameter_value_to_python(parameter_value: ParameterValue) -> Any:
+    """The Python value a ParameterValue message holds (None when NOT_SET)."""
+    kind = parameter_value.type
+    if kind == ParameterType.PARAMETER_NOT_SET:
+        return None
+    if kind not in _FIELDS:
+        raise RuntimeError(f"unexpected parameter type {kind}")
+    value = getattr(parameter_value, _FIELDS[kind])
+    return value.tolist() if hasattr(value, "tolist") else list(value) if kind >= 5 else value
+
+
+def get_parameter_value(string_value: str) -> ParameterValue:
+    """A ParameterValue from text, typed as ``ros2 param set`` types its argument."""
+    value = value_from_text(string_value)
+    if isinstance(value, list) and not value:
+        return ParameterValue(type=ParameterType.PARAMETER_BOOL_ARRAY)  # rclpy's choice for []
+    return Parameter("", value=value).get_parameter_value()
+
+
+def parameter_dict_from_yaml_file(
+    parameter_file: str, use_wildcard: bool = False, target_nodes: list[str] | None = None,
+    namespace: str = "",
+) -> dict[str, ParameterMsg]:  # fmt: skip
+    """A parameters file's parameters as messages by name: every node's (``/**`` first when
+    ``use_wildcard``), or only ``target_nodes``' sections; ``namespace`` prefixes each name."""
+    parsed = read_params_file(parameter_file)
+    if target_nodes:
+        known = [node for node, _ in parsed.sections]
+        missing = [n for n in target_nodes if n not in known]
+        if missing:
+            raise RuntimeError(
+                f"Param file does not contain parameters for {missing[0]}, only for nodes: {known}"
+            )
+        values: dict[str, Any] = {}
+        for node, params in parsed.sections:
+            if node in target_nodes or (use_wildcard and node == "/**"):
+                values.update(params)
+    else:
+        values = parsed.every_section(use_wildcard)
+    return {
+        namespace + name: Parameter(namespace + name, value=value).to_parameter_msg()
+        for name, value in values.items()
+    }
+
+
+__all__ = [
+    "PARAMETER_SEPARATOR_STRING",
+    "Parameter",
+    "get_parameter_value",
+    "parameter_dict_from_yaml_file",
+    "parameter_value_to_python",
+]

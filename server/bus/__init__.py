@@ -14,7 +14,8 @@ from .errors import (
     UnknownServiceError,
     UnknownTopicError,
 )
-from .executor import Executor, ExecutorGroup
+from .executor import Executor
+from .executor_group import ExecutorGroup
 from .graph import INTERNAL_TOPICS, Bus, NodeOverrides, Topic, current_bus
 from .names import is_hidden, resolve_topic_name, validate_namespace, validate_node_name, validate_topic_name
 from .node import Node, Parameter

@@ -6,14 +6,13 @@ with the node's name and marks that node crashed; every other node keeps running
 
 from __future__ import annotations
 
-import asyncio
 import contextlib
 import heapq
 import logging
 import math
 import traceback
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .endpoints import Subscription
 from .faults import is_node_fault
@@ -21,8 +20,14 @@ from .graph import Bus
 from .node import Node
 from .services import PendingCall
 
+if TYPE_CHECKING:
+    import asyncio
+
+# asyncio (with ssl, about 10 MiB) is imported where the loop is used: a node process's executor
+# blocks a thread instead and never loads it.
 log = logging.getLogger("bus.executor")
 MAX_CALLBACKS_PER_PASS = 10_000  # bounds a node that keeps re-triggering itself
+TurnOver = Callable[[], bool]  # asked between callbacks: has this world's turn run out?
 
 
 class _Sleep:
@@ -36,6 +41,8 @@ class _Sleep:
             self._waiter.set_result(None)
 
     async def __call__(self, delay: float) -> None:
+        import asyncio
+
         if delay <= 0:
             await asyncio.sleep(0)  # let the API and WebSockets in between bursts
             return
@@ -87,10 +94,12 @@ class Executor:
         self._run(sub.node, sub.callback, sub.queue.popleft())
         return True
 
-    def _run_due_timers(self, now_s: float) -> int:
+    def _run_due_timers(self, now_s: float, turn_over: TurnOver | None = None) -> int:
         heap, seq = self.bus._timers, self.bus._seq
         ran = 0
         while heap and heap[0][0] <= now_s:
+            if ran and turn_over is not None and turn_over():
+                break  # the rest stay due: the group's next round runs them
             deadline, _, timer = heapq.heappop(heap)
             if timer.cancelled or timer.node.state != "active" or deadline != timer.next_deadline_s:
                 continue  # stale entry (cancelled, reset, or a crashed node)
@@ -101,7 +110,7 @@ class Executor:
             self._run(timer.node, timer.callback)
             # Deliver what it published before the next timer due at the same instant runs, so
             # a chain of nodes ticking together sees fresh data, not last period's.
-            ran += 1 + self._drain()
+            ran += 1 + self._drain(turn_over)
         return ran
 
     def _run_call(self, call: PendingCall) -> bool:
@@ -111,10 +120,12 @@ class Executor:
         self._run(server.node, server.answer, call)
         return True
 
-    def _drain(self) -> int:
+    def _drain(self, turn_over: TurnOver | None = None) -> int:
         ready, calls = self.bus._ready, self.bus._calls
         ran = 0
         while (ready or calls) and ran < MAX_CALLBACKS_PER_PASS:
+            if ran and turn_over is not None and turn_over():
+                break  # the rest wait in their queues for the world's next turn
             if ready and self._run_subscription(ready.popleft()):
                 ran += 1
             if calls and self._run_call(calls.popleft()):
@@ -122,20 +133,22 @@ class Executor:
         return ran
 
     # -- stepping ----------------------------------------------------------
-    def spin_some(self) -> int:
+    def spin_some(self, turn_over: TurnOver | None = None) -> int:
         """Take what other threads handed in, run every queued message, then every due timer;
-        returns how many callbacks ran."""
+        returns how many callbacks ran. With ``turn_over`` (an ExecutorGroup's turn), stop once it
+        says so: what is left stays queued or due. A turn runs at least one queued message and one
+        due timer, so a world whose queue never empties still ticks."""
         lock = self.bus.lock
         if lock is None:
-            return self._pass()
+            return self._pass(turn_over)
         with lock:
-            return self._pass()
+            return self._pass(turn_over)
 
-    def _pass(self) -> int:
+    def _pass(self, turn_over: TurnOver | None) -> int:
         for poll in self.bus.pollers:
             poll()
-        ran = self._drain()
-        return ran + self._run_due_timers(self.bus.clock.now())
+        ran = self._drain(turn_over)
+        return ran + self._run_due_timers(self.bus.clock.now(), turn_over)
 
     def next_deadline_s(self) -> float:
         heap = self.bus._timers
@@ -169,6 +182,8 @@ class Executor:
     # -- the asyncio loop ----------------------------------------------------
     async def spin(self) -> None:
         """Run callbacks as they come due until ``stop()``; sleeps between them, never busy-waits."""
+        import asyncio
+
         loop = asyncio.get_running_loop()
         self._stopping = False
         self.bus.add_waker(self._wake)
@@ -190,102 +205,3 @@ class Executor:
     def stop(self) -> None:
         self._stopping = True
         self._wake()
-
-
-class ExecutorGroup:
-    """One asyncio task that runs the executors of many buses: a class server's worlds.
-
-    Each world keeps its own bus, executor and timers (their phases stay spread, so no instant
-    carries every world's work); what the group shares is the waiting. A task per world would wake
-    once for every world's every deadline; on a class server of 30 worlds those wake-ups took
-    about half as much time as the worlds' own callbacks (py-spy). The group wakes once for
-    whatever is due, runs one pass of each world that has work, then sleeps until the soonest
-    deadline of any. A world with a burst of messages gets one pass per round, as a task of its
-    own would between its yields.
-    """
-
-    def __init__(self) -> None:
-        self._wakers: dict[Executor, Callable[[], None]] = {}
-        self._members: list[Executor] = []
-        self._woken: set[Executor] = set()  # had news (a message, a timer, a thread's hand-in)
-        self._sleep = _Sleep()
-        self._task: asyncio.Task[None] | None = None
-        self._stopping = False
-
-    def __len__(self) -> int:
-        return len(self._members)
-
-    def add(self, executor: Executor) -> None:
-        """Run ``executor``'s bus from now on (on the running loop; starts the group's task)."""
-        if executor in self._wakers:
-            return
-        loop = asyncio.get_running_loop()
-
-        def wake() -> None:
-            self._woken.add(executor)
-            self._sleep.wake()
-
-        def wake_from_thread() -> None:
-            with contextlib.suppress(RuntimeError):  # the loop closed while another thread had news
-                loop.call_soon_threadsafe(wake)
-
-        self._wakers[executor] = wake
-        self._members.append(executor)
-        executor.bus.add_waker(wake)
-        executor.bus.threadsafe_waker = wake_from_thread
-        wake()
-        if self._task is None or self._task.done():
-            self._stopping = False
-            self._task = loop.create_task(self._spin(), name="executors")
-
-    def remove(self, executor: Executor) -> None:
-        """Stop running ``executor``'s bus; its callbacks never run again after this returns."""
-        wake = self._wakers.pop(executor, None)
-        if wake is None:
-            return
-        self._members.remove(executor)
-        self._woken.discard(executor)
-        executor.bus.remove_waker(wake)
-        executor.bus.threadsafe_waker = None
-
-    async def close(self) -> None:
-        """Stop the group's task (the members stay added: ``remove`` them first)."""
-        self._stopping = True
-        self._sleep.wake()
-        if self._task is not None:
-            await self._task
-            self._task = None
-
-    def wake(self) -> None:
-        """Have the group look at its members now (on the loop's thread): after a ManualClock moved."""
-        self._sleep.wake()
-
-    def _round(self) -> tuple[bool, float]:
-        """One pass of every member with work; returns (some member still has work, seconds to the
-        soonest deadline)."""
-        busy, soonest = False, math.inf
-        woken = self._woken
-        for executor in list(self._members):
-            if executor not in self._wakers:
-                continue  # removed by an earlier member's callback in this round
-            bus = executor.bus
-            deadline = executor.next_deadline_s()
-            if executor in woken or bus._ready or bus._calls or deadline <= bus.clock.now():
-                try:
-                    executor.spin_some()
-                except Exception:  # one world's broken executor must not stop the others
-                    log.exception("a world's executor failed; it stops, the others go on")
-                    self.remove(executor)
-                    continue
-                woken.discard(executor)  # what it published in this pass was drained in this pass
-                deadline = executor.next_deadline_s()
-            if bus._ready or bus._calls:
-                busy = True
-            else:
-                soonest = min(soonest, deadline - bus.clock.now())
-        return busy or bool(woken), soonest
-
-    async def _spin(self) -> None:
-        while not self._stopping:
-            busy, delay = self._round()
-            await self._sleep(0.0 if busy else delay)

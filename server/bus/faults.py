@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-import asyncio
 import signal
+import sys
 
 
 def is_node_fault(exc: BaseException) -> bool:
@@ -11,7 +11,10 @@ def is_node_fault(exc: BaseException) -> bool:
     server). ``KeyboardInterrupt`` is a real Ctrl-C only while Python's own SIGINT handler is
     installed; a server (uvicorn) installs its own, so there one raised in a callback came from
     node code. ``CancelledError`` cannot reach a plain callback from outside either."""
-    if isinstance(exc, (Exception, SystemExit, asyncio.CancelledError)):
+    if isinstance(exc, Exception | SystemExit):
+        return True
+    asyncio = sys.modules.get("asyncio")  # not imported: no CancelledError exists (a node process)
+    if asyncio is not None and isinstance(exc, asyncio.CancelledError):
         return True
     if isinstance(exc, KeyboardInterrupt):
         return signal.getsignal(signal.SIGINT) is not signal.default_int_handler

@@ -1,5 +1,5 @@
 """``ros2lab``: ros2's command-line verbs against a running lab server (``topic``, ``node``, ``service``,
-``launch``, ``run``, ``pkg``, ``interface``, ``bag``, and the lab's own ``env``), with ros2's options and output, over the server's HTTP/WebSocket API.
+``param``, ``launch``, ``run``, ``pkg``, ``interface``, ``bag``, and the lab's own ``env``), with ros2's options and output, over the server's HTTP/WebSocket API.
 
 It imports nothing of the server: everything goes over the wire, so it works against any lab
 server it can reach (``--url``, or ``TELEOP_URL``).
@@ -13,10 +13,10 @@ import signal
 import sys
 from types import FrameType
 
-from . import action, bag, env, interface, launch, node, pkg, run, service, topic
+from . import action, bag, env, interface, launch, node, param, pkg, run, service, topic
 from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
 
-VERBS = ("topic", "node", "service", "action", "launch", "run", "pkg", "interface", "bag", "env")
+VERBS = ("topic", "node", "service", "param", "action", "launch", "run", "pkg", "interface", "bag", "env")
 COLCON_VERB = "colcon"  # not a verb: a student used to ROS types it, and is told it is not needed
 COLCON_HINT = (
     "colcon build and `source install/setup.bash` are not needed here: `ros2lab run PKG EXEC` runs a "
@@ -43,6 +43,7 @@ def build_parser() -> argparse.ArgumentParser:
     topic.add_parser(verbs, common)
     node.add_parser(verbs, common)
     service.add_parser(verbs, common)
+    param.add_parser(verbs, common)
     action.add_parser(verbs, common)
     launch.add_parsers(verbs, common)
     run.add_parser(verbs, common)

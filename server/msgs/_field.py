@@ -6,10 +6,9 @@ from __future__ import annotations
 
 import array
 import math
+import sys
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any, TypeAlias
-
-import numpy as np
 
 from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, FieldSpec
 
@@ -19,21 +18,42 @@ if TYPE_CHECKING:
 MAX_STRING_CHARS = 65536
 MAX_ARRAY_ITEMS = 65536
 FLOAT32_MAX = 3.4028234663852886e38
-NUMPY_DTYPES: dict[str, type[np.generic]] = {
-    "bool": np.bool_,
-    "byte": np.uint8,
-    "char": np.uint8,
-    "int8": np.int8,
-    "uint8": np.uint8,
-    "int16": np.int16,
-    "uint16": np.uint16,
-    "int32": np.int32,
-    "uint32": np.uint32,
-    "int64": np.int64,
-    "uint64": np.uint64,
-    "float32": np.float32,
-    "float64": np.float64,
-}
+# numpy (about 20 MiB resident) is imported at the first fixed-size numeric array, so a node
+# process whose messages have none never loads it; until something imports it, no value can be a
+# numpy one.
+NUMPY_DTYPES: dict[str, str] = {
+    "bool": "bool", "byte": "uint8", "char": "uint8", "int8": "int8", "uint8": "uint8",
+    "int16": "int16", "uint16": "uint16", "int32": "int32", "uint32": "uint32", "int64": "int64",
+    "uint64": "uint64", "float32": "float32", "float64": "float64",
+}  # fmt: skip
+# Any, so that isinstance keeps a checked value's type open (it may be numpy's)
+_PLAIN_SCALARS: tuple[tuple[Any, ...], ...] = ((bool,), (int,), (int, float))
+_numpy_scalars: tuple[tuple[Any, ...], ...] | None = None
+
+
+def _numpy() -> Any:
+    import numpy
+
+    return numpy
+
+
+def _scalar_types() -> tuple[tuple[Any, ...], ...]:
+    """The types a bool, an integer and a number may have: Python's, and numpy's once it is loaded."""
+    global _numpy_scalars
+    if _numpy_scalars is not None:
+        return _numpy_scalars
+    numpy = sys.modules.get("numpy")
+    if numpy is None:
+        return _PLAIN_SCALARS
+    _numpy_scalars = ((bool, numpy.bool_), (int, numpy.integer), (int, float, numpy.integer, numpy.floating))
+    return _numpy_scalars
+
+
+def _is_ndarray(value: Any) -> bool:
+    numpy = sys.modules.get("numpy")
+    return numpy is not None and isinstance(value, numpy.ndarray)
+
+
 # A sequence (``T[]``, ``T[<=N]``) of numbers is an ``array.array`` of this type code, as rclpy
 # makes it (so ``append`` works and it prints as ``array('i', [0, 1])``); fixed-size arrays are numpy.
 ARRAY_TYPECODES = {
@@ -58,21 +78,20 @@ class MessageError(ValueError):
 
 def check_primitive(kind: str, value: Any, path: str, bound: int | None = None) -> Any:
     """``value`` as a field of ROS type ``kind`` holds it, or a MessageError naming ``path``."""
+    bools, integers, numbers = _scalar_types()
     if kind == "bool":
-        if not isinstance(value, bool | np.bool_):
+        if not isinstance(value, bools):
             raise MessageError(path, f"expected a bool, got {type(value).__name__}")
         return bool(value)
     if kind in INT_RANGES:
-        if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
+        if isinstance(value, bools) or not isinstance(value, integers):
             raise MessageError(path, f"expected an integer ({kind}), got {type(value).__name__} {value!r}")
         lo, hi = INT_RANGES[kind]
         if not lo <= value <= hi:
             raise MessageError(path, f"{value} is out of range for {kind} ({lo}..{hi})")
         return int(value)
     if kind in FLOAT_TYPES:
-        if isinstance(value, bool | np.bool_) or not isinstance(
-            value, int | float | np.integer | np.floating
-        ):
+        if isinstance(value, bools) or not isinstance(value, numbers):
             raise MessageError(path, f"expected a number ({kind}), got {type(value).__name__}")
         try:
             number = float(value)
@@ -142,8 +161,8 @@ class Field:
         if self.numeric_array:
             kind = str(self.kind)
             if isinstance(self.default, list):
-                return np.array(self.default, dtype=NUMPY_DTYPES[kind])
-            return np.zeros(self.size or 0, dtype=NUMPY_DTYPES[kind])
+                return _numpy().array(self.default, dtype=NUMPY_DTYPES[kind])
+            return _numpy().zeros(self.size or 0, dtype=NUMPY_DTYPES[kind])
         if isinstance(self.kind, str):
             return list(self.default) if isinstance(self.default, list) else [""] * (self.size or 0)
         return [self.kind() for _ in range(self.size or 0)]
@@ -170,11 +189,12 @@ class Field:
         return list(items)
 
     def _check_length(self, value: Any, path: str) -> Any:
-        if isinstance(value, str | bytes | Mapping) or not isinstance(
-            value, Sequence | np.ndarray | array.array
+        ndarray = _is_ndarray(value)
+        if isinstance(value, str | bytes | Mapping) or not (
+            ndarray or isinstance(value, Sequence | array.array)
         ):
             raise MessageError(path, f"expected an array ({self.type_name}), got {type(value).__name__}")
-        if isinstance(value, np.ndarray) and value.ndim != 1:
+        if ndarray and value.ndim != 1:
             raise MessageError(path, f"expected a one-dimensional array, got shape {value.shape}")
         n = len(value)
         if self.size is not None and n != self.size:
@@ -191,13 +211,14 @@ class Field:
         if code is not None:
             if isinstance(items, array.array) and items.typecode == code:
                 return array.array(code, items)
-            if isinstance(items, np.ndarray) and items.dtype == dtype:
+            if _is_ndarray(items) and items.dtype == dtype:
                 return array.array(code, items.tobytes())
             return array.array(code, [check_primitive(kind, v, f"{path}[{i}]") for i, v in enumerate(items)])
-        if isinstance(items, np.ndarray) and items.dtype == dtype:
+        numpy = _numpy()
+        if isinstance(items, numpy.ndarray) and items.dtype == dtype:
             return items.copy()
         checked = [check_primitive(kind, v, f"{path}[{i}]") for i, v in enumerate(items)]
-        return np.array(checked, dtype=dtype)
+        return numpy.array(checked, dtype=dtype)
 
     def copy_value(self, value: Any) -> Any:
         if not self.array:
@@ -224,4 +245,6 @@ class Field:
         return self.check(value, path)
 
     def equal(self, a: Any, b: Any) -> bool:
-        return bool(np.array_equal(a, b)) if self.numeric_array else bool(a == b)
+        if isinstance(a, array.array) and isinstance(b, array.array):
+            return a == b
+        return bool(_numpy().array_equal(a, b)) if self.numeric_array else bool(a == b)

@@ -172,10 +172,10 @@ def package_module(package: str, definitions: Definitions) -> str:
         imports.append("from collections.abc import Sequence")
     imports.append(f"from typing import {', '.join(['TYPE_CHECKING', *typing_names])}")
     imports.append("")
-    numpy = ["import numpy as np"] if "np." in text else []
-    numpy += ["import numpy.typing as npt"] if "npt." in text else []
-    if numpy:
-        imports += [*numpy, ""]
+    numpy = ["    import numpy as np"] if "np." in text else []
+    numpy += ["    import numpy.typing as npt"] if "npt." in text else []
+    if numpy:  # for the annotations only: numpy loads at the first fixed-size numeric array
+        imports += ["if TYPE_CHECKING:", *numpy, ""]
     if actions:
         imports.append("from .._action import Action")
     bases = ["Message"] + (["Service"] if services else [])

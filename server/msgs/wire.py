@@ -15,7 +15,6 @@ from functools import cache
 from types import SimpleNamespace
 from typing import Any
 
-import numpy as np
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from rosbags.typesys.store import Typestore
 
@@ -167,6 +166,8 @@ def _numpy_view(value: Any) -> Any:
     """What rosbags writes for a message value: ``array.array`` fields as numpy arrays over the
     same memory, nested messages converted alike."""
     if isinstance(value, array.array):
+        import numpy as np  # only here: a node process that never writes through rosbags never loads it
+
         return (
             np.frombuffer(value, dtype=value.typecode) if len(value) else np.array([], dtype=value.typecode)
         )

@@ -14,6 +14,10 @@ that does not exist is one line naming where the script is declared (``setup.py:
 
 A lab's built-in node runs with rclpy's usual ``init``/``spin``/``try_shutdown``.
 
+The parameter files its ``--ros-args`` name (``--params-file FILE``) are read before any of its
+code runs: one that cannot be read or does not parse is one line naming the file (and the line
+the YAML parser gives), and a non-zero exit.
+
 The process ends when the lab that started it does (Linux's parent-death signal), so no node
 outlives a killed app.
 """
@@ -31,6 +35,7 @@ import traceback
 from collections.abc import Callable
 from pathlib import Path
 
+from server.bus.params_file import ParamsFileError, read_params_file
 from server.packages.entry_points import EntryPoint
 
 EXIT_USAGE = 2
@@ -183,9 +188,29 @@ def run_builtin(target: str, args: list[str]) -> int:
     return 0
 
 
+def params_files_problem(args: list[str]) -> str | None:
+    """The first ``--params-file`` among the ROS arguments that does not parse, in one line."""
+    inside = False
+    for i, arg in enumerate(args):
+        if arg == "--ros-args":
+            inside = True
+        elif arg == "--":
+            inside = False
+        elif inside and arg == "--params-file" and i + 1 < len(args):
+            try:
+                read_params_file(args[i + 1])
+            except ParamsFileError as exc:
+                return str(exc)
+    return None
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     _die_with_parent()
+    problem = params_files_problem(argv)
+    if problem is not None:
+        _say(problem)
+        return EXIT_USAGE
     if len(argv) >= 2 and argv[0] == "--builtin":
         return run_builtin(argv[1], argv[2:])
     if len(argv) >= 5 and argv[0] == "--entry-point":

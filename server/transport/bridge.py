@@ -3,13 +3,12 @@
 - Every node and endpoint gets its liveliness token, so other processes (and a real ROS 2 with
   rmw_zenoh) see it in their graph; every remote token lands in the RemoteGraph.
 - A publisher also puts on Zenoh, but only while something outside this process subscribes
-  (Zenoh's matching status): in-process nodes keep the fast path with no serialization. Puts use
-  congestion control DROP, so a slow peer never holds up the sim loop.
+  (publishing.py).
 - One Zenoh subscriber per topic with local subscriptions takes remote samples only (its own
   process's are delivered locally already); each goes through the bounded Inbox to the executor's
   thread, where it is decoded and delivered with the same keep-last semantics.
-- A service server answers Zenoh queries; a client with no local server queries Zenoh, the
-  reply matched to its call by the attachment's sequence number and GID.
+- A service server answers Zenoh queries; a client with no local server queries Zenoh
+  (service_link.py).
 Nothing here runs on Zenoh's threads but Inbox puts; everything else runs on the executor's.
 """
 
@@ -18,88 +17,25 @@ from __future__ import annotations
 import itertools
 import logging
 import threading
-import time
 from dataclasses import dataclass, field
-from typing import Any, cast
+from typing import Any
 
 import zenoh
 import zenoh.ext
 
 from ..bus import Bus, Clock, Future, Node, Publisher, ServiceClient, ServiceServer, Subscription, SystemClock
-from ..bus.services import PendingCall
 from ..limits import RateLimit
 from ..msgs import Message, Service
-from ..msgs.wire import WireError, dds_type_name, deserialize, prepare, serialize, type_hash
+from ..msgs.wire import WireError, dds_type_name, type_hash
 from .attachment import Attachment
+from .cdr import decode
 from .inbox import Inbox
-from .keys import (
-    BEST_EFFORT,
-    TRANSIENT_LOCAL,
-    EntityKind,
-    EntityToken,
-    QoS,
-    data_key,
-    keep_last,
-    liveliness_prefix,
-)
+from .keys import TRANSIENT_LOCAL, EntityKind, EntityToken, data_key, liveliness_prefix
+from .publishing import RemotePublisher, Stats, declare_remote_publisher, wire_qos
 from .remote_graph import RemoteGraph
+from .service_link import ServiceLink
 
 log = logging.getLogger("transport")
-QUERY_TIMEOUT_S = 3600.0  # a ROS 2 call waits as long as it takes; Zenoh needs some bound
-SERVICE_QOS = keep_last(10)
-
-
-@dataclass
-class Stats:
-    sent: int = 0
-    received: int = 0
-    no_attachment: int = 0  # dropped, as rmw_zenoh drops them
-    over_rate: int = 0  # dropped: more samples a second than the bridge takes (a class world's flood)
-    undecodable: int = 0
-    queries: int = 0
-    replies: int = 0
-
-
-def _wire_qos(depth: int, qos: Any) -> QoS:
-    """The token's QoS: keep-last ``depth``, and the profile's reliability and durability (rmw's
-    enum values; 0, the system's default, is rmw_zenoh's: reliable, volatile)."""
-    return keep_last(
-        depth,
-        best_effort=getattr(qos, "reliability", 0) == BEST_EFFORT,
-        transient_local=getattr(qos, "durability", 0) == TRANSIENT_LOCAL,
-    )
-
-
-class _RemotePublisher:
-    """The Zenoh side of one bus publisher: its own GID and sequence numbers from 1."""
-
-    def __init__(self, zpub: zenoh.Publisher | zenoh.ext.AdvancedPublisher, gid: bytes, stats: Stats) -> None:
-        self.zpub: Any = cast(Any, zpub)  # its stubs call matching_status a bool; it is a MatchingStatus
-        self.gid = gid
-        self.seq = 0
-        self.stats = stats
-        self.listener: Any = None
-        if isinstance(zpub, zenoh.Publisher):
-            self.matching = bool(self.zpub.matching_status.matching)
-            self.listener = zpub.declare_matching_listener(self._on_matching)
-        else:  # a transient-local publisher's cache keeps samples for subscribers still to come
-            self.matching = True
-
-    def _on_matching(self, status: zenoh.MatchingStatus) -> None:  # Zenoh's thread: one attribute
-        self.matching = bool(status.matching)
-
-    def put(self, msg: Message) -> None:
-        if not self.matching:
-            return
-        self.seq += 1
-        attachment = Attachment(self.seq, time.time_ns(), self.gid).pack()
-        self.zpub.put(serialize(msg), attachment=attachment)
-        self.stats.sent += 1
-
-    def close(self) -> None:
-        if self.listener is not None:
-            self.listener.undeclare()
-        self.zpub.undeclare()
 
 
 @dataclass
@@ -145,8 +81,8 @@ class ZenohBridge:
         self._topic_subscribers: dict[str, Any] = {}
         self._history_topics: set[str] = set()  # those whose subscriber asks publishers for history
         self._keep: dict[str, int] = {}  # samples an inbox queue keeps per topic: its deepest subscription
-        self._client_seq: dict[int, int] = {}
         self._closed = False
+        self.services = ServiceLink(bus, session, self.inbox, self.remote, self.stats)
         bus.observers.append(self)
         bus.pollers.append(self.poll)
         bus.remote_services = self
@@ -192,17 +128,14 @@ class ZenohBridge:
         return EntityToken(
             self.domain_id, self.zid, node_token.node_id, next(self._ids), kind, node_token.namespace,
             node_token.node_name, enclave=self.enclave, topic=name, dds_type=dds_type_name(type_name),
-            type_hash=type_hash(type_name), qos=_wire_qos(depth, qos),
+            type_hash=type_hash(type_name), qos=wire_qos(depth, qos),
         )  # fmt: skip
 
     def endpoint_added(self, endpoint: object) -> None:
         if self._closed:
             return
-        if isinstance(endpoint, Publisher | Subscription):
-            prepare(endpoint.msg_type.TYPE)
-        elif isinstance(endpoint, ServiceServer | ServiceClient):
-            prepare(endpoint.srv_type.Request.TYPE)
-            prepare(endpoint.srv_type.Response.TYPE)
+        # Messages go through cdr.py, which generates no code: nothing to prepare before a
+        # Ctrl-C can land (rosbags' generated code once had to be built here).
         if isinstance(endpoint, Publisher):
             self._add_publisher(endpoint)
         elif isinstance(endpoint, Subscription):
@@ -218,6 +151,8 @@ class ZenohBridge:
     def endpoint_removed(self, endpoint: object) -> None:
         if isinstance(endpoint, Publisher):
             endpoint.remote = None
+        elif isinstance(endpoint, ServiceClient):
+            self.services.forget(endpoint)
         self._undeclare(id(endpoint))
         if isinstance(endpoint, Subscription):
             topic = endpoint.topic
@@ -239,7 +174,7 @@ class ZenohBridge:
         if entity is None:
             return
         for handle in entity.extra:
-            if isinstance(handle, _RemotePublisher):
+            if isinstance(handle, RemotePublisher):
                 handle.close()
             else:
                 handle.undeclare()
@@ -251,29 +186,7 @@ class ZenohBridge:
         )
         key = data_key(self.domain_id, pub.topic_name, token.dds_type or "", token.type_hash or "")
         assert token.qos is not None
-        reliability = (
-            zenoh.Reliability.BEST_EFFORT
-            if token.qos.reliability == BEST_EFFORT
-            else zenoh.Reliability.RELIABLE
-        )
-        zpub: zenoh.Publisher | zenoh.ext.AdvancedPublisher
-        if token.qos.durability == TRANSIENT_LOCAL:
-            # As rmw_zenoh: an advanced publisher whose cache answers late subscribers' history queries.
-            zpub = zenoh.ext.declare_advanced_publisher(
-                self.session, key, congestion_control=zenoh.CongestionControl.DROP, reliability=reliability,
-                allowed_destination=zenoh.Locality.REMOTE, cache=zenoh.ext.CacheConfig(max_samples=pub.depth),
-                publisher_detection=True,
-            )  # fmt: skip
-        else:
-            # REMOTE: this process's own subscriptions get the message from the bus, and only other
-            # processes count as matching (so a topic nobody else wants is never serialized).
-            zpub = self.session.declare_publisher(
-                key,
-                congestion_control=zenoh.CongestionControl.DROP,
-                reliability=reliability,
-                allowed_destination=zenoh.Locality.REMOTE,
-            )
-        remote = _RemotePublisher(zpub, token.gid, self.stats)
+        remote = declare_remote_publisher(self.session, key, token.qos, pub.depth, token.gid, self.stats)
         pub.remote = remote
         self._declare(pub, token, remote)
 
@@ -314,14 +227,7 @@ class ZenohBridge:
             server.node, EntityKind.SERVICE, server.srv_name, server.srv_type.TYPE, 10
         )
         key = data_key(self.domain_id, server.srv_name, token.dds_type or "", token.type_hash or "")
-
-        def on_query(query: zenoh.Query) -> None:
-            self.inbox.post(("query", server, query))
-
-        queryable = self.session.declare_queryable(
-            key, on_query, complete=True, allowed_origin=zenoh.Locality.REMOTE
-        )
-        self._declare(server, token, queryable)
+        self._declare(server, token, self.services.serve(server, key))
 
     # -- Zenoh's threads: only hand over -------------------------------------------------------
     def _on_sample(self, topic: str, sample: zenoh.Sample) -> None:
@@ -356,9 +262,9 @@ class ZenohBridge:
                 if changed and event[2]:
                     self._warn_on_same_name(event[1])
             elif kind == "query":
-                self._answer(event[1], event[2])
+                self.services.answer(event[1], event[2])
             elif kind == "reply":
-                self._complete(event[1], event[2], event[3])
+                self.services.complete(event[1], event[2], event[3])
         if graph_changed:
             self.bus.graph_changed()
         for name, payloads in samples.items():
@@ -367,7 +273,7 @@ class ZenohBridge:
                 continue
             for payload, stamp_ns in payloads:
                 try:
-                    msg = deserialize(topic.msg_type.TYPE, payload)
+                    msg = decode(topic.msg_type, payload)
                 except WireError as exc:
                     self.stats.undecodable += 1
                     log.debug("dropped a sample on %s: %s", name, exc)
@@ -388,66 +294,14 @@ class ZenohBridge:
                     "allows this, but tools and logs will mix the two up"
                 )
 
-    # -- services ------------------------------------------------------------------------------
-    def _answer(self, server: ServiceServer, query: Any) -> None:
-        self.stats.queries += 1
-        raw = query.attachment.to_bytes() if query.attachment is not None else None
-        request_att = Attachment.unpack(raw)
-        if request_att is None or not server.active or query.payload is None:
-            query.reply_err(b"request without rmw_zenoh's attachment, or no such server")
-            query.drop()
-            return
-        try:
-            request = deserialize(server.srv_type.Request.TYPE, query.payload.to_bytes())
-        except WireError as exc:
-            query.reply_err(str(exc).encode())
-            query.drop()
-            return
-        future: Future[Message] = Future()
-        key = str(query.key_expr)
-
-        def reply(done: Future[Message]) -> None:
-            response = done.result()
-            if response is not None:
-                att = Attachment(request_att.sequence_number, time.time_ns(), request_att.gid).pack()
-                query.reply(key, serialize(response), attachment=att)
-            query.drop()
-
-        future.add_done_callback(reply)
-        self.bus.queue_call(PendingCall(server, request, future))
-
+    # -- services (the bus's RemoteServices) --------------------------------------------------
     def has_server(self, name: str, srv_type: type[Service]) -> bool:
-        return self.remote.has_server(name, dds_type_name(srv_type.TYPE))
+        return self.services.has_server(name, srv_type)
 
     def call(self, client: ServiceClient, request: Message, future: Future[Message]) -> None:
         entity = self._entities.get(id(client))
-        if entity is None:
-            return
-        seq = self._client_seq.get(id(client), 0) + 1
-        self._client_seq[id(client)] = seq
-        att = Attachment(seq, time.time_ns(), entity.token.gid).pack()
-        key = data_key(
-            self.domain_id, client.srv_name, entity.token.dds_type or "", entity.token.type_hash or ""
-        )
-        response_type = client.srv_type.Response.TYPE
-        self.session.get(
-            key,
-            lambda reply: self.inbox.post(("reply", future, reply, response_type)),
-            target=zenoh.QueryTarget.ALL_COMPLETE,
-            consolidation=zenoh.ConsolidationMode.NONE,
-            payload=serialize(request),
-            attachment=att,
-            timeout=QUERY_TIMEOUT_S,
-        )
-
-    def _complete(self, future: Future[Message], reply: zenoh.Reply, response_type: str) -> None:
-        if future.done() or reply.ok is None:
-            return
-        try:
-            future.set_result(deserialize(response_type, reply.ok.payload.to_bytes()))
-            self.stats.replies += 1
-        except WireError as exc:
-            log.warning("undecodable service reply: %s", exc)
+        if entity is not None:
+            self.services.call(client, entity.token, request, future)
 
     # -- life ----------------------------------------------------------------------------------
     def close(self) -> None:

@@ -191,7 +191,7 @@ def test_hz_topic_with_no_messages_yet_has_null_rate(client: TestClient) -> None
     # The countdown waits 5 s before its first message; /keyup has none until a key is released.
     rate = client.get("/api/hz/keyup").json()
     assert rate == {"topic": "/keyup", "window": 0, "rate_hz": None, "min_s": None, "max_s": None,
-                    "std_dev_s": None, "count": 0}  # fmt: skip
+                    "std_dev_s": None, "count": 0, "watch": None}  # fmt: skip
 
 
 def test_hz_unknown_topic_is_404(client: TestClient) -> None:

@@ -14,7 +14,6 @@ import threading
 import pytest
 
 from server.bus import Bus, Executor, ExecutorGroup, ManualClock, Node
-from server.bus.executor import MAX_CALLBACKS_PER_PASS
 from server.msgs import Int64
 
 
@@ -43,9 +42,10 @@ async def settle() -> None:
         await asyncio.sleep(0)
 
 
-def grouped(*worlds: World) -> ExecutorGroup:
-    """A group running ``worlds``' executors (call inside the event loop)."""
-    group = ExecutorGroup()
+def grouped(*worlds: World, cost: ManualClock | None = None) -> ExecutorGroup:
+    """A group running ``worlds``' executors (call inside the event loop). Its cost clock is a
+    ManualClock that only the test's callbacks move, so no turn is cut short by the machine's speed."""
+    group = ExecutorGroup(cost_clock=(cost or ManualClock()).now)
     for world in worlds:
         group.add(world.executor)
     return group
@@ -98,26 +98,30 @@ def test_a_removed_world_never_runs_again_and_the_others_go_on() -> None:
 
 def test_a_world_flooding_itself_leaves_the_others_timers_on_time() -> None:
     """A node that answers every message with another keeps its world busy for ever; each round
-    gives it one bounded pass, and the quiet world's timer still runs at every deadline."""
+    gives it one turn, and the quiet world's timer still runs at every deadline, as does the
+    flooding world's own."""
 
     async def scenario() -> None:
-        clock = ManualClock()
-        quiet, noisy = World(clock, "quiet", 0.1), World(clock, "noisy", 1000.0)
+        clock, cost = ManualClock(), ManualClock()
+        quiet, noisy = World(clock, "quiet", 0.1), World(clock, "noisy", 0.1)
         echo = Node("echo", context=noisy.bus)
         loop_pub = echo.create_publisher(Int64, "/loop", 10)
         echoed: list[int] = []
 
         def again(msg: Int64) -> None:
+            cost.advance(0.0001)  # each echo takes 0.1 ms of the loop
             echoed.append(msg.data)
             loop_pub.publish(Int64(data=msg.data + 1))
 
         echo.create_subscription(Int64, "/loop", again, 10)
-        group = grouped(noisy, quiet)
+        group = grouped(noisy, quiet, cost=cost)
         loop_pub.publish(Int64(data=0))
         await step(group, clock, 1.0, dt_s=0.1)
         assert quiet.ticks == 10
         assert quiet.heard == list(range(1, 11))
-        assert len(echoed) > MAX_CALLBACKS_PER_PASS  # the flood went on over several rounds
+        assert noisy.ticks == 10  # its own timer too: a turn runs a due timer however full its queue
+        per_turn = round(group.turn_s / 0.0001) + 1
+        assert len(echoed) > 3 * per_turn  # the flood went on over several rounds
         await close(group, noisy, quiet)
 
     asyncio.run(scenario())

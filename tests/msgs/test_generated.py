@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import typing
 
+import numpy
+import numpy.typing
 import pytest
 
 from server.msgs import Message, get_type, type_names
@@ -21,7 +23,8 @@ def test_generated_module_matches_the_definitions(path) -> None:  # type: ignore
 @pytest.mark.parametrize("name", type_names())
 def test_generated_class_annotates_every_field_and_constant(name: str) -> None:
     cls: type[Message] = get_type(name)
-    hints = typing.get_type_hints(cls)
+    # numpy is imported for the annotations only when type checking (it loads at the first array)
+    hints = typing.get_type_hints(cls, localns={"np": numpy, "npt": numpy.typing})
     assert [f.name for f in cls.FIELDS] == list(cls.__slots__)
     assert all(f.name in hints for f in cls.FIELDS)
     assert all(c.name in hints and getattr(cls, c.name) == c.value for c in cls.SPEC.constants)

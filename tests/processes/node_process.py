@@ -16,12 +16,13 @@ from support.app import WAIT_S, App
 
 
 class NodeProcess:
-    def __init__(self, app: App, file: Path, *args: str) -> None:
+    def __init__(self, app: App, file: Path, *args: str, command: list[str] | None = None) -> None:
+        """``python FILE ARGS``, or ``command`` (``ros2lab run ...``) in ``file``'s folder."""
         env = {**os.environ, "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["tcp/{app.router}"]'}
         self.name = file.name
         self.proc = subprocess.Popen(
-            [sys.executable, "-u", str(file), *args], env=env, text=True,
-            stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+            command or [sys.executable, "-u", str(file), *args], env=env, text=True,
+            cwd=file.parent if command else None, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
         )  # fmt: skip
         self.lines: list[str] = []
         self._changed = threading.Condition()

@@ -63,3 +63,18 @@ def test_a_node_started_with_log_level_error_prints_only_errors(tmp_path: Path) 
     )  # fmt: skip
     assert done.returncode == 0, done.stderr
     assert "an error line" in done.stderr and "an info line" not in done.stderr
+
+
+def test_a_params_file_is_read_at_init_and_one_that_does_not_parse_is_named_with_its_line(
+    tmp_path: Path,
+) -> None:
+    good = tmp_path / "good.yaml"
+    good.write_text("/**:\n  ros__parameters:\n    rate: 5\n")
+    args = parse_ros_args(["--ros-args", "--params-file", str(good), "-p", "other:=1"])
+    assert args.parameters_for("/any/node") == {"rate": 5, "other": 1}
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("/**:\n  ros__parameters:\n    rate: {5\n")
+    with pytest.raises(RosArgsError, match=rf"^{bad}:4: not valid YAML"):
+        parse_ros_args(["--ros-args", "--params-file", str(bad)])
+    with pytest.raises(RosArgsError, match="--params-file needs a value"):
+        parse_ros_args(["--ros-args", "--params-file"])

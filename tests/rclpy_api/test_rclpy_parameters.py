@@ -65,12 +65,12 @@ def test_a_pre_set_callback_may_add_parameters_to_a_set(node: Node) -> None:
         (ParameterDescriptor(read_only=True), 2, "Trying to set a read-only parameter: p."),
         (ParameterDescriptor(), "two", "Wrong parameter type"),
         (
-            ParameterDescriptor(integer_range=[IntegerRange(from_value=0, to_value=10, step=2)]),
-            3,
-            "out of range",
+            ParameterDescriptor(integer_range=[IntegerRange(from_value=1, to_value=11, step=2)]),
+            4,
+            "The parameter value for p is not a valid step",
         ),
         (
-            ParameterDescriptor(integer_range=[IntegerRange(from_value=0, to_value=10, step=2)]),
+            ParameterDescriptor(integer_range=[IntegerRange(from_value=1, to_value=11, step=2)]),
             12,
             "out of range",
         ),

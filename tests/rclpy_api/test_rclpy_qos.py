@@ -18,8 +18,8 @@ from rclpy.qos import (
     qos_profile_system_default,
 )
 
-from server.transport.bridge import _wire_qos
 from server.transport.keys import qos_text
+from server.transport.publishing import wire_qos
 
 
 def test_a_profile_takes_rclpy_keywords_and_compares_by_value() -> None:
@@ -71,4 +71,4 @@ def test_queue_depth_is_the_profiles_or_rmw_zenohs_default_for_keep_all_and_syst
 def test_reliability_and_durability_go_into_the_tokens_qos_field_as_rmw_zenoh_writes_it(
     qos: WireQoS, text: str
 ) -> None:
-    assert qos_text(_wire_qos(qos.depth, qos)) == text
+    assert qos_text(wire_qos(qos.depth, qos)) == text

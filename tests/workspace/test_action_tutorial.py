@@ -22,7 +22,7 @@ import zenoh
 from processes.node_process import NodeProcess
 from ros_reference import ROS_REFERENCE_HASHES
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
-from support.app import REPO, WAIT_S, App
+from support.app import REPO, App
 
 from .action_packages import PACKAGE, demos_clone
 from .test_colcon_run import RUN_S, finish, ros2lab
@@ -175,7 +175,7 @@ def test_the_action_is_on_the_wire_as_rmw_zenoh_carries_it(run: type[Run], lab: 
     app, _root = lab
     server = run("fibonacci_action_server")
     app.wait_for(lambda: any(s["servers"] for s in app.get("/api/services") if s["name"].startswith("/fib")),
-                 "the server's services in the graph")  # fmt: skip
+                 "the server's services in the graph", RUN_S)  # fmt: skip
     config = zenoh.Config()
     config.insert_json5("mode", json.dumps("client"))
     config.insert_json5("connect/endpoints", json.dumps([f"tcp/{app.router}"]))
@@ -183,7 +183,7 @@ def test_the_action_is_on_the_wire_as_rmw_zenoh_carries_it(run: type[Run], lab: 
     session = zenoh.open(config)
     try:
         found: dict[str, tuple[str, str, str]] = {}
-        deadline = time.monotonic() + WAIT_S
+        deadline = time.monotonic() + RUN_S
         while len(found) < len(PARTS) and time.monotonic() < deadline:  # declared one after another
             for reply in session.liveliness().get("@ros2_lv/0/**"):
                 match = TOKEN.search(str(reply.ok.key_expr)) if reply.ok is not None else None

@@ -200,6 +200,8 @@ export interface RateOut {
   std_dev_s: number | null;
   /** messages published on the topic so far */
   count: number;
+  /** for a topic only other processes use: 'started' when this request began listening to it, as ros2 topic echo does (its messages show from now on), 'running' while an earlier request's listening goes on (until 30 s after the last); null when the app itself subscribes */
+  watch?: ("started" | "running") | null;
 }
 
 export interface RespawnOut {
@@ -241,6 +243,8 @@ export interface TopicDetail {
   /** when it was published (s, Unix epoch) */
   latest_time: number | null;
   publish_count: number;
+  /** for a topic only other processes use: 'started' when this request began listening to it, as ros2 topic echo does (its messages show from now on), 'running' while an earlier request's listening goes on (until 30 s after the last); null when the app itself subscribes */
+  watch?: ("started" | "running") | null;
   /** QoS depth (keep-last) of each publisher */
   publisher_depths: number[];
   /** QoS depth (keep-last) of each subscription */

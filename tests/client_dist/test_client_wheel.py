@@ -1,0 +1,170 @@
+"""The client distribution (client/pyproject.toml) stands alone: its wheel holds what a node process
+imports and nothing of the web server; installed by itself in a fresh venv (no system packages,
+nothing of the app's), a student's node file runs in it and talks both ways with a running lab."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+import time
+import venv
+import zipfile
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from support.app import REPO, App, end
+from websockets.sync.client import connect
+
+INSTALL_S = 600.0  # pip from its cache and the machine's wheel folders; bounded all the same
+WEB_SIDE = ("fastapi", "starlette", "uvicorn", "viser", "pydantic", "sim", "api", "httpx", "mcap")
+
+RELAY = """
+import rclpy
+from rclpy.node import Node
+from std_msgs.msg import String
+
+
+class Relay(Node):
+    def __init__(self):
+        super().__init__('laptop_relay')
+        self.pub = self.create_publisher(String, '/from_laptop', 10)
+        self.create_subscription(String, '/to_laptop', self.relay, 10)
+
+    def relay(self, msg):
+        self.pub.publish(String(data='laptop heard ' + msg.data))
+
+
+if __name__ == '__main__':
+    rclpy.init()
+    try:
+        rclpy.spin(Relay())
+    except KeyboardInterrupt:
+        pass
+    finally:
+        rclpy.try_shutdown()
+"""
+
+
+def run(args: list[str], cwd: Path, timeout_s: float = INSTALL_S) -> str:
+    done = subprocess.run(args, cwd=cwd, capture_output=True, text=True, timeout=timeout_s, env=_clean_env())
+    assert done.returncode == 0, f"{' '.join(args)} failed:\n{done.stdout[-3000:]}\n{done.stderr[-3000:]}"
+    return done.stdout
+
+
+def _clean_env(extra: dict[str, str] | None = None) -> dict[str, str]:
+    """This environment without anything that would put the repository on the path."""
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME")}
+    return {**env, **(extra or {})}
+
+
+@pytest.fixture(scope="module")
+def wheel(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("wheel")
+    run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-w", str(out),
+         str(REPO / "client")], out)  # fmt: skip
+    (built,) = out.glob("teleop_lab_client-*.whl")
+    return built
+
+
+@pytest.fixture(scope="module")
+def laptop(wheel: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A fresh venv (no system site-packages) with the client wheel and its declared dependencies."""
+    root = tmp_path_factory.mktemp("laptop")
+    venv.EnvBuilder(with_pip=False, system_site_packages=False).create(root / "venv")
+    python = root / "venv" / "bin" / "python"
+    # This venv's pip installs into that one (no pip of its own to bootstrap; nothing compiled ahead).
+    run([sys.executable, "-m", "pip", "--python", str(python), "install", "--disable-pip-version-check",
+         "--no-compile", "-q", str(wheel)], root)  # fmt: skip
+    return python
+
+
+def test_wheel_holds_the_client_and_nothing_of_the_web_server(wheel: Path) -> None:
+    names = set(zipfile.ZipFile(wheel).namelist())
+    tops = {n.split("/")[0] for n in names if not n.startswith("teleop_lab_client-")}
+    assert tops == {
+        "rclpy", "server", "builtin_interfaces", "example_interfaces", "geometry_msgs", "keyboard_msgs",
+        "rcl_interfaces", "sensor_msgs", "std_msgs", "std_srvs", "tf2_msgs",
+    }  # fmt: skip
+    assert {"server/processes/runner.py", "server/transport/bridge.py", "rclpy/node.py"} <= names
+    assert "server/msgs/interfaces/keyboard_msgs/msg/Key.msg" in names
+    for app_side in ("server/app.py", "server/lab.py", "server/settings.py", "server/processes/supervisor.py",
+                     "server/packages/rocketship/keyboard_manager.py"):  # fmt: skip
+        assert app_side not in names
+    assert not any(n.startswith(("server/viewer/", "server/bridges/", "server/classroom/")) for n in names)
+    metadata = zipfile.ZipFile(wheel).read("teleop_lab_client-0.1.0.dist-info/METADATA").decode()
+    assert "Requires-Dist: eclipse-zenoh==1.10.2" in metadata
+    assert not any(dep in metadata.lower() for dep in ("fastapi", "uvicorn", "viser"))
+
+
+def test_importing_the_client_loads_nothing_of_the_web_server(laptop: Path, tmp_path: Path) -> None:
+    probe = textwrap.dedent("""
+        import json, sys
+        import rclpy
+        from rclpy.node import Node
+        from std_msgs.msg import Bool
+        from keyboard_msgs.msg import Key
+        from geometry_msgs.msg import Vector3
+        import server.processes.runner
+        print(json.dumps({"modules": sorted(sys.modules), "rclpy": rclpy.__file__}))
+    """)
+    out = json.loads(run([str(laptop), "-c", probe], tmp_path, 60.0))
+    tops = {m.split(".")[0] for m in out["modules"]}
+    assert not tops & set(WEB_SIDE), tops & set(WEB_SIDE)
+    assert "zenoh" in tops and "rclpy" in tops  # what it does load: the client itself
+    assert str(laptop.parents[1]) in out["rclpy"]  # from the fresh venv, not the repository
+    # Nothing of the web side is even installed there.
+    missing = run([str(laptop), "-c", "import importlib.util as u; print([m for m in ('fastapi', 'uvicorn', "
+                   "'viser', 'starlette', 'sim', 'api') if u.find_spec(m) is None])"], tmp_path, 60.0)  # fmt: skip
+    assert json.loads(missing.replace("'", '"')) == ["fastapi", "uvicorn", "viser", "starlette", "sim", "api"]
+
+
+@pytest.fixture(scope="module")
+def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[App]:
+    workdir = tmp_path_factory.mktemp("lab")
+    app = App(workdir, "--launch", "rocket", "start_delay:=3600", cwd=workdir)
+    try:
+        yield app
+    finally:
+        app.stop()
+
+
+def test_a_node_file_in_the_client_venv_talks_both_ways_with_a_lab(
+    laptop: Path, lab: App, tmp_path: Path
+) -> None:
+    node_file = tmp_path / "relay.py"
+    node_file.write_text(RELAY)
+    env = _clean_env(lab.get("/api/zenoh/join")["env"])
+    proc = subprocess.Popen([str(laptop), str(node_file)], cwd=tmp_path, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)  # fmt: skip
+    try:
+        lab.wait_for(
+            lambda: (
+                any(n["name"] == "/laptop_relay" for n in lab.get("/api/nodes")) or proc.poll() is not None
+            ),
+            "the laptop's node in the lab's graph",
+        )
+        assert proc.poll() is None, proc.communicate()[0]
+        with connect(f"ws://127.0.0.1:{lab.port}/ws/topics/from_laptop?type=std_msgs/msg/String") as echo:
+            deadline = time.monotonic() + 20.0
+            heard = None
+            i = 0
+            while heard is None and time.monotonic() < deadline:
+                # Until the relay's subscription is matched, as for any new ROS 2 subscription.
+                sent = lab.post("/api/publish", {"topic": "/to_laptop", "msg": {"data": f"hi {i}"},
+                                                 "type": "std_msgs/msg/String"})  # fmt: skip
+                assert sent.status_code == 200, sent.text
+                i += 1
+                try:
+                    heard = json.loads(echo.recv(timeout=0.5))
+                except TimeoutError:
+                    continue
+        assert heard is not None, f"nothing came back from the laptop's node ({i} sent)"
+        assert heard["msg"]["data"].startswith("laptop heard hi ")
+    finally:
+        end(proc)
+        if proc.stdout is not None:
+            proc.stdout.close()
