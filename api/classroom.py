@@ -218,7 +218,7 @@ async def worlds(_: InstructorDep, classroom: ClassroomDep) -> ClassWorlds:
     """Every world: its student, keys held, rocket phase, drone position, crashed nodes."""
     worlds = await classroom.describe_all()  # checked against ClassWorld here
     return ClassWorlds.model_validate(
-        {"class_code": classroom.code, "max_worlds": classroom.settings.max_worlds, "worlds": worlds}
+        {"class_code": classroom.code, "max_worlds": classroom.class_settings.max_worlds, "worlds": worlds}
     )
 
 
@@ -244,10 +244,10 @@ async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
     """The class's own ROS domain (``GET /api/zenoh/join`` without a world gives its login): what is
     bridged from each world, as ROS 2's domain_bridge with a namespace per world."""
     bridge = classroom.class_graph if isinstance(classroom, ClassServer) else None
-    if bridge is None or classroom.settings.zenoh is None:
+    if bridge is None or classroom.settings.lab.zenoh is None:
         raise HTTPException(status.HTTP_404_NOT_FOUND, "this class server has no Zenoh graph of its own")
     return ClassGraph(
-        domain_id=classroom.settings.zenoh.domain_id,
+        domain_id=classroom.settings.lab.zenoh.domain_id,
         topics=bridge.routes(),
         samples_out=bridge.stats.out,
         samples_in=bridge.stats.into,

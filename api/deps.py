@@ -55,7 +55,8 @@ def lab_of(conn: HTTPConnection) -> Lab:
     classroom = classroom_of(conn)
     if classroom is None:
         lab = cast(Lab, conn.app.state.lab)
-        if lab.settings.token is not None and not token_matches(token_of(conn), lab.settings.token):
+        lab_token = lab.settings.listen.token
+        if lab_token is not None and not token_matches(token_of(conn), lab_token):
             raise ClassroomError(401, "this lab needs its token: open the link the server printed "
                                       "(/?token=...), or send Authorization: Bearer")  # fmt: skip
         return lab
@@ -70,7 +71,7 @@ def lab_of(conn: HTTPConnection) -> Lab:
     charged = isinstance(classroom, ClassServer)
     if writing and not grant.is_instructor and charged and not world.writes.take():
         raise ClassroomError(429, f"too many requests for world {world.name!r}: at most "
-                                  f"{classroom.settings.world_writes_hz:g} writes a second",
+                                  f"{classroom.class_settings.world.writes_hz:g} writes a second",
                              world.writes.retry_after_s())  # fmt: skip
     return world.lab
 

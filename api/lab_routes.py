@@ -32,7 +32,7 @@ async def health(request: Request) -> dict[str, Any]:
         labs = [w.lab for w in classroom.worlds.values() if w.lab is not None]
         return {
             "status": "ok",
-            "launch": classroom.settings.launch,
+            "launch": classroom.settings.lab.launch,
             "nodes": sum(len(lab.bus.nodes) for lab in labs),
             "topics": sum(len(lab.bus.topics) for lab in labs),
             "uptime_s": round(time.monotonic() - STARTED_AT, 3),
@@ -42,7 +42,7 @@ async def health(request: Request) -> dict[str, Any]:
     lab = lab_for_request(request) if classroom is not None else request.app.state.lab
     return {
         "status": "ok",
-        "launch": lab.settings.launch,
+        "launch": lab.settings.lab.launch,
         "nodes": len(lab.bus.nodes),
         "topics": len(lab.bus.topics),
         "uptime_s": round(time.monotonic() - lab.started_at, 3),
@@ -80,10 +80,10 @@ def _class_graph_join(classroom: Classroom) -> dict[str, Any]:
         not isinstance(classroom, ClassServer)  # a world worker's class graph is its class server's
         or classroom.class_graph is None
         or router is None
-        or classroom.settings.zenoh is None
+        or classroom.settings.lab.zenoh is None
     ):
         raise HTTPException(status.HTTP_404_NOT_FOUND, "this class server has no Zenoh graph of its own")
-    return _join(router, classroom.settings.zenoh.domain_id, classroom.zenoh_auth.class_credentials())
+    return _join(router, classroom.settings.lab.zenoh.domain_id, classroom.zenoh_auth.class_credentials())
 
 
 def _join(router: str, domain_id: int, login: Credentials | None) -> dict[str, Any]:
@@ -103,7 +103,7 @@ def _join(router: str, domain_id: int, login: Credentials | None) -> dict[str, A
 async def workspace(lab: LabDep) -> dict[str, Any]:
     """The folder of students' packages this lab runs from, so ``ros2lab run`` on this machine
     finds the same packages (null: the lab has none)."""
-    folder = lab.settings.workspace
+    folder = lab.settings.lab.workspace
     return {"path": str(folder.resolve()) if folder is not None else None}
 
 

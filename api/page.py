@@ -64,7 +64,7 @@ async def index(request: Request) -> Response:
             return FileResponse(STATIC / "join.html", headers={"Cache-Control": "no-cache"})
         if grant.is_instructor:
             return RedirectResponse("/instructor", status.HTTP_303_SEE_OTHER)
-    elif (lab_token := request.app.state.settings.token) is not None:  # one lab behind --token
+    elif (lab_token := request.app.state.settings.listen.token) is not None:  # one lab behind --token
         asked = request.query_params.get("token")
         if asked is not None:  # the printed link: keep the token in a cookie, not the address bar
             if not token_matches(asked, lab_token):

@@ -98,7 +98,7 @@ class WorldProxyMiddleware:
             return
         if scope["method"] not in SAFE_METHODS and not grant.is_instructor and not world.writes.take():
             detail = (f"too many requests for world {world.name!r}: at most "
-                      f"{classroom.settings.world_writes_hz:g} writes a second")  # fmt: skip
+                      f"{classroom.class_settings.world.writes_hz:g} writes a second")  # fmt: skip
             await SafeJSONResponse({"detail": detail}, status.HTTP_429_TOO_MANY_REQUESTS)(
                 scope, receive, send
             )

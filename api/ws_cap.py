@@ -42,7 +42,7 @@ class SocketCapMiddleware:
             await self.app(scope, receive, send)
             return
         assert classroom is not None
-        cap = classroom.settings.world_sockets
+        cap = classroom.class_settings.world.sockets
         if world.sockets >= cap:
             await _refuse(
                 receive, send, f"at most {cap} WebSockets open for world {world.name!r}; close one first"

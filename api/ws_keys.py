@@ -124,7 +124,7 @@ async def keys(websocket: WebSocket, lab: WsLabDep) -> None:
 
 async def _key_loop(websocket: WebSocket, lab: Any, source: str) -> None:
     """Frames until the client leaves or must be closed (then closed here, with a named code)."""
-    limit = lab.settings.max_ws_frame_bytes
+    limit = lab.settings.listen.max_ws_frame_bytes
     last_flood_notice = -math.inf
     while True:
         message = await websocket.receive()
@@ -151,7 +151,7 @@ async def _key_loop(websocket: WebSocket, lab: Any, source: str) -> None:
                 last_flood_notice = now
                 flood: KeyChannelError = {
                     "type": "error",
-                    "error": FLOOD_ERROR.format(lab.settings.key_frames_hz),
+                    "error": FLOOD_ERROR.format(lab.settings.limits.key_frames_hz),
                 }
                 await websocket.send_json(flood)
             continue

@@ -87,8 +87,8 @@ def open_echo(lab: Lab, name: str, type_name: str | None, depth: int) -> EchoNod
     topic = "/" + validate_topic_name(name).lstrip("/")
     msg_type = lab.topic_type(topic, type_name)
     taken = {n.number for n in _echo_nodes(lab.bus)}
-    if len(taken) >= lab.settings.max_echo_sockets:
-        raise LimitExceededError("echo sockets", lab.settings.max_echo_sockets)
+    if len(taken) >= lab.settings.limits.max_echo_sockets:
+        raise LimitExceededError("echo sockets", lab.settings.limits.max_echo_sockets)
     number = next(i for i in range(1, len(taken) + 2) if i not in taken)
     return EchoNode(number, topic, msg_type, depth, lab.bus)
 
@@ -131,7 +131,7 @@ async def echo(
     sender = asyncio.create_task(_send_loop(websocket, node, throttle_ms / 1000.0, lab.socket_frames))
     try:
         async with closed_when_lab_stops(websocket, lab):
-            await _receive_until_closed(websocket, lab.settings.max_ws_frame_bytes)
+            await _receive_until_closed(websocket, lab.settings.listen.max_ws_frame_bytes)
     finally:
         sender.cancel()
         node.destroy_node()

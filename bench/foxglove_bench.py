@@ -91,11 +91,15 @@ def serve_lab(mode: str, port_file: Path) -> None:
     from server.bus import Node
     from server.lab import Lab
     from server.msgs import PoseStamped
-    from server.settings import Settings
+    from server.settings import LabSettings, Settings
 
     async def main() -> None:
         lab = Lab(
-            Settings(launch="rocket", viewer=False, foxglove_port=0, launch_args={"start_delay": "3600"})
+            Settings(
+                lab=LabSettings(
+                    launch="rocket", viewer=False, foxglove_port=0, launch_args={"start_delay": "3600"}
+                )
+            )
         )
         await lab.start()
         async with run_bridges(lab) as bridges:

@@ -43,7 +43,7 @@ from machine import CHROMIUM_ARGS as CHROMIUM_FLAGS
 
 from server.bus import ManualClock, SystemClock
 from server.lab import Lab
-from server.settings import Settings
+from server.settings import LabSettings, Settings
 
 CLK_TCK = os.sysconf("SC_CLK_TCK")
 SETTLE_S = 3.0  # after start-up (or page load) before measuring
@@ -55,7 +55,7 @@ TIMED_NODES = ("flightgoggles_uav_dynamics", "position_controller_node", "veloci
 # -- 1. in-process, as fast as it goes -----------------------------------------------------------
 def manual_clock_run(sim_seconds: float) -> tuple[float, int]:
     """One fly launch stepped to ``sim_seconds``; returns (sim s per wall s, callbacks run)."""
-    lab = Lab(Settings(launch="fly", viewer=False), ManualClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch="fly", viewer=False)), ManualClock(0.0))
     lab.start_nodes()
     start = time.perf_counter()
     lab.executor.spin_until(sim_seconds)
@@ -203,7 +203,7 @@ def bench_real_time(seconds: float) -> dict[str, Any]:
 
 # -- 3. timer lateness on the system clock ---------------------------------------------------------
 async def run_lab_real_time(seconds: float, viewer: bool) -> dict[str, dict[str, float]]:
-    lab = Lab(Settings(launch="fly", viewer=viewer), SystemClock())
+    lab = Lab(Settings(lab=LabSettings(launch="fly", viewer=viewer)), SystemClock())
     await lab.start()
     try:
         await asyncio.sleep(SETTLE_S)  # start-up is not the steady loop

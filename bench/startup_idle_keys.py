@@ -13,7 +13,7 @@ What is measured, exactly:
   view redraws): utime+stime of the process (all threads, ``/proc/<pid>/stat``) over ``--idle-s``
   seconds of wall time right after it is ready, as a percentage of one core.
 * memory: VmRSS (``/proc/<pid>/status``) just after ready and after the idle period.
-* key latency, in one process: the app from ``create_app(Settings(viewer=False, launch='rocket'))``
+* key latency, in one process: the app from ``create_app(Settings(lab=LabSettings(viewer=False, launch='rocket')))``
   under uvicorn in a thread on a free loopback port, a ``websockets`` client in the main thread
   sending ``{"type": "keydown", "key": "ArrowUp"}`` then a keyup, one press at a time. Three
   instants on ``time.perf_counter`` (one clock, one process), none needing app changes:
@@ -178,13 +178,13 @@ def bench_keys(presses: int, warmup: int) -> dict[str, Any]:
     from server.app import create_app
     from server.bus import Node
     from server.msgs import Key
-    from server.settings import Settings
+    from server.settings import LabSettings, Listening, Settings
 
-    settings = Settings(viewer=False, launch="rocket", port=free_port())
+    settings = Settings(lab=LabSettings(viewer=False, launch="rocket"), listen=Listening(port=free_port()))
     app = create_app(settings)
     frames: list[float] = []
     clock = FrameClock(app, frames)
-    server = uvicorn.Server(uvicorn.Config(clock, host="127.0.0.1", port=settings.port,
+    server = uvicorn.Server(uvicorn.Config(clock, host="127.0.0.1", port=settings.listen.port,
                                            log_level="warning", lifespan="on", ws_max_size=1 << 20))  # fmt: skip
     thread = threading.Thread(target=server.run, name="uvicorn", daemon=True)
     thread.start()
@@ -218,7 +218,7 @@ def bench_keys(presses: int, warmup: int) -> dict[str, Any]:
     asyncio.run_coroutine_threadsafe(attach(), clock.loop).result(timeout=5)
     lab.keyboard.key_down = key_down
     try:
-        with connect(f"ws://127.0.0.1:{settings.port}/ws/keys") as ws:
+        with connect(f"ws://127.0.0.1:{settings.listen.port}/ws/keys") as ws:
             for _ in range(warmup + presses):
                 arrived.clear()
                 ws.send(json.dumps({"type": "keydown", "key": "ArrowUp", "code": "ArrowUp"}))

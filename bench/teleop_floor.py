@@ -1,5 +1,5 @@
 """The floor under the page's key-to-motion latency: the same press and the same "drone answering"
-criterion as web/src/lab/hud.ts, in process on a ManualClock (``Settings(launch='fly', viewer=False)``),
+criterion as web/src/lab/hud.ts, in process on a ManualClock (``Settings(lab=LabSettings(launch='fly', viewer=False))``),
 stepped by hand in 0.5 ms steps after ``lab.keyboard.key_down``: the physics and control chain
 alone, with no network, browser, rendering or scheduling. bench/teleop_latency.py reports it beside
 what the page measures.
@@ -44,10 +44,13 @@ def bench_in_process(mode: str, trials: int, seed: int = 1) -> dict[str, Any]:
     from server.bus import ManualClock
     from server.lab import Lab
     from server.msgs import Key
-    from server.settings import Settings
+    from server.settings import LabSettings, Settings
 
     rng = np.random.default_rng(seed)
-    lab = Lab(Settings(launch="fly", viewer=False, launch_args={"keyboard_mode": mode}), ManualClock(0.0))
+    lab = Lab(
+        Settings(lab=LabSettings(launch="fly", viewer=False, launch_args={"keyboard_mode": mode})),
+        ManualClock(0.0),
+    )
     lab.start_nodes()
     executor, gps = lab.executor, lab.bus.topics["/uav/sensors/gps"]
     t = WARMUP_S

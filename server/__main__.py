@@ -9,9 +9,17 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from pydantic import ValidationError
+
 from server import cli
 from server.console import LEVELS, setup_logging
-from server.settings import LOOPBACK_HOSTS, MAX_LOCAL_WORKERS, WORKER_TIMEOUT_S, JoinLimits, Settings
+from server.settings import (
+    ANY_ADDRESS,
+    WORKER_TIMEOUT_S,
+    Settings,
+    explain,
+    is_refusal,
+)
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env, is_loopback
 
 
@@ -153,19 +161,23 @@ def check_launch(settings: Settings) -> str | None:
     from server.launch.launcher import parse_launch
     from server.packages import PackageIndex
 
-    packages = PackageIndex(workspace=settings.workspace)
+    lab = settings.lab
+    packages = PackageIndex(workspace=lab.workspace)
     try:
-        parse_launch(resolve_launch(settings.launch, packages), settings.launch_args, packages)
+        parse_launch(resolve_launch(lab.launch, packages), lab.launch_args, packages)
     except LaunchFileError as exc:
         return str(exc)
     return None
 
 
+def shown_host(host: str) -> str:
+    return "127.0.0.1" if host in ANY_ADDRESS else host
+
+
 def banner(host: str, port: int, launch: str) -> str:
     """The first lines a student reads: where to open the page, and which keys fly."""
-    shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
     return (
-        f"Teleop lab: open http://{shown}:{port}/ in a browser (launch: {launch}; Ctrl-C stops it)\n"
+        f"Teleop lab: open http://{shown_host(host)}:{port}/ in a browser (launch: {launch}; Ctrl-C stops it)\n"
         "Keys, after a click in the 3D view: arrows fly the drone, PgUp/PgDn climb and sink, "
         "a aborts the rocket, ? shows help"
     )
@@ -177,45 +189,89 @@ def lab_token(arg: str | None) -> str | None:
     return secrets.token_urlsafe(24) if arg == "auto" else arg
 
 
-def is_loopback_host(host: str) -> bool:
-    return host in LOOPBACK_HOSTS or host.startswith("127.")
-
-
-def classroom_banner(host: str, port: int, classroom: Any) -> str:
+def classroom_banner(settings: Settings, code: str, instructor_token: str) -> str:
     """The class code for the projector, the instructor's link (its token, printed once) and, with
     Zenoh, how to add a world worker."""
-    shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
-    lan = " (and this machine's LAN address)" if host in ("0.0.0.0", "::") else ""
+    host, port = settings.listen.host, settings.listen.port
+    shown = shown_host(host)
+    lan = " (and this machine's LAN address)" if host in ANY_ADDRESS else ""
     lines = [
-        f"Class server: students open http://{shown}:{port}/{lan} and join with class code {classroom.code}",
-        f"Instructor (keep this link to yourself): http://127.0.0.1:{port}/instructor?token={classroom.instructor_token}",
+        f"Class server: students open http://{shown}:{port}/{lan} and join with class code {code}",
+        f"Instructor (keep this link to yourself): http://127.0.0.1:{port}/instructor?token={instructor_token}",
     ]
-    zenoh = classroom.settings.zenoh
-    foxglove = classroom.settings.foxglove_port
-    rosbridge = classroom.settings.rosbridge_port
-    if zenoh is not None and zenoh.mode == "router" and foxglove is not None:
+    router = settings.lab.zenoh_router
+    foxglove, rosbridge = settings.lab.foxglove_port, settings.lab.rosbridge_port
+    if router is not None and foxglove is not None:
         lines.append(
             f"Foxglove, every world as /<world>/...: ws://{shown}:{foxglove}/?token=<the instructor's token>"
         )
-    if zenoh is not None and zenoh.mode == "router" and rosbridge is not None:
+    if router is not None and rosbridge is not None:
         lines.append(
             f"rosbridge, every world as /<world>/...: ws://{shown}:{rosbridge}/?token=<the instructor's token>"
         )
-    started = classroom.settings.local_workers
+    assert settings.classroom is not None
+    started = settings.classroom.local_workers
     if started:
         ids = "local-1" if started == 1 else f"local-1..local-{started}"
         lines.append(
             f"World workers on this machine: {started} ({ids}), started and stopped with this server"
         )
-    if zenoh is not None and zenoh.mode == "router":
-        router = zenoh.listen[0].replace("0.0.0.0", "<this machine's address>")
+    if router is not None:
+        endpoint = router.listen[0].replace("0.0.0.0", "<this machine's address>")
         lines.append(f"More cores or machines: ROS2LAB_TOKEN=<the instructor's token> ros2lab {cli.WORKER_VERB} "
-                     f"--connect {router}")  # fmt: skip
-    level = classroom.settings.world_log_level
+                     f"--connect {endpoint}")  # fmt: skip
+    level = settings.classroom.world_log_level
     if level != "debug":
         lines.append(f"This console shows the worlds' node lines at {level} and above, each under its world's "
                      "name; every line is on its world's /rosout (--world-log-level to change)")  # fmt: skip
     return "\n".join(lines)
+
+
+# Options of the class's section: without --classroom there is no class for them to shape.
+CLASS_ONLY = {"workers": "--workers", "local_worlds": "--local-worlds",
+              "max_worlds_per_address": "--max-worlds-per-address"}  # fmt: skip
+
+
+def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settings:
+    """The command line, mapped onto the settings model (which checks every rule across options).
+    ValidationError says what is wrong, each field by its path (``listen.port``)."""
+    classroom = None
+    if args.classroom:
+        classroom = {
+            "code": args.class_code, "max_worlds": args.max_worlds, "local_worlds": args.local_worlds,
+            "local_workers": args.workers, "worker_timeout_s": args.worker_timeout,
+            "world_log_level": args.world_log_level,
+            "joins": {"max_worlds_per_address": args.max_worlds_per_address},
+        }  # fmt: skip
+    listen = {
+        "host": args.host, "port": args.port, "token": lab_token(args.token),
+        "allowed_hosts": args.allow_host, "allowed_origins": args.allow_origin,
+    }  # fmt: skip
+    lab = {
+        "launch": args.launch, "launch_args": dict(args.launch_args), "workspace": Path(args.workspace),
+        "zenoh": zenoh, "node_processes": args.node_processes, "bag_dir": Path(args.bag_dir),
+        "foxglove_port": None if args.no_foxglove else args.foxglove_port, "rosbridge_port": args.rosbridge_port,
+    }  # fmt: skip
+    return Settings.model_validate(
+        {"listen": listen, "lab": lab, "classroom": classroom, "log_level": args.log_level}
+    )
+
+
+def print_lab_lines(settings: Settings) -> None:
+    """Where to open the page, the lab's token link, and where its graph is."""
+    listen, zenoh = settings.listen, settings.lab.zenoh
+    print(banner(listen.host, listen.port, settings.lab.launch), flush=True)
+    if listen.token is not None and settings.classroom is None:
+        print(f"This lab needs its token: open http://{shown_host(listen.host)}:{listen.port}/?token={listen.token} "
+              "(bridges: ?token= or Authorization: Bearer)", flush=True)  # fmt: skip
+    if zenoh is not None:
+        wide = [e for e in zenoh.listen if not is_loopback(e)] if zenoh.mode == "router" else []
+        where = ", ".join(zenoh.listen) if zenoh.mode == "router" else "router " + ", ".join(zenoh.connect)
+        domains = "a ROS domain per world (1, 2, ...)" if settings.classroom else f"domain {zenoh.domain_id}"
+        print(f"ROS graph on Zenoh ({where}, {domains})", flush=True)
+        if wide:
+            print(f"note: Zenoh listens on {', '.join(wide)}: other machines with the login can join this graph "
+                  "(GET /api/zenoh/join with the token gives it; see docs/zenoh.md)", flush=True)  # fmt: skip
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -224,74 +280,35 @@ def main(argv: list[str] | None = None) -> int:
         return cli.main(argv)  # ros2's verbs, against a running server
     parser = build_parser()
     args = parser.parse_args(argv)
+    if not args.classroom:
+        for name, flag in CLASS_ONLY.items():
+            if getattr(args, name) != parser.get_default(name):
+                parser.error(f"{flag} needs --classroom")
     try:
-        zenoh = zenoh_settings(args)
-    except ValueError as exc:
+        settings = settings_of(args, zenoh_settings(args))
+    except ValidationError as exc:
+        if is_refusal(exc):
+            print(f"error: {explain(exc)}", file=sys.stderr)
+            return 2
+        parser.error(explain(exc))
+    except ValueError as exc:  # a Zenoh endpoint or ROS_DOMAIN_ID the session cannot take
         parser.error(str(exc))
-    if args.workers and not (
-        0 < args.workers <= MAX_LOCAL_WORKERS
-        and args.classroom
-        and zenoh is not None
-        and zenoh.mode == "router"
-    ):
-        parser.error(f"--workers needs --classroom and this server's own Zenoh router (world workers join it), "
-                     f"and N in 0..{MAX_LOCAL_WORKERS}")  # fmt: skip
-    settings = Settings(
-        host=args.host, port=args.port, launch=args.launch, launch_args=dict(args.launch_args),
-        workspace=Path(args.workspace), allowed_hosts=tuple(args.allow_host), allowed_origins=tuple(args.allow_origin),
-        zenoh=zenoh, node_processes=args.node_processes,
-        foxglove_port=None if args.no_foxglove else args.foxglove_port, rosbridge_port=args.rosbridge_port,
-        bag_dir=Path(args.bag_dir), classroom=args.classroom, class_code=args.class_code,
-        max_worlds=args.max_worlds, token=lab_token(args.token), local_worlds=args.local_worlds,
-        worker_timeout_s=args.worker_timeout, local_workers=args.workers, world_log_level=args.world_log_level,
-        joins=JoinLimits(max_worlds_per_address=args.max_worlds_per_address),
-    )  # fmt: skip
-    if args.max_worlds_per_address is not None and (args.max_worlds_per_address < 1 or not args.classroom):
-        parser.error("--max-worlds-per-address needs --classroom, and N >= 1")
-    if not 2.0 <= args.worker_timeout <= 3600.0:
-        parser.error("--worker-timeout must be in 2..3600 s")
-    if args.local_worlds is not None and (args.local_worlds < 0 or not args.classroom or zenoh is None):
-        parser.error("--local-worlds needs --classroom and Zenoh (world workers join its router), and N >= 0")
-    if not is_loopback_host(args.host) and not (args.classroom or settings.token):
-        print(f"error: refusing to listen on {args.host} with no login: anyone who reaches this machine could "
-              "fly the drone. Add --token auto (one lab behind a token) or --classroom (a world per student).",
-              file=sys.stderr)  # fmt: skip
-        return 2
-    wide_zenoh = (
-        [e for e in zenoh.listen if not is_loopback(e)]
-        if zenoh is not None and zenoh.mode == "router"
-        else []
-    )
-    if wide_zenoh and not (args.classroom or settings.token):
-        print(f"error: refusing to open the Zenoh router on {', '.join(wide_zenoh)} with no login: anyone who "
-              "reaches it could join the graph and fly the drone. Add --token auto (the router then asks every "
-              "session for the lab's login: GET /api/zenoh/join gives it) or --classroom.", file=sys.stderr)  # fmt: skip
-        return 2
-    setup_logging(args.log_level, classroom=args.classroom, world_level=args.world_log_level)
+    classroom = settings.classroom
+    world_level = classroom.world_log_level if classroom is not None else args.world_log_level
+    setup_logging(settings.log_level, classroom=classroom is not None, world_level=world_level)
     error = check_launch(settings)
     if error:
         print(f"error: {error}", file=sys.stderr)
         return 2
-    print(banner(args.host, args.port, args.launch), flush=True)
-    if settings.token is not None and not args.classroom:
-        shown = "127.0.0.1" if args.host in ("0.0.0.0", "::") else args.host
-        print(f"This lab needs its token: open http://{shown}:{args.port}/?token={settings.token} "
-              "(bridges: ?token= or Authorization: Bearer)", flush=True)  # fmt: skip
-    if zenoh is not None:
-        wide = [e for e in zenoh.listen if not is_loopback(e)] if zenoh.mode == "router" else []
-        where = ", ".join(zenoh.listen) if zenoh.mode == "router" else "router " + ", ".join(zenoh.connect)
-        domains = "a ROS domain per world (1, 2, ...)" if args.classroom else f"domain {zenoh.domain_id}"
-        print(f"ROS graph on Zenoh ({where}, {domains})", flush=True)
-        if wide:
-            print(f"note: Zenoh listens on {', '.join(wide)}: other machines with the login can join this graph "
-                  "(GET /api/zenoh/join with the token gives it; see docs/zenoh.md)", flush=True)  # fmt: skip
+    print_lab_lines(settings)
     from server.serve import serve
 
     def announce(app: Any) -> None:
         if app.state.classroom is not None:
-            print(classroom_banner(args.host, args.port, app.state.classroom), flush=True)
+            klass = app.state.classroom
+            print(classroom_banner(settings, klass.code, klass.instructor_token), flush=True)
 
-    serve(settings, args.log_level, announce=announce)
+    serve(settings, announce=announce)
     return 0
 
 

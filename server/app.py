@@ -29,17 +29,20 @@ from server.settings import Settings
 STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 
 
-def _classroom(settings: Settings, clock: Clock | None) -> Classroom:
-    """A class server, or on a world worker (server/world_worker.py) the worlds it hosts."""
+def _classroom(settings: Settings, clock: Clock | None) -> Classroom | None:
+    """A class server, or on a world worker (server/world_worker.py) the worlds it hosts; None: one lab."""
+    if settings.classroom is None:
+        return None
     if settings.worker is not None:
-        return WorldWorker(settings, clock, code=settings.class_code)
-    return ClassServer(settings, clock, code=settings.class_code)
+        return WorldWorker(settings, clock, code=settings.classroom.code)
+    return ClassServer(settings, clock, code=settings.classroom.code)
 
 
 def create_app(settings: Settings | None = None, clock: Clock | None = None) -> FastAPI:
     settings = settings or Settings()
 
-    classroom = _classroom(settings, clock) if settings.classroom else None
+    classroom = _classroom(settings, clock)
+    class_server = classroom is not None
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -69,11 +72,10 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
     )
     app.state.classroom = classroom
     app.state.settings = settings
-    app.include_router(build_router(classroom=settings.classroom))
-    if settings.classroom or settings.token is not None:
-        use_token_security(
-            app, classroom=settings.classroom
-        )  # the document says how to show the token, and where it is needed
+    app.include_router(build_router(classroom=class_server))
+    if class_server or settings.listen.token is not None:
+        # the document says how to show the token, and where it is needed
+        use_token_security(app, classroom=class_server)
     app.include_router(page_router)
     app.include_router(tools_router)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
@@ -86,9 +88,9 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
     app.add_middleware(StrictJsonMiddleware)
     app.add_middleware(
         GuardMiddleware,
-        accepted_hosts=settings.accepted_hosts,
-        allowed_origins=settings.allowed_origins,
-        max_body_bytes=settings.max_body_bytes,
+        accepted_hosts=settings.listen.accepted_hosts,
+        allowed_origins=settings.listen.allowed_origins,
+        max_body_bytes=settings.listen.max_body_bytes,
     )
     app.add_middleware(CanonicalPathMiddleware)
     app.add_middleware(ErrorMiddleware)

@@ -52,21 +52,22 @@ class Lab:
         self, settings: Settings, clock: Clock | None = None, *, executors: ExecutorGroup | None = None
     ) -> None:
         self.settings = settings
+        limits = settings.limits
         self.bus = Bus(clock or SystemClock())
         self.executor = Executor(self.bus)
         # A class server's worlds share one task that runs their executors; alone, the lab has its own.
         self.executors = executors
-        self.packages = PackageIndex(workspace=settings.workspace)
+        self.packages = PackageIndex(workspace=settings.lab.workspace)
         self.packages.interfaces(log_problems=True)  # a student's own .msg/.srv types, with no build
         self.launcher = Launcher(self.bus, self.packages)
-        self.launcher.all_processes = settings.node_processes == "all"
+        self.launcher.all_processes = settings.lab.node_processes == "all"
         self.launcher.confined = settings.confines_paths
         self.keyboard = KeyboardDevice()
         self.bus.devices["keyboard"] = self.keyboard
-        self.key_deadman = KeyDeadMan(self.keyboard, self.bus, settings.deadman_s)
-        self.key_frames = RateLimit(self.bus.clock, settings.key_frames_hz, settings.key_frames_burst)
-        self.socket_frames = per_second(self.bus.clock, settings.socket_frames_hz)
-        self.socket_requests = per_second(self.bus.clock, settings.socket_requests_hz)
+        self.key_deadman = KeyDeadMan(self.keyboard, self.bus, limits.deadman_s)
+        self.key_frames = RateLimit(self.bus.clock, limits.key_frames_hz, limits.key_frames_burst)
+        self.socket_frames = per_second(self.bus.clock, limits.socket_frames_hz)
+        self.socket_requests = per_second(self.bus.clock, limits.socket_requests_hz)
         self.display: Display | None = None
         self.page_tools: PageToolsNode | None = None
         self.record_panel: RecordPanel | None = None
@@ -76,14 +77,14 @@ class Lab:
         self.zenoh_error: str | None = None
         self.rocket = RocketControls(self.launcher)
         with self.bus.activate():
-            self.api_node = ApiNode(settings.max_api_topics)
+            self.api_node = ApiNode(limits.max_api_topics)
         self.rocket.serve(self.api_node)
-        self.publishers = PublisherManager(self, settings.max_publishers)
+        self.publishers = PublisherManager(self, limits.max_publishers)
         self.service_caller = ServiceCaller(self.api_node)
         self.topic_watch = TopicWatch(self.bus)
-        self.bags = BagManager(self.bus, settings.bag_dir)  # ros2 bag record / play
+        self.bags = BagManager(self.bus, settings.lab.bag_dir)  # ros2 bag record / play
         self.launch_groups = LaunchGroups(
-            self.launcher, self.packages, settings.max_launch_groups, settings.max_nodes_per_launch
+            self.launcher, self.packages, limits.max_launch_groups, limits.max_nodes_per_launch
         )
         self.stopped = asyncio.Event()  # set by stop(): open WebSockets close, and clients reconnect
 
@@ -93,7 +94,7 @@ class Lab:
 
     def start_nodes(self) -> None:
         """Launch the configured launch file and the tool nodes (views); no event loop needed."""
-        self.launcher.launch_file(self.launch_path(self.settings.launch), self.settings.launch_args)
+        self.launcher.launch_file(self.launch_path(self.settings.lab.launch), self.settings.lab.launch_args)
         self.rocket.start_view(self.bus, self.display, self.launcher.launched)
         if self.display is not None:
             from server.viewer.publisher_panel import PageToolsNode
@@ -103,7 +104,7 @@ class Lab:
             self.record_panel = RecordPanel(self)
 
     async def start(self) -> None:
-        if self.settings.zenoh is not None:
+        if self.settings.lab.zenoh is not None:
             from server.transport.link import open_link
 
             self.zenoh, self.zenoh_error = await open_link(self.bus, self._zenoh_settings())
@@ -116,7 +117,7 @@ class Lab:
                 self.launcher.on_process_start.append(
                     lambda p: remote.name_session(p.command.zid, f"process {p.pid}")
                 )
-        if self.settings.viewer:
+        if self.settings.lab.viewer:
             from server.viewer.display import Display
 
             self.display = Display(asyncio.get_running_loop())
@@ -131,13 +132,14 @@ class Lab:
     def _zenoh_settings(self) -> ZenohSettings:
         """The graph's session; a lab behind ``--token`` that is the router logs every session in (its
         node processes, and anyone given ``GET /api/zenoh/join``), as its HTTP port asks for the token."""
-        zenoh = self.settings.zenoh
+        zenoh = self.settings.lab.zenoh
         assert zenoh is not None
-        if zenoh.mode != "router" or self.settings.token is None or self.settings.classroom:
+        token = self.settings.listen.token
+        if zenoh.mode != "router" or token is None or self.settings.classroom is not None:
             return zenoh
         from server.transport.acl import ClassAuth, RouterAccess
 
-        login = ClassAuth(self.settings.token).class_credentials()
+        login = ClassAuth(token).class_credentials()
         return dataclasses.replace(zenoh, router_logins=RouterAccess(login), login=login)
 
     async def stop(self) -> None:

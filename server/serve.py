@@ -15,14 +15,13 @@ from server.settings import Settings
 
 def serve(
     settings: Settings,
-    log_level: str,
     *,
     sock: socket.socket | None = None,
     announce: Callable[[FastAPI], None] | None = None,
 ) -> None:
     """Serve the app for ``settings`` until Ctrl-C or SIGTERM: on ``sock`` when given (a world worker
-    binds its port first, to say where it listens), else on the settings' host and port.
-    ``announce`` runs once the app exists (the banner that says where to go)."""
+    binds its port first, to say where it listens), else on the settings' host and port, logging at
+    the settings' level. ``announce`` runs once the app exists (the banner that says where to go)."""
     import rich
     import uvicorn
 
@@ -32,16 +31,17 @@ def serve(
     app = create_app(settings)
     if announce is not None:
         announce(app)
+    listen, level, classroom = settings.listen, settings.log_level, settings.classroom is not None
     config = uvicorn.Config(
         app,
-        host=settings.host,
-        port=settings.port,
-        log_level=log_level,
-        access_log=access_log(log_level, classroom=settings.classroom),
-        ws_max_size=settings.max_ws_frame_bytes * 64,
+        host=listen.host,
+        port=listen.port,
+        log_level=level,
+        access_log=access_log(level, classroom=classroom),
+        ws_max_size=listen.max_ws_frame_bytes * 64,
         timeout_graceful_shutdown=1,
         lifespan="on",
     )
-    quiet_uvicorn(log_level, classroom=settings.classroom)
+    quiet_uvicorn(level, classroom=classroom)
     with contextlib.suppress(KeyboardInterrupt):
         uvicorn.Server(config).run(sockets=[sock] if sock is not None else None)

@@ -22,9 +22,16 @@ import time
 from pathlib import Path
 from typing import Any
 
+from pydantic import ValidationError
+
 from server.classroom.worker_control import TOKEN_ENV
 from server.console import LEVELS, setup_logging
-from server.settings import LOOPBACK_HOSTS, ORPHAN_TIMEOUT_S, Settings, WorkerSettings
+from server.settings import (
+    LOOPBACK_HOSTS,
+    ORPHAN_TIMEOUT_S,
+    Settings,
+    explain,
+)
 from server.transport.config import ZenohSettings
 
 log = logging.getLogger("classroom.worker")
@@ -110,6 +117,30 @@ def _router_refuses(endpoint: str, class_token: str) -> str | None:
     return None
 
 
+def worker_settings(args: argparse.Namespace, class_token: str, port: int) -> Settings:
+    """The command line (and the port this worker listens on), mapped onto the settings model.
+    ValidationError says what is wrong, each field by its path (``listen.port``)."""
+    advertise = args.advertise or args.host
+    shown = f"[{advertise}]" if ":" in advertise else advertise
+    worker = {
+        "id": _worker_id(args.worker_id), "url": f"http://{shown}:{port}", "class_token": class_token,
+        "orphan_timeout_s": args.orphan_timeout,
+    }  # fmt: skip
+    listen = {
+        "host": args.host,
+        "port": port,
+        "allowed_hosts": () if args.host in LOOPBACK_HOSTS else (advertise,),
+    }
+    lab = {
+        "workspace": Path(args.workspace), "bag_dir": Path(args.bag_dir),
+        "zenoh": ZenohSettings(mode="client", listen=(), connect=(args.connect,)),
+    }  # fmt: skip
+    classroom = {"max_worlds": args.max_worlds, "world_log_level": args.world_log_level}
+    return Settings.model_validate(
+        {"listen": listen, "lab": lab, "classroom": classroom, "worker": worker, "log_level": args.log_level}
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -118,18 +149,15 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: set {TOKEN_ENV} to the instructor's token (in the link the class server printed): "
               "a worker serves only its own class", file=sys.stderr)  # fmt: skip
         return 2
-    if args.max_worlds < 1:
-        parser.error("--max-worlds must be at least 1")
-    if not 1.0 <= args.orphan_timeout <= 3600.0:
-        parser.error("--orphan-timeout must be in 1..3600 s")
+    try:
+        worker_settings(args, class_token, args.port)  # every rule, before anything is bound
+    except ValidationError as exc:
+        parser.error(explain(exc))
+    except ValueError as exc:  # a Zenoh endpoint the session cannot take
+        parser.error(str(exc))
     if args.parent_pid is not None and os.getppid() != args.parent_pid:
         print("error: the class server that started this worker is gone", file=sys.stderr)
         return 2
-    advertise = args.advertise or args.host
-    if advertise in ("0.0.0.0", "::"):
-        parser.error(
-            "with --host 0.0.0.0, name the address the class server reaches this machine on: --advertise HOST"
-        )
     family = socket.AF_INET6 if ":" in args.host else socket.AF_INET
     sock = socket.socket(family, socket.SOCK_STREAM)
     sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
@@ -138,24 +166,17 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         print(f"error: cannot listen on {args.host}:{args.port}: {exc.strerror}", file=sys.stderr)
         return 2
-    port = int(sock.getsockname()[1])
     refused = _router_refuses(args.connect, class_token)
     if refused:
         sock.close()
         print(f"error: {refused}", file=sys.stderr)
         return 2
-    shown = f"[{advertise}]" if ":" in advertise else advertise
-    worker = WorkerSettings(
-        id=_worker_id(args.worker_id), url=f"http://{shown}:{port}", class_token=class_token,
-        orphan_timeout_s=args.orphan_timeout,
-    )  # fmt: skip
-    settings = Settings(
-        host=args.host, port=port, workspace=Path(args.workspace), bag_dir=Path(args.bag_dir),
-        zenoh=ZenohSettings(mode="client", listen=(), connect=(args.connect,)),
-        classroom=True, max_worlds=args.max_worlds, worker=worker,
-        allowed_hosts=() if args.host in LOOPBACK_HOSTS else (advertise,),
-    )  # fmt: skip
-    setup_logging(args.log_level, classroom=True, world_level=args.world_log_level, who=worker.id)
+    settings = worker_settings(args, class_token, int(sock.getsockname()[1]))
+    worker = settings.worker
+    assert worker is not None and settings.classroom is not None
+    setup_logging(
+        settings.log_level, classroom=True, world_level=settings.classroom.world_log_level, who=worker.id
+    )
     from server.serve import serve
 
     def announce(_app: Any) -> None:
@@ -164,5 +185,5 @@ def main(argv: list[str] | None = None) -> int:
         if args.parent_pid is not None:
             _end_with_parent(args.parent_pid)
 
-    serve(settings, args.log_level, sock=sock, announce=announce)
+    serve(settings, sock=sock, announce=announce)
     return 0

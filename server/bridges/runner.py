@@ -52,13 +52,15 @@ async def run_bridges(lab: BridgedLab) -> AsyncIterator[Bridges]:
         with lab.bus.activate():
             bridges.rosapi = RosapiNode()  # what rosbridge clients ask the graph through
         stack.callback(bridges.rosapi.destroy_node)
-        if settings.foxglove_port is not None:
-            started = await start_foxglove(lab.bus, settings, settings.foxglove_port, settings.token)
+        if settings.lab.foxglove_port is not None:
+            started = await start_foxglove(
+                lab.bus, settings, settings.lab.foxglove_port, settings.listen.token
+            )
             if started is not None:
                 bridges.foxglove = started
                 stack.push_async_callback(started.stop)
-        if settings.rosbridge_port is not None:
-            front = await start_rosbridge_front(settings, settings.rosbridge_port, settings.token)
+        if settings.lab.rosbridge_port is not None:
+            front = await start_rosbridge_front(settings, settings.lab.rosbridge_port, settings.listen.token)
             if front is not None:
                 bridges.rosbridge_front = front
                 stack.push_async_callback(front.stop)
@@ -78,14 +80,15 @@ async def start_foxglove(
     from .foxglove import FoxgloveBridge
     from .foxglove_server import Guard
 
-    guard = Guard(settings.accepted_hosts, frozenset(settings.allowed_origins), token)
+    listen = settings.listen
+    guard = Guard(listen.accepted_hosts, frozenset(listen.allowed_origins), token)
     foxglove = FoxgloveBridge(bus, guard, name, limits_name)
     try:
-        await foxglove.start(settings.host, port)
+        await foxglove.start(listen.host, port)
     except OSError as exc:  # another lab (or Foxglove bridge) has the port: run without
         log.warning("Foxglove server (%s) not started: port %d: %s", name, port, exc.strerror)
         return None
-    log.info("Foxglove WebSocket server (%s) on ws://%s:%d", name, settings.host, foxglove.port)
+    log.info("Foxglove WebSocket server (%s) on ws://%s:%d", name, listen.host, foxglove.port)
     return foxglove
 
 
@@ -94,15 +97,16 @@ async def start_rosbridge_front(
 ) -> GuardedFront | None:
     """rosbridge on a port of its own: the guarded front onto ``upstream_path`` on the app's port;
     None, with a warning, if the app's port is not known. OSError if ``port`` is taken."""
-    if settings.port == 0:
+    listen = settings.listen
+    if listen.port == 0:
         log.warning(
             "rosbridge's own port needs the app's port to be known (not 0); only %s serves", upstream_path
         )
         return None
     front = GuardedFront(
-        settings.host, port, settings.port, settings.accepted_hosts, settings.allowed_origins,
+        listen.host, port, listen.port, listen.accepted_hosts, listen.allowed_origins,
         upstream_path=upstream_path, token=token,
     )  # fmt: skip
     await front.start()
-    log.info("rosbridge on ws://%s:%d (and at %s)", settings.host, front.port, upstream_path)
+    log.info("rosbridge on ws://%s:%d (and at %s)", listen.host, front.port, upstream_path)
     return front

@@ -65,11 +65,12 @@ class ClassBridges:
         token: str,
     ) -> ClassBridges:
         """Join the class domain at ``router`` with the class's ``login``; serve Foxglove on
-        ``settings.foxglove_port`` and rosbridge on ``settings.rosbridge_port`` (each when set) to
+        ``settings.lab.foxglove_port`` and rosbridge on ``settings.lab.rosbridge_port`` (each when set) to
         holders of ``token``. A port that is taken is left out with a warning."""
+        lab = settings.lab
         zenoh = ZenohSettings(
             mode="client", listen=(), connect=(router,), domain_id=domain_id, login=login,
-            config_file=settings.zenoh.config_file if settings.zenoh is not None else None,
+            config_file=lab.zenoh.config_file if lab.zenoh is not None else None,
         )  # fmt: skip
         bus = Bus(clock)
         link = await ZenohLink.open(bus, zenoh)
@@ -77,10 +78,10 @@ class ClassBridges:
             RosapiNode()  # what rosbridge clients ask the class's graph through
         bridges = cls(bus, link, Executor(bus))
         try:
-            if settings.foxglove_port is not None:
-                await bridges._start_foxglove(settings, settings.foxglove_port, token)
-            if settings.rosbridge_port is not None:
-                await bridges._start_rosbridge(settings, settings.rosbridge_port, token)
+            if lab.foxglove_port is not None:
+                await bridges._start_foxglove(settings, lab.foxglove_port, token)
+            if lab.rosbridge_port is not None:
+                await bridges._start_rosbridge(settings, lab.rosbridge_port, token)
         except BaseException:  # a port did not open: the class domain's session goes too
             await bridges._stop_ports()
             link.close()

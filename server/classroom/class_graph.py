@@ -56,7 +56,7 @@ class ClassGraph:
     async def open(self, clock: Clock, executors: ExecutorGroup) -> bool:
         """Open the class's router (when Zenoh is on, as a router): whether it is open. Each world
         joins it in a ROS domain of its own."""
-        zenoh = self.settings.zenoh
+        zenoh = self.settings.lab.zenoh
         if zenoh is None or zenoh.mode != "router":
             return False
         from server.transport.session import TransportError
@@ -88,7 +88,7 @@ class ClassGraph:
 
     def endpoint(self) -> str | None:
         """Where worlds and node processes connect: the class's router, or the one it joined."""
-        zenoh = self.settings.zenoh
+        zenoh = self.settings.lab.zenoh
         if zenoh is None or (zenoh.mode == "router" and self.router is None):
             return None
         if zenoh.mode != "router":
@@ -168,8 +168,8 @@ class ClassGraph:
     def _open_bridge(self, session: Any) -> None:
         from server.transport.domain_bridge import DomainBridge
 
-        assert self.settings.zenoh is not None
-        self.bridge = DomainBridge(session, self.settings.zenoh.domain_id, self._stats)
+        assert self.settings.lab.zenoh is not None
+        self.bridge = DomainBridge(session, self.settings.lab.zenoh.domain_id, self._stats)
         self._stats = self.bridge.stats
         for world in self.worlds.values():
             self.bridge.set_world(world.domain_id, world.name)

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from server.bus import Clock, ExecutorGroup, SystemClock
 from server.limits import RateLimit
-from server.settings import Settings
+from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth
 
@@ -54,10 +54,11 @@ class ClassServer:
         signer: TokenSigner | None = None,
     ) -> None:
         self.settings = settings
+        self.class_settings = class_section(settings)
         self.clock: Clock = clock or SystemClock()
         self.code = code or new_code()
         self.grants = Grants(signer)
-        self.admission = Admission(settings.joins, self.clock)
+        self.admission = Admission(self.class_settings.joins, self.clock)
         self.labs = WorldLabs(settings, self.clock, lambda: self.graph.endpoint())
         self.graph = ClassGraph(settings, self.labs.worlds, self.grants.instructor_token)
         # This process's and machine's CPU, read every WATCH_PERIOD_S (a watch round): a
@@ -127,7 +128,7 @@ class ClassServer:
     async def open(self) -> None:
         """Open the instructor's view and the class's Zenoh graph (if Zenoh is on), then start the
         watch over the world workers and those started here."""
-        if self.settings.viewer:
+        if self.settings.lab.viewer:
             from server.viewer.class_view import ClassView, run_class_view
 
             self.view = ClassView(asyncio.get_running_loop())
@@ -137,12 +138,12 @@ class ClassServer:
         self._tasks.append(asyncio.create_task(self.placement.watch()))
         endpoint = self.graph.endpoint()
         # Started last: a start-up that fails earlier leaves no worker behind to clean up.
-        if endpoint is not None and self.settings.local_workers > 0:
+        if endpoint is not None and self.class_settings.local_workers > 0:
             from .local_workers import LocalWorkers
 
             self.local_workers = LocalWorkers(
-                self.settings.local_workers, endpoint, self.instructor_token, self.settings.max_worlds,
-                self.settings.workspace, self.settings.bag_dir, world_log_level=self.settings.world_log_level,
+                self.class_settings.local_workers, endpoint, self.instructor_token, self.class_settings.max_worlds,
+                self.settings.lab.workspace, self.settings.lab.bag_dir, world_log_level=self.class_settings.world_log_level,
             )  # fmt: skip
             self.local_workers.start()
 
@@ -176,7 +177,7 @@ class ClassServer:
         if self.labs.taken(name):
             raise ClassroomError(409, f"the name {student!r} is taken in this class (world {name!r})")
         if self.labs.full():
-            raise ClassroomError(429, f"the class is full ({self.settings.max_worlds} worlds)")
+            raise ClassroomError(429, f"the class is full ({self.class_settings.max_worlds} worlds)")
         student = student.strip()[:64]
         domain_id = self.labs.free_domain(self.graph.revoking)
         login = self.graph.login(domain_id)
@@ -191,7 +192,9 @@ class ClassServer:
         finally:
             del self.labs.starting[name]
         token, grant = self.grants.issue(name, student)
-        resets = RateLimit(self.clock, self.settings.world_resets_hz, self.settings.world_resets_burst)
+        resets = RateLimit(
+            self.clock, self.class_settings.world.resets_hz, self.class_settings.world.resets_burst
+        )
         world = self.worlds[name] = World(
             name, student, grant.token_id, lab, self.labs.write_limit(), domain_id, worker=place,
             placed_at=self.clock.now(), login=login, address=address, reset_limit=resets,

@@ -17,7 +17,7 @@ from collections.abc import Awaitable, Callable
 from typing import Any
 
 from server.lab import Lab
-from server.settings import Settings
+from server.settings import Settings, class_section
 from server.transport.acl import Credentials
 
 from .class_graph import ClassGraph
@@ -44,13 +44,14 @@ class Placement:
         end: Callable[[World], Awaitable[None]],
     ) -> None:
         self.settings = settings
+        self.class_settings = class_section(settings)
         self.labs = labs
         self.graph = graph
         self.cpu = cpu
         self._end = end
         self._hosting: set[tuple[str, str]] = set()  # (worker id, world) while it is placed there
         self._local_starting = 0  # worlds being started here
-        self._silent_workers = Silence(settings.worker_timeout_s)
+        self._silent_workers = Silence(self.class_settings.worker_timeout_s)
 
     async def start(
         self, name: str, student: str, domain_id: int, login: Credentials | None, exclude: str | None = None
@@ -106,7 +107,7 @@ class Placement:
         self._hosting.add((ref.id, name))
         try:
             body: dict[str, Any] = {"world": name, "student": student, "domain_id": domain_id,
-                    "launch": self.settings.launch, "launch_args": self.settings.launch_args}  # fmt: skip
+                    "launch": self.settings.lab.launch, "launch_args": self.settings.lab.launch_args}  # fmt: skip
             if login is not None:  # the world's own login: its graph joins the router with it
                 body |= {"zenoh_user": login.user, "zenoh_password": login.password}
             await self.graph.workers.checked(ref, "POST", "/api/classroom/host", body=body)
@@ -150,7 +151,7 @@ class Placement:
             if world.worker is None:
                 continue
             if world.worker.id in gone:
-                why = f"no hello for {self.settings.worker_timeout_s:g} s"
+                why = f"no hello for {self.class_settings.worker_timeout_s:g} s"
             elif (world.worker.id, world.name) in missing:
                 why = "it answers but no longer hosts this world (restarted?)"
             elif world.lost is not None:

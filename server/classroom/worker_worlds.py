@@ -18,7 +18,7 @@ import logging
 from typing import Any
 
 from server.bus import Clock, ExecutorGroup, SystemClock
-from server.settings import Settings
+from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth, Credentials
 
@@ -48,6 +48,7 @@ class WorldWorker:
         if settings.worker is None:
             raise ValueError("a world worker needs its worker settings (settings.worker)")
         self.settings = settings
+        self.class_settings = class_section(settings)
         self.role = settings.worker
         self.clock: Clock = clock or SystemClock()
         self.code = code or new_code()  # joins go to the class server: nobody is told this one
@@ -89,7 +90,7 @@ class WorldWorker:
 
     def router_endpoint(self) -> str | None:
         """Where worlds and node processes connect: the class's router this worker joined."""
-        zenoh = self.settings.zenoh
+        zenoh = self.settings.lab.zenoh
         return zenoh.connect[0] if zenoh is not None and zenoh.mode != "router" else None
 
     # -- who is calling ------------------------------------------------------------------------
@@ -121,7 +122,7 @@ class WorldWorker:
     # -- start and stop ------------------------------------------------------------------------
     async def open(self) -> None:
         """Join the class's router (if Zenoh is on) and answer the class server's hellos."""
-        zenoh = self.settings.zenoh
+        zenoh = self.settings.lab.zenoh
         if zenoh is None:
             return
         from server.transport.session import open_session
@@ -162,7 +163,7 @@ class WorldWorker:
         if self.labs.taken(name):
             raise ClassroomError(409, f"world {name!r} is already here")
         if self.labs.full():
-            raise ClassroomError(429, f"this worker is full ({self.settings.max_worlds} worlds)")
+            raise ClassroomError(429, f"this worker is full ({self.class_settings.max_worlds} worlds)")
         self.labs.starting[name] = domain_id
         try:
             lab = await self.labs.start(name, domain_id, (launch, launch_args), login)
@@ -232,5 +233,5 @@ class WorldWorker:
     def _load(self) -> dict[str, Any]:
         """A worker's hello: how full it is, and which worlds it hosts (Zenoh's thread: a copy)."""
         hosted = sorted(self.worlds)
-        return {"worlds": len(hosted) + len(self.labs.starting), "max_worlds": self.settings.max_worlds,
+        return {"worlds": len(hosted) + len(self.labs.starting), "max_worlds": self.class_settings.max_worlds,
                 "hosted": hosted, "cpu": self.cpu.read().describe()}  # fmt: skip

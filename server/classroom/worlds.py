@@ -9,14 +9,13 @@ rosbridge) are not opened per world; its bags go in a folder of its own.
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Callable
 
 from server.bus import Clock, ExecutorGroup
 from server.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
 from server.lab import Lab
 from server.limits import RateLimit
-from server.settings import Settings
+from server.settings import Settings, class_section
 from server.transport.acl import Credentials
 from server.transport.config import ZenohSettings
 
@@ -33,6 +32,7 @@ class WorldLabs:
 
     def __init__(self, settings: Settings, clock: Clock, endpoint: Callable[[], str | None]) -> None:
         self.settings = settings
+        self.class_settings = class_section(settings)
         self.clock = clock  # every world's, the physics' and the limits'
         self.endpoint = endpoint
         self.worlds: dict[str, World] = {}
@@ -51,7 +51,7 @@ class WorldLabs:
         return name in self.worlds or name in self.starting
 
     def full(self) -> bool:
-        return len(self.worlds) + len(self.starting) >= self.settings.max_worlds
+        return len(self.worlds) + len(self.starting) >= self.class_settings.max_worlds
 
     @property
     def hosted_here(self) -> int:
@@ -60,17 +60,18 @@ class WorldLabs:
 
     @property
     def local_capacity(self) -> int:
-        local = self.settings.local_worlds
-        return self.settings.max_worlds if local is None else min(local, self.settings.max_worlds)
+        return self.class_settings.local_capacity
 
     def write_limit(self) -> RateLimit:
-        return RateLimit(self.clock, self.settings.world_writes_hz, self.settings.world_writes_burst)
+        return RateLimit(
+            self.clock, self.class_settings.world.writes_hz, self.class_settings.world.writes_burst
+        )
 
     def free_domain(self, also_taken: set[int]) -> int:
         """The lowest ROS domain no world, starting world, nor ``also_taken`` holds."""
         taken = {w.domain_id for w in self.worlds.values()} | set(self.starting.values()) | also_taken
-        if self.settings.zenoh is not None:
-            taken.add(self.settings.zenoh.domain_id)  # the class's own domain stays empty
+        if self.settings.lab.zenoh is not None:
+            taken.add(self.settings.lab.zenoh.domain_id)  # the class's own domain stays empty
         free = (d for d in range(1, MAX_DOMAIN_ID + 1) if d not in taken)
         domain = next(free, None)
         if domain is None:
@@ -81,16 +82,16 @@ class WorldLabs:
         """A student's reset: one of their world's few resets, and one of its writes (429 over
         either, which charges neither)."""
         world = self.get(name)
-        settings, resets = self.settings, world.reset_limit
+        limits, resets = self.class_settings.world, world.reset_limit
         if resets is not None and not resets.ready():
             resets.refused += 1
             raise ClassroomError(
-                429, f"too many resets of world {name!r}: at most {settings.world_resets_burst} in a row, "
-                f"then one in {1 / settings.world_resets_hz:g} s", resets.retry_after_s(),
+                429, f"too many resets of world {name!r}: at most {limits.resets_burst} in a row, "
+                f"then one in {1 / limits.resets_hz:g} s", resets.retry_after_s(),
             )  # fmt: skip
         if not world.writes.take():
             raise ClassroomError(429, f"too many requests for world {name!r}: at most "
-                                      f"{settings.world_writes_hz:g} writes a second", world.writes.retry_after_s())  # fmt: skip
+                                      f"{limits.writes_hz:g} writes a second", world.writes.retry_after_s())  # fmt: skip
         if resets is not None:
             resets.take()
 
@@ -110,7 +111,7 @@ class WorldLabs:
         """A world that runs here, fresh: same name, domain, login and launch, every node anew."""
         assert world.lab is not None
         await world.lab.stop()  # first: the new world takes the same ROS domain on the graph
-        launch = world.lab.settings.launch, world.lab.settings.launch_args
+        launch = world.lab.settings.lab.launch, world.lab.settings.lab.launch_args
         world.lab = await self.start(world.name, world.domain_id, launch, world.login)
 
     def _world_settings(
@@ -119,22 +120,12 @@ class WorldLabs:
         endpoint = self.endpoint()
         zenoh = None
         if endpoint is not None:
-            config_file = self.settings.zenoh.config_file if self.settings.zenoh is not None else None
+            config_file = self.settings.lab.zenoh.config_file if self.settings.lab.zenoh is not None else None
             zenoh = ZenohSettings(
                 mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file,
-                login=login, samples_hz=self.settings.world_samples_hz,
+                login=login, samples_hz=self.class_settings.world.samples_hz,
             )  # fmt: skip
-        file, args = launch if launch is not None else (self.settings.launch, self.settings.launch_args)
-        return dataclasses.replace(
-            self.settings,
-            zenoh=zenoh,
-            foxglove_port=None,
-            rosbridge_port=None,
-            bag_dir=self.settings.bag_dir / name,
-            launch=file,
-            launch_args=args,
-            max_launch_groups=min(self.settings.max_launch_groups, self.settings.world_launches),
-            max_nodes_per_launch=min(self.settings.max_nodes_per_launch, self.settings.world_launch_nodes),
-            socket_frames_hz=self.settings.world_socket_frames_hz,
-            socket_requests_hz=self.settings.world_socket_requests_hz,
+        file, args = (
+            launch if launch is not None else (self.settings.lab.launch, self.settings.lab.launch_args)
         )
+        return self.settings.for_world(name, zenoh, file, args)

@@ -13,11 +13,11 @@ from support.app_pool import lab_client
 
 @pytest.fixture
 def make_lab() -> Iterator[Callable[..., LabClient]]:
-    """Start a rocket lab (``start_delay`` in s as the launch takes it, Settings overrides)."""
+    """Start a rocket lab (``start_delay`` in s as the launch takes it, LabLimits overrides)."""
     with ExitStack() as stack:
 
-        def make(start_delay: str = QUIET_START_DELAY, **overrides: Any) -> LabClient:
-            return LabClient(stack.enter_context(lab_client(rocket_settings(start_delay, **overrides))))
+        def make(start_delay: str = QUIET_START_DELAY, **limits: Any) -> LabClient:
+            return LabClient(stack.enter_context(lab_client(rocket_settings(start_delay, **limits))))
 
         yield make
 

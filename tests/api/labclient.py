@@ -17,19 +17,20 @@ from starlette.websockets import WebSocketDisconnect
 from support.wait import wait_until
 from support.ws import receive_within, refusal
 
-from server.settings import Settings
+from server.settings import LabLimits, LabSettings, Listening, Settings
 
 WAIT_S = 10.0  # generous: a loaded 2-core CI machine; a passing test returns as soon as it can
 QUIET_START_DELAY = "3600"  # the countdown never starts while the test runs
 
 
-def rocket_settings(start_delay: str = QUIET_START_DELAY, **overrides: Any) -> Settings:
-    """The rocket launch without viser, reachable as TestClient's Host 'testserver'."""
-    base: dict[str, Any] = {
-        "launch": "rocket", "launch_args": {"start_delay": start_delay},
-        "allowed_hosts": ("testserver",), "viewer": False,
-    }  # fmt: skip
-    return Settings(**{**base, **overrides})
+def rocket_settings(start_delay: str = QUIET_START_DELAY, **limits: Any) -> Settings:
+    """The rocket launch without viser, reachable as TestClient's Host 'testserver'; ``limits``
+    are the lab's (``LabLimits``)."""
+    return Settings(
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(launch="rocket", launch_args={"start_delay": start_delay}, viewer=False),
+        limits=LabLimits(**limits),
+    )
 
 
 class LabClient:

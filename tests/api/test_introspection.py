@@ -16,7 +16,7 @@ from fastapi.testclient import TestClient
 from server.app import create_app
 from server.bus import ManualClock, Node
 from server.lab import Lab
-from server.settings import Settings
+from server.settings import LabSettings, Listening, Settings
 
 LAB_NODES = {"/CountDownNode", "/MainControllerNode", "/RocketEngineNode", "/KeyboardManager", "/keyboard"}
 LAB_TOPICS = {"/countdown", "/cmd_vel", "/sensor_vel", "/abort_takeoff", "/keydown", "/keyup"}
@@ -32,7 +32,11 @@ WAIT_S = 5.0
 
 @pytest.fixture
 def client() -> Iterator[TestClient]:
-    app = create_app(Settings(launch="rocket", viewer=False, allowed_hosts=("testserver",)))
+    app = create_app(
+        Settings(
+            listen=Listening(allowed_hosts=("testserver",)), lab=LabSettings(launch="rocket", viewer=False)
+        )
+    )
     with TestClient(app) as test_client:
         yield test_client
 
@@ -167,7 +171,12 @@ def test_hz_sensor_vel_is_10_hz_on_the_labs_clock() -> None:
     # The app runs on a manual clock that only this test moves: the engine's 10 Hz timer fires at
     # its exact deadlines, so the rate is exact whatever else the machine is doing.
     clock = ManualClock(100.0)
-    app = create_app(Settings(launch="rocket", viewer=False, allowed_hosts=("testserver",)), clock=clock)
+    app = create_app(
+        Settings(
+            listen=Listening(allowed_hosts=("testserver",)), lab=LabSettings(launch="rocket", viewer=False)
+        ),
+        clock=clock,
+    )
     with TestClient(app) as manual:
         on_loop(manual, lambda: lab_of(manual).executor.spin_for(3.0))
         rate = manual.get("/api/hz/sensor_vel", params={"window": 10}).json()

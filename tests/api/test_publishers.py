@@ -22,7 +22,7 @@ from support.wait import wait_until
 from server.bus import ManualClock, Node
 from server.lab import Lab
 from server.msgs import Vector3
-from server.settings import Settings
+from server.settings import LabSettings, Listening, Settings
 
 POSITION = "/uav/input/position"
 TARGET = {"x": 5.0, "y": 5.0, "z": 10.0}
@@ -31,7 +31,9 @@ FLIGHT_DEADLINE_S = 20.0
 
 @pytest.fixture
 def client() -> Iterator[TestClient]:
-    with lab_client(Settings(launch="fly", viewer=False, allowed_hosts=("testserver",))) as test_client:
+    with lab_client(
+        Settings(listen=Listening(allowed_hosts=("testserver",)), lab=LabSettings(launch="fly", viewer=False))
+    ) as test_client:
         yield test_client
 
 
@@ -170,7 +172,7 @@ def test_publishers_patch_nan_raw_json_422(client: TestClient) -> None:
 # -- the same publishers on a manual clock -------------------------------------------------------
 @pytest.fixture
 def lab() -> Lab:
-    lab = Lab(Settings(launch="fly", viewer=False), ManualClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch="fly", viewer=False)), ManualClock(0.0))
     lab.start_nodes()
     return lab
 

@@ -14,7 +14,7 @@ from api.errors import CloseCode
 from server.__main__ import main
 from server.app import create_app
 from server.bridges.front import HandshakeRefused, check_handshake
-from server.settings import Settings
+from server.settings import LabSettings, Listening, Settings
 
 TOKEN = "s3cret-token"
 BEARER = {"Authorization": f"Bearer {TOKEN}"}
@@ -24,8 +24,10 @@ UPGRADE = {"host": "127.0.0.1:8765", "upgrade": "websocket"}
 
 @pytest.fixture
 def client() -> Iterator[TestClient]:
-    settings = Settings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False,
-                        allowed_hosts=("testserver",), token=TOKEN)  # fmt: skip
+    settings = Settings(
+        listen=Listening(allowed_hosts=("testserver",), token=TOKEN),
+        lab=LabSettings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False),
+    )
     with TestClient(create_app(settings)) as test_client:
         yield test_client
 

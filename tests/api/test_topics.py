@@ -20,7 +20,7 @@ ROCKET_TOPICS = {
     "/keyup": ("keyboard_msgs/msg/Key", ["/keyboard"], set()),
 }  # name → (type, publishers, subscribers that must be among them)
 COUNTDOWN_END_S = 20.0  # start_delay 0: 10 … 0 at 1 Hz, with room for a loaded machine
-LIMIT = 64 * 1024  # Settings.max_body_bytes
+LIMIT = 64 * 1024  # Listening.max_body_bytes
 
 
 def detail_text(response: Any) -> str:

@@ -18,7 +18,7 @@ KEY_A = 97
 ARROWS = [("ArrowUp", "ArrowUp", 273), ("ArrowDown", "ArrowDown", 274),
           ("ArrowRight", "ArrowRight", 275), ("ArrowLeft", "ArrowLeft", 276)]  # fmt: skip
 LSHIFT, RSHIFT, LCTRL = 1, 2, 64  # keyboard_msgs/Key MODIFIER_* bits
-FRAME_LIMIT = 16 * 1024  # Settings.max_ws_frame_bytes
+FRAME_LIMIT = 16 * 1024  # Listening.max_ws_frame_bytes
 
 
 def down(key: str, **extra: Any) -> dict[str, Any]:

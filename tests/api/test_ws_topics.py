@@ -8,7 +8,7 @@ from labclient import LabClient, close_within, receive_json_within, wait_until
 from api.errors import CloseCode
 
 FRAME_KEYS = {"topic", "type", "msg", "received"}
-FRAME_LIMIT = 16 * 1024  # Settings.max_ws_frame_bytes
+FRAME_LIMIT = 16 * 1024  # Listening.max_ws_frame_bytes
 
 
 def echo_nodes(lab: LabClient, topic: str) -> list[str]:

@@ -22,7 +22,7 @@ from server.bag.player import BagError
 from server.bus import ManualClock, Node
 from server.lab import Lab
 from server.msgs import Bool, Message, get_type
-from server.settings import Settings
+from server.settings import LabSettings, Settings
 
 FLIGHT_S = 15.0
 RECORD_MARGIN_S = 1e-3
@@ -55,7 +55,7 @@ def read_decoded(path: Path, topics: list[str] | None = None) -> list[Decoded]:
 
 
 def fly_lab(bag_dir: Path) -> Lab:
-    lab = Lab(Settings(launch="fly", viewer=False, bag_dir=bag_dir), ManualClock(T0_S))
+    lab = Lab(Settings(lab=LabSettings(launch="fly", viewer=False, bag_dir=bag_dir)), ManualClock(T0_S))
     lab.start_nodes()
     return lab
 
@@ -145,7 +145,9 @@ def test_bag_play_republishes_in_order_with_the_recorded_timing(
     flight: tuple[Path, dict[str, int]], tmp_path: Path
 ) -> None:
     folder, _ = flight
-    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(5_000.0))
+    lab = Lab(
+        Settings(lab=LabSettings(launch="rocket", viewer=False, bag_dir=tmp_path)), ManualClock(5_000.0)
+    )
     topics = {t: get_type(type_name) for t, type_name in _bag_types(folder).items()}
     echo = Echo(lab, topics)
     start_s = lab.bus.clock.now()
@@ -169,7 +171,7 @@ def test_bag_play_at_double_rate_halves_the_intervals(
     flight: tuple[Path, dict[str, int]], tmp_path: Path
 ) -> None:
     folder, _ = flight
-    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, bag_dir=tmp_path)), ManualClock(0.0))
     echo = Echo(lab, {"/uav/input/position": get_type("geometry_msgs/msg/Vector3")})
     _, player = lab.bags.play(folder, rate=2.0)
     lab.executor.spin_for(FLIGHT_S / 2 + 0.5)
@@ -196,7 +198,7 @@ def record_pair(lab: Lab, name: str) -> None:
 
 def test_bag_play_loop_starts_over(tmp_path: Path) -> None:
     """A two-message bag looped: the pair comes again and again, with the recorded gap."""
-    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, bag_dir=tmp_path)), ManualClock(0.0))
     record_pair(lab, "pair")
     echo = Echo(lab, {"/flag": Bool})
     _, player = lab.bags.play(tmp_path / "pair", loop=True)
@@ -208,7 +210,7 @@ def test_bag_play_loop_starts_over(tmp_path: Path) -> None:
 def test_a_looping_playback_whose_file_vanishes_ends_instead_of_crashing(tmp_path: Path) -> None:
     """Deleted on disk between two loops (rm -r in a terminal): the player finishes, as at a
     damaged file's end, with a warning; its node does not crash."""
-    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, bag_dir=tmp_path)), ManualClock(0.0))
     record_pair(lab, "pair")
     _, player = lab.bags.play(tmp_path / "pair", loop=True)
     lab.executor.spin_for(0.1)  # the first message is out; the second is due at 0.25 s
@@ -232,7 +234,7 @@ def test_playback_survives_time_passing_while_it_schedules(tmp_path: Path) -> No
     """Time moves between the player's readings of the clock: a message due within a few
     microseconds is then due at once, never a timer of zero or negative period (which crashed
     the player). Gaps of 1..60 us between recorded messages cover that window."""
-    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), CreepingClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, bag_dir=tmp_path)), CreepingClock(0.0))
     with lab.bus.activate():
         talker = Node("talker")
     pub = talker.create_publisher(Bool, "/flag", 100)
@@ -251,7 +253,7 @@ def test_playback_survives_time_passing_while_it_schedules(tmp_path: Path) -> No
 
 
 def test_deleting_a_bag_stops_its_playbacks(tmp_path: Path) -> None:
-    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, bag_dir=tmp_path)), ManualClock(0.0))
     record_pair(lab, "pair")
     record_pair(lab, "other")
     pair_id, pair_player = lab.bags.play(tmp_path / "pair", loop=True)
@@ -264,7 +266,7 @@ def test_deleting_a_bag_stops_its_playbacks(tmp_path: Path) -> None:
 
 
 def test_bag_play_refuses_what_is_not_a_bag(tmp_path: Path) -> None:
-    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, bag_dir=tmp_path)), ManualClock(0.0))
     (tmp_path / "notes.mcap").write_text("not an mcap")
     nodes_before = len(lab.bus.nodes)
     for path in (tmp_path / "notes.mcap", tmp_path / "missing", tmp_path):
@@ -277,7 +279,9 @@ def test_bag_play_refuses_what_is_not_a_bag(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize("name", ["../escape", "a/b", "", ".hidden", "x" * 101])
 def test_bag_names_cannot_leave_the_bag_folder(tmp_path: Path, name: str) -> None:
-    lab = Lab(Settings(launch="rocket", viewer=False, bag_dir=tmp_path / "bags"), ManualClock(0.0))
+    lab = Lab(
+        Settings(lab=LabSettings(launch="rocket", viewer=False, bag_dir=tmp_path / "bags")), ManualClock(0.0)
+    )
     with pytest.raises(ValueError, match="bag name"):
         lab.bags.record(all_topics=True, name=name)
     assert not (tmp_path / "bags").exists()

@@ -44,7 +44,7 @@ from playwright.sync_api import Browser, Page
 from playwright.sync_api import Error as PlaywrightError
 from shots import CanvasShot, assert_drone_seen, assert_rocket_on_pad, find_drone
 
-from server.settings import Settings
+from server.settings import LabLimits
 
 pytestmark = pytest.mark.browser
 
@@ -64,9 +64,8 @@ FLIGHT_WAIT_S = 30.0
 ARRIVED_M = 0.1
 PAGE_WAIT_MS = 30_000
 MOVED_PX = 20
-DEADMAN_S = (
-    Settings.deadman_s
-)  # the server's dead-man: a channel silent this long with keys held has them released
+# the server's dead-man: a channel silent this long with keys held has them released
+DEADMAN_S = LabLimits().deadman_s
 DEADMAN_LOG = "silent for over"  # api/ws_keys.py logs this when its timer releases keys
 
 
@@ -197,7 +196,7 @@ class TestHoldMode:
 
     Why a retry, and why it cannot hide a fault: the page draws its 3D scene in software
     (SwiftShader), which stalls the page's main thread for seconds while it compiles shaders; a
-    stall of over Settings.deadman_s (0.5 s) during a hold stops the page's heartbeats, and the
+    stall of over LabLimits.deadman_s (0.5 s) during a hold stops the page's heartbeats, and the
     server's dead-man then releases the key before the test's own way of ending the hold. That
     hold did not test what the test is about, so it is let go and held again. A try counts as
     stalled only when the server's log shows the dead-man released a key during it (DEADMAN_LOG,

@@ -17,7 +17,7 @@ from server.app import create_app
 from server.classroom import ClassServer
 from server.classroom.class_router import ClassRouter
 from server.classroom.workers import worker_api_token
-from server.settings import Settings, WorkerSettings
+from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorkerSettings
 from server.transport.acl import ClassAuth, Credentials, new_world_login
 from server.transport.config import ZenohSettings
 from server.transport.session import build_config
@@ -69,10 +69,13 @@ def test_revoking_a_login_drops_its_sessions_refuses_it_and_keeps_the_others() -
 
 def test_a_world_worker_keeps_the_login_its_class_server_drew_for_a_world() -> None:
     settings = Settings(
-        launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, allowed_hosts=("testserver",),
-        classroom=True, max_worlds=2,
-        worker=WorkerSettings(id="wm", url="http://127.0.0.1:1", class_token="class-token", orphan_timeout_s=60.0),
-    )  # fmt: skip
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False),
+        classroom=ClassroomSettings(max_worlds=2),
+        worker=WorkerSettings(
+            id="wm", url="http://127.0.0.1:1", class_token="class-token", orphan_timeout_s=60.0
+        ),
+    )
     login = new_world_login(3)
     body = {"world": "ada", "student": "Ada", "domain_id": 3, "launch": "rocket", "launch_args": {}}
     auth = {"Authorization": f"Bearer {worker_api_token('class-token', 'wm')}"}

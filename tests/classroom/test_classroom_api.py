@@ -14,7 +14,7 @@ from api.errors import CloseCode
 from server.app import create_app
 from server.bus import ManualClock
 from server.classroom import ClassServer
-from server.settings import Settings
+from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorldLimits
 
 CODE = "TEST42"
 TARGET = {"x": 5.0, "y": 5.0, "z": 10.0}
@@ -23,13 +23,20 @@ BURST = 5
 HOVER_S = 6.0  # a world's drone climbs to its 3 m hover in about 5 s
 
 
-def class_settings(**overrides: Any) -> Settings:
-    base: dict[str, Any] = {
-        "launch": "all", "launch_args": {"start_delay": "3600"}, "viewer": False, "allowed_hosts": ("testserver",),
-        "classroom": True, "class_code": CODE, "max_worlds": 3, "world_writes_hz": 1.0,
-        "world_writes_burst": BURST,
-    }  # fmt: skip
-    return Settings(**{**base, **overrides})
+def class_settings(
+    *, max_worlds: int = 3, classroom: bool = True, world: dict[str, Any] | None = None, **lab: Any
+) -> Settings:
+    """A class of ``max_worlds`` worlds; ``lab`` overrides its worlds' LabSettings, ``world`` their
+    WorldLimits; ``classroom=False``: the same lab alone."""
+    lab_settings = LabSettings(
+        **{"launch": "all", "launch_args": {"start_delay": "3600"}, "viewer": False, **lab}
+    )
+    limits = WorldLimits(**{"writes_hz": 1.0, "writes_burst": BURST, **(world or {})})
+    return Settings(
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=lab_settings,
+        classroom=ClassroomSettings(code=CODE, max_worlds=max_worlds, world=limits) if classroom else None,
+    )
 
 
 @pytest.fixture
@@ -269,7 +276,9 @@ def test_the_instructors_link_sets_the_cookie_and_leaves_the_address_bar(client:
 
 
 def test_a_single_lab_app_has_no_classroom() -> None:
-    settings = Settings(launch="rocket", viewer=False, allowed_hosts=("testserver",))
+    settings = Settings(
+        listen=Listening(allowed_hosts=("testserver",)), lab=LabSettings(launch="rocket", viewer=False)
+    )
     with TestClient(create_app(settings)) as single:
         assert single.post("/api/classroom/join", json={"name": "Ada", "code": CODE}).status_code == 404
         assert single.get("/instructor").status_code == 404

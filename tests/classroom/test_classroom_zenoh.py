@@ -186,7 +186,7 @@ def test_a_students_zenoh_flood_is_cut_at_their_worlds_door(
     classroom: tuple[App, Path, dict[str, str]],
 ) -> None:
     # A process with Ada's login floods her world's /keydown far beyond what a world takes from
-    # other processes (Settings.world_samples_hz, 2000 a second): the rest is dropped as it
+    # other processes (WorldLimits.samples_hz, 2000 a second): the rest is dropped as it
     # arrives, counted in her world's health, and Bob's world takes nothing of it.
     app, _root, tokens = classroom
 

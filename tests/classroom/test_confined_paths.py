@@ -14,7 +14,7 @@ from classroom.test_classroom_api import auth, class_settings, join
 from server.app import create_app
 from server.bus import ManualClock
 from server.packages import HERE as BUILTIN_PACKAGES
-from server.settings import Settings
+from server.settings import ClassroomSettings, LabSettings, Listening, Settings
 
 MY_LAUNCH = """<launch>
   <node pkg="sensor_simulation" exec="pressure.py" name="my_pressure"/>
@@ -34,7 +34,7 @@ def folders(tmp_path: Path) -> tuple[Path, Path]:
 def client(folders: tuple[Path, Path]) -> Iterator[TestClient]:
     bags, workspace = folders
     settings = class_settings(
-        bag_dir=bags, workspace=workspace, world_writes_hz=1000.0, world_writes_burst=1000
+        bag_dir=bags, workspace=workspace, world={"writes_hz": 1000.0, "writes_burst": 1000}
     )
     with TestClient(create_app(settings, ManualClock(1_000.0))) as test_client:
         yield test_client
@@ -115,9 +115,15 @@ def test_a_student_launches_the_class_packages_and_no_other_path(client: TestCli
 def test_a_single_lab_on_loopback_keeps_paths_of_its_users_files(folders: tuple[Path, Path]) -> None:
     bags, workspace = folders
     settings = Settings(
-        launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, allowed_hosts=("testserver",),
-        bag_dir=bags, workspace=workspace,
-    )  # fmt: skip
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(
+            launch="rocket",
+            launch_args={"start_delay": "3600"},
+            viewer=False,
+            bag_dir=bags,
+            workspace=workspace,
+        ),
+    )
     assert not settings.confines_paths
     with TestClient(create_app(settings, ManualClock(1_000.0))) as lab:
         elsewhere = workspace / "src" / "mine" / "launch" / "mine.launch"
@@ -130,9 +136,9 @@ def test_a_single_lab_on_loopback_keeps_paths_of_its_users_files(folders: tuple[
 
 
 def test_a_lab_beyond_loopback_confines_paths_as_a_class_does() -> None:
-    assert Settings(host="0.0.0.0", token="t").confines_paths
-    assert Settings(classroom=True).confines_paths
-    assert not Settings(host="127.0.0.2").confines_paths
+    assert Settings(listen=Listening(host="0.0.0.0", token="t")).confines_paths
+    assert Settings(classroom=ClassroomSettings()).confines_paths
+    assert not Settings(listen=Listening(host="127.0.0.2")).confines_paths
 
 
 INCLUDES = """<launch>
@@ -206,9 +212,15 @@ def test_a_single_lab_on_loopback_includes_its_users_files_anywhere(
     outside.write_text(ENV_LAUNCH.format(variable="MY_NODE_NAME"))
     monkeypatch.setenv("MY_NODE_NAME", "named_from_env")
     settings = Settings(
-        launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, allowed_hosts=("testserver",),
-        bag_dir=bags, workspace=workspace,
-    )  # fmt: skip
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(
+            launch="rocket",
+            launch_args={"start_delay": "3600"},
+            viewer=False,
+            bag_dir=bags,
+            workspace=workspace,
+        ),
+    )
     with TestClient(create_app(settings, ManualClock(1_000.0))) as lab:
         file = write_including(workspace, "out.launch", str(outside))
         reply = lab.post("/api/launch", json={"file": str(workspace / file)})

@@ -18,7 +18,7 @@ from api.errors import CloseCode
 from server.app import create_app
 from server.bus import ManualClock
 from server.classroom import ClassServer
-from server.settings import Settings
+from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorldLimits
 
 CODE = "FAIR42"
 SOCKETS = 3
@@ -34,14 +34,18 @@ def clock() -> ManualClock:
     return ManualClock(1_000.0)
 
 
-def class_app(clock: ManualClock, **overrides: Any) -> TestClient:
-    settings: dict[str, Any] = {
-        "launch": "rocket", "launch_args": {"start_delay": "3600"}, "viewer": False,
-        "allowed_hosts": ("testserver",), "classroom": True, "class_code": CODE, "max_worlds": 3,
-        "world_writes_hz": 1.0, "world_writes_burst": WRITES, "world_launches": LAUNCHES,
-        "world_resets_hz": 1 / RESET_PERIOD_S, "world_resets_burst": RESETS, "world_sockets": SOCKETS,
+def class_app(clock: ManualClock, **world: Any) -> TestClient:
+    """A class of three rocket worlds; ``world`` overrides their WorldLimits."""
+    limits: dict[str, Any] = {
+        "writes_hz": 1.0, "writes_burst": WRITES, "launches": LAUNCHES, "resets_hz": 1 / RESET_PERIOD_S,
+        "resets_burst": RESETS, "sockets": SOCKETS,
     }  # fmt: skip
-    return TestClient(create_app(Settings(**{**settings, **overrides}), clock))
+    settings = Settings(
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False),
+        classroom=ClassroomSettings(code=CODE, max_worlds=3, world=WorldLimits(**{**limits, **world})),
+    )
+    return TestClient(create_app(settings, clock))
 
 
 @pytest.fixture
@@ -95,7 +99,7 @@ def test_launches_past_the_worlds_cap_are_429_and_start_nothing(client: TestClie
 
 
 def test_a_launch_with_more_nodes_than_a_world_takes_is_429(clock: ManualClock) -> None:
-    with class_app(clock, world_launch_nodes=2) as client:
+    with class_app(clock, launch_nodes=2) as client:
         ada = join(client, "Ada")
         before = node_names(client, "ada")
         refused = client.post(
@@ -197,7 +201,7 @@ def echo_outbox(client: TestClient, world: str) -> int:
 
 
 def test_a_worlds_sockets_send_within_its_frame_budget_and_the_rest_waits(clock: ManualClock) -> None:
-    with class_app(clock, world_socket_frames_hz=FRAMES_HZ, world_writes_burst=50) as client:
+    with class_app(clock, socket_frames_hz=FRAMES_HZ, writes_burst=50) as client:
         ada = join(client, "Ada")
         with client.websocket_connect("/ws/topics/countdown?queue_length=50", headers=ada) as echo:
             for i in range(2 * FRAMES_HZ):
@@ -215,7 +219,7 @@ def test_a_worlds_sockets_send_within_its_frame_budget_and_the_rest_waits(clock:
 
 
 def test_a_worlds_rosbridge_requests_wait_for_its_budget_and_none_is_lost(clock: ManualClock) -> None:
-    with class_app(clock, world_socket_requests_hz=2) as client:
+    with class_app(clock, socket_requests_hz=2) as client:
         ada = join(client, "Ada")
         lab = classroom(client).worlds["ada"].lab
         assert lab is not None and lab.socket_requests is not None and client.portal is not None
@@ -241,7 +245,7 @@ def test_a_worlds_rosbridge_requests_wait_for_its_budget_and_none_is_lost(clock:
 
 
 def test_a_worlds_rosbridge_sockets_spend_the_same_frame_budget(clock: ManualClock) -> None:
-    with class_app(clock, world_socket_frames_hz=FRAMES_HZ, world_writes_burst=50) as client:
+    with class_app(clock, socket_frames_hz=FRAMES_HZ, writes_burst=50) as client:
         ada = join(client, "Ada")
         lab = classroom(client).worlds["ada"].lab
         assert lab is not None and lab.socket_frames is not None

@@ -23,7 +23,7 @@ from server.app import create_app
 from server.bus import ManualClock
 from server.classroom import ClassServer
 from server.limits import KeyedRateLimit
-from server.settings import JoinLimits, Settings
+from server.settings import ClassroomSettings, JoinLimits, LabSettings, Listening, Settings
 
 CODE = "JOIN42"
 ADDRESS_HEADER = b"x-test-client-address"
@@ -50,9 +50,10 @@ def clock() -> ManualClock:
 
 def class_client(clock: ManualClock, **limits: Any) -> TestClient:
     settings = Settings(
-        launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, allowed_hosts=("testserver",),
-        classroom=True, class_code=CODE, max_worlds=8, joins=JoinLimits(**limits),
-    )  # fmt: skip
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False),
+        classroom=ClassroomSettings(code=CODE, max_worlds=8, joins=JoinLimits(**limits)),
+    )
     app = create_app(settings, clock)
     client = TestClient(FromAddress(app))
     client.app_state = app.state  # type: ignore[attr-defined]

@@ -34,7 +34,7 @@ from server.classroom.workers import (
     seal,
     worker_api_token,
 )
-from server.settings import Settings, WorkerSettings
+from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorkerSettings
 
 CLASS_TOKEN = "the-instructors-token"
 ORPHAN_S = 5.0
@@ -78,10 +78,13 @@ def clock() -> ManualClock:
 @pytest.fixture
 def worker_client(clock: ManualClock) -> Iterator[TestClient]:
     settings = Settings(
-        launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, allowed_hosts=("testserver",),
-        classroom=True, max_worlds=3,
-        worker=WorkerSettings(id="wm", url="http://127.0.0.1:1", class_token=CLASS_TOKEN, orphan_timeout_s=ORPHAN_S),
-    )  # fmt: skip
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False),
+        classroom=ClassroomSettings(max_worlds=3),
+        worker=WorkerSettings(
+            id="wm", url="http://127.0.0.1:1", class_token=CLASS_TOKEN, orphan_timeout_s=ORPHAN_S
+        ),
+    )
     with TestClient(create_app(settings, clock)) as test_client:
         yield test_client
 

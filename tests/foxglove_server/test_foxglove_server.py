@@ -26,7 +26,7 @@ from websockets.exceptions import ConnectionClosed
 
 from api.errors import CloseCode
 from server.app import create_app
-from server.settings import Settings
+from server.settings import LabSettings, Listening, Settings
 
 SUBPROTOCOL = "foxglove.sdk.v1"
 READ_S = 10.0
@@ -38,9 +38,15 @@ CLIENT_MESSAGE_DATA = 0x01  # opcode of a client's binary frame: uint32 channel 
 def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[TestClient]:
     """Both labs (rocket counting down later, drone hovering) with the Foxglove server on a free port."""
     settings = Settings(
-        launch="all", launch_args={"start_delay": "3600"}, viewer=False, allowed_hosts=("testserver",),
-        foxglove_port=0, bag_dir=tmp_path_factory.mktemp("bags"),
-    )  # fmt: skip
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(
+            launch="all",
+            launch_args={"start_delay": "3600"},
+            viewer=False,
+            foxglove_port=0,
+            bag_dir=tmp_path_factory.mktemp("bags"),
+        ),
+    )
     with TestClient(create_app(settings)) as client:
         yield client
 
@@ -257,7 +263,7 @@ def test_tf_of_the_drone_follows_its_gps_pose(tmp_path: Path) -> None:
     from server.lab import Lab
     from server.msgs import PoseStamped, TFMessage
 
-    drone = Lab(Settings(launch="fly", viewer=False, bag_dir=tmp_path), ManualClock(0.0))
+    drone = Lab(Settings(lab=LabSettings(launch="fly", viewer=False, bag_dir=tmp_path)), ManualClock(0.0))
     got: dict[str, Any] = {}
     with drone.bus.activate():
         probe = Node("probe")

@@ -10,7 +10,7 @@ from server.bus import ManualClock, Node
 from server.lab import Lab
 from server.launch.description import LaunchFileError
 from server.msgs import get_service_type
-from server.settings import Settings
+from server.settings import LabSettings, Settings
 
 HANDOUT_FLY = """<?xml version="1.0"?>
 <launch>
@@ -26,7 +26,7 @@ HANDOUT_FLY = """<?xml version="1.0"?>
 
 
 def lab_for(launch: str, **args: str) -> Lab:
-    lab = Lab(Settings(launch=launch, viewer=False, launch_args=args), ManualClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch=launch, viewer=False, launch_args=args)), ManualClock(0.0))
     lab.start_nodes()
     return lab
 

@@ -10,7 +10,7 @@ import pytest
 from server.bus import ManualClock, Node
 from server.lab import Lab
 from server.launch.respawn import RespawnBackoff, RespawnPolicy
-from server.settings import Settings
+from server.settings import LabSettings, Settings
 
 POLICY = RespawnPolicy(base_delay_s=0.5, max_delay_s=4.0, healthy_after_s=10.0, max_fast_failures=5)
 
@@ -82,7 +82,7 @@ class Flaky(Node):
 def test_respawn_launcher_backs_off_and_gives_up_shown_in_the_node_list(tmp_path: Path) -> None:
     launch = tmp_path / "flaky.launch"
     launch.write_text('<launch><node pkg="my_pkg" exec="flaky" name="flaky" respawn="true"/></launch>')
-    lab = Lab(Settings(launch="rocket", viewer=False, workspace=None), ManualClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, workspace=None)), ManualClock(0.0))
     lab.packages.executables["my_pkg"] = {"flaky": Flaky}
     lab.start_nodes()
     lab.launch_groups.launch(launch, {})

@@ -28,7 +28,7 @@ from support.app import App, free_ports, instructor_token, wait_for_workers
 
 from api.errors import CloseCode
 from server.app import create_app
-from server.settings import Settings
+from server.settings import ClassroomSettings, LabSettings, Settings
 
 TOKEN = "a-lab-token-for-this-test"
 FOREIGN = "http://evil.example"
@@ -163,7 +163,10 @@ def serves_the_view(port: int, token: str) -> bool:
 def test_the_route_list_is_every_websocket_route_of_the_app() -> None:
     from starlette.routing import WebSocketRoute
 
-    for settings in (Settings(viewer=False), Settings(viewer=False, classroom=True)):
+    for settings in (
+        Settings(lab=LabSettings(viewer=False)),
+        Settings(lab=LabSettings(viewer=False), classroom=ClassroomSettings()),
+    ):
         routes = set()
         for route in create_app(settings).routes:
             for context in getattr(route, "effective_route_contexts", list)():  # FastAPI's included routers

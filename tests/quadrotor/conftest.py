@@ -15,7 +15,7 @@ import pytest
 from server.bus import ManualClock, Node
 from server.lab import Lab
 from server.msgs import Float64, Message, PoseStamped, TwistStamped, Vector3
-from server.settings import Settings
+from server.settings import LabSettings, Settings
 
 DATA = Path(__file__).resolve().parent / "data"
 FLY_NO_NOISE = str(DATA / "fly_no_noise.launch")
@@ -76,7 +76,9 @@ class Probe:
 
 def make_lab(launch: str = "fly", **launch_args: str) -> Lab:
     """A Lab on a manual clock at t = 0 with no display; nodes are launched by ``start``."""
-    return Lab(Settings(launch=launch, viewer=False, launch_args=launch_args), ManualClock(0.0))
+    return Lab(
+        Settings(lab=LabSettings(launch=launch, viewer=False, launch_args=launch_args)), ManualClock(0.0)
+    )
 
 
 def start(lab: Lab, topics: dict[str, type[Message]] | None = None) -> Probe:

@@ -9,11 +9,14 @@ import pytest
 from server.bus import ManualClock, Parameter
 from server.lab import Lab
 from server.msgs import Key
-from server.settings import Settings
+from server.settings import LabSettings, Settings
 
 
 def fly(mode: str) -> Lab:
-    lab = Lab(Settings(launch="fly", viewer=False, launch_args={"keyboard_mode": mode}), ManualClock(0.0))
+    lab = Lab(
+        Settings(lab=LabSettings(launch="fly", viewer=False, launch_args={"keyboard_mode": mode})),
+        ManualClock(0.0),
+    )
     lab.start_nodes()
     lab.executor.spin_until(8.0)  # take off and settle at (0, 0, 3)
     return lab

@@ -17,7 +17,7 @@ from websockets.exceptions import ConnectionClosed
 from api.errors import CloseCode
 from api.rosbridge import MAX_FRAME_BYTES
 from server.app import create_app
-from server.settings import Settings
+from server.settings import LabSettings, Listening, Settings
 
 from .conftest import RosbridgeServer
 
@@ -25,9 +25,14 @@ from .conftest import RosbridgeServer
 @pytest.fixture
 def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[TestClient]:
     settings = Settings(
-        launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, allowed_hosts=("testserver",),
-        bag_dir=tmp_path_factory.mktemp("bags"),
-    )  # fmt: skip
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(
+            launch="rocket",
+            launch_args={"start_delay": "3600"},
+            viewer=False,
+            bag_dir=tmp_path_factory.mktemp("bags"),
+        ),
+    )
     with TestClient(create_app(settings)) as client:
         yield client
 

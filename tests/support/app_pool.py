@@ -19,13 +19,13 @@ from fastapi.testclient import TestClient
 from server.app import create_app
 from server.settings import Settings
 
-_idle: dict[str, list[FastAPI]] = {}  # by repr(settings): Settings holds dicts, so is unhashable
+_idle: dict[str, list[FastAPI]] = {}  # by repr(settings): Settings holds a dict, so is unhashable
 
 
 @contextmanager
 def lab_client(settings: Settings) -> Iterator[TestClient]:
     """A TestClient on an app for ``settings``, its lifespan (a new lab) entered."""
-    if settings.classroom:
+    if settings.classroom is not None:
         with TestClient(create_app(settings)) as client:
             yield client
         return

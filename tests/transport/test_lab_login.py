@@ -12,7 +12,7 @@ from fastapi.testclient import TestClient
 from support.app import free_port
 
 from server.app import create_app
-from server.settings import Settings
+from server.settings import LabSettings, Listening, Settings
 from server.transport.acl import Credentials
 from server.transport.config import ZenohSettings
 from server.transport.session import build_config
@@ -25,9 +25,14 @@ BEARER = {"Authorization": f"Bearer {TOKEN}"}
 def lab() -> Iterator[tuple[TestClient, str]]:
     router = f"tcp/127.0.0.1:{free_port()}"
     settings = Settings(
-        launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, allowed_hosts=("testserver",),
-        token=TOKEN, zenoh=ZenohSettings(listen=(router,)),
-    )  # fmt: skip
+        listen=Listening(allowed_hosts=("testserver",), token=TOKEN),
+        lab=LabSettings(
+            launch="rocket",
+            launch_args={"start_delay": "3600"},
+            viewer=False,
+            zenoh=ZenohSettings(listen=(router,)),
+        ),
+    )
     with TestClient(create_app(settings)) as client:
         yield client, router
 
@@ -54,8 +59,15 @@ def test_the_router_of_a_lab_behind_a_token_lets_in_only_its_login(lab: tuple[Te
 
 def test_a_lab_without_a_token_asks_for_no_login() -> None:
     router = f"tcp/127.0.0.1:{free_port()}"
-    settings = Settings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False,
-                        allowed_hosts=("testserver",), zenoh=ZenohSettings(listen=(router,)))  # fmt: skip
+    settings = Settings(
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(
+            launch="rocket",
+            launch_args={"start_delay": "3600"},
+            viewer=False,
+            zenoh=ZenohSettings(listen=(router,)),
+        ),
+    )
     with TestClient(create_app(settings)) as client:
         join = client.get("/api/zenoh/join").json()
         assert (join["user"], join["password"]) == (None, None)

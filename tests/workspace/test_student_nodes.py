@@ -15,7 +15,7 @@ import pytest
 from server.bus import ManualClock
 from server.lab import Lab
 from server.packages import ExecutableNotFoundError, NotInProcessError, PackageIndex
-from server.settings import Settings
+from server.settings import LabSettings, Settings
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "workspace"
 
@@ -55,7 +55,7 @@ def test_example_workspace_files_win_over_the_lab_nodes_of_the_same_name() -> No
 def test_student_file_without_the_zenoh_graph_fails_to_start_saying_why_and_the_rest_runs(
     caplog: pytest.LogCaptureFixture,
 ) -> None:
-    lab = Lab(Settings(launch="rocket", viewer=False, workspace=EXAMPLES), ManualClock(0.0))
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, workspace=EXAMPLES)), ManualClock(0.0))
     with caplog.at_level(logging.ERROR, logger="launch"):
         lab.start_nodes()
     entry = next(e for e in lab.launcher.launched if e.action.exec == "keyboard_manager.py")
@@ -67,7 +67,10 @@ def test_student_file_without_the_zenoh_graph_fails_to_start_saying_why_and_the_
 
 
 def test_all_processes_keeps_the_device_nodes_inside_the_app() -> None:
-    lab = Lab(Settings(launch="rocket", viewer=False, workspace=None, node_processes="all"), ManualClock(0.0))
+    lab = Lab(
+        Settings(lab=LabSettings(launch="rocket", viewer=False, workspace=None, node_processes="all")),
+        ManualClock(0.0),
+    )
     index = lab.packages
     assert lab.launcher.runs_as_process(index.resolve("rocketship", "countdown"))
     assert not lab.launcher.runs_as_process(index.resolve("keyboard", "keyboard"))

@@ -10,7 +10,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from server.app import create_app
-from server.settings import Settings
+from server.settings import LabSettings, Listening, Settings
 
 from .tutorial_packages import manifest, write
 
@@ -24,11 +24,8 @@ def ws(tmp_path: Path) -> Path:
 @pytest.fixture
 def client(ws: Path) -> Iterator[TestClient]:
     settings = Settings(
-        launch="rocket",
-        launch_args={"start_delay": "3600"},
-        viewer=False,
-        workspace=ws,
-        allowed_hosts=("testserver",),
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, workspace=ws),
     )
     with TestClient(create_app(settings)) as test_client:
         yield test_client
