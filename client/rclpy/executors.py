@@ -214,10 +214,17 @@ class MultiThreadedExecutor(Executor):
             with self._lock:
                 queue.popleft()
 
+    def _submit(self, fn: Callable[..., None], arg: Any) -> None:
+        try:
+            self._pool.submit(fn, arg)
+        except RuntimeError:  # shut down from another thread while this one handed work out
+            if not self._shut_down:
+                raise
+
     def _dispatch(self, handler: Handler) -> None:
         group = handler.callback_group
         if not isinstance(group, MutuallyExclusiveCallbackGroup):
-            self._pool.submit(self._run_caught, handler)
+            self._submit(self._run_caught, handler)
             return
         key = id(group)
         with self._lock:
@@ -226,7 +233,7 @@ class MultiThreadedExecutor(Executor):
                 queue.append(handler)  # its drainer runs it after the ones before it
                 return
             self._queues[key] = deque([handler])
-        self._pool.submit(self._drain_group, key)
+        self._submit(self._drain_group, key)
 
     def _raise_pending(self) -> None:
         error, self._error = self._error, None

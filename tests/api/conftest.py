@@ -13,7 +13,7 @@ from support.app_pool import lab_client
 
 @pytest.fixture
 def make_lab() -> Iterator[Callable[..., LabClient]]:
-    """Start a rocket lab (``start_delay`` in s as the launch takes it, LabLimits overrides)."""
+    """Start a rocket lab (``start_delay`` in s as the launch takes it; LabSettings and LabLimits overrides)."""
     with ExitStack() as stack:
 
         def make(start_delay: str = QUIET_START_DELAY, **limits: Any) -> LabClient:

@@ -23,12 +23,17 @@ WAIT_S = 10.0  # generous: a loaded 2-core CI machine; a passing test returns as
 QUIET_START_DELAY = "3600"  # the countdown never starts while the test runs
 
 
-def rocket_settings(start_delay: str = QUIET_START_DELAY, **limits: Any) -> Settings:
-    """The rocket launch without viser, reachable as TestClient's Host 'testserver'; ``limits``
-    are the lab's (``LabLimits``)."""
+def rocket_settings(start_delay: str = QUIET_START_DELAY, **overrides: Any) -> Settings:
+    """The rocket launch without viser, reachable as TestClient's Host 'testserver'; each of
+    ``overrides`` is a field of the lab's section (``LabSettings``: ``viewer``, ``bag_dir``,
+    ``launch``...) or of its limits (``LabLimits``)."""
+    lab = {k: v for k, v in overrides.items() if k in LabSettings.model_fields}
+    limits = {k: v for k, v in overrides.items() if k not in lab}
     return Settings(
         listen=Listening(allowed_hosts=("testserver",)),
-        lab=LabSettings(launch="rocket", launch_args={"start_delay": start_delay}, viewer=False),
+        lab=LabSettings(
+            **{"launch": "rocket", "launch_args": {"start_delay": start_delay}, "viewer": False, **lab}
+        ),
         limits=LabLimits(**limits),
     )
 

@@ -81,9 +81,10 @@ def test_console_script_ros2lab_points_at_cli_main() -> None:
     assert scripts["teleop-lab"] == "server.__main__:main"
 
 
-LOCAL_VERBS = {"run.py", "pkg.py", "pkg_create.py", "world_worker.py"}  # ``run`` starts the executable here,
-# as ros2 run does, and ``pkg`` reads and writes packages here, as ros2 pkg does: they need the packages;
-# ``world-worker`` hosts worlds itself.
+LOCAL_VERBS = {"run.py", "pkg.py", "pkg_create.py", "interface.py", "world_worker.py"}  # ``run`` starts the
+# executable here, as ros2 run does, ``pkg`` reads and writes packages here, as ros2 pkg does, and
+# ``interface`` reads the definitions here (the lab's and the workspace's), as ros2 interface does:
+# they need the packages; ``world-worker`` hosts worlds itself.
 
 
 def test_cli_imports_nothing_of_the_server_it_talks_to() -> None:
