@@ -56,7 +56,14 @@ def _world_name(lab: Lab) -> str | None:
     return lab.bus.label
 
 
-@router.get("", responses=responses(UNAUTHORIZED), response_model=None)
+@router.get(
+    "",
+    responses={
+        **responses(UNAUTHORIZED),
+        204: {"description": "nothing changed since the version `since` names"},
+    },
+    response_model=None,
+)
 async def checkpoints(
     lab: LabDep, since: Annotated[int | None, Query(ge=0)] = None
 ) -> dict[str, Any] | Response:
