@@ -123,3 +123,15 @@ def test_keyboard_abort_what_went_wrong_stays_said_while_the_countdown_goes_on()
     assert "/_rest_api" in check.progress(t + 5)
     countdown(check, start_s=t + 10, counts=range(10, 8, -1))  # a new countdown: a new line
     assert check.progress(t + 12) == "countdown at 9 s: press a"
+
+
+def test_keyboard_abort_repeated_by_the_labs_manager_past_the_countdown_keeps_its_reason() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check, counts=range(3, 0, -1))
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    for i in range(40):  # the lab's manager republishes its abort at 10 Hz, past the countdown's end
+        check.feed(Abort(t + 0.1 * i, True, LAB_MANAGER))
+        if i == 5:
+            check.feed(Countdown(t + 0.5, 0))
+    assert "not from a keyboard manager of your workspace" in check.progress(t + 4)
+    assert sum(1 for e in check.timeline.entries() if e["what"] == "abort") == 1
