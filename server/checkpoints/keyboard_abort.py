@@ -54,7 +54,6 @@ class KeyboardAbortCheck:
                 self._aborters.clear()
             self._count, self._count_s = event.value, event.t_s
             self.timeline.add(event.t_s, "countdown", event.value)
-            self.started = True
             if self._counting_note:  # what was said in this countdown stays said until the next
                 self._note = f"countdown at {event.value} s: press a"
         elif isinstance(event, CmdVel) and event.value_mps > 0:
@@ -67,12 +66,14 @@ class KeyboardAbortCheck:
                 self._say("the rocket lifted off: reset the rocket and abort it during the countdown")
             self._pending = None
         elif isinstance(event, KeyDown) and event.code == KEY_A and from_keyboard(event.source):
+            self.started = True  # the student's own doing (a countdown alone is the lab's)
             self.timeline.add(event.t_s, "key", "a", event.source)
             self._aborters.clear()
             if self._counting(event.t_s) and not self._lifted:
                 self._key_s = event.t_s
                 self._say("a pressed: waiting for /abort_takeoff from your keyboard manager")
         elif isinstance(event, Abort) and event.value:
+            self.started = True
             if event.source.node not in self._aborters:  # a manager may repeat its abort: once is told
                 self._aborters.add(event.source.node)
                 self.timeline.add(event.t_s, "abort", True, event.source)

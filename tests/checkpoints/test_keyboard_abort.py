@@ -107,11 +107,18 @@ def test_keyboard_abort_a_new_countdown_after_lift_off_allows_it_again() -> None
 
 def test_keyboard_abort_before_any_countdown_is_not_done() -> None:
     check = KeyboardAbortCheck()
-    assert not check.started
     check.feed(KeyDown(0.0, KEY_A, KEYBOARD))
     check.feed(Abort(0.1, True, STUDENT))
     assert check.tick(3.0) is None
-    assert not check.started
+    assert "no countdown running" in check.progress(3.0)
+
+
+def test_keyboard_abort_a_countdown_alone_is_not_started_a_key_is() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    assert not check.started  # the lab counts down by itself
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    assert check.started
 
 
 def test_keyboard_abort_what_went_wrong_stays_said_while_the_countdown_goes_on() -> None:
