@@ -95,3 +95,23 @@ def test_a_type_outside_the_table_is_hashed_from_its_definition() -> None:
     # nesting others, a service (its hash covers its event type) and an action.
     for name in ("sensor_msgs/msg/Imu", "std_srvs/srv/SetBool", "example_interfaces/action/Fibonacci"):
         assert computed_type_hash(name) == type_hash(name)
+
+
+# ``ros2lab run`` against a closed port (it gives up at once): which of the other verbs' modules
+# and their libraries it loaded on the way.
+RUN_PROBE = """
+import json, socket, sys
+with socket.socket() as s:
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+from server.cli import main
+code = main(["--url", f"http://127.0.0.1:{port}", "run", "--join-timeout", "0", "pkg", "exe"])
+others = [m for m in ("server.cli.bag", "server.cli.topic", "server.cli.interface", "mcap", "pydantic")
+          if m in sys.modules]
+print(json.dumps({"code": code, "loaded": others}))
+"""
+
+
+def test_ros2lab_run_loads_none_of_the_other_verbs() -> None:
+    seen = _run(RUN_PROBE)
+    assert seen == {"code": 1, "loaded": []}
