@@ -159,7 +159,9 @@ def main(argv: list[str] | None = None) -> int:
         tokens: dict[str, str] = {}
         for i in range(args.worlds):
             reply = httpx.post(
-                f"{server.url}/api/classroom/join", json={"name": f"student{i:02d}", "code": CODE}, timeout=60
+                f"{server.url}/api/classroom/join",
+                json={"name": f"student{i:02d}", "code": CODE},
+                timeout=180,
             )
             reply.raise_for_status()
             tokens[reply.json()["world"]] = reply.json()["token"]
