@@ -101,7 +101,9 @@ class LaunchGroups:
         self._check_room()
         if name is not None:
             validate_node_name(name)
-        self._packages.resolve(pkg, exe)  # an unknown package or executable is an error, not a failed node
+        # An unknown package or executable is an error, not a failed node; so is a student's file
+        # that this server does not run (StudentCodeRefusedError).
+        self._launcher.check_student_code(self._packages.resolve(pkg, exe))
         action = NodeAction(
             pkg=pkg,
             exec=exe,
