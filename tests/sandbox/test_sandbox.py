@@ -198,7 +198,7 @@ def node_names(world: World) -> set[str]:
     return {str(n["name"]) for n in world.get("/api/nodes").json()}
 
 
-def test_sandbox_node_reaches_its_own_world_only(klass: Class) -> None:
+def test_sandbox_node_reaches_its_own_world_only_and_stops(klass: Class) -> None:
     group = run(klass.ada, "talker.py")
     try:
         wait_until(lambda: "/sandbox_talker" in node_names(klass.ada), "the talker in Ada's graph", 60.0)
@@ -216,6 +216,8 @@ def test_sandbox_node_reaches_its_own_world_only(klass: Class) -> None:
         assert klass.bob.get("/api/topics/sandbox_chatter").status_code == 404
     finally:
         klass.ada.stop(group)
+    # Stop ends the sandboxed node: it leaves its world's graph.
+    wait_until(lambda: "/sandbox_talker" not in node_names(klass.ada), "the stopped talker to leave", 30.0)
 
 
 def test_sandbox_handout_keyboard_manager_runs_and_its_messages_reach_its_world(klass: Class) -> None:
