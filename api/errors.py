@@ -45,6 +45,7 @@ from server.limits import LimitExceededError, ValueLimitError
 from server.msgs import MessageError, UnknownTypeError
 from server.packages import ExecutableNotFoundError, PackageNotFoundError, WorkspaceError
 from server.packages.launch_files import LaunchFileNotFoundError
+from server.processes.sandbox import StudentCodeRefusedError
 from server.publishers import PublisherError, UnknownPublisherError
 from server.workspace.errors import (
     BadArchiveError,
@@ -78,6 +79,7 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (DestroyedError, status.HTTP_409_CONFLICT),
     (LimitExceededError, status.HTTP_429_TOO_MANY_REQUESTS),
     (ServiceTimeoutError, status.HTTP_504_GATEWAY_TIMEOUT),
+    (StudentCodeRefusedError, status.HTTP_503_SERVICE_UNAVAILABLE),  # no sandbox on a shared server
     (BodyTooLarge, status.HTTP_413_CONTENT_TOO_LARGE),
     (AnswerTooLargeError, status.HTTP_413_CONTENT_TOO_LARGE),
     (UnknownQuestionError, status.HTTP_404_NOT_FOUND),
@@ -114,6 +116,7 @@ _CLOSE_FOR_STATUS = {
     status.HTTP_409_CONFLICT: CloseCode.TYPE_CONFLICT,
     status.HTTP_429_TOO_MANY_REQUESTS: CloseCode.TRY_AGAIN_LATER,
     status.HTTP_504_GATEWAY_TIMEOUT: CloseCode.TRY_AGAIN_LATER,
+    status.HTTP_503_SERVICE_UNAVAILABLE: CloseCode.TRY_AGAIN_LATER,
     status.HTTP_413_CONTENT_TOO_LARGE: CloseCode.MESSAGE_TOO_BIG,
     status.HTTP_412_PRECONDITION_FAILED: CloseCode.BAD_REQUEST,
     status.HTTP_415_UNSUPPORTED_MEDIA_TYPE: CloseCode.UNSUPPORTED_DATA,

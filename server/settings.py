@@ -144,6 +144,19 @@ class WorkspaceLimits(Section):
     max_body_bytes: int = Field(default=8 * 1024 * 1024, ge=1024)
 
 
+class SandboxSettings(Section):
+    """How a server that serves others runs a student's node process (server/processes/sandbox.py):
+    in bubblewrap with these limits, or (``unsandboxed``, said out loud) as a single lab does."""
+
+    student_code: Literal["sandboxed", "unsandboxed"] = "sandboxed"
+    memory_mib: int = Field(default=512, ge=64)  # heap, stacks and private mappings
+    processes: int = Field(default=64, ge=16)  # processes and threads (Zenoh's take about 10)
+    open_files: int = Field(default=256, ge=64)
+    file_size_mib: int = Field(default=64, ge=1)
+    cpu_s: int = Field(default=3600, ge=1)  # CPU seconds of one run
+    nice: int = Field(default=10, ge=0, le=19)  # below the sims' loop
+
+
 class WorldLimits(Section):
     """What one student's world may hold on a class server, so its load stays its own."""
 
@@ -275,6 +288,7 @@ class Settings(Section):
     workspace: WorkspaceLimits = WorkspaceLimits()
     classroom: ClassroomSettings | None = None
     worker: WorkerSettings | None = None
+    sandbox: SandboxSettings = SandboxSettings()
     log_level: str = "info"  # the app's own console lines and uvicorn's
 
     @field_validator("log_level")
@@ -357,6 +371,12 @@ class Settings(Section):
         server (and its world workers), and when a lab behind a token listens beyond loopback. A
         single lab on loopback serves its user alone, whose own files it may open."""
         return self.classroom is not None or not self.listen.on_loopback
+
+    @property
+    def sandboxes_students(self) -> bool:
+        """Students' node processes run in a sandbox: wherever the server serves others, unless
+        started with ``--student-code unsandboxed``."""
+        return self.confines_paths and self.sandbox.student_code == "sandboxed"
 
 
 def class_section(settings: Settings) -> ClassroomSettings:

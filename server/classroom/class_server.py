@@ -61,6 +61,7 @@ class ClassServer:
         self.grants = Grants(signer)
         self.admission = Admission(self.class_settings.joins, self.clock)
         self.labs = WorldLabs(settings, self.clock, lambda: self.graph.endpoint())
+        self.labs.process_socket = lambda: self.graph.process_socket()
         self.graph = ClassGraph(settings, self.labs.worlds, self.grants.instructor_token)
         # This process's and machine's CPU, read every WATCH_PERIOD_S (a watch round): a
         # placement weighs the last seconds.

@@ -10,6 +10,7 @@ rosbridge) are not opened per world; its bags go in a folder of its own.
 from __future__ import annotations
 
 from collections.abc import Callable
+from pathlib import Path
 
 from server.bus import Clock, ExecutorGroup
 from server.checkpoints.progress import Progress
@@ -37,6 +38,8 @@ class WorldLabs:
         self.class_settings = class_section(settings)
         self.clock = clock  # every world's, the physics' and the limits'
         self.endpoint = endpoint
+        # The router's Unix socket on this machine for the worlds' sandboxed nodes (None: none here).
+        self.process_socket: Callable[[], Path | None] = lambda: None
         self.worlds: dict[str, World] = {}
         self.starting: dict[str, int] = {}  # world → its ROS domain, while it starts
         self.physics = SharedQuadrotorPhysics(clock)
@@ -135,6 +138,7 @@ class WorldLabs:
             zenoh = ZenohSettings(
                 mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file,
                 login=login, samples_hz=self.class_settings.world.samples_hz,
+                process_socket=self.process_socket(),
             )  # fmt: skip
         file, args = (
             launch if launch is not None else (self.settings.lab.launch, self.settings.lab.launch_args)

@@ -138,9 +138,10 @@ class LaunchGroups:
         self._check_room()
         if name is not None:
             validate_node_name(name)
-        resolved = self._packages.resolve(
-            pkg, exe
-        )  # an unknown package or executable is an error, not a failed node
+        # An unknown package or executable is an error, not a failed node; so is a student's file
+        # that this server does not run (StudentCodeRefusedError).
+        resolved = self._packages.resolve(pkg, exe)
+        self._launcher.check_student_code(resolved)
         self._check_processes(1 if self._launcher.runs_as_process(resolved) else 0)
         action = NodeAction(
             pkg=pkg,
