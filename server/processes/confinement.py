@@ -8,11 +8,13 @@ of its own with no supplementary groups (which also drops every capability). Har
 with the soft ones, so the node cannot raise them again.
 
 Processes are counted per user namespace (Linux 5.14 and later), so a non-root server's sandboxes
-each get their own 64 without the server's own threads counted in.
+each get their own 64 without the server's own threads counted in; under a root server, per uid,
+and each world's nodes have a uid of their own (``for_domain``).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import resource
 from dataclasses import dataclass, fields
@@ -33,7 +35,7 @@ class Confinement:
     file_size_mib: int = 64  # the largest file it may write (RLIMIT_FSIZE)
     cpu_s: int = 3600  # CPU seconds of one run (RLIMIT_CPU)
     nice: int = 10  # added to its niceness: the sims' loop goes first
-    uid: int = 61000  # a server running as root starts the node as this user
+    uid: int = 61000  # a server running as root starts the node as this user (plus its ROS domain)
     gid: int = 61000
     drop_root: bool = False  # started by root: become ``uid``/``gid``
 
@@ -71,6 +73,10 @@ class Confinement:
             info = path.lstat()
             if (info.st_uid, info.st_gid) != (self.uid, self.gid):
                 os.lchown(path, self.uid, self.gid)
+
+    def for_domain(self, domain_id: int) -> Confinement:
+        """The limits of a node of the world in ROS domain ``domain_id``: its own uid and gid."""
+        return dataclasses.replace(self, uid=self.uid + domain_id, gid=self.gid + domain_id)
 
     def memory_line(self) -> str:
         return f"node killed: memory limit {self.memory_mib} MiB"

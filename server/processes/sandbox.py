@@ -105,10 +105,13 @@ class Sandbox:
         root = os.geteuid() == 0
         env = {key: command.env[key] for key in KEPT_ENV if key in command.env}
         env.update(PATH="/usr/bin:/bin", HOME="/tmp", TMPDIR="/tmp", LANG="C.UTF-8")
-        env[LIMITS_ENV] = self.confinement.encode(drop_root=root)
+        # Under a root server each world's nodes run as a uid of that world's (processes are then
+        # counted per world, not across the class, and no world's node can signal another's).
+        confinement = self.confinement.for_domain(int(command.env.get("ROS_DOMAIN_ID", "0")))
+        env[LIMITS_ENV] = confinement.encode(drop_root=root)
         ws = workspace.resolve() if workspace is not None else None
         if ws is not None and root:
-            self.confinement.give(ws)
+            confinement.give(ws)
         argv = [bwrap, *_namespaces(root), "--die-with-parent", "--new-session", "--as-pid-1",
                 "--hostname", "ros2lab-node", *([] if root else ["--uid", str(INSIDE_UID), "--gid", str(INSIDE_UID)]),
                 *self._mounts(ws), "--", *command.argv]  # fmt: skip

@@ -11,7 +11,7 @@ import httpx
 import pytest
 from support.app import App
 
-from .test_sandbox import CLASS_READY_S, CODE, World, join
+from .test_sandbox import CLASS_READY_S, CODE, World, join, world_workspace
 
 NODE = """
 def main():
@@ -35,10 +35,6 @@ WORLD_LAUNCH = """<launch>
 @pytest.fixture(scope="module")
 def refusing(tmp_path_factory: pytest.TempPathFactory) -> Iterator[World]:
     root = tmp_path_factory.mktemp("no_sandbox")
-    package = root / "workspace" / "src" / "mine"
-    (package / "launch").mkdir(parents=True)
-    (package / "node.py").write_text(NODE.lstrip())
-    (package / "launch" / "mine.launch").write_text(LAUNCH)
     (root / "world.launch").write_text(WORLD_LAUNCH)
     (root / "empty_path").mkdir()
     with pytest.MonkeyPatch.context() as patch:
@@ -46,7 +42,12 @@ def refusing(tmp_path_factory: pytest.TempPathFactory) -> Iterator[World]:
         app = App(root, "--classroom", "--class-code", CODE, "--launch", str(root / "world.launch"),
                   "--no-foxglove", cwd=root, ready_s=CLASS_READY_S)  # fmt: skip
     try:
-        yield join(app, "Ada")
+        ada = join(app, "Ada")
+        package = world_workspace(root, ada) / "src" / "mine"
+        (package / "launch").mkdir(parents=True)
+        (package / "node.py").write_text(NODE.lstrip())
+        (package / "launch" / "mine.launch").write_text(LAUNCH)
+        yield ada
     finally:
         app.stop()
 

@@ -56,6 +56,7 @@ KEY_A = 97  # keyboard_msgs/msg/Key's KEY_A, as the page sends it
 class World:
     app: App
     token: str
+    name: str  # the world's, as the class server named it
 
     def headers(self) -> dict[str, str]:
         return {"Authorization": f"Bearer {self.token}"}
@@ -81,7 +82,7 @@ class Class:
 def join(app: App, name: str) -> World:
     reply = httpx.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30)
     assert reply.status_code == 201, reply.text
-    return World(app, reply.json()["token"])
+    return World(app, reply.json()["token"], reply.json()["world"])
 
 
 def class_server(root: Path, name: str, *options: str) -> App:
@@ -94,15 +95,8 @@ def class_server(root: Path, name: str, *options: str) -> App:
 @pytest.fixture(scope="module")
 def klass(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     root = tmp_path_factory.mktemp("sandbox")
-    workspace = root / "workspace"
-    shutil.copytree(EXAMPLES, workspace)
-    (workspace / "src" / "probe").mkdir()
-    shutil.copy(HERE / "probe_node.py", workspace / "src" / "probe" / "probe_node.py")
-    (workspace / "src" / "probe" / "talker.py").write_text(TALKER.lstrip())
     (root / "world.launch").write_text(WORLD_LAUNCH)
-    # Another world's workspace, a file of the server's, and a folder beside the workspace.
-    (root / "workspaces" / "other").mkdir(parents=True)
-    (root / "workspaces" / "other" / "notes.txt").write_text("another student's work\n")
+    # A file of the server's, and a folder beside the workspaces.
     (root / "class-token.txt").write_text("the instructor's token\n")
     (root / "outside").mkdir()
     (root / "outside").chmod(0o777)  # writable by any uid: only the sandbox keeps a node out
@@ -112,11 +106,30 @@ def klass(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
         # One after the other: two starting at once each take twice as long on a loaded machine.
         apps.append(class_server(root, "sandboxed"))
         apps.append(class_server(root, "unsandboxed", "--student-code", "unsandboxed"))
-        yield Class(root, join(apps[0], "Ada"), join(apps[0], "Bob"), join(apps[1], "Cy"))
+        ada, bob, cy = join(apps[0], "Ada"), join(apps[0], "Bob"), join(apps[1], "Cy")
+        for world in (ada, cy):
+            fill_workspace(world_workspace(root, world))
+        (world_workspace(root, bob) / "notes.txt").write_text("another student's work\n")
+        yield Class(root, ada, bob, cy)
     finally:
         os.environ.pop(SECRET_ENV, None)
         for app in apps:
             app.stop()
+
+
+def world_workspace(root: Path, world: World) -> Path:
+    """A world's workspace on its class server (``workspaces/<world>`` in the server's folder)."""
+    workspace = root / "workspaces" / world.name
+    workspace.mkdir(parents=True, exist_ok=True)
+    return workspace
+
+
+def fill_workspace(workspace: Path) -> None:
+    """The handout's packages and the probe package."""
+    shutil.copytree(EXAMPLES, workspace, dirs_exist_ok=True)
+    (workspace / "src" / "probe").mkdir(exist_ok=True)
+    shutil.copy(HERE / "probe_node.py", workspace / "src" / "probe" / "probe_node.py")
+    (workspace / "src" / "probe" / "talker.py").write_text(TALKER.lstrip())
 
 
 def run(world: World, executable: str, **parameters: str) -> str:
@@ -156,7 +169,9 @@ def blocked_sandboxed_works_unsandboxed(klass: Class, check: str, arg: str) -> N
 
 
 def test_sandbox_another_worlds_workspace_cannot_be_read(klass: Class) -> None:
-    blocked_sandboxed_works_unsandboxed(klass, "read", str(klass.root / "workspaces" / "other" / "notes.txt"))
+    blocked_sandboxed_works_unsandboxed(
+        klass, "read", str(world_workspace(klass.root, klass.bob) / "notes.txt")
+    )
 
 
 def test_sandbox_server_files_cannot_be_read(klass: Class) -> None:
@@ -182,7 +197,7 @@ def test_sandbox_cannot_fork_past_its_process_limit(klass: Class) -> None:
 
 def test_sandbox_cannot_write_outside_its_workspace_but_writes_inside(klass: Class) -> None:
     blocked_sandboxed_works_unsandboxed(klass, "write", str(klass.root / "outside" / "note.txt"))
-    inside = klass.root / "workspace" / "src" / "probe" / "note.txt"
+    inside = world_workspace(klass.root, klass.ada) / "src" / "probe" / "note.txt"
     assert probe_line(klass.ada, "write", str(inside)).startswith("PROBE write ok")
     assert inside.read_text() == "written by a student's node\n"
 

@@ -64,3 +64,9 @@ def test_confinement_round_trips_through_its_variable() -> None:
         memory_mib=300, processes=20, open_files=100, file_size_mib=5, cpu_s=9, nice=4, drop_root=True
     )
     assert Confinement.decode(limits.encode(drop_root=False)).drop_root is False
+
+
+def test_confinement_of_each_world_is_a_uid_of_its_own() -> None:
+    base = Confinement()
+    assert (base.for_domain(3).uid, base.for_domain(3).gid) == (base.uid + 3, base.gid + 3)
+    assert base.for_domain(3).uid != base.for_domain(4).uid != 0
