@@ -93,7 +93,14 @@ async def capture(name: str, request: Request, lab: LabDep) -> dict[str, Any]:
     return {"checkpoint": name, "captured": True}
 
 
-@router.get("/report", responses=responses(UNAUTHORIZED), response_class=Response)
+@router.get(
+    "/report",
+    responses={
+        **responses(UNAUTHORIZED),
+        200: {"description": "the signed report", "content": {"text/html": {}, "application/json": {}}},
+    },
+    response_class=Response,
+)
 async def report(request: Request, lab: LabDep, format: Literal["html", "json"] = "html") -> Response:
     """The signed report to hand in: an HTML page to print, or its JSON."""
     watch = lab.checkpoints
@@ -136,7 +143,17 @@ def _rows(request: Request, classroom: ClassroomDep) -> tuple[list[str], list[An
     return names, rows
 
 
-@class_router.get("", responses=responses(UNAUTHORIZED, 403), response_model=None)
+@class_router.get(
+    "",
+    responses={
+        **responses(UNAUTHORIZED, 403),
+        200: {
+            "description": "the table; ?format=csv as CSV",
+            "content": {"application/json": {}, "text/csv": {}},
+        },
+    },
+    response_model=None,
+)
 async def class_checkpoints(
     request: Request, _: InstructorDep, classroom: ClassroomDep, format: Literal["json", "csv"] = "json"
 ) -> dict[str, Any] | Response:
@@ -156,7 +173,14 @@ async def class_checkpoints(
     return view
 
 
-@class_router.get("/reports", responses=responses(UNAUTHORIZED, 403), response_class=Response)
+@class_router.get(
+    "/reports",
+    responses={
+        **responses(UNAUTHORIZED, 403),
+        200: {"description": "a zip", "content": {"application/zip": {}}},
+    },
+    response_class=Response,
+)
 async def class_reports(request: Request, _: InstructorDep, classroom: ClassroomDep) -> Response:
     """Every student's signed report, JSON and HTML, in one zip."""
     files = []
