@@ -9,6 +9,8 @@ const LAUNCH_FILE = /(^|\/)launch\/[^/]+$|\.launch(\.(xml|py|yaml))?$/;
 const CONSOLE_SCRIPT = /["']\s*([\w.-]+)\s*=\s*([\w.]+)\s*:\s*\w+\s*["']/g;
 const PACKAGE_NAME = /<name>\s*([^<\s]+)\s*<\/name>/;
 const RECONNECT_MS = 1000;
+const NORMAL_CLOSE = 1000;  // the server's close after the group's end
+const UNKNOWN_RUN = 4404;  // server/close_codes.py's NOT_FOUND: no such launch group
 
 export type RunState = "idle" | "starting" | "running" | "stopping" | "ended";
 
@@ -106,6 +108,11 @@ export class Runner {
     };
     socket.onclose = (ev) => {
       if (socket !== this.socket || id !== this.id || this.state === "ended") return;
+      if (ev.code === NORMAL_CLOSE || ev.code === UNKNOWN_RUN) {  // the run is over, or gone
+        if (ev.code === UNKNOWN_RUN) this.output.note(`the run is gone: ${ev.reason}`, "error");
+        this.ended();
+        return;
+      }
       this.output.note(`the output's connection closed (${ev.code}${ev.reason ? `: ${ev.reason}` : ""}); reconnecting`, "error");
       setTimeout(() => { if (id === this.id && this.state !== "ended") this.connect(id); }, RECONNECT_MS);
     };
