@@ -1,6 +1,7 @@
 // The code editor: CodeMirror 6 with its basic set-up (line numbers, indentation, search, undo
 // history, bracket matching), Python or XML highlighting by the file's name, and a 4-space indent
 // as PEP 8 and the handout write Python. One editor view; opening a file swaps its document.
+// Ctrl-S (Cmd-S) saves at once instead of offering to save the page.
 import { python } from "@codemirror/lang-python";
 import { xml } from "@codemirror/lang-xml";
 import { indentUnit } from "@codemirror/language";
@@ -20,7 +21,7 @@ export class CodeEditor {
   readonly view: EditorView;
   private quiet = false;
 
-  constructor(parent: HTMLElement, onEdit: () => void) {
+  constructor(parent: HTMLElement, onEdit: () => void, private readonly onSave: () => void) {
     this.view = new EditorView({
       parent,
       state: this.stateFor("", ""),
@@ -36,7 +37,7 @@ export class CodeEditor {
       doc: text,
       extensions: [
         basicSetup,
-        keymap.of([indentWithTab]),
+        keymap.of([indentWithTab, { key: "Mod-s", preventDefault: true, run: () => { this.onSave(); return true; } }]),
         indentUnit.of("    "),
         EditorState.tabSize.of(4),
         languageOf(path),

@@ -80,7 +80,7 @@ export function mountCodeView(host: HTMLElement, lab: CodeViewHost): CodeViewHan
   runBar.append(runB, stopB, runState);
 
   const showProblem = (text: string): void => { problem.textContent = text; problem.hidden = !text; };
-  const editor = new CodeEditor(cmHost, () => file.edited());
+  const editor = new CodeEditor(cmHost, () => file.edited(), () => void file.flush());
   const file = new OpenFile(editor, {
     show(state, path, detail) {
       saveState.dataset.state = state;
