@@ -4,6 +4,7 @@ from fastapi import APIRouter
 
 from api import (
     bag,
+    classroom_workspaces,
     introspection,
     lab_routes,
     launch_routes,
@@ -11,7 +12,9 @@ from api import (
     rosbridge,
     services,
     topics,
+    workspace,
     ws_keys,
+    ws_output,
     ws_topics,
 )
 from api import classroom as classroom_routes
@@ -32,7 +35,10 @@ def build_router(*, classroom: bool = False) -> APIRouter:
         ws_keys,
         bag,
         rosbridge,
+        workspace,
+        ws_output,
     ):
         router.include_router(module.router)
     router.include_router(classroom_routes.router, include_in_schema=classroom)
+    router.include_router(classroom_workspaces.router, include_in_schema=classroom)
     return router

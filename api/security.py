@@ -28,15 +28,27 @@ def _header(scope: Scope, name: bytes) -> str | None:
 
 
 class GuardMiddleware:
-    """Host check for everything; Origin check for WebSockets and writes; a cap on body size."""
+    """Host check for everything; Origin check for WebSockets and writes; a cap on body size
+    (``larger_bodies``: path prefixes with a cap of their own, such as a workspace's uploads)."""
 
     def __init__(
-        self, app: ASGIApp, accepted_hosts: Iterable[str], allowed_origins: Iterable[str], max_body_bytes: int
+        self,
+        app: ASGIApp,
+        accepted_hosts: Iterable[str],
+        allowed_origins: Iterable[str],
+        max_body_bytes: int,
+        larger_bodies: Iterable[tuple[str, int]] = (),
     ) -> None:
         self.app = app
         self.accepted_hosts = frozenset(accepted_hosts)
         self.allowed_origins = frozenset(allowed_origins)
         self.max_body_bytes = max_body_bytes
+        self.larger_bodies = tuple(larger_bodies)
+
+    def body_limit(self, path: str) -> int:
+        return next(
+            (limit for prefix, limit in self.larger_bodies if path.startswith(prefix)), self.max_body_bytes
+        )
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] not in ("http", "websocket"):
@@ -48,21 +60,22 @@ class GuardMiddleware:
         if cross_site and (scope["type"] == "websocket" or scope["method"] not in SAFE_METHODS):
             return await self._refuse(scope, send, 403, "cross-site origin refused")
         if scope["type"] == "http" and scope["method"] not in SAFE_METHODS:
+            limit = self.body_limit(scope["path"])
             length = _header(scope, b"content-length")
-            if length is not None and length.isdigit() and int(length) > self.max_body_bytes:
-                return await self._refuse(scope, send, 413, f"body larger than {self.max_body_bytes} bytes")
-            receive = self._bounded(receive)
+            if length is not None and length.isdigit() and int(length) > limit:
+                return await self._refuse(scope, send, 413, f"body larger than {limit} bytes")
+            receive = self._bounded(receive, limit)
         await self.app(scope, receive, send)
 
-    def _bounded(self, receive: Receive) -> Receive:
+    def _bounded(self, receive: Receive, limit: int) -> Receive:
         seen = 0
 
         async def bounded() -> Message:
             nonlocal seen
             message = await receive()
             seen += len(message.get("body", b""))
-            if seen > self.max_body_bytes:
-                raise BodyTooLarge(self.max_body_bytes)
+            if seen > limit:
+                raise BodyTooLarge(limit)
             return message
 
         return bounded

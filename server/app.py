@@ -17,6 +17,7 @@ from api.routes import build_router
 from api.security import GuardMiddleware
 from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
 from api.tools_page import router as tools_router
+from api.workspace import PREFIX as WORKSPACE_PREFIX
 from api.world_proxy import WorldProxyMiddleware
 from api.ws_cap import SocketCapMiddleware
 from api.ws_refusal import WebSocketRefusalMiddleware
@@ -91,6 +92,9 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         accepted_hosts=settings.listen.accepted_hosts,
         allowed_origins=settings.listen.allowed_origins,
         max_body_bytes=settings.listen.max_body_bytes,
+        larger_bodies=[
+            (WORKSPACE_PREFIX, max(settings.workspace.max_body_bytes, settings.listen.max_body_bytes))
+        ],
     )
     app.add_middleware(CanonicalPathMiddleware)
     app.add_middleware(ErrorMiddleware)

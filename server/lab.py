@@ -26,7 +26,7 @@ from server.devices.deadman import KeyDeadMan
 from server.devices.keyboard import KeyboardDevice
 from server.introspection.merged import topic_views
 from server.launch.aliases import resolve_launch
-from server.launch.groups import LaunchGroups
+from server.launch.groups import LaunchGroups, NodeBudget
 from server.launch.launcher import Launcher, ProcessTransport
 from server.limits import RateLimit, check_finite_json, check_topic_limits, per_second
 from server.msgs import Message, get_type
@@ -49,7 +49,12 @@ if TYPE_CHECKING:
 
 class Lab:
     def __init__(
-        self, settings: Settings, clock: Clock | None = None, *, executors: ExecutorGroup | None = None
+        self,
+        settings: Settings,
+        clock: Clock | None = None,
+        *,
+        executors: ExecutorGroup | None = None,
+        node_budget: NodeBudget | None = None,
     ) -> None:
         self.settings = settings
         limits = settings.limits
@@ -83,9 +88,11 @@ class Lab:
         self.service_caller = ServiceCaller(self.api_node)
         self.topic_watch = TopicWatch(self.bus)
         self.bags = BagManager(self.bus, settings.lab.bag_dir)  # ros2 bag record / play
+        # A class server's worlds share one budget of node processes; alone, the lab has its own.
         self.launch_groups = LaunchGroups(
-            self.launcher, self.packages, limits.max_launch_groups, limits.max_nodes_per_launch
-        )
+            self.launcher, self.packages, limits.max_launch_groups, limits.max_nodes_per_launch,
+            limits.max_running_nodes, node_budget or NodeBudget(limits.max_server_nodes),
+        )  # fmt: skip
         self.stopped = asyncio.Event()  # set by stop(): open WebSockets close, and clients reconnect
 
     # -- life ----------------------------------------------------------------

@@ -124,6 +124,20 @@ class LabLimits(Section):
     max_echo_sockets: int = Field(default=64, ge=1)  # /ws/topics clients at once
     max_launch_groups: int = Field(default=32, ge=1)  # launches and runs started through the API, at once
     max_nodes_per_launch: int = Field(default=64, ge=1)
+    # Node processes the API's launches and runs keep running at once: in this lab (a class's
+    # world), and in every lab of this process together (a class server's or world worker's).
+    max_running_nodes: int = Field(default=8, ge=1)
+    max_server_nodes: int = Field(default=64, ge=1)
+
+
+class WorkspaceLimits(Section):
+    """What a student's workspace may hold (the API's saves, uploads and new packages), and the
+    largest body a workspace route takes (a save's JSON, a zip upload)."""
+
+    max_file_bytes: int = Field(default=256 * 1024, ge=1024)
+    max_workspace_bytes: int = Field(default=20 * 1024 * 1024, ge=1024)
+    max_files: int = Field(default=2000, ge=1)
+    max_body_bytes: int = Field(default=8 * 1024 * 1024, ge=1024)
 
 
 class WorldLimits(Section):
@@ -188,6 +202,9 @@ class ClassroomSettings(Section):
     local_workers: int = 0
     worker_timeout_s: float = WORKER_TIMEOUT_S  # a world worker silent this long is gone: its worlds move
     world_log_level: str = "warning"  # the lowest level of a class world's node lines on the console
+    # Each world's workspace is the folder of its name in here: kept across resets and restarts of
+    # the server, removed when the instructor removes the student.
+    workspaces_dir: Path = Path("workspaces")
 
     @field_validator("max_worlds")
     @classmethod
@@ -251,6 +268,7 @@ class Settings(Section):
     listen: Listening = Listening()
     lab: LabSettings = LabSettings()
     limits: LabLimits = LabLimits()
+    workspace: WorkspaceLimits = WorkspaceLimits()
     classroom: ClassroomSettings | None = None
     worker: WorkerSettings | None = None
     log_level: str = "info"  # the app's own console lines and uvicorn's
@@ -312,7 +330,7 @@ class Settings(Section):
     def for_world(
         self, name: str, zenoh: ZenohSettings | None, launch: str, launch_args: dict[str, str]
     ) -> Settings:
-        """A class world's lab: its own graph session (``zenoh``), launch and bag folder, no bridge
+        """A class world's lab: its own graph session (``zenoh``), launch, bag folder and workspace, no bridge
         port of its own (the class's serve every world), and the smaller of each lab limit and the
         class's limit per world."""
         if self.classroom is None:
@@ -320,7 +338,7 @@ class Settings(Section):
         world, limits = self.classroom.world, self.limits
         lab = self.lab.model_copy(update={
             "zenoh": zenoh, "foxglove_port": None, "rosbridge_port": None, "bag_dir": self.lab.bag_dir / name,
-            "launch": launch, "launch_args": launch_args,
+            "launch": launch, "launch_args": launch_args, "workspace": self.classroom.workspaces_dir / name,
         })  # fmt: skip
         limits = limits.model_copy(update={
             "max_launch_groups": min(limits.max_launch_groups, world.launches),

@@ -14,6 +14,7 @@ from collections.abc import Callable
 from server.bus import Clock, ExecutorGroup
 from server.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
 from server.lab import Lab
+from server.launch.groups import NodeBudget
 from server.limits import RateLimit
 from server.settings import Settings, class_section
 from server.transport.acl import Credentials
@@ -40,6 +41,7 @@ class WorldLabs:
         self.physics = SharedQuadrotorPhysics(clock)
         self.simple_physics = SharedSimpleSim(clock)  # the worlds flown with simple:=true
         self.executors = ExecutorGroup()
+        self.node_budget = NodeBudget(settings.limits.max_server_nodes)  # every world's node processes
 
     def get(self, name: str) -> World:
         world = self.worlds.get(name)
@@ -100,7 +102,7 @@ class WorldLabs:
     ) -> Lab:
         """Start world ``name``'s lab in ``domain_id`` (the class's launch unless ``launch``)."""
         settings = self._world_settings(name, domain_id, launch, login)
-        lab = Lab(settings, self.clock, executors=self.executors)
+        lab = Lab(settings, self.clock, executors=self.executors, node_budget=self.node_budget)
         lab.bus.label = name  # its nodes' console lines carry its name (server/console.py)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         lab.bus.devices["simple_sim_physics"] = self.simple_physics
