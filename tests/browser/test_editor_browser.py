@@ -253,13 +253,16 @@ def test_editor_save_failure_keeps_text_and_another_tabs_save_is_a_choice(
 
     # Another tab saves just before this page does: refused, and the choice is offered.
     def other_tab_first(route: Route) -> None:
-        if route.request.method == "PUT":
-            put(server, path, "theirs = 4\n")
-        route.continue_()
+        if route.request.method != "PUT":
+            route.continue_()
+            return
+        put(server, path, "theirs = 4\n")
+        route.fulfill(response=route.fetch())  # this page's save, as it sent it, after theirs
 
-    for choice, expected in [("Overwrite with mine", "mine = 5\n"), ("Reload theirs", "theirs = 4\n")]:
+    for choice, mine, expected in [("Overwrite with mine", "mine = 5\n", "mine = 5\n"),
+                                   ("Reload theirs", "mine = 6\n", "theirs = 4\n")]:  # fmt: skip
         page.route(url, other_tab_first)
-        replace_text(page, "mine = 5\n")
+        replace_text(page, mine)
         conflict = page.locator("#teleop-code .problem.conflict")
         conflict.wait_for()
         page.unroute(url)
