@@ -8,7 +8,8 @@ arrived). Saves that fail keep the text; a save over another tab's is refused an
 choice; a file changed on disk shows in the editor; a traceback's line opens its file.
 
 The lab runs the fly launch's nodes without its keyboard manager, so the only node turning keys
-into setpoints is the one written here. One server for the module; each test has its own page.
+into setpoints is the one written here. One server for the module; the first test has a page of
+its own (it reloads it), the others share one.
 """
 
 from __future__ import annotations
@@ -119,6 +120,16 @@ def page(chromium: Browser) -> Iterator[Page]:
         yield page
 
 
+@pytest.fixture(scope="module")
+def code_page(chromium: Browser, server: LabServer) -> Iterator[Page]:
+    """One lab page with its code view open, for the tests that need no fresh page (a load of
+    viser's page costs tens of seconds on a loaded machine)."""
+    with lab_page(chromium) as page:
+        open_lab_page(page, server, settle_ms=0)
+        open_code_view(page)
+        yield page
+
+
 def api(server: LabServer, method: str, path: str, **kwargs: Any) -> httpx.Response:
     return httpx.request(method, f"{server.url}{path}", timeout=HTTP_TIMEOUT_S, **kwargs)
 
@@ -170,7 +181,7 @@ def wait_setpoint(server: LabServer, expected: tuple[float, float, float], timeo
 def test_editor_simple_control_written_run_flown_stopped_and_kept_across_a_reload(
     server: LabServer, page: Page
 ) -> None:
-    open_lab_page(page, server)
+    open_lab_page(page, server, settle_ms=0)
     open_code_view(page)
     page.get_by_role("button", name="New package").click()
     dialog = page.locator("#teleop-code dialog")
@@ -226,12 +237,11 @@ def put(server: LabServer, path: str, text: str) -> str:
 
 
 def test_editor_save_failure_keeps_text_and_another_tabs_save_is_a_choice(
-    server: LabServer, page: Page
+    server: LabServer, code_page: Page
 ) -> None:
+    page = code_page
     path = "src/scratch/notes.py"
     put(server, path, "first = 1\n")
-    open_lab_page(page, server, settle_ms=0)
-    open_code_view(page)
     page.locator(f'#teleop-code .tree [data-path="{path}"]').click()
     editor = page.locator("#teleop-code .cm-content")
     editor.filter(has_text="first = 1").wait_for()
@@ -286,12 +296,11 @@ if __name__ == '__main__':
 
 
 def test_editor_output_counts_drops_shows_the_exit_and_links_a_traceback_to_its_line(
-    server: LabServer, page: Page
+    server: LabServer, code_page: Page
 ) -> None:
+    page = code_page
     path = "src/crashes/crasher.py"  # a folder without a package.xml: every .py file runs
     put(server, path, CRASHER)
-    open_lab_page(page, server, settle_ms=0)
-    open_code_view(page)
     page.locator(f'#teleop-code .tree [data-path="{path}"]').click()
     page.locator("#teleop-code .file-bar .path", has_text=path).wait_for()
     page.get_by_role("button", name="\u25b6 Run").click()
