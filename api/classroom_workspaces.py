@@ -16,11 +16,12 @@ from server.classroom import Classroom, ClassroomError, ClassServer, World
 from server.workspace.archive import add_to
 
 from .classroom import ClassroomDep, InstructorDep
-from .responses import BAD_GATEWAY, FORBIDDEN, NOT_FOUND, UNAUTHORIZED, responses
+from .responses import BAD_GATEWAY, FORBIDDEN, NOT_FOUND, UNAUTHORIZED, UNPROCESSABLE, responses
 from .workspace import ZIP, files_of, tree_body
 
 router = APIRouter(prefix="/api/classroom", tags=["classroom"])
 REFUSED = responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, BAD_GATEWAY)
+FILE_REFUSED = responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, BAD_GATEWAY, UNPROCESSABLE, 413, 415)
 
 
 async def _on_worker(classroom: Classroom, world: World, path: str) -> Response:
@@ -38,16 +39,16 @@ async def world_tree(name: str, _: InstructorDep, classroom: ClassroomDep) -> An
     world = classroom.get(name)
     if world.lab is None:
         return await _on_worker(classroom, world, "/api/workspace/files")
-    return tree_body(files_of(world.lab).tree())
+    return tree_body(await asyncio.to_thread(files_of(world.lab).tree))
 
 
-@router.get("/worlds/{name}/workspace/files/{path:path}", responses=REFUSED)
+@router.get("/worlds/{name}/workspace/files/{path:path}", responses=FILE_REFUSED)
 async def world_file(name: str, path: str, _: InstructorDep, classroom: ClassroomDep) -> Any:
     """One file of a student's workspace, read-only."""
     world = classroom.get(name)
     if world.lab is None:
         return await _on_worker(classroom, world, f"/api/workspace/files/{path}")
-    found = files_of(world.lab).read(path)
+    found = await asyncio.to_thread(files_of(world.lab).read, path)
     return JSONResponse(
         {"path": found.path, "text": found.text, "etag": found.etag}, headers={"ETag": f'"{found.etag}"'}
     )

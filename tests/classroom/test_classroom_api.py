@@ -310,6 +310,9 @@ CLASS_ROUTES = {
     "/api/classroom/reset": {"post"},
     "/api/classroom/worlds/{name}": {"delete"},
     "/api/classroom/broadcast": {"post"},
+    "/api/classroom/worlds/{name}/workspace/files": {"get"},
+    "/api/classroom/worlds/{name}/workspace/files/{path}": {"get"},
+    "/api/classroom/workspaces/archive": {"get"},
 }
 
 

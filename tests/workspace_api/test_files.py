@@ -196,3 +196,11 @@ def test_files_a_file_larger_than_other_routes_bodies_is_saved(client: TestClien
         "/api/publish", json={"topic": "/long", "msg": {"data": text}, "type": "std_msgs/msg/String"}
     )
     assert elsewhere.status_code == 413
+
+
+def test_files_an_upload_is_the_zips_bytes_whatever_its_type(client: TestClient, workspace: Path) -> None:
+    data = zip_of({"src/typed/t.py": "t = 1\n"})
+    reply = client.post(
+        "/api/workspace/archive", content=data, headers={"content-type": "application/octet-stream"}
+    )
+    assert reply.status_code == 200 and reply.json() == {"written": ["src/typed/t.py"]}

@@ -286,3 +286,30 @@ def test_refusals_a_good_zip_of_the_same_shape_is_written(
     assert (folders[0] / "src/pkg/fine.py").read_text() == "fine\n"
     assert client.delete(f"{FILES}/src/pkg/fine.py").status_code == 200
     assert client.delete(f"{FILES}/src/pkg/launch").status_code == 200
+
+
+def test_refusals_another_sites_page_writes_nothing(client: TestClient, unchanged: None) -> None:
+    foreign = {"Origin": "http://evil.example"}
+    refused(save(client, "src/pkg/evil.py", "x\n", **foreign), 403, "cross-site")
+    refused(upload(client, zip_of({"src/pkg/evil.py": "x\n"}), **foreign), 403, "cross-site")
+    refused(client.delete(f"{FILES}/src/pkg/kept.py", headers=foreign), 403, "cross-site")
+    refused(client.post("/api/workspace/packages", json={"name": "evil"}, headers=foreign), 403, "cross-site")
+
+
+def test_refusals_the_labs_own_page_writes(client: TestClient) -> None:
+    assert save(client, "src/pkg/own.py", "x\n", Origin="http://testserver").status_code == 201
+    assert (
+        client.delete(f"{FILES}/src/pkg/own.py", headers={"Origin": "http://testserver"}).status_code == 200
+    )
+
+
+def test_refusals_a_lab_behind_a_token_needs_it(tmp_path: Path) -> None:
+    settings = lab_settings(tmp_path / "workspace")
+    settings = settings.model_copy(
+        update={"listen": settings.listen.model_copy(update={"token": "the-token"})}
+    )
+    with lab_client(settings) as client:
+        refused(save(client, "src/pkg/a.py", "x\n"), 401, "token")
+        refused(client.get(FILES), 401, "token")
+        assert not (tmp_path / "workspace").exists()
+        assert save(client, "src/pkg/a.py", "x\n", Authorization="Bearer the-token").status_code == 201
