@@ -181,8 +181,14 @@ def wait_setpoint(server: LabServer, expected: tuple[float, float, float], timeo
 def test_editor_simple_control_written_run_flown_stopped_and_kept_across_a_reload(
     server: LabServer, page: Page
 ) -> None:
+    scripts: list[str] = []
+    page.on("request", lambda r: scripts.append(r.url) if r.resource_type == "script" else None)
     open_lab_page(page, server, settle_ms=0)
+    assert not [u for u in scripts if u.endswith("/static/build/editor.js")], (
+        "the editor loaded with the page"
+    )
     open_code_view(page)
+    assert [u for u in scripts if u.endswith("/static/build/editor.js")], "the editor's own bundle"
     page.get_by_role("button", name="New package").click()
     dialog = page.locator("#teleop-code dialog")
     dialog.locator("input[name=name]").fill("simple_control")
