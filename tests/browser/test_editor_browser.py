@@ -20,7 +20,7 @@ from typing import Any
 
 import httpx
 import pytest
-from labpage import HTTP_TIMEOUT_S, lab_page, open_lab_page, position, topic, wait_until
+from labpage import HTTP_TIMEOUT_S, LOAD_WAIT_MS, lab_page, open_lab_page, position, topic, wait_until
 from labserver import LabServer
 from playwright.sync_api import Browser, Page, Route
 
@@ -224,8 +224,10 @@ def test_editor_simple_control_written_run_flown_stopped_and_kept_across_a_reloa
     assert page.locator("#teleop-code .output .note.exit").count() >= 1
     wait_until(lambda: NODE not in nodes(server), "the stopped node to leave the graph", RUN_WAIT_S)
 
-    page.reload()
-    open_lab_page(page, None, settle_ms=0)
+    page.reload(wait_until="commit")
+    page.wait_for_function(
+        "() => window.__teleop !== undefined", timeout=LOAD_WAIT_MS
+    )  # the code view needs no 3D view
     open_code_view(page)
     page.locator(f'#teleop-code .tree [data-path="{NODE_FILE}"]').click()
     page.locator("#teleop-code .cm-content", has_text="class KeyboardManager(Node):").wait_for()
@@ -323,3 +325,37 @@ def test_editor_output_counts_drops_shows_the_exit_and_links_a_traceback_to_its_
     page.get_by_role("button", name="\u25b6 Run").wait_for()
     link.last.click()
     page.locator("#teleop-code .cm-activeLine", has_text="raise RuntimeError('sensor unplugged')").wait_for()
+
+
+def test_editor_new_file_from_a_template_renamed_then_deleted_after_confirming(
+    server: LabServer, code_page: Page
+) -> None:
+    page = code_page
+    put(server, "src/tmpl/package_folder.txt", "a folder for the template\n")
+    page.locator('#teleop-code .tree [data-path="src/tmpl"]').click()  # select the folder
+    page.get_by_role("button", name="New file").click()
+    dialog = page.locator("#teleop-code dialog")
+    dialog.locator("select[name=template]").select_option("position_publisher")
+    created = "src/tmpl/tmpl/position_publisher.py"  # the template's path, {package} filled in
+    assert dialog.locator("input[name=path]").input_value() == created
+    dialog.get_by_role("button", name="Create").click()
+    page.locator("#teleop-code .file-bar .path", has_text=created).wait_for()
+    page.locator("#teleop-code .cm-content", has_text="TODO").wait_for()
+    assert "TODO" in file_text(server, created)
+
+    page.get_by_role("button", name="Rename").click()
+    renamed = "src/tmpl/tmpl/goal_publisher.py"
+    page.locator("#teleop-code dialog input[name=target]").fill(renamed)
+    page.locator("#teleop-code dialog").get_by_role("button", name="Rename").click()
+    page.locator("#teleop-code .file-bar .path", has_text=renamed).wait_for()
+    page.locator(f'#teleop-code .tree [data-path="{renamed}"]').wait_for()
+    assert api(server, "GET", f"/api/workspace/files/{created}").status_code == 404
+
+    page.get_by_role("button", name="Delete").click()
+    page.locator("#teleop-code dialog").get_by_role("button", name="Cancel").click()  # changes nothing
+    assert api(server, "GET", f"/api/workspace/files/{renamed}").status_code == 200
+    page.get_by_role("button", name="Delete").click()
+    page.locator("#teleop-code dialog").get_by_role("button", name="Delete").click()
+    page.locator(f'#teleop-code .tree [data-path="{renamed}"]').wait_for(state="detached")
+    assert api(server, "GET", f"/api/workspace/files/{renamed}").status_code == 404
+    assert page.locator("#teleop-code .file-bar .path").inner_text() == "no file open"
