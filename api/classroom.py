@@ -9,7 +9,7 @@ from __future__ import annotations
 import asyncio
 from typing import Annotated, Any, Literal, Required
 
-from fastapi import APIRouter, Depends, HTTPException, Request, Response, status
+from fastapi import APIRouter, Depends, HTTPException, Query, Request, Response, status
 from pydantic import BaseModel, ConfigDict, Field, model_validator, with_config
 from typing_extensions import TypedDict
 
@@ -300,9 +300,19 @@ async def reset_all(_: InstructorDep, classroom: ClassroomDep) -> dict[str, list
 
 
 @router.delete("/worlds/{name}", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND))
-async def kick(name: str, _: InstructorDep, classroom: ClassroomDep) -> dict[str, str]:
-    """Remove a student's world; their token stops working at once."""
-    world = await classroom.kick(name)
+async def kick(
+    name: str,
+    _: InstructorDep,
+    classroom: ClassroomDep,
+    workspace: Literal["remove"] | None = Query(
+        None, description="a world worker: remove the world's workspace too (the class server always does)"
+    ),
+) -> dict[str, str]:
+    """Remove a student's world and its workspace; their token stops working at once."""
+    if isinstance(classroom, WorldWorker):
+        world = await classroom.kick(name, remove_workspace=workspace == "remove")
+    else:
+        world = await classroom.kick(name)
     return {"kicked": world.name, "student": world.student}
 
 

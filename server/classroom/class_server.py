@@ -225,18 +225,18 @@ class ClassServer:
         self.graph.hold(world)  # at once: a join while the world ends must not get its domain
         self.grants.revoke(world)
         self.admission.release(world.address)
-        await self._end(world)
+        await self._end(world, remove_workspace=True)
         await self.graph.revoke_login(world.domain_id)
-        # Its workspace goes with it (a world worker on this machine keeps it in the same folder).
+        # Its workspace goes with it, here and on the world worker that hosted it.
         remove_world_workspace(self.class_settings.workspaces_dir, name)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
 
-    async def _end(self, world: World) -> None:
+    async def _end(self, world: World, *, remove_workspace: bool = False) -> None:
         if world.lab is not None:
             await world.lab.stop()
         elif world.worker is not None and self.workers is not None:
-            await remote_worlds.end_remote(self.workers, world)
+            await remote_worlds.end_remote(self.workers, world, remove_workspace=remove_workspace)
 
     # -- what the instructor sees --------------------------------------------------------------
     async def describe_all(self) -> list[dict[str, Any]]:

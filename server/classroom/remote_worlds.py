@@ -78,10 +78,12 @@ async def remote_drones(
     return found
 
 
-async def end_remote(workers: WorkerDirectory, world: World) -> None:
-    """Ask ``world``'s worker to end it; a worker that is gone took its world with it."""
+async def end_remote(workers: WorkerDirectory, world: World, *, remove_workspace: bool = False) -> None:
+    """Ask ``world``'s worker to end it (and remove its workspace there: the student is removed);
+    a worker that is gone took its world with it."""
     assert world.worker is not None
+    query = "?workspace=remove" if remove_workspace else ""
     try:
-        await workers.checked(world.worker, "DELETE", f"/api/classroom/worlds/{world.name}")
+        await workers.checked(world.worker, "DELETE", f"/api/classroom/worlds/{world.name}{query}")
     except ClassroomError as exc:
         log.warning("world %s: %s", world.name, exc)

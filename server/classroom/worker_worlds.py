@@ -21,6 +21,7 @@ from server.bus import Clock, ExecutorGroup, SystemClock
 from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth, Credentials
+from server.workspace.location import remove_world_workspace
 
 from .admission import new_code
 from .errors import ClassroomError
@@ -184,13 +185,15 @@ class WorldWorker:
         log.info("world %s reset", name)
         return world
 
-    async def kick(self, name: str) -> World:
-        """End a world the class server removed (or moved elsewhere)."""
+    async def kick(self, name: str, *, remove_workspace: bool = False) -> World:
+        """End a world the class server removed (with its workspace here) or moved elsewhere."""
         world = self.worlds.pop(name, None)
         if world is None:
             raise ClassroomError(404, f"no world named {name!r}")
         self.grants.revoke(world)
         await self._end(world)
+        if remove_workspace:
+            remove_world_workspace(self.class_settings.workspaces_dir, name)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
 

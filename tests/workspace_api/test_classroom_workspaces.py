@@ -110,9 +110,19 @@ def test_class_removing_a_student_removes_their_workspace_only(client: TestClien
     token = join(client, "Cleo")
     assert client.put(f"{FILES}/src/c/c.py", json={"text": "c\n"}, headers=auth(token)).status_code == 201
     assert (folder / "cleo" / "src/c/c.py").exists()
-    assert client.delete("/api/classroom/worlds/cleo", headers=teacher(client)).status_code == 200
+    bogus = client.delete("/api/classroom/worlds/cleo?workspace=keep", headers=teacher(client))
+    assert bogus.status_code == 422 and (folder / "cleo" / "src/c/c.py").exists()  # only "remove" is a value
+    # The class server always removes it; a world worker is told to with ?workspace=remove.
+    assert (
+        client.delete("/api/classroom/worlds/cleo?workspace=remove", headers=teacher(client)).status_code
+        == 200
+    )
     assert not (folder / "cleo").exists()
     assert (folder / "ada" / "src/ada_pkg/ada.py").exists()
+    gus = join(client, "Gus")
+    assert client.put(f"{FILES}/src/g/g.py", json={"text": "g\n"}, headers=auth(gus)).status_code == 201
+    assert client.delete("/api/classroom/worlds/gus", headers=teacher(client)).status_code == 200
+    assert not (folder / "gus").exists()
 
 
 def test_class_a_workspace_outlives_a_restart_of_the_server(tmp_path: Path) -> None:
