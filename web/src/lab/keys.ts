@@ -2,8 +2,11 @@
 // as keydown/keyup frames, with sided modifier flags. The keys viser's camera would also take
 // (arrows, WASDQE, space, page up/down) are stopped here, in the capture phase on window,
 // before viser's listeners see them. A blur or a hidden tab releases every held key. The HUD
-// (hud.ts) shows the channel's state and the keys held.
+// (hud.ts) shows the channel's state and the keys held. Keys typed in a form field or in the code
+// view (an element marked with codeview.ts's OWN_KEYS_ATTR) never reach the keyboard: only the
+// 3D view flies the drone, and focus moving into the code view releases every held key.
 import type { ControlFrame, KeyChannelError, KeyFrame } from "../protocol.gen";
+import { OWN_KEYS_ATTR } from "./codeview";
 import { notify, type Listeners } from "./listeners";
 
 const CAMERA_KEYS = new Set(["ArrowUp", "ArrowDown", "ArrowLeft", "ArrowRight", "a", "d", "w", "s", "q", "e",
@@ -49,8 +52,9 @@ const connect = (): void => {
     setTimeout(connect, retryMs); retryMs = Math.min(retryMs * 2, 5000);
   };
 };
-const typingInForm = (t: EventTarget | null): boolean =>
-  t instanceof HTMLElement && (/^(INPUT|TEXTAREA|SELECT)$/.test(t.tagName) || t.isContentEditable);
+const ownsKeys = (t: EventTarget | null): boolean => t instanceof Element && t.closest(`[${OWN_KEYS_ATTR}]`) !== null;
+const typingInForm = (t: EventTarget | null): boolean => ownsKeys(t) ||
+  (t instanceof HTMLElement && (/^(INPUT|TEXTAREA|SELECT)$/.test(t.tagName) || t.isContentEditable));
 const keyName = (e: KeyboardEvent): string => (e.key.length === 1 ? e.key.toLowerCase() : e.key);
 
 const onKey = (e: KeyboardEvent): void => {
@@ -78,6 +82,7 @@ export function startKeys(): void {
   addEventListener("keydown", onKey, true);
   addEventListener("keyup", onKey, true);
   addEventListener("blur", releaseAll);
+  addEventListener("focusin", (e) => { if (ownsKeys(e.target)) releaseAll(); });
   document.addEventListener("visibilitychange", () => { if (document.hidden) releaseAll(); });
   addEventListener("pagehide", releaseAll);
   setInterval(() => send({ type: "heartbeat" }), HEARTBEAT_MS);

@@ -23,6 +23,8 @@ export const layout = {
 };
 
 const rect = (e: Element | null): DOMRect | null => (e ? e.getBoundingClientRect() : null);
+// The 3D view's width: the window's, less the code view's when it is open (codeview.ts narrows viser's root).
+const viewWidth = (): number => document.getElementById("root")?.clientWidth || window.innerWidth;
 const panelEl = (): Element | null => document.querySelector('[data-testid="floating-panel"]');
 
 // Minimise the panel when the page opens narrow, or is made narrow; what the student does with
@@ -30,7 +32,7 @@ const panelEl = (): Element | null => document.querySelector('[data-testid="floa
 // the panel is a strip.
 let wantStrip = false, clickedAt = -Infinity;
 const collapsePanelIfNarrow = (): void => {
-  const w = window.innerWidth;
+  const w = viewWidth();
   if (!panelEl() || !scene.ready) return;  // viser rebuilds its panel when it connects
   if (w < COLLAPSE_BELOW_PX && (layout.lastWidth === null || layout.lastWidth >= COLLAPSE_BELOW_PX)) wantStrip = true;
   layout.lastWidth = w;
@@ -79,7 +81,7 @@ interface Fit { r: Region; width: number; height: number }
 const placeHelp = (columnRight: number): void => {
   const help = document.getElementById("teleop-help");
   if (!help || help.hidden) return;
-  const W = window.innerWidth, H = window.innerHeight;
+  const W = viewWidth(), H = window.innerHeight;
   const panel = rect(panelEl());
   const left = columnRight + MARGIN;
   const regions: Region[] = [{ x0: left, x1: W - MARGIN, y0: MARGIN, y1: H - MARGIN }];

@@ -1,11 +1,13 @@
 // The lab page's script, injected into viser's own page before its scripts (server: the page's
 // routes). Key capture first: it must see keys before viser does. Then the pose stream, the
 // setpoint prediction, the scene driver (views, follow), the drawn answer to a key, the drawing
-// quality, the HUD, the tools link, and the layout of these overlays.
+// quality, the HUD, the tools link, the layout of these overlays, and the code view's tab (its
+// editor loads as a bundle of its own when first opened).
 //
 // The modules share their state through imports. window.__teleop exposes the same objects to
 // the browser tests and benches (bench/teleop_latency.py), and to a curious student's console.
 import { answer, startAnswer } from "./answer";
+import { codeview, startCodeView } from "./codeview";
 import { hud, startHud } from "./hud";
 import { keys, startKeys } from "./keys";
 import { layout, startLayout } from "./layout";
@@ -15,7 +17,7 @@ import { predict, startPredict } from "./predict";
 import { quality, startQuality } from "./quality";
 import { scene, startScene } from "./scene";
 
-const teleop = { keys, poses, predict, scene, answer, quality, hud, layout };
+const teleop = { keys, poses, predict, scene, answer, quality, hud, layout, codeview };
 declare global {
   interface Window { __teleop?: typeof teleop }
 }
@@ -29,4 +31,5 @@ startQuality();
 startHud();
 startNav();
 startLayout();
+startCodeView();
 window.__teleop = teleop;

@@ -1,0 +1,87 @@
+// The workspace's REST routes and the run routes, as the page calls them (same origin: the
+// token, when there is one, travels in its cookie). Every answer that is not a success becomes an
+// ApiError carrying the status and the server's own words.
+
+export interface Entry { path: string; kind: "file" | "dir"; size: number; etag: string | null }
+export interface Tree { version: string; entries: Entry[] }
+export interface FileText { path: string; text: string; etag: string }
+export interface Saved { path: string; etag: string; size: number }
+export interface Template { name: string; title: string; description: string; path: string; text: string }
+export interface PackageRequest {
+  name: string;
+  build_type: "ament_python" | "ament_cmake";
+  node_name: string | null;
+  dependencies: string[];
+  description: string | null;
+  license: string | null;
+}
+export interface PackageCreated { name: string; path: string; files: string[] }
+export interface LaunchGroup { id: string; [field: string]: unknown }
+
+/** A refused or failed request: its HTTP status (0: no answer at all) and what the server said. */
+export class ApiError extends Error {
+  constructor(readonly status: number, readonly detail: string, readonly body: unknown = null) {
+    super(status ? `${status}: ${detail}` : detail);
+  }
+}
+
+const detailOf = (body: unknown, fallback: string): string => {
+  if (body && typeof body === "object" && "detail" in body) {
+    const detail = body.detail;
+    if (typeof detail === "string") return detail;
+    if (Array.isArray(detail)) {
+      return detail.map((d) => (d && typeof d === "object" && "msg" in d ? String((d as { msg: unknown }).msg) : JSON.stringify(d))).join("; ");
+    }
+    return JSON.stringify(detail);
+  }
+  return fallback;
+};
+
+async function call<T>(method: string, url: string, init: RequestInit = {}): Promise<T> {
+  let response: Response;
+  try {
+    response = await fetch(url, { ...init, method, credentials: "same-origin", cache: "no-store" });
+  } catch (exc) {
+    throw new ApiError(0, `no answer from the server (${String(exc)})`);
+  }
+  const text = await response.text();
+  let body: unknown;
+  try { body = text ? JSON.parse(text) : null; } catch { body = text; }
+  if (!response.ok) throw new ApiError(response.status, detailOf(body, text || response.statusText), body);
+  return body as T;
+}
+
+const json = (body: unknown, headers: Record<string, string> = {}): RequestInit => ({
+  body: JSON.stringify(body), headers: { "content-type": "application/json", ...headers },
+});
+
+/** A workspace path in a URL: each segment escaped, the slashes kept. */
+export const fileUrl = (path: string): string =>
+  "/api/workspace/files/" + path.split("/").map(encodeURIComponent).join("/");
+
+export const workspace = {
+  tree: (): Promise<Tree> => call("GET", "/api/workspace/files"),
+  read: (path: string): Promise<FileText> => call("GET", fileUrl(path)),
+  /** Save over ``etag`` (the version this page last saw); null: create, refused if it exists. */
+  write: (path: string, text: string, etag: string | null): Promise<Saved> =>
+    call("PUT", fileUrl(path), json({ text }, etag === null ? { "If-None-Match": "*" } : { "If-Match": etag })),
+  remove: (path: string): Promise<{ path: string; deleted: number }> => call("DELETE", fileUrl(path)),
+  rename: (source: string, target: string): Promise<{ path: string }> =>
+    call("POST", "/api/workspace/rename", json({ source, target })),
+  createPackage: (request: PackageRequest): Promise<PackageCreated> =>
+    call("POST", "/api/workspace/packages", json(request)),
+  templates: (): Promise<Template[]> => call("GET", "/api/workspace/templates"),
+  archiveUrl: "/api/workspace/archive",
+  upload: (zip: Blob): Promise<{ written: string[] }> =>
+    call("POST", "/api/workspace/archive", { body: zip, headers: { "content-type": "application/zip" } }),
+};
+
+export const runs = {
+  run: (pkg: string, executable: string): Promise<LaunchGroup> =>
+    call("POST", "/api/run", json({ package: pkg, executable })),
+  launch: (pkg: string, file: string): Promise<LaunchGroup> =>
+    call("POST", "/api/launch", json({ package: pkg, file, args: {} })),
+  stop: (id: string): Promise<LaunchGroup> => call("DELETE", `/api/launches/${encodeURIComponent(id)}`),
+  outputSocket: (id: string): WebSocket =>
+    new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/ws/launches/${encodeURIComponent(id)}/output`),
+};
