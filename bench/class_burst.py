@@ -110,9 +110,14 @@ def burst(server: LiveServer, tokens: dict[str, str], per_world: int, timeout_s:
     try:
         pending = dict(wanted)
         joined_at: list[float] = []
+        unanswered = 0
         while pending and time.monotonic() - t0 < timeout_s:
             for w in list(pending):
-                listed = {n["name"] for n in get(server, tokens[w], "/api/nodes")}
+                try:
+                    listed = {n["name"] for n in get(server, tokens[w], "/api/nodes")}
+                except httpx.TimeoutException:  # a starved server: not yet, and counted
+                    unanswered += 1
+                    continue
                 if pending[w] <= listed:
                     del pending[w]
                     joined_at.append(time.monotonic() - t0)
@@ -133,6 +138,7 @@ def burst(server: LiveServer, tokens: dict[str, str], per_world: int, timeout_s:
         "nodes": len(runs),
         "all_joined_s": round(all_joined_s, 1) if all_joined_s is not None else None,
         "not_joined_worlds": sorted(pending),
+        "node_lists_unanswered_in_60_s": unanswered,
         "ros2lab_exited_early": exited,
         "worlds_joined_s": {"median": round(statistics.median(joined_at), 1)} if joined_at else None,
         "dynamics_hz": {"median": round(statistics.median(rates), 1), "lowest": round(rates[0], 1)},

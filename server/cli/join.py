@@ -2,7 +2,8 @@
 ``ros2lab env`` do, with a bounded wait.
 
 A lab that does not answer (nothing listens, or it accepts and never replies, or it answers 5xx)
-is asked again with a growing pause, for at most ``wait_s`` seconds in all; then one line says
+is asked again with a growing pause, for at most ``wait_s`` seconds in all (one request may take
+all that is left: a saturated lab answers slowly, and that answer is good); then one line says
 so and the command ends non-zero. Nothing falls back to another router or domain: a node started
 anyway would join a graph nobody watches. A lab that answers "not yet" (429 with
 ``Retry-After``: too many node processes starting at once on it, see api/join_pacing.py) is asked
@@ -24,7 +25,6 @@ from .client import ApiError, CliError, LabClient, NoServerError
 JOIN_PATH = "/api/zenoh/join"
 WAIT_S = 20.0  # for a lab that does not answer
 QUEUE_S = 300.0  # for a lab that answers "not yet"
-ATTEMPT_S = 5.0  # one request's own bound
 FIRST_PAUSE_S = 0.25
 MAX_PAUSE_S = 4.0
 NOTE_AFTER_S = 5.0  # a wait this long is said once on stderr
@@ -60,7 +60,7 @@ def join_graph(client: LabClient, pacing: Pacing | None = None, *, start: bool =
         attempted = pacing.clock()
         bound = pacing.wait_s - (attempted - unanswered_since if unanswered_since is not None else 0.0)
         try:
-            timeout_s = max(0.1, min(ATTEMPT_S, bound))
+            timeout_s = max(0.1, bound)  # a slow answer (a saturated lab) is an answer: wait for it
             answer: dict[str, Any] = client.get(JOIN_PATH, {"start": "true"} if start else None, timeout_s)
             return answer
         except ApiError as exc:
