@@ -1,10 +1,14 @@
 // The lab page's script, injected into viser's own page before its scripts (server: the page's
 // routes). Key capture first: it must see keys before viser does. Then the pose stream, the
 // setpoint prediction, the scene driver (views, follow), the drawn answer to a key, the drawing
-// quality, the HUD, the tools link, and the layout of these overlays.
+// quality, the HUD, the tools link, the lab's guide (web/src/guide: checkpoints, answers, the
+// view's picture for checkpoint 2), and the layout of these overlays.
 //
 // The modules share their state through imports. window.__teleop exposes the same objects to
 // the browser tests and benches (bench/teleop_latency.py), and to a curious student's console.
+import { capture, startCapture } from "../guide/capture";
+import { guide, startGuide } from "../guide/panel";
+import { progress, startProgress } from "../guide/progress";
 import { answer, startAnswer } from "./answer";
 import { hud, startHud } from "./hud";
 import { keys, startKeys } from "./keys";
@@ -15,7 +19,7 @@ import { predict, startPredict } from "./predict";
 import { quality, startQuality } from "./quality";
 import { scene, startScene } from "./scene";
 
-const teleop = { keys, poses, predict, scene, answer, quality, hud, layout };
+const teleop = { keys, poses, predict, scene, answer, quality, hud, layout, guide: { panel: guide, progress, capture } };
 declare global {
   interface Window { __teleop?: typeof teleop }
 }
@@ -28,5 +32,8 @@ startAnswer();
 startQuality();
 startHud();
 startNav();
+startGuide();
+startProgress();
+startCapture();
 startLayout();
 window.__teleop = teleop;
