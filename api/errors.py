@@ -31,6 +31,12 @@ from server.bus import (
     UnknownServiceError,
     UnknownTopicError,
 )  # fmt: skip
+from server.checkpoints.progress import (
+    NotPngError,
+    TooLargeError,
+    UnknownCheckpointError,
+    UnknownQuestionError,
+)
 from server.classroom import ClassroomError
 from server.close_codes import CloseCode as CloseCode  # where the routes import it from
 from server.launch.description import LaunchFileError
@@ -62,6 +68,10 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (LimitExceededError, status.HTTP_429_TOO_MANY_REQUESTS),
     (ServiceTimeoutError, status.HTTP_504_GATEWAY_TIMEOUT),
     (BodyTooLarge, status.HTTP_413_CONTENT_TOO_LARGE),
+    (TooLargeError, status.HTTP_413_CONTENT_TOO_LARGE),
+    (UnknownQuestionError, status.HTTP_404_NOT_FOUND),
+    (UnknownCheckpointError, status.HTTP_404_NOT_FOUND),
+    (NotPngError, status.HTTP_422_UNPROCESSABLE_CONTENT),
     (InvalidNameError, status.HTTP_422_UNPROCESSABLE_CONTENT),
     (InvalidQoSError, status.HTTP_422_UNPROCESSABLE_CONTENT),
     (MessageError, status.HTTP_422_UNPROCESSABLE_CONTENT),

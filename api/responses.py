@@ -35,7 +35,8 @@ _DESCRIPTIONS = {
     "or no Zenoh graph",
     409: "the topic carries another type, the thing was destroyed, the bag exists or is still "
     "recording, or the name is taken",
-    413: "the body is larger than the limit (64 KiB)",
+    413: "the body is larger than the limit (64 KiB; a checkpoint's capture 2 MiB, a report to verify "
+    "8 MiB), or an answer over 8 KiB",
     421: "the Host header is not a name of this server",
     422: "a field, a number or a name is invalid (the detail names it)",
     429: "a limit is reached (publishers, launches, topics, recordings, playbacks, worlds in a class, "

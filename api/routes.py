@@ -4,6 +4,7 @@ from fastapi import APIRouter
 
 from api import (
     bag,
+    checkpoints,
     introspection,
     lab_routes,
     launch_routes,
@@ -32,7 +33,9 @@ def build_router(*, classroom: bool = False) -> APIRouter:
         ws_keys,
         bag,
         rosbridge,
+        checkpoints,
     ):
         router.include_router(module.router)
     router.include_router(classroom_routes.router, include_in_schema=classroom)
+    router.include_router(checkpoints.class_router, include_in_schema=classroom)
     return router

@@ -9,6 +9,7 @@ which the bridges' guarded fronts apply too.
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Iterable
 
 from starlette.exceptions import HTTPException
@@ -31,12 +32,21 @@ class GuardMiddleware:
     """Host check for everything; Origin check for WebSockets and writes; a cap on body size."""
 
     def __init__(
-        self, app: ASGIApp, accepted_hosts: Iterable[str], allowed_origins: Iterable[str], max_body_bytes: int
+        self,
+        app: ASGIApp,
+        accepted_hosts: Iterable[str],
+        allowed_origins: Iterable[str],
+        max_body_bytes: int,
+        larger: Iterable[tuple[re.Pattern[str], int]] = (),
     ) -> None:
         self.app = app
         self.accepted_hosts = frozenset(accepted_hosts)
         self.allowed_origins = frozenset(allowed_origins)
         self.max_body_bytes = max_body_bytes
+        self.larger = tuple(larger)  # (a path, matched whole; its own limit): an image, a report
+
+    def limit_for(self, path: str) -> int:
+        return next((limit for pattern, limit in self.larger if pattern.fullmatch(path)), self.max_body_bytes)
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] not in ("http", "websocket"):
@@ -48,21 +58,22 @@ class GuardMiddleware:
         if cross_site and (scope["type"] == "websocket" or scope["method"] not in SAFE_METHODS):
             return await self._refuse(scope, send, 403, "cross-site origin refused")
         if scope["type"] == "http" and scope["method"] not in SAFE_METHODS:
+            limit = self.limit_for(scope["path"])
             length = _header(scope, b"content-length")
-            if length is not None and length.isdigit() and int(length) > self.max_body_bytes:
-                return await self._refuse(scope, send, 413, f"body larger than {self.max_body_bytes} bytes")
-            receive = self._bounded(receive)
+            if length is not None and length.isdigit() and int(length) > limit:
+                return await self._refuse(scope, send, 413, f"body larger than {limit} bytes")
+            receive = self._bounded(receive, limit)
         await self.app(scope, receive, send)
 
-    def _bounded(self, receive: Receive) -> Receive:
+    def _bounded(self, receive: Receive, limit: int) -> Receive:
         seen = 0
 
         async def bounded() -> Message:
             nonlocal seen
             message = await receive()
             seen += len(message.get("body", b""))
-            if seen > self.max_body_bytes:
-                raise BodyTooLarge(self.max_body_bytes)
+            if seen > limit:
+                raise BodyTooLarge(limit)
             return message
 
         return bounded

@@ -10,6 +10,7 @@ from fastapi import FastAPI
 from fastapi.staticfiles import StaticFiles
 
 from api.canonical_path import CanonicalPathMiddleware
+from api.checkpoints import LARGE_BODIES
 from api.errors import ErrorMiddleware, register_error_handlers
 from api.openapi import use_token_security
 from api.page import router as page_router
@@ -91,6 +92,7 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         accepted_hosts=settings.listen.accepted_hosts,
         allowed_origins=settings.listen.allowed_origins,
         max_body_bytes=settings.listen.max_body_bytes,
+        larger=LARGE_BODIES,
     )
     app.add_middleware(CanonicalPathMiddleware)
     app.add_middleware(ErrorMiddleware)

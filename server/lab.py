@@ -22,6 +22,9 @@ from server.bus import (
     TopicTypeError,
     UnknownTopicError,
 )
+from server.checkpoints.catalog import load as load_checkpoints
+from server.checkpoints.progress import Progress
+from server.checkpoints.watcher import CheckpointWatch
 from server.devices.deadman import KeyDeadMan
 from server.devices.keyboard import KeyboardDevice
 from server.introspection.merged import topic_views
@@ -49,7 +52,12 @@ if TYPE_CHECKING:
 
 class Lab:
     def __init__(
-        self, settings: Settings, clock: Clock | None = None, *, executors: ExecutorGroup | None = None
+        self,
+        settings: Settings,
+        clock: Clock | None = None,
+        *,
+        executors: ExecutorGroup | None = None,
+        progress: Progress | None = None,
     ) -> None:
         self.settings = settings
         limits = settings.limits
@@ -85,6 +93,11 @@ class Lab:
         self.bags = BagManager(self.bus, settings.lab.bag_dir)  # ros2 bag record / play
         self.launch_groups = LaunchGroups(
             self.launcher, self.packages, limits.max_launch_groups, limits.max_nodes_per_launch
+        )
+        # The checkpoints: ``progress`` is the world's so far (kept across a reset), else a new one.
+        progress = progress or Progress(load_checkpoints(settings.lab.checkpoints))
+        self.checkpoints = CheckpointWatch(
+            self.bus, self.launcher, self.packages, progress, self.remote_graph
         )
         self.stopped = asyncio.Event()  # set by stop(): open WebSockets close, and clients reconnect
 
@@ -123,6 +136,7 @@ class Lab:
             self.display = Display(asyncio.get_running_loop())
             self.bus.devices["display"] = self.display
         started = time.perf_counter()
+        self.checkpoints.start()  # first: it sees the lab's own launch
         self.start_nodes()
         if self.executors is not None:  # a class world's start (a join, a reset) is charged to it
             self.executors.add(self.executor, charge_s=time.perf_counter() - started)
@@ -149,6 +163,7 @@ class Lab:
         self.executor.stop()
         if self._spin_task is not None:
             await self._spin_task
+        self.checkpoints.stop()
         self.publishers.stop_all()
         self.bags.stop_all()
         self.launcher.shutdown()

@@ -93,6 +93,10 @@ class LabSettings(Section):
     # but those that drive the app's devices (the page's keys, the 3D view).
     node_processes: Literal["student", "all"] = "student"
     bag_dir: Path = Path("bags")  # where recordings go, one folder per bag, as ros2 bag writes them
+    # What the server keeps across restarts: the key that signs checkpoint reports.
+    state_dir: Path = Path("state")
+    # Checkpoints a lab adds to the three of this one, as ``package.module:NAME`` (docs/checkpoints.md).
+    checkpoints: tuple[str, ...] = ()
     # The Foxglove WebSocket server's port on the listening host; None: off (``python -m server`` uses 8765).
     foxglove_port: int | None = Field(default=None, ge=0, le=65535)
     # rosbridge on a port of its own too, as rosbridge_server's 9090; None: only at /rosbridge.

@@ -62,10 +62,10 @@ class Publisher:
             )
         lock = self.topic.bus.lock
         if lock is None:
-            reached = self.topic.deliver(msg, handed_over=self.hand_over)
+            reached = self.topic.deliver(msg, handed_over=self.hand_over, source=self)
         else:
             with lock:
-                reached = self.topic.deliver(msg, handed_over=self.hand_over)
+                reached = self.topic.deliver(msg, handed_over=self.hand_over, source=self)
         if self.remote is not None:
             self.remote.put(msg)
         return reached

@@ -54,6 +54,10 @@ class RemoteTopics(Protocol):
         ...
 
 
+# Told of every message a topic delivers, with who sent it: the publishing ``Publisher`` of this
+# process, or the GID of another process's (bytes); None when not known (server/checkpoints).
+Tap = Callable[[Message, object], None]
+
 log = logging.getLogger("bus")
 HZ_WINDOW_MAX = 10_000
 INTERNAL_TOPICS = frozenset({"/rosout", "/parameter_events"})
@@ -114,12 +118,20 @@ class Topic:
         self.publish_count = 0
         # Publish times for `ros2 topic hz`-style rates, kept always: one deque append per message.
         self.publish_times_s: deque[float] = deque(maxlen=HZ_WINDOW_MAX)
+        self.tap: Tap | None = bus.taps.get(name)
 
     @property
     def hidden(self) -> bool:
         return self.name in INTERNAL_TOPICS or is_hidden(self.name)
 
-    def deliver(self, msg: Message, published_s: float | None = None, *, handed_over: bool = False) -> int:
+    def deliver(
+        self,
+        msg: Message,
+        published_s: float | None = None,
+        *,
+        handed_over: bool = False,
+        source: object = None,
+    ) -> int:
         """Queue ``msg`` for every live subscription. ``published_s``: when another process published
         it (its source timestamp), so rates are the publisher's, not this process's arrivals.
 
@@ -127,13 +139,16 @@ class Topic:
         subscription; any other subscription gets a copy of its own, as a message from another
         process would be. ``handed_over``: ``msg`` is new and nobody will change it (a publisher
         that builds a message for every publish, or one decoded from the wire), so it is the snapshot
-        itself; as rclcpp shares one const message among its intra-process subscriptions."""
+        itself; as rclcpp shares one const message among its intra-process subscriptions.
+        ``source``: who published it, for the topic's tap (Bus.set_tap)."""
         now = self.bus.clock.now()
         snapshot = msg if handed_over else msg.copy()
         self.latest = snapshot
         self.latest_time_s = now
         self.publish_count += 1
         self.publish_times_s.append(now if published_s is None else published_s)
+        if self.tap is not None:
+            self.tap(snapshot, source)
         delivered = 0
         ready = self.bus._ready
         for sub in self.subscriptions:
@@ -178,6 +193,7 @@ class Bus:
         self.lock: threading.RLock | None = None
         # Prints a node's log line (level, node name, text); the app logs through Python's logging.
         self.console: Callable[[int, str, str], None] | None = None
+        self.taps: dict[str, Tap] = {}  # by topic name: see set_tap
         self.devices: dict[str, Any] = {}  # hardware the nodes may use: 'keyboard', 'display'
         # A class server's world: its name, which its nodes' log lines carry (None: the lab alone).
         self.label: str | None = None
@@ -246,6 +262,17 @@ class Bus:
         elif topic.msg_type is not msg_type:
             raise TopicTypeError(f"{name} carries {topic.msg_type.TYPE}; {msg_type.TYPE} conflicts with it")
         return topic
+
+    def set_tap(self, name: str, tap: Tap | None) -> None:
+        """Have ``tap`` told of every message topic ``name`` delivers (now or once it exists), with
+        its source; None removes it. One tap a topic: it must be quick and must not raise."""
+        if tap is None:
+            self.taps.pop(name, None)
+        else:
+            self.taps[name] = tap
+        topic = self.topics.get(name)
+        if topic is not None:
+            topic.tap = tap
 
     def known_topics(self) -> dict[str, type[Message]]:
         """Every topic a bridge (Foxglove, rosbridge) can carry: this bus's, and each one only other

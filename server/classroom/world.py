@@ -52,6 +52,10 @@ class World:
     reset_limit: RateLimit | None = None  # a student's resets, besides their writes
     sockets: int = 0  # a student's WebSockets open on it now (api/ws_cap.py)
 
+    def __post_init__(self) -> None:
+        if self.lab is not None:  # its checkpoint report names the student
+            self.lab.checkpoints.progress.student = self.student
+
     def describe(self) -> dict[str, Any]:
         """What the class server knows itself; a worker's world adds what its worker reports."""
         out: dict[str, Any] = {

@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from server.bus import Clock, ExecutorGroup
+from server.checkpoints.progress import Progress
 from server.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
 from server.lab import Lab
 from server.limits import RateLimit
@@ -96,11 +97,16 @@ class WorldLabs:
             resets.take()
 
     async def start(
-        self, name: str, domain_id: int, launch: Launch | None = None, login: Credentials | None = None
+        self,
+        name: str,
+        domain_id: int,
+        launch: Launch | None = None,
+        login: Credentials | None = None,
+        progress: Progress | None = None,
     ) -> Lab:
         """Start world ``name``'s lab in ``domain_id`` (the class's launch unless ``launch``)."""
         settings = self._world_settings(name, domain_id, launch, login)
-        lab = Lab(settings, self.clock, executors=self.executors)
+        lab = Lab(settings, self.clock, executors=self.executors, progress=progress)
         lab.bus.label = name  # its nodes' console lines carry its name (server/console.py)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         lab.bus.devices["simple_sim_physics"] = self.simple_physics
@@ -112,7 +118,8 @@ class WorldLabs:
         assert world.lab is not None
         await world.lab.stop()  # first: the new world takes the same ROS domain on the graph
         launch = world.lab.settings.lab.launch, world.lab.settings.lab.launch_args
-        world.lab = await self.start(world.name, world.domain_id, launch, world.login)
+        progress = world.lab.checkpoints.progress  # what was met stays met
+        world.lab = await self.start(world.name, world.domain_id, launch, world.login, progress)
 
     def _world_settings(
         self, name: str, domain_id: int, launch: Launch | None, login: Credentials | None

@@ -89,6 +89,8 @@ class Launcher:
         self.confined = False  # includes and $(env) kept to the world's own packages (parse_launch)
         self.supervisor = Supervisor(bus, self._on_process_exit)
         self.on_process_start: list[Callable[[ProcessNode], None]] = []
+        # Told of every launch file's nodes once started (server/checkpoints watches launches).
+        self.on_launch: list[Callable[[LaunchDescription, list[LaunchedNode]], None]] = []
 
     def parse(self, path: str | Path, args: Mapping[str, str] | None = None) -> LaunchDescription:
         return parse_launch(path, args, self.packages, confined=self.confined)
@@ -99,6 +101,8 @@ class Launcher:
     def launch(self, description: LaunchDescription) -> list[LaunchedNode]:
         started = [self.start(action) for action in description.nodes]
         self.launched.extend(started)
+        for hook in self.on_launch:
+            hook(description, started)
         return started
 
     def runs_as_process(self, exe: Executable) -> bool:

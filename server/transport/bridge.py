@@ -244,7 +244,7 @@ class ZenohBridge:
             self.stats.no_attachment += 1
             return
         self.inbox.put_sample(
-            topic, (sample.payload.to_bytes(), att.source_timestamp_ns), self._keep.get(topic, 1)
+            topic, (sample.payload.to_bytes(), att.source_timestamp_ns, att.gid), self._keep.get(topic, 1)
         )
 
     def _on_token(self, sample: zenoh.Sample) -> None:
@@ -271,7 +271,7 @@ class ZenohBridge:
             topic = self.bus.topics.get(name)
             if topic is None:
                 continue
-            for payload, stamp_ns in payloads:
+            for payload, stamp_ns, gid in payloads:
                 try:
                     msg = decode(topic.msg_type, payload)
                 except WireError as exc:
@@ -280,7 +280,8 @@ class ZenohBridge:
                     continue
                 self.stats.received += 1
                 published_s = stamp_ns / 1e9 if stamp_ns > 0 else None
-                topic.deliver(msg, published_s, handed_over=True)  # just decoded: nobody else has it
+                # just decoded: nobody else has it; the GID names its publisher (RemoteGraph.publisher)
+                topic.deliver(msg, published_s, handed_over=True, source=gid)
 
     def _warn_on_same_name(self, key: str) -> None:
         """A node of another process took the name of one of ours: say so, as ROS does."""

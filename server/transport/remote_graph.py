@@ -12,7 +12,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from ..msgs.wire import ros_type_name
-from .keys import EntityKind, EntityToken
+from .keys import EntityKind, EntityToken, entity_gid
 
 
 @dataclass(frozen=True)
@@ -45,6 +45,7 @@ class RemoteGraph:
         self.own_zid = own_zid
         self.domain_id = domain_id
         self._tokens: dict[str, EntityToken] = {}
+        self._publishers: dict[bytes, str] = {}  # a publisher's GID (its samples carry it) → its key
         self.version = 0
         self.malformed = 0
         self._labels: dict[str, str] = {}
@@ -62,8 +63,11 @@ class RemoteGraph:
     def apply(self, key: str, alive: bool) -> bool:
         """A token appeared (``alive``) or went; returns whether the graph changed."""
         if not alive:
-            if self._tokens.pop(key, None) is None:
+            gone = self._tokens.pop(key, None)
+            if gone is None:
                 return False
+            if gone.kind is EntityKind.PUBLISHER:
+                self._publishers.pop(entity_gid(key), None)
             self.version += 1
             return True
         token = EntityToken.parse(key)
@@ -73,6 +77,8 @@ class RemoteGraph:
         if token.zid == self.own_zid or token.domain_id != self.domain_id or key in self._tokens:
             return False
         self._tokens[key] = token
+        if token.kind is EntityKind.PUBLISHER:
+            self._publishers[entity_gid(key)] = key
         if token.kind is EntityKind.NODE:
             names = self._seen.setdefault(token.zid, [])
             if token.node_fqn not in names:
@@ -86,10 +92,17 @@ class RemoteGraph:
     def drop_session(self, zid: str) -> bool:
         gone = [k for k, t in self._tokens.items() if t.zid == zid]
         for key in gone:
-            del self._tokens[key]
+            if self._tokens.pop(key).kind is EntityKind.PUBLISHER:
+                self._publishers.pop(entity_gid(key), None)
         if gone:
             self.version += 1
         return bool(gone)
+
+    def publisher(self, gid: bytes) -> tuple[str, str] | None:
+        """The node (fully qualified) and session of the publisher whose samples carry ``gid``."""
+        key = self._publishers.get(gid)
+        token = self._tokens.get(key) if key is not None else None
+        return (token.node_fqn, token.zid) if token is not None else None
 
     def nodes(self) -> list[RemoteNode]:
         return sorted(

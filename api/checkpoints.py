@@ -1,0 +1,159 @@
+"""REST: the world's checkpoints (docs/checkpoints.md): their state for the page's guide, the
+answers, the page's capture, the signed report and its verification; and for a class server's
+instructor the class's table (JSON or CSV) and every report in one zip."""
+
+from __future__ import annotations
+
+import re
+from typing import Annotated, Any, Literal
+
+from fastapi import APIRouter, Depends, Query, Request, Response
+from pydantic import BaseModel, Field
+from starlette.requests import HTTPConnection
+
+from server.checkpoints.class_table import reports_zip, table, table_csv
+from server.checkpoints.report import build, signed_files
+from server.checkpoints.signing import ReportSigner
+from server.checkpoints.view import world_view
+from server.lab import Lab
+
+from .classroom import ClassroomDep, InstructorDep
+from .deps import LabDep, classroom_of, grant_of, lab_of
+from .responses import NOT_FOUND, UNAUTHORIZED, UNPROCESSABLE, responses
+
+router = APIRouter(prefix="/api/checkpoints", tags=["checkpoints"], responses=responses())
+class_router = APIRouter(prefix="/api/classroom/checkpoints", tags=["classroom"])
+
+MAX_CAPTURE_BODY = 2 * 1024 * 1024
+MAX_REPORT_BODY = 8 * 1024 * 1024
+# Bodies larger than the app's limit (a PNG, a report with its pictures): GuardMiddleware's.
+LARGE_BODIES = (
+    (re.compile(r"/api/checkpoints/[A-Za-z0-9_]+/capture"), MAX_CAPTURE_BODY),
+    (re.compile(r"/api/checkpoints/verify"), MAX_REPORT_BODY),
+)
+
+
+class AnswerBody(BaseModel):
+    text: str = Field(description="the answer, at most 8 KiB of UTF-8")
+
+
+class VerifyResult(BaseModel):
+    valid: bool
+    reason: str = Field(description="valid, edited, signed by another server, or not a report")
+    student: str | None
+
+
+def signer(conn: HTTPConnection) -> ReportSigner:
+    """The server's signing key, read (or made) in its state folder on first use."""
+    state = conn.app.state
+    found: ReportSigner | None = getattr(state, "report_signer", None)
+    if found is None:
+        found = state.report_signer = ReportSigner.in_folder(state.settings.lab.state_dir)
+    return found
+
+
+def _world_name(lab: Lab) -> str | None:
+    return lab.bus.label
+
+
+@router.get("", responses=responses(UNAUTHORIZED), response_model=None)
+async def checkpoints(
+    lab: LabDep, since: Annotated[int | None, Query(ge=0)] = None
+) -> dict[str, Any] | Response:
+    """Every checkpoint with its state, time, steps, live progress and evidence; the questions and
+    answers. ``version`` rises on any change: with ``?since=`` it, nothing new is a 204."""
+    watch = lab.checkpoints
+    lines = watch.lines()
+    if since is not None and since == watch.version:
+        return Response(status_code=204)
+    return world_view(watch.progress, lines, watch.version)
+
+
+@router.put("/answers/{question}", responses=responses(UNAUTHORIZED, NOT_FOUND, 413, body=True))
+async def answer(question: str, body: AnswerBody, lab: LabDep) -> dict[str, Any]:
+    """Save the answer to ``question`` (q1, q2, q3, final); over 8 KiB is a 413 and changes nothing."""
+    progress = lab.checkpoints.progress
+    progress.answer(question, body.text)
+    return next(q for q in world_view(progress, {}, 0)["questions"] if q["id"] == question)
+
+
+@router.post("/{name}/capture", responses=responses(UNAUTHORIZED, NOT_FOUND, 413, UNPROCESSABLE))
+async def capture(name: str, request: Request, lab: LabDep) -> dict[str, Any]:
+    """The page's PNG capture of its 3D view (at most 2 MiB), kept as checkpoint ``name``'s picture."""
+    lab.checkpoints.progress.capture(name, await request.body())
+    return {"checkpoint": name, "captured": True}
+
+
+@router.get("/report", responses=responses(UNAUTHORIZED), response_class=Response)
+async def report(request: Request, lab: LabDep, format: Literal["html", "json"] = "html") -> Response:
+    """The signed report to hand in: an HTML page to print, or its JSON."""
+    watch = lab.checkpoints
+    content = build(watch.progress, watch.lines(), _world_name(lab))
+    json_file, page = signed_files(signer(request), content)
+    stem = f"checkpoints-{_world_name(lab) or 'lab'}"
+    media = "application/json" if format == "json" else "text/html; charset=utf-8"
+    return Response(
+        json_file if format == "json" else page,
+        media_type=media,
+        headers={"Content-Disposition": f'attachment; filename="{stem}.{format}"'},
+    )
+
+
+def _may_verify(request: Request) -> None:
+    """Anyone this server lets in: the lab's caller, or on a class server anyone with a token."""
+    classroom = classroom_of(request)
+    if classroom is None:
+        lab_of(request)
+    else:
+        grant_of(request, classroom)
+
+
+@router.post("/verify", responses=responses(UNAUTHORIZED, 413))
+async def verify(request: Request, _: Annotated[None, Depends(_may_verify)]) -> VerifyResult:
+    """Whether a report file (its JSON or its HTML page) is one this server signed, unchanged."""
+    verdict = signer(request).verify(await request.body())
+    return VerifyResult(valid=verdict.valid, reason=verdict.reason, student=verdict.student)
+
+
+# -- the instructor's ------------------------------------------------------------------------------
+def _rows(classroom: ClassroomDep) -> tuple[list[str], list[Any]]:
+    rows = []
+    names: list[str] = []
+    for world in classroom.worlds.values():
+        if world.lab is None:
+            continue  # on a world worker: its table is there (GET /api/checkpoints as that world)
+        watch = world.lab.checkpoints
+        names = names or [c.name for c in watch.progress.checkpoints]
+        rows.append((world.name, watch.progress, watch.lines()))
+    return names, rows
+
+
+@class_router.get("", responses=responses(UNAUTHORIZED, 403), response_model=None)
+async def class_checkpoints(
+    _: InstructorDep, classroom: ClassroomDep, format: Literal["json", "csv"] = "json"
+) -> dict[str, Any] | Response:
+    """Student × checkpoint, with the times each was done, and the answers; ``?format=csv``."""
+    names, rows = _rows(classroom)
+    view = table(names, rows)
+    if format == "csv":
+        return Response(
+            table_csv(view), media_type="text/csv; charset=utf-8",
+            headers={"Content-Disposition": 'attachment; filename="checkpoints.csv"'},
+        )  # fmt: skip
+    return view
+
+
+@class_router.get("/reports", responses=responses(UNAUTHORIZED, 403), response_class=Response)
+async def class_reports(request: Request, _: InstructorDep, classroom: ClassroomDep) -> Response:
+    """Every student's signed report, JSON and HTML, in one zip."""
+    files = []
+    for world in classroom.worlds.values():
+        if world.lab is None:
+            continue
+        watch = world.lab.checkpoints
+        json_file, page = signed_files(signer(request), build(watch.progress, watch.lines(), world.name))
+        files += [(f"{world.name}.json", json_file), (f"{world.name}.html", page)]
+    return Response(
+        reports_zip(files), media_type="application/zip",
+        headers={"Content-Disposition": 'attachment; filename="checkpoint-reports.zip"'},
+    )  # fmt: skip

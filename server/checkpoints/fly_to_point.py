@@ -1,0 +1,121 @@
+"""Checkpoint 2: positions published at 1 Hz fly the drone to (5, 5, 10).
+
+Met when one publisher's last RATE_MESSAGES setpoints at the target came at RATE_HZ (the panel, the
+CLI or REST alike), the newest within STALE_S, and the drone's GPS has stayed within NEAR_M of the
+target for HOLD_S.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import OrderedDict, deque
+
+from .declared import Checkpoint, Evidence, Step
+from .events import Event, Gps, Setpoint
+from .timeline import Timeline, Track
+
+TARGET = (5.0, 5.0, 10.0)
+AT_TARGET_M = 0.05  # a setpoint this close to the target is one "to" it
+RATE_HZ = (0.8, 1.2)
+RATE_MESSAGES = 5
+STALE_S = 2.5  # the publisher's newest setpoint no older than this: it still publishes
+NEAR_M = 0.3
+HOLD_S = 3.0
+MAX_PUBLISHERS = 16  # the publishers whose times are kept (the newest)
+
+
+def _distance(a: tuple[float, float, float], b: tuple[float, float, float]) -> float:
+    return math.dist(a, b)
+
+
+class FlyToPointCheck:
+    def __init__(self) -> None:
+        self.setpoints = Timeline(60)
+        self.track = Track()
+        self._times: OrderedDict[str, deque[float]] = OrderedDict()  # per publisher, at the target
+        self._near_since: float | None = None
+        self._distance_m: float | None = None
+        self._last_s = 0.0
+        self.started = False
+
+    def _rate(self, now_s: float) -> tuple[str, float] | None:
+        """The publisher (and its rate) whose last setpoints to the target came at RATE_HZ."""
+        best: tuple[str, float] | None = None
+        for who, times in self._times.items():
+            if len(times) < RATE_MESSAGES or now_s - times[-1] > STALE_S or times[-1] == times[0]:
+                continue
+            rate = (len(times) - 1) / (times[-1] - times[0])
+            if RATE_HZ[0] <= rate <= RATE_HZ[1]:
+                best = (who, rate)
+        return best
+
+    def _latest_rate(self) -> tuple[int, float | None]:
+        if not self._times:
+            return 0, None
+        times = next(reversed(self._times.values()))
+        if len(times) < 2 or times[-1] == times[0]:
+            return len(times), None
+        return len(times), (len(times) - 1) / (times[-1] - times[0])
+
+    def feed(self, event: Event) -> Evidence | None:
+        if isinstance(event, Setpoint):
+            self.started = True
+            self.setpoints.add(event.t_s, "setpoint", [round(v, 3) for v in event.xyz], event.source)
+            who = event.source.node or event.source.process
+            if _distance(event.xyz, TARGET) <= AT_TARGET_M:
+                times = self._times.pop(who, None) or deque(maxlen=RATE_MESSAGES)
+                times.append(event.t_s)
+                self._times[who] = times  # the newest publisher last
+                while len(self._times) > MAX_PUBLISHERS:
+                    self._times.popitem(last=False)
+            else:
+                self._times.pop(who, None)  # elsewhere: its run of setpoints to the target ends
+        elif isinstance(event, Gps):
+            self.track.add(event.t_s, event.xyz)
+            self._distance_m = _distance(event.xyz, TARGET)
+            if self._distance_m <= NEAR_M:
+                if self._near_since is None:
+                    self._near_since = event.t_s
+            else:
+                self._near_since = None
+        return self.tick(event.t_s)
+
+    def tick(self, now_s: float) -> Evidence | None:
+        self._last_s = now_s
+        near = self._near_since
+        if near is None or now_s - near < HOLD_S:
+            return None
+        rate = self._rate(now_s)
+        if rate is None:
+            return None
+        self._near_since = None  # met: it may be met again, later, with newer evidence
+        return {
+            "target": list(TARGET),
+            "publisher": rate[0],
+            "rate_hz": round(rate[1], 3),
+            "held_s": round(now_s - near, 2),
+            "setpoints": self.setpoints.entries(),
+            "track": self.track.since(now_s - 120.0),
+        }
+
+    def progress(self, now_s: float) -> str:
+        count, rate = self._latest_rate()
+        where = "" if self._distance_m is None else f"; {self._distance_m:.1f} m from (5, 5, 10)"
+        if count == 0:
+            return "publish (5, 5, 10) on /uav/input/position once a second" + where
+        at = f" at {rate:.1f} Hz" if rate is not None else ""
+        return f"{count} positions to (5, 5, 10){at}{where}"
+
+
+CHECKPOINT = Checkpoint(
+    name="fly_to_point",
+    title="Fly the drone to (5, 5, 10) with positions at 1 Hz",
+    steps=(
+        Step("Start the drone's launch.", ("ros2lab launch flightcontroller fly.launch",)),
+        Step("Publish geometry_msgs/Vector3 (5, 5, 10) on /uav/input/position once a second: from "
+             "the page's publisher panel, the CLI or REST.",
+             ('ros2lab topic pub -r 1 /uav/input/position geometry_msgs/msg/Vector3 "{x: 5, y: 5, z: 10}"',)),
+        Step("Keep publishing until the drone has held (5, 5, 10) for 3 s.", ()),
+    ),
+    check=FlyToPointCheck,
+)  # fmt: skip

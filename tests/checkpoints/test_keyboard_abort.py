@@ -1,0 +1,114 @@
+"""Checkpoint 1's check on synthetic events, its clock stepped by hand."""
+
+from __future__ import annotations
+
+from server.checkpoints.events import Abort, CmdVel, Countdown, KeyDown, Source
+from server.checkpoints.keyboard_abort import KEY_A, KeyboardAbortCheck
+
+KEYBOARD = Source("/keyboard")
+STUDENT = Source("/KeyboardManager", "process 4242", student=True)
+LAB_MANAGER = Source("/KeyboardManager")
+BY_HAND = Source("/_rest_api")
+
+
+def countdown(check: KeyboardAbortCheck, start_s: float = 0.0, counts: range = range(10, 5, -1)) -> float:
+    t = start_s
+    for value in counts:
+        assert check.feed(Countdown(t, value)) is None
+        t += 1.0
+    return t
+
+
+def test_keyboard_abort_student_process_aborts_within_a_second_is_done_once_the_rocket_stays() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    assert check.feed(KeyDown(t, KEY_A, KEYBOARD)) is None
+    assert check.feed(Abort(t + 0.3, True, STUDENT)) is None  # not yet: does the rocket stay?
+    assert check.tick(t + 0.9) is None
+    evidence = check.tick(t + 1.4)
+    assert evidence is not None
+    assert evidence["student_node"] == "/KeyboardManager" and evidence["student_process"] == "process 4242"
+    assert evidence["key_to_abort_s"] == 0.3
+    whats = [e["what"] for e in evidence["timeline"]]
+    assert whats.count("countdown") == 5 and "key" in whats and "abort" in whats
+    assert check.tick(t + 5) is None  # met once
+
+
+def test_keyboard_abort_published_by_hand_is_not_done() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    check.feed(Abort(t + 0.2, True, BY_HAND))
+    assert check.tick(t + 3) is None
+    assert "not from a keyboard manager of your workspace" in check.progress(t + 3)
+
+
+def test_keyboard_abort_by_the_labs_own_manager_is_not_done() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    check.feed(Abort(t + 0.1, True, LAB_MANAGER))
+    assert check.tick(t + 3) is None
+
+
+def test_keyboard_abort_after_lift_off_is_not_done() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check, counts=range(3, 0, -1))
+    check.feed(Countdown(t, 0))
+    check.feed(CmdVel(t + 0.1, 2.0))  # lift-off
+    check.feed(KeyDown(t + 1, KEY_A, KEYBOARD))
+    check.feed(Abort(t + 1.2, True, STUDENT))
+    assert check.tick(t + 4) is None
+    assert "lifted off" in check.progress(t + 4)
+
+
+def test_keyboard_abort_lift_off_right_after_the_abort_is_not_done() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    check.feed(Abort(t + 0.2, True, STUDENT))
+    assert check.feed(CmdVel(t + 0.5, 1.0)) is None
+    assert check.tick(t + 3) is None
+
+
+def test_keyboard_abort_later_than_a_second_after_the_key_is_not_done() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    check.feed(Abort(t + 1.5, True, STUDENT))
+    assert check.tick(t + 4) is None
+
+
+def test_keyboard_abort_a_key_published_by_hand_counts_for_nothing() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    check.feed(KeyDown(t, KEY_A, BY_HAND))
+    check.feed(Abort(t + 0.2, True, STUDENT))
+    assert check.tick(t + 3) is None
+
+
+def test_keyboard_abort_false_is_no_abort() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    check.feed(Abort(t + 0.2, False, STUDENT))
+    assert check.tick(t + 3) is None
+
+
+def test_keyboard_abort_a_new_countdown_after_lift_off_allows_it_again() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check, counts=range(2, 0, -1))
+    check.feed(CmdVel(t, 3.0))
+    t = countdown(check, start_s=t + 5, counts=range(10, 7, -1))  # the rocket was reset
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    check.feed(Abort(t + 0.1, True, STUDENT))
+    assert check.tick(t + 1.2) is not None
+
+
+def test_keyboard_abort_before_any_countdown_is_not_done() -> None:
+    check = KeyboardAbortCheck()
+    assert not check.started
+    check.feed(KeyDown(0.0, KEY_A, KEYBOARD))
+    check.feed(Abort(0.1, True, STUDENT))
+    assert check.tick(3.0) is None
+    assert not check.started
