@@ -96,6 +96,11 @@ def build_parser() -> argparse.ArgumentParser:
         help="serve rosbridge on this port too, as rosbridge_server does on 9090 (always at /rosbridge)",
     )  # fmt: skip
     parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
+    parser.add_argument(
+        "--state-dir",
+        default="state",
+        help="what the server keeps across restarts: its report-signing key (default ./state)",
+    )
     # -- a class on one server --
     classroom = parser.add_argument_group("a class on one server")
     classroom.add_argument(
@@ -250,6 +255,7 @@ def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settin
     lab = {
         "launch": args.launch, "launch_args": dict(args.launch_args), "workspace": Path(args.workspace),
         "zenoh": zenoh, "node_processes": args.node_processes, "bag_dir": Path(args.bag_dir),
+        "state_dir": Path(args.state_dir),
         "foxglove_port": None if args.no_foxglove else args.foxglove_port, "rosbridge_port": args.rosbridge_port,
     }  # fmt: skip
     return Settings.model_validate(

@@ -32,6 +32,7 @@ class KeyboardAbortCheck:
         self._key_s: float | None = None
         self._pending: tuple[float, Source] | None = None
         self._note = "start the rocket's launch: the countdown begins"
+        self._counting_note = True  # the line only counts down: nothing else was said in this countdown
         self.started = False
 
     def _counting(self, t_s: float) -> bool:
@@ -46,24 +47,26 @@ class KeyboardAbortCheck:
             ):
                 self._lifted = False  # a new countdown (a reset rocket)
                 self.timeline.clear()
+                self._counting_note = True
             self._count, self._count_s = event.value, event.t_s
             self.timeline.add(event.t_s, "countdown", event.value)
             self.started = True
-            self._note = f"countdown at {event.value} s: press a"
+            if self._counting_note:  # what was said in this countdown stays said until the next
+                self._note = f"countdown at {event.value} s: press a"
         elif isinstance(event, CmdVel) and event.value_mps > 0:
             if not self._lifted:
                 self.timeline.add(event.t_s, "cmd_vel", event.value_mps)
             self._lifted = True
             if self._pending is not None:
-                self._note = "the rocket lifted off after your abort: reset the rocket and try again"
+                self._say("the rocket lifted off after your abort: reset the rocket and try again")
             else:
-                self._note = "the rocket lifted off: reset the rocket and abort it during the countdown"
+                self._say("the rocket lifted off: reset the rocket and abort it during the countdown")
             self._pending = None
         elif isinstance(event, KeyDown) and event.code == KEY_A and from_keyboard(event.source):
             self.timeline.add(event.t_s, "key", "a", event.source)
             if self._counting(event.t_s) and not self._lifted:
                 self._key_s = event.t_s
-                self._note = "a pressed: waiting for /abort_takeoff from your keyboard manager"
+                self._say("a pressed: waiting for /abort_takeoff from your keyboard manager")
         elif isinstance(event, Abort) and event.value:
             self.timeline.add(event.t_s, "abort", True, event.source)
             self._on_abort(event)
@@ -74,21 +77,21 @@ class KeyboardAbortCheck:
             return
         key_s = self._key_s
         if self._lifted:
-            self._note = "the rocket had lifted off: reset the rocket and abort it during the countdown"
+            self._say("the rocket had lifted off: reset the rocket and abort it during the countdown")
         elif not self._counting(event.t_s):
-            self._note = "no countdown running: start (or reset) the rocket and abort during the countdown"
+            self._say("no countdown running: start (or reset) the rocket and abort during the countdown")
         elif key_s is None or not 0 <= event.t_s - key_s <= ABORT_WITHIN_S:
-            self._note = (
+            self._say(
                 f"/abort_takeoff from {event.source.node or 'someone'} without an a pressed just before"
             )
         elif not event.source.student:
-            self._note = (
+            self._say(
                 f"/abort_takeoff came from {event.source.node} in {event.source.process}, not from a "
                 "keyboard manager of your workspace: run yours (ros2lab run) instead of the lab's"
             )
         else:
             self._pending = (event.t_s, event.source)
-            self._note = "aborted: checking that the rocket stays on the pad"
+            self._say("aborted: checking that the rocket stays on the pad")
 
     def tick(self, now_s: float) -> Evidence | None:
         pending = self._pending
@@ -97,7 +100,7 @@ class KeyboardAbortCheck:
         self._pending = None
         key_s = self._key_s if self._key_s is not None else pending[0]
         self._key_s = None
-        self._note = "done: the rocket stayed on the pad"
+        self._say("done: the rocket stayed on the pad")
         return {
             "student_node": pending[1].node,
             "student_process": pending[1].process,
@@ -107,6 +110,9 @@ class KeyboardAbortCheck:
 
     def progress(self, now_s: float) -> str:
         return self._note
+
+    def _say(self, note: str) -> None:
+        self._note, self._counting_note = note, False
 
 
 CHECKPOINT = Checkpoint(

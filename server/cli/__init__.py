@@ -13,10 +13,23 @@ import signal
 import sys
 from types import FrameType
 
-from . import action, bag, env, interface, launch, node, param, pkg, run, service, topic
+from . import action, bag, env, interface, launch, node, param, pkg, report, run, service, topic
 from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
 
-VERBS = ("topic", "node", "service", "param", "action", "launch", "run", "pkg", "interface", "bag", "env")
+VERBS = (
+    "topic",
+    "node",
+    "service",
+    "param",
+    "action",
+    "launch",
+    "run",
+    "pkg",
+    "interface",
+    "bag",
+    "env",
+    "report",
+)
 COLCON_VERB = "colcon"  # not a verb: a student used to ROS types it, and is told it is not needed
 COLCON_HINT = (
     "colcon build and `source install/setup.bash` are not needed here: `ros2lab run PKG EXEC` runs a "
@@ -51,6 +64,7 @@ def build_parser() -> argparse.ArgumentParser:
     interface.add_parser(verbs, common)
     bag.add_parser(verbs, common)
     env.add_parser(verbs, common)
+    report.add_parser(verbs, common)
     return parser
 
 

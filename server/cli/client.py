@@ -108,6 +108,10 @@ class LabClient:
         extra = {"timeout": timeout_s} if timeout_s is not None else {}
         return self._request("POST", path, json=dict(body), **extra)
 
+    def post_file(self, path: str, data: bytes) -> Any:
+        """POST ``data`` as it is (a file's bytes, not JSON)."""
+        return self._request("POST", path, content=data, headers={"content-type": "application/octet-stream"})
+
     def delete(self, path: str) -> Any:
         return self._request("DELETE", path)
 

@@ -112,3 +112,14 @@ def test_keyboard_abort_before_any_countdown_is_not_done() -> None:
     check.feed(Abort(0.1, True, STUDENT))
     assert check.tick(3.0) is None
     assert not check.started
+
+
+def test_keyboard_abort_what_went_wrong_stays_said_while_the_countdown_goes_on() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    check.feed(Abort(t + 0.2, True, BY_HAND))
+    countdown(check, start_s=t + 1, counts=range(4, 0, -1))
+    assert "/_rest_api" in check.progress(t + 5)
+    countdown(check, start_s=t + 10, counts=range(10, 8, -1))  # a new countdown: a new line
+    assert check.progress(t + 12) == "countdown at 9 s: press a"

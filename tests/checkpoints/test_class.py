@@ -1,0 +1,151 @@
+"""A class server through the real app, its worlds on one manual clock: two students at different
+checkpoints in the instructor's table, its CSV and the reports' zip; a reset keeps what was met."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import zipfile
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+from fastapi.testclient import TestClient
+
+from server.app import create_app
+from server.bus import ManualClock
+from server.classroom import ClassServer
+from server.settings import ClassroomSettings, LabSettings, Listening, Settings
+
+CODE = "CHECK7"
+FILE = {"content-type": "application/octet-stream"}
+
+
+@pytest.fixture(scope="module")
+def clock() -> ManualClock:
+    return ManualClock(1_000.0)
+
+
+@pytest.fixture(scope="module")
+def client(clock: ManualClock, tmp_path_factory: pytest.TempPathFactory) -> Iterator[TestClient]:
+    settings = Settings(
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(launch="fly", launch_args={"simple": "true"}, viewer=False,
+                        state_dir=tmp_path_factory.mktemp("state"), bag_dir=tmp_path_factory.mktemp("bags")),
+        classroom=ClassroomSettings(code=CODE, max_worlds=2),
+    )  # fmt: skip
+    with TestClient(create_app(settings, clock)) as test_client:
+        yield test_client
+
+
+def classroom(client: TestClient) -> ClassServer:
+    return client.app.state.classroom  # type: ignore[attr-defined,no-any-return]
+
+
+def join(client: TestClient, name: str) -> dict[str, str]:
+    reply = client.post("/api/classroom/join", json={"name": name, "code": CODE})
+    assert reply.status_code == 201, reply.text
+    client.cookies.clear()
+    return {"Authorization": f"Bearer {reply.json()['token']}"}
+
+
+def advance(client: TestClient, clock: ManualClock, seconds: float) -> None:
+    """Every world's time on together, each timer at its deadline (as the class tests step it)."""
+    labs = [w.lab for w in classroom(client).worlds.values() if w.lab is not None]
+    end = clock.now() + seconds
+
+    def run() -> None:
+        for lab in labs:
+            lab.executor.spin_some()
+        while (deadline := min(lab.executor.next_deadline_s() for lab in labs)) <= end:
+            clock.set(max(deadline, clock.now()))
+            for lab in labs:
+                lab.executor.spin_some()
+        clock.set(max(end, clock.now()))
+        for lab in labs:
+            lab.executor.spin_some()
+
+    assert client.portal is not None
+    client.portal.call(run)
+
+
+def publish_to_target(client: TestClient, who: dict[str, str], rate_hz: float) -> None:
+    body = {"topic": "/uav/input/position", "msg": {"x": 5.0, "y": 5.0, "z": 10.0},
+            "type": "geometry_msgs/msg/Vector3", "rate_hz": rate_hz}  # fmt: skip
+    reply = client.post("/api/publishers", json=body, headers=who)
+    assert reply.status_code == 201, reply.text
+
+
+def cells(view: dict[str, Any], student: str) -> dict[str, Any]:
+    return next(s for s in view["students"] if s["name"] == student)["cells"]
+
+
+def test_two_students_at_different_checkpoints_in_the_table_csv_and_zip(
+    client: TestClient, clock: ManualClock
+) -> None:
+    ada, bob = join(client, "Ada"), join(client, "Bob")
+    teacher = {"Authorization": f"Bearer {classroom(client).instructor_token}"}
+    publish_to_target(client, ada, 1.0)
+    publish_to_target(client, bob, 5.0)
+    assert (
+        client.put(
+            "/api/checkpoints/answers/final", json={"text": "=1+1 one command"}, headers=bob
+        ).status_code
+        == 200
+    )
+    for _ in range(8):  # the drones fly to (5, 5, 10) and hold there
+        advance(client, clock, 5.0)
+    assert client.get("/api/checkpoints", headers=ada).json()["checkpoints"][1]["state"] == "done"
+
+    refused = client.get("/api/classroom/checkpoints", headers=ada)
+    assert refused.status_code == 403  # a student does not see the class
+    view = client.get("/api/classroom/checkpoints", headers=teacher).json()
+    assert view["checkpoints"] == ["keyboard_abort", "fly_to_point", "launch_and_keys"]
+    assert (
+        cells(view, "Ada")["fly_to_point"]["state"] == "done"
+        and cells(view, "Ada")["fly_to_point"]["done_at"]
+    )
+    assert cells(view, "Bob")["fly_to_point"] == {"state": "in_progress", "done_at": None}
+    assert next(s for s in view["students"] if s["name"] == "Bob")["answers"]["final"] == "=1+1 one command"
+
+    table = client.get("/api/classroom/checkpoints", params={"format": "csv"}, headers=teacher)
+    assert table.headers["content-type"].startswith("text/csv")
+    rows = {r["student"]: r for r in csv.DictReader(io.StringIO(table.text))}
+    assert rows["Ada"]["fly_to_point state"] == "done" and rows["Ada"]["fly_to_point done at"]
+    assert rows["Bob"]["fly_to_point state"] == "in_progress" and rows["Bob"]["fly_to_point done at"] == ""
+    assert rows["Bob"]["final"] == "'=1+1 one command"  # never a formula in a spreadsheet
+
+    zipped = client.get("/api/classroom/checkpoints/reports", headers=teacher)
+    with zipfile.ZipFile(io.BytesIO(zipped.content)) as archive:
+        assert sorted(archive.namelist()) == ["ada.html", "ada.json", "bob.html", "bob.json"]
+        ada_report = archive.read("ada.json")
+        bob_page = archive.read("bob.html")
+    assert json.loads(ada_report)["student"] == "Ada"
+    for report in (ada_report, bob_page):
+        verdict = client.post("/api/checkpoints/verify", content=report, headers={**teacher, **FILE}).json()
+        assert verdict["valid"] is True, verdict
+    assert (
+        client.post("/api/checkpoints/verify", content=ada_report, headers={**bob, **FILE}).json()["student"]
+        == "Ada"
+    )
+
+    # A reset starts Ada's world over; what she met stays met.
+    assert client.post("/api/classroom/worlds/ada/reset", headers=ada).status_code == 200
+    advance(client, clock, 1.0)
+    after = client.get("/api/classroom/checkpoints", headers=teacher).json()
+    assert cells(after, "Ada")["fly_to_point"] == cells(view, "Ada")["fly_to_point"]
+    assert client.get("/api/checkpoints", headers=ada).json()["checkpoints"][1]["evidence"]["rate_hz"] > 0
+
+
+def test_class_routes_answer_404_on_a_lab_alone(tmp_path: Path) -> None:
+    settings = Settings(
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(
+            launch="rocket", launch_args={"start_delay": "3600"}, viewer=False, state_dir=tmp_path
+        ),
+    )
+    with TestClient(create_app(settings)) as lab:
+        assert lab.get("/api/classroom/checkpoints").status_code == 404
+        assert lab.get("/api/checkpoints").status_code == 200
