@@ -17,6 +17,8 @@ export interface Checkpoint {
   steps: Step[];
   progress: string;  // one short live line
   evidence: Record<string, unknown> | null;
+  times_done?: number;
+  has_capture?: boolean;  // the server keeps a picture the page sent
 }
 
 export interface Question {
@@ -33,7 +35,12 @@ export interface Checkpoints { checkpoints: Checkpoint[]; questions: Question[];
 export interface Verdict { valid: boolean; reason: string; student: string | null }
 
 export interface ClassCell { state: CheckState; done_at: string | null }
-export interface ClassStudent { name: string; cells: Record<string, ClassCell | undefined>; answers: Record<string, string | undefined> }
+export interface ClassStudent {
+  name: string;
+  world?: string;
+  cells: Record<string, ClassCell | undefined>;
+  answers: Record<string, string | undefined>;
+}
 export interface ClassCheckpoints { checkpoints: string[]; students: ClassStudent[] }
 
 /** The server refuses a longer answer (413), counted in UTF-8 bytes. */

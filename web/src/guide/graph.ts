@@ -6,6 +6,7 @@ import type { GraphOut } from "../protocol.gen";
 import { drawGraph, sv, viewOf } from "../tools/drawing";
 
 const REFRESH_MS = 2000;
+const MIN_H_PX = 90, MAX_H_PX = 240;  // the drawing's height follows its shape, within these
 const MARKER_ID = "guide-graph-arrow";
 
 export interface GraphFigure { el: HTMLElement; version: () => number | null; refresh: () => Promise<void> }
@@ -32,6 +33,8 @@ export function graphFigure(): GraphFigure {
       if (graph.version === version) return;
       const box = drawGraph(svg, viewOf(graph, "nodes"), MARKER_ID);
       svg.setAttribute("viewBox", `${box.x} ${box.y} ${box.w} ${box.h}`);
+      const tall = (el.clientWidth * box.h) / Math.max(box.w, 1);
+      svg.style.height = `${Math.round(Math.min(MAX_H_PX, Math.max(MIN_H_PX, tall)))}px`;
       version = graph.version;
       svg.dataset.version = String(version);
     } catch { /* the next refresh tries again */ } finally {

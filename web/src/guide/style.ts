@@ -39,7 +39,7 @@ export const GUIDE_CSS = `
 #teleop-guide .foot { display: flex; justify-content: space-between; gap: 6px; font-size: 11px; opacity: 0.8; }
 #teleop-guide .foot .over, #teleop-guide [data-state="failed"] .saved, #teleop-guide [data-state="too_long"] .saved { color: #b00; opacity: 1; }
 #teleop-guide figure.guide-graph { margin: 4px 0; }
-#teleop-guide figure.guide-graph svg { display: block; width: 100%; height: 150px; border: 1px solid rgba(0, 0, 0, 0.12); border-radius: 4px; background: #fafafa; }
+#teleop-guide figure.guide-graph svg { display: block; width: 100%; height: 120px; border: 1px solid rgba(0, 0, 0, 0.12); border-radius: 4px; background: #fafafa; }
 #teleop-guide figcaption { font-size: 11px; opacity: 0.8; }
 #teleop-guide .graph-node ellipse { fill: #dbe8fb; stroke: #1f5fbf; stroke-width: 1.5; }
 #teleop-guide .graph-node.crashed ellipse { fill: #fbdada; stroke: #c33; }
