@@ -11,10 +11,12 @@ from fastapi import APIRouter, Depends, Query, Request, Response
 from pydantic import BaseModel, Field
 from starlette.requests import HTTPConnection
 
+from server.checkpoints.catalog import load
 from server.checkpoints.class_table import reports_zip, table, table_csv
 from server.checkpoints.report import build, signed_files
 from server.checkpoints.signing import ReportSigner
 from server.checkpoints.view import world_view
+from server.classroom import ClassServer
 from server.lab import Lab
 
 from .classroom import ClassroomDep, InstructorDep
@@ -56,7 +58,14 @@ def _world_name(lab: Lab) -> str | None:
     return lab.bus.label
 
 
-@router.get("", responses=responses(UNAUTHORIZED), response_model=None)
+@router.get(
+    "",
+    responses={
+        **responses(UNAUTHORIZED),
+        204: {"description": "nothing changed since the version `since` names"},
+    },
+    response_model=None,
+)
 async def checkpoints(
     lab: LabDep, since: Annotated[int | None, Query(ge=0)] = None
 ) -> dict[str, Any] | Response:
@@ -84,7 +93,14 @@ async def capture(name: str, request: Request, lab: LabDep) -> dict[str, Any]:
     return {"checkpoint": name, "captured": True}
 
 
-@router.get("/report", responses=responses(UNAUTHORIZED), response_class=Response)
+@router.get(
+    "/report",
+    responses={
+        **responses(UNAUTHORIZED),
+        200: {"description": "the signed report", "content": {"text/html": {}, "application/json": {}}},
+    },
+    response_class=Response,
+)
 async def report(request: Request, lab: LabDep, format: Literal["html", "json"] = "html") -> Response:
     """The signed report to hand in: an HTML page to print, or its JSON."""
     watch = lab.checkpoints
@@ -116,25 +132,39 @@ async def verify(request: Request, _: Annotated[None, Depends(_may_verify)]) -> 
 
 
 # -- the instructor's ------------------------------------------------------------------------------
-def _rows(classroom: ClassroomDep) -> tuple[list[str], list[Any]]:
+def _rows(request: Request, classroom: ClassroomDep) -> tuple[list[str], list[Any]]:
+    names = [c.name for c in load(request.app.state.settings.lab.checkpoints)]
     rows = []
-    names: list[str] = []
     for world in classroom.worlds.values():
         if world.lab is None:
-            continue  # on a world worker: its table is there (GET /api/checkpoints as that world)
+            continue  # on a world worker: its worker's table has it
         watch = world.lab.checkpoints
-        names = names or [c.name for c in watch.progress.checkpoints]
         rows.append((world.name, watch.progress, watch.lines()))
     return names, rows
 
 
-@class_router.get("", responses=responses(UNAUTHORIZED, 403), response_model=None)
+@class_router.get(
+    "",
+    responses={
+        **responses(UNAUTHORIZED, 403),
+        200: {
+            "description": "the table; ?format=csv as CSV",
+            "content": {"application/json": {}, "text/csv": {}},
+        },
+    },
+    response_model=None,
+)
 async def class_checkpoints(
-    _: InstructorDep, classroom: ClassroomDep, format: Literal["json", "csv"] = "json"
+    request: Request, _: InstructorDep, classroom: ClassroomDep, format: Literal["json", "csv"] = "json"
 ) -> dict[str, Any] | Response:
     """Student × checkpoint, with the times each was done, and the answers; ``?format=csv``."""
-    names, rows = _rows(classroom)
+    names, rows = _rows(request, classroom)
     view = table(names, rows)
+    if isinstance(classroom, ClassServer):  # the worlds its world workers host, as they keep them
+        remote, errors = await classroom.worker_checkpoints()
+        view["students"] += remote
+        if errors:
+            view["worker_errors"] = errors
     if format == "csv":
         return Response(
             table_csv(view), media_type="text/csv; charset=utf-8",
@@ -143,7 +173,14 @@ async def class_checkpoints(
     return view
 
 
-@class_router.get("/reports", responses=responses(UNAUTHORIZED, 403), response_class=Response)
+@class_router.get(
+    "/reports",
+    responses={
+        **responses(UNAUTHORIZED, 403),
+        200: {"description": "a zip", "content": {"application/zip": {}}},
+    },
+    response_class=Response,
+)
 async def class_reports(request: Request, _: InstructorDep, classroom: ClassroomDep) -> Response:
     """Every student's signed report, JSON and HTML, in one zip."""
     files = []

@@ -45,8 +45,8 @@ def table_csv(view: dict[str, Any]) -> str:
     )
     for s in view["students"]:
         writer.writerow([
-            _cell(s["name"]), s["world"], *[s["cells"][n]["state"] for n in names],
-            *[s["cells"][n]["done_at"] or "" for n in names], *[_cell(s["answers"].get(q, "")) for q in qids],
+            _cell(s["name"]), s["world"], *[s["cells"].get(n, {}).get("state", "") for n in names],
+            *[s["cells"].get(n, {}).get("done_at") or "" for n in names], *[_cell(s["answers"].get(q, "")) for q in qids],
         ])  # fmt: skip
     return out.getvalue()
 

@@ -33,6 +33,8 @@ class KeyboardAbortCheck:
         self._pending: tuple[float, Source] | None = None
         self._note = "start the rocket's launch: the countdown begins"
         self._counting_note = True  # the line only counts down: nothing else was said in this countdown
+        self._judged = False  # an abort was judged in this countdown
+        self._aborters: set[str] = set()  # nodes whose abort the timeline has since the last key
         self.started = False
 
     def _counting(self, t_s: float) -> bool:
@@ -48,9 +50,10 @@ class KeyboardAbortCheck:
                 self._lifted = False  # a new countdown (a reset rocket)
                 self.timeline.clear()
                 self._counting_note = True
+                self._judged = False
+                self._aborters.clear()
             self._count, self._count_s = event.value, event.t_s
             self.timeline.add(event.t_s, "countdown", event.value)
-            self.started = True
             if self._counting_note:  # what was said in this countdown stays said until the next
                 self._note = f"countdown at {event.value} s: press a"
         elif isinstance(event, CmdVel) and event.value_mps > 0:
@@ -63,18 +66,26 @@ class KeyboardAbortCheck:
                 self._say("the rocket lifted off: reset the rocket and abort it during the countdown")
             self._pending = None
         elif isinstance(event, KeyDown) and event.code == KEY_A and from_keyboard(event.source):
+            self.started = True  # the student's own doing (a countdown alone is the lab's)
             self.timeline.add(event.t_s, "key", "a", event.source)
+            self._aborters.clear()
             if self._counting(event.t_s) and not self._lifted:
                 self._key_s = event.t_s
                 self._say("a pressed: waiting for /abort_takeoff from your keyboard manager")
         elif isinstance(event, Abort) and event.value:
-            self.timeline.add(event.t_s, "abort", True, event.source)
+            self.started = True
+            if event.source.node not in self._aborters:  # a manager may repeat its abort: once is told
+                self._aborters.add(event.source.node)
+                self.timeline.add(event.t_s, "abort", True, event.source)
             self._on_abort(event)
         return self.tick(event.t_s)
 
     def _on_abort(self, event: Abort) -> None:
         if self._pending is not None:  # the lab's own manager may abort too, after the student's
             return
+        if self._judged and not self._counting(event.t_s):
+            return  # an abort repeated after its countdown: what was said of it stands
+        self._judged = True
         key_s = self._key_s
         if self._lifted:
             self._say("the rocket had lifted off: reset the rocket and abort it during the countdown")

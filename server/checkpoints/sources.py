@@ -54,8 +54,7 @@ class Sources:
             process = entry.process
             if process is None or process.command.zid != zid:
                 continue
-            student = self.student_executable(entry.action.pkg, entry.action.exec)
-            return student, process.label or remote.location(zid)
+            return self.student_executable(entry.action.pkg, entry.action.exec), remote.location(zid)
         return True, remote.location(zid)
 
     def student_executable(self, pkg: str, exe: str) -> bool:

@@ -250,6 +250,10 @@ class ClassServer:
             out.append(mine)
         return out
 
+    async def worker_checkpoints(self) -> tuple[list[dict[str, Any]], dict[str, str]]:
+        """The checkpoint table's rows of the worlds on world workers, as their workers keep them."""
+        return await remote_worlds.checkpoint_rows(self.workers, self.worlds)
+
     async def broadcast_on_workers(self, body: dict[str, Any]) -> tuple[list[str], dict[str, str]]:
         """The instructor's broadcast, published by each world worker in the worlds it hosts."""
         return await remote_worlds.broadcast(self.workers, self.worlds, body)

@@ -3,6 +3,7 @@ checkpoints in the instructor's table, its CSV and the reports' zip; a reset kee
 
 from __future__ import annotations
 
+import asyncio
 import csv
 import io
 import json
@@ -149,3 +150,45 @@ def test_class_routes_answer_404_on_a_lab_alone(tmp_path: Path) -> None:
     with TestClient(create_app(settings)) as lab:
         assert lab.get("/api/classroom/checkpoints").status_code == 404
         assert lab.get("/api/checkpoints").status_code == 200
+
+
+class FakeWorkers:
+    """World workers answering GET /api/classroom/checkpoints with a table, or failing."""
+
+    def __init__(self, answers: dict[str, Any]) -> None:
+        self.answers = answers
+
+    async def checked(
+        self, ref: Any, method: str, path: str, *, world: str | None = None, body: Any = None
+    ) -> Any:
+        assert (method, path) == ("GET", "/api/classroom/checkpoints")
+        answer = self.answers[ref.id]
+        if isinstance(answer, Exception):
+            raise answer
+        return answer
+
+
+def test_worker_rows_are_those_of_the_worlds_each_worker_hosts_for_this_class() -> None:
+    from server.classroom.errors import ClassroomError
+    from server.classroom.remote_worlds import checkpoint_rows
+    from server.classroom.workers import WorkerRef
+    from server.classroom.world import World
+    from server.limits import RateLimit
+
+    def world(name: str, worker: str | None) -> World:
+        ref = WorkerRef(worker, f"http://127.0.0.1:1/{worker}", 1, 4, "t") if worker else None
+        return World(name, name.title(), "id", None, RateLimit(ManualClock(), 1.0, 1), worker=ref)
+
+    row = {
+        "name": "Cy",
+        "world": "cy",
+        "cells": {"fly_to_point": {"state": "done", "done_at": "x"}},
+        "answers": {},
+    }
+    stray = {**row, "name": "Old", "world": "old"}  # a world that worker hosts, not for this class now
+    workers = FakeWorkers(
+        {"w1": {"checkpoints": [], "students": [row, stray]}, "w2": ClassroomError(502, "gone")}
+    )
+    worlds = {"cy": world("cy", "w1"), "dee": world("dee", "w2"), "ada": world("ada", None)}
+    rows, errors = asyncio.run(checkpoint_rows(workers, worlds))  # type: ignore[arg-type]
+    assert rows == [row] and list(errors) == ["w2"] and "gone" in errors["w2"]

@@ -107,11 +107,18 @@ def test_keyboard_abort_a_new_countdown_after_lift_off_allows_it_again() -> None
 
 def test_keyboard_abort_before_any_countdown_is_not_done() -> None:
     check = KeyboardAbortCheck()
-    assert not check.started
     check.feed(KeyDown(0.0, KEY_A, KEYBOARD))
     check.feed(Abort(0.1, True, STUDENT))
     assert check.tick(3.0) is None
-    assert not check.started
+    assert "no countdown running" in check.progress(3.0)
+
+
+def test_keyboard_abort_a_countdown_alone_is_not_started_a_key_is() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    assert not check.started  # the lab counts down by itself
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    assert check.started
 
 
 def test_keyboard_abort_what_went_wrong_stays_said_while_the_countdown_goes_on() -> None:
@@ -123,3 +130,15 @@ def test_keyboard_abort_what_went_wrong_stays_said_while_the_countdown_goes_on()
     assert "/_rest_api" in check.progress(t + 5)
     countdown(check, start_s=t + 10, counts=range(10, 8, -1))  # a new countdown: a new line
     assert check.progress(t + 12) == "countdown at 9 s: press a"
+
+
+def test_keyboard_abort_repeated_by_the_labs_manager_past_the_countdown_keeps_its_reason() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check, counts=range(3, 0, -1))
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    for i in range(40):  # the lab's manager republishes its abort at 10 Hz, past the countdown's end
+        check.feed(Abort(t + 0.1 * i, True, LAB_MANAGER))
+        if i == 5:
+            check.feed(Countdown(t + 0.5, 0))
+    assert "not from a keyboard manager of your workspace" in check.progress(t + 4)
+    assert sum(1 for e in check.timeline.entries() if e["what"] == "abort") == 1

@@ -162,7 +162,8 @@ def test_checkpoint_1_not_with_the_labs_manager_nor_by_hand_nor_after_lift_off_b
     # The lab's own keyboard manager, in the app: it aborts, but it is not the student's.
     lab_run = app.post("/api/run", {"package": "rocketship", "executable": "keyboard_manager.py"}).json()
     restart_countdown(app)
-    wait_for(app, lambda: (press(keys, "a"), abort_seen(app))[1], "the lab's manager to abort")
+    press(keys, "a")  # once: a node inside the app has its subscription already
+    wait_for(app, lambda: abort_seen(app), "the lab's manager to abort")
     wait_for(app, lambda: "not from a keyboard manager of your workspace" in check(app, "keyboard_abort")["progress"],
                  "the check to name the lab's manager")  # fmt: skip
     assert check(app, "keyboard_abort")["state"] != "done"
@@ -253,7 +254,7 @@ def ros2lab(app: App, *args: str) -> subprocess.CompletedProcess[str]:
                           capture_output=True, text=True, timeout=60)  # fmt: skip
 
 
-def test_ros2lab_report_verify_says_valid_edited_or_not_a_report(app: App, tmp_path: Path) -> None:
+def test_ros2lab_report_verify_exits_0_when_valid_and_1_when_edited(app: App, tmp_path: Path) -> None:
     report = httpx.get(app.url + "/api/checkpoints/report", params={"format": "html"}, timeout=10).content
     good = tmp_path / "report.html"
     good.write_bytes(report)
@@ -264,8 +265,3 @@ def test_ros2lab_report_verify_says_valid_edited_or_not_a_report(app: App, tmp_p
     edited.write_bytes(report.replace(b"done", b"d0ne", 1))
     result = ros2lab(app, "report", "verify", str(edited))
     assert result.returncode == 1 and "edited" in result.stdout
-
-    junk = tmp_path / "notes.txt"
-    junk.write_text("my notes")
-    result = ros2lab(app, "report", "verify", str(junk))
-    assert result.returncode == 1 and "not a report" in result.stdout
