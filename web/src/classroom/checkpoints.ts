@@ -27,12 +27,15 @@ function cell(row: HTMLTableRowElement, s: ClassStudent, name: string): void {
   b.dataset.checkpoint = name;
   b.textContent = c.state === "done" && c.done_at ? `${MARK.done} ${time(c.done_at)}` : `${MARK[c.state]} ${c.state.replace("_", " ")}`;
   b.title = `${s.name}: ${name} (open its evidence)`;
-  b.addEventListener("click", () => void openEvidence($<HTMLDialogElement>("evidence"), $("evidence-body"), s.name,
-    s.world ?? s.name, name));
   td.append(b);
 }
 
+// Drawn again only when something in it changed, so that a click never meets a button being replaced.
+let drawn = "";
 function drawTable(t: ClassCheckpoints): void {
+  const key = JSON.stringify([t.checkpoints, t.students.map((s) => [s.name, s.world, s.cells])]);
+  if (key === drawn) return;
+  drawn = key;
   const head = $<HTMLTableRowElement>("checkpoints-head");
   head.replaceChildren(...["Student", ...t.checkpoints].map((n) => Object.assign(document.createElement("th"), { textContent: n })));
   const body = $<HTMLTableSectionElement>("checkpoints-rows");
@@ -40,6 +43,7 @@ function drawTable(t: ClassCheckpoints): void {
   for (const s of t.students) {
     const row = body.insertRow();
     row.dataset.student = s.name;
+    row.dataset.world = s.world ?? s.name;
     row.insertCell().textContent = s.name;
     for (const name of t.checkpoints) cell(row, s, name);
   }
@@ -48,8 +52,9 @@ function drawTable(t: ClassCheckpoints): void {
 function drawAnswers(t: ClassCheckpoints): void {
   const select = $<HTMLSelectElement>("question");
   const ids = [...new Set([...state.questions.keys(), ...t.students.flatMap((s) => Object.keys(s.answers))])];
-  if (select.options.length !== ids.length) {
-    select.replaceChildren(...ids.map((id) => new Option(state.questions.get(id) ? `${id}: ${state.questions.get(id)}` : id, id)));
+  const labels = ids.map((id) => (state.questions.get(id) ? `${id}: ${state.questions.get(id)}` : id));
+  if ([...select.options].map((o) => o.text).join("\n") !== labels.join("\n")) {
+    select.replaceChildren(...ids.map((id, i) => new Option(labels[i], id)));
     if (ids.includes(state.chosen)) select.value = state.chosen;
   }
   state.chosen = select.value;
@@ -73,18 +78,23 @@ async function learnQuestions(t: ClassCheckpoints): Promise<void> {
   for (const q of data.questions) state.questions.set(q.id, q.text);
 }
 
+let asking = false;
 async function refresh(): Promise<void> {
+  if (asking) return;  // a slow server: one request at a time
+  asking = true;
   try {
     const reply = await fetch(TABLE_URL, { cache: "no-store" });
     if (!reply.ok) throw new Error(await errorOf(reply));
     const t = await reply.json() as ClassCheckpoints;
     state.table = t;
-    await learnQuestions(t).catch(() => undefined);
     drawTable(t);
     drawAnswers(t);
     $("checkpoints-status").textContent = `${t.students.length} student${t.students.length === 1 ? "" : "s"}`;
+    if (!state.questions.size) await learnQuestions(t).then(() => drawAnswers(t)).catch(() => undefined);
   } catch (err) {
     $("checkpoints-status").textContent = `checkpoints unavailable: ${err instanceof Error ? err.message : String(err)}`;
+  } finally {
+    asking = false;
   }
 }
 
@@ -92,6 +102,13 @@ async function refresh(): Promise<void> {
 export function startCheckpoints(): void {
   $<HTMLSelectElement>("question").addEventListener("change", () => { if (state.table) drawAnswers(state.table); });
   $("evidence-close").addEventListener("click", () => $<HTMLDialogElement>("evidence").close());
+  $("checkpoints-rows").addEventListener("click", (e) => {
+    const b = e.target instanceof Element ? e.target.closest<HTMLElement>("button.cell") : null;
+    const row = b?.closest<HTMLElement>("tr");
+    if (!b || !row) return;
+    void openEvidence($<HTMLDialogElement>("evidence"), $("evidence-body"), row.dataset.student ?? "",
+      row.dataset.world ?? "", b.dataset.checkpoint ?? "");
+  });
   startVerify($<HTMLInputElement>("verify-file"), $("verify-result"));
   void refresh();
   setInterval(() => void refresh(), REFRESH_MS);
