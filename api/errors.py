@@ -33,10 +33,10 @@ from server.bus import (
 )  # fmt: skip
 from server.checkpoints.progress import (
     NotPngError,
-    TooLargeError,
     UnknownCheckpointError,
     UnknownQuestionError,
 )
+from server.checkpoints.progress import TooLargeError as AnswerTooLargeError
 from server.classroom import ClassroomError
 from server.close_codes import CloseCode as CloseCode  # where the routes import it from
 from server.launch.description import LaunchFileError
@@ -45,7 +45,19 @@ from server.limits import LimitExceededError, ValueLimitError
 from server.msgs import MessageError, UnknownTypeError
 from server.packages import ExecutableNotFoundError, PackageNotFoundError, WorkspaceError
 from server.packages.launch_files import LaunchFileNotFoundError
+from server.processes.sandbox import StudentCodeRefusedError
 from server.publishers import PublisherError, UnknownPublisherError
+from server.workspace.errors import (
+    BadArchiveError,
+    BadPackageError,
+    BadPathError,
+    ChangedError,
+    FileMissingError,
+    NotTextError,
+    NoWorkspaceError,
+    TakenError,
+    TooLargeError,
+)
 
 from .security import BodyTooLarge
 from .strict_json import SafeJSONResponse
@@ -67,8 +79,9 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (DestroyedError, status.HTTP_409_CONFLICT),
     (LimitExceededError, status.HTTP_429_TOO_MANY_REQUESTS),
     (ServiceTimeoutError, status.HTTP_504_GATEWAY_TIMEOUT),
+    (StudentCodeRefusedError, status.HTTP_503_SERVICE_UNAVAILABLE),  # no sandbox on a shared server
     (BodyTooLarge, status.HTTP_413_CONTENT_TOO_LARGE),
-    (TooLargeError, status.HTTP_413_CONTENT_TOO_LARGE),
+    (AnswerTooLargeError, status.HTTP_413_CONTENT_TOO_LARGE),
     (UnknownQuestionError, status.HTTP_404_NOT_FOUND),
     (UnknownCheckpointError, status.HTTP_404_NOT_FOUND),
     (NotPngError, status.HTTP_422_UNPROCESSABLE_CONTENT),
@@ -88,13 +101,25 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (BagBusyError, status.HTTP_409_CONFLICT),
     (BagLimitError, status.HTTP_429_TOO_MANY_REQUESTS),
     (BagError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (NoWorkspaceError, status.HTTP_404_NOT_FOUND),
+    (FileMissingError, status.HTTP_404_NOT_FOUND),
+    (BadPathError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (BadPackageError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (BadArchiveError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (TakenError, status.HTTP_409_CONFLICT),
+    (ChangedError, status.HTTP_412_PRECONDITION_FAILED),
+    (TooLargeError, status.HTTP_413_CONTENT_TOO_LARGE),
+    (NotTextError, status.HTTP_415_UNSUPPORTED_MEDIA_TYPE),
 )
 _CLOSE_FOR_STATUS = {
     status.HTTP_404_NOT_FOUND: CloseCode.NOT_FOUND,
     status.HTTP_409_CONFLICT: CloseCode.TYPE_CONFLICT,
     status.HTTP_429_TOO_MANY_REQUESTS: CloseCode.TRY_AGAIN_LATER,
     status.HTTP_504_GATEWAY_TIMEOUT: CloseCode.TRY_AGAIN_LATER,
+    status.HTTP_503_SERVICE_UNAVAILABLE: CloseCode.TRY_AGAIN_LATER,
     status.HTTP_413_CONTENT_TOO_LARGE: CloseCode.MESSAGE_TOO_BIG,
+    status.HTTP_412_PRECONDITION_FAILED: CloseCode.BAD_REQUEST,
+    status.HTTP_415_UNSUPPORTED_MEDIA_TYPE: CloseCode.UNSUPPORTED_DATA,
     status.HTTP_422_UNPROCESSABLE_CONTENT: CloseCode.BAD_REQUEST,
 }
 MAX_REASON_CHARS = 120  # a close frame's reason must fit in 123 bytes
@@ -159,6 +184,16 @@ def register_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(RequestValidationError, _validation_error)
     app.add_exception_handler(StarletteHTTPException, _http_error)
     app.add_exception_handler(ClassroomError, _classroom_error)
+    app.add_exception_handler(ChangedError, _changed_error)
+
+
+async def _changed_error(_request: Request, exc: Exception) -> SafeJSONResponse:
+    """A stale save: the detail, and the file's version now (null: it is gone), so the page can offer
+    the choice."""
+    etag = exc.etag if isinstance(exc, ChangedError) else None
+    return SafeJSONResponse(
+        {"detail": str(exc), "etag": etag}, status_code=status.HTTP_412_PRECONDITION_FAILED
+    )
 
 
 async def _classroom_error(_request: Request, exc: Exception) -> SafeJSONResponse:

@@ -12,6 +12,7 @@ from server.processes.command import graph_overrides
 from server.transport.acl import Credentials
 
 from .deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_request, token_of
+from .join_pacing import pacer_of, retry_after
 from .responses import responses
 from .schemas import Health, WorkspaceInfo, ZenohJoin
 
@@ -51,17 +52,19 @@ async def health(request: Request) -> dict[str, Any]:
     }
 
 
-@router.get("/zenoh/join", response_model=ZenohJoin, responses=responses(404))
-async def zenoh_join(request: Request) -> dict[str, Any]:
+@router.get("/zenoh/join", response_model=ZenohJoin, responses=responses(404, 429))
+async def zenoh_join(request: Request, start: bool = False) -> dict[str, Any]:
     """Where and how a node process joins this lab's ROS graph on Zenoh: the router, the ROS domain
     and, on a class server, the world's own login (its router lets each world's user into that
     world's domain only). ``env`` is ready to export, for ``ros2lab run`` or a ROS 2 node on rmw_zenoh.
     The instructor naming no world gets the class's own graph, where every world's topics show
-    under its name (``/ada/uav/sensors/gps``)."""
+    under its name (``/ada/uav/sensors/gps``). ``start=true`` (as ``ros2lab run`` asks) is a node
+    process about to start: such joins are paced (api/join_pacing.py), with too many starting at
+    once 429 and ``Retry-After``, after the request's own checks."""
     classroom = classroom_of(request)
     named = request.headers.get(WORLD_HEADER) or request.query_params.get("world")
     if classroom is not None and not named and grant_of(request, classroom).is_instructor:
-        return _class_graph_join(classroom)
+        return _paced(request, start, _class_graph_join(classroom))
     lab = lab_for_request(request)
     link = lab.zenoh
     if link is None:
@@ -71,7 +74,18 @@ async def zenoh_join(request: Request) -> dict[str, Any]:
             else "started with --no-zenoh"
         )
         raise HTTPException(status.HTTP_404_NOT_FOUND, f"this lab's graph is not on Zenoh ({why})")
-    return _join(link.router_endpoint(), link.settings.domain_id, link.settings.login)
+    return _paced(request, start, _join(link.router_endpoint(), link.settings.domain_id, link.settings.login))
+
+
+def _paced(request: Request, start: bool, join: dict[str, Any]) -> dict[str, Any]:
+    wait_s = pacer_of(request.app).admit() if start else None
+    if wait_s is not None:
+        raise HTTPException(
+            status.HTTP_429_TOO_MANY_REQUESTS,
+            f"too many node processes starting at once on this server; ask again in {wait_s:.1f} s",
+            headers={"Retry-After": retry_after(wait_s)},
+        )
+    return join
 
 
 def _class_graph_join(classroom: Classroom) -> dict[str, Any]:

@@ -31,14 +31,19 @@ _DESCRIPTIONS = {
     "Authorization: Bearer",
     403: "refused: another site's page may not write (Origin), or the token does not reach this "
     "(the wrong class code, another student's world, the instructor's controls)",
-    404: "no such topic, node, service, type, package, publisher, launch, bag, playback or world, "
-    "or no Zenoh graph",
+    404: "no such topic, node, service, type, package, publisher, launch, bag, playback, world or "
+    "workspace file, or no Zenoh graph",
     409: "the topic carries another type, the thing was destroyed, the bag exists or is still "
-    "recording, or the name is taken",
+    "recording, or the name or path is taken",
+    412: "the file changed since it was read (If-Match), or exists (If-None-Match: *): `etag` is its "
+    "version now",
     413: "the body is larger than the limit (64 KiB; a checkpoint's capture 2 MiB, a report to verify "
-    "8 MiB), or an answer over 8 KiB",
+    "8 MiB, a workspace route's 8 MiB), an answer over 8 KiB, or a file, the workspace or an upload "
+    "over its limit",
+    415: "a file that is not UTF-8 text (a binary file, a NUL character)",
     421: "the Host header is not a name of this server",
-    422: "a field, a number or a name is invalid (the detail names it)",
+    422: "a field, a number, a name or a workspace path is invalid, or an upload is not a zip the "
+    "workspace takes (the detail names it)",
     429: "a limit is reached (publishers, launches, topics, recordings, playbacks, worlds in a class, "
     "a world's writes per second)",
     500: "a bug: the detail carries a request id, the log has the traceback",

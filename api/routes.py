@@ -5,6 +5,7 @@ from fastapi import APIRouter
 from api import (
     bag,
     checkpoints,
+    classroom_workspaces,
     introspection,
     lab_routes,
     launch_routes,
@@ -12,7 +13,9 @@ from api import (
     rosbridge,
     services,
     topics,
+    workspace,
     ws_keys,
+    ws_output,
     ws_topics,
 )
 from api import classroom as classroom_routes
@@ -34,8 +37,11 @@ def build_router(*, classroom: bool = False) -> APIRouter:
         bag,
         rosbridge,
         checkpoints,
+        workspace,
+        ws_output,
     ):
         router.include_router(module.router)
     router.include_router(classroom_routes.router, include_in_schema=classroom)
     router.include_router(checkpoints.class_router, include_in_schema=classroom)
+    router.include_router(classroom_workspaces.router, include_in_schema=classroom)
     return router

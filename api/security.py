@@ -29,7 +29,8 @@ def _header(scope: Scope, name: bytes) -> str | None:
 
 
 class GuardMiddleware:
-    """Host check for everything; Origin check for WebSockets and writes; a cap on body size."""
+    """Host check for everything; Origin check for WebSockets and writes; a cap on body size
+    (``larger_bodies``: path prefixes with a cap of their own, such as a workspace's uploads)."""
 
     def __init__(
         self,

@@ -19,6 +19,18 @@ if ! command -v chromium >/dev/null 2>&1; then
   fi
 fi
 
+# bubblewrap: a class server's students' nodes run in its sandbox (tests/sandbox proves what it blocks).
+if ! command -v bwrap >/dev/null 2>&1; then
+  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    echo "Installing Debian's bubblewrap for students' nodes on a class server ..."
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq bubblewrap >/dev/null
+  else
+    echo "No bwrap on PATH: a class server will refuse students' nodes and the sandbox tests will be skipped (install Debian's 'bubblewrap')." >&2
+  fi
+fi
+
 # The page's scripts (web/ → static/build), with Node from the machine or from PyPI; the same
 # npm then installs roslib for the rosbridge client test (tests/js, pinned by its lock file).
 web_build

@@ -136,6 +136,12 @@ def build_parser() -> argparse.ArgumentParser:
              f"or on another worker, under the same names and tokens (default {WORKER_TIMEOUT_S:g})",
     )  # fmt: skip
     classroom.add_argument(
+        "--student-code", choices=["sandboxed", "unsandboxed"], default="sandboxed",
+        help="how students' node processes run when this server serves others (--classroom, or --token "
+             "beyond loopback): in a bubblewrap sandbox (default; refused if none can be built) or, at "
+             "your own risk, as your user with everything it can reach",
+    )  # fmt: skip
+    classroom.add_argument(
         "--token", metavar="TOKEN|auto",
         help="one lab behind a token: every page, call and bridge port needs it (auto: a new random one, "
              "printed once in the page's link). Needed to listen beyond loopback without --classroom.",
@@ -258,9 +264,10 @@ def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settin
         "state_dir": Path(args.state_dir),
         "foxglove_port": None if args.no_foxglove else args.foxglove_port, "rosbridge_port": args.rosbridge_port,
     }  # fmt: skip
-    return Settings.model_validate(
-        {"listen": listen, "lab": lab, "classroom": classroom, "log_level": args.log_level}
-    )
+    return Settings.model_validate({
+        "listen": listen, "lab": lab, "classroom": classroom, "log_level": args.log_level,
+        "sandbox": {"student_code": args.student_code},
+    })  # fmt: skip
 
 
 def print_lab_lines(settings: Settings) -> None:
@@ -278,6 +285,23 @@ def print_lab_lines(settings: Settings) -> None:
         if wide:
             print(f"note: Zenoh listens on {', '.join(wide)}: other machines with the login can join this graph "
                   "(GET /api/zenoh/join with the token gives it; see docs/zenoh.md)", flush=True)  # fmt: skip
+
+
+def student_code_line(settings: Settings) -> str | None:
+    """How students' nodes run here, in one line, when the server serves others."""
+    if not settings.confines_paths:
+        return None
+    if not settings.sandboxes_students:
+        return ("warning: --student-code unsandboxed: students' nodes run as this server's user, with "
+                "everything it can read and reach (tokens, other workspaces, the network)")  # fmt: skip
+    from server.processes.sandbox import StudentCodeRefusedError, probe
+
+    why = probe()
+    if why is not None:
+        return f"error: {StudentCodeRefusedError(why)}"
+    limits = settings.sandbox
+    return (f"Students' nodes run sandboxed (bubblewrap: no network but their world's graph, "
+            f"{limits.memory_mib} MiB, {limits.processes} processes, nice {limits.nice})")  # fmt: skip
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -307,6 +331,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: {error}", file=sys.stderr)
         return 2
     print_lab_lines(settings)
+    line = student_code_line(settings)
+    if line is not None:
+        print(line, file=sys.stderr if line.startswith(("warning", "error")) else sys.stdout, flush=True)
     from server.serve import serve
 
     def announce(app: Any) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from pathlib import Path
@@ -18,6 +19,7 @@ from api.routes import build_router
 from api.security import GuardMiddleware
 from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
 from api.tools_page import router as tools_router
+from api.workspace import PREFIX as WORKSPACE_PREFIX
 from api.world_proxy import WorldProxyMiddleware
 from api.ws_cap import SocketCapMiddleware
 from api.ws_refusal import WebSocketRefusalMiddleware
@@ -92,7 +94,13 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         accepted_hosts=settings.listen.accepted_hosts,
         allowed_origins=settings.listen.allowed_origins,
         max_body_bytes=settings.listen.max_body_bytes,
-        larger=LARGE_BODIES,
+        larger=(
+            *LARGE_BODIES,
+            (
+                re.compile(re.escape(WORKSPACE_PREFIX) + ".*"),
+                max(settings.workspace.max_body_bytes, settings.listen.max_body_bytes),
+            ),
+        ),
     )
     app.add_middleware(CanonicalPathMiddleware)
     app.add_middleware(ErrorMiddleware)

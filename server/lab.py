@@ -29,7 +29,7 @@ from server.devices.deadman import KeyDeadMan
 from server.devices.keyboard import KeyboardDevice
 from server.introspection.merged import topic_views
 from server.launch.aliases import resolve_launch
-from server.launch.groups import LaunchGroups
+from server.launch.groups import LaunchGroups, NodeBudget
 from server.launch.launcher import Launcher, ProcessTransport
 from server.limits import RateLimit, check_finite_json, check_topic_limits, per_second
 from server.msgs import Message, get_type
@@ -58,6 +58,7 @@ class Lab:
         *,
         executors: ExecutorGroup | None = None,
         progress: Progress | None = None,
+        node_budget: NodeBudget | None = None,
     ) -> None:
         self.settings = settings
         limits = settings.limits
@@ -83,6 +84,7 @@ class Lab:
         self._spin_task: asyncio.Task[None] | None = None
         self.zenoh: ZenohLink | None = None  # while the graph is on Zenoh
         self.zenoh_error: str | None = None
+        self._socket: Path | None = None  # the Unix socket its own router opened for sandboxed nodes
         self.rocket = RocketControls(self.launcher)
         with self.bus.activate():
             self.api_node = ApiNode(limits.max_api_topics)
@@ -91,9 +93,11 @@ class Lab:
         self.service_caller = ServiceCaller(self.api_node)
         self.topic_watch = TopicWatch(self.bus)
         self.bags = BagManager(self.bus, settings.lab.bag_dir)  # ros2 bag record / play
+        # A class server's worlds share one budget of node processes; alone, the lab has its own.
         self.launch_groups = LaunchGroups(
-            self.launcher, self.packages, limits.max_launch_groups, limits.max_nodes_per_launch
-        )
+            self.launcher, self.packages, limits.max_launch_groups, limits.max_nodes_per_launch,
+            limits.max_running_nodes, node_budget or NodeBudget(limits.max_server_nodes),
+        )  # fmt: skip
         # The checkpoints: ``progress`` is the world's so far (kept across a reset), else a new one.
         progress = progress or Progress(load_checkpoints(settings.lab.checkpoints))
         self.checkpoints = CheckpointWatch(
@@ -121,6 +125,10 @@ class Lab:
             from server.transport.link import open_link
 
             self.zenoh, self.zenoh_error = await open_link(self.bus, self._zenoh_settings())
+            from server.launch.student_code import for_lab
+
+            socket = self.zenoh.settings.process_socket if self.zenoh is not None else None
+            self.launcher.sandbox = for_lab(self.settings, socket)
             if self.zenoh is not None:
                 zenoh = self.zenoh.settings
                 self.launcher.transport = ProcessTransport(
@@ -154,7 +162,15 @@ class Lab:
         from server.transport.acl import ClassAuth, RouterAccess
 
         login = ClassAuth(token).class_credentials()
-        return dataclasses.replace(zenoh, router_logins=RouterAccess(login), login=login)
+        zenoh = dataclasses.replace(zenoh, router_logins=RouterAccess(login), login=login)
+        if self.settings.sandboxes_students:  # its sandboxed nodes reach the router on a Unix socket
+            from server.transport.router_socket import new_socket_path, socket_endpoint
+
+            self._socket = new_socket_path()
+            zenoh = dataclasses.replace(
+                zenoh, listen=(*zenoh.listen, socket_endpoint(self._socket)), process_socket=self._socket
+            )
+        return zenoh
 
     async def stop(self) -> None:
         self.stopped.set()
@@ -172,6 +188,11 @@ class Lab:
         if self.zenoh is not None:
             self.zenoh.close()
             self.zenoh = None
+        if self._socket is not None:
+            from server.transport.router_socket import remove
+
+            remove(self._socket)
+            self._socket = None
         if self.display is not None:
             self.display.stop()
 

@@ -128,6 +128,33 @@ class LabLimits(Section):
     max_echo_sockets: int = Field(default=64, ge=1)  # /ws/topics clients at once
     max_launch_groups: int = Field(default=32, ge=1)  # launches and runs started through the API, at once
     max_nodes_per_launch: int = Field(default=64, ge=1)
+    # Node processes the API's launches and runs keep running at once: in this lab (a class's
+    # world), and in every lab of this process together (a class server's or world worker's).
+    max_running_nodes: int = Field(default=8, ge=1)
+    max_server_nodes: int = Field(default=64, ge=1)
+
+
+class WorkspaceLimits(Section):
+    """What a student's workspace may hold (the API's saves, uploads and new packages), and the
+    largest body a workspace route takes (a save's JSON, a zip upload)."""
+
+    max_file_bytes: int = Field(default=256 * 1024, ge=1024)
+    max_workspace_bytes: int = Field(default=20 * 1024 * 1024, ge=1024)
+    max_files: int = Field(default=2000, ge=1)
+    max_body_bytes: int = Field(default=8 * 1024 * 1024, ge=1024)
+
+
+class SandboxSettings(Section):
+    """How a server that serves others runs a student's node process (server/processes/sandbox.py):
+    in bubblewrap with these limits, or (``unsandboxed``, said out loud) as a single lab does."""
+
+    student_code: Literal["sandboxed", "unsandboxed"] = "sandboxed"
+    memory_mib: int = Field(default=512, ge=64)  # heap, stacks and private mappings
+    processes: int = Field(default=64, ge=16)  # processes and threads (Zenoh's take about 10)
+    open_files: int = Field(default=256, ge=64)
+    file_size_mib: int = Field(default=64, ge=1)
+    cpu_s: int = Field(default=3600, ge=1)  # CPU seconds of one run
+    nice: int = Field(default=10, ge=0, le=19)  # below the sims' loop
 
 
 class WorldLimits(Section):
@@ -192,6 +219,9 @@ class ClassroomSettings(Section):
     local_workers: int = 0
     worker_timeout_s: float = WORKER_TIMEOUT_S  # a world worker silent this long is gone: its worlds move
     world_log_level: str = "warning"  # the lowest level of a class world's node lines on the console
+    # Each world's workspace is the folder of its name in here: kept across resets and restarts of
+    # the server, removed when the instructor removes the student.
+    workspaces_dir: Path = Path("workspaces")
 
     @field_validator("max_worlds")
     @classmethod
@@ -255,8 +285,10 @@ class Settings(Section):
     listen: Listening = Listening()
     lab: LabSettings = LabSettings()
     limits: LabLimits = LabLimits()
+    workspace: WorkspaceLimits = WorkspaceLimits()
     classroom: ClassroomSettings | None = None
     worker: WorkerSettings | None = None
+    sandbox: SandboxSettings = SandboxSettings()
     log_level: str = "info"  # the app's own console lines and uvicorn's
 
     @field_validator("log_level")
@@ -316,7 +348,7 @@ class Settings(Section):
     def for_world(
         self, name: str, zenoh: ZenohSettings | None, launch: str, launch_args: dict[str, str]
     ) -> Settings:
-        """A class world's lab: its own graph session (``zenoh``), launch and bag folder, no bridge
+        """A class world's lab: its own graph session (``zenoh``), launch, bag folder and workspace, no bridge
         port of its own (the class's serve every world), and the smaller of each lab limit and the
         class's limit per world."""
         if self.classroom is None:
@@ -324,7 +356,7 @@ class Settings(Section):
         world, limits = self.classroom.world, self.limits
         lab = self.lab.model_copy(update={
             "zenoh": zenoh, "foxglove_port": None, "rosbridge_port": None, "bag_dir": self.lab.bag_dir / name,
-            "launch": launch, "launch_args": launch_args,
+            "launch": launch, "launch_args": launch_args, "workspace": self.classroom.workspaces_dir / name,
         })  # fmt: skip
         limits = limits.model_copy(update={
             "max_launch_groups": min(limits.max_launch_groups, world.launches),
@@ -339,6 +371,12 @@ class Settings(Section):
         server (and its world workers), and when a lab behind a token listens beyond loopback. A
         single lab on loopback serves its user alone, whose own files it may open."""
         return self.classroom is not None or not self.listen.on_loopback
+
+    @property
+    def sandboxes_students(self) -> bool:
+        """Students' node processes run in a sandbox: wherever the server serves others, unless
+        started with ``--student-code unsandboxed``."""
+        return self.confines_paths and self.sandbox.student_code == "sandboxed"
 
 
 def class_section(settings: Settings) -> ClassroomSettings:

@@ -9,8 +9,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-import yaml
-
 from server.bus.params_file import ParamsFile, ParamsFileError, read_params_file
 
 LOG_LEVELS = {"debug": 10, "info": 20, "warn": 30, "warning": 30, "error": 40, "fatal": 50}
@@ -41,6 +39,8 @@ class RosArgs:
 
 def _value(text: str) -> Any:
     """A parameter value as rcl reads it: YAML (``5``, ``2.0``, ``true``, ``[1, 2]``, ``'text'``)."""
+    import yaml  # only for a node given ``-p``: a node process without ROS arguments never loads it
+
     try:
         return yaml.safe_load(text)
     except yaml.YAMLError:

@@ -106,7 +106,7 @@ class Parameter:
     def from_parameter_msg(cls, msg: ParameterMsg) -> Parameter:
         kind = cls.Type(msg.value.type)
         value: Any = None if kind == cls.Type.NOT_SET else getattr(msg.value, _FIELDS[kind.value])
-        if hasattr(value, "tolist"):  # a numeric array field is a numpy array
+        if hasattr(value, "tolist"):  # a numeric sequence is an array.array
             value = value.tolist()
         return cls(msg.name, kind, value)
 

@@ -10,8 +10,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 PARAMETERS_KEY = "ros__parameters"
 WILDCARD = "/**"
 SEPARATOR = "."
@@ -25,6 +23,8 @@ class ParamsFileError(ValueError):
 def value_from_text(text: str) -> Any:
     """``text`` typed as rcl types a parameter's value: YAML scalars and uniform lists keep their
     type (an int list with a float in it stays mixed, so it is a string, as in rclpy)."""
+    import yaml  # here and below: a node process without parameters never loads PyYAML
+
     try:
         value = yaml.safe_load(text)
     except yaml.YAMLError:
@@ -109,6 +109,8 @@ def _sections(node: str, body: Any, path: str, out: list[tuple[str, dict[str, An
 
 def parse_params_text(text: str, path: str) -> ParamsFile:
     """``text`` (a file's contents) as a parameters file; ``path`` names it in errors."""
+    import yaml
+
     try:
         document = yaml.safe_load(text)
     except yaml.YAMLError as exc:

@@ -11,9 +11,11 @@ domain.
 from __future__ import annotations
 
 import asyncio
+import dataclasses
 import logging
 import time
 from collections.abc import Mapping
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from server.bus import Clock, ExecutorGroup
@@ -63,6 +65,13 @@ class ClassGraph:
 
         from .class_router import ClassRouter
 
+        if self.settings.sandboxes_students:  # students' sandboxed nodes reach it on a Unix socket
+            from server.transport.router_socket import new_socket_path, socket_endpoint
+
+            path = new_socket_path()
+            zenoh = dataclasses.replace(
+                zenoh, listen=(*zenoh.listen, socket_endpoint(path)), process_socket=path
+            )
         # The router logs every session in and holds each world's to its own ROS domain.
         router = ClassRouter(zenoh, self.auth.class_credentials())
         try:
@@ -95,6 +104,10 @@ class ClassGraph:
             return zenoh.connect[0]
         proto, host, port = endpoint_host(zenoh.listen[0])
         return f"{proto}/{'127.0.0.1' if host in ('0.0.0.0', '[::]', '::') else host}:{port}"
+
+    def process_socket(self) -> Path | None:
+        """The router's Unix socket for sandboxed node processes (None: none on this machine)."""
+        return self.router.settings.process_socket if self.router is not None else None
 
     def login(self, domain_id: int) -> Credentials | None:
         """The login of a new world in ``domain_id`` (None without a router)."""
@@ -191,4 +204,8 @@ class ClassGraph:
         if self.router is not None:
             async with self.gate.reopening():
                 self.router.close()
-            self.router = None
+            socket, self.router = self.router.settings.process_socket, None
+            if socket is not None:
+                from server.transport.router_socket import remove
+
+                remove(socket)

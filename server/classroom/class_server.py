@@ -19,6 +19,7 @@ from server.limits import RateLimit
 from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth
+from server.workspace.location import remove_world_workspace
 
 from . import remote_worlds
 from .admission import Admission, check_student_name, new_code
@@ -60,6 +61,7 @@ class ClassServer:
         self.grants = Grants(signer)
         self.admission = Admission(self.class_settings.joins, self.clock)
         self.labs = WorldLabs(settings, self.clock, lambda: self.graph.endpoint())
+        self.labs.process_socket = lambda: self.graph.process_socket()
         self.graph = ClassGraph(settings, self.labs.worlds, self.grants.instructor_token)
         # This process's and machine's CPU, read every WATCH_PERIOD_S (a watch round): a
         # placement weighs the last seconds.
@@ -226,6 +228,8 @@ class ClassServer:
         self.admission.release(world.address)
         await self._end(world)
         await self.graph.revoke_login(world.domain_id)
+        # Its workspace goes with it (a world worker on this machine keeps it in the same folder).
+        remove_world_workspace(self.class_settings.workspaces_dir, name)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
 

@@ -10,11 +10,13 @@ rosbridge) are not opened per world; its bags go in a folder of its own.
 from __future__ import annotations
 
 from collections.abc import Callable
+from pathlib import Path
 
 from server.bus import Clock, ExecutorGroup
 from server.checkpoints.progress import Progress
 from server.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
 from server.lab import Lab
+from server.launch.groups import NodeBudget
 from server.limits import RateLimit
 from server.settings import Settings, class_section
 from server.transport.acl import Credentials
@@ -36,11 +38,14 @@ class WorldLabs:
         self.class_settings = class_section(settings)
         self.clock = clock  # every world's, the physics' and the limits'
         self.endpoint = endpoint
+        # The router's Unix socket on this machine for the worlds' sandboxed nodes (None: none here).
+        self.process_socket: Callable[[], Path | None] = lambda: None
         self.worlds: dict[str, World] = {}
         self.starting: dict[str, int] = {}  # world → its ROS domain, while it starts
         self.physics = SharedQuadrotorPhysics(clock)
         self.simple_physics = SharedSimpleSim(clock)  # the worlds flown with simple:=true
         self.executors = ExecutorGroup()
+        self.node_budget = NodeBudget(settings.limits.max_server_nodes)  # every world's node processes
 
     def get(self, name: str) -> World:
         world = self.worlds.get(name)
@@ -106,7 +111,9 @@ class WorldLabs:
     ) -> Lab:
         """Start world ``name``'s lab in ``domain_id`` (the class's launch unless ``launch``)."""
         settings = self._world_settings(name, domain_id, launch, login)
-        lab = Lab(settings, self.clock, executors=self.executors, progress=progress)
+        lab = Lab(
+            settings, self.clock, executors=self.executors, progress=progress, node_budget=self.node_budget
+        )
         lab.bus.label = name  # its nodes' console lines carry its name (server/console.py)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         lab.bus.devices["simple_sim_physics"] = self.simple_physics
@@ -131,6 +138,7 @@ class WorldLabs:
             zenoh = ZenohSettings(
                 mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file,
                 login=login, samples_hz=self.class_settings.world.samples_hz,
+                process_socket=self.process_socket(),
             )  # fmt: skip
         file, args = (
             launch if launch is not None else (self.settings.lab.launch, self.settings.lab.launch_args)

@@ -8,12 +8,12 @@ server it can reach (``--url``, or ``TELEOP_URL``).
 from __future__ import annotations
 
 import argparse
+import importlib
 import os
 import signal
 import sys
 from types import FrameType
 
-from . import action, bag, env, interface, launch, node, param, pkg, report, run, service, topic
 from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
 
 VERBS = (
@@ -40,7 +40,29 @@ WORKER_VERB = "world-worker"  # ros2lab world-worker: host a class server's worl
 __all__ = ["VERBS", "build_parser", "main"]
 
 
-def build_parser() -> argparse.ArgumentParser:
+# The module that adds each verb's parser (``launch`` adds ``launch``'s verbs).
+VERB_MODULES = {
+    "topic": "topic", "node": "node", "service": "service", "param": "param", "action": "action",
+    "launch": "launch", "run": "run", "pkg": "pkg", "interface": "interface", "bag": "bag", "env": "env",
+    "report": "report",
+}  # fmt: skip
+
+
+def verb_of(argv: list[str]) -> str | None:
+    """The verb ``argv`` names (after ``--url URL``, if given), or None (``--help``, nothing)."""
+    args = iter(argv)
+    for arg in args:
+        if arg == "--url":
+            next(args, None)
+        elif not arg.startswith("--url="):
+            return None if arg.startswith("-") else arg
+    return None
+
+
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The whole command line, or with ``only`` (a verb) that verb's alone: ``ros2lab run``
+    then imports none of the other verbs' modules (bag's MCAP, the interfaces, the formatting),
+    which at a class's "run it now" twenty starts at once would import beside the worlds."""
     parser = argparse.ArgumentParser(
         prog="ros2lab",
         description="ros2's command-line tools for the teleop lab's running server.",
@@ -53,18 +75,10 @@ def build_parser() -> argparse.ArgumentParser:
     common = argparse.ArgumentParser(add_help=False)
     common.add_argument("--url", default=argparse.SUPPRESS, help=url_help)
     verbs = parser.add_subparsers(dest="verb", required=True, metavar="VERB")
-    topic.add_parser(verbs, common)
-    node.add_parser(verbs, common)
-    service.add_parser(verbs, common)
-    param.add_parser(verbs, common)
-    action.add_parser(verbs, common)
-    launch.add_parsers(verbs, common)
-    run.add_parser(verbs, common)
-    pkg.add_parser(verbs, common)
-    interface.add_parser(verbs, common)
-    bag.add_parser(verbs, common)
-    env.add_parser(verbs, common)
-    report.add_parser(verbs, common)
+    chosen = [only] if only in VERB_MODULES else list(VERB_MODULES)
+    for verb in chosen:
+        module = importlib.import_module(f"{__name__}.{VERB_MODULES[verb]}")
+        (module.add_parsers if verb == "launch" else module.add_parser)(verbs, common)
     return parser
 
 
@@ -82,7 +96,8 @@ def main(argv: list[str] | None = None) -> int:
     if argv and argv[0] == COLCON_VERB:
         print(COLCON_HINT)
         return 0
-    args = build_parser().parse_args(argv)
+    verb = verb_of(argv)
+    args = build_parser(verb if verb == "run" else None).parse_args(argv)
     url = args.url or os.environ.get(URL_ENV) or DEFAULT_URL
     # SIGTERM cleans up as Ctrl-C does: a launch's nodes and a periodic publisher are stopped.
     signal.signal(signal.SIGTERM, _interrupt)

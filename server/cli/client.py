@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import threading
@@ -44,8 +45,11 @@ class NoServerError(CliError):
 class ApiError(CliError):
     """The server answered with an error status; ``detail`` is its explanation."""
 
-    def __init__(self, status: int, detail: str, method: str, path: str) -> None:
+    def __init__(
+        self, status: int, detail: str, method: str, path: str, retry_after_s: float | None = None
+    ) -> None:
         self.status, self.detail, self.method, self.path = status, detail, method, path
+        self.retry_after_s = retry_after_s  # the server's Retry-After (429, 503), in seconds
         if self.no_route:
             super().__init__(
                 f"{method} {path}: HTTP 404: the server has no such endpoint (older than this CLI?)"
@@ -100,8 +104,9 @@ class LabClient:
     def close(self) -> None:
         self._http.close()
 
-    def get(self, path: str, params: Mapping[str, Any] | None = None) -> Any:
-        return self._request("GET", path, params=dict(params or {}))
+    def get(self, path: str, params: Mapping[str, Any] | None = None, timeout_s: float | None = None) -> Any:
+        extra = {"timeout": timeout_s} if timeout_s is not None else {}
+        return self._request("GET", path, params=dict(params or {}), **extra)
 
     def post(self, path: str, body: Mapping[str, Any], timeout_s: float | None = None) -> Any:
         """``timeout_s`` for a request the server itself may take a while to answer (a service call)."""
@@ -178,7 +183,10 @@ def _api_error(response: httpx.Response, method: str, path: str) -> ApiError:
         detail = describe_detail(response.json().get("detail", response.text))
     except (ValueError, AttributeError):
         detail = response.text.strip() or response.reason_phrase
-    return ApiError(response.status_code, detail, method, path)
+    retry_after: float | None = None
+    with contextlib.suppress(ValueError):  # an HTTP date instead of seconds: none
+        retry_after = float(response.headers.get("Retry-After", ""))
+    return ApiError(response.status_code, detail, method, path, retry_after)
 
 
 def _closed_error(exc: ConnectionClosed, topic: str) -> CliError:

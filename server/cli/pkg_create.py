@@ -1,6 +1,6 @@
 """``pkg create``: a new package with ``ros2 pkg create``'s options, files and messages.
 
-The files are server.packages.templates'; ``ros2lab run PKG NODE`` runs the new node at once
+The files are server.packages.templates', written by server.workspace.package_create; ``ros2lab run PKG NODE`` runs the new node at once
 (no ``colcon build`` here). The license text itself is not written (ros2 copies it from
 ament_copyright): the package.xml names the license, as ros2 does for one it does not know.
 """
@@ -9,19 +9,17 @@ from __future__ import annotations
 
 import argparse
 import getpass
-import re
 import shutil
 import subprocess
 import sys
 from pathlib import Path
 from typing import Any
 
-from server.packages.templates import PackageSpec, package_files
+from server.packages.templates import PackageSpec
+from server.workspace.package_create import package_refusal, write_package
 
 from .client import LabClient
 
-NAME = re.compile(r"^[a-z][a-z0-9_]*$")  # REP 144's package names
-NODE_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 GIT_TIMEOUT_S = 5.0
 
 
@@ -42,15 +40,7 @@ def _maintainer_email(name: str, given: str | None) -> str:
 
 
 def _refusal(args: argparse.Namespace) -> str | None:
-    if not NAME.match(args.package_name):
-        return (f"Invalid package name '{args.package_name}': it must start with a lowercase letter and "
-                "hold only lowercase letters, digits and underscores")  # fmt: skip
-    if args.build_type == "ament_python" and args.package_name == "test":
-        return ("Aborted since 'ament_python' packages can't be named 'test'. Please choose a different "
-                "package name.")  # fmt: skip
-    if args.node_name is not None and not NODE_NAME.match(args.node_name):
-        return f"Invalid node name '{args.node_name}': it must be a Python identifier"
-    return None
+    return package_refusal(args.package_name, args.build_type, args.node_name)
 
 
 def create(args: argparse.Namespace, _client: LabClient) -> int:
@@ -81,17 +71,7 @@ def create(args: argparse.Namespace, _client: LabClient) -> int:
     print("dependencies:", spec.dependencies)
     if spec.node_name:
         print("node_name:", spec.node_name)
-    folders = [package_dir]
-    if spec.build_type == "ament_cmake":
-        folders += [package_dir / "src", package_dir / "include" / spec.name]
-    for folder in folders:
-        print("creating folder", folder)
-        folder.mkdir(parents=True, exist_ok=True)
-    for relative, text in package_files(spec).items():
-        path = package_dir / relative
-        path.parent.mkdir(parents=True, exist_ok=True)
-        print("creating", path)
-        path.write_text(text, encoding="utf-8")
+    write_package(package_dir, spec, lambda what, path: print(what, path))
     print(f"\n[WARNING]: no LICENSE file has been created; '{spec.license}' is set in the package.xml.")
     return 0
 

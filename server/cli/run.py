@@ -3,12 +3,16 @@
 Its output streams to this terminal as it comes, Ctrl-C is passed on to it (once: the child has a
 process group of its own, so the terminal's Ctrl-C reaches only this command), and its exit code
 is this command's. It joins the graph of the lab the command talks to (``--url``): the lab tells
-where its Zenoh router listens; with no lab to ask, rmw_zenoh's default, tcp/127.0.0.1:7447.
+where its Zenoh router listens, its ROS domain and its login (server/cli/join.py: asked again
+with a bounded backoff while the lab does not answer, and after the time it gives while it paces
+a class's node starts). A lab that does not answer within ``--join-timeout`` is one line and a
+non-zero exit, and no node starts: nothing falls back to another router or domain.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import signal
 import subprocess
 import sys
@@ -17,33 +21,33 @@ from typing import Any
 from server.packages import ExecutableNotFoundError, PackageIndex, PackageNotFoundError, WorkspaceError
 from server.processes.command import node_command
 from server.transport.acl import Credentials
-from server.transport.config import DEFAULT_ROUTER_ENDPOINT, domain_id_from_env
+from server.transport.config import domain_id_from_env
 
 from .client import CliError, LabClient
-from .workspace import add_workspace_option, workspace_of
+from .join import WAIT_S, Pacing, join_graph
+from .workspace import WORKSPACE_ENV, add_workspace_option, workspace_of
 
 STOP_GRACE_S = 10.0
 
 
-def graph_of(client: LabClient) -> tuple[str, int, Credentials | None]:
-    """The lab's router endpoint, ROS domain and login (on a class server with ROS2LAB_TOKEN: the
-    student's world's); ROS_DOMAIN_ID, if set, wins; rmw_zenoh's defaults without a lab."""
-    try:
-        join = client.get("/api/zenoh/join")
-    except CliError:
-        join = {}
+def graph_of(join: dict[str, Any], url: str) -> tuple[str, int, Credentials | None]:
+    """The router endpoint, ROS domain and login of the lab's join answer (on a class server with
+    ROS2LAB_TOKEN: the student's world's); ROS_DOMAIN_ID, if set, wins."""
     endpoint = join.get("router")
+    if not isinstance(endpoint, str) or not endpoint:
+        raise CliError(f"the lab at {url} named no Zenoh router to join; the node was not started")
     domain = join.get("domain_id")
     user, password = join.get("user"), join.get("password")
     login = Credentials(user, password) if isinstance(user, str) and isinstance(password, str) else None
-    return (
-        str(endpoint) if endpoint else DEFAULT_ROUTER_ENDPOINT,
-        domain_id_from_env(default=domain if isinstance(domain, int) else 0),
-        login,
-    )
+    return endpoint, domain_id_from_env(default=domain if isinstance(domain, int) else 0), login
 
 
 def run(args: argparse.Namespace, client: LabClient) -> int:
+    pacing = Pacing(wait_s=args.join_timeout)
+    # With the lab's own workspace, the lab must answer first; a given one is read before asking.
+    join = (
+        None if (args.workspace or os.environ.get(WORKSPACE_ENV)) else join_graph(client, pacing, start=True)
+    )
     workspace = workspace_of(args, client)
     packages = PackageIndex(workspace=workspace)
     try:
@@ -57,7 +61,7 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
     except WorkspaceError as exc:
         print(exc, file=sys.stderr)
         return 1
-    router, domain_id, login = graph_of(client)
+    router, domain_id, login = graph_of(join or join_graph(client, pacing, start=True), client.base_url)
     command = node_command(
         exe.target, list(args.argv), router=router, domain_id=domain_id, login=login, workspace=workspace
     )
@@ -80,5 +84,12 @@ def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
     p.add_argument("package_name", help="Name of the ROS package")
     p.add_argument("executable_name", help="Name of the executable")
     add_workspace_option(p)
+    p.add_argument(
+        "--join-timeout",
+        type=float,
+        default=WAIT_S,
+        metavar="S",
+        help=f"seconds to keep asking a lab that does not answer before giving up (default {WAIT_S:.0f})",
+    )
     p.add_argument("argv", nargs=argparse.REMAINDER, help="--ros-args -p NAME:=VALUE -r FROM:=TO")
     p.set_defaults(handler=run)

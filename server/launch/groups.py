@@ -1,9 +1,12 @@
 """Launches and runs started through the API, each a group of nodes started and stopped together
-(``ros2 launch`` and ``ros2 run`` against a running lab), with their limits."""
+(``ros2 launch`` and ``ros2 run`` against a running lab), with their limits: groups at once,
+nodes in one launch, and node processes running at once, in the lab and in every lab of the
+process together (``NodeBudget``: a class server's worlds share one)."""
 
 from __future__ import annotations
 
 import itertools
+import weakref
 from collections.abc import Iterator, ValuesView
 from dataclasses import dataclass
 from pathlib import Path
@@ -13,7 +16,7 @@ from server.bus import validate_node_name
 from server.limits import LimitExceededError
 from server.packages import PackageIndex
 
-from .description import NodeAction, SourceLocation
+from .description import LaunchDescription, NodeAction, SourceLocation
 from .launcher import LaunchedNode, Launcher
 
 
@@ -58,16 +61,49 @@ class LaunchGroup:
                 processes.append({"label": e.process.label, "lines": lines, "printed": printed})
         return {"group": self.describe(), "processes": processes}
 
+    def running_processes(self) -> int:
+        """Its node processes that have not ended."""
+        return sum(1 for e in self.entries if e.process is not None and e.process.exit_code is None
+                   and e.process.state == "running")  # fmt: skip
+
+
+class NodeBudget:
+    """How many node processes the API's launches and runs of every lab in this process may keep
+    running together."""
+
+    def __init__(self, limit: int) -> None:
+        self.limit = limit
+        self._labs: weakref.WeakSet[LaunchGroups] = weakref.WeakSet()
+
+    def join(self, groups: LaunchGroups) -> None:
+        self._labs.add(groups)
+
+    def running(self) -> int:
+        return sum(groups.running_processes() for groups in list(self._labs))
+
 
 class LaunchGroups:
     """The groups running in one lab, by id (``launch1``, ``run2``): at most ``max_groups`` at once,
-    and at most ``max_nodes`` nodes in one launch."""
+    at most ``max_nodes`` nodes in one launch, at most ``max_running`` node processes running at
+    once here, and no more than ``budget`` leaves for the whole process."""
 
-    def __init__(self, launcher: Launcher, packages: PackageIndex, max_groups: int, max_nodes: int) -> None:
+    def __init__(
+        self,
+        launcher: Launcher,
+        packages: PackageIndex,
+        max_groups: int,
+        max_nodes: int,
+        max_running: int | None = None,
+        budget: NodeBudget | None = None,
+    ) -> None:
         self._launcher = launcher
         self._packages = packages
         self.max_groups = max_groups
         self.max_nodes = max_nodes
+        self.max_running = max_running
+        self.budget = budget
+        if budget is not None:
+            budget.join(self)
         self._groups: dict[str, LaunchGroup] = {}
         self._ids = itertools.count(1)
 
@@ -87,6 +123,7 @@ class LaunchGroups:
         description = self._launcher.parse(path, args)
         if len(description.nodes) > self.max_nodes:
             raise LimitExceededError("nodes in one launch", self.max_nodes)
+        self._check_processes(self._processes_in(description))
         return self._add("launch", str(path), self._launcher.launch(description))
 
     def run(
@@ -101,7 +138,11 @@ class LaunchGroups:
         self._check_room()
         if name is not None:
             validate_node_name(name)
-        self._packages.resolve(pkg, exe)  # an unknown package or executable is an error, not a failed node
+        # An unknown package or executable is an error, not a failed node; so is a student's file
+        # that this server does not run (StudentCodeRefusedError).
+        resolved = self._packages.resolve(pkg, exe)
+        self._launcher.check_student_code(resolved)
+        self._check_processes(1 if self._launcher.runs_as_process(resolved) else 0)
         action = NodeAction(
             pkg=pkg,
             exec=exe,
@@ -134,6 +175,34 @@ class LaunchGroups:
     def _check_room(self) -> None:
         if len(self._groups) >= self.max_groups:
             raise LimitExceededError("launches and runs", self.max_groups)
+
+    def running_processes(self) -> int:
+        return sum(group.running_processes() for group in self._groups.values())
+
+    def _processes_in(self, description: LaunchDescription) -> int:
+        """How many of a launch's nodes would run as processes (one that cannot start counts none)."""
+        count = 0
+        for action in description.nodes:
+            try:
+                count += self._launcher.runs_as_process(self._packages.resolve(action.pkg, action.exec))
+            except LookupError:
+                continue
+        return count
+
+    def _check_processes(self, adding: int) -> None:
+        """LimitExceededError (429) when ``adding`` more node processes would be too many."""
+        if not adding:
+            return
+        if self.max_running is not None and self.running_processes() + adding > self.max_running:
+            raise LimitExceededError(
+                f"running node processes in this world ({self.running_processes()} run now, this starts {adding})",
+                self.max_running,
+            )
+        if self.budget is not None and self.budget.running() + adding > self.budget.limit:
+            raise LimitExceededError(
+                f"running node processes on this server ({self.budget.running()} run now, this starts {adding})",
+                self.budget.limit,
+            )
 
     def _add(self, kind: str, source: str, entries: list[LaunchedNode]) -> LaunchGroup:
         group = LaunchGroup(f"{kind}{next(self._ids)}", source, entries)

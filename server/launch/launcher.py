@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import logging
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -11,6 +12,7 @@ from server.bus import Bus, Node, NodeOverrides
 from server.bus.faults import is_node_fault
 from server.packages import Executable, PackageIndex
 from server.processes.command import node_command, ros_args
+from server.processes.sandbox import INSIDE_ROUTER, Sandbox, StudentCodeRefusedError
 from server.processes.supervisor import ProcessNode, Supervisor
 from server.transport.acl import Credentials
 
@@ -88,6 +90,8 @@ class Launcher:
         self.all_processes = False  # every lab node in its own process too (but the device nodes)
         self.confined = False  # includes and $(env) kept to the world's own packages (parse_launch)
         self.supervisor = Supervisor(bus, self._on_process_exit)
+        # Students' files on a server that serves others: in this sandbox, or refused (why).
+        self.sandbox: Sandbox | StudentCodeRefusedError | None = None
         self.on_process_start: list[Callable[[ProcessNode], None]] = []
         # Told of every launch file's nodes once started (server/checkpoints watches launches).
         self.on_launch: list[Callable[[LaunchDescription, list[LaunchedNode]], None]] = []
@@ -99,6 +103,12 @@ class Launcher:
         return self.launch(self.parse(path, args))
 
     def launch(self, description: LaunchDescription) -> list[LaunchedNode]:
+        """Start every node; StudentCodeRefusedError before any starts if one is a student's file
+        this server does not run."""
+        if isinstance(self.sandbox, StudentCodeRefusedError):
+            for action in description.nodes:
+                with contextlib.suppress(LookupError):
+                    self.check_student_code(self.packages.resolve(action.pkg, action.exec))
         started = [self.start(action) for action in description.nodes]
         self.launched.extend(started)
         for hook in self.on_launch:
@@ -108,14 +118,23 @@ class Launcher:
     def runs_as_process(self, exe: Executable) -> bool:
         return exe.file is not None or (self.all_processes and (exe.pkg, exe.name) not in DEVICE_NODES)
 
+    def check_student_code(self, exe: Executable) -> None:
+        """StudentCodeRefusedError if ``exe`` is a student's file and this server cannot sandbox it."""
+        if exe.file is not None and isinstance(self.sandbox, StudentCodeRefusedError):
+            raise self.sandbox
+
     def _start_process(self, action: NodeAction, exe: Executable, entry: LaunchedNode) -> LaunchedNode:
         if self.transport is None:
             raise NoGraphError(str(exe.file or f"{exe.pkg} {exe.name}"))
+        self.check_student_code(exe)
+        sandbox = self.sandbox if exe.file is not None and isinstance(self.sandbox, Sandbox) else None
         command = node_command(
             exe.target, ros_args(action.name, action.namespace, action.parameters, action.remappings),
-            router=self.transport.router, domain_id=self.transport.domain_id, login=self.transport.login,
-            workspace=self.packages.workspace,
+            router=INSIDE_ROUTER if sandbox else self.transport.router, domain_id=self.transport.domain_id,
+            login=self.transport.login, workspace=self.packages.workspace, env={} if sandbox else None,
         )  # fmt: skip
+        if sandbox is not None:
+            command = sandbox.wrap(command, self.packages.workspace)
         entry.process = self.supervisor.start(
             command, action.exec, screen=action.output in SCREEN_OUTPUTS, node_name=action.name
         )

@@ -1,6 +1,6 @@
 """One field of a message class: what a value must be to fit it, and how it is copied, compared
 and turned into JSON. Fixed-size numeric arrays are numpy arrays, numeric sequences
-``array.array``s (as rclpy makes them), arrays of strings and of messages lists."""
+``array.array``s (as rclpy makes them), sequences of bools, arrays of strings and of messages lists."""
 
 from __future__ import annotations
 
@@ -56,9 +56,12 @@ def _is_ndarray(value: Any) -> bool:
 
 # A sequence (``T[]``, ``T[<=N]``) of numbers is an ``array.array`` of this type code, as rclpy
 # makes it (so ``append`` works and it prints as ``array('i', [0, 1])``); fixed-size arrays are numpy.
+# A sequence of bools is a list of bools, as rclpy makes it (array.array has no bool). Neither
+# needs numpy, so a message with such sequences (rcl_interfaces' ParameterValue, which every
+# node's /parameter_events carries) does not load it.
 ARRAY_TYPECODES = {
-    "int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i", "uint32": "I",
-    "int64": "q", "uint64": "Q", "float32": "f", "float64": "d",
+    "byte": "B", "char": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i",
+    "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d",
 }  # fmt: skip
 if TYPE_CHECKING:  # what the generated classes annotate a sequence field with
     IntArray: TypeAlias = array.array[int]
@@ -115,7 +118,8 @@ class Field:
     of one value (of one element, for an array)."""
 
     __slots__ = (
-        "array", "bound", "default", "exact", "kind", "name", "size", "spec", "string_bound", "typecode",
+        "array", "bound", "default", "exact", "kind", "name", "numeric", "size", "spec", "string_bound",
+        "typecode",
     )  # fmt: skip
 
     def __init__(self, spec: FieldSpec, kind: str | type[Message]) -> None:
@@ -127,6 +131,12 @@ class Field:
         self.bound = spec.array_bound
         self.string_bound = spec.string_bound
         self.typecode = ARRAY_TYPECODES.get(kind) if spec.is_sequence and isinstance(kind, str) else None
+        self.numeric = (
+            self.array
+            and isinstance(kind, str)
+            and kind not in STRING_TYPES
+            and not (kind == "bool" and spec.is_sequence)
+        )
         if spec.default is not None:
             self.default: Any = spec.default
         elif isinstance(kind, str):
@@ -150,7 +160,8 @@ class Field:
 
     @property
     def numeric_array(self) -> bool:
-        return self.array and isinstance(self.kind, str) and self.kind not in STRING_TYPES
+        """An array of numbers: an ``array.array`` (a sequence) or a numpy array (fixed size)."""
+        return self.numeric
 
     def initial(self) -> Any:
         """A fresh default value for a new message."""

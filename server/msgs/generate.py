@@ -54,6 +54,8 @@ def _python_types(field: FieldSpec) -> tuple[str, str]:
     if not field.is_array:
         t = _scalar_python_type(field.base)
         return t, t
+    if field.is_sequence and field.base == "bool":
+        return "list[bool]", "Sequence[bool] | npt.NDArray[Any]"
     if field.is_sequence and field.base in ARRAY_TYPECODES:
         element = _scalar_python_type(field.base)
         return f"{element.capitalize()}Array", f"Sequence[{element}] | npt.NDArray[Any]"
@@ -201,8 +203,22 @@ def packages(definitions: Definitions) -> list[str]:
     return sorted({n.split("/")[0] for n in list(definitions.messages) + list(definitions.services)})
 
 
+def type_hashes_module(definitions: Definitions) -> str:
+    """The RIHS01 hash of every type (and service part) in ``definitions``, as a table: a node
+    process looks its types' hashes up there instead of building rosbags' typestore."""
+    from .wire import computed_type_hashes  # rosbags: only to write the table
+
+    rows = "".join(f'    "{name}": "{value}",\n' for name, value in computed_type_hashes(definitions).items())
+    return (
+        '"""RIHS01 type hashes of the lab\'s interfaces: generated from server/msgs/interfaces by '
+        '`python -m server.msgs.generate`; do not edit."""\n\n'
+        "# fmt: off\nTYPE_HASHES: dict[str, str] = {\n" + rows + "}\n# fmt: on\n"
+    )
+
+
 def generated_files(definitions: Definitions | None = None) -> dict[Path, str]:
-    """Every generated file's path and text (the package modules and their ``__init__``)."""
+    """Every generated file's path and text (the package modules, their ``__init__`` and the
+    table of type hashes)."""
     definitions = definitions or lab_definitions()
     files = {GENERATED_DIR / f"{pkg}.py": package_module(pkg, definitions) for pkg in packages(definitions)}
     names = packages(definitions)
@@ -214,6 +230,7 @@ def generated_files(definitions: Definitions | None = None) -> dict[Path, str]:
         + "".join(f'    "{pkg}",\n' for pkg in names)
         + "]\n"
     )
+    files[GENERATED_DIR / "type_hashes.py"] = type_hashes_module(definitions)
     return files
 
 

@@ -5,6 +5,12 @@ of its habits are corrected on the way in: it hashes ``char`` as CHAR where rosi
 UINT8 (both are one byte on the wire), and it names service parts ``pkg/srv/msg/X`` where a
 service's type description names them ``pkg/srv/X``. A service's hash covers its request,
 response and event message (REP-2016), so the event type is declared here as rosidl generates it.
+
+A node process asks only for the hashes of the types it uses and writes its CDR itself
+(server/transport/cdr.py): the lab's own types' hashes are looked up in a table generated with
+the message classes (server/msgs/generated/type_hashes.py), so such a process never imports
+rosbags nor builds a typestore; a student's own type's hash comes from a typestore of that
+type and what it nests alone.
 """
 
 from __future__ import annotations
@@ -13,16 +19,17 @@ import array
 import re
 from functools import cache
 from types import SimpleNamespace
-from typing import Any
-
-from rosbags.typesys import Stores, get_types_from_msg, get_typestore
-from rosbags.typesys.store import Typestore
+from typing import TYPE_CHECKING, Any
 
 from . import catalog
 from ._base import Message, message_class, message_classes
 from ._field import Field, MessageError
 from .action_spec import action_description_text
 from .definitions import Definitions, lab_definitions
+from .generated.type_hashes import TYPE_HASHES
+
+if TYPE_CHECKING:
+    from rosbags.typesys.store import Typestore
 
 CDR_LE_HEADER = b"\x00\x01\x00\x00"
 SERVICE_EVENT_INFO = "service_msgs/msg/ServiceEventInfo"
@@ -60,6 +67,8 @@ def _fix_srv_names(types: dict[str, Any]) -> dict[str, Any]:
 
 
 def _service_types(name: str, request: str, response: str, byte_as_uint8: bool) -> dict[str, Any]:
+    from rosbags.typesys import get_types_from_msg
+
     event = f"{SERVICE_EVENT_INFO} info\n{name}_Request[<=1] request\n{name}_Response[<=1] response"
     whole = f"{name}_Request request_message\n{name}_Response response_message\n{name}_Event event_message"
     types: dict[str, Any] = {}
@@ -72,6 +81,8 @@ def _service_types(name: str, request: str, response: str, byte_as_uint8: bool) 
 def _parsed(name: str, text: str, for_hashing: bool) -> dict[str, Any]:
     """rosbags' parse of one definition (the slow part of a typestore), kept: a typestore is built
     again whenever a student's types change, and the lab's own are the same every time."""
+    from rosbags.typesys import get_types_from_msg
+
     return dict(get_types_from_msg(_for_rosbags(text, byte_as_uint8=not for_hashing), name))
 
 
@@ -99,6 +110,8 @@ def build_typestore(
     laid out for CDR, or ``for_hashing`` with byte kept as rosidl's BYTE. With ``base``, its types
     are copied and only those ``definitions`` adds are registered (rosbags writes and runs code for
     every type it registers, which takes long for the lab's dozens)."""
+    from rosbags.typesys import Stores, get_typestore
+
     store = get_typestore(Stores.EMPTY)
     types = _types(definitions, for_hashing)
     if base is not None:
@@ -146,14 +159,51 @@ def typestore() -> Typestore:
     return _current_stores()[0]
 
 
+def _closure(definitions: Definitions, type_name: str) -> Definitions:
+    """The part of ``definitions`` a hash of ``type_name`` reads: the type (a message, a service,
+    a service's part or an action) and every type it nests, at any depth."""
+    picked = Definitions({}, {}, {})
+    for suffix in ("_Request", "_Response", "_Event"):  # a service's part: hashed with its service
+        if type_name.endswith(suffix) and type_name.removesuffix(suffix) in definitions.services:
+            type_name = type_name.removesuffix(suffix)
+    pending = [type_name]
+    while pending:
+        name = pending.pop()
+        if name in definitions.services and name not in picked.services:
+            service = picked.services[name] = definitions.services[name]
+            pending += [SERVICE_EVENT_INFO, *service.request.dependencies(), *service.response.dependencies()]
+        elif name in definitions.actions and name not in picked.actions:
+            action = picked.actions[name] = definitions.actions[name]
+            pending += [m.name for m in action.messages] + [s.name for s in action.services]
+        elif name in definitions.messages and name not in picked.messages:
+            spec = picked.messages[name] = definitions.messages[name]
+            pending += spec.dependencies()
+    return picked
+
+
 @cache
 def _hash(type_name: str, generation: int) -> str:
-    return str(_current_stores()[1].hash_rihs01(type_name))
+    store = build_typestore(_closure(catalog.definitions(), type_name), for_hashing=True)
+    return str(store.hash_rihs01(type_name))
 
 
 def type_hash(type_name: str) -> str:
-    """``RIHS01_<sha256 hex>`` of a message or service type, computed from its definition."""
+    """``RIHS01_<sha256 hex>`` of a message or service type, computed from its definition (the
+    lab's own types' from the generated table)."""
+    known = TYPE_HASHES.get(type_name)
+    return known if known is not None else computed_type_hash(type_name)
+
+
+def computed_type_hash(type_name: str) -> str:
+    """``type_name``'s hash computed from its definition and what it nests, without the table."""
     return _hash(type_name, catalog.generation())
+
+
+def computed_type_hashes(definitions: Definitions) -> dict[str, str]:
+    """Every hash a typestore of ``definitions`` can give, computed (for the generated table)."""
+    own = definitions is lab_definitions()
+    store = _lab_store(True) if own else build_typestore(definitions, for_hashing=True)
+    return {name: str(store.hash_rihs01(name)) for name in sorted(store.fielddefs)}
 
 
 def dds_type_name(type_name: str) -> str:
@@ -200,16 +250,28 @@ def prepare(type_name: str) -> None:
 _HOLDS_SEQUENCES: dict[str, bool] = {}
 
 
+def _bool_sequence(f: Field) -> bool:
+    return f.array and f.kind == "bool" and not f.numeric_array
+
+
 def _holds_sequences(cls: type[Message]) -> bool:
-    """Whether a message of ``cls`` holds (at any depth) a sequence of numbers: an ``array.array``,
-    which rosbags cannot write (it takes numpy arrays)."""
+    """Whether a message of ``cls`` holds (at any depth) a sequence of numbers or bools: an
+    ``array.array`` or a list, which rosbags cannot write (it takes numpy arrays)."""
     known = _HOLDS_SEQUENCES.get(cls.TYPE)
     if known is None:
         known = _HOLDS_SEQUENCES[cls.TYPE] = any(
-            f.typecode is not None or (not isinstance(f.kind, str) and _holds_sequences(f.kind))
+            f.typecode is not None
+            or _bool_sequence(f)
+            or (not isinstance(f.kind, str) and _holds_sequences(f.kind))
             for f in cls.FIELDS
         )
     return known
+
+
+def _bools_view(values: list[bool]) -> Any:
+    import numpy as np
+
+    return np.array(values, dtype=bool)
 
 
 def _numpy_view(value: Any) -> Any:
@@ -226,7 +288,10 @@ def _numpy_view(value: Any) -> Any:
     if isinstance(value, Message):
         if not _holds_sequences(type(value)):
             return value
-        return SimpleNamespace(**{f.name: _numpy_view(getattr(value, f.name)) for f in value.FIELDS})
+        return SimpleNamespace(**{
+            f.name: _bools_view(getattr(value, f.name)) if _bool_sequence(f) else _numpy_view(getattr(value, f.name))
+            for f in value.FIELDS
+        })  # fmt: skip
     return value
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import secrets
@@ -26,6 +27,7 @@ class NodeCommand:
     argv: list[str]
     env: dict[str, str]
     zid: str  # the Zenoh session id the process will have, so the graph can tell which process it is
+    sandboxed: bool = False  # argv is bwrap's: the node is its child (server/processes/sandbox.py)
 
 
 def ros_args(
@@ -76,6 +78,11 @@ def node_command(
     its own process, joined to the router at ``router`` (``tcp/HOST:PORT``); the interface packages
     of ``workspace`` import in it."""
     runner = [sys.executable, "-u", "-m", "server.processes.runner"]
+    # Absolute: a sandboxed node starts in its workspace, not in the server's folder.
+    if isinstance(target, Path):
+        target = target.resolve()
+    elif isinstance(target, EntryPoint):
+        target = dataclasses.replace(target, root=target.root.resolve())
     if isinstance(target, EntryPoint):
         argv = [*runner, *target.argv(), *args]
     else:

@@ -22,7 +22,8 @@ code runs: one that cannot be read or does not parse is one line naming the file
 the YAML parser gives), and a non-zero exit.
 
 The process ends when the lab that started it does (Linux's parent-death signal), so no node
-outlives a killed app.
+outlives a killed app. A sandboxed node (server/processes/sandbox.py) takes its limits on first
+(server/processes/confinement.py); over its memory limit it ends with one line that says so.
 """
 
 from __future__ import annotations
@@ -41,7 +42,7 @@ from pathlib import Path
 from server.bus.params_file import ParamsFileError, read_params_file
 from server.packages.entry_points import EntryPoint
 
-from . import interface_modules
+from . import confinement, interface_modules
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
@@ -171,6 +172,13 @@ def _guarded(path: Path, body: Callable[[], int]) -> int:
         return EXIT_FAILED
     except KeyboardInterrupt:
         return 130  # Ctrl-C the file did not handle itself (the handout's nodes do)
+    except MemoryError:
+        limits = confinement.from_env()
+        if limits is None:
+            traceback.print_exc()
+            return EXIT_FAILED
+        _say(limits.memory_line())  # the sandbox's limit, not a bug in the node
+        return confinement.EXIT_MEMORY
     except SystemExit as exc:
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else EXIT_FAILED)
     except BaseException:
@@ -211,6 +219,9 @@ def params_files_problem(args: list[str]) -> str | None:
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
+    limits = confinement.from_env()
+    if limits is not None:  # a sandboxed node: its limits before any of its code
+        limits.apply()
     _die_with_parent()
     problem = params_files_problem(argv)
     if problem is not None:

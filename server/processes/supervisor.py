@@ -5,13 +5,17 @@ lines are printed with that label in front; its start and its death (pid, exit c
 Output is read by a thread per process and kept (the last lines) for the API
 (``GET /api/launches/{id}/output``, which ``ros2lab launch`` prints); an exit is handed
 to the bus's executor through a poller, so respawning happens on the executor's thread. Stopping
-sends Ctrl-C (SIGINT), then SIGTERM, then SIGKILL, each after a grace period.
+sends Ctrl-C (SIGINT), then SIGTERM, then SIGKILL, each after a grace period. A sandboxed node
+(server/processes/sandbox.py) is bwrap's child: Ctrl-C goes to the node itself, the rest to bwrap,
+whose end ends the sandbox.
 """
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import logging
+import os
 import signal
 import subprocess
 import sys
@@ -19,6 +23,7 @@ import threading
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import IO, Literal
 
 from server.bus import Bus
@@ -131,7 +136,7 @@ class Supervisor:
             code = process.exit_code
             level = logging.INFO if code == 0 else logging.ERROR
             log.log(level, "%s: process has died [pid %s, exit code %s, cmd '%s']", self.bus.tagged(f"[{process.label}]"),
-                    process.pid, code, " ".join(process.command.argv[3:]))  # fmt: skip
+                    process.pid, code, " ".join(_node_argv(process.command)[3:]))  # fmt: skip
             self.on_exit(process)
 
     def stop(self, process: ProcessNode, grace_s: float = STOP_GRACE_S) -> None:
@@ -141,7 +146,7 @@ class Supervisor:
         if proc is None or proc.poll() is not None:
             return
         for sig in (signal.SIGINT, signal.SIGTERM):
-            proc.send_signal(sig)
+            _send(process, sig)
             try:
                 proc.wait(timeout=grace_s)
                 return
@@ -162,8 +167,7 @@ class Supervisor:
         running = [p for p in self.processes if p.proc is not None and p.proc.poll() is None]
         for process in running:
             process.state = "stopped"
-            assert process.proc is not None
-            process.proc.send_signal(signal.SIGINT)
+            _send(process, signal.SIGINT)
         for process in running:
             self.stop(process)
 
@@ -173,3 +177,32 @@ class Supervisor:
 
     def by_zid(self, zid: str) -> ProcessNode | None:
         return next((p for p in self.processes if p.command.zid == zid and p.state == "running"), None)
+
+
+def _node_argv(command: NodeCommand) -> list[str]:
+    """The node's own command line (inside bwrap's, for a sandboxed node)."""
+    if command.sandboxed and "--" in command.argv:
+        return command.argv[command.argv.index("--") + 1 :]
+    return command.argv
+
+
+def _send(process: ProcessNode, sig: signal.Signals) -> None:
+    """Ctrl-C to the node (inside its sandbox, the child of bwrap), any other signal to the process
+    the app started (bwrap's end ends its sandbox)."""
+    proc = process.proc
+    assert proc is not None
+    if sig == signal.SIGINT and process.command.sandboxed:
+        inner = _child_pid(proc.pid)
+        if inner is not None:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(inner, sig)
+            return
+    proc.send_signal(sig)
+
+
+def _child_pid(pid: int) -> int | None:
+    try:
+        children = Path(f"/proc/{pid}/task/{pid}/children").read_text().split()
+    except OSError:
+        return None
+    return int(children[0]) if children else None

@@ -27,6 +27,9 @@ class ZenohSettings:
     login: Credentials | None = None  # the user and password the router asks for (a class's)
     router_logins: RouterAccess | None = None  # a router: who may log in, and what each may touch
     samples_hz: float | None = None  # samples a second taken from other processes (None: all)
+    # A Unix socket on this machine where the graph's router listens too (a router's own, listed in
+    # ``listen``; a client's, its router's): sandboxed node processes reach the graph only there.
+    process_socket: Path | None = None
 
     def __post_init__(self) -> None:
         if not 0 <= self.domain_id <= 232:

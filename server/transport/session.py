@@ -15,6 +15,7 @@ import zenoh
 
 from .acl import RouterLogins
 from .config import ZenohSettings, endpoint_host
+from .router_socket import open_to_nodes
 
 
 class TransportError(RuntimeError):
@@ -59,11 +60,15 @@ def open_session(settings: ZenohSettings, *, check_port: bool = True) -> zenoh.S
             _check_port_free(endpoint)
     try:
         if settings.router_logins is None:
-            return zenoh.open(build_config(settings))
-        # Zenoh reads the login file as the router opens: it exists only for that moment.
-        with RouterLogins(settings.router_logins) as logins:
-            extra = {**settings.extra, **logins.config}
-            return zenoh.open(build_config(dataclasses.replace(settings, extra=extra)))
+            session = zenoh.open(build_config(settings))
+        else:
+            # Zenoh reads the login file as the router opens: it exists only for that moment.
+            with RouterLogins(settings.router_logins) as logins:
+                extra = {**settings.extra, **logins.config}
+                session = zenoh.open(build_config(dataclasses.replace(settings, extra=extra)))
     except zenoh.ZError as exc:
         where = ", ".join(settings.listen if settings.mode == "router" else settings.connect) or "nowhere"
         raise TransportError(f"Zenoh could not open a {settings.mode} session on {where}: {exc}") from None
+    if settings.mode == "router" and settings.process_socket is not None:
+        open_to_nodes(settings.process_socket)
+    return session

@@ -4,6 +4,7 @@ instructor's controls. The worlds run on one manual clock that the tests step.""
 from __future__ import annotations
 
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -24,10 +25,16 @@ HOVER_S = 6.0  # a world's drone climbs to its 3 m hover in about 5 s
 
 
 def class_settings(
-    *, max_worlds: int = 3, classroom: bool = True, world: dict[str, Any] | None = None, **lab: Any
+    *,
+    max_worlds: int = 3,
+    classroom: bool = True,
+    world: dict[str, Any] | None = None,
+    workspaces_dir: Path = Path("workspaces"),
+    **lab: Any,
 ) -> Settings:
     """A class of ``max_worlds`` worlds; ``lab`` overrides its worlds' LabSettings, ``world`` their
-    WorldLimits; ``classroom=False``: the same lab alone."""
+    WorldLimits, ``workspaces_dir`` the folder of their workspaces; ``classroom=False``: the same
+    lab alone."""
     lab_settings = LabSettings(
         **{"launch": "all", "launch_args": {"start_delay": "3600"}, "viewer": False, **lab}
     )
@@ -35,7 +42,11 @@ def class_settings(
     return Settings(
         listen=Listening(allowed_hosts=("testserver",)),
         lab=lab_settings,
-        classroom=ClassroomSettings(code=CODE, max_worlds=max_worlds, world=limits) if classroom else None,
+        classroom=ClassroomSettings(
+            code=CODE, max_worlds=max_worlds, world=limits, workspaces_dir=workspaces_dir
+        )
+        if classroom
+        else None,
     )
 
 
@@ -299,6 +310,9 @@ CLASS_ROUTES = {
     "/api/classroom/reset": {"post"},
     "/api/classroom/worlds/{name}": {"delete"},
     "/api/classroom/broadcast": {"post"},
+    "/api/classroom/worlds/{name}/workspace/files": {"get"},
+    "/api/classroom/worlds/{name}/workspace/files/{path}": {"get"},
+    "/api/classroom/workspaces/archive": {"get"},
 }
 
 

@@ -24,7 +24,8 @@ MY_LAUNCH = """<launch>
 
 @pytest.fixture
 def folders(tmp_path: Path) -> tuple[Path, Path]:
-    workspace = tmp_path / "workspace"
+    """The bag folder, and Ada's workspace (each world has its own in the class's workspaces)."""
+    workspace = tmp_path / "workspaces" / "ada"
     (workspace / "src" / "mine" / "launch").mkdir(parents=True)
     (workspace / "src" / "mine" / "launch" / "mine.launch").write_text(MY_LAUNCH)
     return tmp_path / "bags", workspace
@@ -34,7 +35,7 @@ def folders(tmp_path: Path) -> tuple[Path, Path]:
 def client(folders: tuple[Path, Path]) -> Iterator[TestClient]:
     bags, workspace = folders
     settings = class_settings(
-        bag_dir=bags, workspace=workspace, world={"writes_hz": 1000.0, "writes_burst": 1000}
+        bag_dir=bags, workspaces_dir=workspace.parent, world={"writes_hz": 1000.0, "writes_burst": 1000}
     )
     with TestClient(create_app(settings, ManualClock(1_000.0))) as test_client:
         yield test_client
@@ -90,7 +91,7 @@ def test_a_student_launches_the_class_packages_and_no_other_path(client: TestCli
     ada = join(client, "Ada")
     builtin = BUILTIN_PACKAGES / "sensor_simulation" / "launch" / "sensors.launch"
     refused = {
-        str(builtin): None, "/etc/hostname": None, "/no/such.launch": None, "../workspace/src/mine/launch/mine.launch": None,
+        str(builtin): None, "/etc/hostname": None, "/no/such.launch": None, "../ada/src/mine/launch/mine.launch": None,
         "src/mine/launch/missing.launch": None, "../../etc/hostname": "sensor_simulation",
         "../launch/sensors.launch": "sensor_simulation", "missing.launch": "sensor_simulation",
     }  # fmt: skip

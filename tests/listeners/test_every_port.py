@@ -35,7 +35,10 @@ FOREIGN = "http://evil.example"
 SUBPROTOCOLS = ("foxglove.sdk.v1", f"viser-v{viser.__version__}")
 LISTEN = "0A"  # a TCP socket's state in /proc/net/tcp
 # Every WebSocket route of the app, with the way a client names a world or a topic.
-WS_ROUTES = ("/", "/ws/keys", "/ws/topics/countdown", "/rosbridge", "/class/rosbridge", "/instructor/view")
+WS_ROUTES = (
+    "/", "/ws/keys", "/ws/topics/countdown", "/ws/launches/run1/output", "/rosbridge", "/class/rosbridge",
+    "/instructor/view",
+)  # fmt: skip
 
 
 def process_tree(pid: int) -> list[int]:
@@ -172,7 +175,8 @@ def test_the_route_list_is_every_websocket_route_of_the_app() -> None:
             for context in getattr(route, "effective_route_contexts", list)():  # FastAPI's included routers
                 if isinstance(context.original_route, WebSocketRoute):
                     routes.add(context.frontend_prefix + context.original_route.path)
-        assert routes == {r.replace("countdown", "{name:path}") for r in WS_ROUTES}
+        named = {r.replace("countdown", "{name:path}").replace("run1", "{group_id}") for r in WS_ROUTES}
+        assert routes == named
 
 
 # -- a single lab ---------------------------------------------------------------------------

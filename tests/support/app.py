@@ -118,7 +118,9 @@ class LoggedProcess:
 class App(LoggedProcess):
     """``python -m server`` with a Zenoh router of its own, run in ``cwd`` (its ./workspace)."""
 
-    def __init__(self, workdir: Path, *launch: str, cwd: Path | None = None) -> None:
+    def __init__(
+        self, workdir: Path, *launch: str, cwd: Path | None = None, ready_s: float = READY_S
+    ) -> None:
         self.port, self.zenoh_port = free_ports(2)
         self.url = f"http://127.0.0.1:{self.port}"
         self.router = f"127.0.0.1:{self.zenoh_port}"
@@ -130,7 +132,7 @@ class App(LoggedProcess):
             cwd=cwd or REPO, stdout=self._log, stderr=subprocess.STDOUT,
         )  # fmt: skip
         try:
-            wait_healthy(self.url, self.proc, READY_S, self.log_tail)
+            wait_healthy(self.url, self.proc, ready_s, self.log_tail)
         except BaseException:  # the test fails here, and has no App to stop: end the process now
             self.stop()
             raise

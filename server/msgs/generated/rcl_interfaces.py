@@ -6,7 +6,6 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, ClassVar
 
 if TYPE_CHECKING:
-    import numpy as np
     import numpy.typing as npt
 
 from .._base import Message, Service
@@ -140,8 +139,8 @@ class ParameterValue(Message, type_name="rcl_interfaces/msg/ParameterValue"):
     integer_value: int
     double_value: float
     string_value: str
-    byte_array_value: npt.NDArray[np.uint8]
-    bool_array_value: npt.NDArray[np.bool_]
+    byte_array_value: IntArray
+    bool_array_value: list[bool]
     integer_array_value: IntArray
     double_array_value: FloatArray
     string_array_value: list[str]

@@ -1,0 +1,68 @@
+"""How many node processes may start at once on this server: ``GET /api/zenoh/join?start=true``
+(a node process about to start, as ``ros2lab run`` asks) admits a start into one of a few slots,
+each held for about as long as a node process takes to import its libraries and join; a start
+that finds every slot held is answered 429 with ``Retry-After``, and ``ros2lab run`` waits that
+long and asks again. A join without ``start`` (``ros2lab env``, a tool reading the router) is
+never paced.
+
+Why: a node's start is a burst of CPU (the interpreter, rclpy, the messages, the Zenoh session).
+Sixty of them at once on a 2-core class server (a class told "run it now") share the cores with
+the worlds' loops, and the scheduler gives every runnable process its share: the worlds fell
+behind and a page's WebSocket handshake waited over 10 s. Paced, at most ``slots`` starts share
+the cores with the server at any moment, and a burst is all joined at about ``slots / hold_s``
+starts a second.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from collections.abc import Callable
+
+from starlette.applications import Starlette
+
+HOLD_S = 1.0  # a handout node's start on an idle 2-core machine: about 0.5 s of CPU, 0.8 s to listed
+
+
+def default_slots() -> int:
+    """One start at a time per core the server does not need (at least one)."""
+    return max(1, (os.cpu_count() or 2) - 1)
+
+
+class JoinPacer:
+    """At most ``slots`` joins admitted within any ``hold_s``; ``clock`` is injected for tests."""
+
+    def __init__(
+        self, slots: int, hold_s: float = HOLD_S, clock: Callable[[], float] = time.monotonic
+    ) -> None:
+        if slots < 1 or hold_s <= 0:
+            raise ValueError(f"a join pacer needs slots >= 1 and hold_s > 0, got {slots} and {hold_s}")
+        self.slots, self.hold_s, self._clock = slots, hold_s, clock
+        self._held: list[float] = []  # when each held slot frees, oldest first
+        self.admitted = 0
+        self.deferred = 0
+
+    def admit(self) -> float | None:
+        """None if this join may go ahead now (it holds a slot), else seconds until one frees."""
+        now = self._clock()
+        self._held = [t for t in self._held if t > now]
+        if len(self._held) < self.slots:
+            self._held.append(now + self.hold_s)
+            self.admitted += 1
+            return None
+        self.deferred += 1
+        return self._held[0] - now
+
+
+def retry_after(wait_s: float) -> str:
+    """``Retry-After`` in whole seconds, as HTTP writes it (at least 1)."""
+    return str(max(1, math.ceil(wait_s)))
+
+
+def pacer_of(app: Starlette) -> JoinPacer:
+    """The app's pacer, made at its first join (one per server process: its cores are shared)."""
+    pacer: JoinPacer | None = getattr(app.state, "join_pacer", None)
+    if pacer is None:
+        pacer = app.state.join_pacer = JoinPacer(default_slots())
+    return pacer

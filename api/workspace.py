@@ -1,0 +1,194 @@
+"""REST: the student's workspace as files: its tree, each file's text with a version (ETag) so a
+stale save is refused (412), new packages as ``ros2 pkg create`` writes them, the lab's templates,
+and the whole workspace as a zip, down and up.
+
+The workspace is the lab's folder (``settings.lab.workspace``: ``./workspace`` on a single lab,
+the world's own folder on a class server), reached with the caller's token as every route is.
+Paths are confined to it (server/workspace/paths.py); errors map in api/errors.py. The disk is
+read and written in a worker thread (a tree is a walk of up to thousands of ``stat`` calls), never
+on the loop that runs the labs.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import functools
+import weakref
+from typing import Annotated, Any, Literal
+
+from fastapi import APIRouter, Header, Request, Response, status
+from pydantic import BaseModel, ConfigDict, Field, StringConstraints
+
+from server.lab import Lab
+from server.packages.templates import PackageSpec
+from server.workspace.archive import pack, unpack
+from server.workspace.errors import NoWorkspaceError
+from server.workspace.files import WorkspaceFiles
+from server.workspace.package_create import create_package
+from server.workspace.templates import TEMPLATES
+from server.workspace.tree import Tree
+
+from .deps import LabDep
+from .responses import NOT_FOUND, TYPE_CONFLICT, UNPROCESSABLE, responses
+
+PREFIX = "/api/workspace/"
+router = APIRouter(prefix="/api/workspace", tags=["workspace"])
+_files: weakref.WeakKeyDictionary[Lab, WorkspaceFiles] = weakref.WeakKeyDictionary()
+PRECONDITION = 412
+TOO_LARGE = 413
+NOT_TEXT = 415
+Name = Annotated[str, StringConstraints(max_length=256)]
+Text = Annotated[str, StringConstraints(max_length=1024)]
+ZIP = "application/zip"
+
+
+def files_of(lab: Lab) -> WorkspaceFiles:
+    """The lab's workspace (one object per lab, so its writes share one lock)."""
+    root = lab.settings.lab.workspace
+    if root is None:
+        raise NoWorkspaceError("this lab has no workspace folder")
+    files = _files.get(lab)
+    if files is None or files.root != root:
+        files = _files[lab] = WorkspaceFiles(root, lab.settings.workspace)
+    return files
+
+
+def tree_body(tree: Tree) -> dict[str, Any]:
+    return {
+        "version": tree.version,
+        "entries": [{"path": e.path, "kind": e.kind, "size": e.size, "etag": e.etag} for e in tree.entries],
+    }
+
+
+def etag_value(header: str | None) -> str | None:
+    """An ``If-Match`` value as the etag it names (quoted or not, weak or not)."""
+    if header is None:
+        return None
+    return header.strip().removeprefix("W/").strip('"')
+
+
+class SaveRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid", strict=True)
+    text: str
+
+
+class RenameRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid", strict=True)
+    source: Text
+    target: Text
+
+
+class PackageRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid", strict=True)
+    name: Name = Field(examples=["simple_control"])
+    build_type: Literal["ament_python", "ament_cmake"] = "ament_python"
+    node_name: Name | None = Field(default=None, examples=["keyboard_manager"])
+    dependencies: list[Name] = Field(default_factory=list, max_length=64)
+    description: Text | None = None
+    license: Name | None = None
+
+
+FILE_ERRORS = responses(NOT_FOUND, UNPROCESSABLE, NOT_TEXT, TOO_LARGE)
+WRITE_ERRORS = responses(NOT_FOUND, TYPE_CONFLICT, PRECONDITION, NOT_TEXT, TOO_LARGE, body=True)
+CREATED: dict[int | str, dict[str, Any]] = {201: {"description": "a new file was created"}}
+
+
+@router.get("/files", responses=responses(NOT_FOUND))
+async def tree(lab: LabDep) -> dict[str, Any]:
+    """Every file and folder, sorted by path; ``version`` changes with any change in the tree."""
+    return tree_body(await asyncio.to_thread(files_of(lab).tree))
+
+
+@router.get("/files/{path:path}", responses=FILE_ERRORS)
+async def read(path: str, lab: LabDep, response: Response) -> dict[str, Any]:
+    """A file's text and version (also in the ``ETag`` header)."""
+    found = await asyncio.to_thread(files_of(lab).read, path)
+    response.headers["ETag"] = f'"{found.etag}"'
+    return {"path": found.path, "text": found.text, "etag": found.etag}
+
+
+@router.put("/files/{path:path}", responses={**CREATED, **WRITE_ERRORS})
+async def save(
+    path: str,
+    body: SaveRequest,
+    lab: LabDep,
+    response: Response,
+    if_match: Annotated[str | None, Header()] = None,
+    if_none_match: Annotated[str | None, Header()] = None,
+) -> dict[str, Any]:
+    """Save a file: over the version ``If-Match`` names, or with ``If-None-Match: *`` only a new
+    one (412 otherwise, with the current etag); missing folders are made. 201 when created."""
+    create_only = (if_none_match or "").strip() == "*"
+    write = functools.partial(files_of(lab).write, if_match=etag_value(if_match), create_only=create_only)
+    saved = await asyncio.to_thread(write, path, body.text)
+    if saved.created:
+        response.status_code = status.HTTP_201_CREATED
+    response.headers["ETag"] = f'"{saved.etag}"'
+    return {"path": saved.path, "etag": saved.etag, "size": saved.size}
+
+
+@router.delete("/files/{path:path}", responses=responses(NOT_FOUND, UNPROCESSABLE, PRECONDITION))
+async def delete(path: str, lab: LabDep, if_match: Annotated[str | None, Header()] = None) -> dict[str, Any]:
+    """Remove a file, or a folder with everything in it; how many files went."""
+    delete = functools.partial(files_of(lab).delete, if_match=etag_value(if_match))
+    return {"path": path, "deleted": await asyncio.to_thread(delete, path)}
+
+
+@router.post("/rename", responses=responses(NOT_FOUND, TYPE_CONFLICT, body=True))
+async def rename(body: RenameRequest, lab: LabDep) -> dict[str, str]:
+    """Move a file or folder to a free path (409 when the target exists)."""
+    return {"path": await asyncio.to_thread(files_of(lab).rename, body.source, body.target)}
+
+
+@router.post(
+    "/packages",
+    status_code=status.HTTP_201_CREATED,
+    responses=responses(NOT_FOUND, TYPE_CONFLICT, TOO_LARGE, body=True),
+)
+async def new_package(body: PackageRequest, lab: LabDep) -> dict[str, Any]:
+    """A package in ``src/<name>`` with the files ``ros2 pkg create`` writes (409 if taken)."""
+    spec = PackageSpec(
+        name=body.name, build_type=body.build_type, node_name=body.node_name, dependencies=list(body.dependencies),
+        description=body.description or PackageSpec.description, license=body.license or PackageSpec.license,
+        maintainer_name="student", maintainer_email="student@todo.todo",
+    )  # fmt: skip
+    created = await asyncio.to_thread(create_package, files_of(lab), spec)
+    return {"name": created.name, "path": created.path, "files": created.files}
+
+
+@router.get("/templates")
+async def templates(_lab: LabDep) -> list[dict[str, Any]]:
+    """The lab's starting files, with ``# TODO`` where the student's code goes."""
+    return [t.describe() for t in TEMPLATES]
+
+
+@router.get(
+    "/archive", response_class=Response, responses={200: {"content": {ZIP: {}}}, **responses(NOT_FOUND)}
+)
+async def download(lab: LabDep) -> Response:
+    """The workspace's files in one zip."""
+    data = await asyncio.to_thread(pack, files_of(lab))
+    name = lab.settings.lab.workspace.name if lab.settings.lab.workspace is not None else "workspace"
+    return Response(
+        data, media_type=ZIP, headers={"Content-Disposition": f'attachment; filename="{name}.zip"'}
+    )
+
+
+@router.post(
+    "/archive",
+    openapi_extra={
+        # The zip's bytes as the body, sent as application/zip or any other type: the document
+        # names the generic binary type, which every client (and schemathesis) can send.
+        "requestBody": {
+            "required": True,
+            "description": "the zip's bytes (Content-Type application/zip or application/octet-stream)",
+            "content": {"application/octet-stream": {"schema": {"type": "string", "format": "binary"}}},
+        }
+    },
+    responses=responses(NOT_FOUND, TOO_LARGE, NOT_TEXT, body=True),
+)
+async def upload(request: Request, lab: LabDep) -> dict[str, list[str]]:
+    """Write a zip's files into the workspace: all of them, or (one entry refused) none."""
+    files = files_of(lab)
+    data = await request.body()
+    return {"written": await asyncio.to_thread(unpack, files, data)}

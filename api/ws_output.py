@@ -1,0 +1,76 @@
+"""WebSocket: ``/ws/launches/{id}/output`` streams what a launch's or run's node processes print.
+
+Frames (JSON text): ``line`` (``seq``, ``node``, ``stream``, ``text``), ``dropped`` (``count``:
+lines a fast printer lost before this socket read them), ``exit`` (``node``, ``code`` or
+``signal``) and, once every node of the group has ended, ``end``, after which the server closes
+the socket (1000). A new socket first gets the lines still kept. The output is read from the
+processes' own bounded buffers every ``POLL_S``, so a flood costs this socket no memory and
+the lab nothing; the lab's frame budget paces the sends. An unknown id closes with 4404; the
+channel takes no messages.
+"""
+
+from __future__ import annotations
+
+import asyncio
+
+from fastapi import APIRouter, WebSocket, WebSocketDisconnect
+
+from server.lab import Lab
+from server.launch.groups import UnknownLaunchError
+from server.launch.output import GroupOutput
+
+from .deps import WsLabDep
+from .errors import CloseCode, close_reason
+from .strict_json import dumps
+from .ws_budget import spend
+from .ws_life import closed_when_lab_stops
+
+router = APIRouter(tags=["websockets"])
+POLL_S = 0.05
+ENDED_REASON = "every node of the group has ended"
+
+
+@router.websocket("/ws/launches/{group_id}/output")
+async def output(websocket: WebSocket, group_id: str, lab: WsLabDep) -> None:
+    await websocket.accept()
+    try:
+        group = lab.launch_groups.get(group_id)
+    except UnknownLaunchError as exc:
+        await websocket.close(CloseCode.NOT_FOUND, close_reason(str(exc)))
+        return
+    reader = GroupOutput(group, lambda: group_id in lab.launch_groups)
+    sender = asyncio.create_task(_send_loop(websocket, reader, lab))
+    try:
+        async with closed_when_lab_stops(websocket, lab):
+            await _receive_until_closed(websocket, lab.settings.listen.max_ws_frame_bytes)
+    finally:
+        sender.cancel()
+        await asyncio.gather(sender, return_exceptions=True)
+
+
+async def _send_loop(websocket: WebSocket, reader: GroupOutput, lab: Lab) -> None:
+    try:
+        while not reader.ended:
+            for frame in reader.poll():
+                await spend(lab.socket_frames)
+                await websocket.send_text(dumps(frame))
+            if not reader.ended:
+                await asyncio.sleep(POLL_S)
+        await websocket.close(1000, ENDED_REASON)
+    except (WebSocketDisconnect, RuntimeError, asyncio.CancelledError):
+        return
+
+
+async def _receive_until_closed(websocket: WebSocket, max_frame_bytes: int) -> None:
+    """The output channel only sends; anything a client sends is refused with a named close code."""
+    try:
+        frame = await websocket.receive()
+        if frame["type"] == "websocket.disconnect":
+            return
+        data = frame.get("text") or frame.get("bytes") or b""
+        if len(data) > max_frame_bytes:
+            await websocket.close(CloseCode.MESSAGE_TOO_BIG, f"frame larger than {max_frame_bytes} bytes")
+        else:
+            await websocket.close(CloseCode.UNSUPPORTED_DATA, "the output channel takes no messages")
+    except (WebSocketDisconnect, RuntimeError):
+        return

@@ -1,0 +1,95 @@
+"""Asking the lab how to join its ROS graph (``GET /api/zenoh/join``), as ``ros2lab run`` and
+``ros2lab env`` do, with a bounded wait.
+
+A lab that does not answer (nothing listens, or it accepts and never replies, or it answers 5xx)
+is asked again with a growing pause, for at most ``wait_s`` seconds in all; then one line says
+so and the command ends non-zero. Nothing falls back to another router or domain: a node started
+anyway would join a graph nobody watches. A lab that answers "not yet" (429 with
+``Retry-After``: too many node processes starting at once on it, see api/join_pacing.py) is asked
+again after the time it gives, for at most ``queue_s`` seconds; that wait is the lab's own pacing
+and does not count as not answering. Any other error (no Zenoh graph, a bad token) ends at once.
+"""
+
+from __future__ import annotations
+
+import random
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from .client import ApiError, CliError, LabClient, NoServerError
+
+JOIN_PATH = "/api/zenoh/join"
+WAIT_S = 20.0  # for a lab that does not answer
+QUEUE_S = 300.0  # for a lab that answers "not yet"
+ATTEMPT_S = 5.0  # one request's own bound
+FIRST_PAUSE_S = 0.25
+MAX_PAUSE_S = 4.0
+NOTE_AFTER_S = 5.0  # a wait this long is said once on stderr
+TOO_MANY = 429
+RETRIED_STATUSES = (502, 503, 504)
+
+
+class JoinError(CliError):
+    """The lab did not tell how to join its graph within the bounded wait."""
+
+
+@dataclass
+class Pacing:
+    """The waits of one join; ``clock``, ``sleep`` and ``jitter`` are injected for tests."""
+
+    wait_s: float = WAIT_S
+    queue_s: float = QUEUE_S
+    clock: Callable[[], float] = time.monotonic
+    sleep: Callable[[float], None] = time.sleep
+    jitter: Callable[[], float] = field(default=random.random)  # 0..1, spreads a class's retries
+    say: Callable[[str], None] = field(default=lambda line: print(line, file=sys.stderr, flush=True))
+
+
+def join_graph(client: LabClient, pacing: Pacing | None = None, *, start: bool = False) -> dict[str, Any]:
+    """The lab's answer to ``GET /api/zenoh/join``, asked until it gives one (see the module);
+    ``start``: a node process starts once it has the answer (the lab paces those)."""
+    pacing = pacing or Pacing()
+    started = pacing.clock()
+    unanswered_since: float | None = None
+    pause = FIRST_PAUSE_S
+    noted = False
+    while True:
+        attempted = pacing.clock()
+        bound = pacing.wait_s - (attempted - unanswered_since if unanswered_since is not None else 0.0)
+        try:
+            timeout_s = max(0.1, min(ATTEMPT_S, bound))
+            answer: dict[str, Any] = client.get(JOIN_PATH, {"start": "true"} if start else None, timeout_s)
+            return answer
+        except ApiError as exc:
+            if exc.status == TOO_MANY and exc.retry_after_s is not None:
+                unanswered_since, pause = None, FIRST_PAUSE_S
+                delay = exc.retry_after_s + pacing.jitter() * exc.retry_after_s
+                if pacing.clock() + delay - started > pacing.queue_s:
+                    raise JoinError(
+                        f"the lab at {client.base_url} was still pacing node starts after "
+                        f"{pacing.queue_s:.0f} s ({exc.detail}); try again later"
+                    ) from None
+                if not noted and pacing.clock() + delay - started >= NOTE_AFTER_S:
+                    pacing.say("ros2lab: the lab is starting other nodes first; waiting for its turn ...")
+                    noted = True
+                pacing.sleep(delay)
+                continue
+            if exc.status not in RETRIED_STATUSES:
+                raise
+            problem = f"HTTP {exc.status}"
+        except NoServerError:
+            problem = "connection refused"
+        except CliError as exc:  # a timeout or a connection dropped without an answer
+            problem = str(exc)
+        if unanswered_since is None:
+            unanswered_since = attempted
+        if pacing.clock() - unanswered_since + pause > pacing.wait_s:
+            raise JoinError(
+                f"the lab at {client.base_url} did not tell how to join its graph within "
+                f"{pacing.wait_s:.0f} s ({problem}); the node was not started"
+            ) from None
+        pacing.sleep(pause)
+        pause = min(MAX_PAUSE_S, pause * 2)

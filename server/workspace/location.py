@@ -1,0 +1,27 @@
+"""Where a class world's workspace lives: the folder of the world's name in the class's
+``workspaces_dir``, kept across resets and restarts of the server, removed with the student."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+from .paths import parts_of
+
+
+def world_workspace(workspaces_dir: Path, world: str) -> Path:
+    """The folder of ``world``'s workspace (a world's name is one plain name: no ``/``, no ``..``)."""
+    (name,) = parts_of(world)
+    return workspaces_dir / name
+
+
+def remove_world_workspace(workspaces_dir: Path, world: str) -> bool:
+    """Remove the world's workspace with everything in it; whether there was one."""
+    folder = world_workspace(workspaces_dir, world)
+    if folder.is_symlink():
+        folder.unlink()
+        return True
+    if not folder.is_dir():
+        return False
+    shutil.rmtree(folder)
+    return True

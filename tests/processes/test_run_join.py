@@ -1,0 +1,200 @@
+"""``ros2lab run`` joins only the graph its lab names, and says so when it cannot: against a
+lab that accepts and never replies, or where nothing listens, one line and a non-zero exit within
+``--join-timeout`` (and no node starts); against one that answers late, the node joins the router
+and domain the answer names. A node process whose router is not there says so within seconds.
+
+The labs here are stand-ins written for the test (a silent socket, a tiny HTTP server) and the
+router a Zenoh router this test opens, all on 127.0.0.1 without scouting."""
+
+from __future__ import annotations
+
+import json
+import os
+import select
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Iterator
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from pathlib import Path
+from typing import Any
+
+import pytest
+import zenoh
+from support.app import end, free_port
+from support.wait import wait_until
+
+from .conftest import make_workspace
+
+NODE = """
+import rclpy
+from rclpy.node import Node
+
+
+class LateJoiner(Node):
+    def __init__(self):
+        super().__init__('late_joiner')
+
+
+if __name__ == '__main__':
+    rclpy.init()
+    try:
+        rclpy.spin(LateJoiner())
+    except KeyboardInterrupt:
+        pass
+    finally:
+        rclpy.try_shutdown()
+"""
+JOIN_TIMEOUT_S = 3.0
+DOMAIN = 7
+
+
+@pytest.fixture(scope="module")
+def workspace(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return make_workspace(tmp_path_factory.mktemp("run_join"), {"src/demo/late_joiner.py": NODE})
+
+
+def ros2lab_run(url: str, workspace: Path, *extra: str) -> subprocess.Popen[str]:
+    env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE")}
+    return subprocess.Popen(
+        [sys.executable, "-m", "server", "--url", url, "run", "--workspace", str(workspace),
+         "--join-timeout", str(JOIN_TIMEOUT_S), *extra, "demo", "late_joiner.py"],
+        env=env, text=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+    )  # fmt: skip
+
+
+def refused_within_bound(proc: subprocess.Popen[str]) -> tuple[int, str, float]:
+    started = time.monotonic()
+    try:
+        _out, err = proc.communicate(timeout=JOIN_TIMEOUT_S + 30)
+    except subprocess.TimeoutExpired:
+        end(proc)
+        proc.communicate()
+        pytest.fail("ros2lab run kept waiting past its bound")
+    return proc.returncode, err, time.monotonic() - started
+
+
+def test_run_against_a_lab_that_never_replies_is_one_line_and_a_non_zero_exit(workspace: Path) -> None:
+    with socket.socket() as silent:
+        silent.bind(("127.0.0.1", 0))
+        silent.listen(16)  # the kernel accepts; nothing ever reads or replies
+        url = f"http://127.0.0.1:{silent.getsockname()[1]}"
+        code, err, took = refused_within_bound(ros2lab_run(url, workspace))
+    lines = err.strip().splitlines()
+    assert code != 0 and len(lines) == 1, err
+    assert "did not tell how to join its graph within 3 s" in lines[0] and "not started" in lines[0]
+    assert took < JOIN_TIMEOUT_S + 20  # the bound, plus the interpreter's start on a loaded machine
+
+
+def test_run_where_nothing_listens_is_one_line_and_a_non_zero_exit(workspace: Path) -> None:
+    url = f"http://127.0.0.1:{free_port()}"
+    code, err, _took = refused_within_bound(ros2lab_run(url, workspace))
+    assert code != 0 and err.strip().splitlines() == [
+        f"error: the lab at {url} did not tell how to join its graph within 3 s (connection refused); "
+        "the node was not started"
+    ]
+
+
+class LateLab:
+    """A stand-in lab on ``port``: from ``opens_at`` on, it answers the join with ``join``."""
+
+    def __init__(self, port: int, join: dict[str, Any]) -> None:
+        body = json.dumps(join).encode()
+        self.asked: list[str] = []
+        asked = self.asked
+
+        class Handler(BaseHTTPRequestHandler):
+            def do_GET(self) -> None:
+                asked.append(self.path)
+                ok = self.path.startswith("/api/zenoh/join")
+                self.send_response(200 if ok else 404)
+                self.send_header("Content-Type", "application/json")
+                payload = body if ok else b'{"detail": "Not Found"}'
+                self.send_header("Content-Length", str(len(payload)))
+                self.end_headers()
+                self.wfile.write(payload)
+
+            def log_message(self, *args: object) -> None:
+                pass
+
+        self.server = ThreadingHTTPServer(("127.0.0.1", port), Handler)
+        self.thread = threading.Thread(target=self.server.serve_forever, daemon=True)
+        self.thread.start()
+
+    def close(self) -> None:
+        self.server.shutdown()
+        self.server.server_close()
+
+
+@pytest.fixture
+def router() -> Iterator[tuple[zenoh.Session, str]]:
+    endpoint = f"tcp/127.0.0.1:{free_port()}"
+    config = zenoh.Config()
+    config.insert_json5("mode", '"router"')
+    config.insert_json5("scouting/multicast/enabled", "false")
+    config.insert_json5("listen/endpoints", json.dumps([endpoint]))
+    session = zenoh.open(config)
+    try:
+        yield session, endpoint
+    finally:
+        session.close()
+
+
+def node_tokens(session: zenoh.Session, name: str) -> list[str]:
+    """The liveliness keys of nodes named ``name`` on the router's graph (rmw_zenoh's ``@ros2_lv``)."""
+    keys = [
+        str(reply.ok.key_expr) for reply in session.liveliness().get("@ros2_lv/**", timeout=2.0) if reply.ok
+    ]
+    return [k for k in keys if k.endswith("/" + name) and "/NN/" in k]
+
+
+def test_run_against_a_lab_that_answers_late_joins_the_graph_it_names(
+    workspace: Path, router: tuple[zenoh.Session, str]
+) -> None:
+    session, endpoint = router
+    port = free_port()
+    join = {"router": endpoint, "domain_id": DOMAIN, "user": None, "password": None, "env": {}}
+    run = ros2lab_run(f"http://127.0.0.1:{port}", workspace, "--join-timeout", "60")
+    lab: LateLab | None = None
+    try:
+        time.sleep(1.5)  # the lab is not up yet: its port refuses the first asks
+        assert run.poll() is None
+        lab = LateLab(port, join)
+        wait_until(
+            lambda: node_tokens(session, "late_joiner"), "the node on the named router", 60, poll_s=0.2
+        )
+        (token,) = node_tokens(session, "late_joiner")
+        assert token.startswith(f"@ros2_lv/{DOMAIN}/"), token
+        assert lab.asked == ["/api/zenoh/join?start=true"]
+        run.send_signal(signal.SIGINT)
+        _out, err = run.communicate(timeout=30)
+        assert run.returncode == 0, err
+    finally:
+        end(run)
+        run.communicate()  # and its pipes closed
+        if lab is not None:
+            lab.close()
+
+
+def test_a_node_process_without_its_router_says_so_within_seconds(workspace: Path) -> None:
+    env = {
+        **os.environ, "PYTHONUNBUFFERED": "1",
+        "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["tcp/127.0.0.1:{free_port()}"]',
+    }  # fmt: skip
+    node = subprocess.Popen(
+        [sys.executable, "-m", "server.processes.runner", str(workspace / "src/demo/late_joiner.py")],
+        env=env, text=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+    )  # fmt: skip
+    try:
+        assert node.stderr is not None
+        said, _, _ = select.select([node.stderr], [], [], 60.0)  # bounded: the note comes after 1 s
+        assert said, "the node said nothing about its missing router"
+        line = node.stderr.readline()
+        assert "Unable to connect to the lab's Zenoh router at tcp/127.0.0.1:" in line, line
+        assert node.poll() is None  # it keeps waiting, as rmw_zenoh's nodes wait for their router
+    finally:
+        end(node)
+        node.communicate()

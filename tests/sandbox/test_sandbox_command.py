@@ -1,0 +1,66 @@
+"""The sandbox's command line, read without running it: what it binds, how, and the environment it
+passes (tests/sandbox/test_sandbox.py runs it against a live class server)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from server.processes.command import node_command
+from server.processes.confinement import LIMITS_ENV, Confinement
+from server.processes.sandbox import INSIDE_ROUTER, PROJECT, SOCKET_DIR, Sandbox
+from server.transport.acl import Credentials
+
+
+def binds(argv: list[str], kind: str) -> dict[str, str]:
+    """``--bind``/``--ro-bind`` SRC DEST pairs of bwrap's argv (its own options only)."""
+    own = argv[: argv.index("--")]
+    return {own[i + 2]: own[i + 1] for i, arg in enumerate(own) if arg == kind}
+
+
+@pytest.fixture
+def wrapped(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> tuple[list[str], dict[str, str], Path]:
+    monkeypatch.setenv("ROS2LAB_SERVER_SECRET", "not for students")
+    monkeypatch.setattr("server.processes.sandbox.shutil.which", lambda _name: "/usr/bin/bwrap")
+    monkeypatch.setattr("server.processes.sandbox.os.geteuid", lambda: 1000)  # as a non-root server
+    workspace = tmp_path / "workspace"
+    (workspace / "src" / "mine").mkdir(parents=True)
+    node = workspace / "src" / "mine" / "node.py"
+    node.write_text("print('hi')\n")
+    socket = tmp_path / "router" / "router.sock"
+    command = node_command(node, [], router=INSIDE_ROUTER, env={}, login=Credentials("world-1", "pw"),
+                           domain_id=3, workspace=workspace)  # fmt: skip
+    out = Sandbox(socket, Confinement()).wrap(command, workspace)
+    assert out.sandboxed and out.zid == command.zid
+    return out.argv, out.env, workspace
+
+
+def test_sandbox_command_binds_the_workspace_rw_and_the_code_read_only(wrapped: tuple[list[str], dict[str, str], Path]) -> None:  # fmt: skip
+    argv, _env, workspace = wrapped
+    read_write, read_only = binds(argv, "--bind"), binds(argv, "--ro-bind")
+    assert read_write == {str(workspace): str(workspace)}
+    assert read_only[SOCKET_DIR] == str(workspace.parent / "router")
+    assert {str(PROJECT / name) for name in ("server", "sim", "client")} <= set(read_only)
+    assert str(PROJECT) not in read_only and str(PROJECT / "tests") not in read_only
+    for namespace in ("--unshare-user", "--unshare-pid", "--unshare-net", "--unshare-ipc", "--unshare-uts"):
+        assert namespace in argv
+    assert argv[argv.index("--uid") + 1] != "0"
+
+
+def test_sandbox_command_environment_is_only_what_a_node_needs(wrapped: tuple[list[str], dict[str, str], Path]) -> None:  # fmt: skip
+    _argv, env, workspace = wrapped
+    assert "ROS2LAB_SERVER_SECRET" not in env and "ROS2LAB_PARENT_PID" not in env
+    assert set(env) == {"PYTHONUNBUFFERED", "ROS_DOMAIN_ID", "ZENOH_CONFIG_OVERRIDE", "ROS2LAB_WORKSPACE",
+                        "PATH", "HOME", "TMPDIR", "LANG", LIMITS_ENV}  # fmt: skip
+    assert env["ROS_DOMAIN_ID"] == "3" and env["ROS2LAB_WORKSPACE"] == str(workspace.resolve())
+    assert f'connect/endpoints=["{INSIDE_ROUTER}"]' in env["ZENOH_CONFIG_OVERRIDE"]
+    assert "world-1" in env["ZENOH_CONFIG_OVERRIDE"]  # its world's login, nothing of the class's
+
+
+def test_confinement_round_trips_through_its_variable() -> None:
+    limits = Confinement(memory_mib=300, processes=20, open_files=100, file_size_mib=5, cpu_s=9, nice=4)
+    assert Confinement.decode(limits.encode(drop_root=True)) == Confinement(
+        memory_mib=300, processes=20, open_files=100, file_size_mib=5, cpu_s=9, nice=4, drop_root=True
+    )
+    assert Confinement.decode(limits.encode(drop_root=False)).drop_root is False

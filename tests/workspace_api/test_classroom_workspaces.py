@@ -1,0 +1,161 @@
+"""On a class server each world has its own workspace in the class's ``workspaces_dir``: a student
+reads and writes only their own; the instructor reads any (read-only) and downloads all in one
+zip; a world's workspace stays across a reset and a restart of the server, and goes when the
+instructor removes the student."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from classroom.test_classroom_api import auth, class_settings, join
+from fastapi.testclient import TestClient
+from support.app import free_port
+from support.wait import wait_until
+
+from server.app import create_app
+from server.bus import ManualClock
+from server.settings import Settings
+from server.transport.config import ZenohSettings
+
+from .helpers import FILES, names_in
+
+ROOM = {"writes_hz": 1000.0, "writes_burst": 1000}
+
+
+def settings_in(folder: Path) -> Settings:
+    return class_settings(workspaces_dir=folder, world=ROOM)
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return tmp_path_factory.mktemp("class") / "workspaces"
+
+
+@pytest.fixture(scope="module")
+def client(folder: Path) -> Iterator[TestClient]:
+    with TestClient(create_app(settings_in(folder), ManualClock(1_000.0))) as test_client:
+        yield test_client
+
+
+@pytest.fixture(scope="module")
+def students(client: TestClient) -> dict[str, str]:
+    tokens = {"ada": join(client, "Ada"), "bob": join(client, "Bob")}
+    for world, token in tokens.items():
+        reply = client.put(
+            f"{FILES}/src/{world}_pkg/{world}.py", json={"text": f"# {world}'s\n"}, headers=auth(token)
+        )
+        assert reply.status_code == 201, reply.text
+    return tokens
+
+
+def teacher(client: TestClient) -> dict[str, str]:
+    return auth(client.app.state.classroom.instructor_token)  # type: ignore[attr-defined]
+
+
+def paths(client: TestClient, headers: dict[str, str], route: str = FILES) -> list[str]:
+    reply = client.get(route, headers=headers)
+    assert reply.status_code == 200, reply.text
+    return [e["path"] for e in reply.json()["entries"] if e["kind"] == "file"]
+
+
+def test_class_each_student_sees_only_their_own_files(
+    client: TestClient, students: dict[str, str], folder: Path
+) -> None:
+    assert paths(client, auth(students["ada"])) == ["src/ada_pkg/ada.py"]
+    assert paths(client, auth(students["bob"])) == ["src/bob_pkg/bob.py"]
+    assert (folder / "ada" / "src/ada_pkg/ada.py").read_text() == "# ada's\n"
+    assert client.get(f"{FILES}/src/bob_pkg/bob.py", headers=auth(students["ada"])).status_code == 404
+    other = client.get(f"{FILES}/src/bob_pkg/bob.py", headers=auth(students["ada"], world="bob"))
+    assert other.status_code == 403
+    archive = client.get("/api/workspace/archive", headers=auth(students["ada"]))
+    assert names_in(archive.content) == ["src/ada_pkg/ada.py"]
+    assert client.get(FILES).status_code == 401  # no token
+
+
+def test_class_the_instructor_reads_any_workspace(client: TestClient, students: dict[str, str]) -> None:
+    route = "/api/classroom/worlds/bob/workspace/files"
+    assert paths(client, teacher(client), route) == ["src/bob_pkg/bob.py"]
+    read = client.get(f"{route}/src/bob_pkg/bob.py", headers=teacher(client))
+    assert read.status_code == 200 and read.json()["text"] == "# bob's\n"
+    assert read.headers["etag"].strip('"') == read.json()["etag"]
+    assert client.get(f"{route}/src/bob_pkg/none.py", headers=teacher(client)).status_code == 404
+    assert (
+        client.get("/api/classroom/worlds/nobody/workspace/files", headers=teacher(client)).status_code == 404
+    )
+    assert (
+        client.put(f"{route}/src/bob_pkg/bob.py", json={"text": "x"}, headers=teacher(client)).status_code
+        == 405
+    )
+    assert client.get(route, headers=auth(students["ada"])).status_code == 403  # a student may not
+    assert client.get(f"{route}/src/bob_pkg/bob.py", headers=auth(students["bob"])).status_code == 403
+
+
+def test_class_the_instructors_zip_holds_every_workspace(
+    client: TestClient, students: dict[str, str]
+) -> None:
+    reply = client.get("/api/classroom/workspaces/archive", headers=teacher(client))
+    assert reply.status_code == 200 and reply.headers["content-type"] == "application/zip"
+    assert names_in(reply.content) == ["ada/src/ada_pkg/ada.py", "bob/src/bob_pkg/bob.py"]
+    assert client.get("/api/classroom/workspaces/archive", headers=auth(students["ada"])).status_code == 403
+
+
+def test_class_a_reset_keeps_the_workspace(client: TestClient, students: dict[str, str]) -> None:
+    assert client.post("/api/classroom/worlds/ada/reset", headers=teacher(client)).status_code == 200
+    assert paths(client, auth(students["ada"])) == ["src/ada_pkg/ada.py"]
+
+
+def test_class_removing_a_student_removes_their_workspace_only(client: TestClient, folder: Path) -> None:
+    token = join(client, "Cleo")
+    assert client.put(f"{FILES}/src/c/c.py", json={"text": "c\n"}, headers=auth(token)).status_code == 201
+    assert (folder / "cleo" / "src/c/c.py").exists()
+    assert client.delete("/api/classroom/worlds/cleo", headers=teacher(client)).status_code == 200
+    assert not (folder / "cleo").exists()
+    assert (folder / "ada" / "src/ada_pkg/ada.py").exists()
+
+
+def test_class_a_workspace_outlives_a_restart_of_the_server(tmp_path: Path) -> None:
+    folder = tmp_path / "workspaces"
+    with TestClient(create_app(settings_in(folder), ManualClock(1_000.0))) as first:
+        token = join(first, "Dana")
+        assert first.put(f"{FILES}/src/d/d.py", json={"text": "d\n"}, headers=auth(token)).status_code == 201
+    with TestClient(create_app(settings_in(folder), ManualClock(1_000.0))) as second:
+        token = join(second, "Dana")
+        assert second.get(f"{FILES}/src/d/d.py", headers=auth(token)).json()["text"] == "d\n"
+
+
+SLEEPER = "import time\n\n\ndef main():\n    print('asleep', flush=True)\n    time.sleep(3600)\n"
+
+
+def test_class_the_servers_limit_of_running_nodes_is_429_across_worlds(tmp_path: Path) -> None:
+    zenoh = ZenohSettings(listen=(f"tcp/127.0.0.1:{free_port()}",))
+    settings = class_settings(workspaces_dir=tmp_path, world=ROOM, zenoh=zenoh)
+    settings = settings.model_copy(
+        update={"limits": settings.limits.model_copy(update={"max_server_nodes": 1})}
+    )
+    with TestClient(create_app(settings)) as client:
+        tokens = [join(client, "Eve"), join(client, "Finn")]
+        for token in tokens:
+            made = client.post("/api/workspace/packages", headers=auth(token),
+                               json={"name": "sleepy", "build_type": "ament_python", "node_name": "sleeper"})  # fmt: skip
+            assert made.status_code == 201, made.text
+            saved = client.put(
+                f"{FILES}/src/sleepy/sleepy/sleeper.py", json={"text": SLEEPER}, headers=auth(token)
+            )
+            assert saved.status_code == 200, saved.text
+        body = {"package": "sleepy", "executable": "sleeper"}
+        first = client.post("/api/run", json=body, headers=auth(tokens[0]))
+        assert first.status_code == 201 and first.json()["nodes"][0]["state"] == "running", first.text
+        refused = client.post("/api/run", json=body, headers=auth(tokens[1]))
+        assert refused.status_code == 429
+        assert "at most 1 running node processes on this server" in refused.json()["detail"]
+        assert (
+            client.delete(f"/api/launches/{first.json()['id']}", headers=auth(tokens[0])).status_code == 200
+        )
+
+        def finn_runs() -> bool:
+            reply = client.post("/api/run", json=body, headers=auth(tokens[1]))
+            return reply.status_code == 201  # once Eve's node has ended, Finn has room
+
+        wait_until(finn_runs, "room for Finn's node once Eve's ended", 30.0, poll_s=0.2)
