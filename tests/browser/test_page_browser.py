@@ -4,8 +4,8 @@ countdown an hour away (the rocket stands on its pad, the drone hovers at (0, 0,
 
 - at 800x600 and 1366x768, each view frames its vehicle (the drone's hub and arms at
   least a set number of pixels, counted by colour classes, in the follow and the arena camera; the
-  rocket standing on its pad), and the HUD, viser's notices, the help overlay and the panel never
-  overlap (the panel a strip at 800x600);
+  rocket standing on its pad), and the HUD, viser's notices, the guide, the help overlay and the
+  panel never overlap (the panel a strip and the guide folded at 800x600, both open at 1366x768);
 - the follow camera keeps the drone framed as it flies to (5, 5, 10);
 - a keydown moves the page's setpoint marker within two animation frames, measured in the page;
 - a new page opens on the lab under way, the view chosen is remembered, and keys still fly the
@@ -59,6 +59,8 @@ MAX_FRAMES_TO_ANSWER = 2
 MARKER_TOLERANCE_M = 0.05
 STRIP_MAX_PX = 60
 NARROW_PX = 1000  # web/src/lab/layout.ts: narrower than this, the panel starts as a strip
+# web/src/guide/panel.ts: narrower than NARROW_PX, the guide starts folded to its header bar
+GUIDE_FOLDED_MAX_PX = 40
 ARRIVED_M = 0.15
 FLIGHT_WAIT_S = 40.0
 MIN_POSE_RATE_HZ = 20  # the dynamics publish at 100 Hz; a loaded machine delivers fewer, never none
@@ -66,7 +68,7 @@ OVERLAYS_JS = """() => {
   const box = (e) => { const r = e.getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom]; };
   const shown = (e) => e && !e.hidden && e.getBoundingClientRect().width > 0;
   const out = {};
-  for (const id of ['teleop-nav-tools', 'teleop-hud', 'teleop-help']) {
+  for (const id of ['teleop-nav-tools', 'teleop-hud', 'teleop-guide', 'teleop-help']) {
     const e = document.getElementById(id); if (shown(e)) out[id] = box(e);
   }
   document.querySelectorAll('.mantine-Notification-root').forEach((e, i) => { if (shown(e)) out['notice' + i] = box(e); });
@@ -178,10 +180,14 @@ def test_page_each_view_frames_its_vehicle_and_overlays_never_overlap(
     assert_drone_seen(arena, f"arena at {width}x{height}", least(ARENA_LEAST, height))
     assert follow.hub_px > 3 * arena.hub_px, (follow, arena)  # following brings the camera close
     assert_rocket_on_pad(rocket, f"rocket at {width}x{height}")
-    assert {"teleop-hud", "teleop-help", "panel", "notice0"} <= set(boxes), boxes
+    assert {"teleop-hud", "teleop-guide", "teleop-help", "panel", "notice0"} <= set(boxes), boxes
     assert overlaps(boxes) == [], boxes
     for name, (left, top, right, bottom) in boxes.items():
         assert left >= 0 and top >= 0 and right <= width and bottom <= height, (name, boxes[name])
+    guide_height = boxes["teleop-guide"][3] - boxes["teleop-guide"][1]
+    assert (guide_height <= GUIDE_FOLDED_MAX_PX) == (width < NARROW_PX), (
+        f"guide {guide_height} px high at {width} px wide"
+    )
     panel_height = boxes["panel"][3] - boxes["panel"][1]
     assert (panel_height <= STRIP_MAX_PX) == (width < NARROW_PX), (
         f"panel {panel_height} px high at {width} px wide"

@@ -1,8 +1,10 @@
 // The instructor's page: every world once a second (GET /api/classroom/worlds) in a table, and
 // the controls (reset one or all, remove a student, publish in all worlds). Every drone in 3D is
-// the class view's own viser page, in a frame (/instructor/view). The token is the page's
+// the class view's own viser page, in a frame (/instructor/view). Below, the class's checkpoints
+// (checkpoints.ts). The token is the page's
 // HTTP-only cookie; these requests are same-origin.
 import type { BroadcastRequest, ClassWorld, ClassWorlds, ErrorBody } from "../protocol.gen";
+import { startCheckpoints } from "./checkpoints";
 
 const $ = <E extends HTMLElement = HTMLElement>(id: string): E => document.getElementById(id) as E;
 const say = (text: string): void => { $("status").textContent = text; };
@@ -100,3 +102,4 @@ $("broadcast").addEventListener("click", () => {
 });
 void refresh();
 setInterval(() => void refresh(), 1000);
+startCheckpoints();

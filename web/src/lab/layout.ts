@@ -1,8 +1,9 @@
 // Where the page's overlays go, so that none covers another at any window size: a column on the
-// left (the tools link, then the HUD, then viser's notices, moved below the HUD), viser's control
-// panel on the right (minimised to a strip when the window is narrow), and the help overlay in
-// the largest free area between them. It runs on resize, when the help opens or closes, and
-// twice a second (notices and the panel come and go on their own).
+// left (the tools link, then the HUD, then viser's notices, moved below the HUD, then the guide,
+// down to the window's bottom at most, scrolling inside, or only its header when the room left is
+// small), viser's control panel on the right (minimised to a strip when the window is narrow),
+// and the help overlay in the largest free area between them. It runs on resize, when the help
+// opens or closes, and twice a second (notices and the panel come and go on their own).
 import { scene } from "./scene";
 
 /** Dispatch this on window to lay the overlays out again now (the help opened or closed). */
@@ -14,6 +15,7 @@ const HELP_WIDTH = 460;
 const MIN_HELP_WIDTH = 280;
 const STRIP_MAX_PX = 60;  // a minimised panel is about 41 px high
 const CLICK_AGAIN_MS = 1500;  // a click toggles: never a second one before the first has shown
+const GUIDE_MIN_PX = 120;  // less room than this below the column: the guide shows its header only
 
 export const layout = {
   collapsedPanel: false,
@@ -69,8 +71,21 @@ const placeColumn = (): number | null => {
     const origin = rect(notices.offsetParent)!.top;
     document.documentElement.style.setProperty("--teleop-notices-top", `${below - origin}px`);
   }
-  const boxes = [nav, hud, notices].map(rect).filter((r): r is DOMRect => !!r && r.width > 0);
+  const shown = [...document.querySelectorAll(".mantine-Notification-root")].map(rect)
+    .filter((r): r is DOMRect => !!r && r.height > 0);
+  const guide = placeGuide(Math.max(below - GAP, ...shown.map((r) => r.bottom)) + GAP);
+  const boxes = [nav, hud, notices, guide].map(rect).filter((r): r is DOMRect => !!r && r.width > 0);
   return Math.max(...boxes.map((r) => r.right));
+};
+
+const placeGuide = (top: number): HTMLElement | null => {
+  const guide = document.getElementById("teleop-guide");
+  if (!guide) return null;
+  const room = window.innerHeight - MARGIN - top;
+  guide.style.top = `${top}px`;
+  guide.style.maxHeight = `${Math.max(0, room)}px`;
+  guide.classList.toggle("squeezed", room < GUIDE_MIN_PX);
+  return guide;
 };
 
 interface Region { x0: number; x1: number; y0: number; y1: number }
@@ -111,7 +126,7 @@ function layOut(): void {
   collapsePanelIfNarrow();
   const columnRight = placeColumn();
   if (columnRight !== null) placeHelp(columnRight);
-  const ids = ["teleop-nav-tools", "teleop-hud", "teleop-help"];
+  const ids = ["teleop-nav-tools", "teleop-hud", "teleop-guide", "teleop-help"];
   layout.boxes = Object.fromEntries(ids.map((id) => [id, rect(document.getElementById(id))]));
 }
 

@@ -1,11 +1,15 @@
 // The lab page's script, injected into viser's own page before its scripts (server: the page's
 // routes). Key capture first: it must see keys before viser does. Then the pose stream, the
 // setpoint prediction, the scene driver (views, follow), the drawn answer to a key, the drawing
-// quality, the HUD, the tools link, the layout of these overlays, and the code view's tab (its
+// quality, the HUD, the tools link, the lab's guide (web/src/guide: checkpoints, answers, the
+// view's picture for checkpoint 2), the layout of these overlays, and the code view's tab (its
 // editor loads as a bundle of its own when first opened).
 //
 // The modules share their state through imports. window.__teleop exposes the same objects to
 // the browser tests and benches (bench/teleop_latency.py), and to a curious student's console.
+import { capture, startCapture } from "../guide/capture";
+import { guide, startGuide } from "../guide/panel";
+import { progress, startProgress } from "../guide/progress";
 import { answer, startAnswer } from "./answer";
 import { codeview, startCodeView } from "./codeview";
 import { hud, startHud } from "./hud";
@@ -17,7 +21,10 @@ import { predict, startPredict } from "./predict";
 import { quality, startQuality } from "./quality";
 import { scene, startScene } from "./scene";
 
-const teleop = { keys, poses, predict, scene, answer, quality, hud, layout, codeview };
+const teleop = {
+  keys, poses, predict, scene, answer, quality, hud, layout, codeview,
+  guide: { panel: guide, progress, capture },
+};
 declare global {
   interface Window { __teleop?: typeof teleop }
 }
@@ -30,6 +37,9 @@ startAnswer();
 startQuality();
 startHud();
 startNav();
+startGuide();
+startProgress();
+startCapture();
 startLayout();
 startCodeView();
 window.__teleop = teleop;
