@@ -24,6 +24,7 @@ from .errors import CloseCode, close_reason
 from .strict_json import dumps
 from .ws_budget import spend
 from .ws_life import closed_when_lab_stops
+from .ws_send_only import refuse_client_frames
 
 router = APIRouter(tags=["websockets"])
 POLL_S = 0.05
@@ -42,7 +43,7 @@ async def output(websocket: WebSocket, group_id: str, lab: WsLabDep) -> None:
     sender = asyncio.create_task(_send_loop(websocket, reader, lab))
     try:
         async with closed_when_lab_stops(websocket, lab):
-            await _receive_until_closed(websocket, lab.settings.listen.max_ws_frame_bytes)
+            await refuse_client_frames(websocket, lab.settings.listen.max_ws_frame_bytes, "output")
     finally:
         sender.cancel()
         await asyncio.gather(sender, return_exceptions=True)
@@ -58,19 +59,4 @@ async def _send_loop(websocket: WebSocket, reader: GroupOutput, lab: Lab) -> Non
                 await asyncio.sleep(POLL_S)
         await websocket.close(1000, ENDED_REASON)
     except (WebSocketDisconnect, RuntimeError, asyncio.CancelledError):
-        return
-
-
-async def _receive_until_closed(websocket: WebSocket, max_frame_bytes: int) -> None:
-    """The output channel only sends; anything a client sends is refused with a named close code."""
-    try:
-        frame = await websocket.receive()
-        if frame["type"] == "websocket.disconnect":
-            return
-        data = frame.get("text") or frame.get("bytes") or b""
-        if len(data) > max_frame_bytes:
-            await websocket.close(CloseCode.MESSAGE_TOO_BIG, f"frame larger than {max_frame_bytes} bytes")
-        else:
-            await websocket.close(CloseCode.UNSUPPORTED_DATA, "the output channel takes no messages")
-    except (WebSocketDisconnect, RuntimeError):
         return

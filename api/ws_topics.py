@@ -27,6 +27,7 @@ from .errors import CloseCode, close_code, close_reason
 from .strict_json import dumps
 from .ws_budget import spend
 from .ws_life import closed_when_lab_stops
+from .ws_send_only import refuse_client_frames
 
 router = APIRouter(tags=["websockets"])
 MAX_QUEUE = 1000
@@ -131,7 +132,7 @@ async def echo(
     sender = asyncio.create_task(_send_loop(websocket, node, throttle_ms / 1000.0, lab.socket_frames))
     try:
         async with closed_when_lab_stops(websocket, lab):
-            await _receive_until_closed(websocket, lab.settings.listen.max_ws_frame_bytes)
+            await refuse_client_frames(websocket, lab.settings.listen.max_ws_frame_bytes, "echo")
     finally:
         sender.cancel()
         node.destroy_node()
@@ -161,19 +162,4 @@ async def _send_loop(
                 if throttle_s:
                     await asyncio.sleep(throttle_s)
     except (WebSocketDisconnect, RuntimeError, asyncio.CancelledError):
-        return
-
-
-async def _receive_until_closed(websocket: WebSocket, max_frame_bytes: int) -> None:
-    """The echo channel only sends; anything a client sends is refused with a named close code."""
-    try:
-        frame = await websocket.receive()
-        if frame["type"] == "websocket.disconnect":
-            return
-        data = frame.get("text") or frame.get("bytes") or b""
-        if len(data) > max_frame_bytes:
-            await websocket.close(CloseCode.MESSAGE_TOO_BIG, f"frame larger than {max_frame_bytes} bytes")
-        else:
-            await websocket.close(CloseCode.UNSUPPORTED_DATA, "the echo channel takes no messages")
-    except (WebSocketDisconnect, RuntimeError):
         return
