@@ -125,11 +125,12 @@ class Sandbox:
                 out += ["--symlink", os.readlink(target), str(target)]
             elif target.is_dir():
                 out += ["--ro-bind", str(target), str(target)]
-        for path in _python_dirs():
-            out += [*_parents(path), "--ro-bind", str(path), str(path)]
-        # Zenoh's shared memory wants a /dev/shm the node may write: a private one.
+        # Zenoh's shared memory wants a /dev/shm the node may write: a private one. The private
+        # /tmp comes before the binds, so Python or a project that lives below /tmp still shows.
         out += ["--proc", "/proc", "--dev", "/dev", "--perms", "1777", "--tmpfs", "/dev/shm",
                 "--perms", "1777", "--tmpfs", "/tmp", "--dir", "/run"]  # fmt: skip
+        for path in _python_dirs():
+            out += [*_parents(path), "--ro-bind", str(path), str(path)]
         out += ["--ro-bind", str(self.socket.parent), SOCKET_DIR]
         if workspace is not None and workspace.is_dir():
             out += [*_parents(workspace), "--bind", str(workspace), str(workspace), "--chdir", str(workspace)]

@@ -168,10 +168,23 @@ def replace_text(page: Page, text: str) -> None:
 
 
 def focus_3d_view(page: Page) -> None:
-    """Click an empty spot of the 3D view (left of the code view, below the overlays)."""
-    box = page.locator("#root").bounding_box()
-    assert box is not None
-    page.mouse.click(box["x"] + box["width"] * 0.6, box["y"] + box["height"] - 40)
+    """Click a spot of the 3D view that no overlay covers (the guide, the HUD, the code view's tab):
+    the first of a few points along its lower half where the page's topmost element is its canvas."""
+    spot = page.evaluate(
+        """() => {
+            const box = document.getElementById("root").getBoundingClientRect();
+            for (const fy of [0.75, 0.6, 0.9, 0.5]) {
+                for (const fx of [0.6, 0.5, 0.7, 0.4, 0.8]) {
+                    const x = box.left + box.width * fx, y = box.top + box.height * fy;
+                    const hit = document.elementFromPoint(x, y);
+                    if (hit instanceof HTMLCanvasElement) return [x, y];
+                }
+            }
+            return null;
+        }"""
+    )
+    assert spot is not None, "no spot of the 3D view is free of overlays"
+    page.mouse.click(spot[0], spot[1])
 
 
 def wait_setpoint(server: LabServer, expected: tuple[float, float, float], timeout_s: float = 15.0) -> None:

@@ -380,8 +380,10 @@ def test_publisher_panel_position_at_1hz_flies_drone_to_5_5_10(
     assert page.get_by_label("Type", exact=True).input_value() == "geometry_msgs/msg/Vector3"
     # A browser sends viser one GUI update per 50 ms and keeps only the newest, so a form filled
     # faster than a person types loses values: each field waits for the server's preview to show it.
-    for field, value, shown in (("x", "5", "x: 5.0"), ("y", "5", "y: 5.0"), ("z", "10", "z: 10.0"),
-                                ("Rate (Hz)", "2", "at 2 Hz"), ("Rate (Hz)", "1", "at 1 Hz")):  # fmt: skip
+    # The preview's whole text is awaited: the guide beside it speaks of (5, 5, 10) at 1 Hz too.
+    for field, value, shown in (("x", "5", "{x: 5.0,"), ("y", "5", "y: 5.0,"), ("z", "10", "z: 10.0} at"),
+                                ("Rate (Hz)", "2", "z: 10.0} at 2 Hz"),
+                                ("Rate (Hz)", "1", "message: {x: 5.0, y: 5.0, z: 10.0} at 1 Hz")):  # fmt: skip
         page.get_by_label(field, exact=True).fill(value)
         page.wait_for_function("(s) => document.body.innerText.includes(s)", arg=shown)
     assert "message: {x: 5.0, y: 5.0, z: 10.0} at 1 Hz" in page.evaluate("document.body.innerText")
