@@ -123,7 +123,23 @@ def test_guide_answer_is_saved_and_its_keys_stay_in_the_box(
         "button", name="arena", exact=True
     ).click()  # a camera that holds still
     camera = "JSON.stringify(window.__viserMutable.camera.position.toArray())"
-    camera_before = page.evaluate(camera)
+    # The switch to the arena view moves the camera over a few frames: read it once it has held
+    # still for ten frames in a row (at most 600 frames), not while it is still on its way.
+    camera_before = page.evaluate(
+        """async () => {
+            const read = () => JSON.stringify(window.__viserMutable.camera.position.toArray());
+            let last = read();
+            for (let still = 0, frames = 0; still < 10; frames++) {
+                if (frames > 600) return null;
+                await new Promise((done) => requestAnimationFrame(done));
+                const now = read();
+                still = now === last ? still + 1 : 0;
+                last = now;
+            }
+            return last;
+        }"""
+    )
+    assert camera_before is not None, "the camera never held still after the switch to the arena view"
     box.click()
     box.press_sequentially(ANSWER[:10])  # typed key by key: "It publish" has an "s" and an "a"
     box.press("ArrowRight")
