@@ -148,14 +148,21 @@ class ClassGraph:
         if self.workers is not None:
             self.workers.session = None
         if self.bridge is not None:  # it lives on the router's session: built again on the new one
-            await asyncio.to_thread(self.bridge.close)
-            self.bridge = None
+            bridge, self.bridge = self.bridge, None
+            try:
+                await asyncio.to_thread(bridge.close)
+            except Exception:  # the revocation must go on: the router closes with its session anyway
+                log.exception("the class's domain bridge did not close cleanly")
         try:
             session = await self.router.revoke(domains)
         except TransportError as exc:
             log.error("the class's Zenoh router did not open again (%s): the worlds are off Zenoh", exc)
             return
-        self._open_bridge(session)
+        try:
+            self._open_bridge(session)
+        except Exception:
+            log.exception("the class's domain bridge did not open again: worlds are not bridged")
+            return
         if self.workers is not None:
             await self._workers_back(session)
         log.info("Zenoh logins of ROS domains %s revoked: the class's router opened again",

@@ -226,10 +226,19 @@ class ClassServer:
         self.graph.hold(world)  # at once: a join while the world ends must not get its domain
         self.grants.revoke(world)
         self.admission.release(world.address)
-        await self._end(world, remove_workspace=True)
+        # The world is out of the class from here on: each step below runs even when one before it
+        # failed (a lab that stops badly must not keep its login alive), and a failure is logged
+        # with its traceback rather than turned into a 500 for a removal that took place.
+        try:
+            await self._end(world, remove_workspace=True)
+        except Exception:
+            log.exception("world %s: its lab did not stop cleanly", name)
         await self.graph.revoke_login(world.domain_id)
         # Its workspace goes with it, here and on the world worker that hosted it.
-        remove_world_workspace(self.class_settings.workspaces_dir, name)
+        try:
+            remove_world_workspace(self.class_settings.workspaces_dir, name)
+        except OSError:
+            log.exception("world %s: its workspace was not removed completely", name)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
 
