@@ -146,6 +146,7 @@ class ClassServer:
             self.local_workers = LocalWorkers(
                 self.class_settings.local_workers, endpoint, self.instructor_token, self.class_settings.max_worlds,
                 self.settings.lab.workspace, self.settings.lab.bag_dir, world_log_level=self.class_settings.world_log_level,
+                state_dir=self.settings.lab.state_dir,
             )  # fmt: skip
             self.local_workers.start()
 
@@ -163,6 +164,7 @@ class ClassServer:
             self.local_workers = None
         await self.graph.close_bridges(self.executors)
         await self.executors.close()
+        await self.labs.close_progress()
         await self.graph.close()
 
     # -- worlds --------------------------------------------------------------------------------
@@ -228,8 +230,9 @@ class ClassServer:
         self.admission.release(world.address)
         await self._end(world, remove_workspace=True)
         await self.graph.revoke_login(world.domain_id)
-        # Its workspace goes with it, here and on the world worker that hosted it.
+        # Its workspace and progress go with it, here and on the world worker that hosted it.
         remove_world_workspace(self.class_settings.workspaces_dir, name)
+        await self.labs.remove_progress(name)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
 
