@@ -21,7 +21,7 @@ from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth
 from server.workspace.location import remove_world_workspace
 
-from . import remote_worlds
+from . import remote_checkpoints, remote_worlds
 from .admission import Admission, check_student_name, new_code
 from .class_graph import ClassGraph
 from .errors import ClassroomError
@@ -257,9 +257,14 @@ class ClassServer:
             out.append(mine)
         return out
 
-    async def worker_checkpoints(self) -> tuple[list[dict[str, Any]], dict[str, str]]:
-        """The checkpoint table's rows of the worlds on world workers, as their workers keep them."""
-        return await remote_worlds.checkpoint_rows(self.workers, self.worlds)
+    async def worker_checkpoints(self, checkpoints: list[str]) -> tuple[list[dict[str, Any]], dict[str, str]]:
+        """The checkpoint table's rows of the worlds on world workers, as their workers keep them
+        (a worker that does not answer: its worlds' rows say so)."""
+        return await remote_checkpoints.checkpoint_rows(self.workers, self.worlds, checkpoints)
+
+    async def worker_reports(self) -> tuple[list[tuple[str, bytes]], dict[str, str]]:
+        """The signed reports of the worlds on world workers; why each world without one has none."""
+        return await remote_checkpoints.report_files(self.workers, self.worlds)
 
     async def broadcast_on_workers(self, body: dict[str, Any]) -> tuple[list[str], dict[str, str]]:
         """The instructor's broadcast, published by each world worker in the worlds it hosts."""
