@@ -82,12 +82,18 @@ class ProgressStore:
             self._pending.pop(world, None)
             self._written.pop(world, None)
         with self._io:
-            if folder.is_symlink():
-                folder.unlink()
-                return True
-            if not folder.is_dir():
+            try:
+                if folder.is_symlink():
+                    folder.unlink()
+                    return True
+                if not folder.is_dir():
+                    return False
+                shutil.rmtree(folder)
+            except FileNotFoundError:  # removed meanwhile (a worker sharing this folder did)
+                pass
+            except OSError as exc:  # the student is removed all the same; say what was left
+                log.warning("progress of world %s not removed from %s: %s", world, folder, exc)
                 return False
-            shutil.rmtree(folder)
             return True
 
     def flush(self, timeout_s: float = CLOSE_WAIT_S) -> bool:
@@ -158,6 +164,8 @@ class ProgressStore:
                         self._write(world, snapshot)
             except OSError as exc:
                 log.warning("progress of world %s not saved: %s", world, exc)
+            except Exception:  # evidence that is not JSON, say: that world's file, not the writer, fails
+                log.exception("progress of world %s not saved", world)
             finally:
                 with self._cond:
                     self._busy = False

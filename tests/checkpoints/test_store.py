@@ -129,3 +129,16 @@ def test_store_refuses_a_world_name_that_is_not_one_plain_name(store: ProgressSt
     with pytest.raises(ValueError):
         store.remove(name)
     assert store.world_folder("ada_lovelace") == store.folder / "ada_lovelace"  # a plain one is fine
+
+
+def test_store_evidence_that_is_not_json_fails_that_write_only_and_is_logged(
+    store: ProgressStore, caplog: pytest.LogCaptureFixture
+) -> None:
+    ada, bob = store.open("ada", CHECKPOINTS), store.open("bob", CHECKPOINTS)
+    with caplog.at_level(logging.ERROR, logger="checkpoints"):
+        ada.met("fly_to_point", {"not_json": object()})
+        assert store.flush()
+    assert "progress of world ada not saved" in caplog.text
+    bob.answer("q1", "the writer goes on")  # the marker: written by the same thread, after it
+    assert saved(store, "bob")["answers"]["q1"]["text"] == "the writer goes on"  # type: ignore[index]
+    assert not (store.world_folder("ada") / PROGRESS_FILE).exists()
