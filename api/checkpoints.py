@@ -157,11 +157,12 @@ def _rows(request: Request, classroom: ClassroomDep) -> tuple[list[str], list[An
 async def class_checkpoints(
     request: Request, _: InstructorDep, classroom: ClassroomDep, format: Literal["json", "csv"] = "json"
 ) -> dict[str, Any] | Response:
-    """Student × checkpoint, with the times each was done, and the answers; ``?format=csv``."""
+    """Student × checkpoint, with the times each was done, and the answers; ``?format=csv``. A
+    world on a world worker that does not answer in time has every cell ``unreachable``."""
     names, rows = _rows(request, classroom)
     view = table(names, rows)
     if isinstance(classroom, ClassServer):  # the worlds its world workers host, as they keep them
-        remote, errors = await classroom.worker_checkpoints()
+        remote, errors = await classroom.worker_checkpoints(names)
         view["students"] += remote
         if errors:
             view["worker_errors"] = errors
@@ -182,7 +183,8 @@ async def class_checkpoints(
     response_class=Response,
 )
 async def class_reports(request: Request, _: InstructorDep, classroom: ClassroomDep) -> Response:
-    """Every student's signed report, JSON and HTML, in one zip."""
+    """Every student's signed report, JSON and HTML, in one zip; for a world on a world worker that
+    does not answer in time, ``<world>.unreachable.txt`` says why."""
     files = []
     for world in classroom.worlds.values():
         if world.lab is None:
@@ -190,6 +192,10 @@ async def class_reports(request: Request, _: InstructorDep, classroom: Classroom
         watch = world.lab.checkpoints
         json_file, page = signed_files(signer(request), build(watch.progress, watch.lines(), world.name))
         files += [(f"{world.name}.json", json_file), (f"{world.name}.html", page)]
+    if isinstance(classroom, ClassServer):  # as the world workers sign them
+        remote, missing = await classroom.worker_reports()
+        files += remote
+        files += [(f"{name}.unreachable.txt", f"{why}\n".encode()) for name, why in missing.items()]
     return Response(
         reports_zip(files), media_type="application/zip",
         headers={"Content-Disposition": 'attachment; filename="checkpoint-reports.zip"'},

@@ -99,7 +99,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--state-dir",
         default="state",
-        help="what the server keeps across restarts: its report-signing key (default ./state)",
+        help="what the server keeps across restarts: its report-signing key and each world's checkpoint "
+        "progress (default ./state)",
     )
     # -- a class on one server --
     classroom = parser.add_argument_group("a class on one server")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import asyncio
 import re
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
@@ -25,6 +26,8 @@ from api.ws_cap import SocketCapMiddleware
 from api.ws_refusal import WebSocketRefusalMiddleware
 from server.bridges.runner import run_bridges
 from server.bus import Clock
+from server.checkpoints.catalog import load as load_checkpoints
+from server.checkpoints.store import SINGLE_LAB, ProgressStore
 from server.classroom import Classroom, ClassServer, WorldWorker
 from server.lab import Lab
 from server.settings import Settings
@@ -56,7 +59,10 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
             finally:
                 await classroom.stop()
             return
-        lab = Lab(settings, clock)
+        # The checkpoints met and the answers, as the state folder keeps them across restarts.
+        store = ProgressStore.in_state_dir(settings.lab.state_dir)
+        progress = store.open(SINGLE_LAB, load_checkpoints(settings.lab.checkpoints))
+        lab = Lab(settings, clock, progress=progress)
         app.state.lab = lab
         await lab.start()
         try:
@@ -65,6 +71,7 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
                 yield
         finally:
             await lab.stop()
+            await asyncio.to_thread(store.close)
 
     app = FastAPI(
         title="Teleop lab",

@@ -93,7 +93,8 @@ class LabSettings(Section):
     # but those that drive the app's devices (the page's keys, the 3D view).
     node_processes: Literal["student", "all"] = "student"
     bag_dir: Path = Path("bags")  # where recordings go, one folder per bag, as ros2 bag writes them
-    # What the server keeps across restarts: the key that signs checkpoint reports.
+    # What the server keeps across restarts: the key that signs checkpoint reports, and each world's
+    # checkpoint progress (server/checkpoints/store.py).
     state_dir: Path = Path("state")
     # Checkpoints a lab adds to the three of this one, as ``package.module:NAME`` (docs/checkpoints.md).
     checkpoints: tuple[str, ...] = ()

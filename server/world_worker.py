@@ -69,6 +69,10 @@ def build_parser() -> argparse.ArgumentParser:
         "--workspace", default="workspace", help="folder of students' packages (default ./workspace)"
     )
     parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
+    parser.add_argument(
+        "--state-dir", default="state",
+        help="where its worlds' checkpoint progress and the report key are kept (default ./state)",
+    )  # fmt: skip
     parser.add_argument("--log-level", default="info", choices=list(LEVELS))
     parser.add_argument(
         "--world-log-level", default="warning", choices=list(LEVELS),
@@ -132,7 +136,7 @@ def worker_settings(args: argparse.Namespace, class_token: str, port: int) -> Se
         "allowed_hosts": () if args.host in LOOPBACK_HOSTS else (advertise,),
     }
     lab = {
-        "workspace": Path(args.workspace), "bag_dir": Path(args.bag_dir),
+        "workspace": Path(args.workspace), "bag_dir": Path(args.bag_dir), "state_dir": Path(args.state_dir),
         "zenoh": ZenohSettings(mode="client", listen=(), connect=(args.connect,)),
     }  # fmt: skip
     classroom = {"max_worlds": args.max_worlds, "world_log_level": args.world_log_level}

@@ -1,5 +1,6 @@
 """One world's checkpoints as they stand: what was met (with its newest evidence and time), the
-answers, the page's captures. It outlives the world's lab: a reset starts the checks over, not this."""
+answers, the page's captures. It outlives the world's lab: a reset starts the checks over, not this;
+store.py keeps it on disk across restarts of the server."""
 
 from __future__ import annotations
 
@@ -67,6 +68,8 @@ class Progress:
         self.answers: dict[str, Answer] = {q.id: Answer() for c in checkpoints for q in c.questions}
         self.captures: dict[str, bytes] = {}  # PNG bytes, by checkpoint
         self.version = 0
+        # Called after every change (store.py's: queues a copy to write; never blocks).
+        self.on_change: Callable[[], None] | None = None
 
     @property
     def questions(self) -> list[tuple[Checkpoint, Question]]:
@@ -82,7 +85,7 @@ class Progress:
         """Checkpoint ``name`` was met (again): keep it done, with this newest evidence."""
         old = self.records.get(name)
         record = self.records[name] = Record(self.wall(), evidence, (old.times + 1) if old else 1)
-        self.version += 1
+        self._changed()
         return record
 
     def answer(self, qid: str, text: str) -> Answer:
@@ -92,7 +95,7 @@ class Progress:
         if size > MAX_ANSWER_BYTES:
             raise TooLargeError(f"an answer is at most {MAX_ANSWER_BYTES} bytes of UTF-8; this one is {size}")
         answer = self.answers[qid] = Answer(text, self.wall())
-        self.version += 1
+        self._changed()
         return answer
 
     def capture(self, name: str, png: bytes) -> None:
@@ -102,4 +105,9 @@ class Progress:
         if not png.startswith(PNG_MAGIC):
             raise NotPngError("a capture must be a PNG image (it does not start with PNG's signature)")
         self.captures[name] = png
+        self._changed()
+
+    def _changed(self) -> None:
         self.version += 1
+        if self.on_change is not None:
+            self.on_change()

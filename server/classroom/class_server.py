@@ -21,7 +21,7 @@ from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth
 from server.workspace.location import remove_world_workspace
 
-from . import remote_worlds
+from . import remote_checkpoints, remote_worlds
 from .admission import Admission, check_student_name, new_code
 from .class_graph import ClassGraph
 from .errors import ClassroomError
@@ -146,6 +146,7 @@ class ClassServer:
             self.local_workers = LocalWorkers(
                 self.class_settings.local_workers, endpoint, self.instructor_token, self.class_settings.max_worlds,
                 self.settings.lab.workspace, self.settings.lab.bag_dir, world_log_level=self.class_settings.world_log_level,
+                state_dir=self.settings.lab.state_dir,
             )  # fmt: skip
             self.local_workers.start()
 
@@ -163,6 +164,7 @@ class ClassServer:
             self.local_workers = None
         await self.graph.close_bridges(self.executors)
         await self.executors.close()
+        await self.labs.close_progress()
         await self.graph.close()
 
     # -- worlds --------------------------------------------------------------------------------
@@ -234,11 +236,12 @@ class ClassServer:
         except Exception:
             log.exception("world %s: its lab did not stop cleanly", name)
         await self.graph.revoke_login(world.domain_id)
-        # Its workspace goes with it, here and on the world worker that hosted it.
+        # Its workspace and progress go with it, here and on the world worker that hosted it.
         try:
             remove_world_workspace(self.class_settings.workspaces_dir, name)
         except OSError:
             log.exception("world %s: its workspace was not removed completely", name)
+        await self.labs.remove_progress(name)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
 
@@ -263,9 +266,14 @@ class ClassServer:
             out.append(mine)
         return out
 
-    async def worker_checkpoints(self) -> tuple[list[dict[str, Any]], dict[str, str]]:
-        """The checkpoint table's rows of the worlds on world workers, as their workers keep them."""
-        return await remote_worlds.checkpoint_rows(self.workers, self.worlds)
+    async def worker_checkpoints(self, checkpoints: list[str]) -> tuple[list[dict[str, Any]], dict[str, str]]:
+        """The checkpoint table's rows of the worlds on world workers, as their workers keep them
+        (a worker that does not answer: its worlds' rows say so)."""
+        return await remote_checkpoints.checkpoint_rows(self.workers, self.worlds, checkpoints)
+
+    async def worker_reports(self) -> tuple[list[tuple[str, bytes]], dict[str, str]]:
+        """The signed reports of the worlds on world workers; why each world without one has none."""
+        return await remote_checkpoints.report_files(self.workers, self.worlds)
 
     async def broadcast_on_workers(self, body: dict[str, Any]) -> tuple[list[str], dict[str, str]]:
         """The instructor's broadcast, published by each world worker in the worlds it hosts."""

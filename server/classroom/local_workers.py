@@ -55,6 +55,7 @@ class LocalWorkers:
     bag_dir: Path
     log_level: str = "warning"
     world_log_level: str = "warning"
+    state_dir: Path = Path("state")  # the class server's: its worlds' progress and report key, shared
     _children: list[_Child] = field(default_factory=list, init=False)
     _watch: asyncio.Task[None] | None = field(default=None, init=False)
     _stopping: bool = field(default=False, init=False)
@@ -82,6 +83,7 @@ class LocalWorkers:
         command = [
             sys.executable, "-m", "server", "world-worker", "--connect", self.router, "--id", child.worker_id,
             "--max-worlds", str(self.max_worlds), "--bag-dir", str(self.bag_dir.resolve()),
+            "--state-dir", str(self.state_dir.resolve()),
             "--log-level", self.log_level, "--world-log-level", self.world_log_level,
             "--parent-pid", str(os.getpid()),
         ]  # fmt: skip

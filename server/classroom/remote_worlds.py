@@ -87,21 +87,3 @@ async def end_remote(workers: WorkerDirectory, world: World, *, remove_workspace
         await workers.checked(world.worker, "DELETE", f"/api/classroom/worlds/{world.name}{query}")
     except ClassroomError as exc:
         log.warning("world %s: %s", world.name, exc)
-
-
-async def checkpoint_rows(
-    workers: WorkerDirectory | None, worlds: Mapping[str, World]
-) -> tuple[list[dict[str, Any]], dict[str, str]]:
-    """The rows of the instructor's checkpoint table that world workers keep, for the worlds they
-    host for this class; and why each worker that could not answer did not."""
-    rows: list[dict[str, Any]] = []
-    errors: dict[str, str] = {}
-    for ref, names in on_workers(worlds).values():
-        assert workers is not None
-        try:
-            table = await workers.checked(ref, "GET", "/api/classroom/checkpoints")
-        except ClassroomError as exc:
-            errors[ref.id] = str(exc)
-            continue
-        rows += [row for row in table.get("students", []) if row.get("world") in names]
-    return rows, errors

@@ -142,6 +142,7 @@ class WorldWorker:
         for name in list(self.worlds):
             await self._end(self.worlds.pop(name))
         await self.executors.close()
+        await self.labs.close_progress()
         if self._control is not None:
             self._control.close()
             self._control = None
@@ -192,8 +193,9 @@ class WorldWorker:
             raise ClassroomError(404, f"no world named {name!r}")
         self.grants.revoke(world)
         await self._end(world)
-        if remove_workspace:
+        if remove_workspace:  # the student was removed: their progress goes too
             remove_world_workspace(self.class_settings.workspaces_dir, name)
+            await self.labs.remove_progress(name)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
 

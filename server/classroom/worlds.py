@@ -9,11 +9,14 @@ rosbridge) are not opened per world; its bags go in a folder of its own.
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Callable
 from pathlib import Path
 
 from server.bus import Clock, ExecutorGroup
+from server.checkpoints.catalog import load as load_checkpoints
 from server.checkpoints.progress import Progress
+from server.checkpoints.store import ProgressStore
 from server.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
 from server.lab import Lab
 from server.launch.groups import NodeBudget
@@ -46,6 +49,8 @@ class WorldLabs:
         self.simple_physics = SharedSimpleSim(clock)  # the worlds flown with simple:=true
         self.executors = ExecutorGroup()
         self.node_budget = NodeBudget(settings.limits.max_server_nodes)  # every world's node processes
+        # Each world's checkpoints and answers, kept in the state folder across restarts.
+        self.progress = ProgressStore.in_state_dir(settings.lab.state_dir)
 
     def get(self, name: str) -> World:
         world = self.worlds.get(name)
@@ -109,8 +114,12 @@ class WorldLabs:
         login: Credentials | None = None,
         progress: Progress | None = None,
     ) -> Lab:
-        """Start world ``name``'s lab in ``domain_id`` (the class's launch unless ``launch``)."""
+        """Start world ``name``'s lab in ``domain_id`` (the class's launch unless ``launch``), with
+        ``progress`` (a reset's), else the one its files keep."""
         settings = self._world_settings(name, domain_id, launch, login)
+        if progress is None:
+            checkpoints = load_checkpoints(self.settings.lab.checkpoints)
+            progress = await asyncio.to_thread(self.progress.open, name, checkpoints)
         lab = Lab(
             settings, self.clock, executors=self.executors, progress=progress, node_budget=self.node_budget
         )
@@ -119,6 +128,14 @@ class WorldLabs:
         lab.bus.devices["simple_sim_physics"] = self.simple_physics
         await lab.start()
         return lab
+
+    async def remove_progress(self, name: str) -> None:
+        """Remove world ``name``'s saved progress (its student was removed)."""
+        await asyncio.to_thread(self.progress.remove, name)
+
+    async def close_progress(self) -> None:
+        """Write every world's progress that is still queued (the server stops)."""
+        await asyncio.to_thread(self.progress.close)
 
     async def restart(self, world: World) -> None:
         """A world that runs here, fresh: same name, domain, login and launch, every node anew."""

@@ -13,7 +13,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from support.app import end, free_ports, wait_healthy
+from support.app import end, free_ports, own_state, wait_healthy
 
 REPO = Path(__file__).resolve().parents[2]
 CHROMIUM_ARGS = [
@@ -47,7 +47,8 @@ class LabServer:
         self._log = log_path.open("w")
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(self.port),
-             "--zenoh-listen", f"tcp/127.0.0.1:{self.zenoh_port}", *launch_args],
+             "--zenoh-listen", f"tcp/127.0.0.1:{self.zenoh_port}", *own_state(log_path.parent, launch_args),
+             *launch_args],
             cwd=REPO, stdout=self._log, stderr=subprocess.STDOUT,
         )  # fmt: skip
 

@@ -165,12 +165,14 @@ class FakeWorkers:
         answer = self.answers[ref.id]
         if isinstance(answer, Exception):
             raise answer
+        if answer is None:  # a worker that never answers
+            await asyncio.Event().wait()
         return answer
 
 
-def test_worker_rows_are_those_of_the_worlds_each_worker_hosts_for_this_class() -> None:
+def test_worker_rows_are_those_of_the_worlds_each_worker_hosts_for_this_class_else_unreachable() -> None:
     from server.classroom.errors import ClassroomError
-    from server.classroom.remote_worlds import checkpoint_rows
+    from server.classroom.remote_checkpoints import checkpoint_rows
     from server.classroom.workers import WorkerRef
     from server.classroom.world import World
     from server.limits import RateLimit
@@ -186,9 +188,19 @@ def test_worker_rows_are_those_of_the_worlds_each_worker_hosts_for_this_class() 
         "answers": {},
     }
     stray = {**row, "name": "Old", "world": "old"}  # a world that worker hosts, not for this class now
-    workers = FakeWorkers(
-        {"w1": {"checkpoints": [], "students": [row, stray]}, "w2": ClassroomError(502, "gone")}
-    )
-    worlds = {"cy": world("cy", "w1"), "dee": world("dee", "w2"), "ada": world("ada", None)}
-    rows, errors = asyncio.run(checkpoint_rows(workers, worlds))  # type: ignore[arg-type]
-    assert rows == [row] and list(errors) == ["w2"] and "gone" in errors["w2"]
+    workers = FakeWorkers({
+        "w1": {"checkpoints": [], "students": [row, stray]}, "w2": ClassroomError(502, "gone"), "w3": None,
+        "w4": "not a table",
+    })  # fmt: skip
+    worlds = {"cy": world("cy", "w1"), "dee": world("dee", "w2"), "eve": world("eve", "w3"),
+              "fay": world("fay", "w4"), "ada": world("ada", None)}  # fmt: skip
+    worlds["ada"].lab = object()  # type: ignore[assignment]  # hosted here: the class server's own row
+    names = ["fly_to_point", "keyboard_abort"]
+    rows, errors = asyncio.run(checkpoint_rows(workers, worlds, names, timeout_s=0.05))  # type: ignore[arg-type]
+    assert rows[0] == row and [r["world"] for r in rows] == ["cy", "dee", "eve", "fay"]
+    for unreachable in rows[1:]:
+        assert unreachable["cells"] == {n: {"state": "unreachable", "done_at": None} for n in names}
+        assert unreachable["answers"] == {} and unreachable["name"] == unreachable["world"].title()
+    assert "gone" in rows[1]["unreachable"] and "within 0.05 s" in rows[2]["unreachable"]
+    assert "not a checkpoint table" in rows[3]["unreachable"]
+    assert sorted(errors) == ["w2", "w3", "w4"]

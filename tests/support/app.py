@@ -99,6 +99,13 @@ def wait_healthy(
     wait_until(up, "the app to answer /api/health", timeout_s, poll_s=0.1, detail=log_tail)
 
 
+def own_state(workdir: Path, args: tuple[str, ...] | list[str]) -> list[str]:
+    """``--state-dir`` in ``workdir`` unless ``args`` name one: a test's server keeps its report key
+    and its worlds' checkpoint progress there, never in a folder another test's server reads (a
+    class server and its workers given one ``workdir`` share it, as they share one on a machine)."""
+    return [] if "--state-dir" in args else ["--state-dir", str(workdir / "state")]
+
+
 class LoggedProcess:
     """A ``python -m server`` process whose output goes to ``log_path``; ``stop`` ends it by its id."""
 
@@ -128,7 +135,7 @@ class App(LoggedProcess):
         self._log = self.log_path.open("w")
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(self.port),
-             "--zenoh-listen", f"tcp/{self.router}", *launch],
+             "--zenoh-listen", f"tcp/{self.router}", *own_state(workdir, launch), *launch],
             cwd=cwd or REPO, stdout=self._log, stderr=subprocess.STDOUT,
         )  # fmt: skip
         try:
@@ -268,7 +275,7 @@ class WorldWorker(LoggedProcess):
         env = {**os.environ, "ROS2LAB_TOKEN": class_token}
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "server", "world-worker", "--connect", f"tcp/{router}", "--id", worker_id,
-             *extra],
+             *own_state(workdir, extra), *extra],
             cwd=cwd or REPO, stdout=self._log, stderr=subprocess.STDOUT, env=env,
         )  # fmt: skip
 

@@ -21,6 +21,12 @@ function cell(row: HTMLTableRowElement, s: ClassStudent, name: string): void {
   const td = row.insertCell();
   const c = s.cells[name];
   if (!c) { td.textContent = "–"; return; }
+  if (c.state === "unreachable") {
+    td.className = "cell unreachable";
+    td.textContent = "? unreachable";
+    td.title = `${s.name}: ${s.unreachable ?? "its world worker did not answer"}`;
+    return;
+  }
   const b = document.createElement("button");
   b.type = "button";
   b.className = `cell ${c.state}`;

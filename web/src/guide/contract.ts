@@ -34,12 +34,14 @@ export interface Checkpoints { checkpoints: Checkpoint[]; questions: Question[];
 
 export interface Verdict { valid: boolean; reason: string; student: string | null }
 
-export interface ClassCell { state: CheckState; done_at: string | null }
+/** "unreachable": the world's world worker did not answer the class server in time. */
+export interface ClassCell { state: CheckState | "unreachable"; done_at: string | null }
 export interface ClassStudent {
   name: string;
   world?: string;
   cells: Record<string, ClassCell | undefined>;
   answers: Record<string, string | undefined>;
+  unreachable?: string; // why its world worker did not answer
 }
 export interface ClassCheckpoints { checkpoints: string[]; students: ClassStudent[] }
 
