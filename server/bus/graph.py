@@ -22,6 +22,7 @@ from .services import Future, PendingCall, ServiceChannel, ServiceClient, check_
 if TYPE_CHECKING:
     from .endpoints import Publisher, Subscription, Timer
     from .node import Node
+    from .params_file import ParamsFile
 
 
 class GraphObserver(Protocol):
@@ -72,6 +73,9 @@ class NodeOverrides:
     namespace: str | None = None
     parameters: dict[str, Any] = field(default_factory=dict)
     remappings: dict[str, str] = field(default_factory=dict)
+    files: tuple[
+        ParamsFile, ...
+    ] = ()  # ``--params-file``s: each node takes its sections, then ``parameters``
 
 
 _overrides: ContextVar[NodeOverrides | None] = ContextVar("node_overrides", default=None)
