@@ -20,9 +20,9 @@ from .names import is_hidden
 from .services import Future, PendingCall, ServiceChannel, ServiceClient, check_service_type
 
 if TYPE_CHECKING:
+    from ..params_file import ParamsFile
     from .endpoints import Publisher, Subscription, Timer
     from .node import Node
-    from .params_file import ParamsFile
 
 
 class GraphObserver(Protocol):

@@ -10,7 +10,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
-from server.bus.params_file import ParamsFile
+from server.params_file import ParamsFile
 
 ParamScalar = bool | int | float | str
 """A scalar ROS parameter value. ``bool`` is checked before ``int`` (Python's bool is an int)."""

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
 
-from server.bus.params_file import ParamsFile
+from server.params_file import ParamsFile
 
 from .description import LaunchDescription, LaunchFileError, NodeAction, ParamValue, SourceLocation
 from .param_files import load_param_file

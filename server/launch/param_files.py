@@ -14,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from server.bus.params_file import ParamsFile, ParamsFileError, read_params_file
+from server.params_file import ParamsFile, ParamsFileError, read_params_file
 
 
 def load_param_file(text: str, launch_file: str, may_read: Callable[[Path], bool]) -> ParamsFile | str:

@@ -40,8 +40,8 @@ from collections.abc import Callable
 from pathlib import Path
 
 from server.bus.parameter_service import serve_parameters
-from server.bus.params_file import ParamsFileError, read_params_file
 from server.packages.entry_points import EntryPoint
+from server.params_file import ParamsFileError, read_params_file
 
 from . import confinement, interface_modules
 

@@ -93,7 +93,9 @@ def test_a_missing_file_and_one_outside_the_allowed_folders_read_alike(
 
 def test_from_inside_a_named_param_is_refused(write: Write, find_share: FindShare) -> None:
     write("pkg/launch/params.yaml", PARAMS)
-    path = _launch(write, f'{MANAGER}\n  <param name="gains">\n    <param from="params.yaml"/>\n  </param>\n</node>')
+    path = _launch(
+        write, f'{MANAGER}\n  <param name="gains">\n    <param from="params.yaml"/>\n  </param>\n</node>'
+    )
     error = file_error_of(path, find_share)
     assert error.line == 4 and "put it in <node>" in error.problem
 
