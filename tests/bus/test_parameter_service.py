@@ -10,7 +10,7 @@ import pytest
 from server.bus import Bus, Executor, ManualClock, Node, NodeOverrides
 from server.bus.parameter_service import serve_parameters
 from server.bus.parameter_values import double_range, from_value_msg, read_only, to_value_msg
-from server.msgs import Message, Vector3
+from server.msgs import Message, PoseStamped, Vector3
 from server.msgs.generated.rcl_interfaces import (
     DescribeParameters,
     GetParameters,
@@ -20,6 +20,7 @@ from server.msgs.generated.rcl_interfaces import (
     SetParameters,
     SetParametersAtomically,
 )
+from server.packages.flightcontroller.position_controller import PositionControllerNode
 from server.packages.simple_control.keyboard_manager import KeyboardManager
 
 
@@ -177,3 +178,39 @@ def test_a_keyboard_managers_rate_set_over_its_service_changes_how_often_it_publ
     ).results
     assert not refused.successful and "rate_hz" in refused.reason
     assert manager.get_parameter("rate_hz").value == 50.0
+
+
+def test_the_position_controllers_lab_gains_set_over_its_service_scale_its_command(
+    bus: Bus, executor: Executor, clock: ManualClock
+) -> None:
+    with bus.activate(NodeOverrides(parameters={"mode": "lab"})):
+        controller = PositionControllerNode()
+    serve_parameters(controller)
+    commands: list[Vector3] = []
+    talker = Node("talker", context=bus)
+    Node("listener", context=bus).create_subscription(Vector3, "/uav/input/velocity", commands.append, 100)
+    talker.create_publisher(Vector3, "/uav/input/position", 10).publish(Vector3(x=1.0, y=0.0, z=2.0))
+    talker.create_publisher(PoseStamped, "/uav/sensors/gps", 10).publish(PoseStamped())
+    executor.spin_until(clock.now() + 0.1)
+    before = commands[-1]
+    (result,) = _call(
+        bus,
+        executor,
+        SetParameters,
+        "/PositionControllerNode/set_parameters",
+        parameters=[_param("gains.p", 2.0)],
+    ).results
+    assert result.successful
+    executor.spin_until(clock.now() + 0.1)
+    after = commands[-1]
+    assert (before.x, before.z) == pytest.approx((1.0, 2.0))  # P alone: gain 1 × the error
+    assert (after.x, after.z) == pytest.approx((2.0, 4.0))
+    (refused,) = _call(
+        bus,
+        executor,
+        SetParameters,
+        "/PositionControllerNode/set_parameters",
+        parameters=[_param("gains.p", -1.0)],
+    ).results
+    assert not refused.successful and "out of range" in refused.reason
+    assert controller.controller.pids[0].kp == 2.0
