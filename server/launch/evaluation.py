@@ -251,11 +251,7 @@ class FileEvaluator:
                 if prefix:
                     raise self._error(child, "<param from=...> loads a file for the whole node: "
                                              "put it in <node>, not in a <param>")  # fmt: skip
-                loaded = load_param_file(self._sub(child, "from", frame), self.file, self.session.may_read)
-                if isinstance(loaded, str):
-                    raise self._error(child, loaded)
-                self.session.note_file(loaded.path)
-                files.append(loaded)
+                files.append(self._read_param_file(child, frame))
                 continue
             name = prefix + self._sub(child, "name", frame)
             if child.children:
@@ -268,6 +264,16 @@ class FileEvaluator:
                 out.append((name, typed_param(self._sub(child, "value", frame))))
             except ValueError as err:
                 raise self._error(child, f"parameter '{name}': {err}") from None
+
+    def _read_param_file(self, element: Element, frame: _Frame) -> ParamsFile:
+        self.session.files_read += 1
+        if self.session.files_read > MAX_FILES_READ:
+            raise self._error(element, f"more than {MAX_FILES_READ} files read in one launch")
+        loaded = load_param_file(self._sub(element, "from", frame), self.file, self.session.may_read)
+        if isinstance(loaded, str):
+            raise self._error(element, loaded)
+        self.session.note_file(loaded.path)
+        return loaded
 
     def _run_include(self, element: Element, frame: _Frame) -> None:
         path = Path(self._sub(element, "file", frame))

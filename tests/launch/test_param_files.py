@@ -12,6 +12,7 @@ from launchfiles import FindShare, Write, file_error_of, only_node
 from server.bus import ManualClock
 from server.lab import Lab
 from server.launch.description import LaunchFileError
+from server.launch.evaluation import MAX_FILES_READ
 from server.launch.xml_parser import parse_launch_file
 from server.settings import LabSettings, Settings
 
@@ -141,3 +142,18 @@ def test_a_launch_whose_file_is_missing_or_bad_starts_nothing(lab: Lab, tmp_path
         lab.launch_groups.launch(path, {})
     assert caught.value.line == 4 and "params.yaml" in caught.value.problem
     assert _names(lab) == before and "/baro" not in before
+
+
+def test_the_files_a_launch_reads_are_bounded_params_files_included(
+    write: Write, find_share: FindShare
+) -> None:
+    write("pkg/launch/params.yaml", PARAMS)
+    many = "\n".join('  <param from="params.yaml"/>' for _ in range(MAX_FILES_READ))
+    path = _launch(write, f"{MANAGER}\n{many}\n</node>")
+    error = file_error_of(path, find_share)
+    assert error.line == 2 + MAX_FILES_READ and f"more than {MAX_FILES_READ} files" in error.problem
+    fewer = _launch(write, f"{MANAGER}\n{many.split(chr(10), 1)[1]}\n</node>")  # one fewer: the limit itself
+    assert (
+        len(only_node(parse_launch_file(fewer, find_package_share=find_share)).parameter_files)
+        == MAX_FILES_READ - 1
+    )
