@@ -157,3 +157,25 @@ def test_the_files_a_launch_reads_are_bounded_params_files_included(
         len(only_node(parse_launch_file(fewer, find_package_share=find_share)).parameter_files)
         == MAX_FILES_READ - 1
     )
+
+
+def test_a_launch_value_the_descriptor_refuses_stops_that_node_with_the_reason(
+    lab: Lab, tmp_path: Path
+) -> None:
+    path = tmp_path / "gui.launch"
+    path.write_text(
+        '<launch>\n  <node pkg="visualizer" exec="gui_controller.py" name="slow_gui">\n'
+        '    <param name="redraw_hz" value="500.0"/>\n  </node>\n'
+        '  <node pkg="visualizer" exec="gui_controller.py" name="fine_gui">\n'
+        '    <param name="redraw_hz" value="10"/>\n  </node>\n</launch>\n'
+    )
+    group = lab.launch_groups.launch(path, {})
+    try:
+        refused, fine = group.describe()["nodes"]
+        assert refused["state"] is None and "parameter 'redraw_hz'" in refused["error"]
+        assert "out of range" in refused["error"]
+        assert fine["error"] is None  # an integer for the double, taken as 10.0
+        (node,) = [n for n in lab.bus.nodes if n.fully_qualified_name == "/fine_gui"]
+        assert node.get_parameter("redraw_hz").value == 10.0
+    finally:
+        lab.launch_groups.stop(group.id)
