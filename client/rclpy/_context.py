@@ -126,6 +126,7 @@ class Context:
             overrides = NodeOverrides(
                 name=self.args.node_name, namespace=self.args.namespace,
                 parameters=dict(self.args.parameters), remappings=dict(self.args.remappings),
+                files=tuple(self.args.params_files),
             )  # fmt: skip
             set_process_bus(bus, overrides)
             self.bus = bus

@@ -20,6 +20,7 @@ from .names import is_hidden
 from .services import Future, PendingCall, ServiceChannel, ServiceClient, check_service_type
 
 if TYPE_CHECKING:
+    from ..params_file import ParamsFile
     from .endpoints import Publisher, Subscription, Timer
     from .node import Node
 
@@ -72,6 +73,9 @@ class NodeOverrides:
     namespace: str | None = None
     parameters: dict[str, Any] = field(default_factory=dict)
     remappings: dict[str, str] = field(default_factory=dict)
+    files: tuple[
+        ParamsFile, ...
+    ] = ()  # ``--params-file``s: each node takes its sections, then ``parameters``
 
 
 _overrides: ContextVar[NodeOverrides | None] = ContextVar("node_overrides", default=None)

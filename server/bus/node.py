@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any, Literal
 
 from ..console import world_logger
@@ -14,18 +13,11 @@ from .endpoints import Publisher, Subscription, Timer, qos_depth
 from .errors import DestroyedError
 from .graph import Bus, current_bus, current_overrides
 from .names import resolve_topic_name, validate_namespace, validate_node_name
+from .parameters import NodeParameters, Parameter
 from .services import ServiceCallback, ServiceClient, ServiceServer
 
 NodeState = Literal["active", "crashed", "destroyed"]
 _LEVELS = {"debug": 10, "info": 20, "warn": 30, "error": 40, "fatal": 50}
-
-
-@dataclass
-class Parameter:
-    """rclpy's Parameter, reduced to what lab nodes use: a name and a value."""
-
-    name: str
-    value: Any
 
 
 def node_logger_name(world: str | None, fully_qualified_name: str) -> str:
@@ -69,7 +61,7 @@ class NodeLogger:
         self._log("fatal", msg)
 
 
-class Node:
+class Node(NodeParameters):
     """A participant in the graph. Subclass it as in rclpy: ``super().__init__('MyNode')``."""
 
     def __init__(
@@ -89,9 +81,12 @@ class Node:
         self._remap = dict(overrides.remappings) if overrides else {}
         self._param_overrides = dict(parameter_overrides or {})
         if overrides:
+            for params_file in overrides.files:
+                self._param_overrides.update(params_file.for_node(self.fully_qualified_name))
             self._param_overrides.update(overrides.parameters)
         self._parameters: dict[str, Parameter] = {}
         self._param_callbacks: list[Callable[[list[Parameter]], Any]] = []
+        self._descriptors = {}
         self.origin: dict[str, str] = {}  # package, executable, launch file: set by the launcher
         self.publishers: list[Publisher] = []
         self.subscriptions: list[Subscription] = []
@@ -262,60 +257,6 @@ class Node:
         self.state = "destroyed"
         self.bus.remove_node(self)
         return True
-
-    # -- parameters ------------------------------------------------------
-    def declare_parameter(self, name: str, value: Any = None, *_: Any, **__: Any) -> Parameter:
-        param = Parameter(name, self._param_overrides.get(name, value))
-        self._parameters[name] = param
-        return param
-
-    def get_parameter(self, name: str) -> Parameter:
-        try:
-            return self._parameters[name]
-        except KeyError:
-            raise LookupError(f"parameter {name!r} of {self.fully_qualified_name} was not declared") from None
-
-    def has_parameter(self, name: str) -> bool:
-        return name in self._parameters
-
-    def get_parameters_dict(self) -> dict[str, Any]:
-        return {name: p.value for name, p in self._parameters.items()}
-
-    def add_on_set_parameters_callback(self, callback: Callable[[list[Parameter]], Any]) -> None:
-        """``callback(params)`` may refuse a change by returning a falsy result (or one with
-        ``successful = False`` and a ``reason``), as rclpy's SetParametersResult does."""
-        self._param_callbacks.append(callback)
-
-    def set_parameters(self, params: list[Parameter]) -> None:
-        """Set declared parameters; raises ValueError (changing nothing) if one is refused."""
-        for param in params:
-            current = self.get_parameter(param.name)
-            if (
-                current.value is not None
-                and param.value is not None
-                and type(current.value) is not type(param.value)
-            ):
-                if not (
-                    isinstance(current.value, float)
-                    and isinstance(param.value, int)
-                    and not isinstance(param.value, bool)
-                ):
-                    raise ValueError(
-                        f"parameter {param.name!r} is a {type(current.value).__name__}, "
-                        f"not a {type(param.value).__name__}"
-                    )
-                param = Parameter(param.name, float(param.value))
-        for callback in self._param_callbacks:
-            result = callback(params)
-            if result is not None and not getattr(result, "successful", bool(result)):
-                raise ValueError(getattr(result, "reason", "") or "parameter change refused by the node")
-        for param in params:
-            current = self._parameters[param.name]
-            current.value = (
-                float(param.value)
-                if isinstance(current.value, float) and isinstance(param.value, int)
-                else param.value
-            )
 
     # -- faults ----------------------------------------------------------
     def mark_crashed(self, exc: BaseException) -> None:

@@ -10,6 +10,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
+from server.params_file import ParamsFile
+
 ParamScalar = bool | int | float | str
 """A scalar ROS parameter value. ``bool`` is checked before ``int`` (Python's bool is an int)."""
 
@@ -56,6 +58,8 @@ class NodeAction:
     - ``output``: ``"screen"``, ``"log"``, ``"both"``, ``"own_log"``, ``"full"`` or ``None``.
     - ``respawn_delay_s``: seconds to wait before restarting a node that exited (with ``respawn``).
     - ``parameters``: ``(name, value)`` in document order; nested ``<param>`` names joined by ``.``.
+    - ``parameter_files``: the ``<param from=...>`` files, read, in document order; the node takes
+      its sections of each, then ``parameters`` (which win over a file's, wherever written).
     - ``remappings``: ``(from, to)`` in document order.
     - ``shutdown_on_exit``: ``on_exit="shutdown"``: when this node exits, the whole launch ends.
     """
@@ -71,6 +75,7 @@ class NodeAction:
     remappings: tuple[tuple[str, str], ...]
     location: SourceLocation
     shutdown_on_exit: bool = False
+    parameter_files: tuple[ParamsFile, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -12,7 +12,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
 
+from server.params_file import ParamsFile
+
 from .description import LaunchDescription, LaunchFileError, NodeAction, ParamValue, SourceLocation
+from .param_files import load_param_file
 from .substitutions import SubstitutionError, arity, package_not_found, substitute
 from .values import OUTPUTS, join_namespace, parse_bool, typed_param
 from .xml_tree import ACTIONS, Element, declared_names, did_you_mean, load_tree, read_bytes
@@ -189,7 +192,8 @@ class FileEvaluator:
         if on_exit not in (None, "shutdown"):
             raise self._error(element, f'on_exit="{on_exit}" is not supported; the only value is "shutdown"')
         parameters: list[tuple[str, ParamValue]] = []
-        self._collect_params(element, frame, "", parameters, {})
+        files: list[ParamsFile] = []
+        self._collect_params(element, frame, "", parameters, {}, files)
         remappings = tuple(
             (self._sub(child, "from", frame), self._sub(child, "to", frame))
             for child in element.children
@@ -208,6 +212,7 @@ class FileEvaluator:
                 remappings=remappings,
                 location=SourceLocation(self.file, element.line),
                 shutdown_on_exit=on_exit == "shutdown",
+                parameter_files=tuple(files),
             )
         )
 
@@ -237,13 +242,20 @@ class FileEvaluator:
         prefix: str,
         out: list[tuple[str, ParamValue]],
         seen: dict[str, int],
+        files: list[ParamsFile],
     ) -> None:
         for child in parent.children:
             if child.tag != "param":
                 continue
+            if "from" in child.attrs:
+                if prefix:
+                    raise self._error(child, "<param from=...> loads a file for the whole node: "
+                                             "put it in <node>, not in a <param>")  # fmt: skip
+                files.append(self._read_param_file(child, frame))
+                continue
             name = prefix + self._sub(child, "name", frame)
             if child.children:
-                self._collect_params(child, frame, name + ".", out, seen)
+                self._collect_params(child, frame, name + ".", out, seen, files)
                 continue
             if name in seen:
                 raise self._error(child, f"parameter '{name}' is set twice (first at line {seen[name]})")
@@ -252,6 +264,16 @@ class FileEvaluator:
                 out.append((name, typed_param(self._sub(child, "value", frame))))
             except ValueError as err:
                 raise self._error(child, f"parameter '{name}': {err}") from None
+
+    def _read_param_file(self, element: Element, frame: _Frame) -> ParamsFile:
+        self.session.files_read += 1
+        if self.session.files_read > MAX_FILES_READ:
+            raise self._error(element, f"more than {MAX_FILES_READ} files read in one launch")
+        loaded = load_param_file(self._sub(element, "from", frame), self.file, self.session.may_read)
+        if isinstance(loaded, str):
+            raise self._error(element, loaded)
+        self.session.note_file(loaded.path)
+        return loaded
 
     def _run_include(self, element: Element, frame: _Frame) -> None:
         path = Path(self._sub(element, "file", frame))

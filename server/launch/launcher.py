@@ -10,6 +10,7 @@ from pathlib import Path
 
 from server.bus import Bus, Node, NodeOverrides
 from server.bus.faults import is_node_fault
+from server.bus.parameter_service import serve_parameters
 from server.packages import Executable, PackageIndex
 from server.processes.command import node_command, ros_args
 from server.processes.sandbox import INSIDE_ROUTER, Sandbox, StudentCodeRefusedError
@@ -129,7 +130,8 @@ class Launcher:
         self.check_student_code(exe)
         sandbox = self.sandbox if exe.file is not None and isinstance(self.sandbox, Sandbox) else None
         command = node_command(
-            exe.target, ros_args(action.name, action.namespace, action.parameters, action.remappings),
+            exe.target, ros_args(action.name, action.namespace, action.parameters, action.remappings,
+                                    [f.path for f in action.parameter_files]),
             router=INSIDE_ROUTER if sandbox else self.transport.router, domain_id=self.transport.domain_id,
             login=self.transport.login, workspace=self.packages.workspace, env={} if sandbox else None,
         )  # fmt: skip
@@ -163,6 +165,7 @@ class Launcher:
         overrides = NodeOverrides(
             name=action.name, namespace=action.namespace,
             parameters=dict(action.parameters), remappings=dict(action.remappings),
+            files=action.parameter_files,
         )  # fmt: skip
         before = list(self.bus.nodes)
         try:
@@ -186,6 +189,7 @@ class Launcher:
                 entry.error,
             )
             return entry
+        serve_parameters(node)
         node.origin = {"package": action.pkg, "executable": action.exec, "launch_file": str(action.location)}
         entry.node, entry.error = node, None
         if action.respawn:

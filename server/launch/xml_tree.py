@@ -103,7 +103,7 @@ _RULES: Mapping[str, _Rule] = MappingProxyType(
             ("pkg",),
             {"param": "param", "remap": "remap"},
         ),
-        "param": _Rule(frozenset({"name", "value", "from"}), ("name",), {"param": "param"}),
+        "param": _Rule(frozenset({"name", "value", "from"}), (), {"param": "param"}),
         "remap": _Rule(frozenset({"from", "to"}), ("from", "to")),
     }
 )
@@ -136,9 +136,13 @@ def _arg_problem(element: Element) -> str | None:
 
 
 def _param_problem(element: Element) -> str | None:
-    name = element.attrs["name"]
     if "from" in element.attrs:
-        return f'<param name="{name}" from=...>: parameter files are not supported; give value= instead'
+        if "name" in element.attrs or "value" in element.attrs or element.children:
+            return "<param from=...> loads a parameters file: it takes no name=, value= or nested <param>"
+        return None
+    if "name" not in element.attrs:
+        return "<param> needs name= (or from= a parameters file)"
+    name = element.attrs["name"]
     if "value" in element.attrs and element.children:
         return f'<param name="{name}"> has both value= and nested <param> elements'
     if "value" not in element.attrs and not element.children:

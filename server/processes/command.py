@@ -35,13 +35,17 @@ def ros_args(
     namespace: str | None,
     parameters: Iterable[tuple[str, Any]],
     remappings: Iterable[tuple[str, str]],
+    params_files: Iterable[str] = (),
 ) -> list[str]:
-    """``--ros-args`` as ``ros2 launch`` passes a ``<node>``'s name, namespace, params and remaps."""
+    """``--ros-args`` as ``ros2 launch`` passes a ``<node>``'s name, namespace, params and remaps
+    (its parameters files first: the node's ``-p`` win over them)."""
     out: list[str] = []
     if name:
         out += ["-r", f"__node:={name}"]
     if namespace:
         out += ["-r", f"__ns:={namespace}"]
+    for path in params_files:
+        out += ["--params-file", path]
     for key, value in parameters:
         out += ["-p", f"{key}:={json.dumps(value) if not isinstance(value, str) else value}"]
     for source, target in remappings:

@@ -39,8 +39,9 @@ import traceback
 from collections.abc import Callable
 from pathlib import Path
 
-from server.bus.params_file import ParamsFileError, read_params_file
+from server.bus.parameter_service import serve_parameters
 from server.packages.entry_points import EntryPoint
+from server.params_file import ParamsFileError, read_params_file
 
 from . import confinement, interface_modules
 
@@ -193,7 +194,9 @@ def run_builtin(target: str, args: list[str]) -> int:
     node_class = getattr(importlib.import_module(module), attr)
     rclpy.init(args=[target, *args])
     try:
-        rclpy.spin(node_class())
+        node = node_class()
+        serve_parameters(node)  # a lab node is the bus's, not rclpy's: it serves them as the app's do
+        rclpy.spin(node)
     except KeyboardInterrupt:
         pass
     finally:

@@ -1,5 +1,5 @@
 """``ros2lab param``'s side of the wire: values typed as ``ros2 param set`` types them, and a
-parameters file read as ``ros2 param load`` reads it (its end-to-end tests are in
+parameters file read as ``ros2 param load`` reads it, with the reader node processes use (its end-to-end tests are in
 tests/processes/test_parameters.py, against node processes)."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from typing import Any
 import pytest
 
 from server.cli.param import parameter_value, python_value
-from server.cli.param_file import ParamFileError, load_params, value_from_text
+from server.params_file import ParamsFileError, read_params_file, value_from_text
 
 
 @pytest.mark.parametrize(
@@ -37,8 +37,8 @@ def test_a_file_loads_wildcard_first_then_every_node(tmp_path: Path) -> None:
         "talker:\n  ros__parameters:\n    rate: 2.0\n    gains: {p: 1}\n"
         "/**:\n  ros__parameters:\n    rate: 1.0\n    shared: x\n"
     )
-    assert load_params(str(path)) == {"rate": 2.0, "shared": "x", "gains.p": 1}
-    assert load_params(str(path), use_wildcard=False) == {"rate": 2.0, "gains.p": 1}
+    assert read_params_file(path).every_section() == {"rate": 2.0, "shared": "x", "gains.p": 1}
+    assert read_params_file(path).every_section(use_wildcard=False) == {"rate": 2.0, "gains.p": 1}
 
 
 @pytest.mark.parametrize(
@@ -52,6 +52,6 @@ def test_a_file_loads_wildcard_first_then_every_node(tmp_path: Path) -> None:
 def test_a_file_that_is_not_one_is_refused_in_one_line(tmp_path: Path, text: str, problem: str) -> None:
     path = tmp_path / "p.yaml"
     path.write_text(text)
-    with pytest.raises(ParamFileError, match=problem) as caught:
-        load_params(str(path))
+    with pytest.raises(ParamsFileError, match=problem) as caught:
+        read_params_file(path).every_section()
     assert "\n" not in str(caught.value)

@@ -109,12 +109,18 @@ def test_node_exec_and_type_both_rejected(parse: Parse) -> None:
     )
 
 
-def test_param_from_file_rejected(parse: Parse) -> None:
+def test_param_from_file_with_a_name_is_refused_as_ros2_refuses_it(parse: Parse) -> None:
     error = error_of(
         parse, '<launch><node pkg="a" exec="b">\n<param name="p" from="p.yaml"/></node></launch>'
     )
 
-    assert error.line == 2 and "parameter files are not supported" in error.problem
+    assert error.line == 2 and "takes no name=" in error.problem
+
+
+def test_param_without_name_or_from_says_what_it_needs(parse: Parse) -> None:
+    error = error_of(parse, '<launch><node pkg="a" exec="b">\n<param value="1"/></node></launch>')
+
+    assert error.line == 2 and "needs name=" in error.problem
 
 
 def test_declared_arg_with_value_points_to_default(parse: Parse) -> None:

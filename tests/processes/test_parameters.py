@@ -309,3 +309,76 @@ def test_a_params_file_that_does_not_parse_is_one_line_and_changes_nothing(
     assert param(app, "get", "/guarded_node", "speed").stdout == "Double value is: 1.0\n"
     assert "is now" not in node.text
     assert app.get("/api/health") is not None  # the lab goes on
+
+
+def test_the_labs_own_nodes_answer_ros2lab_param(lab: tuple[App, Path]) -> None:
+    """The launch's nodes run inside the app: they serve the same services as a node process."""
+    app, _root = lab
+    assert param(app, "list", "/CountDownNode").stdout == "  start_delay_s\n"
+    assert "/keyboard:\n  allow_repeat (type: boolean)\n" in param(app, "list", "--param-type").stdout
+    assert param(app, "get", "/CountDownNode", "start_delay_s").stdout == "Double value is: 600.0\n"
+    described = param(app, "describe", "/CountDownNode", "start_delay_s").stdout
+    assert "  Type: double\n  Description: seconds before lift-off\n" in described
+    assert "    Read only: true\n" in described
+    refused = param(app, "set", "/CountDownNode", "start_delay_s", "1.0")
+    assert refused.stderr == "Setting parameter failed: Trying to set a read-only parameter: start_delay_s.\n"
+    assert param(app, "get", "/CountDownNode", "start_delay_s").stdout == "Double value is: 600.0\n"
+    wrong = param(app, "set", "/keyboard", "allow_repeat", "often")
+    assert (
+        wrong.stderr
+        == "Setting parameter failed: Wrong parameter type, expected 'Type.BOOL' got 'Type.STRING'\n"
+    )
+    try:
+        done = param(app, "set", "/keyboard", "allow_repeat", "true")
+        assert (done.returncode, done.stdout, done.stderr) == (0, "Set parameter successful\n", "")
+        assert param(app, "get", "/keyboard", "allow_repeat").stdout == "Boolean value is: True\n"
+        dumped = param(app, "dump", "/keyboard").stdout
+        assert dumped == "/keyboard:\n  ros__parameters:\n    allow_repeat: true\n\n"
+    finally:
+        param(app, "set", "/keyboard", "allow_repeat", "false")
+    assert param(app, "get", "/keyboard", "allow_repeat").stdout == "Boolean value is: False\n"
+
+
+# A node process reading and setting the app's own nodes over the Zenoh wire.
+IN_APP_CLIENT = """
+import rclpy
+from rclpy.parameter import Parameter
+from rclpy.parameter_client import AsyncParameterClient
+
+rclpy.init()
+node = rclpy.create_node('in_app_setter')
+countdown = AsyncParameterClient(node, '/CountDownNode')
+print('ready:', countdown.wait_for_services(timeout_sec=20.0), flush=True)
+future = countdown.get_parameters(['start_delay_s'])
+rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
+print('delay:', future.result().values[0].double_value, flush=True)
+future = countdown.set_parameters([Parameter('start_delay_s', value=1.0)])
+rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
+print('countdown:', future.result().results[0].successful, future.result().results[0].reason, flush=True)
+keyboard = AsyncParameterClient(node, '/keyboard')
+keyboard.wait_for_services(timeout_sec=20.0)
+future = keyboard.set_parameters([Parameter('allow_repeat', value=True)])
+rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
+print('keyboard:', future.result().results[0].successful, flush=True)
+rclpy.shutdown()
+"""
+
+
+def test_a_node_process_reads_and_sets_the_labs_own_nodes_over_zenoh(
+    lab: tuple[App, Path], tmp_path: Path
+) -> None:
+    app, _root = lab
+    script = tmp_path / "in_app_setter.py"
+    script.write_text(IN_APP_CLIENT)
+    setter = NodeProcess(app, script)
+    try:
+        try:
+            assert setter.finish(START_S) == 0, setter.text
+        finally:
+            setter.kill()
+        assert "ready: True\ndelay: 600.0\n" in setter.text
+        assert "countdown: False Trying to set a read-only parameter: start_delay_s." in setter.text
+        assert "keyboard: True" in setter.text
+        assert param(app, "get", "/keyboard", "allow_repeat").stdout == "Boolean value is: True\n"
+    finally:
+        param(app, "set", "/keyboard", "allow_repeat", "false")

@@ -10,7 +10,8 @@ arena are clamped to it with a warning.
 
 from __future__ import annotations
 
-from server.bus import Node, Timer
+from server.bus import Node, Parameter, Timer
+from server.bus.parameter_values import double_range, read_only
 from server.msgs import PoseStamped, Vector3
 from sim.control import LAB_PID_DT_S, LabPositionController, PositionController
 
@@ -18,19 +19,26 @@ from .setpoints import SetpointError, check_finite, clamp_to_arena
 
 DEFAULT_SETPOINT_M = (0.0, 0.0, 3.0)
 CASCADE_RATE_HZ = 50.0
+MAX_GAIN = 100.0
 
 
 class PositionControllerNode(Node):
     def __init__(self) -> None:
         super().__init__("PositionControllerNode")
-        self.mode = self.declare_parameter("mode", "cascade").value
+        self.mode = self.declare_parameter("mode", "cascade", read_only("cascade or lab")).value
         if self.mode not in ("cascade", "lab"):
             raise ValueError(f"mode must be 'cascade' or 'lab', got {self.mode!r}")
-        start_delay_s = float(self.declare_parameter("start_delay_s", 0.0).value)
-        if self.mode == "lab":
-            kp = float(self.declare_parameter("gains.p", 1.0).value)
-            ki = float(self.declare_parameter("gains.i", 0.0).value)
-            kd = float(self.declare_parameter("gains.d", 0.0).value)
+        start_delay_s = float(
+            self.declare_parameter("start_delay_s", 0.0, read_only("seconds before it starts")).value
+        )
+        if self.mode == "lab":  # its PID's gains, which a set changes at once
+            kp = float(
+                self.declare_parameter("gains.p", 1.0, double_range(0.0, MAX_GAIN, "P gain (1/s)")).value
+            )
+            ki = float(
+                self.declare_parameter("gains.i", 0.0, double_range(0.0, MAX_GAIN, "I gain (1/s²)")).value
+            )
+            kd = float(self.declare_parameter("gains.d", 0.0, double_range(0.0, MAX_GAIN, "D gain")).value)
             self.controller: LabPositionController | PositionController = LabPositionController(kp, ki, kd)
             self.period_s = LAB_PID_DT_S
         else:
@@ -46,6 +54,13 @@ class PositionControllerNode(Node):
             self._delay = self.create_timer(start_delay_s, self.start)
         else:
             self.start()
+
+    def set_parameters(self, params: list[Parameter]) -> None:
+        super().set_parameters(params)
+        if isinstance(self.controller, LabPositionController):
+            kp, ki, kd = (float(self.get_parameter(f"gains.{g}").value) for g in "pid")
+            for pid in self.controller.pids:
+                pid.kp, pid.ki, pid.kd = kp, ki, kd
 
     @property
     def setpoint_m(self) -> tuple[float, ...]:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from server.bus import Node
+from server.bus.parameter_values import double_range, read_only
 from server.devices.shared_physics import SharedQuadrotorPhysics
 from server.msgs import (
     Header,
@@ -38,10 +39,20 @@ MAX_CATCH_UP_S = 0.1  # after a stall, the sim skips ahead rather than running a
 class UavDynamicsNode(Node):
     def __init__(self) -> None:
         super().__init__("flightgoggles_uav_dynamics")
-        rate_hz = float(self.declare_parameter("publish_rate_hz", 100.0).value)
-        physics_hz = float(self.declare_parameter("physics_rate_hz", 1000.0).value)
-        noise = bool(self.declare_parameter("noise", True).value)
-        seed = int(self.declare_parameter("seed", 0).value)
+        rate_hz = float(
+            self.declare_parameter(
+                "publish_rate_hz",
+                100.0,
+                double_range(10.0, 1000.0, "rate of the sensor topics and /tf (Hz)", fixed=True),
+            ).value
+        )
+        physics_hz = float(
+            self.declare_parameter(
+                "physics_rate_hz", 1000.0, read_only("rate of the physics steps (Hz)")
+            ).value
+        )
+        noise = bool(self.declare_parameter("noise", True, read_only("sensor noise on")).value)
+        seed = int(self.declare_parameter("seed", 0, read_only("the sim's random seed")).value)
         if not 10.0 <= rate_hz <= 1000.0:
             raise ValueError(f"publish_rate_hz must be in 10..1000, got {rate_hz}")
         # On a class server every world's drone steps in one shared batch (server/devices/

@@ -16,7 +16,7 @@ DEVICE = "keyboard"
 class KeyboardNode(Node):
     def __init__(self) -> None:
         super().__init__("keyboard_node")
-        self.allow_repeat = bool(self.declare_parameter("allow_repeat", False).value)
+        self.declare_parameter("allow_repeat", False)  # read at each key: ``ros2 param set`` takes effect
         self.pub_down = self.create_publisher(Key, "keydown", 10)
         self.pub_up = self.create_publisher(Key, "keyup", 10)
         self.device: KeyboardDevice | None = self.bus.devices.get(DEVICE)
@@ -24,6 +24,11 @@ class KeyboardNode(Node):
             self.get_logger().warning("no keyboard attached: no key will be published")
         else:
             self.device.add_listener(self.on_key)
+
+    @property
+    def allow_repeat(self) -> bool:
+        """Whether a held key's repeats are published too (the ``allow_repeat`` parameter)."""
+        return bool(self.get_parameter("allow_repeat").value)
 
     def on_key(self, event: KeyEvent) -> None:
         if self.state != "active":

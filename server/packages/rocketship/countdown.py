@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from server.bus import Node, Timer
+from server.bus.parameter_values import read_only
 from server.msgs import Int64
 
 MAX_START_DELAY_S = 3600.0
@@ -11,7 +12,7 @@ MAX_START_DELAY_S = 3600.0
 class CountDownNode(Node):
     def __init__(self) -> None:
         super().__init__("CountDownNode")
-        delay = self.declare_parameter("start_delay_s", 5.0).value
+        delay = self.declare_parameter("start_delay_s", 5.0, read_only("seconds before lift-off")).value
         if (
             isinstance(delay, bool)
             or not isinstance(delay, (int, float))

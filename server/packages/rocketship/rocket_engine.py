@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from server.bus import Node
+from server.bus.parameter_values import read_only
 from server.msgs import Float64
 
 SENSOR_NOISE_STD_M_S = 10.0
@@ -13,7 +14,7 @@ SENSOR_NOISE_STD_M_S = 10.0
 class RocketEngineNode(Node):
     def __init__(self) -> None:
         super().__init__("RocketEngineNode")
-        seed = self.declare_parameter("seed", 0).value
+        seed = self.declare_parameter("seed", 0, read_only("the sensor noise's random seed")).value
         self.rng = np.random.default_rng(seed)
         self.sensor = 0.0
         self.create_subscription(Float64, "/cmd_vel", self.on_cmd_vel, 10)

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from server.bus import Node
+from server.bus.parameter_values import read_only
 from server.msgs import Float64, PoseStamped
 
 _POLY = (-3.86423e-22, 8.56075e-17, -7.58614e-12, 3.36124e-7, -0.00744645, 65.987)  # h^5 .. h^0
@@ -26,7 +27,8 @@ def pressure_mbar(altitude_m: float) -> float:
 class PressureSensorNode(Node):
     def __init__(self) -> None:
         super().__init__("PressureSensorNode")
-        self.rng = np.random.default_rng(int(self.declare_parameter("seed", 0).value))
+        seed = self.declare_parameter("seed", 0, read_only("the sensor noise's random seed"))
+        self.rng = np.random.default_rng(int(seed.value))
         self.altitude_m = 0.0
         self.pending = 0.0
         self.pub = self.create_publisher(Float64, "/uav/sensors/pressure", 1, hand_over=True)

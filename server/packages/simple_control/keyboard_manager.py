@@ -21,7 +21,9 @@ from __future__ import annotations
 from typing import Any
 
 from server.bus import Node, Parameter, Timer
+from server.bus.parameter_values import double_range, read_only
 from server.msgs import Key, PoseStamped, TwistStamped, Vector3
+from server.msgs.generated.rcl_interfaces import ParameterDescriptor
 from server.packages.flightcontroller.setpoints import clamp_to_arena
 
 START_M = (0.0, 0.0, 3.0)
@@ -37,18 +39,26 @@ DIRECTIONS: dict[int, tuple[float, float, float]] = {
     Key.KEY_S: (0.0, 0.0, -1.0),
 }
 HOLD_RATE_HZ = 50.0
+# The parameters that may change while it runs: default, range, meaning.
+LIMITS: dict[str, tuple[float, float, float, str]] = {
+    "step_m": (1.0, 0.01, 10.0, "metres per key press"),
+    "rate_hz": (20.0, 0.1, 1000.0, "publish rate in lab mode (Hz)"),
+    "hold_speed_m_s": (2.0, 0.1, 10.0, "speed while a key is held, in hold mode (m/s)"),
+    # 1 / the position controller's gain: lead × gain = speed
+    "lead_s": (1.25, 0.05, 5.0, "how far ahead the setpoint leads, in hold mode (s)"),
+    "brake_s": (0.55, 0.0, 2.0, "velocity × this is where a released key stops the drone (s)"),
+}
 
 
 class KeyboardManager(Node):
     def __init__(self) -> None:
         super().__init__("KeyboardManagerNode")
-        self.declare_parameter("mode", "adopt")
-        self.declare_parameter("step_m", 1.0)
-        self.declare_parameter("rate_hz", 20.0)
-        self.declare_parameter("hold_speed_m_s", 2.0)
-        self.declare_parameter("lead_s", 1.25)  # 1 / the position controller's gain: lead × gain = speed
-        self.declare_parameter("brake_s", 0.55)
-        start_delay_s = float(self.declare_parameter("start_delay_s", 0.0).value)
+        self.declare_parameter("mode", "adopt", ParameterDescriptor(additional_constraints=" | ".join(MODES)))
+        for name, (default, low, high, what) in LIMITS.items():
+            self.declare_parameter(name, default, double_range(low, high, what))
+        start_delay_s = float(
+            self.declare_parameter("start_delay_s", 0.0, read_only("seconds before it starts")).value
+        )
         self._check(self.get_parameters_dict())
         self.add_on_set_parameters_callback(self._on_set)
         self.position_pub = self.create_publisher(Vector3, "/uav/input/position", 1)
@@ -82,14 +92,7 @@ class KeyboardManager(Node):
     def _check(values: dict[str, Any]) -> None:
         if values.get("mode", "adopt") not in MODES:
             raise ValueError(f"mode must be one of {', '.join(MODES)}, got {values['mode']!r}")
-        limits = {
-            "step_m": (0.01, 10.0),
-            "rate_hz": (0.1, 1000.0),
-            "hold_speed_m_s": (0.1, 10.0),
-            "lead_s": (0.05, 5.0),
-            "brake_s": (0.0, 2.0),
-        }
-        for name, (lo, hi) in limits.items():
+        for name, (_, lo, hi, _what) in LIMITS.items():
             if name in values and not lo <= float(values[name]) <= hi:
                 raise ValueError(f"{name} must be in {lo:g}..{hi:g}, got {values[name]!r}")
 

@@ -11,6 +11,7 @@ from typing import Literal, cast
 import numpy as np
 
 from server.bus import Node
+from server.bus.parameter_values import read_only
 from server.devices.shared_physics import SharedSimpleSim
 from server.msgs import PoseStamped, Vector3
 from sim.quadrotor import GpsReading, SimpleDrone, SimpleSim, SimpleSimParams
@@ -19,9 +20,9 @@ from sim.quadrotor import GpsReading, SimpleDrone, SimpleSim, SimpleSimParams
 class SimpleSimNode(Node):
     def __init__(self) -> None:
         super().__init__("SimpleSimNode")
-        seed = int(self.declare_parameter("seed", 0).value)
-        noise = bool(self.declare_parameter("noise", True).value)
-        wobble = str(self.declare_parameter("wobble_noise", "lab").value)
+        seed = int(self.declare_parameter("seed", 0, read_only("the sim's random seed")).value)
+        noise = bool(self.declare_parameter("noise", True, read_only("sensor noise on")).value)
+        wobble = str(self.declare_parameter("wobble_noise", "lab", read_only("lab or fixed")).value)
         if wobble not in ("lab", "fixed"):
             raise ValueError(f"wobble_noise must be lab or fixed, got {wobble!r}")
         params = SimpleSimParams(wobble_noise=cast(Literal["lab", "fixed"], wobble))

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from server.bus import Node
+from server.bus.parameter_values import double_range
 from server.msgs import PoseStamped, TwistStamped, Vector3
 from server.packages.flightcontroller.setpoints import ARENA_MAX_M, ARENA_MIN_M
 from server.viewer.plots import TimePlot
@@ -132,7 +133,11 @@ class DroneScene:
 class GUIControllerNode(Node):
     def __init__(self) -> None:
         super().__init__("GUIControllerNode")
-        redraw_hz = float(self.declare_parameter("redraw_hz", 30.0).value)
+        redraw_hz = float(
+            self.declare_parameter(
+                "redraw_hz", 30.0, double_range(1.0, 60.0, "redraws a second", fixed=True)
+            ).value
+        )
         if not 1.0 <= redraw_hz <= 60.0:
             raise ValueError(f"redraw_hz must be in 1..60, got {redraw_hz}")
         display = self.bus.devices.get("display")

@@ -1,0 +1,143 @@
+"""A bus node's parameters: declared with a value and, optionally, a ParameterDescriptor (read-only,
+a range), given by a launch's overrides, listed, described and set as rclpy's node does. A set
+that the descriptor, the type or the node's own on-set callback refuses changes nothing and
+raises ValueError with the reason; ``server.bus.parameter_service`` answers ROS 2's parameter
+services from these."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from ..msgs.generated.rcl_interfaces import ParameterDescriptor
+from .parameter_values import DOUBLE, DOUBLE_ARRAY, INTEGER, INTEGER_ARRAY, refusal, type_of
+
+SEPARATOR = "."
+
+
+@dataclass
+class Parameter:
+    """rclpy's Parameter, reduced to what lab nodes use: a name and a value."""
+
+    name: str
+    value: Any
+
+
+def _as_declared(value: Any, descriptor: ParameterDescriptor) -> Any:
+    """An integer (or integer list) given for a double parameter is that double (``-p rate:=5``,
+    ``ros2 param set /n rate 5``), as the lab has always taken it."""
+    declared = int(descriptor.type)
+    kind = type_of(value)
+    if declared == DOUBLE and kind == INTEGER:
+        return float(value)
+    if declared == DOUBLE_ARRAY and kind == INTEGER_ARRAY:
+        return [float(v) for v in value]
+    return value
+
+
+class NodeParameters:
+    """Mixed into the bus's Node: its parameter table and rclpy's calls on it."""
+
+    if TYPE_CHECKING:
+
+        @property
+        def fully_qualified_name(self) -> str: ...
+
+    _parameters: dict[str, Parameter]
+    _param_overrides: dict[str, Any]
+    _param_callbacks: list[Callable[[list[Parameter]], Any]]
+    _descriptors: dict[str, ParameterDescriptor]
+
+    def declare_parameter(
+        self, name: str, value: Any = None, descriptor: ParameterDescriptor | None = None, *_: Any, **__: Any
+    ) -> Parameter:
+        """Declare ``name`` with ``value`` (a launch's override wins, checked against the descriptor:
+        ValueError, and the node does not start, for an override it does not allow)."""
+        described = (descriptor or ParameterDescriptor()).copy()
+        described.name = name
+        if value is None:
+            described.dynamic_typing = True
+        elif not described.type:
+            described.type = type_of(value)
+        if name in self._param_overrides:
+            value = _as_declared(self._param_overrides[name], described)
+            reason = refusal(name, value, described, check_read_only=False)
+            if reason is not None:
+                raise ValueError(f"{self.fully_qualified_name}: parameter {name!r}: {reason}")
+        param = Parameter(name, value)
+        self._parameters[name] = param
+        self._descriptors[name] = described
+        return param
+
+    def get_parameter(self, name: str) -> Parameter:
+        try:
+            return self._parameters[name]
+        except KeyError:
+            raise LookupError(f"parameter {name!r} of {self.fully_qualified_name} was not declared") from None
+
+    def has_parameter(self, name: str) -> bool:
+        return name in self._parameters
+
+    def get_parameters_dict(self) -> dict[str, Any]:
+        return {name: p.value for name, p in self._parameters.items()}
+
+    def describe_parameter(self, name: str) -> ParameterDescriptor:
+        """A copy of ``name``'s descriptor, its type the value's when dynamically typed."""
+        self.get_parameter(name)
+        described: ParameterDescriptor = self._descriptors[name].copy()
+        if described.dynamic_typing:
+            described.type = type_of(self._parameters[name].value)
+        return described
+
+    def list_parameter_names(self, prefixes: Sequence[str], depth: int) -> tuple[list[str], list[str]]:
+        """rclpy's list_parameters: names under ``prefixes`` (all if none), at most ``depth``
+        separators below them (0: any), and the prefixes of those names."""
+        if depth < 0:
+            raise ValueError("The depth must be greater than or equal to zero")
+
+        def shallow(name: str) -> bool:
+            return depth == 0 or name.count(SEPARATOR) < depth
+
+        def wanted(name: str) -> bool:
+            if not prefixes:
+                return shallow(name)
+            return any(
+                name == p or (name.startswith(p + SEPARATOR) and shallow(name[len(p) + 1 :]))
+                for p in prefixes
+            )
+
+        names = [n for n in self._parameters if wanted(n)]
+        found: list[str] = []
+        for name in names:
+            prefix = name.rpartition(SEPARATOR)[0]
+            if prefix and prefix not in found:
+                found.append(prefix)
+        return names, found
+
+    def add_on_set_parameters_callback(self, callback: Callable[[list[Parameter]], Any]) -> None:
+        """``callback(params)`` may refuse a change by returning a falsy result (or one with
+        ``successful = False`` and a ``reason``), or by raising ValueError, as rclpy's
+        SetParametersResult does."""
+        self._param_callbacks.append(callback)
+
+    def set_parameters(self, params: list[Parameter]) -> None:
+        """Set declared parameters, all or none; ValueError (changing nothing) names a refusal."""
+        checked: list[Parameter] = []
+        for param in params:
+            self.get_parameter(param.name)
+            descriptor = self._descriptors[param.name]
+            value = _as_declared(param.value, descriptor)
+            reason = refusal(param.name, value, descriptor)
+            if reason is not None:
+                raise ValueError(reason)
+            checked.append(Parameter(param.name, value))
+        for callback in self._param_callbacks:
+            result = callback(checked)
+            if result is not None and not getattr(result, "successful", bool(result)):
+                raise ValueError(getattr(result, "reason", "") or "parameter change refused by the node")
+        for param in checked:
+            self._parameters[param.name].value = param.value
+
+
+__all__ = ["SEPARATOR", "NodeParameters", "Parameter"]
