@@ -5,11 +5,12 @@ server/classroom/capacity.py and docs/classroom.md."""
 
 from __future__ import annotations
 
-from typing import Any, Literal
+from typing import Literal
 
 from fastapi import APIRouter, Response, status
 from fastapi.responses import JSONResponse
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
+from typing_extensions import TypedDict
 
 from server.classroom import ClassroomError, ClassServer
 from server.classroom.join_queue import JoinWaits
@@ -19,6 +20,41 @@ from .deps import set_token_cookie
 from .responses import FORBIDDEN, NO_ROOM, NOT_FOUND, TOO_MANY, UNAUTHORIZED, responses
 
 router = APIRouter(prefix="/api/classroom", tags=["classroom"])
+
+
+class CpuOut(TypedDict):
+    process_cores: float  # the process's CPU over its last window, in cores
+    host_busy: float | None  # the machine's busy share (steal included)
+    cores: int
+    machine: str | None
+    rss_mb: float | None  # the process's resident memory, MiB
+    saturated: bool
+
+
+class PlaceOut(TypedDict):
+    place: str  # "server" (this process) or a world worker's id
+    worlds: int
+    max_worlds: int
+    late: int | None  # None: a worker that did not say
+    cpu: CpuOut | None
+
+
+class WaitingOut(TypedDict):
+    student: str
+    world: str
+    waited_s: float
+
+
+class QueueOut(TypedDict):
+    waiting: list[WaitingOut]
+    size: int
+    wait_s: float
+    let_through: int
+    admitted: int
+    refused: int
+
+
+_QUEUE = TypeAdapter(QueueOut)
 
 
 class ClassLoadOut(BaseModel):
@@ -34,11 +70,11 @@ class ClassLoadOut(BaseModel):
         "last 20 calls) or is that overdue now"
     )
     room: int = Field(description="worlds that fit by count, over every place and the class's max_worlds")
-    places: list[dict[str, Any]] = Field(
+    places: list[PlaceOut] = Field(
         description="each place worlds run: 'server' (this process) or a world worker's id, with worlds, "
         "max_worlds, late and cpu (process_cores in cores, host_busy share, cores, rss_mb in MiB, saturated)"
     )
-    queue: dict[str, Any] = Field(
+    queue: QueueOut = Field(
         description="joins waiting (student, world, waited_s), the queue's size and wait_s, let_through "
         "(joins the instructor let past a full verdict), admitted and refused so far"
     )
@@ -63,9 +99,10 @@ async def load(_: InstructorDep, classroom: ClassroomDep) -> ClassLoadOut:
     places = await server.load.places()
     capacity = await server.load.capacity()
     server.queue.expire()
-    return ClassLoadOut(
-        capacity=capacity.verdict, reasons=list(capacity.reasons), worlds=capacity.worlds, late=capacity.late,
-        room=capacity.room, places=[p.describe() for p in places], queue=server.queue.describe(),
+    return ClassLoadOut.model_validate(
+        {"capacity": capacity.verdict, "reasons": list(capacity.reasons), "worlds": capacity.worlds,
+         "late": capacity.late, "room": capacity.room, "places": [p.describe() for p in places],
+         "queue": server.queue.describe()}
     )  # fmt: skip
 
 
@@ -92,9 +129,9 @@ async def poll(ticket: str, classroom: ClassroomDep, response: Response) -> Join
 
 
 @router.post("/queue/admit", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, body=True))
-async def let_through(body: LetThrough, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+async def let_through(body: LetThrough, _: InstructorDep, classroom: ClassroomDep) -> QueueOut:
     """The instructor's token only. Let ``count`` waiting joins (oldest first) start their worlds
     though the class is at its capacity; answers the queue."""
     server = _server(classroom)
     server.queue.let_in(body.count)
-    return server.queue.describe()
+    return _QUEUE.validate_python(server.queue.describe())
