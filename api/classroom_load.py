@@ -17,7 +17,7 @@ from server.classroom.join_queue import JoinWaits
 
 from .classroom import OPEN, ClassroomDep, InstructorDep, Joined, QueuedJoin, queued
 from .deps import set_token_cookie
-from .responses import FORBIDDEN, NO_ROOM, NOT_FOUND, TOO_MANY, UNAUTHORIZED, responses
+from .responses import BAD_GATEWAY, FORBIDDEN, NO_ROOM, NOT_FOUND, TOO_MANY, UNAUTHORIZED, responses
 
 router = APIRouter(prefix="/api/classroom", tags=["classroom"])
 
@@ -111,7 +111,7 @@ async def load(_: InstructorDep, classroom: ClassroomDep) -> ClassLoadOut:
     status_code=status.HTTP_201_CREATED,
     response_model=Joined,
     responses={
-        **responses(NOT_FOUND, TOO_MANY, NO_ROOM),
+        **responses(NOT_FOUND, TOO_MANY, BAD_GATEWAY, NO_ROOM),
         202: {"model": QueuedJoin, "description": "still waiting: ask again in poll_s"},
     },
     openapi_extra=OPEN,
