@@ -26,7 +26,9 @@ import argparse
 import asyncio
 import contextlib
 import json
+import statistics
 import sys
+import threading
 import time
 from collections import Counter
 from dataclasses import dataclass, field
@@ -157,6 +159,38 @@ class PageClient:
             for task in tasks:
                 with contextlib.suppress(asyncio.CancelledError):
                     await task
+
+
+class PageClients:
+    """Many page clients run together on a thread of their own (for a bench whose main thread
+    waits): ``start``, then ``results`` once ``warm_s + seconds`` are over."""
+
+    def __init__(self, clients: list[PageClient], seconds: float, warm_s: float) -> None:
+        self.clients = clients
+        self._rates: list[dict[str, float]] = []
+        self._thread = threading.Thread(target=self._run, args=(seconds, warm_s), daemon=True)
+
+    def _run(self, seconds: float, warm_s: float) -> None:
+        async def every() -> list[dict[str, float]]:
+            return list(await asyncio.gather(*(c.run(seconds, warm_s) for c in self.clients)))
+
+        self._rates = asyncio.run(every())
+
+    def start(self) -> None:
+        self._thread.start()
+
+    def results(self, timeout_s: float) -> tuple[list[dict[str, float]], list[str]]:
+        """Each client's rates, and every channel error, once the run is over."""
+        self._thread.join(timeout_s)
+        if self._thread.is_alive():
+            raise TimeoutError(f"the page clients did not finish within {timeout_s:g} s")
+        return self._rates, [e for c in self.clients for e in c.errors]
+
+
+def median_rates(rates: list[dict[str, float]]) -> dict[str, float]:
+    """Per channel, the median over clients of its rate (a client that got none counts 0)."""
+    names = sorted({name for r in rates for name in r})
+    return {name: round(statistics.median(r.get(name, 0.0) for r in rates), 1) for name in names}
 
 
 def main(argv: list[str] | None = None) -> int:
