@@ -41,13 +41,18 @@ class ClassLoad:
         return await self.source()
 
     async def capacity(self) -> Capacity:
-        return judge(await self.places(), self._class_room())
+        """The verdict now; a ``full`` read from the last watch round's answers is read again from
+        the workers themselves first (one may have come or freed room since), as placement would."""
+        capacity = judge(await self.places(), self._class_room())
+        if capacity.verdict == "full" and self.source == self.measure and self.graph.workers is not None:
+            capacity = judge(await self.measure(fresh=True), self._class_room())
+        return capacity
 
     def _class_room(self) -> int:
         taken = len(self.labs.worlds) + len(self.labs.starting)
         return max(0, self.labs.class_settings.max_worlds - taken)
 
-    async def measure(self) -> list[PlaceLoad]:
+    async def measure(self, fresh: bool = False) -> list[PlaceLoad]:
         """This server (its own worlds and those starting here) and each world worker that
         answered the last watch round (or answers now, when that round is old)."""
         labs = self.labs
@@ -56,16 +61,16 @@ class ClassLoad:
         places = [
             PlaceLoad(SERVER_PLACE, worlds_here, labs.local_capacity, self.cpu.read(), late_worlds(here))
         ]
-        for ref in await self._workers():
+        for ref in await self._workers(fresh):
             ours = sum(1 for w in labs.worlds.values() if w.worker is not None and w.worker.id == ref.id)
             places.append(PlaceLoad(ref.id, max(ref.worlds, ours), ref.max_worlds, ref.load, ref.late))
         return places
 
-    async def _workers(self) -> list[WorkerRef]:
+    async def _workers(self, fresh: bool) -> list[WorkerRef]:
         workers = self.graph.workers
         if workers is None:
             return []
         answered = self.placement.answered
-        if answered is not None and self.labs.clock.now() - answered[0] < FRESH_S:
+        if not fresh and answered is not None and self.labs.clock.now() - answered[0] < FRESH_S:
             return answered[1]
         return await asyncio.to_thread(workers.discover)
