@@ -78,7 +78,7 @@ class Joined(BaseModel):
 
 
 class QueuedJoin(BaseModel):
-    ticket: str = Field(description="the join's secret: ask again with GET /api/classroom/queue/{ticket}")
+    ticket: str = Field(description="the join's secret: ask again with GET /api/classroom/join/{ticket}")
     ahead: int = Field(description="joins waiting ahead of this one")
     student: str
     poll_s: float = Field(description="ask again this often, or the join leaves the queue")

@@ -1,5 +1,5 @@
 """The class server's load and its join queue: what the instructor's panel shows (``GET
-/api/classroom/load``), how a waiting join asks again (``GET /api/classroom/queue/{ticket}``) and
+/api/classroom/load``), how a waiting join asks again (``GET /api/classroom/join/{ticket}``) and
 how the instructor lets waiting joins through (``POST /api/classroom/queue/admit``). Thresholds:
 server/classroom/capacity.py and docs/classroom.md."""
 
@@ -107,7 +107,7 @@ async def load(_: InstructorDep, classroom: ClassroomDep) -> ClassLoadOut:
 
 
 @router.get(
-    "/queue/{ticket}",
+    "/join/{ticket}",
     status_code=status.HTTP_201_CREATED,
     response_model=Joined,
     responses={

@@ -60,7 +60,7 @@ def join(client: TestClient, name: str) -> tuple[int, dict[str, object]]:
 
 
 def poll(client: TestClient, ticket: object) -> tuple[int, dict[str, object]]:
-    reply = client.get(f"/api/classroom/queue/{ticket}")
+    reply = client.get(f"/api/classroom/join/{ticket}")
     client.cookies.clear()
     return reply.status_code, reply.json()
 
@@ -142,7 +142,7 @@ def test_a_waiting_join_is_refused_with_retry_after_once_it_waited_too_long(
         clock.advance(25.0)
         assert poll(client, bob["ticket"])[0] == 202
     clock.advance(25.0)
-    reply = client.get(f"/api/classroom/queue/{bob['ticket']}")
+    reply = client.get(f"/api/classroom/join/{bob['ticket']}")
     assert reply.status_code == 503 and int(reply.headers["Retry-After"]) >= 1
     assert "stayed at its capacity for 120 s" in reply.json()["detail"]
     assert set(server(client).worlds) == {"ada"}

@@ -233,7 +233,7 @@ export interface QueueOut {
 }
 
 export interface QueuedJoin {
-  /** the join's secret: ask again with GET /api/classroom/queue/{ticket} */
+  /** the join's secret: ask again with GET /api/classroom/join/{ticket} */
   ticket: string;
   /** joins waiting ahead of this one */
   ahead: number;

@@ -1,7 +1,7 @@
 // The join form of a class server: POST /api/classroom/join sets this browser's HTTP-only token
 // cookie, and the page reloads into the student's own world. When the class server is at its
 // capacity the join waits in the queue (202 with a ticket): the page shows how many wait ahead
-// and asks again (GET /api/classroom/queue/{ticket}) until it is admitted or refused.
+// and asks again (GET /api/classroom/join/{ticket}) until it is admitted or refused.
 import type { ErrorBody, JoinRequest, Joined, QueuedJoin } from "../protocol.gen";
 
 const form = document.getElementById("join") as HTMLFormElement;
@@ -45,7 +45,7 @@ async function settle(reply: Response): Promise<void> {
 
 async function poll(ticket: string): Promise<void> {
   try {
-    await settle(await fetch(`/api/classroom/queue/${encodeURIComponent(ticket)}`));
+    await settle(await fetch(`/api/classroom/join/${encodeURIComponent(ticket)}`));
   } catch (err) {
     status.textContent = `the class server did not answer: ${String(err)}`;
   }
