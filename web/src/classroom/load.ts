@@ -15,9 +15,10 @@ function place(p: PlaceOut): string {
   const cpu = p.cpu;
   const parts = [`${where}: ${p.worlds}/${p.max_worlds} worlds`];
   if (cpu) {
-    parts.push(`CPU ${cpu.process_cores.toFixed(2)} core${cpu.saturated ? " (saturated)" : ""}`);
+    parts.push(`CPU ${cpu.process_cores.toFixed(2)} core`);
     if (cpu.rss_mb !== null) parts.push(`${Math.round(cpu.rss_mb)} MiB`);
     if (cpu.host_busy !== null) parts.push(`machine ${Math.round(cpu.host_busy * 100)} % busy`);
+    if (cpu.saturated) parts.push("saturated");
   }
   if (p.late) parts.push(`${p.late} late`);
   return parts.join(", ");
