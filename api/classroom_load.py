@@ -67,7 +67,7 @@ class ClassLoadOut(BaseModel):
     worlds: int = Field(description="worlds in the class")
     late: int = Field(
         description="worlds late now: a timer of theirs ran over 50 ms after its deadline (median of its "
-        "last 20 calls) or is that overdue now"
+        "last 20 calls) or is 1 s overdue now (a stalled loop)"
     )
     room: int = Field(description="worlds that fit by count, over every place and the class's max_worlds")
     places: list[PlaceOut] = Field(

@@ -14,7 +14,7 @@ export interface ClassLoadOut {
   reasons: string[];
   /** worlds in the class */
   worlds: number;
-  /** worlds late now: a timer of theirs ran over 50 ms after its deadline (median of its last 20 calls) or is that overdue now */
+  /** worlds late now: a timer of theirs ran over 50 ms after its deadline (median of its last 20 calls) or is 1 s overdue now (a stalled loop) */
   late: number;
   /** worlds that fit by count, over every place and the class's max_worlds */
   room: number;
