@@ -10,10 +10,12 @@ import asyncio
 from typing import Annotated, Any, Literal, Required
 
 from fastapi import APIRouter, Depends, HTTPException, Query, Request, Response, status
+from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field, model_validator, with_config
 from typing_extensions import TypedDict
 
 from server.classroom import Classroom, ClassroomError, ClassServer, Grant, WorldWorker
+from server.classroom.join_queue import JoinWaits
 from server.transport.acl import Credentials
 
 from .deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie
@@ -73,6 +75,25 @@ class Joined(BaseModel):
     world: str = Field(examples=["ada_lovelace"])
     student: str = Field(examples=["Ada Lovelace"])
     token: str = Field(description="this world's bearer token; the page keeps it in an HTTP-only cookie")
+
+
+class QueuedJoin(BaseModel):
+    ticket: str = Field(description="the join's secret: ask again with GET /api/classroom/join/{ticket}")
+    ahead: int = Field(description="joins waiting ahead of this one")
+    student: str
+    poll_s: float = Field(description="ask again this often, or the join leaves the queue")
+    why: str = Field(description="why it waits")
+
+
+POLL_S = 2.0  # how often a waiting join page asks again
+
+
+def queued(waits: JoinWaits) -> JSONResponse:
+    """202 for a join that waits in the queue."""
+    why = "the class server is at its capacity" if waits.ahead == 0 else "joins ahead of yours wait"
+    body = QueuedJoin(ticket=waits.waiting.ticket, ahead=waits.ahead, student=waits.waiting.student,
+                      poll_s=POLL_S, why=why)  # fmt: skip
+    return JSONResponse(body.model_dump(), status_code=status.HTTP_202_ACCEPTED)
 
 
 class Me(BaseModel):
@@ -185,16 +206,29 @@ InstructorDep = Annotated[Grant, Depends(_instructor)]
 @router.post(
     "/join",
     status_code=status.HTTP_201_CREATED,
-    responses=responses(FORBIDDEN, TYPE_CONFLICT, TOO_MANY, BAD_GATEWAY, NO_ROOM, body=True),
+    response_model=Joined,
+    responses={
+        **responses(FORBIDDEN, TYPE_CONFLICT, TOO_MANY, BAD_GATEWAY, NO_ROOM, body=True),
+        202: {
+            "model": QueuedJoin,
+            "description": "the class is at its capacity: the join waits in the queue",
+        },
+    },
     openapi_extra=OPEN,
 )
-async def join(body: JoinRequest, classroom: ClassroomDep, request: Request, response: Response) -> Joined:
+async def join(
+    body: JoinRequest, classroom: ClassroomDep, request: Request, response: Response
+) -> Joined | JSONResponse:
     """A world of one's own: the rocket and drone launches, under a token for this world only.
-    Joins and wrong codes are rate-limited per client address and per class (429, Retry-After)."""
+    Joins and wrong codes are rate-limited per client address and per class (429, Retry-After);
+    at the class's capacity the join waits in a bounded queue (202 with a ticket; 503 when full)."""
     if not isinstance(classroom, ClassServer):
         raise ClassroomError(403, "this is a world worker: students join through the class server")
     address = request.client.host if request.client is not None else "unknown"
-    world, token = await classroom.join(body.name, body.code, address)
+    try:
+        world, token = await classroom.join(body.name, body.code, address)
+    except JoinWaits as waits:
+        return queued(waits)
     set_token_cookie(response, token)
     return Joined(world=world.name, student=world.student, token=token)
 

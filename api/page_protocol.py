@@ -18,7 +18,8 @@ from server.msgs import get_type
 from server.msgs.schema import type_schema
 from server.viewer.views import PageViews
 
-from .classroom import BroadcastRequest, ClassWorlds, Joined, JoinRequest
+from .classroom import BroadcastRequest, ClassWorlds, Joined, JoinRequest, QueuedJoin
+from .classroom_load import ClassLoadOut
 from .introspection import GraphOut, NodeDetailOut, NodeSummaryOut, RateOut
 from .responses import ErrorBody
 from .schemas import TopicDetail, TopicSummary
@@ -48,6 +49,8 @@ SHAPES: tuple[tuple[Any, Mode], ...] = (
     (RateOut, "serialization"),
     (JoinRequest, "validation"),  # the join page and the instructor's page
     (Joined, "serialization"),
+    (QueuedJoin, "serialization"),
+    (ClassLoadOut, "serialization"),
     (ClassWorlds, "serialization"),
     (BroadcastRequest, "validation"),
     (ErrorBody, "serialization"),

@@ -5,6 +5,7 @@ from fastapi import APIRouter
 from api import (
     bag,
     checkpoints,
+    classroom_load,
     classroom_workspaces,
     introspection,
     lab_routes,
@@ -42,6 +43,7 @@ def build_router(*, classroom: bool = False) -> APIRouter:
     ):
         router.include_router(module.router)
     router.include_router(classroom_routes.router, include_in_schema=classroom)
+    router.include_router(classroom_load.router, include_in_schema=classroom)
     router.include_router(checkpoints.class_router, include_in_schema=classroom)
     router.include_router(classroom_workspaces.router, include_in_schema=classroom)
     return router

@@ -11,6 +11,11 @@ the window). Prints a table and writes bench/results/classroom_worlds.json.
     python bench/classroom_worlds.py --sizes 1 5 --window 10
     python bench/classroom_worlds.py --sizes 30 --workers 1 --local-worlds 15   # half on a worker
     python bench/classroom_worlds.py --sizes 30 --no-clients                    # no pose stream
+    python bench/classroom_worlds.py --sizes 10 --page-clients   # a page-like client per student
+
+With ``--page-clients`` each student's client is bench/page_client.py instead of a lone pose
+stream: viser's WebSocket, the HUD's pose stream and the key channel's heartbeat, as an open lab
+page; each row then has every channel's median rate over the clients (``page_hz``).
 """
 
 from __future__ import annotations
@@ -32,6 +37,7 @@ import httpx
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from live_server import FrameReader, LiveServer, rss_mib
 from machine import machine_info, save_results
+from page_client import PageClient, PageClients, median_rates
 
 CODE = "BENCH1"
 POSE_THROTTLE_MS = 33  # ~30 Hz, the page's pose stream
@@ -102,6 +108,7 @@ def measure(
     workers: int = 0,
     local_worlds: int = 0,
     clients: bool = True,
+    page_clients: bool = False,
 ) -> dict[str, Any]:
     with tempfile.TemporaryDirectory() as tmp:
         args = ["--classroom", "--class-code", CODE, "--max-worlds", str(max(size, 1)), *extra]
@@ -123,7 +130,10 @@ def measure(
                 )
                 reply.raise_for_status()
                 tokens.append(reply.json()["token"])
-            for token in tokens if clients else ():
+            pages = PageClients([PageClient(server.url, t) for t in tokens], window_s, WARM_S)
+            if page_clients:
+                pages.start()
+            for token in tokens if clients and not page_clients else ():
                 url = f"{server.ws_url}/ws/topics/uav/sensors/gps?throttle_rate={POSE_THROTTLE_MS}"
                 readers.append(FrameReader(url, {"Authorization": f"Bearer {token}"}))
             time.sleep(WARM_S)
@@ -141,6 +151,7 @@ def measure(
             ]
             lateness = [t["lateness_p99_ms"] for t, _ in timers]
             rss = server.rss_mib() + sum(rss_mib(p.pid) for p in worker_procs)
+            page_rates, page_errors = pages.results(WARM_S + window_s + 60) if page_clients else ([], [])
             problems = server.log_problems()
         finally:
             for r in readers:
@@ -166,6 +177,8 @@ def measure(
         "dynamics_hz_min": round(min(dynamics_hz), 1) if dynamics_hz else None,
         "tick_lateness_p99_ms_median": round(statistics.median(lateness), 2) if lateness else None,
         "tick_lateness_p99_ms_max": round(max(lateness), 2) if lateness else None,
+        "page_hz": median_rates(page_rates) if page_clients else None,
+        "page_errors": page_errors[:5],
         "log_problems": problems[:5],
     }
 
@@ -178,6 +191,10 @@ def main() -> None:
     parser.add_argument("--window", type=float, default=20.0, help="measuring window per size, s")
     parser.add_argument("--no-zenoh", action="store_true", help="worlds in-process only (no Zenoh sessions)")
     parser.add_argument("--no-clients", action="store_true", help="no pose stream: the worlds alone")
+    parser.add_argument(
+        "--page-clients", action="store_true",
+        help="a page-like client per student (bench/page_client.py) instead of a lone pose stream",
+    )  # fmt: skip
     parser.add_argument(
         "--workers", type=int, default=0,
         help="worlds on this many world workers (ros2lab world-worker) instead of the class server; "
@@ -203,12 +220,20 @@ def main() -> None:
             args.workers,
             args.local_worlds,
             clients=not args.no_clients,
+            page_clients=args.page_clients,
         )
         rows.append(row)
         print(f"{row['worlds']:>6} {row['cpu_core_share']:>10.2f} {row['rss_mib']:>8.0f} "
               f"{row['pose_hz_median']!s:>8}/{row['pose_hz_min']!s:<7} "
               f"{row['tick_lateness_p99_ms_median']!s:>9}/{row['tick_lateness_p99_ms_max']!s:<9} "
               f"{row['dynamics_hz_median']!s:>9}/{row['dynamics_hz_min']!s:<9}", flush=True)  # fmt: skip
+        if row["page_hz"] is not None:
+            print(
+                "   page clients, median Hz per channel:",
+                row["page_hz"],
+                row["page_errors"] or "",
+                flush=True,
+            )
         if row["log_problems"]:
             print("   server log:", row["log_problems"], flush=True)
     if args.workers and args.no_zenoh:
@@ -217,9 +242,11 @@ def main() -> None:
     name += f"_{args.workers}_workers" if args.workers else ""
     name += f"_{args.local_worlds}_local" if args.workers and args.local_worlds else ""
     name += "_no_clients" if args.no_clients else ""
+    name += "_page_clients" if args.page_clients else ""
     save_results(name, {"machine": info, "window_s": args.window, "zenoh": not args.no_zenoh,
                         "workers": args.workers, "local_worlds": args.local_worlds,
-                        "pose_clients": not args.no_clients, "rows": rows})  # fmt: skip
+                        "pose_clients": not args.no_clients, "page_clients": args.page_clients,
+                        "rows": rows})  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -206,6 +206,18 @@ class JoinLimits(Section):
         return value
 
 
+class JoinQueueSettings(Section):
+    """Joins that wait while the class server is at its capacity (server/classroom/join_queue.py):
+    at most ``size`` wait, each at most ``wait_s`` and while its page polls at least every
+    ``abandon_s``; a join refused is told to try again in ``retry_after_s``. ``size`` 0: a join
+    past capacity is refused at once."""
+
+    size: int = Field(default=20, ge=0, le=1000)
+    wait_s: float = Field(default=300.0, gt=0, le=3600)
+    abandon_s: float = Field(default=30.0, gt=0, le=3600)
+    retry_after_s: float = Field(default=30.0, ge=1, le=3600)
+
+
 class ClassroomSettings(Section):
     """A class on one server (``--classroom``): a world per student behind signed tokens; the
     instructor sees all. A world worker has one too: the class whose worlds it hosts."""
@@ -214,6 +226,7 @@ class ClassroomSettings(Section):
     max_worlds: int = 60
     world: WorldLimits = WorldLimits()
     joins: JoinLimits = JoinLimits()
+    join_queue: JoinQueueSettings = JoinQueueSettings()
     # Worlds the class server hosts itself; the rest go to world workers (None: up to max_worlds).
     local_worlds: int | None = None
     # World workers the class server starts on its own machine (--workers), on its own router.

@@ -24,8 +24,10 @@ from server.workspace.location import remove_world_workspace
 from . import remote_checkpoints, remote_worlds
 from .admission import Admission, check_student_name, new_code
 from .class_graph import ClassGraph
+from .class_load import ClassLoad
 from .errors import ClassroomError
 from .grants import Grants, world_for
+from .join_queue import JoinQueue, JoinWaits
 from .load import CpuMeter, machine_id
 from .placement import Placement
 from .tokens import Grant, TokenSigner
@@ -67,6 +69,8 @@ class ClassServer:
         # placement weighs the last seconds.
         self.cpu = CpuMeter(machine=machine_id())
         self.placement = Placement(settings, self.labs, self.graph, self.cpu, self._end)
+        self.load = ClassLoad(self.labs, self.graph, self.cpu, self.placement)
+        self.queue = JoinQueue(self.class_settings.join_queue, self.clock)
         self.local_workers: LocalWorkers | None = None  # world workers started here (--workers)
         self.view: ClassView | None = None  # the instructor's 3D view of every world
         self._tasks: list[asyncio.Task[None]] = []  # the watch over the workers, the view's loop
@@ -169,20 +173,56 @@ class ClassServer:
 
     # -- worlds --------------------------------------------------------------------------------
     async def join(self, student: str, code: str, address: str = "unknown") -> tuple[World, str]:
-        """A new world for ``student``, joined from client ``address`` (its limits: admission.py)."""
+        """A new world for ``student``, joined from client ``address`` (its limits: admission.py).
+        At the class's capacity (capacity.py), or behind joins already waiting, it waits in the
+        join queue instead: ``JoinWaits`` carries its ticket."""
         self.admission.check(address)
         if not hmac.compare_digest(code.strip().upper().encode(), self.code.encode()):
             raise self.admission.wrong_code(address)
         check_student_name(student)
+        capacity = await self.load.capacity()  # before the name is checked: no await after it
+        name = self._free_name(student)
+        student = student.strip()[:64]
+        # Nobody passes a join already waiting; a full class lets one in only as the instructor said.
+        if self.queue or (capacity.verdict == "full" and not self.queue.use_let_through()):
+            if not self.class_settings.join_queue.size:
+                why = "; ".join(capacity.reasons)
+                raise ClassroomError(503, f"the class server is at its capacity ({why}): try again later",
+                                     self.class_settings.join_queue.retry_after_s)  # fmt: skip
+            waiting = self.queue.add(student, name, address)
+            log.info("%s waits to join (%s)", student, "; ".join(capacity.reasons) or "joins ahead")
+            raise JoinWaits(waiting, len(self.queue) - 1)
+        return await self._start_world(student, name, address)
+
+    async def poll_join(self, ticket: str) -> tuple[World, str]:
+        """A waiting join, asked again: its world and token once it is admitted (oldest first,
+        when the class is no longer full or the instructor let it through), else ``JoinWaits``
+        saying how many wait ahead of it."""
+        waiting, ahead = self.queue.find(ticket)
+        if ahead:
+            raise JoinWaits(waiting, ahead)
+        capacity = await self.load.capacity()
+        waiting, ahead = self.queue.find(ticket)  # still there and first after the await?
+        if ahead or (capacity.verdict == "full" and not self.queue.use_let_through()):
+            raise JoinWaits(waiting, ahead)
+        self.queue.admit(waiting)
+        log.info("%s leaves the join queue after %.0f s", waiting.student, self.clock.now() - waiting.since_s)
+        return await self._start_world(waiting.student, waiting.world, waiting.address)
+
+    def _free_name(self, student: str) -> str:
         try:
             name = world_name(student)
         except ValueError as exc:
             raise ClassroomError(422, str(exc)) from None
-        if self.labs.taken(name):
+        if self.labs.taken(name) or self.queue.holds(name):
             raise ClassroomError(409, f"the name {student!r} is taken in this class (world {name!r})")
         if self.labs.full():
             raise ClassroomError(429, f"the class is full ({self.class_settings.max_worlds} worlds)")
-        student = student.strip()[:64]
+        return name
+
+    async def _start_world(self, student: str, name: str, address: str) -> tuple[World, str]:
+        if self.labs.full():  # a waiting join whose turn came after the class filled up
+            raise ClassroomError(429, f"the class is full ({self.class_settings.max_worlds} worlds)")
         domain_id = self.labs.free_domain(self.graph.revoking)
         login = self.graph.login(domain_id)
         self.admission.hold(address)

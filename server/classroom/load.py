@@ -4,6 +4,7 @@ server weighs before it places a new world on the place with the most room.
 - ``process_cores``: the CPU time this process used (every thread) over the last window, in cores.
   A process's worlds share one event loop, in one Python thread, so near one core it is full
   however many cores the machine has.
+- ``rss_mb``: the process's resident memory now, in MiB, from ``/proc/self/statm`` (None without it).
 - ``host_busy``: the share of the machine's CPU time that was busy over the window, for every
   process, from ``/proc/stat``. Time the hypervisor stole counts as busy: it is capacity this
   machine did not have. None where ``/proc/stat`` is missing.
@@ -55,6 +56,7 @@ class CpuLoad:
     host_busy: float | None
     cores: int
     machine: str | None = None  # which machine (a digest of its boot id): places on one share its CPU
+    rss_mb: float | None = None  # the process's resident memory (MiB); None where not known
 
     @property
     def process_full(self) -> bool:
@@ -74,6 +76,7 @@ class CpuLoad:
             "host_busy": None if self.host_busy is None else round(self.host_busy, 3),
             "cores": self.cores,
             "machine": self.machine,
+            "rss_mb": None if self.rss_mb is None else round(self.rss_mb, 1),
             "saturated": self.saturated,
         }
 
@@ -94,7 +97,15 @@ class CpuLoad:
             return None
         if machine is not None and (not isinstance(machine, str) or not 0 < len(machine) <= 64):
             return None
-        return cls(float(process), None if host is None else float(host), cores, machine)
+        rss = body.get("rss_mb")
+        if rss is not None and (
+            not isinstance(rss, int | float) or isinstance(rss, bool) or not 0 <= rss < 1e9
+        ):
+            rss = None  # an older worker's hello, or a garbled one: the CPU still counts
+        return cls(
+            float(process), None if host is None else float(host), cores, machine,
+            None if rss is None else float(rss),
+        )  # fmt: skip
 
 
 def machine_id() -> str | None:
@@ -104,6 +115,15 @@ def machine_id() -> str | None:
     except OSError:
         return None
     return hashlib.sha256(f"ros2lab-machine/{boot}".encode()).hexdigest()[:16] if boot else None
+
+
+def resident_mb() -> float | None:
+    """This process's resident memory in MiB, or None without ``/proc/self/statm``."""
+    try:
+        pages = int(Path("/proc/self/statm").read_text().split()[1])
+    except (OSError, IndexError, ValueError):
+        return None
+    return pages * os.sysconf("SC_PAGE_SIZE") / 2**20
 
 
 def _cores() -> int:
@@ -124,13 +144,14 @@ class CpuMeter:
         host: Callable[[], tuple[int, int] | None] = host_times,
         cores: int | None = None,
         machine: str | None = None,
+        rss: Callable[[], float | None] = resident_mb,
     ) -> None:
-        self._now, self._process_time, self._host = now, process_time, host
+        self._now, self._process_time, self._host, self._rss = now, process_time, host, rss
         self.cores = cores if cores is not None else _cores()
         self.machine = machine
         self._lock = threading.Lock()
         self._mark = (now(), process_time(), host())
-        self._load = CpuLoad(0.0, None, self.cores, machine)
+        self._load = CpuLoad(0.0, None, self.cores, machine, rss())
 
     def read(self) -> CpuLoad:
         with self._lock:
@@ -143,7 +164,8 @@ class CpuMeter:
             busy: float | None = None
             if host is not None and host_then is not None and host[1] > host_then[1]:
                 busy = min(1.0, max(0.0, (host[0] - host_then[0]) / (host[1] - host_then[1])))
-            self._load = CpuLoad(max(0.0, cpu - cpu_then) / elapsed, busy, self.cores, self.machine)
+            cores = max(0.0, cpu - cpu_then) / elapsed
+            self._load = CpuLoad(cores, busy, self.cores, self.machine, self._rss())
             self._mark = (now, cpu, host)
             return self._load
 

@@ -52,6 +52,13 @@ class Placement:
         self._hosting: set[tuple[str, str]] = set()  # (worker id, world) while it is placed there
         self._local_starting = 0  # worlds being started here
         self._silent_workers = Silence(self.class_settings.worker_timeout_s)
+        # The workers that answered the last watch round, and when (the load panel reads them).
+        self.answered: tuple[float, list[WorkerRef]] | None = None
+
+    @property
+    def local_starting(self) -> int:
+        """Worlds being started on this server now."""
+        return self._local_starting
 
     async def start(
         self, name: str, student: str, domain_id: int, login: Credentials | None, exclude: str | None = None
@@ -131,6 +138,7 @@ class Placement:
         asked_at = clock.now()
         answered = await asyncio.to_thread(workers.discover)
         now = clock.now()
+        self.answered = now, answered
         answering = {ref.id for ref in answered}
         for ref in answered:
             self._silent_workers.heard(ref.id, now)

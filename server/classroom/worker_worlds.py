@@ -26,6 +26,7 @@ from server.workspace.location import remove_world_workspace
 from .admission import new_code
 from .errors import ClassroomError
 from .grants import Grants, world_for
+from .lateness import late_worlds
 from .load import CpuMeter, machine_id
 from .tokens import Grant, TokenSigner
 from .workers import WATCH_PERIOD_S, worker_api_token, world_of_call_token
@@ -239,4 +240,12 @@ class WorldWorker:
         """A worker's hello: how full it is, and which worlds it hosts (Zenoh's thread: a copy)."""
         hosted = sorted(self.worlds)
         return {"worlds": len(hosted) + len(self.labs.starting), "max_worlds": self.class_settings.max_worlds,
-                "hosted": hosted, "cpu": self.cpu.read().describe()}  # fmt: skip
+                "hosted": hosted, "cpu": self.cpu.read().describe(), "late": self._late()}  # fmt: skip
+
+    def _late(self) -> int | None:
+        """Its late worlds, read on Zenoh's thread while the loop runs them: a world or node added
+        mid-read makes this round say nothing rather than guess."""
+        try:
+            return late_worlds(w.lab for w in list(self.worlds.values()))
+        except RuntimeError:
+            return None

@@ -137,6 +137,7 @@ class WorkerRef:
     token: str  # worker_api_token(...): what the class server calls it with
     hosted: frozenset[str] | None = None  # the worlds it said it hosts (None: it did not say)
     load: CpuLoad | None = None  # its CPU over its last window (None: it did not say)
+    late: int | None = None  # its worlds that are late (lateness.py; None: it did not say)
 
     def describe(self) -> dict[str, Any]:
         cpu = self.load.describe() if self.load is not None else None
@@ -146,6 +147,7 @@ class WorkerRef:
             "worlds": self.worlds,
             "max_worlds": self.max_worlds,
             "cpu": cpu,
+            "late": self.late,
         }
 
 
@@ -160,7 +162,10 @@ def _worker_ref(body: dict[str, Any], class_token: str) -> WorkerRef | None:
         frozenset(listed) if isinstance(listed, list) and all(isinstance(n, str) for n in listed) else None
     )
     load = CpuLoad.parse(body.get("cpu"))
-    return WorkerRef(wid, url.rstrip("/"), worlds, most, worker_api_token(class_token, wid), hosted, load)
+    late = body.get("late")
+    late = late if isinstance(late, int) and not isinstance(late, bool) and 0 <= late <= most else None
+    token = worker_api_token(class_token, wid)
+    return WorkerRef(wid, url.rstrip("/"), worlds, most, token, hosted, load, late)
 
 
 class WorkerDirectory:

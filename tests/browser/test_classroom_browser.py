@@ -187,6 +187,12 @@ def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
         assert page.url == f"{class_server.url}/instructor"  # the token left the address bar
         rows = page.inner_text("#worlds")
         assert "Ada" in rows and "Bob" in rows
+        # The load panel: a verdict and this server's two worlds with its CPU and memory.
+        page.wait_for_function(
+            "() => /2\\/\\d+ worlds, CPU/.test(document.getElementById('load-places').textContent)"
+        )
+        assert page.inner_text("#load-verdict") in ("ok", "near", "full")
+        assert "MiB" in page.inner_text("#load-places")
         # The 3D view: both worlds listed, and two drones drawn apart (an arena each).
         view = page.frame_locator("#view")
         view.get_by_text("2 worlds").wait_for(timeout=LOAD_WAIT_MS)

@@ -33,7 +33,7 @@ class Counters:
 
 
 def meter(c: Counters) -> CpuMeter:
-    return CpuMeter(now=lambda: c.t, process_time=lambda: c.cpu, host=c.host, cores=2)
+    return CpuMeter(now=lambda: c.t, process_time=lambda: c.cpu, host=c.host, cores=2, rss=lambda: None)
 
 
 def test_the_meter_reports_cores_used_and_the_machines_busy_share_over_each_window() -> None:
@@ -64,7 +64,7 @@ def test_the_meter_reports_cores_used_and_the_machines_busy_share_over_each_wind
 
 def test_a_machine_without_proc_stat_is_judged_by_the_process_alone() -> None:
     c = Counters()
-    m = CpuMeter(now=lambda: c.t, process_time=lambda: c.cpu, host=lambda: None, cores=4)
+    m = CpuMeter(now=lambda: c.t, process_time=lambda: c.cpu, host=lambda: None, cores=4, rss=lambda: None)
     c.t += 1.0
     c.cpu += 0.2
     assert m.read() == CpuLoad(pytest.approx(0.2), None, 4)  # type: ignore[arg-type]

@@ -7,6 +7,23 @@ export interface BroadcastRequest {
   type?: string | null;
 }
 
+export interface ClassLoadOut {
+  /** ok; near: a place's CPU is busy, a world is late or little room is left (joins still go ahead); full: no place has room, or every place with room is saturated and a quarter of the worlds are late (new joins wait in the queue) */
+  capacity: "ok" | "near" | "full";
+  /** why the verdict is near or full, one line each */
+  reasons: string[];
+  /** worlds in the class */
+  worlds: number;
+  /** worlds late now: a timer of theirs ran over 50 ms after its deadline (median of its last 20 calls) or is 1 s overdue now (a stalled loop) */
+  late: number;
+  /** worlds that fit by count, over every place and the class's max_worlds */
+  room: number;
+  /** each place worlds run: 'server' (this process) or a world worker's id, with worlds, max_worlds, late and cpu (process_cores in cores, host_busy share, cores, rss_mb in MiB, saturated) */
+  places: PlaceOut[];
+  /** joins waiting (student, world, waited_s), the queue's size and wait_s, let_through (joins the instructor let past a full verdict), admitted and refused so far */
+  queue: QueueOut;
+}
+
 /** One world as the instructor's page shows it; the lab's own figures only while it runs, and a world on a world worker as its worker reports them. */
 export interface ClassWorld {
   world: string;
@@ -30,6 +47,15 @@ export interface ClassWorlds {
 /** ``release_all``: release every key this channel holds; ``heartbeat``: the page is there. */
 export interface ControlFrame {
   type: "release_all" | "heartbeat";
+}
+
+export interface CpuOut {
+  process_cores: number;
+  host_busy: number | null;
+  cores: number;
+  machine: string | null;
+  rss_mb: number | null;
+  saturated: boolean;
 }
 
 /** One message on ``/ws/topics/{topic}``, as the page reads it. */
@@ -189,6 +215,35 @@ export interface PageViews {
   suggested: string | null;
 }
 
+export interface PlaceOut {
+  place: string;
+  worlds: number;
+  max_worlds: number;
+  late: number | null;
+  cpu: CpuOut | null;
+}
+
+export interface QueueOut {
+  waiting: WaitingOut[];
+  size: number;
+  wait_s: number;
+  let_through: number;
+  admitted: number;
+  refused: number;
+}
+
+export interface QueuedJoin {
+  /** the join's secret: ask again with GET /api/classroom/join/{ticket} */
+  ticket: string;
+  /** joins waiting ahead of this one */
+  ahead: number;
+  student: string;
+  /** ask again this often, or the join leaves the queue */
+  poll_s: number;
+  /** why it waits */
+  why: string;
+}
+
 export interface RateOut {
   topic: string;
   /** how many periods between messages the statistics use */
@@ -268,6 +323,12 @@ export interface ViewJson {
   position: [number, number, number];
   look_at: [number, number, number];
   follow: FollowJson | null;
+}
+
+export interface WaitingOut {
+  student: string;
+  world: string;
+  waited_s: number;
 }
 
 /** geometry_msgs/msg/PoseStamped, as the server sends it */

@@ -1,10 +1,11 @@
 // The instructor's page: every world once a second (GET /api/classroom/worlds) in a table, and
 // the controls (reset one or all, remove a student, publish in all worlds). Every drone in 3D is
 // the class view's own viser page, in a frame (/instructor/view). Below, the class's checkpoints
-// (checkpoints.ts). The token is the page's
+// (checkpoints.ts); beside the header, the server's load and the join queue (load.ts). The token is the page's
 // HTTP-only cookie; these requests are same-origin.
 import type { BroadcastRequest, ClassWorld, ClassWorlds, ErrorBody } from "../protocol.gen";
 import { startCheckpoints } from "./checkpoints";
+import { startLoad } from "./load";
 
 const $ = <E extends HTMLElement = HTMLElement>(id: string): E => document.getElementById(id) as E;
 const say = (text: string): void => { $("status").textContent = text; };
@@ -103,3 +104,4 @@ $("broadcast").addEventListener("click", () => {
 void refresh();
 setInterval(() => void refresh(), 1000);
 startCheckpoints();
+startLoad();

@@ -1,0 +1,52 @@
+"""Whether a world keeps its time: a world is *late* when one of its timers (its dynamics' tick,
+its controller's, its sensors') ran more than ``LATE_TICK_S`` after its deadline, as a median over
+its last ``RECENT_TICKS`` calls, or its next call is ``STALLED_S`` overdue now (its loop is
+stalled: what a world worker's hello, answered on Zenoh's thread, can see). The overdue bound is
+longer than a late tick's because a class server reads it on the loop itself, right after a
+join's world start held that loop for a moment: its timers have not caught up yet, though they
+will on the next pass.
+
+The lab already keeps every timer's lateness (``Timer.lateness_s``, what ``ros2 node info``
+shows as percentiles); this reads its newest samples, so the window is each timer's last few
+ticks, not a clock of its own.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from statistics import median
+
+from server.bus import Timer
+from server.lab import Lab
+
+LATE_TICK_S = 0.05  # a 20 Hz timer (the slowest tick of the handout's nodes) skips a call past this
+RECENT_TICKS = 20
+STALLED_S = 1.0  # a next call this overdue: the loop is stalled, not just busy for a moment
+
+
+def timer_late(timer: Timer, now_s: float) -> bool:
+    """A timer is late when its recent calls ran late, or its next call is stalled now."""
+    if timer.cancelled:
+        return False
+    if now_s - timer.next_deadline_s > STALLED_S:
+        return True
+    count = len(timer.lateness_s)
+    if not count:
+        return False
+    recent = [timer.lateness_s[i] for i in range(max(0, count - RECENT_TICKS), count)]
+    return median(recent) > LATE_TICK_S
+
+
+def timers_late(timers: Iterable[Timer], now_s: float) -> bool:
+    return any(timer_late(t, now_s) for t in timers)
+
+
+def world_late(lab: Lab) -> bool:
+    """Whether any active node of ``lab`` has a late timer."""
+    now_s = lab.bus.clock.now()
+    return any(timers_late(node.timers, now_s) for node in lab.bus.nodes if node.state == "active")
+
+
+def late_worlds(labs: Iterable[Lab | None]) -> int:
+    """How many of these labs are late (a world running elsewhere, None, is not counted here)."""
+    return sum(1 for lab in labs if lab is not None and world_late(lab))

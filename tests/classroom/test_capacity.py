@@ -1,0 +1,147 @@
+"""The class's capacity verdict (capacity.py) over fake places, whether a world is late
+(lateness.py) from its timers on a manual clock, and the join queue (join_queue.py) stepped on a
+manual clock: bounded in count and time, oldest first, and what the instructor lets through."""
+
+from __future__ import annotations
+
+import pytest
+
+from server.bus import Bus, ManualClock, Node
+from server.classroom import ClassroomError
+from server.classroom.capacity import NEAR_CORES, PlaceLoad, judge
+from server.classroom.join_queue import JoinQueue
+from server.classroom.lateness import LATE_TICK_S, RECENT_TICKS, STALLED_S, timer_late
+from server.classroom.load import PROCESS_FULL_CORES, CpuLoad, CpuMeter, resident_mb
+from server.settings import JoinQueueSettings
+
+
+def place(worlds: int, cores: float, late: int = 0, most: int = 60, name: str = "server") -> PlaceLoad:
+    return PlaceLoad(name, worlds, most, CpuLoad(cores, 0.5, 2, "m1", 300.0), late)
+
+
+def test_an_idle_class_is_ok_and_says_no_reason() -> None:
+    capacity = judge([place(10, 0.2)], class_room=50)
+    assert (capacity.verdict, capacity.reasons, capacity.worlds, capacity.room) == ("ok", (), 10, 50)
+
+
+def test_a_busy_process_whose_worlds_keep_time_is_near_not_full() -> None:
+    capacity = judge([place(30, PROCESS_FULL_CORES + 0.05)], class_room=30)
+    assert capacity.verdict == "near"
+    assert "saturated" in capacity.reasons[0]
+    assert judge([place(30, NEAR_CORES + 0.01)], class_room=30).verdict == "near"
+
+
+def test_saturated_with_a_quarter_of_the_worlds_late_is_full() -> None:
+    assert judge([place(20, 0.95, late=4)], class_room=40).verdict == "near"  # a fifth late
+    capacity = judge([place(20, 0.95, late=5)], class_room=40)
+    assert capacity.verdict == "full"
+    assert capacity.reasons == ("the CPU of every place with room is saturated and 5 of 20 worlds are late",)
+
+
+def test_late_worlds_on_an_idle_process_are_near_not_full() -> None:
+    capacity = judge([place(8, 0.1, late=8)], class_room=40)
+    assert capacity.verdict == "near"
+    assert capacity.reasons == ("8 of 8 worlds are late",)
+
+
+def test_another_place_with_idle_cpu_keeps_the_class_open() -> None:
+    busy = place(20, 0.95, late=20)
+    idle = place(2, 0.1, name="w1", most=30)
+    assert judge([busy, idle], class_room=30).verdict == "near"
+    assert judge([busy], class_room=30).verdict == "full"
+
+
+def test_every_place_at_its_count_is_full_and_little_room_is_near() -> None:
+    assert judge([place(4, 0.1, most=4)], class_room=10).verdict == "full"
+    capacity = judge([place(3, 0.1, most=4)], class_room=10)
+    assert (capacity.verdict, capacity.room) == ("near", 1)
+    assert capacity.reasons == ("room for 1 more world",)
+
+
+def test_a_timer_is_late_when_its_recent_calls_ran_late_or_it_is_stalled_now() -> None:
+    clock = ManualClock(0.0)
+    bus = Bus(clock)
+    node = Node("ticker", context=bus)
+    timer = node.create_timer(0.01, lambda: None)
+    deadline = timer.next_deadline_s
+    assert not timer_late(timer, deadline)
+    assert not timer_late(timer, deadline + 0.5)  # the loop busy for a moment (a world starting)
+    assert timer_late(timer, deadline + STALLED_S + 0.001)  # stalled
+    for _ in range(RECENT_TICKS):
+        timer.lateness_s.append(LATE_TICK_S * 2)
+    assert timer_late(timer, timer.next_deadline_s)  # on time now, but its last calls were late
+    for _ in range(RECENT_TICKS // 2 + 1):
+        timer.lateness_s.append(0.001)
+    assert not timer_late(timer, timer.next_deadline_s)  # the median of the last calls is on time
+    timer.cancel()
+    assert not timer_late(timer, deadline + 10.0)
+
+
+def queue(clock: ManualClock, size: int = 3) -> JoinQueue:
+    return JoinQueue(JoinQueueSettings(size=size, wait_s=60.0, abandon_s=10.0, retry_after_s=15.0), clock)
+
+
+def test_the_queue_is_oldest_first_and_refuses_past_its_size_with_retry_after() -> None:
+    clock = ManualClock(100.0)
+    q = queue(clock, size=2)
+    ada = q.add("Ada", "ada", "10.0.0.1")
+    bob = q.add("Bob", "bob", "10.0.0.2")
+    with pytest.raises(ClassroomError) as refused:
+        q.add("Cy", "cy", "10.0.0.3")
+    assert (refused.value.status, refused.value.retry_after_s) == (503, 15.0)
+    assert "2 joins already wait (at most 2)" in str(refused.value)
+    assert q.find(bob.ticket)[1] == 1 and q.find(ada.ticket)[1] == 0
+    assert q.holds("ada") and not q.holds("cy")
+    q.admit(ada)
+    assert q.find(bob.ticket)[1] == 0
+    assert q.add("Cy", "cy", "10.0.0.3").world == "cy"  # room in the queue again
+    assert (q.admitted, q.refused) == (1, 1)
+
+
+def test_a_join_that_waits_too_long_or_stops_polling_leaves_with_503_naming_why() -> None:
+    clock = ManualClock(0.0)
+    q = queue(clock)
+    polled = q.add("Ada", "ada", "a")
+    silent = q.add("Bob", "bob", "b")
+    for _ in range(5):
+        clock.advance(9.0)
+        q.find(polled.ticket)  # Ada's page polls; Bob's was closed
+    with pytest.raises(ClassroomError) as gone:
+        q.find(silent.ticket)
+    assert gone.value.status == 503 and "not polled for 10 s" in str(gone.value)
+    clock.advance(16.0)  # 61 s since Ada joined the queue
+    with pytest.raises(ClassroomError) as timed_out:
+        q.find(polled.ticket)
+    assert timed_out.value.status == 503 and "for 60 s while your join waited" in str(timed_out.value)
+    assert len(q) == 0
+    with pytest.raises(ClassroomError) as unknown:
+        q.find("never-given")
+    assert unknown.value.status == 404
+
+
+def test_the_instructor_lets_a_given_count_through() -> None:
+    q = queue(ManualClock(0.0))
+    assert not q.use_let_through()
+    q.let_in(2)
+    assert q.use_let_through() and q.use_let_through() and not q.use_let_through()
+    assert q.describe()["let_through"] == 0
+
+
+def test_the_meter_reports_this_process_resident_memory_and_a_hello_carries_it() -> None:
+    rss = [120.0]
+    now = [0.0]
+    meter = CpuMeter(
+        now=lambda: now[0], process_time=lambda: 0.0, host=lambda: None, cores=2, rss=lambda: rss[0]
+    )
+    rss[0] = 180.0
+    now[0] = 2.0
+    load = meter.read()
+    assert load.rss_mb == 180.0 and load.describe()["rss_mb"] == 180.0
+    assert CpuLoad.parse(load.describe()) == load
+    older = {k: v for k, v in load.describe().items() if k != "rss_mb"}  # a worker without the field
+    parsed = CpuLoad.parse(older)
+    assert parsed is not None and parsed.rss_mb is None and parsed.process_cores == load.process_cores
+    garbled = CpuLoad.parse({**load.describe(), "rss_mb": "lots"})
+    assert garbled is not None and garbled.rss_mb is None
+    real = resident_mb()
+    assert real is not None and real > 10  # this interpreter, from /proc/self/statm
