@@ -1,6 +1,7 @@
 """Whether a world keeps its time: a world is *late* when one of its timers (its dynamics' tick,
 its controller's, its sensors') ran more than ``LATE_TICK_S`` after its deadline, as a median over
-its last ``RECENT_TICKS`` calls, or its next call is ``STALLED_S`` overdue now (its loop is
+its last ``RECENT_TICKS`` calls (a timer with fewer calls than that has just started, and its
+first ticks waited for its world's start: not judged yet), or its next call is ``STALLED_S`` overdue now (its loop is
 stalled: what a world worker's hello, answered on Zenoh's thread, can see). The overdue bound is
 longer than a late tick's because a class server reads it on the loop itself, right after a
 join's world start held that loop for a moment: its timers have not caught up yet, though they
@@ -26,12 +27,12 @@ STALLED_S = 1.0  # a next call this overdue: the loop is stalled, not just busy 
 
 def timer_late(timer: Timer, now_s: float) -> bool:
     """A timer is late when its recent calls ran late, or its next call is stalled now."""
-    if timer.cancelled:
+    count = len(timer.lateness_s)
+    if timer.cancelled or not count:  # not yet called: its world is still starting
         return False
     if now_s - timer.next_deadline_s > STALLED_S:
         return True
-    count = len(timer.lateness_s)
-    if not count:
+    if count < RECENT_TICKS:  # a world just started: its first ticks waited for the start to end
         return False
     recent = [timer.lateness_s[i] for i in range(max(0, count - RECENT_TICKS), count)]
     return median(recent) > LATE_TICK_S

@@ -64,9 +64,15 @@ def test_a_timer_is_late_when_its_recent_calls_ran_late_or_it_is_stalled_now() -
     node = Node("ticker", context=bus)
     timer = node.create_timer(0.01, lambda: None)
     deadline = timer.next_deadline_s
+    # Never called yet: its world is still starting, however overdue its first call is.
+    assert not timer_late(timer, deadline + STALLED_S + 5.0)
+    timer.lateness_s.append(0.001)  # its first call
     assert not timer_late(timer, deadline)
     assert not timer_late(timer, deadline + 0.5)  # the loop busy for a moment (a world starting)
     assert timer_late(timer, deadline + STALLED_S + 0.001)  # stalled
+    for _ in range(RECENT_TICKS // 2):  # late calls, but too few to judge a timer just started
+        timer.lateness_s.append(LATE_TICK_S * 2)
+    assert not timer_late(timer, timer.next_deadline_s)
     for _ in range(RECENT_TICKS):
         timer.lateness_s.append(LATE_TICK_S * 2)
     assert timer_late(timer, timer.next_deadline_s)  # on time now, but its last calls were late
