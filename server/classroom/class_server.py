@@ -19,6 +19,7 @@ from server.limits import RateLimit
 from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth
+from server.workspace.class_mark import leave_mark
 from server.workspace.location import remove_world_workspace
 
 from . import remote_worlds
@@ -38,7 +39,7 @@ if TYPE_CHECKING:
 
     from .class_bridges import ClassBridges
     from .local_workers import LocalWorkers
-    from .workers import WorkerDirectory
+    from .workers import WorkerDirectory, WorkerRef
 
 log = logging.getLogger("classroom")
 
@@ -69,6 +70,7 @@ class ClassServer:
         self.placement = Placement(settings, self.labs, self.graph, self.cpu, self._end)
         self.local_workers: LocalWorkers | None = None  # world workers started here (--workers)
         self.view: ClassView | None = None  # the instructor's 3D view of every world
+        self.workspaces_mark: str | None = None  # its workspaces folder's mark, once open
         self._tasks: list[asyncio.Task[None]] = []  # the watch over the workers, the view's loop
 
     # -- what the routes read ------------------------------------------------------------------
@@ -112,6 +114,10 @@ class ClassServer:
     def router_endpoint(self) -> str | None:
         return self.graph.endpoint()
 
+    def shares_workspaces(self, ref: WorkerRef) -> bool:
+        """Whether world worker ``ref`` works in this class's workspaces folder (the same mark)."""
+        return self.workspaces_mark is not None and ref.workspaces_mark == self.workspaces_mark
+
     # -- who is calling ------------------------------------------------------------------------
     def grant(self, token: str | None) -> Grant | None:
         """The grant of a genuine, current token: a student's world must still be theirs."""
@@ -130,6 +136,8 @@ class ClassServer:
     async def open(self) -> None:
         """Open the instructor's view and the class's Zenoh graph (if Zenoh is on), then start the
         watch over the world workers and those started here."""
+        # Workers that read this mark in their own workspaces folder share this one (class_mark.py).
+        self.workspaces_mark = await asyncio.to_thread(leave_mark, self.class_settings.workspaces_dir)
         if self.settings.lab.viewer:
             from server.viewer.class_view import ClassView, run_class_view
 
@@ -145,7 +153,8 @@ class ClassServer:
 
             self.local_workers = LocalWorkers(
                 self.class_settings.local_workers, endpoint, self.instructor_token, self.class_settings.max_worlds,
-                self.settings.lab.workspace, self.settings.lab.bag_dir, world_log_level=self.class_settings.world_log_level,
+                self.settings.lab.workspace, self.class_settings.workspaces_dir, self.settings.lab.bag_dir,
+                world_log_level=self.class_settings.world_log_level,
             )  # fmt: skip
             self.local_workers.start()
 

@@ -30,6 +30,8 @@ from typing import Any
 
 import httpx
 
+from server.workspace.class_mark import MAX_MARK_CHARS
+
 from .errors import ClassroomError
 from .load import CpuLoad
 
@@ -137,6 +139,8 @@ class WorkerRef:
     token: str  # worker_api_token(...): what the class server calls it with
     hosted: frozenset[str] | None = None  # the worlds it said it hosts (None: it did not say)
     load: CpuLoad | None = None  # its CPU over its last window (None: it did not say)
+    # The mark in its workspaces folder (server/workspace/class_mark.py; None: it has none).
+    workspaces_mark: str | None = None
 
     def describe(self) -> dict[str, Any]:
         cpu = self.load.describe() if self.load is not None else None
@@ -160,7 +164,10 @@ def _worker_ref(body: dict[str, Any], class_token: str) -> WorkerRef | None:
         frozenset(listed) if isinstance(listed, list) and all(isinstance(n, str) for n in listed) else None
     )
     load = CpuLoad.parse(body.get("cpu"))
-    return WorkerRef(wid, url.rstrip("/"), worlds, most, worker_api_token(class_token, wid), hosted, load)
+    mark = body.get("workspaces")
+    mark = mark if isinstance(mark, str) and 0 < len(mark) <= MAX_MARK_CHARS else None
+    token = worker_api_token(class_token, wid)
+    return WorkerRef(wid, url.rstrip("/"), worlds, most, token, hosted, load, mark)
 
 
 class WorkerDirectory:
