@@ -1,10 +1,12 @@
 // The instructor's page: every world once a second (GET /api/classroom/worlds) in a table, and
-// the controls (reset one or all, remove a student, publish in all worlds). Every drone in 3D is
+// the controls (reset one or all, remove a student, publish in all worlds, a student's code read-only:
+// workspaces.ts). Every drone in 3D is
 // the class view's own viser page, in a frame (/instructor/view). Below, the class's checkpoints
 // (checkpoints.ts). The token is the page's
 // HTTP-only cookie; these requests are same-origin.
 import type { BroadcastRequest, ClassWorld, ClassWorlds, ErrorBody } from "../protocol.gen";
 import { startCheckpoints } from "./checkpoints";
+import { openWorkspace } from "./workspaces";
 
 const $ = <E extends HTMLElement = HTMLElement>(id: string): E => document.getElementById(id) as E;
 const say = (text: string): void => { $("status").textContent = text; };
@@ -57,6 +59,7 @@ function draw(worlds: ClassWorld[]): void {
     else cell(row, crashed.length ? crashed.join(", ") : "none", crashed.length ? "bad" : "");
     const actions = row.insertCell();
     const world = encodeURIComponent(w.world);
+    button(actions, "Code", () => void openWorkspace(w.world, w.student));
     button(actions, "Reset", () => void act("POST", `/api/classroom/worlds/${world}/reset`, `reset ${w.world}`));
     button(actions, "Remove", () => {
       if (confirm(`Remove ${w.student}'s world? Their page stops working until they join again.`)) {
