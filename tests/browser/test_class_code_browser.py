@@ -68,7 +68,9 @@ def join(pages: dict[str, Page], server: LabServer) -> list[str]:
 
 
 def open_code_view(page: Page) -> None:
-    page.locator("#teleop-code-tab").click()
+    # The page may still be parsing viser's bundle and drawing its first frames (two at once, in
+    # software WebGL): the tab takes the clicks once the page is steady enough for it.
+    page.locator("#teleop-code-tab").click(timeout=LOAD_WAIT_MS)
     page.wait_for_function("() => window.__teleop.codeview.loaded", timeout=EDITOR_LOAD_MS)
     page.locator("#teleop-code .cm-content").wait_for()
 
