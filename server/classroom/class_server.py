@@ -137,7 +137,12 @@ class ClassServer:
         """Open the instructor's view and the class's Zenoh graph (if Zenoh is on), then start the
         watch over the world workers and those started here."""
         # Workers that read this mark in their own workspaces folder share this one (class_mark.py).
-        self.workspaces_mark = await asyncio.to_thread(leave_mark, self.class_settings.workspaces_dir)
+        try:
+            self.workspaces_mark = await asyncio.to_thread(leave_mark, self.class_settings.workspaces_dir)
+        except OSError as exc:  # no worker shares it then: their worlds' workspaces are refused (409)
+            log.warning(
+                "no mark left in the workspaces folder %s: %s", self.class_settings.workspaces_dir, exc
+            )
         if self.settings.lab.viewer:
             from server.viewer.class_view import ClassView, run_class_view
 
