@@ -63,6 +63,9 @@ class HostRequest(BaseModel):
     # The world's own Zenoh login, drawn by the class server (its graph joins the router with it).
     zenoh_user: str | None = Field(None, min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_-]+$")
     zenoh_password: str | None = Field(None, min_length=1, max_length=64, pattern=r"^[A-Za-z0-9]+$")
+    # The class router's Unix socket: a worker on its machine runs the world's students' nodes
+    # in a sandbox that reaches the router there.
+    router_socket: str | None = Field(None, min_length=2, max_length=256, pattern=r"^/[A-Za-z0-9_./-]+$")
 
     @model_validator(mode="after")
     def _login_whole(self) -> HostRequest:
@@ -303,7 +306,7 @@ async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> 
         raise ClassroomError(404, "only a world worker hosts worlds for a class server")
     login = Credentials(body.zenoh_user, body.zenoh_password or "") if body.zenoh_user is not None else None
     world = await classroom.host(
-        body.world, body.student, body.domain_id, body.launch, body.launch_args, login
+        body.world, body.student, body.domain_id, body.launch, body.launch_args, login, body.router_socket
     )
     return world.describe()
 

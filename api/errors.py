@@ -38,6 +38,7 @@ from server.checkpoints.progress import (
 )
 from server.checkpoints.progress import TooLargeError as AnswerTooLargeError
 from server.classroom import ClassroomError
+from server.classroom.errors import StudentCodeElsewhereError
 from server.close_codes import CloseCode as CloseCode  # where the routes import it from
 from server.launch.description import LaunchFileError
 from server.launch.groups import UnknownLaunchError
@@ -79,6 +80,7 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (DestroyedError, status.HTTP_409_CONFLICT),
     (LimitExceededError, status.HTTP_429_TOO_MANY_REQUESTS),
     (ServiceTimeoutError, status.HTTP_504_GATEWAY_TIMEOUT),
+    (StudentCodeElsewhereError, status.HTTP_409_CONFLICT),  # a world worker away from the class's router
     (StudentCodeRefusedError, status.HTTP_503_SERVICE_UNAVAILABLE),  # no sandbox on a shared server
     (BodyTooLarge, status.HTTP_413_CONTENT_TOO_LARGE),
     (AnswerTooLargeError, status.HTTP_413_CONTENT_TOO_LARGE),

@@ -132,6 +132,11 @@ def build_parser() -> argparse.ArgumentParser:
              "of 30 rockets at info is 300 lines a second); every line still goes to its world's /rosout",
     )  # fmt: skip
     classroom.add_argument(
+        "--workspaces-dir", default="workspaces", metavar="DIR",
+        help="the students' workspaces, a folder per world (default ./workspaces); world workers on other "
+             "machines need it mounted as their --workspaces-dir for the code view",
+    )  # fmt: skip
+    classroom.add_argument(
         "--worker-timeout", type=float, default=WORKER_TIMEOUT_S, metavar="S",
         help="a world worker that answers no hello for S seconds is gone: its worlds start again here "
              f"or on another worker, under the same names and tokens (default {WORKER_TIMEOUT_S:g})",
@@ -241,7 +246,7 @@ def classroom_banner(settings: Settings, code: str, instructor_token: str) -> st
 
 # Options of the class's section: without --classroom there is no class for them to shape.
 CLASS_ONLY = {"workers": "--workers", "local_worlds": "--local-worlds",
-              "max_worlds_per_address": "--max-worlds-per-address"}  # fmt: skip
+              "max_worlds_per_address": "--max-worlds-per-address", "workspaces_dir": "--workspaces-dir"}  # fmt: skip
 
 
 def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settings:
@@ -252,7 +257,7 @@ def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settin
         classroom = {
             "code": args.class_code, "max_worlds": args.max_worlds, "local_worlds": args.local_worlds,
             "local_workers": args.workers, "worker_timeout_s": args.worker_timeout,
-            "world_log_level": args.world_log_level,
+            "world_log_level": args.world_log_level, "workspaces_dir": Path(args.workspaces_dir),
             "joins": {"max_worlds_per_address": args.max_worlds_per_address},
         }  # fmt: skip
     listen = {

@@ -68,6 +68,12 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--workspace", default="workspace", help="folder of students' packages (default ./workspace)"
     )
+    parser.add_argument(
+        "--workspaces-dir", default="workspaces", metavar="DIR",
+        help="the class's students' workspaces, a folder per world (default ./workspaces): the class "
+             "server's own folder (the same path on its machine, or a mount of it), so a world that moves "
+             "keeps its files; a worker that does not share it refuses the workspace routes (409)",
+    )  # fmt: skip
     parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
     parser.add_argument(
         "--state-dir", default="state",
@@ -139,7 +145,8 @@ def worker_settings(args: argparse.Namespace, class_token: str, port: int) -> Se
         "workspace": Path(args.workspace), "bag_dir": Path(args.bag_dir), "state_dir": Path(args.state_dir),
         "zenoh": ZenohSettings(mode="client", listen=(), connect=(args.connect,)),
     }  # fmt: skip
-    classroom = {"max_worlds": args.max_worlds, "world_log_level": args.world_log_level}
+    classroom = {"max_worlds": args.max_worlds, "world_log_level": args.world_log_level,
+                 "workspaces_dir": Path(args.workspaces_dir)}  # fmt: skip
     return Settings.model_validate(
         {"listen": listen, "lab": lab, "classroom": classroom, "worker": worker, "log_level": args.log_level}
     )

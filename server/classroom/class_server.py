@@ -19,6 +19,7 @@ from server.limits import RateLimit
 from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth
+from server.workspace.class_mark import leave_mark
 from server.workspace.location import remove_world_workspace
 
 from . import remote_checkpoints, remote_worlds
@@ -40,7 +41,7 @@ if TYPE_CHECKING:
 
     from .class_bridges import ClassBridges
     from .local_workers import LocalWorkers
-    from .workers import WorkerDirectory
+    from .workers import WorkerDirectory, WorkerRef
 
 log = logging.getLogger("classroom")
 
@@ -73,6 +74,7 @@ class ClassServer:
         self.queue = JoinQueue(self.class_settings.join_queue, self.clock)
         self.local_workers: LocalWorkers | None = None  # world workers started here (--workers)
         self.view: ClassView | None = None  # the instructor's 3D view of every world
+        self.workspaces_mark: str | None = None  # its workspaces folder's mark, once open
         self._tasks: list[asyncio.Task[None]] = []  # the watch over the workers, the view's loop
 
     # -- what the routes read ------------------------------------------------------------------
@@ -116,6 +118,10 @@ class ClassServer:
     def router_endpoint(self) -> str | None:
         return self.graph.endpoint()
 
+    def shares_workspaces(self, ref: WorkerRef) -> bool:
+        """Whether world worker ``ref`` works in this class's workspaces folder (the same mark)."""
+        return self.workspaces_mark is not None and ref.workspaces_mark == self.workspaces_mark
+
     # -- who is calling ------------------------------------------------------------------------
     def grant(self, token: str | None) -> Grant | None:
         """The grant of a genuine, current token: a student's world must still be theirs."""
@@ -134,6 +140,13 @@ class ClassServer:
     async def open(self) -> None:
         """Open the instructor's view and the class's Zenoh graph (if Zenoh is on), then start the
         watch over the world workers and those started here."""
+        # Workers that read this mark in their own workspaces folder share this one (class_mark.py).
+        try:
+            self.workspaces_mark = await asyncio.to_thread(leave_mark, self.class_settings.workspaces_dir)
+        except OSError as exc:  # no worker shares it then: their worlds' workspaces are refused (409)
+            log.warning(
+                "no mark left in the workspaces folder %s: %s", self.class_settings.workspaces_dir, exc
+            )
         if self.settings.lab.viewer:
             from server.viewer.class_view import ClassView, run_class_view
 
@@ -149,8 +162,8 @@ class ClassServer:
 
             self.local_workers = LocalWorkers(
                 self.class_settings.local_workers, endpoint, self.instructor_token, self.class_settings.max_worlds,
-                self.settings.lab.workspace, self.settings.lab.bag_dir, world_log_level=self.class_settings.world_log_level,
-                state_dir=self.settings.lab.state_dir,
+                self.settings.lab.workspace, self.class_settings.workspaces_dir, self.settings.lab.bag_dir,
+                world_log_level=self.class_settings.world_log_level, state_dir=self.settings.lab.state_dir,
             )  # fmt: skip
             self.local_workers.start()
 

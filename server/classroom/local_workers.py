@@ -52,6 +52,7 @@ class LocalWorkers:
     class_token: str
     max_worlds: int
     workspace: Path | None
+    workspaces_dir: Path  # the class's: a world moved between workers (or back) keeps its files
     bag_dir: Path
     log_level: str = "warning"
     world_log_level: str = "warning"
@@ -89,7 +90,7 @@ class LocalWorkers:
         ]  # fmt: skip
         if self.workspace is not None:
             command += ["--workspace", str(self.workspace.resolve())]
-        return command
+        return [*command, "--workspaces-dir", str(self.workspaces_dir.resolve())]
 
     def _spawn(self, child: _Child) -> None:
         env = {**os.environ, TOKEN_ENV: self.class_token}

@@ -117,6 +117,9 @@ class Placement:
                     "launch": self.settings.lab.launch, "launch_args": self.settings.lab.launch_args}  # fmt: skip
             if login is not None:  # the world's own login: its graph joins the router with it
                 body |= {"zenoh_user": login.user, "zenoh_password": login.password}
+            socket = self.graph.process_socket()
+            if socket is not None:  # a worker on this machine runs students' nodes through it
+                body["router_socket"] = str(socket)
             await self.graph.workers.checked(ref, "POST", "/api/classroom/host", body=body)
         finally:
             self._hosting.discard((ref.id, name))

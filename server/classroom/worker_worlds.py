@@ -15,12 +15,14 @@ import asyncio
 import dataclasses
 import hmac
 import logging
+from pathlib import Path
 from typing import Any
 
 from server.bus import Clock, ExecutorGroup, SystemClock
 from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth, Credentials
+from server.workspace.class_mark import read_mark
 from server.workspace.location import remove_world_workspace
 
 from .admission import new_code
@@ -34,6 +36,15 @@ from .world import World
 from .worlds import WorldLabs
 
 log = logging.getLogger("classroom")
+
+
+def socket_here(path: str) -> Path | None:
+    """``path`` when it is a Unix socket on this machine (the class router's), else None."""
+    found = Path(path)
+    try:
+        return found if found.is_absolute() and found.is_socket() else None
+    except (OSError, ValueError):  # a name too long, a NUL: no socket here
+        return None
 
 
 class WorldWorker:
@@ -56,6 +67,9 @@ class WorldWorker:
         self.code = code or new_code()  # joins go to the class server: nobody is told this one
         self.grants = Grants(signer)
         self.labs = WorldLabs(settings, self.clock, self.router_endpoint)
+        self.labs.process_socket = lambda: self._router_socket
+        # The class router's Unix socket when it is on this machine (the class server says where).
+        self._router_socket: Path | None = None
         # This process's and machine's CPU: each hello (every WATCH_PERIOD_S) reads it, so a
         # load covers the last seconds.
         self.cpu = CpuMeter(machine=machine_id())
@@ -160,9 +174,14 @@ class WorldWorker:
         launch: str,
         launch_args: dict[str, str],
         login: Credentials | None = None,
+        router_socket: str | None = None,
     ) -> World:
-        """Start the world a class server placed here, in the domain it chose."""
+        """Start the world a class server placed here, in the domain it chose. ``router_socket``:
+        the class router's Unix socket, which its students' sandboxed nodes reach when it is on
+        this machine (else they cannot run here)."""
         self.heard_from_class()
+        if router_socket is not None:
+            self._router_socket = socket_here(router_socket)
         if self.labs.taken(name):
             raise ClassroomError(409, f"world {name!r} is already here")
         if self.labs.full():
@@ -240,7 +259,8 @@ class WorldWorker:
         """A worker's hello: how full it is, and which worlds it hosts (Zenoh's thread: a copy)."""
         hosted = sorted(self.worlds)
         return {"worlds": len(hosted) + len(self.labs.starting), "max_worlds": self.class_settings.max_worlds,
-                "hosted": hosted, "cpu": self.cpu.read().describe(), "late": self._late()}  # fmt: skip
+                "hosted": hosted, "cpu": self.cpu.read().describe(), "late": self._late(),
+                "workspaces": read_mark(self.class_settings.workspaces_dir)}  # fmt: skip
 
     def _late(self) -> int | None:
         """Its late worlds, read on Zenoh's thread while the loop runs them: a world or node added

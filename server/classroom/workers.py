@@ -30,6 +30,8 @@ from typing import Any
 
 import httpx
 
+from server.workspace.class_mark import MAX_MARK_CHARS
+
 from .errors import ClassroomError
 from .load import CpuLoad
 
@@ -138,6 +140,8 @@ class WorkerRef:
     hosted: frozenset[str] | None = None  # the worlds it said it hosts (None: it did not say)
     load: CpuLoad | None = None  # its CPU over its last window (None: it did not say)
     late: int | None = None  # its worlds that are late (lateness.py; None: it did not say)
+    # The mark in its workspaces folder (server/workspace/class_mark.py; None: it has none).
+    workspaces_mark: str | None = None
 
     def describe(self) -> dict[str, Any]:
         cpu = self.load.describe() if self.load is not None else None
@@ -164,8 +168,10 @@ def _worker_ref(body: dict[str, Any], class_token: str) -> WorkerRef | None:
     load = CpuLoad.parse(body.get("cpu"))
     late = body.get("late")
     late = late if isinstance(late, int) and not isinstance(late, bool) and 0 <= late <= most else None
+    mark = body.get("workspaces")
+    mark = mark if isinstance(mark, str) and 0 < len(mark) <= MAX_MARK_CHARS else None
     token = worker_api_token(class_token, wid)
-    return WorkerRef(wid, url.rstrip("/"), worlds, most, token, hosted, load, late)
+    return WorkerRef(wid, url.rstrip("/"), worlds, most, token, hosted, load, late, mark)
 
 
 class WorkerDirectory:

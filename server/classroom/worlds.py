@@ -21,11 +21,12 @@ from server.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSi
 from server.lab import Lab
 from server.launch.groups import NodeBudget
 from server.limits import RateLimit
+from server.processes.sandbox import StudentCodeRefusedError, probe
 from server.settings import Settings, class_section
 from server.transport.acl import Credentials
 from server.transport.config import ZenohSettings
 
-from .errors import ClassroomError
+from .errors import ClassroomError, StudentCodeElsewhereError
 from .world import World
 
 MAX_DOMAIN_ID = 232  # ROS 2's highest ROS_DOMAIN_ID
@@ -127,6 +128,10 @@ class WorldLabs:
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         lab.bus.devices["simple_sim_physics"] = self.simple_physics
         await lab.start()
+        # On a world worker a sandbox could be built, but not reach the class's router: say so (409).
+        refused = isinstance(lab.launcher.sandbox, StudentCodeRefusedError)
+        if refused and self.settings.worker is not None and self.process_socket() is None and probe() is None:
+            lab.launcher.sandbox = StudentCodeElsewhereError(name)
         return lab
 
     async def remove_progress(self, name: str) -> None:
