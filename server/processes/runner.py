@@ -43,7 +43,7 @@ from server.bus.parameter_service import serve_parameters
 from server.packages.entry_points import EntryPoint
 from server.params_file import ParamsFileError, read_params_file
 
-from . import confinement, interface_modules
+from . import confinement, interface_modules, lifeline
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
@@ -225,6 +225,7 @@ def main(argv: list[str] | None = None) -> int:
     limits = confinement.from_env()
     if limits is not None:  # a sandboxed node: its limits before any of its code
         limits.apply()
+        lifeline.hold_on_from_env()  # it ends when the server does
     _die_with_parent()
     problem = params_files_problem(argv)
     if problem is not None:

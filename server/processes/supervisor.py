@@ -29,6 +29,7 @@ from typing import IO, Literal
 from server.bus import Bus
 from server.console import world_logger
 
+from . import lifeline
 from .command import NodeCommand
 
 log = logging.getLogger("launch")
@@ -90,9 +91,13 @@ class Supervisor:
         self, command: NodeCommand, executable: str, *, screen: bool, node_name: str | None
     ) -> ProcessNode:
         process = ProcessNode(command, executable, screen, node_name, label=f"{executable}-{next(_labels)}")
+        env, keep = command.env, list[int]()
+        if command.sandboxed:  # its lifeline to this process: it ends when the server does
+            keep.append(lifeline.read_end())
+            env = {**env, lifeline.LIFELINE_ENV: str(keep[0])}
         process.proc = subprocess.Popen(
-            command.argv, env=command.env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT, text=True, errors="replace", bufsize=1,
+            command.argv, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT, text=True, errors="replace", bufsize=1, pass_fds=keep,
         )  # fmt: skip
         log.info("%s: process started with pid [%d]", self.bus.tagged(f"[{process.label}]"), process.proc.pid)
         self.processes.append(process)
@@ -140,7 +145,9 @@ class Supervisor:
             self.on_exit(process)
 
     def stop(self, process: ProcessNode, grace_s: float = STOP_GRACE_S) -> None:
-        """Ctrl-C, then SIGTERM, then SIGKILL; returns once it is gone."""
+        """Ctrl-C, then SIGTERM, then SIGKILL; returns once it is gone. In a sandbox the node is
+        pid 1 of its namespace, which ignores a SIGTERM it has no handler for, and bwrap's end
+        does not end it: past Ctrl-C it is killed itself, then bwrap ends with it."""
         process.state = "stopped"
         proc = process.proc
         if proc is None or proc.poll() is not None:
@@ -152,6 +159,7 @@ class Supervisor:
                 return
             except subprocess.TimeoutExpired:
                 continue
+        _send(process, signal.SIGKILL)
         proc.kill()
         proc.wait()
 
@@ -187,15 +195,16 @@ def _node_argv(command: NodeCommand) -> list[str]:
 
 
 def _send(process: ProcessNode, sig: signal.Signals) -> None:
-    """Ctrl-C to the node (inside its sandbox, the child of bwrap), any other signal to the process
-    the app started (bwrap's end ends its sandbox)."""
+    """A signal to the node process. In a sandbox the node is the child of bwrap, pid 1 of its
+    namespace: Ctrl-C and SIGKILL go to it, SIGTERM (which pid 1 ignores without a handler) kills
+    it; bwrap then ends by itself."""
     proc = process.proc
     assert proc is not None
-    if sig == signal.SIGINT and process.command.sandboxed:
+    if process.command.sandboxed and sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
         inner = _child_pid(proc.pid)
         if inner is not None:
             with contextlib.suppress(ProcessLookupError):
-                os.kill(inner, sig)
+                os.kill(inner, signal.SIGKILL if sig == signal.SIGTERM else sig)
             return
     proc.send_signal(sig)
 
