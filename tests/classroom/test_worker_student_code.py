@@ -10,7 +10,6 @@ API token to host a world, and with the credential of that world alone for the s
 
 from __future__ import annotations
 
-import os
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -18,13 +17,13 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 from support.app import free_port
+from support.sandbox import require_sandbox
 from support.wait import wait_until
 
 from classroom.test_classroom_api import class_settings
 from server.app import create_app
 from server.classroom import ClassServer
 from server.classroom.workers import worker_api_token, world_call_token
-from server.processes.sandbox import probe
 from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorkerSettings
 from server.transport.config import ZenohSettings
 
@@ -35,12 +34,7 @@ RUN = {"package": "hello_pkg", "executable": "hello"}
 
 @pytest.fixture(autouse=True, scope="module")
 def _a_sandbox_on_this_machine() -> None:
-    why = probe()
-    if why is not None:
-        message = f"no sandbox on this machine: {why} (scripts/test.sh installs bubblewrap)"
-        if os.environ.get("CI") == "true":
-            pytest.fail(f"{message}; in CI the sandbox tests must run")
-        pytest.skip(message)
+    require_sandbox()
 
 
 @pytest.fixture(scope="module")

@@ -15,21 +15,13 @@ from pathlib import Path
 import httpx
 import pytest
 from support.app import REPO, App
+from support.sandbox import require_sandbox
 from support.wait import wait_until
-
-from server.processes.sandbox import probe
 
 
 @pytest.fixture(autouse=True, scope="module")
 def _a_sandbox_on_this_machine() -> None:
-    """Skips where this machine cannot build the sandbox (no bwrap, namespaces refused); fails in
-    CI, where scripts/test.sh installs bubblewrap and these tests must run."""
-    why = probe()
-    if why is not None:
-        message = f"no sandbox on this machine: {why} (scripts/test.sh installs bubblewrap)"
-        if os.environ.get("CI") == "true":
-            pytest.fail(f"{message}; in CI the sandbox tests must run")
-        pytest.skip(message)
+    require_sandbox()
 
 
 CODE = "SBX042"

@@ -16,9 +16,8 @@ from pathlib import Path
 
 import pytest
 from support.app import REPO
+from support.sandbox import require_sandbox
 from support.wait import wait_until
-
-from server.processes.sandbox import probe
 
 SLEEPER = "import time\n\n\ndef main():\n    print('asleep', flush=True)\n    time.sleep(600)\n"
 STUBBORN = (
@@ -30,12 +29,7 @@ WAIT_S = 30.0
 
 @pytest.fixture(autouse=True)
 def _a_sandbox_on_this_machine() -> None:
-    why = probe()
-    if why is not None:
-        message = f"no sandbox on this machine: {why} (scripts/test.sh installs bubblewrap)"
-        if os.environ.get("CI") == "true":
-            pytest.fail(f"{message}; in CI the sandbox tests must run")
-        pytest.skip(message)
+    require_sandbox()
 
 
 def alive(pid: int) -> bool:
