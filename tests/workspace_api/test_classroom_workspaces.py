@@ -5,15 +5,20 @@ instructor removes the student."""
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 from classroom.test_classroom_api import auth, class_settings, join
 from fastapi.testclient import TestClient
 from support.app import free_port
+from support.sandbox import require_sandbox
 from support.wait import wait_until
+from support.ws import receive_within
 
+from api.errors import CloseCode
 from server.app import create_app
 from server.bus import ManualClock
 from server.settings import Settings
@@ -169,3 +174,37 @@ def test_class_the_servers_limit_of_running_nodes_is_429_across_worlds(tmp_path:
             return reply.status_code == 201  # once Eve's node has ended, Finn has room
 
         wait_until(finn_runs, "room for Finn's node once Eve's ended", 30.0, poll_s=0.2)
+
+
+HELLO = "def main():\n    print('only ada sees this', flush=True)\n"
+
+
+def test_class_a_students_run_and_its_output_are_theirs_alone(tmp_path: Path) -> None:
+    require_sandbox()  # a class server runs students' nodes in its sandbox
+    zenoh = ZenohSettings(listen=(f"tcp/127.0.0.1:{free_port()}",))
+    with TestClient(create_app(class_settings(workspaces_dir=tmp_path, world=ROOM, zenoh=zenoh))) as client:
+        ada, bob = join(client, "Ada"), join(client, "Bob")
+        made = client.post("/api/workspace/packages", headers=auth(ada),
+                           json={"name": "hello", "build_type": "ament_python", "node_name": "hello"})  # fmt: skip
+        assert made.status_code == 201, made.text
+        saved = client.put(f"{FILES}/src/hello/hello/hello.py", json={"text": HELLO}, headers=auth(ada))
+        assert saved.status_code == 200, saved.text
+        started = client.post("/api/run", json={"package": "hello", "executable": "hello"}, headers=auth(ada))
+        assert started.status_code == 201, started.text
+        group = started.json()["id"]
+        # Bob's world has no such run: he neither lists it, stops it, nor reads its output.
+        assert group not in [g["id"] for g in client.get("/api/launches", headers=auth(bob)).json()]
+        assert group in [g["id"] for g in client.get("/api/launches", headers=auth(ada)).json()]
+        assert client.delete(f"/api/launches/{group}", headers=auth(bob)).status_code == 404
+        with client.websocket_connect(f"/ws/launches/{group}/output", headers=auth(bob)) as ws:
+            refused = receive_within(ws)
+        assert refused["type"] == "websocket.close" and refused["code"] == CloseCode.NOT_FOUND
+        # Ada, whose run it is, reads its line and its exit.
+        with client.websocket_connect(f"/ws/launches/{group}/output", headers=auth(ada)) as ws:
+            frames: list[dict[str, Any]] = []
+            while not frames or frames[-1]["type"] != "end":
+                message = receive_within(ws)
+                assert message["type"] == "websocket.send", (message, frames[-5:])
+                frames.append(json.loads(message["text"]))
+        assert "only ada sees this" in [f["text"] for f in frames if f["type"] == "line"]
+        assert next(f for f in frames if f["type"] == "exit")["code"] == 0
