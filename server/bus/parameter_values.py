@@ -24,19 +24,8 @@ BOOL, INTEGER, DOUBLE = (
 STRING, BYTE_ARRAY = ParameterType.PARAMETER_STRING, ParameterType.PARAMETER_BYTE_ARRAY
 BOOL_ARRAY, INTEGER_ARRAY = ParameterType.PARAMETER_BOOL_ARRAY, ParameterType.PARAMETER_INTEGER_ARRAY
 DOUBLE_ARRAY, STRING_ARRAY = ParameterType.PARAMETER_DOUBLE_ARRAY, ParameterType.PARAMETER_STRING_ARRAY
-# ParameterValue's field for each type, in ParameterType's order.
-FIELDS = (
-    None,
-    "bool_value",
-    "integer_value",
-    "double_value",
-    "string_value",
-    "byte_array_value",
-    "bool_array_value",
-    "integer_array_value",
-    "double_array_value",
-    "string_array_value",
-)
+# ParameterValue's field for each type, in ParameterType's order (its slots after ``type``).
+FIELDS: tuple[str | None, ...] = (None, *ParameterValue.__slots__[1:])
 _SCALARS = ((bool, BOOL), (int, INTEGER), (float, DOUBLE), (str, STRING))
 PARAM_REL_TOL = 1e-6  # rclpy's: how close a double must be to an edge or a step
 
