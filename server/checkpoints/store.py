@@ -16,10 +16,11 @@ import contextlib
 import logging
 import os
 import re
-import shutil
 import tempfile
 import threading
 from pathlib import Path
+
+from server.workspace.location import remove_folder
 
 from .declared import Checkpoint
 from .progress import MAX_CAPTURE_BYTES, Progress
@@ -83,12 +84,7 @@ class ProgressStore:
             self._written.pop(world, None)
         with self._io:
             try:
-                if folder.is_symlink():
-                    folder.unlink()
-                    return True
-                if not folder.is_dir():
-                    return False
-                shutil.rmtree(folder)
+                return remove_folder(folder)
             except FileNotFoundError:  # removed meanwhile (a worker sharing this folder did)
                 pass
             except OSError as exc:  # the student is removed all the same; say what was left

@@ -17,7 +17,12 @@ def world_workspace(workspaces_dir: Path, world: str) -> Path:
 
 def remove_world_workspace(workspaces_dir: Path, world: str) -> bool:
     """Remove the world's workspace with everything in it; whether there was one."""
-    folder = world_workspace(workspaces_dir, world)
+    return remove_folder(world_workspace(workspaces_dir, world))
+
+
+def remove_folder(folder: Path) -> bool:
+    """Remove ``folder`` with everything in it (a link to one: the link alone, never what it
+    points at); whether there was one."""
     if folder.is_symlink():
         folder.unlink()
         return True
