@@ -6,12 +6,12 @@ import asyncio
 from collections.abc import Callable
 from pathlib import Path
 
-import httpx
 import pytest
 import viser
 import websockets
 from labclient import LabClient, receive_within, refused, wait_until
 from starlette.testclient import WebSocketTestSession
+from support.http import HTTP
 
 from api.page import PROXY_MAX_FRAME_BYTES
 from server.viewer.viser_guard import PROXY_TOKEN_HEADER
@@ -172,7 +172,7 @@ def test_viser_port_plain_http_refused(make_lab: Callable[..., LabClient]) -> No
     lab = make_lab(viewer=True)
     port = lab.http.app.state.lab.display.port  # type: ignore[attr-defined]
 
-    response = httpx.get(f"http://127.0.0.1:{port}/", timeout=5)
+    response = HTTP.get(f"http://127.0.0.1:{port}/", timeout=5)
 
     assert response.status_code == 403
     assert "proxy" in response.text

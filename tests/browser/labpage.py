@@ -11,11 +11,11 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
-import httpx
 import pytest
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
 from playwright.sync_api import Error as PlaywrightError
+from support.http import HTTP
 from support.wait import wait_until as support_wait_until
 
 WAIT_S = 15.0
@@ -53,7 +53,7 @@ def wait_until(check: Callable[[], Any], what: str, timeout_s: float = WAIT_S, p
 
 
 def topic(server: LabServer, name: str) -> dict[str, Any]:
-    response = httpx.get(f"{server.url}/api/topics/{name.lstrip('/')}", timeout=HTTP_TIMEOUT_S)
+    response = HTTP.get(f"{server.url}/api/topics/{name.lstrip('/')}", timeout=HTTP_TIMEOUT_S)
     response.raise_for_status()
     return response.json()
 

@@ -22,6 +22,7 @@ import pytest
 from labpage import HTTP_TIMEOUT_S, LOAD_WAIT_MS, lab_page, wait_until
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
+from support.http import HTTP
 
 pytestmark = pytest.mark.browser
 
@@ -76,7 +77,7 @@ def open_code_view(page: Page) -> None:
 
 
 def api(server: LabServer, token: str, path: str, **headers: str) -> httpx.Response:
-    return httpx.get(server.url + path, headers={"Authorization": f"Bearer {token}", **headers},
+    return HTTP.get(server.url + path, headers={"Authorization": f"Bearer {token}", **headers},
                      timeout=HTTP_TIMEOUT_S)  # fmt: skip
 
 
@@ -107,7 +108,7 @@ def test_class_code_is_each_students_own_and_the_instructor_reads_it(
         wait_until(lambda: text_of(server, ada_token, ADA_FILE) == ADA_TEXT, "Ada's text saved")
 
         # Bob: his own file shows in his tree, Ada's does not; his token cannot read hers.
-        saved = httpx.put(f"{server.url}/api/workspace/files/{BOB_FILE}", json={"text": "# Bob's\n"},
+        saved = HTTP.put(f"{server.url}/api/workspace/files/{BOB_FILE}", json={"text": "# Bob's\n"},
                           headers={"Authorization": f"Bearer {bob_token}"}, timeout=HTTP_TIMEOUT_S)  # fmt: skip
         assert saved.status_code == 201, saved.text
         open_code_view(bob)

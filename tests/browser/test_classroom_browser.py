@@ -12,7 +12,6 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-import httpx
 import numpy as np
 import pytest
 from labpage import (
@@ -28,6 +27,7 @@ from labserver import LabServer
 from PIL import Image
 from playwright.sync_api import Browser, Page
 from shots import blobs, hub_green
+from support.http import HTTP
 
 pytestmark = pytest.mark.browser
 
@@ -79,7 +79,7 @@ class Student:
         open_lab_page(self.page, None, settle_ms=0)
         cookies = {c["name"]: c["value"] for c in self.page.context.cookies()}
         self.token = cookies["lab_token"]
-        me = httpx.get(f"{self.server.url}/api/classroom/me", headers=self.auth, timeout=HTTP_WAIT_S)
+        me = HTTP.get(f"{self.server.url}/api/classroom/me", headers=self.auth, timeout=HTTP_WAIT_S)
         self.world = me.json()["world"]
         return self
 
@@ -88,7 +88,7 @@ class Student:
         return {"Authorization": f"Bearer {self.token}"}
 
     def topic(self, name: str) -> dict[str, Any]:
-        reply = httpx.get(
+        reply = HTTP.get(
             f"{self.server.url}/api/topics/{name.lstrip('/')}", headers=self.auth, timeout=HTTP_WAIT_S
         )
         reply.raise_for_status()
@@ -128,7 +128,7 @@ def students(chromium: Browser, class_server: LabServer) -> Iterator[tuple[Stude
 def test_two_students_have_two_worlds(students: tuple[Student, Student]) -> None:
     ada, bob = students
     assert (ada.world, bob.world) == ("ada", "bob")
-    other = httpx.get(
+    other = HTTP.get(
         f"{ada.server.url}/api/topics", headers={**ada.auth, "X-Lab-World": "bob"}, timeout=HTTP_WAIT_S
     )
     assert other.status_code == 403

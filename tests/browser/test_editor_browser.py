@@ -23,6 +23,7 @@ import pytest
 from labpage import HTTP_TIMEOUT_S, LOAD_WAIT_MS, lab_page, open_lab_page, position, topic, wait_until
 from labserver import LabServer
 from playwright.sync_api import Browser, Page, Route
+from support.http import HTTP
 
 pytestmark = pytest.mark.browser
 
@@ -131,7 +132,7 @@ def code_page(chromium: Browser, server: LabServer) -> Iterator[Page]:
 
 
 def api(server: LabServer, method: str, path: str, **kwargs: Any) -> httpx.Response:
-    return httpx.request(method, f"{server.url}{path}", timeout=HTTP_TIMEOUT_S, **kwargs)
+    return HTTP.request(method, f"{server.url}{path}", timeout=HTTP_TIMEOUT_S, **kwargs)
 
 
 def file_text(server: LabServer, path: str) -> str:

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-import httpx
 import pytest
 from labpage import HTTP_TIMEOUT_S, LOAD_WAIT_MS
 from labserver import LabServer
 from playwright.sync_api import Browser, ConsoleMessage, Page, expect
+from support.http import HTTP
 
 pytestmark = pytest.mark.browser
 
@@ -94,7 +94,7 @@ def test_tools_page_click_node_shows_its_info(page: Page, server_url: str) -> No
 
 def test_tools_page_click_countdown_shows_type_and_a_live_echo_frame(page: Page, server_url: str) -> None:
     # Restart the countdown, so that it publishes during this test however long the others took.
-    assert httpx.post(f"{server_url}/api/rocket/reset", timeout=HTTP_TIMEOUT_S).status_code == 200
+    assert HTTP.post(f"{server_url}/api/rocket/reset", timeout=HTTP_TIMEOUT_S).status_code == 200
     open_tools(page, server_url)
     page.click('g.graph-topic[data-name="/countdown"]')
     page.locator("#topic-info .facts >> text=std_msgs/msg/Int64").wait_for()

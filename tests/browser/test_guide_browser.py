@@ -26,7 +26,6 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-import httpx
 import numpy as np
 import pytest
 from labpage import lab_page, open_lab_page, wait_until
@@ -34,6 +33,7 @@ from labserver import LabServer
 from PIL import Image
 from playwright.sync_api import Browser, Page, Request
 from shots import CanvasShot, assert_drone_seen, find_drone
+from support.http import HTTP
 
 pytestmark = pytest.mark.browser
 
@@ -72,7 +72,7 @@ def lab(chromium: Browser, fly_server: LabServer) -> Iterator[tuple[Page, Auth]]
 
 
 def get(server: LabServer, path: str, auth: Auth) -> Any:
-    reply = httpx.get(f"{server.url}{path}", headers=auth, timeout=HTTP_WAIT_S)
+    reply = HTTP.get(f"{server.url}{path}", headers=auth, timeout=HTTP_WAIT_S)
     reply.raise_for_status()
     return reply.json()
 
@@ -89,7 +89,7 @@ def answer_on_server(server: LabServer, auth: Auth, question: str) -> str:
 
 def key_events(server: LabServer, auth: Auth) -> int:
     """Messages the keyboard node has published on /keydown (none yet: 0)."""
-    reply = httpx.get(f"{server.url}/api/topics/keydown", headers=auth, timeout=HTTP_WAIT_S)
+    reply = HTTP.get(f"{server.url}/api/topics/keydown", headers=auth, timeout=HTTP_WAIT_S)
     return reply.json()["publish_count"] if reply.status_code == 200 else 0
 
 
@@ -99,7 +99,7 @@ def position(server: LabServer, auth: Auth) -> tuple[float, float, float]:
 
 
 def verify(server: LabServer, content: bytes, auth: Auth) -> dict[str, Any]:
-    reply = httpx.post(
+    reply = HTTP.post(
         f"{server.url}/api/checkpoints/verify", content=content, headers={**FILE, **auth}, timeout=HTTP_WAIT_S
     )
     reply.raise_for_status()

@@ -18,11 +18,11 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-import httpx
 import pytest
 from labpage import LOAD_WAIT_MS, lab_page, wait_until
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
+from support.http import HTTP
 
 pytestmark = pytest.mark.browser
 
@@ -54,7 +54,7 @@ def bearer(token: str) -> Auth:
 
 def join(server: LabServer, name: str) -> Auth:
     """A student joined through REST; their bearer header."""
-    reply = httpx.post(
+    reply = HTTP.post(
         f"{server.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=HTTP_WAIT_S
     )
     reply.raise_for_status()
@@ -62,7 +62,7 @@ def join(server: LabServer, name: str) -> Auth:
 
 
 def call(server: LabServer, method: str, path: str, auth: Auth, **kwargs: Any) -> Any:
-    reply = httpx.request(method, f"{server.url}{path}", headers=auth, timeout=HTTP_WAIT_S, **kwargs)
+    reply = HTTP.request(method, f"{server.url}{path}", headers=auth, timeout=HTTP_WAIT_S, **kwargs)
     reply.raise_for_status()
     return reply
 

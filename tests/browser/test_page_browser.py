@@ -22,7 +22,6 @@ import math
 from collections.abc import Iterator
 from pathlib import Path
 
-import httpx
 import pytest
 from labpage import (
     HTTP_TIMEOUT_S,
@@ -38,6 +37,7 @@ from labpage import (
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
 from shots import CanvasShot, assert_drone_seen, assert_rocket_on_pad, find_drone
+from support.http import HTTP
 
 pytestmark = pytest.mark.browser
 
@@ -93,7 +93,7 @@ def lab_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LabServer]:
 def send_to(server: LabServer, target: tuple[float, float, float]) -> None:
     """Publish ``target`` as the drone's setpoint (the keyboard manager adopts it too)."""
     body = {"topic": "/uav/input/position", "msg": dict(zip("xyz", target, strict=True))}
-    assert httpx.post(f"{server.url}/api/publish", json=body, timeout=HTTP_TIMEOUT_S).status_code == 200
+    assert HTTP.post(f"{server.url}/api/publish", json=body, timeout=HTTP_TIMEOUT_S).status_code == 200
 
 
 def wait_at(server: LabServer, target: tuple[float, float, float]) -> None:

@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import shutil
 
-import httpx
 import pytest
 from labpage import HTTP_TIMEOUT_S
 from labserver import REPO, LabServer
 from playwright.sync_api import Page
+from support.http import HTTP
 from test_rocket_browser import open_lab_page, page, wait_responsive, wait_until  # noqa: F401  (page is a fixture)
 
 pytestmark = pytest.mark.browser
@@ -17,7 +17,7 @@ MCAP_MAGIC = b"\x89MCAP0\r\n"
 
 
 def recordings(server: LabServer) -> list[dict[str, object]]:
-    return list(httpx.get(f"{server.url}/api/bag/recordings", timeout=HTTP_TIMEOUT_S).json())
+    return list(HTTP.get(f"{server.url}/api/bag/recordings", timeout=HTTP_TIMEOUT_S).json())
 
 
 def test_record_button_records_and_the_link_downloads_the_mcap(page: Page, rocket_server: LabServer) -> None:  # noqa: F811
@@ -38,6 +38,6 @@ def test_record_button_records_and_the_link_downloads_the_mcap(page: Page, rocke
     link.wait_for()
     href = link.get_attribute("href")
     assert href == f"/api/bag/recordings/{name}/download"
-    body = httpx.get(rocket_server.url + href, timeout=10.0).content
+    body = HTTP.get(rocket_server.url + href, timeout=10.0).content
     assert body.startswith(MCAP_MAGIC) and len(body) > 1000
     shutil.rmtree(REPO / "bags" / name, ignore_errors=True)  # the server runs in the repository

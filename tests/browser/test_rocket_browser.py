@@ -18,11 +18,11 @@ import warnings
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
-import httpx
 import pytest
 from labpage import HTTP_TIMEOUT_S, LOAD_WAIT_MS, PAGE_WAIT_MS, SETTLE_WAIT_MS, VIEWPORT, topic, wait_until
 from labserver import LabServer
 from playwright.sync_api import Browser, Page
+from support.http import HTTP
 
 pytestmark = pytest.mark.browser
 
@@ -81,7 +81,7 @@ def open_lab_page(page: Page, server: LabServer) -> None:
 def test_press_a_during_countdown_aborts_and_rocket_stays_on_pad(
     page: Page, rocket_server: LabServer, screenshot_dir: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    hold = httpx.post(
+    hold = HTTP.post(
         f"{rocket_server.url}/api/publish",
         json={"topic": "/abort_takeoff", "msg": {"data": True}},
         timeout=HTTP_TIMEOUT_S,
@@ -90,7 +90,7 @@ def test_press_a_during_countdown_aborts_and_rocket_stays_on_pad(
     open_lab_page(page, rocket_server)
     wait_responsive(page)
     countdown_before = topic(rocket_server, "/countdown")["publish_count"]
-    assert httpx.post(f"{rocket_server.url}/api/rocket/reset", timeout=HTTP_TIMEOUT_S).status_code == 200
+    assert HTTP.post(f"{rocket_server.url}/api/rocket/reset", timeout=HTTP_TIMEOUT_S).status_code == 200
     wait_until(lambda: (topic(rocket_server, "/abort_takeoff")["latest"] or {}).get("data") is False,
                "the fresh KeyboardManager's /abort_takeoff false")  # fmt: skip
 

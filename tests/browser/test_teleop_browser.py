@@ -24,7 +24,6 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-import httpx
 import pytest
 from labpage import (
     HTTP_TIMEOUT_S,
@@ -43,6 +42,7 @@ from labserver import LabServer
 from playwright.sync_api import Browser, Page
 from playwright.sync_api import Error as PlaywrightError
 from shots import CanvasShot, assert_drone_seen, assert_rocket_on_pad, find_drone
+from support.http import HTTP
 
 from server.settings import LabLimits
 
@@ -78,7 +78,7 @@ def page(chromium: Browser) -> Iterator[Page]:
 def fly_home(server: LabServer) -> tuple[float, float, float]:
     """Publish the start setpoint (every keyboard mode but lab adopts it) and wait until it is held."""
     body = {"topic": "/uav/input/position", "msg": dict(zip("xyz", HOME_M, strict=True))}
-    assert httpx.post(f"{server.url}/api/publish", json=body, timeout=HTTP_TIMEOUT_S).status_code == 200
+    assert HTTP.post(f"{server.url}/api/publish", json=body, timeout=HTTP_TIMEOUT_S).status_code == 200
     wait_until(lambda: math.dist(position(server), HOME_M) < 0.15, "the drone back at (0, 0, 3)", HOME_WAIT_S)
     return wait_stopped(server)
 
@@ -390,7 +390,7 @@ def test_publisher_panel_position_at_1hz_flies_drone_to_5_5_10(
     page.get_by_label("Enabled", exact=True).check()
     page.wait_for_function("() => document.body.innerText.includes('publishing on')")
 
-    publishers = httpx.get(f"{fly_server.url}/api/publishers", timeout=HTTP_TIMEOUT_S).json()
+    publishers = HTTP.get(f"{fly_server.url}/api/publishers", timeout=HTTP_TIMEOUT_S).json()
     assert [(p["topic"], p["rate_hz"], p["msg"]) for p in publishers] == [
         ("/uav/input/position", 1.0, {"x": 5.0, "y": 5.0, "z": 10.0})
     ]
@@ -399,7 +399,7 @@ def test_publisher_panel_position_at_1hz_flies_drone_to_5_5_10(
     wait_stopped(fly_server)
     assert math.dist(position(fly_server), (5.0, 5.0, 10.0)) < ARRIVED_M
     assert (
-        httpx.get(f"{fly_server.url}/api/publishers", timeout=HTTP_TIMEOUT_S).json()[0]["count"] >= 2
+        HTTP.get(f"{fly_server.url}/api/publishers", timeout=HTTP_TIMEOUT_S).json()[0]["count"] >= 2
     )  # it repeats
 
     wait_frames(page)

@@ -8,12 +8,12 @@ import math
 from collections.abc import Iterator
 from pathlib import Path
 
-import httpx
 import pytest
 from labpage import lab_page, wait_until
 from labserver import LabServer
 from playwright.sync_api import Browser
 from support.app import WorldWorker, instructor_token, wait_for_workers
+from support.http import HTTP
 from test_classroom_browser import HOME_M, HOME_WAIT_S, MOVED_M, PRESSES, SMALL, STILL_M, Student
 
 pytestmark = pytest.mark.browser
@@ -47,7 +47,7 @@ def test_a_workers_world_is_flown_with_the_arrow_keys_through_the_class_servers_
     server, instructor = class_with_worker
     with lab_page(chromium, SMALL) as page:
         ada = Student(page, server, "Ada", CODE).ready()  # the 3D view and the key channel are up
-        worlds = httpx.get(
+        worlds = HTTP.get(
             f"{server.url}/api/classroom/worlds",
             headers={"Authorization": f"Bearer {instructor}"},
             timeout=10,

@@ -13,9 +13,9 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-import httpx
 import pytest
 from support.app import App
+from support.http import HTTP
 from support.wait import wait_until
 from websockets.sync.client import ClientConnection, connect
 
@@ -257,7 +257,7 @@ def ros2lab(app: App, *args: str) -> subprocess.CompletedProcess[str]:
 
 
 def test_ros2lab_report_verify_exits_0_when_valid_and_1_when_edited(app: App, tmp_path: Path) -> None:
-    report = httpx.get(app.url + "/api/checkpoints/report", params={"format": "html"}, timeout=10).content
+    report = HTTP.get(app.url + "/api/checkpoints/report", params={"format": "html"}, timeout=10).content
     good = tmp_path / "report.html"
     good.write_bytes(report)
     result = ros2lab(app, "report", "verify", str(good))

@@ -9,8 +9,8 @@ import textwrap
 from pathlib import Path
 from typing import Any
 
-import httpx
 from support.app import App
+from support.http import HTTP
 from support.wait import wait_until
 
 from server.checkpoints.store import PROGRESS_DIR, PROGRESS_FILE, SINGLE_LAB
@@ -64,9 +64,9 @@ def test_progress_outlives_the_server_process_and_a_spoilt_file_is_none_and_logg
     png = tiny_png()
     first = start(tmp_path, "first", "fly_simple.launch")
     try:
-        saved = httpx.put(f"{first.url}/api/checkpoints/answers/q1", json={"text": "four nodes"}, timeout=10)
+        saved = HTTP.put(f"{first.url}/api/checkpoints/answers/q1", json={"text": "four nodes"}, timeout=10)
         assert saved.status_code == 200, saved.text
-        captured = httpx.post(f"{first.url}/api/checkpoints/fly_to_point/capture", content=png,
+        captured = HTTP.post(f"{first.url}/api/checkpoints/fly_to_point/capture", content=png,
                               headers={"content-type": "image/png"}, timeout=10)  # fmt: skip
         assert captured.status_code == 200, captured.text
         met = meet_fly_to_point(first)
@@ -95,7 +95,7 @@ def test_progress_outlives_the_server_process_and_a_spoilt_file_is_none_and_logg
         assert str(folder / PROGRESS_FILE) in third.log_tail(10**6)
         assert (folder / f"{PROGRESS_FILE}.corrupt").exists()
         # It serves as any lab: the next answer is saved in a good file again.
-        assert httpx.put(f"{third.url}/api/checkpoints/answers/q2", json={"text": "again"},
+        assert HTTP.put(f"{third.url}/api/checkpoints/answers/q2", json={"text": "again"},
                          timeout=10).status_code == 200  # fmt: skip
     finally:
         third.stop()

@@ -19,6 +19,7 @@ from typing import Any
 import httpx
 import pytest
 from support.app import App, instructor_token, wait_for_workers
+from support.http import HTTP
 
 from server.checkpoints.store import PROGRESS_DIR, PROGRESS_FILE
 from server.classroom.remote_checkpoints import ASK_TIMEOUT_S
@@ -38,16 +39,12 @@ class Class:
         self.teacher = {"Authorization": f"Bearer {instructor_token(self.app.log_tail(10**6))}"}
 
     def join(self, name: str) -> tuple[str, dict[str, str]]:
-        reply = httpx.post(
-            f"{self.app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60
-        )
+        reply = HTTP.post(f"{self.app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60)
         assert reply.status_code == 201, reply.text
         return reply.json()["world"], {"Authorization": f"Bearer {reply.json()['token']}"}
 
     def teach(self, method: str, path: str, **params: Any) -> httpx.Response:
-        return httpx.request(
-            method, self.app.url + path, headers=self.teacher, params=params, timeout=BOUND_S
-        )
+        return HTTP.request(method, self.app.url + path, headers=self.teacher, params=params, timeout=BOUND_S)
 
     def row(self, world: str) -> dict[str, Any]:
         reply = self.teach("GET", TABLE)
@@ -78,7 +75,7 @@ def test_worker_world_in_table_csv_and_zip_kept_by_a_reset_removed_with_the_stud
     world, ada = klass.join("Ada")
     worlds = {w["world"]: w for w in klass.teach("GET", "/api/classroom/worlds").json()["worlds"]}
     assert worlds[world]["worker"] == "local-1"
-    put = httpx.put(f"{klass.app.url}/api/checkpoints/answers/q1", json={"text": "=four nodes"},
+    put = HTTP.put(f"{klass.app.url}/api/checkpoints/answers/q1", json={"text": "=four nodes"},
                     headers=ada, timeout=10)  # fmt: skip
     assert put.status_code == 200, put.text
 

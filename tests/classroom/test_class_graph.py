@@ -27,6 +27,7 @@ from mcap.records import Schema as McapSchema
 from mcap_ros2.decoder import DecoderFactory
 from ros_reference import rihs
 from support.app import REPO, App, JsonProcess, free_port, instructor_token
+from support.http import HTTP
 from websockets.sync.client import connect
 
 from api.errors import CloseCode
@@ -56,7 +57,7 @@ class Class:
 
     def call(self, method: str, path: str, token: str | None = None, **kwargs: Any) -> httpx.Response:
         headers = {"Authorization": f"Bearer {token or self.instructor}", **kwargs.pop("headers", {})}
-        return httpx.request(method, self.app.url + path, headers=headers, timeout=10.0, **kwargs)
+        return HTTP.request(method, self.app.url + path, headers=headers, timeout=10.0, **kwargs)
 
     def world(self, name: str) -> dict[str, Any]:
         worlds = self.call("GET", "/api/classroom/worlds").json()["worlds"]
@@ -87,7 +88,7 @@ def school(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     try:
         school = Class(app)
         for name in ("Ada", "Bob"):
-            reply = httpx.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30)
+            reply = HTTP.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30)
             assert reply.status_code == 201, reply.text
             school.tokens[reply.json()["world"]] = reply.json()["token"]
         yield school

@@ -17,6 +17,7 @@ import httpx
 import pytest
 import zenoh
 from support.app import App, instructor_token
+from support.http import HTTP
 from support.wait import wait_until
 
 from server.msgs import PoseStamped, Vector3
@@ -41,12 +42,10 @@ class Class:
 
     def call(self, method: str, path: str, token: str | None = None, **kwargs: Any) -> httpx.Response:
         headers = {"Authorization": f"Bearer {token or self.instructor}"}
-        return httpx.request(method, self.app.url + path, headers=headers, timeout=30.0, **kwargs)
+        return HTTP.request(method, self.app.url + path, headers=headers, timeout=30.0, **kwargs)
 
     def join(self, name: str) -> tuple[str, dict[str, Any]]:
-        reply = httpx.post(
-            f"{self.app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30
-        )
+        reply = HTTP.post(f"{self.app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30)
         assert reply.status_code == 201, reply.text
         world, token = reply.json()["world"], reply.json()["token"]
         self.tokens[world] = token

@@ -17,6 +17,7 @@ import httpx
 import pytest
 import zenoh
 from support.app import App, end, instructor_token
+from support.http import HTTP
 
 from server.msgs import Key
 from server.msgs.wire import dds_type_name, serialize, type_hash
@@ -62,7 +63,7 @@ def classroom(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, P
     try:
         tokens = {}
         for name in ("Ada", "Bob"):
-            reply = httpx.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30)
+            reply = HTTP.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30)
             assert reply.status_code == 201, reply.text
             tokens[reply.json()["world"]] = reply.json()["token"]
         yield app, root, tokens
@@ -71,7 +72,7 @@ def classroom(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, P
 
 
 def get(app: App, token: str, path: str) -> httpx.Response:
-    return httpx.get(app.url + path, headers={"Authorization": f"Bearer {token}"}, timeout=5.0)
+    return HTTP.get(app.url + path, headers={"Authorization": f"Bearer {token}"}, timeout=5.0)
 
 
 def login_of(app: App, token: str) -> Credentials:
@@ -133,7 +134,7 @@ def test_a_student_gets_their_worlds_login_and_the_environment_that_uses_it(
     override = ada["env"]["ZENOH_CONFIG_OVERRIDE"]
     assert f'transport/auth/usrpwd/password="{ada["password"]}"' in override and 'mode="client"' in override
     assert get(app, tokens["ada"], "/api/health").json()["zenoh"]["login"] is True
-    assert httpx.get(app.url + "/api/zenoh/join", timeout=5.0).status_code == 401  # no token, no login
+    assert HTTP.get(app.url + "/api/zenoh/join", timeout=5.0).status_code == 401  # no token, no login
 
 
 def test_the_class_router_lets_in_no_one_without_a_login(classroom: tuple[App, Path, dict[str, str]]) -> None:

@@ -17,6 +17,7 @@ from typing import Any
 import httpx
 import pytest
 from support.app import READY_S, App, instructor_token, wait_for_workers
+from support.http import HTTP
 from support.wait import wait_until
 
 from server.__main__ import main as server_main
@@ -33,7 +34,7 @@ class Class:
 
     def get(self, path: str, token: str | None = None) -> httpx.Response:
         headers = {"Authorization": f"Bearer {token or self.instructor}"}
-        return httpx.get(self.app.url + path, headers=headers, timeout=10)
+        return HTTP.get(self.app.url + path, headers=headers, timeout=10)
 
     def started_here(self) -> list[dict[str, Any]]:
         reply = self.get("/api/classroom/workers")
@@ -94,7 +95,7 @@ def test_a_class_server_starts_its_workers_places_worlds_on_them_and_ends_them_w
 
     tokens = {}
     for name in ("Ada", "Bob"):  # one at a time: each placement sees the one before
-        reply = httpx.post(
+        reply = HTTP.post(
             f"{klass.app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60
         )
         assert reply.status_code == 201, reply.text
@@ -115,7 +116,7 @@ def test_the_console_shows_the_class_not_every_worlds_node_lines_which_stay_on_t
 ) -> None:
     tokens = {}
     for name in ("Ada", "Bob"):
-        reply = httpx.post(
+        reply = HTTP.post(
             f"{klass.app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60
         )
         assert reply.status_code == 201, reply.text
@@ -141,7 +142,7 @@ def test_the_console_shows_the_class_not_every_worlds_node_lines_which_stay_on_t
 
 
 def test_a_worker_that_dies_is_started_again_and_its_world_comes_back(klass: Class) -> None:
-    reply = httpx.post(f"{klass.app.url}/api/classroom/join", json={"name": "Ada", "code": CODE}, timeout=60)
+    reply = HTTP.post(f"{klass.app.url}/api/classroom/join", json={"name": "Ada", "code": CODE}, timeout=60)
     assert reply.status_code == 201, reply.text
     world, token = reply.json()["world"], reply.json()["token"]
     assert klass.worlds()[world]["worker"] == "local-1"

@@ -19,9 +19,9 @@ import sys
 from collections.abc import Iterator
 from pathlib import Path
 
-import httpx
 import pytest
 from support.app import REPO, App, end
+from support.http import HTTP
 from support.wait import wait_until
 
 from .test_thirty_worlds import KEEPS, NOMINAL_HZ, cpu_jiffies, dynamics_calls
@@ -44,7 +44,7 @@ def class_of_ten(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App
     try:
         tokens: dict[str, str] = {}
         for i in range(WORLDS):
-            reply = httpx.post(
+            reply = HTTP.post(
                 f"{app.url}/api/classroom/join", json={"name": f"student{i:02d}", "code": CODE}, timeout=60
             )
             assert reply.status_code == 201, reply.text
@@ -54,8 +54,8 @@ def class_of_ten(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App
         app.stop()
 
 
-def node_names(reader: httpx.Client, app: App, token: str) -> set[str]:
-    reply = reader.get(f"{app.url}/api/nodes", headers={"Authorization": f"Bearer {token}"}, timeout=60)
+def node_names(app: App, token: str) -> set[str]:
+    reply = HTTP.get(f"{app.url}/api/nodes", headers={"Authorization": f"Bearer {token}"}, timeout=60)
     assert reply.status_code == 200, reply.text
     return {n["name"] for n in reply.json()}
 
@@ -71,29 +71,29 @@ def start(app: App, token: str, node: str) -> subprocess.Popen[str]:
 
 
 def test_a_burst_of_twenty_node_starts_joins_every_node_to_its_own_world(
-    class_of_ten: tuple[App, dict[str, str]], reader: httpx.Client
+    class_of_ten: tuple[App, dict[str, str]],
 ) -> None:
     app, tokens = class_of_ten
     wanted = {world: {f"/{world}_node{i}" for i in range(PER_WORLD)} for world in tokens}
     steal0, total0 = cpu_jiffies()
-    before = {world: dynamics_calls(reader, app, token) for world, token in tokens.items()}
+    before = {world: dynamics_calls(app, token) for world, token in tokens.items()}
     assert all(calls > 0 for calls, _ in before.values()), before
     runs = [start(app, tokens[w], name.lstrip("/")) for w, names in wanted.items() for name in sorted(names)]
     try:
 
         def joined() -> bool:
-            return all(names <= node_names(reader, app, tokens[w]) for w, names in wanted.items())
+            return all(names <= node_names(app, tokens[w]) for w, names in wanted.items())
 
         def exits() -> str:
             return str({p.pid: p.poll() for p in runs})
 
         wait_until(joined, "every node in its world", JOINED_S, poll_s=0.5, detail=exits)
-        after = {world: dynamics_calls(reader, app, token) for world, token in tokens.items()}
+        after = {world: dynamics_calls(app, token) for world, token in tokens.items()}
         steal1, total1 = cpu_jiffies()
         took_s = max(t for _, t in after.values()) - min(t for _, t in before.values())
         everyones = set().union(*wanted.values())
         for world, token in tokens.items():  # each its own, and no one else's
-            ours = node_names(reader, app, token) & everyones
+            ours = node_names(app, token) & everyones
             assert ours == wanted[world], (world, ours)
     finally:
         for run in runs:

@@ -21,9 +21,9 @@ from dataclasses import dataclass
 from typing import Any
 from urllib.parse import urlsplit
 
-import httpx
 import pytest
 from support.app import App, WorldWorker, instructor_token, wait_for_workers
+from support.http import HTTP
 
 from server.classroom.workers import worker_api_token, world_call_token
 
@@ -154,7 +154,7 @@ def klass(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
         listed = wait_for_workers(app.url, instructor, {WORKER})
         tokens: dict[str, str] = {}
         for name in ("Ada", "Bob"):
-            reply = httpx.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60)
+            reply = HTTP.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60)
             assert reply.status_code == 201, reply.text
             tokens[reply.json()["world"]] = reply.json()["token"]
         yield Class(app, worker, listed[0]["url"], instructor, tokens)
@@ -200,7 +200,7 @@ def test_a_student_cannot_remove_another_world(klass: Class) -> None:
     assert "bob" in klass.worker_worlds()  # still there, on the worker and in the class
     assert klass.raw("GET", "/api/topics", klass.tokens["bob"]).status == 200
     # The instructor removes a world of a student who joined for it.
-    joined = httpx.post(f"{klass.app.url}/api/classroom/join", json={"name": "Cy", "code": CODE}, timeout=60)
+    joined = HTTP.post(f"{klass.app.url}/api/classroom/join", json={"name": "Cy", "code": CODE}, timeout=60)
     assert joined.status_code == 201, joined.text
     assert "cy" in klass.worker_worlds()
     removed = klass.raw("DELETE", "/api/classroom/worlds/cy", klass.instructor)
@@ -216,7 +216,7 @@ def test_a_student_cannot_host_a_world_on_the_worker(klass: Class) -> None:
     assert reply.status == 400, reply.text
     assert set(klass.worker_worlds()) == before  # no world was made
     # A world is hosted there when the class server asks, for a student who joins.
-    joined = httpx.post(f"{klass.app.url}/api/classroom/join", json={"name": "Dee", "code": CODE}, timeout=60)
+    joined = HTTP.post(f"{klass.app.url}/api/classroom/join", json={"name": "Dee", "code": CODE}, timeout=60)
     assert joined.status_code == 201, joined.text
     assert set(klass.worker_worlds()) == before | {"dee"}
 

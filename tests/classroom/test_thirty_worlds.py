@@ -8,11 +8,10 @@ load ties and the placement alternates. Each world's rate is its dynamics node's
 the window, read through the class server's API with that student's token (a worker's world is answered by its
 worker), each count with the time it was read. Both processes are ended by their ids.
 
-The readings go through one kept-alive client (``reader``, conftest.py): ``httpx.get`` builds a new client, and
-with it a TLS context, for every call: about 55 ms of this test's own CPU per reading, against 4 ms
-through one client. 30 of them at each end of the window took the worlds' cores for seconds and cost every
-world 2 to 4 Hz of the rate measured (quiet machine: slowest world 96 Hz read that way, 99 Hz read
-through one client).
+The readings go through the tests' one kept client (support/http.py): read with a new client each
+(``httpx.get``), the 30 readings at each end of the window took the worlds' cores for seconds and
+cost every world 2 to 4 Hz of the rate measured (quiet machine: slowest world 96 Hz read that way,
+99 Hz through the kept client).
 """
 
 from __future__ import annotations
@@ -23,9 +22,9 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-import httpx
 import pytest
 from support.app import REPO, App, WorldWorker, instructor_token, wait_for_workers
+from support.http import HTTP
 
 pytestmark = pytest.mark.timing  # its rates are the point: measured with nothing else running
 
@@ -60,7 +59,7 @@ def class_of_thirty(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[
         wait_for_workers(app.url, instructor, {"w1"})
         tokens: dict[str, str] = {}
         for i in range(WORLDS):
-            reply = httpx.post(
+            reply = HTTP.post(
                 f"{app.url}/api/classroom/join", json={"name": f"student{i:02d}", "code": CODE}, timeout=60
             )
             assert reply.status_code == 201, reply.text
@@ -80,9 +79,11 @@ def cpu_jiffies() -> tuple[int, int]:
     return steal, user + nice + system + idle + iowait + irq + softirq + steal
 
 
-def dynamics_calls(reader: httpx.Client, app: App, token: str) -> tuple[int, float]:
+def dynamics_calls(app: App, token: str) -> tuple[int, float]:
     """How often the world's dynamics timer has run, and when that was read (monotonic s)."""
-    reply = reader.get(f"{app.url}/api/nodes/{DYNAMICS}", headers={"Authorization": f"Bearer {token}"})
+    reply = HTTP.get(
+        f"{app.url}/api/nodes/{DYNAMICS}", headers={"Authorization": f"Bearer {token}"}, timeout=10
+    )
     assert reply.status_code == 200, reply.text
     timers: list[dict[str, Any]] = reply.json()["timers"]
     assert len(timers) == 1 and timers[0]["period_s"] == pytest.approx(1 / NOMINAL_HZ)
@@ -90,11 +91,11 @@ def dynamics_calls(reader: httpx.Client, app: App, token: str) -> tuple[int, flo
 
 
 def test_thirty_worlds_each_keep_their_dynamics_rate_for_thirty_seconds(
-    class_of_thirty: tuple[App, dict[str, str]], reader: httpx.Client
+    class_of_thirty: tuple[App, dict[str, str]],
 ) -> None:
     app, tokens = class_of_thirty
     instructor = instructor_token(app.log_tail(100_000))
-    listed = httpx.get(
+    listed = HTTP.get(
         f"{app.url}/api/classroom/worlds", headers={"Authorization": f"Bearer {instructor}"}, timeout=30
     ).json()["worlds"]
     placed = {w["world"]: w["worker"] for w in listed}
@@ -104,10 +105,10 @@ def test_thirty_worlds_each_keep_their_dynamics_rate_for_thirty_seconds(
 
     # Every world flies already: its dynamics have run (the first reading is the window's start).
     steal0, total0 = cpu_jiffies()
-    start = {world: dynamics_calls(reader, app, token) for world, token in tokens.items()}
+    start = {world: dynamics_calls(app, token) for world, token in tokens.items()}
     assert all(calls > 0 for calls, _ in start.values()), start
     time.sleep(WINDOW_S)
-    end = {world: dynamics_calls(reader, app, token) for world, token in tokens.items()}
+    end = {world: dynamics_calls(app, token) for world, token in tokens.items()}
     steal1, total1 = cpu_jiffies()
     stolen = (steal1 - steal0) / max(1, total1 - total0)  # the share of the machine's CPU time
     floor = KEEPS * NOMINAL_HZ * (1.0 - stolen)

@@ -21,6 +21,7 @@ import httpx
 import pytest
 from fastapi.testclient import TestClient
 from support.app import App, WorldWorker, instructor_token, wait_for_workers
+from support.http import HTTP
 from support.wait import wait_until as support_wait_until
 
 from server.app import create_app
@@ -134,7 +135,7 @@ def test_a_worker_frees_its_worlds_once_the_class_server_is_silent_for_its_orpha
 
 # -- processes: a worker dies, then the class server -----------------------------------------------
 def api(url: str, path: str, token: str, **headers: str) -> httpx.Response:
-    return httpx.get(url + path, headers={"Authorization": f"Bearer {token}", **headers}, timeout=10)
+    return HTTP.get(url + path, headers={"Authorization": f"Bearer {token}", **headers}, timeout=10)
 
 
 def wait_until(check: Any, what: str, logs: Any, timeout_s: float = GONE_WAIT_S) -> Any:
@@ -176,7 +177,7 @@ def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_fr
     failover_class: tuple[App, dict[str, WorldWorker], str], tmp_path: Path
 ) -> None:
     app, workers, instructor = failover_class
-    joined = httpx.post(f"{app.url}/api/classroom/join", json={"name": "Ada", "code": CODE}, timeout=60)
+    joined = HTTP.post(f"{app.url}/api/classroom/join", json={"name": "Ada", "code": CODE}, timeout=60)
     assert joined.status_code == 201, joined.text
     token = joined.json()["token"]
 
@@ -208,7 +209,7 @@ def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_fr
         return reply.json()["latest"] if reply.status_code == 200 else None
 
     wait_until(gps, "a GPS fix from ada's new world", app.log_tail)
-    reply = httpx.post(
+    reply = HTTP.post(
         f"{app.url}/api/publish", headers={"Authorization": f"Bearer {token}"}, timeout=30,
         json={"topic": "/uav/input/position", "msg": dict(zip("xyz", TARGET, strict=True))},
     )  # fmt: skip

@@ -20,6 +20,7 @@ from typing import Any
 import httpx
 import pytest
 from support.app import App, WorldWorker, instructor_token, wait_for_workers
+from support.http import HTTP
 from support.wait import wait_until
 
 from server.processes.sandbox import probe
@@ -53,7 +54,7 @@ class Class:
     workers: dict[str, WorldWorker]
 
     def call(self, method: str, path: str, token: str, body: Any = None, **headers: str) -> httpx.Response:
-        return httpx.request(method, self.app.url + path, json=body, timeout=30,
+        return HTTP.request(method, self.app.url + path, json=body, timeout=30,
                              headers={"Authorization": f"Bearer {token}", **headers})  # fmt: skip
 
     def worlds(self) -> dict[str, dict[str, Any]]:
@@ -88,7 +89,7 @@ def klass(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     try:
         klass.add_workers({"wa": shared, "wc": apart})
         for student in ("Ada", "Bob"):
-            joined = httpx.post(
+            joined = HTTP.post(
                 f"{app.url}/api/classroom/join", json={"name": student, "code": CODE}, timeout=60
             )
             assert joined.status_code == 201, joined.text

@@ -26,6 +26,7 @@ import pytest
 import websockets
 import zenoh
 from support.app import App, WorldWorker, instructor_token, wait_for_workers
+from support.http import HTTP
 
 from api.errors import CloseCode
 from server.classroom.workers import CONTROL_PREFIX, hello_request, worker_api_token
@@ -54,12 +55,12 @@ class Class:
     tokens: dict[str, str]  # world → its student's token
 
     def get(self, path: str, token: str, **headers: str) -> httpx.Response:
-        return httpx.get(
+        return HTTP.get(
             self.app.url + path, headers={"Authorization": f"Bearer {token}", **headers}, timeout=10
         )
 
     def post(self, path: str, token: str, body: Any = None) -> httpx.Response:
-        return httpx.post(
+        return HTTP.post(
             self.app.url + path, headers={"Authorization": f"Bearer {token}"}, json=body, timeout=30
         )
 
@@ -91,7 +92,7 @@ def klass(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
         wait_for_workers(app.url, instructor, {"wa", "wb"})
         tokens: dict[str, str] = {}
         for name in STUDENTS:  # one at a time: each placement sees the one before
-            reply = httpx.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60)
+            reply = HTTP.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60)
             assert reply.status_code == 201, reply.text
             tokens[reply.json()["world"]] = reply.json()["token"]
         yield Class(app, instructor, workers, tokens)
@@ -231,8 +232,7 @@ def test_topic_echo_and_keys_reach_a_workers_world_over_websockets(klass: Class)
 def test_one_students_token_opens_no_other_world_on_any_worker(klass: Class) -> None:
     assert klass.get("/api/topics", klass.tokens["bob"], **{"X-Lab-World": "ada"}).status_code == 403
     assert (
-        httpx.get(f"{klass.app.url}/api/topics", headers={"X-Lab-World": "ada"}, timeout=10).status_code
-        == 401
+        HTTP.get(f"{klass.app.url}/api/topics", headers={"X-Lab-World": "ada"}, timeout=10).status_code == 401
     )
 
     async def other_world_socket() -> int | None:
@@ -250,11 +250,11 @@ def test_one_students_token_opens_no_other_world_on_any_worker(klass: Class) -> 
     worker_url = next(
         w["url"] for w in klass.get("/api/classroom/workers", klass.instructor).json()["workers"]
     )
-    direct = httpx.get(
+    direct = HTTP.get(
         f"{worker_url}/api/topics", headers={"Authorization": f"Bearer {klass.tokens['ada']}"}, timeout=10
     )
     assert direct.status_code == 401
-    join = httpx.post(f"{worker_url}/api/classroom/join", json={"name": "Eve", "code": CODE}, timeout=10)
+    join = HTTP.post(f"{worker_url}/api/classroom/join", json={"name": "Eve", "code": CODE}, timeout=10)
     assert join.status_code == 403
 
 
@@ -263,7 +263,7 @@ def test_the_instructor_resets_and_removes_a_workers_world(klass: Class) -> None
     assert reply.status_code == 200, reply.text
     klass.app.wait_for(lambda: klass.position("ada")[2] < 4.0, "ada's drone back near home after the reset")
     assert klass.worlds()["ada"]["resets"] == 1
-    removed = httpx.delete(
+    removed = HTTP.delete(
         f"{klass.app.url}/api/classroom/worlds/dee",
         headers={"Authorization": f"Bearer {klass.instructor}"},
         timeout=30,
@@ -292,11 +292,11 @@ def test_a_world_a_worker_hosts_that_the_class_does_not_count_there_is_ended(kla
     as_class_server = {"Authorization": f"Bearer {worker_api_token(klass.instructor, 'wb')}"}
     body = {"world": "stray", "student": "Nobody", "domain_id": 200, "launch": "rocket",
             "launch_args": {"start_delay": "3600"}}  # fmt: skip
-    placed = httpx.post(f"{wb['url']}/api/classroom/host", headers=as_class_server, json=body, timeout=60)
+    placed = HTTP.post(f"{wb['url']}/api/classroom/host", headers=as_class_server, json=body, timeout=60)
     assert placed.status_code == 201, placed.text
 
     def on_wb() -> set[str]:
-        reply = httpx.get(f"{wb['url']}/api/classroom/worlds", headers=as_class_server, timeout=10)
+        reply = HTTP.get(f"{wb['url']}/api/classroom/worlds", headers=as_class_server, timeout=10)
         assert reply.status_code == 200, reply.text
         return {w["world"] for w in reply.json()["worlds"]}
 

@@ -18,9 +18,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Any
 
-import httpx
 import pytest
 from support.app import end, free_ports, wait_healthy
+from support.http import HTTP
 from support.wait import wait_until
 
 SERVER_READY_S = 30.0
@@ -39,12 +39,12 @@ class LiveServer:
         return "\n".join(self.log_path.read_text(errors="replace").splitlines()[-lines:])
 
     def get(self, path: str) -> Any:
-        response = httpx.get(self.url + path, timeout=5.0)
+        response = HTTP.get(self.url + path, timeout=5.0)
         response.raise_for_status()
         return response.json()
 
     def post(self, path: str, body: dict[str, Any] | None = None) -> Any:
-        response = httpx.post(self.url + path, json=body or {}, timeout=5.0)
+        response = HTTP.post(self.url + path, json=body or {}, timeout=5.0)
         response.raise_for_status()
         return response.json()
 

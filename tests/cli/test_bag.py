@@ -7,8 +7,8 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-import httpx
 import pytest
+from support.http import HTTP
 
 from server.cli.bag import BagInfo, format_info, format_size
 
@@ -33,7 +33,7 @@ def test_bag_record_info_play_round_trip(
     assert code == 0, err
     live_server.wait_until(lambda: out.is_dir() and (out / "metadata.yaml").is_file(), "the bag fetched")
     assert (out / "run1_0.mcap").read_bytes().startswith(b"\x89MCAP0\r\n")
-    assert httpx.delete(live_server.url + f"/api/publishers/{pub['id']}", timeout=5.0).status_code == 200
+    assert HTTP.delete(live_server.url + f"/api/publishers/{pub['id']}", timeout=5.0).status_code == 200
 
     info = ros2lab("bag", "info", str(out))
     assert info.code == 0, info.err

@@ -12,13 +12,13 @@ import time
 from collections.abc import Iterator
 from typing import Any
 
-import httpx
 import pytest
 from mcap.reader import make_reader
 from mcap.records import Schema as McapSchema
 from mcap_ros2.decoder import DecoderFactory
 from ros_reference import rihs
 from support.app import App, JsonProcess, free_port
+from support.http import HTTP
 from websockets.sync.client import ClientConnection, connect
 
 from .conftest import definitions, service_text
@@ -197,7 +197,7 @@ def test_bag_record_all_records_a_topic_only_another_process_publishes(
     stopped = app.post("/api/bag/recordings/from_a_process/stop", {})
     assert stopped.status_code == 200, stopped.text
     assert "/sdk_bag" in stopped.json()["topics"]
-    bag = httpx.get(f"{app.url}/api/bag/recordings/from_a_process/download", timeout=10.0)
+    bag = HTTP.get(f"{app.url}/api/bag/recordings/from_a_process/download", timeout=10.0)
     assert bag.status_code == 200
     reader = make_reader(io.BytesIO(bag.content), decoder_factories=[DecoderFactory()])
     texts = [

@@ -19,12 +19,12 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-import httpx
 import pytest
 import viser
 import websockets
 from handshake import READ_S, handshake_refusal
 from support.app import App, free_ports, instructor_token, wait_for_workers
+from support.http import HTTP
 
 from api.errors import CloseCode
 from server.app import create_app
@@ -221,7 +221,7 @@ def school(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, int,
         instructor = instructor_token(app.log_tail(10**6))
         wait_for_workers(app.url, instructor, {"local-1"})
         for name in ("Ada", "Bob"):  # one world here, one on the worker
-            reply = httpx.post(
+            reply = HTTP.post(
                 f"{app.url}/api/classroom/join", json={"name": name, "code": "PORTS1"}, timeout=60
             )
             assert reply.status_code == 201, reply.text
@@ -234,7 +234,7 @@ def test_every_port_of_a_class_and_its_world_worker_refuses_a_foreign_page(
     school: tuple[App, int, int, str],
 ) -> None:
     app, foxglove, rosbridge, instructor = school
-    workers = httpx.get(f"{app.url}/api/classroom/workers", headers={"Authorization": f"Bearer {instructor}"})
+    workers = HTTP.get(f"{app.url}/api/classroom/workers", headers={"Authorization": f"Bearer {instructor}"})
     worker_port = int(workers.json()["workers"][0]["url"].rsplit(":", 1)[1])
     seen = check_every_port(app, {app.zenoh_port}, {app.port, foxglove, rosbridge, worker_port})
     assert {app.port, foxglove, rosbridge, worker_port} <= seen

@@ -16,9 +16,9 @@ import threading
 import time
 from pathlib import Path
 
-import httpx
 import pytest
 from support.app import App
+from support.http import HTTP
 
 from .conftest import make_workspace
 
@@ -103,13 +103,13 @@ def test_launch_prints_its_node_processs_output_once_and_its_death(tmp_path: Pat
         # Its log line came once: from its own output, not again from /rosout.
         assert sum("starting up" in line for line in seen) == 1, seen
         # The server keeps the lines for anyone who asks, with how many there were.
-        launches = httpx.get(f"{app.url}/api/launches", timeout=10).json()
+        launches = HTTP.get(f"{app.url}/api/launches", timeout=10).json()
         group = next(g for g in launches if g["file"].endswith("once.launch"))
-        output = httpx.get(f"{app.url}/api/launches/{group['id']}/output", timeout=10).json()
+        output = HTTP.get(f"{app.url}/api/launches/{group['id']}/output", timeout=10).json()
         (process,) = output["processes"]
         assert process["label"] == label and process["printed"] == len(process["lines"]) >= 3
         assert output["group"]["nodes"][0]["state"] == "died"
-        assert httpx.get(f"{app.url}/api/launches/nope/output", timeout=10).status_code == 404
+        assert HTTP.get(f"{app.url}/api/launches/nope/output", timeout=10).status_code == 404
         cli.send_signal(signal.SIGINT)
         assert cli.wait(timeout=30) == 0
     finally:

@@ -9,9 +9,9 @@ import json
 from collections.abc import Iterator
 from typing import Any
 
-import httpx
 import pytest
 from support.app import App
+from support.http import HTTP
 from websockets.sync.client import connect
 
 from .conftest import make_workspace, node_entry
@@ -119,7 +119,7 @@ def test_hz_of_a_topic_only_a_process_publishes_starts_a_watch_then_measures(lab
 
 def test_unknown_topic_is_404_and_starts_no_watch(lab: App) -> None:
     for path in ("/api/topics/nobody_publishes_this", "/api/hz/nobody_publishes_this"):
-        response = httpx.get(lab.url + path, timeout=5.0)
+        response = HTTP.get(lab.url + path, timeout=5.0)
         assert response.status_code == 404, response.text
         assert "/nobody_publishes_this" in response.text
     hidden = lab.get("/api/graph", hidden="true")

@@ -13,9 +13,9 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-import httpx
 import pytest
 from support.app import end, free_ports, wait_healthy
+from support.http import HTTP
 
 READY_S = 30.0
 STOP_S = 10.0
@@ -40,7 +40,7 @@ class RosbridgeServer:
         }
 
     def reset_rocket(self) -> None:
-        assert httpx.post(f"{self.url}/api/rocket/reset", timeout=5.0).status_code == 200
+        assert HTTP.post(f"{self.url}/api/rocket/reset", timeout=5.0).status_code == 200
 
     def log_tail(self) -> str:
         return self.log_path.read_text(errors="replace")[-3000:]

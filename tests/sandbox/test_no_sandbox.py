@@ -7,9 +7,9 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-import httpx
 import pytest
 from support.app import App
+from support.http import HTTP
 
 from .test_sandbox import CLASS_READY_S, CODE, World, join, world_workspace
 
@@ -82,5 +82,5 @@ def test_no_sandbox_the_labs_own_nodes_still_run(refusing: World) -> None:
     )
     assert reply.status_code == 201, reply.text
     assert "/p2" in {str(n["name"]) for n in refusing.get("/api/nodes").json()}
-    assert httpx.delete(f"{refusing.app.url}/api/launches/{reply.json()['id']}", headers=refusing.headers(),
+    assert HTTP.delete(f"{refusing.app.url}/api/launches/{reply.json()['id']}", headers=refusing.headers(),
                         timeout=30).status_code == 200  # fmt: skip

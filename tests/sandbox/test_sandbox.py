@@ -15,6 +15,7 @@ from pathlib import Path
 import httpx
 import pytest
 from support.app import REPO, App
+from support.http import HTTP
 from support.sandbox import require_sandbox
 from support.wait import wait_until
 
@@ -63,13 +64,13 @@ class World:
         return {"Authorization": f"Bearer {self.token}"}
 
     def get(self, path: str) -> httpx.Response:
-        return httpx.get(self.app.url + path, headers=self.headers(), timeout=10.0)
+        return HTTP.get(self.app.url + path, headers=self.headers(), timeout=10.0)
 
     def post(self, path: str, body: dict[str, object]) -> httpx.Response:
-        return httpx.post(self.app.url + path, json=body, headers=self.headers(), timeout=30.0)
+        return HTTP.post(self.app.url + path, json=body, headers=self.headers(), timeout=30.0)
 
     def stop(self, group: str) -> None:
-        httpx.delete(f"{self.app.url}/api/launches/{group}", headers=self.headers(), timeout=30.0)
+        HTTP.delete(f"{self.app.url}/api/launches/{group}", headers=self.headers(), timeout=30.0)
 
 
 @dataclass
@@ -81,7 +82,7 @@ class Class:
 
 
 def join(app: App, name: str) -> World:
-    reply = httpx.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30)
+    reply = HTTP.post(f"{app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30)
     assert reply.status_code == 201, reply.text
     return World(app, reply.json()["token"], reply.json()["world"])
 

@@ -23,6 +23,8 @@ import pytest
 
 from support.wait import wait_until
 
+from .http import HTTP
+
 REPO = Path(__file__).resolve().parents[2]
 READY_S = 40.0
 WAIT_S = 20.0
@@ -80,7 +82,7 @@ def end(proc: subprocess.Popen[Any], timeout_s: float = 10.0) -> None:
 
 def healthy(url: str) -> bool:
     try:
-        return httpx.get(f"{url}/api/health", timeout=1.0).status_code == 200
+        return HTTP.get(f"{url}/api/health", timeout=1.0).status_code == 200
     except httpx.HTTPError:
         return False
 
@@ -145,15 +147,15 @@ class App(LoggedProcess):
             raise
 
     def get(self, path: str, **params: Any) -> Any:
-        response = httpx.get(self.url + path, params=params, timeout=5.0)
+        response = HTTP.get(self.url + path, params=params, timeout=5.0)
         response.raise_for_status()
         return response.json()
 
     def post(self, path: str, body: dict[str, Any]) -> httpx.Response:
-        return httpx.post(self.url + path, json=body, timeout=30.0)
+        return HTTP.post(self.url + path, json=body, timeout=30.0)
 
     def delete(self, path: str) -> httpx.Response:
-        return httpx.delete(self.url + path, timeout=30.0)
+        return HTTP.delete(self.url + path, timeout=30.0)
 
     def wait_for(self, condition: Callable[[], bool], what: str, timeout_s: float = WAIT_S) -> None:
         wait_until(condition, what, timeout_s, poll_s=0.05, detail=self.log_tail)
@@ -284,7 +286,7 @@ def wait_for_workers(url: str, token: str, ids: set[str], timeout_s: float = REA
     """Until the class server at ``url`` finds every worker in ``ids`` on its router."""
 
     def found() -> list[dict[str, Any]] | None:
-        reply = httpx.get(
+        reply = HTTP.get(
             f"{url}/api/classroom/workers", headers={"Authorization": f"Bearer {token}"}, timeout=10
         )
         seen: list[dict[str, Any]] = reply.json()["workers"] if reply.status_code == 200 else []
