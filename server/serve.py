@@ -9,6 +9,7 @@ from collections.abc import Callable
 from fastapi import FastAPI
 
 from server.app import create_app
+from server.collections_policy import keep_full_collections_short
 from server.console import access_log, quiet_uvicorn
 from server.settings import Settings
 
@@ -28,6 +29,7 @@ def serve(
     # viser prints a box with its own loopback port; the page is served on ours, so that box would
     # send a student to a page without the lab's keys and HUD. The app prints nothing else through rich.
     rich.get_console().quiet = True
+    keep_full_collections_short()  # a full collection would hold every world's ticks back
     app = create_app(settings)
     if announce is not None:
         announce(app)
