@@ -21,9 +21,8 @@ from typing import IO, Any
 import httpx
 import pytest
 
+from support.http import HTTP
 from support.wait import wait_until
-
-from .http import HTTP
 
 REPO = Path(__file__).resolve().parents[2]
 READY_S = 40.0
