@@ -38,13 +38,8 @@ REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
 import httpx
-from live_server import LiveServer, end, rss_mib
+from live_server import READER, LiveServer, end, rss_mib
 from machine import machine_info, save_results
-
-# Every reading while the worlds are measured goes through one client that keeps its connections:
-# httpx.get builds a client and a TLS context per call (about 55 ms of CPU each, against 4 ms),
-# which the worlds measured on the same cores would pay for.
-READER = httpx.Client(timeout=60)
 
 CODE = "BURST1"
 DYNAMICS = "flightgoggles_uav_dynamics"

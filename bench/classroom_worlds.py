@@ -35,14 +35,9 @@ from typing import Any
 import httpx
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from live_server import FrameReader, LiveServer, rss_mib
+from live_server import READER, FrameReader, LiveServer, rss_mib
 from machine import machine_info, save_results
 from page_client import PageClient, PageClients, median_rates
-
-# Every reading while the worlds are measured goes through one client that keeps its connections:
-# httpx.get builds a client and a TLS context per call (about 55 ms of CPU each, against 4 ms),
-# which the worlds measured on the same cores would pay for.
-READER = httpx.Client(timeout=60)
 
 CODE = "BENCH1"
 POSE_THROTTLE_MS = 33  # ~30 Hz, the page's pose stream
