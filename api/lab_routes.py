@@ -74,7 +74,14 @@ async def zenoh_join(request: Request, start: bool = False) -> dict[str, Any]:
             else "started with --no-zenoh"
         )
         raise HTTPException(status.HTTP_404_NOT_FOUND, f"this lab's graph is not on Zenoh ({why})")
-    return _paced(request, start, _join(link.router_endpoint(), link.settings.domain_id, link.settings.login))
+    join = _join(link.router_endpoint(), link.settings.domain_id, link.settings.login, _nice(classroom))
+    return _paced(request, start, join)
+
+
+def _nice(classroom: Classroom | None) -> int | None:
+    """A class's node processes run below its worlds (the niceness its sandbox gives students'
+    nodes, server/processes/priority.py); a single lab's run as they were started."""
+    return classroom.settings.sandbox.nice if classroom is not None else None
 
 
 def _paced(request: Request, start: bool, join: dict[str, Any]) -> dict[str, Any]:
@@ -97,11 +104,13 @@ def _class_graph_join(classroom: Classroom) -> dict[str, Any]:
         or classroom.settings.lab.zenoh is None
     ):
         raise HTTPException(status.HTTP_404_NOT_FOUND, "this class server has no Zenoh graph of its own")
-    return _join(router, classroom.settings.lab.zenoh.domain_id, classroom.zenoh_auth.class_credentials())
+    login = classroom.zenoh_auth.class_credentials()
+    return _join(router, classroom.settings.lab.zenoh.domain_id, login, _nice(classroom))
 
 
-def _join(router: str, domain_id: int, login: Credentials | None) -> dict[str, Any]:
+def _join(router: str, domain_id: int, login: Credentials | None, nice: int | None) -> dict[str, Any]:
     return {
+        "nice": nice,
         "router": router,
         "domain_id": domain_id,
         "user": login.user if login is not None else None,

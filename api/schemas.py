@@ -106,6 +106,11 @@ class ZenohJoin(BaseModel):
             {"ROS_DOMAIN_ID": "3", "ZENOH_CONFIG_OVERRIDE": 'connect/endpoints=["tcp/127.0.0.1:7447"]'}
         ],
     )
+    nice: int | None = Field(
+        default=None,
+        description="the CPU niceness a node process of this server's graph takes, so the worlds' loop "
+        "goes first (a class server's students' nodes: ros2lab run lowers its node to it); null: none",
+    )
 
 
 class Health(BaseModel):

@@ -1,8 +1,10 @@
 """``run PKG EXEC [--ros-args ...]``: the executable as a child process, as ``ros2 run`` starts it.
 
 Its output streams to this terminal as it comes, Ctrl-C is passed on to it (once: the child has a
-process group of its own, so the terminal's Ctrl-C reaches only this command), and its exit code
-is this command's. It joins the graph of the lab the command talks to (``--url``): the lab tells
+session of its own, so the terminal's Ctrl-C reaches only this command), and its exit code is this
+command's. A class server asks for its node processes to run below its worlds (``nice`` in the
+join's answer): the child then takes that niceness, and so does its session's scheduling group
+(server/processes/priority.py), wherever the command runs. It joins the graph of the lab the command talks to (``--url``): the lab tells
 where its Zenoh router listens, its ROS domain and its login (server/cli/join.py: asked again
 with a bounded backoff while the lab does not answer, and after the time it gives while it paces
 a class's node starts). A lab that does not answer within ``--join-timeout`` is one line and a
@@ -20,6 +22,7 @@ from typing import Any
 
 from server.packages import ExecutableNotFoundError, PackageIndex, PackageNotFoundError, WorkspaceError
 from server.processes.command import node_command
+from server.processes.priority import set_session_group_nice
 from server.transport.acl import Credentials
 from server.transport.config import domain_id_from_env
 
@@ -61,11 +64,17 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
     except WorkspaceError as exc:
         print(exc, file=sys.stderr)
         return 1
-    router, domain_id, login = graph_of(join or join_graph(client, pacing, start=True), client.base_url)
+    join = join or join_graph(client, pacing, start=True)
+    router, domain_id, login = graph_of(join, client.base_url)
     command = node_command(
         exe.target, list(args.argv), router=router, domain_id=domain_id, login=login, workspace=workspace
     )
-    child = subprocess.Popen(command.argv, env=command.env, process_group=0)
+    nice = join.get("nice")
+    if isinstance(nice, int) and nice > 0:
+        os.nice(nice)  # the child inherits it; this command only waits
+    child = subprocess.Popen(command.argv, env=command.env, start_new_session=True)
+    if isinstance(nice, int) and nice > 0:
+        set_session_group_nice(child.pid, nice)
     interrupted = False
     while True:
         try:

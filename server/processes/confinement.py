@@ -1,11 +1,12 @@
 """The limits a sandboxed node process takes on as it starts, before any of the student's code runs.
 
 The sandbox (server/processes/sandbox.py) passes them in ``$ROS2LAB_SANDBOX``; the runner applies
-them first thing: rlimits on memory (its data: heap, stacks and private mappings; not the
-address space, which Zenoh's threads reserve by the hundred MiB unused), processes, open files, file size and CPU time, a
-lower CPU priority than the sims (nice), and, when the sandbox was started by root, a uid and gid
-of its own with no supplementary groups (which also drops every capability). Hard limits go down
-with the soft ones, so the node cannot raise them again.
+them first thing: rlimits on memory (its data: heap, stacks and private mappings; not the address
+space, which Zenoh's threads reserve by the hundred MiB unused), processes, open files, file size
+and CPU time; a lower CPU priority than the sims (nice, for its session's scheduling group too:
+server/processes/priority.py); and, when the sandbox was started by root, a uid and gid of its
+own with no supplementary groups (which also drops every capability). Hard limits go down with the
+soft ones, so the node cannot raise them again.
 
 Processes are counted per user namespace (Linux 5.14 and later), so a non-root server's sandboxes
 each get their own 64 without the server's own threads counted in; under a root server, per uid,
@@ -19,6 +20,8 @@ import os
 import resource
 from dataclasses import dataclass, fields
 from pathlib import Path
+
+from .priority import run_below_sims
 
 LIMITS_ENV = "ROS2LAB_SANDBOX"
 MIB = 1024 * 1024
@@ -61,7 +64,7 @@ class Confinement:
         }
         for which, value in limits.items():
             resource.setrlimit(which, (value, value))
-        os.nice(self.nice)
+        run_below_sims(self.nice)  # with its session's group: bubblewrap made it a session leader
         if self.drop_root and os.getuid() == 0:
             os.setgroups([])
             os.setgid(self.gid)

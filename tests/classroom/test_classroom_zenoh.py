@@ -121,6 +121,51 @@ def test_a_students_node_process_joins_their_world_only(classroom: tuple[App, Pa
                  "the talker gone from Ada's world once it stopped")  # fmt: skip
 
 
+def children_of(pid: int) -> list[int]:
+    found = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                stat = (entry / "stat").read_text()
+            except OSError:  # it ended meanwhile
+                continue
+            if int(stat.rsplit(")", 1)[1].split()[1]) == pid:
+                found.append(int(entry.name))
+    return found
+
+
+def test_a_students_node_process_runs_below_the_worlds(classroom: tuple[App, Path, dict[str, str]]) -> None:
+    """The class server's join asks for its sandbox's niceness; ``ros2lab run`` gives it to the
+    node and, the node leading a session of its own, to its session's scheduling group: a niceness
+    alone counts only within a session (server/processes/priority.py)."""
+    app, root, tokens = classroom
+    assert get(app, tokens["ada"], "/api/zenoh/join").json()["nice"] == 10
+    env = {**os.environ, "ROS2LAB_TOKEN": tokens["ada"]}
+    env.pop("ROS_DOMAIN_ID", None)
+    run = subprocess.Popen(
+        [sys.executable, "-m", "server", "--url", app.url, "run", "demo", "talker.py"],
+        cwd=root, env=env, text=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+    )  # fmt: skip
+    try:
+        app.wait_for(lambda: "/talker" in {n["name"] for n in get(app, tokens["ada"], "/api/nodes").json()},
+                     "the talker in Ada's world")  # fmt: skip
+        (node,) = children_of(run.pid)
+        assert os.getpriority(os.PRIO_PROCESS, node) == os.getpriority(os.PRIO_PROCESS, 0) + 10
+        assert os.getsid(node) == node != os.getsid(0)
+        group = Path(f"/proc/{node}/autogroup")
+        if group.exists():  # a kernel with autogroup scheduling
+            assert group.read_text().split()[-1] == "10"
+            assert Path("/proc/self/autogroup").read_text().split()[-1] == "0"  # ours as it was
+    finally:
+        run.send_signal(signal.SIGINT)
+        try:
+            run.communicate(timeout=15)
+        except subprocess.TimeoutExpired:
+            end(run)
+    app.wait_for(lambda: "/talker" not in {n["name"] for n in get(app, tokens["ada"], "/api/nodes").json()},
+                 "the talker gone from Ada's world once it stopped")  # fmt: skip
+
+
 def test_a_student_gets_their_worlds_login_and_the_environment_that_uses_it(
     classroom: tuple[App, Path, dict[str, str]],
 ) -> None:

@@ -215,6 +215,16 @@ def node_names(world: World) -> set[str]:
     return {str(n["name"]) for n in world.get("/api/nodes").json()}
 
 
+def test_sandbox_node_runs_below_the_worlds_with_its_sessions_group(klass: Class) -> None:
+    """bubblewrap gives the node a session of its own, where a niceness alone would count only
+    against the session's own processes (server/processes/priority.py): its session's scheduling
+    group is lowered with it. An unsandboxed node runs as it was started."""
+    group = "10" if Path("/proc/self/autogroup").exists() else "none"
+    own = os.getpriority(os.PRIO_PROCESS, 0)
+    assert probe_line(klass.ada, "priority") == f"PROBE priority ok nice {own + 10} group {group}"
+    assert probe_line(klass.cy, "priority").startswith(f"PROBE priority ok nice {own} ")
+
+
 def test_sandbox_node_reaches_its_own_world_only_and_stops(klass: Class) -> None:
     group = run(klass.ada, "talker.py")
     try:
