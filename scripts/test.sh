@@ -8,28 +8,24 @@ source scripts/_venv.sh
 source scripts/_web.sh
 install_once '.[test]'
 
-if ! command -v chromium >/dev/null 2>&1; then
+debian_tool() {  # COMMAND PACKAGE FOR-WHAT IF-NOT: Debian's PACKAGE where COMMAND is missing (root with apt)
+  if command -v "$1" >/dev/null 2>&1; then
+    return
+  fi
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-    echo "Installing Debian's chromium for the browser tests ..."
+    echo "Installing Debian's $2 $3 ..."
     export DEBIAN_FRONTEND=noninteractive
     apt-get update -qq
-    apt-get install -y -qq chromium >/dev/null
+    apt-get install -y -qq "$2" >/dev/null
   else
-    echo "No chromium on PATH: the browser tests will be skipped (install Debian's 'chromium' to run them)." >&2
+    echo "No $1 on PATH: $4 (install Debian's '$2')." >&2
   fi
-fi
+}
 
+debian_tool chromium chromium "for the browser tests" "the browser tests will be skipped"
 # bubblewrap: a class server's students' nodes run in its sandbox (tests/sandbox proves what it blocks).
-if ! command -v bwrap >/dev/null 2>&1; then
-  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-    echo "Installing Debian's bubblewrap for students' nodes on a class server ..."
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq
-    apt-get install -y -qq bubblewrap >/dev/null
-  else
-    echo "No bwrap on PATH: a class server will refuse students' nodes and the sandbox tests will be skipped (install Debian's 'bubblewrap')." >&2
-  fi
-fi
+debian_tool bwrap bubblewrap "for students' nodes on a class server" \
+  "a class server will refuse students' nodes and the sandbox tests will be skipped"
 
 # The page's scripts (web/ → static/build), with Node from the machine or from PyPI; the same
 # npm then installs roslib for the rosbridge client test (tests/js, pinned by its lock file).
