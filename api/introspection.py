@@ -10,7 +10,7 @@ from fastapi import APIRouter, HTTPException, Query, status
 from pydantic import BaseModel, ConfigDict, Field
 
 from server.bus import Node, UnknownNodeError, is_hidden, validate_topic_name
-from server.bus.graph import HZ_WINDOW_MAX
+from server.bus.topic import HZ_WINDOW_MAX
 from server.introspection import graph_snapshot, node_info, rate_stats, type_schema
 from server.introspection.merged import remote_node_endpoints
 from server.lab import Lab

@@ -16,11 +16,12 @@ from .errors import (
 )
 from .executor import Executor
 from .executor_group import ExecutorGroup
-from .graph import INTERNAL_TOPICS, Bus, NodeOverrides, Topic, current_bus
+from .graph import Bus, NodeOverrides, current_bus
 from .names import is_hidden, resolve_topic_name, validate_namespace, validate_node_name, validate_topic_name
 from .node import Node
 from .parameters import Parameter
 from .services import Future, ServiceChannel, ServiceClient, ServiceServer
+from .topic import INTERNAL_TOPICS, Topic
 
 __all__ = [
     "INTERNAL_TOPICS",

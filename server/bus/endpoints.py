@@ -10,8 +10,8 @@ from ..msgs import Message
 from .errors import DestroyedError, InvalidQoSError, TopicTypeError
 
 if TYPE_CHECKING:
-    from .graph import Topic
     from .node import Node
+    from .topic import Topic
 
 MAX_DEPTH = 10_000
 

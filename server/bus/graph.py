@@ -16,12 +16,12 @@ from typing import TYPE_CHECKING, Any, Protocol
 from ..msgs import Message, Service, UnknownTypeError, get_type
 from .clock import Clock, SystemClock
 from .errors import NoBusError, TopicTypeError, UnknownNodeError, UnknownTopicError
-from .names import is_hidden
 from .services import Future, PendingCall, ServiceChannel, ServiceClient, check_service_type
+from .topic import Tap, Topic
 
 if TYPE_CHECKING:
     from ..params_file import ParamsFile
-    from .endpoints import Publisher, Subscription, Timer
+    from .endpoints import Subscription, Timer
     from .node import Node
 
 
@@ -57,11 +57,7 @@ class RemoteTopics(Protocol):
 
 # Told of every message a topic delivers, with who sent it: the publishing ``Publisher`` of this
 # process, or the GID of another process's (bytes); None when not known (server/checkpoints).
-Tap = Callable[[Message, object], None]
-
 log = logging.getLogger("bus")
-HZ_WINDOW_MAX = 10_000
-INTERNAL_TOPICS = frozenset({"/rosout", "/parameter_events"})
 _current_bus: ContextVar[Bus | None] = ContextVar("current_bus", default=None)
 
 
@@ -106,67 +102,6 @@ def current_overrides() -> NodeOverrides | None:
     if _current_bus.get() is not None:
         return _overrides.get()
     return _process_overrides
-
-
-class Topic:
-    """A named, typed channel; exists while some node publishes or subscribes to it."""
-
-    def __init__(self, bus: Bus, name: str, msg_type: type[Message]) -> None:
-        self.bus = bus
-        self.name = name
-        self.msg_type = msg_type
-        self.publishers: list[Publisher] = []
-        self.subscriptions: list[Subscription] = []
-        self.latest: Message | None = None
-        self.latest_time_s: float | None = None
-        self.publish_count = 0
-        # Publish times for `ros2 topic hz`-style rates, kept always: one deque append per message.
-        self.publish_times_s: deque[float] = deque(maxlen=HZ_WINDOW_MAX)
-        self.tap: Tap | None = bus.taps.get(name)
-
-    @property
-    def hidden(self) -> bool:
-        return self.name in INTERNAL_TOPICS or is_hidden(self.name)
-
-    def deliver(
-        self,
-        msg: Message,
-        published_s: float | None = None,
-        *,
-        handed_over: bool = False,
-        source: object = None,
-    ) -> int:
-        """Queue ``msg`` for every live subscription. ``published_s``: when another process published
-        it (its source timestamp), so rates are the publisher's, not this process's arrivals.
-
-        One snapshot of ``msg`` is kept as the topic's latest and given to every read-only
-        subscription; any other subscription gets a copy of its own, as a message from another
-        process would be. ``handed_over``: ``msg`` is new and nobody will change it (a publisher
-        that builds a message for every publish, or one decoded from the wire), so it is the snapshot
-        itself; as rclcpp shares one const message among its intra-process subscriptions.
-        ``source``: who published it, for the topic's tap (Bus.set_tap)."""
-        now = self.bus.clock.now()
-        snapshot = msg if handed_over else msg.copy()
-        self.latest = snapshot
-        self.latest_time_s = now
-        self.publish_count += 1
-        self.publish_times_s.append(now if published_s is None else published_s)
-        if self.tap is not None:
-            self.tap(snapshot, source)
-        delivered = 0
-        ready = self.bus._ready
-        for sub in self.subscriptions:
-            if sub.destroyed or sub.node.state != "active":  # Subscription.active, inline: the hot path
-                continue
-            queue = sub.queue
-            if len(queue) == sub.depth:
-                sub.dropped += 1
-            queue.append(snapshot if sub.read_only else snapshot.copy())
-            ready.append(sub)
-            delivered += 1
-        if delivered:
-            self.bus._wake()
-        return delivered
 
 
 class Bus:
