@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Set up what the tests need (the app, pytest, Playwright, Debian's Chromium, the linters, the page's
-# scripts) and run the check gate (scripts/check: ruff, ruff format, mypy --strict, tsc, eslint,
-# then the whole suite). Extra arguments go to pytest. CI runs exactly this (.ci/run).
+# Set up what the tests need (the app, pytest, Playwright, Debian's Chromium, bubblewrap and
+# docker-compose, the linters, the page's scripts) and run the check gate (scripts/check: ruff, ruff
+# format, mypy --strict, tsc, eslint, then the whole suite). Extra arguments go to pytest. CI runs
+# exactly this (.ci/run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/_venv.sh
@@ -26,6 +27,8 @@ debian_tool chromium chromium "for the browser tests" "the browser tests will be
 # bubblewrap: a class server's students' nodes run in its sandbox (tests/sandbox proves what it blocks).
 debian_tool bwrap bubblewrap "for students' nodes on a class server" \
   "a class server will refuse students' nodes and the sandbox tests will be skipped"
+# docker-compose resolves docker-compose.yml without a container engine (tests/test_container_files.py).
+debian_tool docker-compose docker-compose "to check docker-compose.yml" "the compose file's check will be skipped"
 
 # The page's scripts (web/ → static/build), with Node from the machine or from PyPI; the same
 # npm then installs roslib for the rosbridge client test (tests/js, pinned by its lock file).
