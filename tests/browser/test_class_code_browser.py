@@ -1,5 +1,7 @@
-"""Students' code on a class server in a real headless Chromium: Ada writes a file in the page's
-code view and it is saved in her world's workspace; Bob's code view does not show it, and his
+"""Students' code on a class server in a real headless Chromium: Ada and Bob each write a node in
+their page's code view (a new package, the node typed in), saved in their world's workspace, and
+run it from the page, sandboxed: each sees their own node's log line and not the other's, and
+each world's graph holds its own node only. Bob's code view does not show Ada's file, and his
 token cannot read it; the instructor's page opens her workspace read-only (the file's text, no
 editor) and downloads every workspace as one zip, a folder per student.
 
@@ -29,9 +31,27 @@ pytestmark = pytest.mark.browser
 CODE = "CODE42"
 SMALL = {"width": 900, "height": 650}
 EDITOR_LOAD_MS = 60_000
+RUN_WAIT_MS = 60_000
+NODE = """import rclpy
+from rclpy.node import Node
+
+
+def main():
+    rclpy.init()
+    node = Node('{node}')
+    node.get_logger().info("{line}")
+    rclpy.spin(node)
+
+
+if __name__ == '__main__':
+    main()
+"""
 ADA_FILE = "src/ada_pkg/ada_pkg/pilot.py"
-ADA_TEXT = "# Ada's pilot\nALTITUDE_M = 42.0\n"
-BOB_FILE = "src/bob_pkg/notes.py"  # saved through the API: the marker that Bob's tree has loaded
+ADA_LINE = "Ada's pilot ready"
+ADA_TEXT = NODE.format(node="pilot", line=ADA_LINE)
+BOB_FILE = "src/bob_pkg/bob_pkg/copilot.py"
+BOB_LINE = "Bob's copilot ready"
+BOB_TEXT = NODE.format(node="copilot", line=BOB_LINE)
 
 
 @pytest.fixture(scope="module")
@@ -81,6 +101,33 @@ def api(server: LabServer, token: str, path: str, **headers: str) -> httpx.Respo
                      timeout=HTTP_TIMEOUT_S)  # fmt: skip
 
 
+def write_node(page: Page, package: str, node: str, path: str, text: str) -> None:
+    """A new package with its node from the code view's dialog, the node's text typed over it."""
+    page.get_by_role("button", name="New package").click()
+    dialog = page.locator("#teleop-code dialog")
+    dialog.locator("input[name=name]").fill(package)
+    dialog.locator("input[name=node_name]").fill(node)
+    dialog.get_by_role("button", name="Create").click()
+    page.locator("#teleop-code .file-bar .path", has_text=path).wait_for()
+    page.locator("#teleop-code .cm-content").click()
+    page.keyboard.press("Control+a")
+    page.keyboard.press("Delete")
+    page.keyboard.insert_text(text)
+
+
+def run_until_logged(page: Page, line: str) -> None:
+    page.get_by_role("button", name="\u25b6 Run").click()
+    page.locator("#teleop-code .output .line.log-info", has_text=line).wait_for(timeout=RUN_WAIT_MS)
+
+
+def output_of(page: Page) -> str:
+    return page.locator("#teleop-code .output").inner_text()
+
+
+def node_names(server: LabServer, token: str) -> set[str]:
+    return {n["name"] for n in api(server, token, "/api/nodes").json()}
+
+
 def text_of(server: LabServer, token: str, path: str) -> Any:
     reply = api(server, token, f"/api/workspace/files/{path}")
     return reply.json()["text"] if reply.status_code == 200 else None
@@ -93,25 +140,16 @@ def test_class_code_is_each_students_own_and_the_instructor_reads_it(
     with lab_page(chromium, SMALL) as ada, lab_page(chromium, SMALL) as bob, lab_page(chromium) as teacher:
         ada_token, bob_token = join({"Ada": ada, "Bob": bob}, server)
 
-        # Ada: a new package in the code view, her text typed into its node, saved.
+        # Ada: a new package in the code view, her node typed into it, saved, run in her world.
         open_code_view(ada)
-        ada.get_by_role("button", name="New package").click()
-        dialog = ada.locator("#teleop-code dialog")
-        dialog.locator("input[name=name]").fill("ada_pkg")
-        dialog.locator("input[name=node_name]").fill("pilot")
-        dialog.get_by_role("button", name="Create").click()
-        ada.locator("#teleop-code .file-bar .path", has_text=ADA_FILE).wait_for()
-        ada.locator("#teleop-code .cm-content").click()
-        ada.keyboard.press("Control+a")
-        ada.keyboard.press("Delete")
-        ada.keyboard.insert_text(ADA_TEXT)
+        write_node(ada, "ada_pkg", "pilot", ADA_FILE, ADA_TEXT)
         wait_until(lambda: text_of(server, ada_token, ADA_FILE) == ADA_TEXT, "Ada's text saved")
+        run_until_logged(ada, ADA_LINE)
 
-        # Bob: his own file shows in his tree, Ada's does not; his token cannot read hers.
-        saved = HTTP.put(f"{server.url}/api/workspace/files/{BOB_FILE}", json={"text": "# Bob's\n"},
-                          headers={"Authorization": f"Bearer {bob_token}"}, timeout=HTTP_TIMEOUT_S)  # fmt: skip
-        assert saved.status_code == 201, saved.text
+        # Bob: his own package; Ada's file is not in his tree and his token cannot read it.
         open_code_view(bob)
+        write_node(bob, "bob_pkg", "copilot", BOB_FILE, BOB_TEXT)
+        wait_until(lambda: text_of(server, bob_token, BOB_FILE) == BOB_TEXT, "Bob's text saved")
         bob.locator(f'#teleop-code .tree [data-path="{BOB_FILE}"]').wait_for()
         assert bob.locator(f'#teleop-code .tree [data-path="{ADA_FILE}"]').count() == 0
         assert bob.locator("#teleop-code .tree", has_text="ada_pkg").count() == 0
@@ -121,6 +159,16 @@ def test_class_code_is_each_students_own_and_the_instructor_reads_it(
             == 403
         )
         assert api(server, ada_token, f"/api/workspace/files/{ADA_FILE}").json()["text"] == ADA_TEXT
+
+        # Both nodes run at once, each in its own world, each page showing its own output only.
+        run_until_logged(bob, BOB_LINE)
+        assert ADA_LINE not in output_of(bob) and BOB_LINE not in output_of(ada)
+        assert "/pilot" in node_names(server, ada_token) and "/copilot" not in node_names(server, ada_token)
+        assert "/copilot" in node_names(server, bob_token) and "/pilot" not in node_names(server, bob_token)
+        for page, token, node in ((ada, ada_token, "/pilot"), (bob, bob_token, "/copilot")):
+            page.get_by_role("button", name="\u25a0 Stop").click()
+            page.locator('#teleop-code .run-state[data-state="ended"]').wait_for(timeout=RUN_WAIT_MS)
+            wait_until(lambda: node not in node_names(server, token), f"{node} to leave the graph")  # noqa: B023
 
         # The instructor: Ada's workspace read-only, then every workspace in one zip.
         found = re.search(r"/instructor\?token=(\S+)", server.log_tail(10**6))
@@ -147,6 +195,6 @@ def test_class_code_is_each_students_own_and_the_instructor_reads_it(
         with zipfile.ZipFile(io.BytesIO(Path(path).read_bytes())) as archive:
             names = archive.namelist()
             assert archive.read(f"ada/{ADA_FILE}").decode() == ADA_TEXT
-            assert archive.read(f"bob/{BOB_FILE}").decode() == "# Bob's\n"
+            assert archive.read(f"bob/{BOB_FILE}").decode() == BOB_TEXT
         assert {name.split("/", 1)[0] for name in names} == {"ada", "bob"}
         assert not [n for n in names if n.startswith("bob/") and "ada_pkg" in n]
