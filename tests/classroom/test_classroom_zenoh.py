@@ -10,6 +10,7 @@ import subprocess
 import sys
 import time
 from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -92,8 +93,14 @@ def test_each_world_has_a_ros_domain_of_its_own(classroom: tuple[App, Path, dict
     assert domains == {"ada": 1, "bob": 2}
 
 
-def test_a_students_node_process_joins_their_world_only(classroom: tuple[App, Path, dict[str, str]]) -> None:
-    app, root, tokens = classroom
+def ada_nodes(app: App, tokens: dict[str, str]) -> set[str]:
+    return {n["name"] for n in get(app, tokens["ada"], "/api/nodes").json()}
+
+
+@contextmanager
+def adas_talker(app: App, root: Path, tokens: dict[str, str]) -> Iterator[subprocess.Popen[str]]:
+    """``ros2lab run demo talker.py`` with Ada's token, as she types it; Ctrl-C at the end, and
+    the talker gone from her world."""
     env = {**os.environ, "ROS2LAB_TOKEN": tokens["ada"]}
     env.pop("ROS_DOMAIN_ID", None)
     run = subprocess.Popen(
@@ -101,6 +108,21 @@ def test_a_students_node_process_joins_their_world_only(classroom: tuple[App, Pa
         cwd=root, env=env, text=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
     )  # fmt: skip
     try:
+        yield run
+    finally:
+        run.send_signal(signal.SIGINT)
+        try:
+            run.communicate(timeout=15)
+        except subprocess.TimeoutExpired:
+            end(run)
+    app.wait_for(
+        lambda: "/talker" not in ada_nodes(app, tokens), "the talker gone from Ada's world once it stopped"
+    )
+
+
+def test_a_students_node_process_joins_their_world_only(classroom: tuple[App, Path, dict[str, str]]) -> None:
+    app, root, tokens = classroom
+    with adas_talker(app, root, tokens):
 
         def ada_hears() -> bool:
             rate: dict[str, Any] = get(app, tokens["ada"], "/api/hz/chatter?window=5").json()
@@ -111,14 +133,6 @@ def test_a_students_node_process_joins_their_world_only(classroom: tuple[App, Pa
         assert nodes["/talker"]["location"] != "app"  # another process, on the class's Zenoh graph
         assert get(app, tokens["bob"], "/api/topics/chatter").status_code == 404
         assert "/talker" not in {n["name"] for n in get(app, tokens["bob"], "/api/nodes").json()}
-    finally:
-        run.send_signal(signal.SIGINT)
-        try:
-            run.communicate(timeout=15)
-        except subprocess.TimeoutExpired:
-            end(run)
-    app.wait_for(lambda: "/talker" not in {n["name"] for n in get(app, tokens["ada"], "/api/nodes").json()},
-                 "the talker gone from Ada's world once it stopped")  # fmt: skip
 
 
 def children_of(pid: int) -> list[int]:
@@ -140,30 +154,17 @@ def test_a_students_node_process_runs_below_the_worlds(classroom: tuple[App, Pat
     alone counts only within a session (server/processes/priority.py)."""
     app, root, tokens = classroom
     assert get(app, tokens["ada"], "/api/zenoh/join").json()["nice"] == 10
-    env = {**os.environ, "ROS2LAB_TOKEN": tokens["ada"]}
-    env.pop("ROS_DOMAIN_ID", None)
-    run = subprocess.Popen(
-        [sys.executable, "-m", "server", "--url", app.url, "run", "demo", "talker.py"],
-        cwd=root, env=env, text=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-    )  # fmt: skip
-    try:
-        app.wait_for(lambda: "/talker" in {n["name"] for n in get(app, tokens["ada"], "/api/nodes").json()},
-                     "the talker in Ada's world")  # fmt: skip
+    ours = Path("/proc/self/autogroup")
+    ours_before = ours.read_text().split()[-1] if ours.exists() else None
+    with adas_talker(app, root, tokens) as run:
+        app.wait_for(lambda: "/talker" in ada_nodes(app, tokens), "the talker in Ada's world")
         (node,) = children_of(run.pid)
         assert os.getpriority(os.PRIO_PROCESS, node) == os.getpriority(os.PRIO_PROCESS, 0) + 10
         assert os.getsid(node) == node != os.getsid(0)
         group = Path(f"/proc/{node}/autogroup")
         if group.exists():  # a kernel with autogroup scheduling
             assert group.read_text().split()[-1] == "10"
-            assert Path("/proc/self/autogroup").read_text().split()[-1] == "0"  # ours as it was
-    finally:
-        run.send_signal(signal.SIGINT)
-        try:
-            run.communicate(timeout=15)
-        except subprocess.TimeoutExpired:
-            end(run)
-    app.wait_for(lambda: "/talker" not in {n["name"] for n in get(app, tokens["ada"], "/api/nodes").json()},
-                 "the talker gone from Ada's world once it stopped")  # fmt: skip
+            assert ours.read_text().split()[-1] == ours_before  # ours as it was
 
 
 def test_a_student_gets_their_worlds_login_and_the_environment_that_uses_it(
