@@ -7,21 +7,21 @@ from __future__ import annotations
 import re
 from typing import Annotated, Any, Literal
 
-from fastapi import APIRouter, Depends, Query, Request, Response
+from fastapi import APIRouter, Depends, Path, Query, Request, Response
 from pydantic import BaseModel, Field
 from starlette.requests import HTTPConnection
 
 from server.checkpoints.catalog import load
-from server.checkpoints.class_table import reports_zip, table, table_csv
+from server.checkpoints.class_table import Row, reports_zip, table, table_csv
 from server.checkpoints.report import build, signed_files
 from server.checkpoints.signing import ReportSigner
 from server.checkpoints.view import world_view
-from server.classroom import ClassServer
+from server.classroom import ClassroomError, ClassServer
 from server.lab import Lab
 
 from .classroom import ClassroomDep, InstructorDep
 from .deps import LabDep, classroom_of, grant_of, lab_of
-from .responses import NOT_FOUND, UNAUTHORIZED, UNPROCESSABLE, responses
+from .responses import NOT_FOUND, TYPE_CONFLICT, UNAUTHORIZED, UNPROCESSABLE, responses
 
 router = APIRouter(prefix="/api/checkpoints", tags=["checkpoints"], responses=responses())
 class_router = APIRouter(prefix="/api/classroom/checkpoints", tags=["classroom"])
@@ -158,9 +158,14 @@ async def class_checkpoints(
     request: Request, _: InstructorDep, classroom: ClassroomDep, format: Literal["json", "csv"] = "json"
 ) -> dict[str, Any] | Response:
     """Student × checkpoint, with the times each was done, and the answers; ``?format=csv``. A
-    world on a world worker that does not answer in time has every cell ``unreachable``."""
+    world on a world worker that does not answer in time has every cell ``unreachable``. A student
+    whose progress is saved but who has not joined since the class server started is listed with
+    ``joined`` false (the CSV's last column, ``joined``: ``no``)."""
     names, rows = _rows(request, classroom)
-    view = table(names, rows)
+    saved: list[Row] = []
+    if isinstance(classroom, ClassServer):  # students not joined since it started, as their files keep them
+        saved = [(name, progress, {}) for name, progress in classroom.saved.not_joined(classroom.worlds)]
+    view = table(names, rows, saved)
     if isinstance(classroom, ClassServer):  # the worlds its world workers host, as they keep them
         remote, errors = await classroom.worker_checkpoints(names)
         view["students"] += remote
@@ -183,8 +188,9 @@ async def class_checkpoints(
     response_class=Response,
 )
 async def class_reports(request: Request, _: InstructorDep, classroom: ClassroomDep) -> Response:
-    """Every student's signed report, JSON and HTML, in one zip; for a world on a world worker that
-    does not answer in time, ``<world>.unreachable.txt`` says why."""
+    """Every student's signed report, JSON and HTML, in one zip (also those not joined since the
+    class server started, from their saved progress); for a world on a world worker that does not
+    answer in time, ``<world>.unreachable.txt`` says why."""
     files = []
     for world in classroom.worlds.values():
         if world.lab is None:
@@ -193,6 +199,10 @@ async def class_reports(request: Request, _: InstructorDep, classroom: Classroom
         json_file, page = signed_files(signer(request), build(watch.progress, watch.lines(), world.name))
         files += [(f"{world.name}.json", json_file), (f"{world.name}.html", page)]
     if isinstance(classroom, ClassServer):  # as the world workers sign them
+        for name, _saved in classroom.saved.not_joined(classroom.worlds):
+            progress = await classroom.saved.with_captures(name)
+            json_file, page = signed_files(signer(request), build(progress, {}, name))
+            files += [(f"{name}.json", json_file), (f"{name}.html", page)]
         remote, missing = await classroom.worker_reports()
         files += remote
         files += [(f"{name}.unreachable.txt", f"{why}\n".encode()) for name, why in missing.items()]
@@ -200,3 +210,18 @@ async def class_reports(request: Request, _: InstructorDep, classroom: Classroom
         reports_zip(files), media_type="application/zip",
         headers={"Content-Disposition": 'attachment; filename="checkpoint-reports.zip"'},
     )  # fmt: skip
+
+
+@class_router.post("/{world}/release", responses=responses(UNAUTHORIZED, 403, NOT_FOUND, TYPE_CONFLICT))
+async def release(
+    _: InstructorDep,
+    classroom: ClassroomDep,
+    world: Annotated[str, Path(pattern=r"^[a-z][a-z0-9_]{0,31}$", description="the world's name")],
+) -> dict[str, str]:
+    """Give a saved world's progress to the next join under its name, whoever it is (a student who
+    lost the cookie that proves it is them): its owner record is set aside, not removed. A world
+    joined now is 409; one with no saved progress whose owner is recorded, 404."""
+    if not isinstance(classroom, ClassServer):
+        raise ClassroomError(404, "only a class server keeps whose progress is whose")
+    student = await classroom.saved.release(world, classroom.worlds)
+    return {"released": world, "student": student}

@@ -18,7 +18,7 @@ from server.classroom import Classroom, ClassroomError, ClassServer, Grant, Worl
 from server.classroom.join_queue import JoinWaits
 from server.transport.acl import Credentials
 
-from .deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie
+from .deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie, token_of
 from .errors import status_for
 from .responses import (
     BAD_GATEWAY,
@@ -224,12 +224,14 @@ async def join(
 ) -> Joined | JSONResponse:
     """A world of one's own: the rocket and drone launches, under a token for this world only.
     Joins and wrong codes are rate-limited per client address and per class (429, Retry-After);
-    at the class's capacity the join waits in a bounded queue (202 with a ticket; 503 when full)."""
+    at the class's capacity the join waits in a bounded queue (202 with a ticket; 503 when full).
+    A name whose saved progress is another student's is 409: only the token given at that
+    student's last join (the page's cookie, or a bearer) takes it (docs/checkpoints.md)."""
     if not isinstance(classroom, ClassServer):
         raise ClassroomError(403, "this is a world worker: students join through the class server")
     address = request.client.host if request.client is not None else "unknown"
     try:
-        world, token = await classroom.join(body.name, body.code, address)
+        world, token = await classroom.join(body.name, body.code, address, token_of(request))
     except JoinWaits as waits:
         return queued(waits)
     set_token_cookie(response, token)

@@ -1,5 +1,6 @@
 """The instructor's table of the class: student × checkpoint, with times; as JSON or CSV; and every
-student's report in one zip."""
+student's report in one zip. A student listed from their saved progress alone (not joined since the
+class server started) has ``joined`` false, and their cells say what their files keep."""
 
 from __future__ import annotations
 
@@ -15,9 +16,10 @@ from .view import Lines, state
 Row = tuple[str, Progress, Lines]  # (world name, its progress, its watch's lines)
 
 
-def table(names: Sequence[str], rows: Sequence[Row]) -> dict[str, Any]:
+def table(names: Sequence[str], rows: Sequence[Row], saved: Sequence[Row] = ()) -> dict[str, Any]:
+    """``rows``: the worlds joined now; ``saved``: the students not joined since the start."""
     students = []
-    for world, progress, lines in rows:
+    for (world, progress, lines), joined in [*((r, True) for r in rows), *((r, False) for r in saved)]:
         cells = {}
         for name in names:
             record = progress.records.get(name)
@@ -25,7 +27,7 @@ def table(names: Sequence[str], rows: Sequence[Row]) -> dict[str, Any]:
                            "done_at": iso(record.done_at_s) if record is not None else None}  # fmt: skip
         students.append({
             "name": progress.student or world, "world": world, "cells": cells,
-            "answers": {qid: a.text for qid, a in progress.answers.items()},
+            "answers": {qid: a.text for qid, a in progress.answers.items()}, "joined": joined,
         })  # fmt: skip
     return {"checkpoints": list(names), "students": students}
 
@@ -40,13 +42,15 @@ def table_csv(view: dict[str, Any]) -> str:
     writer = csv.writer(out)
     names = view["checkpoints"]
     qids = sorted({q for s in view["students"] for q in s["answers"]})
+    states, times = [f"{n} state" for n in names], [f"{n} done at" for n in names]
     writer.writerow(
-        ["student", "world", *[f"{n} state" for n in names], *[f"{n} done at" for n in names], *qids]
-    )
+        ["student", "world", *states, *times, *qids, "joined"]
+    )  # "joined" last: columns as before
     for s in view["students"]:
         writer.writerow([
             _cell(s["name"]), s["world"], *[s["cells"].get(n, {}).get("state", "") for n in names],
             *[s["cells"].get(n, {}).get("done_at") or "" for n in names], *[_cell(s["answers"].get(q, "")) for q in qids],
+            "yes" if s.get("joined", True) else "no",
         ])  # fmt: skip
     return out.getvalue()
 

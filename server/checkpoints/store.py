@@ -1,7 +1,7 @@
 """Each world's progress on disk, so a restart of the server loses no student's ticks and answers.
 
-One folder per world in ``<state_dir>/progress/``: ``progress.json`` (saved.py) and a
-``<checkpoint>.png`` per capture. Every file is written whole to a temporary file and moved into
+One folder per world in ``<state_dir>/progress/``: ``progress.json`` (saved.py), a
+``<checkpoint>.png`` per capture and, on a class server, ``student.json``: whose it is (owner.py). Every file is written whole to a temporary file and moved into
 place (``os.replace``), so a crash leaves the old file or the new one, never half of one.
 
 Writing never happens where the change does (a check met in the sim loop's drain, an answer in a
@@ -23,6 +23,7 @@ from pathlib import Path
 from server.workspace.location import remove_folder
 
 from .declared import Checkpoint
+from .owner import OWNER_FILE, Owner, read_owner
 from .progress import MAX_CAPTURE_BYTES, Progress
 from .saved import SavedProgressError, Snapshot, capture_ok, decode, encode
 
@@ -92,6 +93,40 @@ class ProgressStore:
                 return False
             return True
 
+    # -- whose it is (a class server's) -----------------------------------------------------------
+    def owner(self, world: str) -> Owner | None:
+        """The student ``world``'s files belong to (None: nobody recorded); OwnerFileError for a
+        record that cannot be read. Blocking."""
+        with self._io:
+            return read_owner(self.world_folder(world))
+
+    def has_progress(self, world: str) -> bool:
+        """Whether ``world`` has a progress file. Blocking."""
+        return (self.world_folder(world) / PROGRESS_FILE).is_file()
+
+    def claim(self, world: str, owner: Owner) -> None:
+        """Record ``owner`` as whose ``world``'s files are, from now on. Blocking."""
+        folder = self.world_folder(world)
+        with self._io:
+            folder.mkdir(parents=True, exist_ok=True, mode=0o700)
+            write_atomic(folder / OWNER_FILE, owner.encode())
+
+    def release(self, world: str, stamp: str) -> Path | None:
+        """Set ``world``'s owner record aside (renamed ``student.json.released-<stamp>``, never
+        removed): the next join under its name takes its progress. Where it went; None when there
+        was none. Blocking."""
+        path = self.world_folder(world) / OWNER_FILE
+        with self._io:
+            if not path.exists():
+                return None
+            aside = path.with_name(f"{OWNER_FILE}.released-{stamp}")
+            n = 1
+            while aside.exists():  # released twice in one second: keep both
+                n += 1
+                aside = path.with_name(f"{OWNER_FILE}.released-{stamp}-{n}")
+            path.rename(aside)
+            return aside
+
     def flush(self, timeout_s: float = CLOSE_WAIT_S) -> bool:
         """Wait until every queued change is written; whether that happened within ``timeout_s``."""
         with self._cond:
@@ -128,7 +163,7 @@ class ProgressStore:
                 path.replace(path.with_name(path.name + ".corrupt"))
             return
         for checkpoint in progress.checkpoints:
-            png = _capture(folder, checkpoint.name)
+            png = read_capture(folder, checkpoint.name)
             if png is not None:
                 progress.captures[checkpoint.name] = png
                 taken += 1
@@ -173,12 +208,13 @@ class ProgressStore:
         written = self._written.setdefault(world, {})
         for name, png in snapshot.captures.items():
             if written.get(name) is not png and _NAME.fullmatch(name):
-                _write_atomic(folder / f"{name}.png", png)
+                write_atomic(folder / f"{name}.png", png)
                 written[name] = png
-        _write_atomic(folder / PROGRESS_FILE, encode(snapshot))
+        write_atomic(folder / PROGRESS_FILE, encode(snapshot))
 
 
-def _capture(folder: Path, name: str) -> bytes | None:
+def read_capture(folder: Path, name: str) -> bytes | None:
+    """Checkpoint ``name``'s capture in world folder ``folder``, if it holds a good one."""
     if not _NAME.fullmatch(name):
         return None
     path = folder / f"{name}.png"
@@ -195,7 +231,7 @@ def _capture(folder: Path, name: str) -> bytes | None:
     return png
 
 
-def _write_atomic(path: Path, data: bytes) -> None:
+def write_atomic(path: Path, data: bytes) -> None:
     fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
     try:
         with os.fdopen(fd, "wb") as out:

@@ -15,6 +15,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from server.bus import Clock, ExecutorGroup, SystemClock
+from server.checkpoints.catalog import load as load_checkpoints
 from server.limits import RateLimit
 from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
@@ -31,8 +32,10 @@ from .grants import Grants, world_for
 from .join_queue import JoinQueue, JoinWaits
 from .load import CpuMeter, machine_id
 from .placement import Placement
+from .saved_students import SavedStudents
 from .tokens import Grant, TokenSigner
-from .world import World, drone_position, world_name
+from .world import World, world_name
+from .world import drones as world_drones
 from .worlds import WorldLabs
 
 if TYPE_CHECKING:
@@ -72,6 +75,8 @@ class ClassServer:
         self.placement = Placement(settings, self.labs, self.graph, self.cpu, self._end)
         self.load = ClassLoad(self.labs, self.graph, self.cpu, self.placement)
         self.queue = JoinQueue(self.class_settings.join_queue, self.clock)
+        # The progress on disk: whose each world's is, and those not joined since the start.
+        self.saved = SavedStudents(self.labs.progress, lambda: load_checkpoints(settings.lab.checkpoints))
         self.local_workers: LocalWorkers | None = None  # world workers started here (--workers)
         self.view: ClassView | None = None  # the instructor's 3D view of every world
         self.workspaces_mark: str | None = None  # its workspaces folder's mark, once open
@@ -140,6 +145,7 @@ class ClassServer:
     async def open(self) -> None:
         """Open the instructor's view and the class's Zenoh graph (if Zenoh is on), then start the
         watch over the world workers and those started here."""
+        await self.saved.load()
         # Workers that read this mark in their own workspaces folder share this one (class_mark.py).
         try:
             self.workspaces_mark = await asyncio.to_thread(leave_mark, self.class_settings.workspaces_dir)
@@ -185,15 +191,19 @@ class ClassServer:
         await self.graph.close()
 
     # -- worlds --------------------------------------------------------------------------------
-    async def join(self, student: str, code: str, address: str = "unknown") -> tuple[World, str]:
-        """A new world for ``student``, joined from client ``address`` (its limits: admission.py).
+    async def join(
+        self, student: str, code: str, address: str = "unknown", token: str | None = None
+    ) -> tuple[World, str]:
+        """A new world for ``student``, joined from client ``address`` (its limits: admission.py)
+        with the ``token`` its browser holds, if any (its progress on disk: saved_students.py).
         At the class's capacity (capacity.py), or behind joins already waiting, it waits in the
         join queue instead: ``JoinWaits`` carries its ticket."""
         self.admission.check(address)
         if not hmac.compare_digest(code.strip().upper().encode(), self.code.encode()):
             raise self.admission.wrong_code(address)
         check_student_name(student)
-        capacity = await self.load.capacity()  # before the name is checked: no await after it
+        await self.saved.check(self._free_name(student), student.strip()[:64], token)
+        capacity = await self.load.capacity()  # before the name is checked again: no await after it
         name = self._free_name(student)
         student = student.strip()[:64]
         # Nobody passes a join already waiting; a full class lets one in only as the instructor said.
@@ -257,6 +267,7 @@ class ClassServer:
             placed_at=self.clock.now(), login=login, address=address, reset_limit=resets,
         )  # fmt: skip
         self.graph.show(world)
+        await self.saved.claim(name, student, token)
         where = f" on world worker {place.id}" if place is not None else ""
         log.info("%s joined: world %s%s", student, name, where)
         return world, token
@@ -337,15 +348,7 @@ class ClassServer:
     ) -> dict[str, tuple[str, list[float] | None]]:
         """Every world's student and drone position, as the class view shows them (None: not known
         now); a worker's world's from ``remote`` (the latest its worker reported)."""
-        remote = remote or {}
-        out: dict[str, tuple[str, list[float] | None]] = {}
-        for world in self.worlds.values():
-            if world.lab is not None:
-                position = drone_position(world.lab)
-            else:
-                position = None if world.lost is not None else remote.get(world.name)
-            out[world.name] = (world.student, position)
-        return out
+        return world_drones(self.worlds.values(), remote or {})
 
     async def remote_drones(self) -> dict[str, list[float] | None]:
         return await remote_worlds.remote_drones(self.workers, self.worlds)

@@ -43,7 +43,8 @@ def _why(worker: WorkerRef, exc: BaseException) -> str:
 
 def unreachable_row(world: World, checkpoints: Sequence[str], reason: str) -> dict[str, Any]:
     cells = {name: {"state": UNREACHABLE, "done_at": None} for name in checkpoints}
-    return {"name": world.student, "world": world.name, "cells": cells, "answers": {}, "unreachable": reason}
+    return {"name": world.student, "world": world.name, "cells": cells, "answers": {}, "joined": True,
+            "unreachable": reason}  # fmt: skip
 
 
 def _remote(worlds: Mapping[str, World]) -> list[World]:

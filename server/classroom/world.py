@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import re
 import time
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -94,3 +95,18 @@ def drone_position(lab: Lab) -> list[float] | None:
         return None
     p = latest.pose.position
     return [round(p.x, 3), round(p.y, 3), round(p.z, 3)]
+
+
+def drones(
+    worlds: Iterable[World], remote: Mapping[str, list[float] | None]
+) -> dict[str, tuple[str, list[float] | None]]:
+    """Each world's student and drone position (None: not known now); a worker's world's from
+    ``remote``, the latest its worker reported."""
+    out: dict[str, tuple[str, list[float] | None]] = {}
+    for world in worlds:
+        if world.lab is not None:
+            position = drone_position(world.lab)
+        else:
+            position = None if world.lost is not None else remote.get(world.name)
+        out[world.name] = (world.student, position)
+    return out

@@ -142,3 +142,38 @@ def test_store_evidence_that_is_not_json_fails_that_write_only_and_is_logged(
     bob.answer("q1", "the writer goes on")  # the marker: written by the same thread, after it
     assert saved(store, "bob")["answers"]["q1"]["text"] == "the writer goes on"  # type: ignore[index]
     assert not (store.world_folder("ada") / PROGRESS_FILE).exists()
+
+
+def test_a_class_folder_is_read_bounded_with_owners_names_and_nothing_moved(tmp_path: Path) -> None:
+    """saved_worlds.py: the class worlds with a progress file, by name, at most ``limit`` folders;
+    a spoilt file is left where it is (the world's own start sets it aside), the lab's own is not
+    a class world's, and a released owner record is kept beside under a name of its own."""
+    from server.checkpoints.owner import OWNER_FILE, Owner
+    from server.checkpoints.saved_worlds import read_saved
+
+    store = ProgressStore.in_state_dir(tmp_path)
+    try:
+        for world in ("ada", "bob", "cy", "_lab"):
+            store.open(world, CHECKPOINTS).answer("q1", f"{world}'s answer")
+        store.claim("ada", Owner.of("Ada L.", "token-of-ada"))
+        store.claim("dee", Owner.of("Dee", "token-of-dee"))  # an owner, no progress: not listed
+        assert store.flush()
+    finally:
+        store.close()
+    spoilt = store.world_folder("cy") / PROGRESS_FILE
+    spoilt.write_text("{")
+    found = read_saved(store.folder, CHECKPOINTS)
+    assert [(s.world, s.progress.student) for s in found] == [("ada", "Ada L."), ("bob", "bob")]
+    assert found[0].progress.answers["q1"].text == "ada's answer" and not found[0].progress.captures
+    assert spoilt.read_text() == "{"  # left as it is
+    assert len(read_saved(store.folder, CHECKPOINTS, limit=1)) <= 1
+    assert store.owner("ada") == Owner.of("Ada L.", "token-of-ada")
+    aside = [store.release("ada", "20240101T000000Z"), store.release("dee", "20240101T000000Z")]
+    store.claim("ada", Owner.of("Ada L.", "again"))
+    again = store.release("ada", "20240101T000000Z")  # the same second: both kept
+    assert aside[0] is not None and again is not None and aside[0] != again and aside[0].exists()
+    assert store.owner("ada") is None and store.release("bob", "x") is None
+    assert sorted(p.name for p in store.world_folder("ada").glob(f"{OWNER_FILE}*")) == [
+        f"{OWNER_FILE}.released-20240101T000000Z",
+        f"{OWNER_FILE}.released-20240101T000000Z-2",
+    ]

@@ -27,11 +27,18 @@ function cell(row: HTMLTableRowElement, s: ClassStudent, name: string): void {
     td.title = `${s.name}: ${s.unreachable ?? "its world worker did not answer"}`;
     return;
   }
+  const text = c.state === "done" && c.done_at ? `${MARK.done} ${time(c.done_at)}` : `${MARK[c.state]} ${c.state.replace("_", " ")}`;
+  if (s.joined === false) {  // no world to open the evidence of until they join again
+    td.className = `cell ${c.state} not-joined`;
+    td.textContent = text;
+    td.title = `${s.name}: ${name}, as saved (not joined since the class server started)`;
+    return;
+  }
   const b = document.createElement("button");
   b.type = "button";
   b.className = `cell ${c.state}`;
   b.dataset.checkpoint = name;
-  b.textContent = c.state === "done" && c.done_at ? `${MARK.done} ${time(c.done_at)}` : `${MARK[c.state]} ${c.state.replace("_", " ")}`;
+  b.textContent = text;
   b.title = `${s.name}: ${name} (open its evidence)`;
   td.append(b);
 }
@@ -39,7 +46,7 @@ function cell(row: HTMLTableRowElement, s: ClassStudent, name: string): void {
 // Drawn again only when something in it changed, so that a click never meets a button being replaced.
 let drawn = "";
 function drawTable(t: ClassCheckpoints): void {
-  const key = JSON.stringify([t.checkpoints, t.students.map((s) => [s.name, s.world, s.cells])]);
+  const key = JSON.stringify([t.checkpoints, t.students.map((s) => [s.name, s.world, s.cells, s.joined])]);
   if (key === drawn) return;
   drawn = key;
   const head = $<HTMLTableRowElement>("checkpoints-head");
@@ -50,7 +57,7 @@ function drawTable(t: ClassCheckpoints): void {
     const row = body.insertRow();
     row.dataset.student = s.name;
     row.dataset.world = s.world ?? s.name;
-    row.insertCell().textContent = s.name;
+    row.insertCell().textContent = s.joined === false ? `${s.name} (not joined)` : s.name;
     for (const name of t.checkpoints) cell(row, s, name);
   }
 }
@@ -74,9 +81,9 @@ function drawAnswers(t: ClassCheckpoints): void {
   }));
 }
 
-// The questions' texts: the same in every world, so the first student's world says them.
+// The questions' texts: the same in every world, so the first joined student's world says them.
 async function learnQuestions(t: ClassCheckpoints): Promise<void> {
-  const first = t.students[0];
+  const first = t.students.find((s) => s.joined !== false);
   if (state.questions.size || !first) return;
   const reply = await fetch(`${CHECKPOINTS_URL}?world=${encodeURIComponent(first.world ?? first.name)}`, { cache: "no-store" });
   if (!reply.ok) return;

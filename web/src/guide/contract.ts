@@ -42,6 +42,7 @@ export interface ClassStudent {
   cells: Record<string, ClassCell | undefined>;
   answers: Record<string, string | undefined>;
   unreachable?: string; // why its world worker did not answer
+  joined?: boolean; // false: not joined since the class server started (listed from its saved progress)
 }
 export interface ClassCheckpoints { checkpoints: string[]; students: ClassStudent[] }
 

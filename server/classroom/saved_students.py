@@ -1,0 +1,107 @@
+"""The class's progress on disk and whose it is: the students not joined since the class server
+started, as their files keep them (the instructor's table lists them), and the rule that gives a
+world's progress to its own student only.
+
+A join under a name whose progress is on disk takes it when that progress is nobody's yet (no owner
+record: released by the instructor, or kept before owners were recorded) or when the join presents
+the token its student was given last (the join page's cookie, which outlives a restart of the class
+server though the token no longer grants anything): server/checkpoints/owner.py. Any other join
+under that name is refused with 409, and nothing changes. A join that starts a world records its
+student as the owner. The instructor releases a student's progress (their owner record is set
+aside, never removed) for a student who lost their cookie: the next join under the name takes it.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import time
+from collections.abc import Callable, Container
+
+from server.checkpoints.declared import Checkpoint
+from server.checkpoints.owner import Owner, OwnerFileError
+from server.checkpoints.progress import Progress
+from server.checkpoints.saved_worlds import read_captures, read_saved
+from server.checkpoints.store import ProgressStore
+
+from .errors import ClassroomError
+
+log = logging.getLogger("classroom")
+
+
+class SavedStudents:
+    """The progress ``store`` keeps, read once at the start (``load``), and its owners."""
+
+    def __init__(self, store: ProgressStore, checkpoints: Callable[[], tuple[Checkpoint, ...]]) -> None:
+        self.store = store
+        self._checkpoints = checkpoints
+        self._saved: dict[str, Progress] = {}  # by world: those not joined since the start
+
+    async def load(self) -> None:
+        """Read the state folder's progress (off the loop, bounded: saved_worlds.py)."""
+        saved = await asyncio.to_thread(read_saved, self.store.folder, self._checkpoints())
+        self._saved = {s.world: s.progress for s in saved}
+        if saved:
+            log.info("progress of %d student(s) not joined since the start: %s", len(saved),
+                     ", ".join(s.world for s in saved))  # fmt: skip
+
+    def not_joined(self, live: Container[str]) -> list[tuple[str, Progress]]:
+        """The saved students, by world, who have no world now."""
+        return [(name, progress) for name, progress in self._saved.items() if name not in live]
+
+    async def with_captures(self, name: str) -> Progress:
+        """Saved world ``name``'s progress with its captures (for its report), read off the loop."""
+        saved = self._saved[name]
+        progress = Progress(saved.checkpoints, saved.student)
+        progress.records, progress.answers = dict(saved.records), dict(saved.answers)
+        await asyncio.to_thread(read_captures, self.store.world_folder(name), progress)
+        return progress
+
+    async def check(self, name: str, student: str, token: str | None) -> None:
+        """A join as ``student`` into world ``name``: 409 unless there is no progress on disk under
+        that name, or it is nobody's yet, or ``token`` proves the join is its student's."""
+        try:
+            owner = await asyncio.to_thread(self._owner_of_progress, name)
+        except OwnerFileError as exc:
+            raise ClassroomError(409, f"the name {student!r} (world {name!r}) has saved progress whose "
+                                      f"owner record cannot be read ({exc}): ask the instructor to release "
+                                      "it, or join under another name") from None  # fmt: skip
+        if owner is None or owner.proven_by(token):
+            return
+        raise ClassroomError(
+            409, f"the name {student!r} (world {name!r}) has saved progress that belongs to the student who "
+            f"joined as {owner.student!r} earlier, and this join does not show it is them: join again from "
+            "the browser used then (its cookie shows it), ask the instructor to release that progress to "
+            "you, or join under another name",
+        )  # fmt: skip
+
+    def _owner_of_progress(self, name: str) -> Owner | None:
+        """Whose world ``name``'s saved progress is; None when it has none, or nobody's."""
+        return self.store.owner(name) if self.store.has_progress(name) else None
+
+    async def claim(self, name: str, student: str, token: str) -> None:
+        """``student`` joined world ``name`` with ``token``: its progress is theirs from now on."""
+        self._saved.pop(name, None)  # listed from its world from now on
+        try:
+            await asyncio.to_thread(self.store.claim, name, Owner.of(student, token))
+        except OSError as exc:  # they work all the same; after a restart the instructor releases it
+            log.warning("world %s: its owner is not recorded (%s)", name, exc)
+
+    async def release(self, name: str, live: Container[str]) -> str:
+        """Set aside world ``name``'s owner record: the next join under its name takes its progress.
+        The student it belonged to; 409 for a world joined now, 404 for one with no saved progress."""
+        if name in live:
+            raise ClassroomError(409, f"world {name!r} is joined now: its progress is its student's")
+        try:
+            owner = await asyncio.to_thread(self.store.owner, name)
+        except OwnerFileError:
+            owner = None  # set aside all the same
+        stamp = time.strftime("%Y%m%dT%H%M%SZ", time.gmtime())
+        aside = await asyncio.to_thread(self.store.release, name, stamp)
+        if aside is None:
+            raise ClassroomError(404, f"world {name!r} has no saved progress with an owner to release")
+        log.info("progress of world %s released (its owner record is now %s)", name, aside.name)
+        saved = self._saved.get(name)
+        if owner is not None:
+            return owner.student
+        return (saved.student if saved is not None else None) or name
