@@ -177,3 +177,20 @@ def test_a_class_folder_is_read_bounded_with_owners_names_and_nothing_moved(tmp_
         f"{OWNER_FILE}.released-20240101T000000Z",
         f"{OWNER_FILE}.released-20240101T000000Z-2",
     ]
+
+
+def test_a_join_with_no_progress_writes_nothing_and_its_owner_comes_with_the_first_progress(
+    tmp_path: Path,
+) -> None:
+    from server.checkpoints.owner import OWNER_FILE, Owner
+
+    store = ProgressStore.in_state_dir(tmp_path)
+    try:
+        store.claim("eve", Owner.of("Eve", "token-of-eve"))
+        assert not store.folder.exists()  # a join alone leaves no folder behind
+        store.open("eve", CHECKPOINTS).answer("q1", "Eve's answer")
+        assert store.flush()
+    finally:
+        store.close()
+    assert (store.world_folder("eve") / OWNER_FILE).is_file()
+    assert store.owner("eve") == Owner.of("Eve", "token-of-eve")
