@@ -20,7 +20,8 @@ from rcl_interfaces.msg import (
 )
 from rcl_interfaces.srv import ListParameters
 
-from ._parameter_checks import apply_descriptor
+from server.bus.parameter_checks import refusal
+
 from .exceptions import (
     InvalidParameterException,
     InvalidParameterTypeException,
@@ -282,10 +283,14 @@ class ParameterAPI:
         for param in params:
             descriptor = (descriptors or self._descriptors).get(param.name)
             if descriptor is not None:
-                declared = self.has_parameter(param.name)
-                result = apply_descriptor(param, descriptor, declared, check_read_only=descriptors is None)
-                if not result.successful:
-                    return result
+                reason = refusal(
+                    param.name, param.value, descriptor, kind=param.type_.value,
+                    check_read_only=descriptors is None, declared=self.has_parameter(param.name),
+                )  # fmt: skip
+                if reason is not None:
+                    return SetParametersResult(successful=False, reason=reason)
+                if descriptor.dynamic_typing:  # rclpy's descriptor takes the type it was given
+                    descriptor.type = param.type_.value
         for callback in self._on_set:
             result = callback(params)
             if not result.successful:

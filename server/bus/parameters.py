@@ -11,7 +11,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ..msgs.generated.rcl_interfaces import ParameterDescriptor
-from .parameter_values import DOUBLE, DOUBLE_ARRAY, INTEGER, INTEGER_ARRAY, refusal, type_of
+from .parameter_checks import refusal
+from .parameter_values import DOUBLE, DOUBLE_ARRAY, INTEGER, INTEGER_ARRAY, type_of
 
 SEPARATOR = "."
 
@@ -62,7 +63,7 @@ class NodeParameters:
             described.type = type_of(value)
         if name in self._param_overrides:
             value = _as_declared(self._param_overrides[name], described)
-            reason = refusal(name, value, described, check_read_only=False)
+            reason = refusal(name, value, described, check_read_only=False, declared=False)
             if reason is not None:
                 raise ValueError(f"{self.fully_qualified_name}: parameter {name!r}: {reason}")
         param = Parameter(name, value)
