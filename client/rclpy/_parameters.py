@@ -20,7 +20,7 @@ from rcl_interfaces.msg import (
 )
 from rcl_interfaces.srv import ListParameters
 
-from server.bus.parameter_checks import refusal
+from server.bus.parameter_checks import override_as_declared, refusal
 
 from .exceptions import (
     InvalidParameterException,
@@ -38,13 +38,6 @@ OnSet = Callable[[list[Parameter]], SetParametersResult]
 PreSet = Callable[[list[Parameter]], list[Parameter]]
 PostSet = Callable[[list[Parameter]], None]
 NOT_SET = Parameter.Type.NOT_SET
-
-
-def _as_override(value: Any, descriptor: ParameterDescriptor) -> Any:
-    """An integer given on the command line for a double parameter is that double (``-p rate:=5``)."""
-    if descriptor.type == ParameterType.PARAMETER_DOUBLE and type(value) is int:
-        return float(value)
-    return value
 
 
 class ParameterAPI:
@@ -118,7 +111,7 @@ class ParameterAPI:
                         "Cannot declare a statically typed parameter with default value of type PARAMETER_NOT_SET"
                     )
         if not ignore_override and name in self._parameter_overrides:
-            value = _as_override(self._parameter_overrides[name], descriptor)
+            value = override_as_declared(self._parameter_overrides[name], descriptor)
         descriptor.name = name
         return Parameter(name, value=value), descriptor
 

@@ -1,5 +1,6 @@
 """What a ParameterDescriptor lets a parameter take, checked as rclpy's Node checks it before a
-set or a declaration: read-only, static typing, an integer or floating-point range with its step.
+set or a declaration: read-only, static typing, an integer or floating-point range with its step,
+and how an override given for a declaration is taken.
 The one implementation of these checks: the lab's own nodes (``server.bus.parameters``) and node
 processes' rclpy (``client/rclpy``) both ask it, so both refuse the same values with rclpy's
 words."""
@@ -10,7 +11,7 @@ import math
 from typing import Any
 
 from ..msgs.generated.rcl_interfaces import FloatingPointRange, IntegerRange, ParameterDescriptor
-from .parameter_values import DOUBLE, FIELDS, INTEGER, NOT_SET, type_of
+from .parameter_values import DOUBLE, DOUBLE_ARRAY, FIELDS, INTEGER, NOT_SET, type_of
 
 PARAM_REL_TOL = 1e-6  # rclpy's Node.PARAM_REL_TOL: how close a double must be to an edge or a step
 
@@ -46,6 +47,20 @@ def refusal(
     if kind == DOUBLE and descriptor.floating_point_range:
         return _double_refusal(name, value, descriptor.floating_point_range[0])
     return None
+
+
+def override_as_declared(value: Any, descriptor: ParameterDescriptor) -> Any:
+    """An override's value as the parameter it is given for takes it: an integer (or a list of
+    them) for a double (or a double array) is that double (``-p rate:=5``, a launch's ``<param
+    value="5"/>``), the lab's leniency at a declaration, where rclpy would refuse the type. A set
+    gets none: an integer for a double is refused there, as rclpy refuses it."""
+    declared = int(descriptor.type)
+    if declared == DOUBLE and type(value) is int:
+        return float(value)
+    integers = isinstance(value, list | tuple) and value and all(type(v) is int for v in value)
+    if declared == DOUBLE_ARRAY and integers:
+        return [float(v) for v in value]
+    return value
 
 
 def type_name(kind: int) -> str:
@@ -84,4 +99,4 @@ def _double_refusal(name: str, value: float, bounds: FloatingPointRange) -> str 
     return None
 
 
-__all__ = ["PARAM_REL_TOL", "refusal", "type_name"]
+__all__ = ["PARAM_REL_TOL", "override_as_declared", "refusal", "type_name"]

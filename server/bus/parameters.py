@@ -1,7 +1,7 @@
 """A bus node's parameters: declared with a value and, optionally, a ParameterDescriptor (read-only,
 a range), given by a launch's overrides, listed, described and set as rclpy's node does. A set
-that the descriptor, the type or the node's own on-set callback refuses changes nothing and
-raises ValueError with the reason; ``server.bus.parameter_service`` answers ROS 2's parameter
+that the descriptor, the type (an integer for a double too, as rclpy) or the node's own on-set
+callback refuses changes nothing and raises ValueError with the reason; ``server.bus.parameter_service`` answers ROS 2's parameter
 services from these."""
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ..msgs.generated.rcl_interfaces import ParameterDescriptor
-from .parameter_checks import refusal
-from .parameter_values import DOUBLE, DOUBLE_ARRAY, INTEGER, INTEGER_ARRAY, type_of
+from .parameter_checks import override_as_declared, refusal
+from .parameter_values import type_of
 
 SEPARATOR = "."
 
@@ -23,18 +23,6 @@ class Parameter:
 
     name: str
     value: Any
-
-
-def _as_declared(value: Any, descriptor: ParameterDescriptor) -> Any:
-    """An integer (or integer list) given for a double parameter is that double (``-p rate:=5``,
-    ``ros2 param set /n rate 5``), as the lab has always taken it."""
-    declared = int(descriptor.type)
-    kind = type_of(value)
-    if declared == DOUBLE and kind == INTEGER:
-        return float(value)
-    if declared == DOUBLE_ARRAY and kind == INTEGER_ARRAY:
-        return [float(v) for v in value]
-    return value
 
 
 class NodeParameters:
@@ -62,7 +50,7 @@ class NodeParameters:
         elif not described.type:
             described.type = type_of(value)
         if name in self._param_overrides:
-            value = _as_declared(self._param_overrides[name], described)
+            value = override_as_declared(self._param_overrides[name], described)
             reason = refusal(name, value, described, check_read_only=False, declared=False)
             if reason is not None:
                 raise ValueError(f"{self.fully_qualified_name}: parameter {name!r}: {reason}")
@@ -127,12 +115,10 @@ class NodeParameters:
         checked: list[Parameter] = []
         for param in params:
             self.get_parameter(param.name)
-            descriptor = self._descriptors[param.name]
-            value = _as_declared(param.value, descriptor)
-            reason = refusal(param.name, value, descriptor)
+            reason = refusal(param.name, param.value, self._descriptors[param.name])
             if reason is not None:
                 raise ValueError(reason)
-            checked.append(Parameter(param.name, value))
+            checked.append(Parameter(param.name, param.value))
         for callback in self._param_callbacks:
             result = callback(checked)
             if result is not None and not getattr(result, "successful", bool(result)):

@@ -22,6 +22,7 @@ from server.msgs.generated.rcl_interfaces import (
 )
 from server.packages.flightcontroller.position_controller import PositionControllerNode
 from server.packages.simple_control.keyboard_manager import KeyboardManager
+from server.params_file import value_from_text
 
 
 class _Tuned(Node):
@@ -102,6 +103,9 @@ def test_a_set_in_range_takes_effect_and_one_out_of_range_is_refused_with_the_re
     [
         ("seed", 8, "Trying to set a read-only parameter: seed."),
         ("label", 3, "Wrong parameter type"),
+        # ``ros2 param set /lab/tuned gain 5`` sends what YAML reads in "5": an integer, which
+        # rclpy refuses for a double parameter (an integer is no double there).
+        ("gain", value_from_text("5"), "Wrong parameter type, expected 'Type.DOUBLE' got 'Type.INTEGER'"),
         ("nope", 1, "'nope' of /lab/tuned was not declared"),
     ],
 )
@@ -123,12 +127,19 @@ def test_an_atomic_set_with_one_refusal_changes_none(bus: Bus, executor: Executo
     ).result  # fmt: skip
     assert not refused.successful and "read-only" in refused.reason
     assert tuned.get_parameter("gain").value == 1.5
+    wrong_type = _call(
+        bus, executor, SetParametersAtomically, "/lab/tuned/set_parameters_atomically",
+        parameters=[_param("label", "x"), _param("gain", 2)],  # an integer is no double, as in rclpy
+    ).result  # fmt: skip
+    assert not wrong_type.successful
+    assert wrong_type.reason == "Wrong parameter type, expected 'Type.DOUBLE' got 'Type.INTEGER'"
+    assert tuned.get_parameters_dict() == {"seed": 7, "gain": 1.5, "label": "drone", "limits.low": [1, 2]}
     accepted = _call(
         bus, executor, SetParametersAtomically, "/lab/tuned/set_parameters_atomically",
-        parameters=[_param("gain", 2), _param("label", "x")],  # an integer for a double is that double
+        parameters=[_param("gain", 2.0), _param("label", "x")],
     ).result  # fmt: skip
     assert accepted.successful
-    assert tuned.get_parameters_dict()["gain"] == 2.0 and type(tuned.get_parameter("gain").value) is float
+    assert tuned.get_parameters_dict()["gain"] == 2.0 and tuned.get_parameter("label").value == "x"
 
 
 def test_serving_twice_adds_nothing_and_the_services_go_with_the_node(bus: Bus, tuned: _Tuned) -> None:

@@ -226,6 +226,7 @@ def test_refusals_come_back_with_their_reasons(run: type[NodeProcess], lab: tupl
         ("robot_name", "x", "Setting parameter failed: Trying to set a read-only parameter: robot_name.\n"),
         ("speed", "11.0", "Setting parameter failed: Parameter speed out of range Min: 0.0, Max: 10.0, value: 11.0\n"),
         ("speed", "fast", "Setting parameter failed: Wrong parameter type, expected 'Type.DOUBLE' got 'Type.STRING'\n"),
+        ("speed", "5", "Setting parameter failed: Wrong parameter type, expected 'Type.DOUBLE' got 'Type.INTEGER'\n"),
     ]  # fmt: skip
     for name, value, err in cases:
         done = param(app, "set", "/guarded_node", name, value)
