@@ -45,6 +45,10 @@ class ParameterAPI:
 
     _parameters: dict[str, Any]
 
+    def _start_parameters(self) -> None:
+        """The bus's Node starts its parameters at its creation; rclpy's does in _init_parameters,
+        once its overrides and its own publisher's QoS are known."""
+
     def _init_parameters(
         self, overrides: dict[str, Any], allow_undeclared: bool, declare_overrides: bool
     ) -> None:
