@@ -20,7 +20,8 @@ from rcl_interfaces.msg import (
 )
 from rcl_interfaces.srv import ListParameters
 
-from ._parameter_checks import apply_descriptor
+from server.bus.parameter_checks import override_as_declared, refusal
+
 from .exceptions import (
     InvalidParameterException,
     InvalidParameterTypeException,
@@ -39,17 +40,14 @@ PostSet = Callable[[list[Parameter]], None]
 NOT_SET = Parameter.Type.NOT_SET
 
 
-def _as_override(value: Any, descriptor: ParameterDescriptor) -> Any:
-    """An integer given on the command line for a double parameter is that double (``-p rate:=5``)."""
-    if descriptor.type == ParameterType.PARAMETER_DOUBLE and type(value) is int:
-        return float(value)
-    return value
-
-
 class ParameterAPI:
     """Mixed into rclpy's Node (before the bus's Node, whose parameter table it keeps)."""
 
     _parameters: dict[str, Any]
+
+    def _start_parameters(self) -> None:
+        """The bus's Node starts its parameters at its creation; rclpy's does in _init_parameters,
+        once its overrides and its own publisher's QoS are known."""
 
     def _init_parameters(
         self, overrides: dict[str, Any], allow_undeclared: bool, declare_overrides: bool
@@ -117,7 +115,7 @@ class ParameterAPI:
                         "Cannot declare a statically typed parameter with default value of type PARAMETER_NOT_SET"
                     )
         if not ignore_override and name in self._parameter_overrides:
-            value = _as_override(self._parameter_overrides[name], descriptor)
+            value = override_as_declared(self._parameter_overrides[name], descriptor)
         descriptor.name = name
         return Parameter(name, value=value), descriptor
 
@@ -282,10 +280,14 @@ class ParameterAPI:
         for param in params:
             descriptor = (descriptors or self._descriptors).get(param.name)
             if descriptor is not None:
-                declared = self.has_parameter(param.name)
-                result = apply_descriptor(param, descriptor, declared, check_read_only=descriptors is None)
-                if not result.successful:
-                    return result
+                reason = refusal(
+                    param.name, param.value, descriptor, kind=param.type_.value,
+                    check_read_only=descriptors is None, declared=self.has_parameter(param.name),
+                )  # fmt: skip
+                if reason is not None:
+                    return SetParametersResult(successful=False, reason=reason)
+                if descriptor.dynamic_typing:  # rclpy's descriptor takes the type it was given
+                    descriptor.type = param.type_.value
         for callback in self._on_set:
             result = callback(params)
             if not result.successful:

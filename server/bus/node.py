@@ -100,6 +100,7 @@ class Node(NodeParameters):
         self._rosout: Publisher | None = None
         self.bus.add_node(self)
         self._rosout = self.create_publisher(Log, "/rosout", 1000)
+        self._start_parameters()
 
     # -- identity --------------------------------------------------------
     def get_name(self) -> str:

@@ -1,15 +1,13 @@
 """A bus node's parameter values as ``rcl_interfaces`` carries them: the ParameterType of a Python
-value, a value to and from a ParameterValue message, and what a ParameterDescriptor allows
-(read-only, a type, an integer or floating-point range with its step), with rclpy's reasons."""
+value, a value to and from a ParameterValue message, and the descriptors the lab's nodes declare theirs
+with (read-only, a double range). What a descriptor allows is ``server.bus.parameter_checks``."""
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from ..msgs.generated.rcl_interfaces import (
     FloatingPointRange,
-    IntegerRange,
     ParameterDescriptor,
     ParameterType,
     ParameterValue,
@@ -27,7 +25,6 @@ DOUBLE_ARRAY, STRING_ARRAY = ParameterType.PARAMETER_DOUBLE_ARRAY, ParameterType
 # ParameterValue's field for each type, in ParameterType's order (its slots after ``type``).
 FIELDS: tuple[str | None, ...] = (None, *ParameterValue.__slots__[1:])
 _SCALARS = ((bool, BOOL), (int, INTEGER), (float, DOUBLE), (str, STRING))
-PARAM_REL_TOL = 1e-6  # rclpy's: how close a double must be to an edge or a step
 
 
 def type_of(value: Any) -> int:
@@ -87,53 +84,6 @@ def double_range(
     return ParameterDescriptor(description=description, read_only=fixed, floating_point_range=[bounds])
 
 
-def refusal(
-    name: str, value: Any, descriptor: ParameterDescriptor, check_read_only: bool = True
-) -> str | None:
-    """Why ``descriptor`` does not let parameter ``name`` take ``value`` (rclpy's words), or None."""
-    if check_read_only and descriptor.read_only:
-        return f"Trying to set a read-only parameter: {name}."
-    kind = type_of(value)
-    declared = int(descriptor.type)
-    if not descriptor.dynamic_typing and declared != NOT_SET and kind != declared:
-        if kind == NOT_SET:
-            return "Static parameter cannot be undeclared"
-        return f"Wrong parameter type, expected '{_type_name(declared)}' got '{_type_name(kind)}'"
-    if kind == INTEGER and descriptor.integer_range:
-        return _integer_refusal(name, value, descriptor.integer_range[0])
-    if kind == DOUBLE and descriptor.floating_point_range:
-        return _double_refusal(name, value, descriptor.floating_point_range[0])
-    return None
-
-
-def _type_name(kind: int) -> str:
-    return f"Type.{(FIELDS[kind] or 'not_set').removesuffix('_value').upper()}"
-
-
-def _integer_refusal(name: str, value: int, bounds: IntegerRange) -> str | None:
-    low, high = sorted((int(bounds.from_value), int(bounds.to_value)))
-    if value in (low, high):
-        return None
-    if not low < value < high:
-        return f"Parameter {name} out of range. Min: {low}, Max: {high}, value: {value}"
-    if bounds.step and (value - low) % int(bounds.step):
-        return f"The parameter value for {name} is not a valid step. Min: {low}, max: {high}, value: {value}, step: {bounds.step}"
-    return None
-
-
-def _double_refusal(name: str, value: float, bounds: FloatingPointRange) -> str | None:
-    low, high = sorted((float(bounds.from_value), float(bounds.to_value)))
-    if math.isclose(value, low, rel_tol=PARAM_REL_TOL) or math.isclose(value, high, rel_tol=PARAM_REL_TOL):
-        return None
-    if not low < value < high:
-        return f"Parameter {name} out of range Min: {low}, Max: {high}, value: {value}"
-    if bounds.step:
-        steps = round((value - low) / bounds.step)
-        if not math.isclose(low + steps * bounds.step, value, rel_tol=PARAM_REL_TOL):
-            return f"The parameter value for {name} is not close enough to a valid step. Min: {low}, max: {high}, value: {value}, step: {bounds.step}"
-    return None
-
-
 __all__ = [
     "BOOL",
     "BOOL_ARRAY",
@@ -149,7 +99,6 @@ __all__ = [
     "double_range",
     "from_value_msg",
     "read_only",
-    "refusal",
     "to_value_msg",
     "type_of",
 ]

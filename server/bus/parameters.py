@@ -1,8 +1,13 @@
 """A bus node's parameters: declared with a value and, optionally, a ParameterDescriptor (read-only,
 a range), given by a launch's overrides, listed, described and set as rclpy's node does. A set
-that the descriptor, the type or the node's own on-set callback refuses changes nothing and
-raises ValueError with the reason; ``server.bus.parameter_service`` answers ROS 2's parameter
-services from these."""
+that the descriptor, the type (an integer for a double too, as rclpy) or the node's own on-set
+callback refuses changes nothing and raises ValueError with the reason; ``server.bus.parameter_service``
+answers ROS 2's parameter services from these.
+
+As an rclpy node, each declares ``use_sim_time`` (false) when it is created and publishes a
+``rcl_interfaces/msg/ParameterEvent`` on ``/parameter_events`` for each declaration and each
+successful set (what is new, changed or deleted, with the node's name and the bus's time): only
+then, never on a tick of the loop."""
 
 from __future__ import annotations
 
@@ -10,10 +15,18 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from ..msgs.generated.rcl_interfaces import ParameterDescriptor
-from .parameter_values import DOUBLE, DOUBLE_ARRAY, INTEGER, INTEGER_ARRAY, refusal, type_of
+from ..msgs.generated.rcl_interfaces import Parameter as ParameterMsg
+from ..msgs.generated.rcl_interfaces import ParameterDescriptor, ParameterEvent
+from .parameter_checks import override_as_declared, refusal
+from .parameter_values import to_value_msg, type_of
+
+if TYPE_CHECKING:
+    from .clock import NodeClock
+    from .endpoints import Publisher
 
 SEPARATOR = "."
+PARAMETER_EVENTS = "/parameter_events"
+PARAMETER_EVENTS_DEPTH = 1000  # rclpy's qos_profile_parameter_events keeps the last 1000
 
 
 @dataclass
@@ -24,18 +37,6 @@ class Parameter:
     value: Any
 
 
-def _as_declared(value: Any, descriptor: ParameterDescriptor) -> Any:
-    """An integer (or integer list) given for a double parameter is that double (``-p rate:=5``,
-    ``ros2 param set /n rate 5``), as the lab has always taken it."""
-    declared = int(descriptor.type)
-    kind = type_of(value)
-    if declared == DOUBLE and kind == INTEGER:
-        return float(value)
-    if declared == DOUBLE_ARRAY and kind == INTEGER_ARRAY:
-        return [float(v) for v in value]
-    return value
-
-
 class NodeParameters:
     """Mixed into the bus's Node: its parameter table and rclpy's calls on it."""
 
@@ -44,10 +45,25 @@ class NodeParameters:
         @property
         def fully_qualified_name(self) -> str: ...
 
+        def get_clock(self) -> NodeClock: ...
+
+        def create_publisher(
+            self, msg_type: Any, topic: str, qos_profile: Any, *, hand_over: bool = ...
+        ) -> Publisher: ...
+
     _parameters: dict[str, Parameter]
     _param_overrides: dict[str, Any]
     _param_callbacks: list[Callable[[list[Parameter]], Any]]
     _descriptors: dict[str, ParameterDescriptor]
+    _parameter_events: Publisher | None = None
+
+    def _start_parameters(self) -> None:
+        """What rclpy's node does when it is created: its publisher on ``/parameter_events``, then
+        ``use_sim_time`` declared (false; the lab's nodes run on the bus's clock whatever it says)."""
+        self._parameter_events = self.create_publisher(
+            ParameterEvent, PARAMETER_EVENTS, PARAMETER_EVENTS_DEPTH, hand_over=True
+        )
+        self.declare_parameter("use_sim_time", False)
 
     def declare_parameter(
         self, name: str, value: Any = None, descriptor: ParameterDescriptor | None = None, *_: Any, **__: Any
@@ -61,13 +77,14 @@ class NodeParameters:
         elif not described.type:
             described.type = type_of(value)
         if name in self._param_overrides:
-            value = _as_declared(self._param_overrides[name], described)
-            reason = refusal(name, value, described, check_read_only=False)
+            value = override_as_declared(self._param_overrides[name], described)
+            reason = refusal(name, value, described, check_read_only=False, declared=False)
             if reason is not None:
                 raise ValueError(f"{self.fully_qualified_name}: parameter {name!r}: {reason}")
         param = Parameter(name, value)
         self._parameters[name] = param
         self._descriptors[name] = described
+        self._publish_event(new=[param])
         return param
 
     def get_parameter(self, name: str) -> Parameter:
@@ -126,18 +143,50 @@ class NodeParameters:
         checked: list[Parameter] = []
         for param in params:
             self.get_parameter(param.name)
-            descriptor = self._descriptors[param.name]
-            value = _as_declared(param.value, descriptor)
-            reason = refusal(param.name, value, descriptor)
+            reason = refusal(param.name, param.value, self._descriptors[param.name])
             if reason is not None:
                 raise ValueError(reason)
-            checked.append(Parameter(param.name, value))
+            checked.append(Parameter(param.name, param.value))
         for callback in self._param_callbacks:
             result = callback(checked)
             if result is not None and not getattr(result, "successful", bool(result)):
                 raise ValueError(getattr(result, "reason", "") or "parameter change refused by the node")
+        new: list[Parameter] = []
+        changed: list[Parameter] = []
+        deleted: list[Parameter] = []
         for param in checked:
-            self._parameters[param.name].value = param.value
+            held = self._parameters[param.name]
+            if param.value is None:  # a dynamically typed parameter set to nothing is undeclared
+                del self._parameters[param.name], self._descriptors[param.name]
+                deleted.append(param)
+                continue
+            (new if held.value is None else changed).append(param)
+            held.value = param.value
+        self._publish_event(new, changed, deleted)
+
+    def _publish_event(
+        self,
+        new: Sequence[Parameter] = (),
+        changed: Sequence[Parameter] = (),
+        deleted: Sequence[Parameter] = (),
+    ) -> None:
+        """One ParameterEvent for one declaration or one set, as rclpy publishes it."""
+        publisher = self._parameter_events
+        if publisher is None or publisher.destroyed:
+            return
+        publisher.publish(
+            ParameterEvent(
+                stamp=self.get_clock().now().to_msg(),
+                node=self.fully_qualified_name,
+                new_parameters=[_message(p) for p in new],
+                changed_parameters=[_message(p) for p in changed],
+                deleted_parameters=[_message(p) for p in deleted],
+            )
+        )
 
 
-__all__ = ["SEPARATOR", "NodeParameters", "Parameter"]
+def _message(param: Parameter) -> ParameterMsg:
+    return ParameterMsg(name=param.name, value=to_value_msg(param.value))
+
+
+__all__ = ["PARAMETER_EVENTS", "SEPARATOR", "NodeParameters", "Parameter"]

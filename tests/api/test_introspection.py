@@ -148,7 +148,7 @@ def test_node_info_main_controller_has_its_endpoints_timer_and_origin(client: Te
         "/MainControllerNode", "/", "active", None,
     )  # fmt: skip
     assert {"topic": "/cmd_vel", "type": "std_msgs/msg/Float64", "depth": 1000} in info["publishers"]
-    assert {p["topic"] for p in info["publishers"]} == {"/cmd_vel", "/rosout"}
+    assert {p["topic"] for p in info["publishers"]} == {"/cmd_vel", "/rosout", "/parameter_events"}
     assert {s["topic"] for s in info["subscribers"]} == {"/countdown", "/abort_takeoff"}
     [timer] = info["timers"]
     assert timer["period_s"] == 0.1 and timer["calls"] > 0

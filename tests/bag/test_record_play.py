@@ -66,8 +66,10 @@ def flight(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Path, dic
     bag_dir = tmp_path_factory.mktemp("bags")
     lab = fly_lab(bag_dir)
     lab.executor.spin_for(0.01)  # every node up and publishing
-    before = {name: t.publish_count for name, t in lab.bus.topics.items()}
+    # Counted from when the recorder is up: its node's own declaration (use_sim_time, on
+    # /parameter_events) comes before it subscribes, as a ros2 bag recorder's does.
     recording = lab.bags.record(all_topics=True, name="flight")
+    before = {name: t.publish_count for name, t in lab.bus.topics.items()}
     lab.publishers.start("/uav/input/position", TARGET, "geometry_msgs/msg/Vector3", 1.0)
     lab.executor.spin_for(FLIGHT_S - RECORD_MARGIN_S)  # [start, start + 15 s): 15 setpoints, not 16
     lab.bags.stop_recording("flight")

@@ -271,7 +271,7 @@ def test_activate_overrides_parameters_reach_declare_parameter(bus: Bus) -> None
         node = Node("n")
     assert node.declare_parameter("rate_hz", 10.0).value == 20.0
     assert node.declare_parameter("other", 3).value == 3
-    assert node.get_parameters_dict() == {"rate_hz": 20.0, "other": 3}
+    assert node.get_parameters_dict() == {"use_sim_time": False, "rate_hz": 20.0, "other": 3}
 
 
 def test_activate_overrides_name_renames_node(bus: Bus) -> None:

@@ -17,11 +17,13 @@ from server.msgs.generated.rcl_interfaces import (
     GetParameterTypes,
     ListParameters,
     Parameter,
+    ParameterEvent,
     SetParameters,
     SetParametersAtomically,
 )
 from server.packages.flightcontroller.position_controller import PositionControllerNode
 from server.packages.simple_control.keyboard_manager import KeyboardManager
+from server.params_file import value_from_text
 
 
 class _Tuned(Node):
@@ -56,10 +58,10 @@ def _param(name: str, value: Any) -> Parameter:
 
 def test_a_served_node_lists_its_parameters_and_prefixes(bus: Bus, executor: Executor, tuned: _Tuned) -> None:
     result = _call(bus, executor, ListParameters, "/lab/tuned/list_parameters").result
-    assert sorted(result.names) == ["gain", "label", "limits.low", "seed"]
+    assert sorted(result.names) == ["gain", "label", "limits.low", "seed", "use_sim_time"]
     assert list(result.prefixes) == ["limits"]
     shallow = _call(bus, executor, ListParameters, "/lab/tuned/list_parameters", depth=1).result
-    assert sorted(shallow.names) == ["gain", "label", "seed"]
+    assert sorted(shallow.names) == ["gain", "label", "seed", "use_sim_time"]
 
 
 def test_get_and_types_answer_each_name_and_nothing_for_an_undeclared_one(
@@ -102,6 +104,9 @@ def test_a_set_in_range_takes_effect_and_one_out_of_range_is_refused_with_the_re
     [
         ("seed", 8, "Trying to set a read-only parameter: seed."),
         ("label", 3, "Wrong parameter type"),
+        # ``ros2 param set /lab/tuned gain 5`` sends what YAML reads in "5": an integer, which
+        # rclpy refuses for a double parameter (an integer is no double there).
+        ("gain", value_from_text("5"), "Wrong parameter type, expected 'Type.DOUBLE' got 'Type.INTEGER'"),
         ("nope", 1, "'nope' of /lab/tuned was not declared"),
     ],
 )
@@ -123,12 +128,127 @@ def test_an_atomic_set_with_one_refusal_changes_none(bus: Bus, executor: Executo
     ).result  # fmt: skip
     assert not refused.successful and "read-only" in refused.reason
     assert tuned.get_parameter("gain").value == 1.5
+    wrong_type = _call(
+        bus, executor, SetParametersAtomically, "/lab/tuned/set_parameters_atomically",
+        parameters=[_param("label", "x"), _param("gain", 2)],  # an integer is no double, as in rclpy
+    ).result  # fmt: skip
+    assert not wrong_type.successful
+    assert wrong_type.reason == "Wrong parameter type, expected 'Type.DOUBLE' got 'Type.INTEGER'"
+    unchanged = {"use_sim_time": False, "seed": 7, "gain": 1.5, "label": "drone", "limits.low": [1, 2]}
+    assert tuned.get_parameters_dict() == unchanged
     accepted = _call(
         bus, executor, SetParametersAtomically, "/lab/tuned/set_parameters_atomically",
-        parameters=[_param("gain", 2), _param("label", "x")],  # an integer for a double is that double
+        parameters=[_param("gain", 2.0), _param("label", "x")],
     ).result  # fmt: skip
     assert accepted.successful
-    assert tuned.get_parameters_dict()["gain"] == 2.0 and type(tuned.get_parameter("gain").value) is float
+    assert tuned.get_parameters_dict()["gain"] == 2.0 and tuned.get_parameter("label").value == "x"
+
+
+def test_a_lab_node_declares_use_sim_time_false_as_every_rclpy_node_does(
+    bus: Bus, executor: Executor, tuned: _Tuned
+) -> None:
+    got = _call(bus, executor, GetParameters, "/lab/tuned/get_parameters", names=["use_sim_time"])
+    assert [from_value_msg(v) for v in got.values] == [False]
+    (described,) = _call(
+        bus, executor, DescribeParameters, "/lab/tuned/describe_parameters", names=["use_sim_time"]
+    ).descriptors
+    assert (described.name, described.type, described.read_only) == ("use_sim_time", 1, False)  # a bool
+    with bus.activate(NodeOverrides(parameters={"use_sim_time": True})):  # a launch's override wins
+        assert Node("timed", context=bus).get_parameter("use_sim_time").value is True
+
+
+def _events(bus: Bus, node: str) -> list[ParameterEvent]:
+    """``node``'s events on /parameter_events (each caller's node publishes its own declaration)."""
+    events: list[ParameterEvent] = []
+
+    def heard(event: ParameterEvent) -> None:
+        if event.node == node:
+            events.append(event)
+
+    Node("_watcher", context=bus).create_subscription(ParameterEvent, "/parameter_events", heard, 1000)
+    return events
+
+
+def _names(params: Any) -> list[str]:
+    return [p.name for p in params]
+
+
+def test_parameter_events_tell_each_declaration_and_each_set_that_took_effect(
+    bus: Bus, executor: Executor, clock: ManualClock
+) -> None:
+    events = _events(bus, "/lab/tuned")
+    clock.set(12.5)
+    tuned = _Tuned(bus)
+    serve_parameters(tuned)
+    executor.spin_some()
+    assert [_names(e.new_parameters) for e in events] == [
+        ["use_sim_time"], ["seed"], ["gain"], ["label"], ["limits.low"]
+    ]  # fmt: skip
+    assert [from_value_msg(e.new_parameters[0].value) for e in events] == [False, 7, 1.5, "drone", [1, 2]]
+    assert (events[0].stamp.sec, events[0].stamp.nanosec) == (12, 500_000_000)
+    events.clear()
+    clock.set(20.0)
+    _call(
+        bus, executor, SetParameters, "/lab/tuned/set_parameters",
+        parameters=[_param("gain", 4.0), _param("gain", 11.0), _param("label", "rocket")],
+    )  # fmt: skip
+    _call(
+        bus,
+        executor,
+        SetParametersAtomically,
+        "/lab/tuned/set_parameters_atomically",
+        parameters=[_param("gain", 2.0), _param("seed", 1)],
+    )  # fmt: skip  (refused: seed is read-only)
+    executor.spin_some()
+    assert [(_names(e.new_parameters), _names(e.changed_parameters)) for e in events] == [
+        ([], ["gain"]),
+        ([], ["label"]),
+    ]  # fmt: skip  (one event per set that took effect; the refused 11.0 and the atomic set: none)
+    assert from_value_msg(events[0].changed_parameters[0].value) == 4.0
+    assert [(e.stamp.sec, list(e.deleted_parameters)) for e in events] == [(20, []), (20, [])]
+
+
+def test_a_dynamically_typed_parameter_is_new_at_its_first_value_and_deleted_when_set_to_nothing(
+    bus: Bus, executor: Executor, tuned: _Tuned
+) -> None:
+    events = _events(bus, "/lab/tuned")
+    tuned.declare_parameter("free")  # no value: dynamically typed, not set yet
+    for value in ("anything", None):
+        (result,) = _call(
+            bus, executor, SetParameters, "/lab/tuned/set_parameters", parameters=[_param("free", value)]
+        ).results
+        assert result.successful
+    executor.spin_some()
+    assert [
+        (_names(e.new_parameters), _names(e.changed_parameters), _names(e.deleted_parameters)) for e in events
+    ] == [(["free"], [], []), (["free"], [], []), ([], [], ["free"])]  # as rclpy tells them
+    assert not tuned.has_parameter("free")
+    (static,) = _call(
+        bus, executor, SetParameters, "/lab/tuned/set_parameters", parameters=[_param("label", None)]
+    ).results
+    assert (static.successful, static.reason) == (False, "Static parameter cannot be undeclared")
+
+
+def test_a_lab_node_publishes_an_event_for_a_set_and_none_while_it_only_runs(
+    bus: Bus, executor: Executor, clock: ManualClock
+) -> None:
+    with bus.activate(NodeOverrides(parameters={"mode": "lab"})):
+        manager = KeyboardManager()
+    serve_parameters(manager)
+    events = _events(bus, "/KeyboardManagerNode")
+    executor.spin_until(clock.now() + 2.0)  # its timer publishes at 20 Hz
+    assert manager.timer is not None and manager.timer.call_count >= 39
+    assert events == []  # no tick publishes one
+    (result,) = _call(
+        bus,
+        executor,
+        SetParameters,
+        "/KeyboardManagerNode/set_parameters",
+        parameters=[_param("rate_hz", 50.0)],
+    ).results
+    assert result.successful
+    executor.spin_until(clock.now() + 2.0)
+    assert [_names(e.changed_parameters) for e in events] == [["rate_hz"]]  # the set's, and only it
 
 
 def test_serving_twice_adds_nothing_and_the_services_go_with_the_node(bus: Bus, tuned: _Tuned) -> None:

@@ -29,13 +29,15 @@ def test_graph_snapshot_default_leaves_out_hidden_nodes_internal_topics_and_thei
     ]
 
 
-def test_graph_snapshot_include_hidden_adds_spy_and_rosout_flagged_hidden(bus: Bus) -> None:
+def test_graph_snapshot_include_hidden_adds_spy_rosout_and_parameter_events_flagged_hidden(bus: Bus) -> None:
     _chatter(bus)
     snap = graph_snapshot(bus, include_hidden=True)
     assert {n.name: n.hidden for n in snap.nodes} == {"/_spy": True, "/listener": False, "/talker": False}
-    assert {t.name: t.hidden for t in snap.topics} == {"/chatter": False, "/rosout": True}
+    topics = {t.name: t.hidden for t in snap.topics}
+    assert topics == {"/chatter": False, "/rosout": True, "/parameter_events": True}
     assert GraphEdge("/chatter", "/_spy", "subscribe") in snap.edges
     assert GraphEdge("/talker", "/rosout", "publish") in snap.edges
+    assert GraphEdge("/talker", "/parameter_events", "publish") in snap.edges
 
 
 def test_graph_snapshot_two_publishers_on_one_topic_give_one_edge(bus: Bus) -> None:

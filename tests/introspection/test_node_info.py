@@ -26,7 +26,7 @@ def test_node_info_lists_endpoints_timers_parameters_and_origin(bus: Bus, execut
     assert info["subscribers"] == []
     # A manual clock fires every timer exactly on its deadline: no lateness at all.
     assert info["timers"] == [{"period_s": 0.25, "calls": 4, "lateness_p50_ms": 0.0, "lateness_p99_ms": 0.0}]
-    assert info["parameters"] == {"rate_hz": 2.0}
+    assert info["parameters"] == {"use_sim_time": False, "rate_hz": 2.0}  # as every rclpy node
     assert info["origin"] == {"package": "demo", "executable": "talker"}
 
 

@@ -226,6 +226,7 @@ def test_refusals_come_back_with_their_reasons(run: type[NodeProcess], lab: tupl
         ("robot_name", "x", "Setting parameter failed: Trying to set a read-only parameter: robot_name.\n"),
         ("speed", "11.0", "Setting parameter failed: Parameter speed out of range Min: 0.0, Max: 10.0, value: 11.0\n"),
         ("speed", "fast", "Setting parameter failed: Wrong parameter type, expected 'Type.DOUBLE' got 'Type.STRING'\n"),
+        ("speed", "5", "Setting parameter failed: Wrong parameter type, expected 'Type.DOUBLE' got 'Type.INTEGER'\n"),
     ]  # fmt: skip
     for name, value, err in cases:
         done = param(app, "set", "/guarded_node", name, value)
@@ -314,8 +315,12 @@ def test_a_params_file_that_does_not_parse_is_one_line_and_changes_nothing(
 def test_the_labs_own_nodes_answer_ros2lab_param(lab: tuple[App, Path]) -> None:
     """The launch's nodes run inside the app: they serve the same services as a node process."""
     app, _root = lab
-    assert param(app, "list", "/CountDownNode").stdout == "  start_delay_s\n"
-    assert "/keyboard:\n  allow_repeat (type: boolean)\n" in param(app, "list", "--param-type").stdout
+    assert param(app, "list", "/CountDownNode").stdout == "  start_delay_s\n  use_sim_time\n"  # as rclpy's
+    assert (
+        "/keyboard:\n  allow_repeat (type: boolean)\n  use_sim_time (type: boolean)\n"
+        in param(app, "list", "--param-type").stdout
+    )
+    assert param(app, "get", "/keyboard", "use_sim_time").stdout == "Boolean value is: False\n"
     assert param(app, "get", "/CountDownNode", "start_delay_s").stdout == "Double value is: 600.0\n"
     described = param(app, "describe", "/CountDownNode", "start_delay_s").stdout
     assert "  Type: double\n  Description: seconds before lift-off\n" in described
@@ -333,7 +338,7 @@ def test_the_labs_own_nodes_answer_ros2lab_param(lab: tuple[App, Path]) -> None:
         assert (done.returncode, done.stdout, done.stderr) == (0, "Set parameter successful\n", "")
         assert param(app, "get", "/keyboard", "allow_repeat").stdout == "Boolean value is: True\n"
         dumped = param(app, "dump", "/keyboard").stdout
-        assert dumped == "/keyboard:\n  ros__parameters:\n    allow_repeat: true\n\n"
+        assert dumped == "/keyboard:\n  ros__parameters:\n    allow_repeat: true\n    use_sim_time: false\n\n"
     finally:
         param(app, "set", "/keyboard", "allow_repeat", "false")
     assert param(app, "get", "/keyboard", "allow_repeat").stdout == "Boolean value is: False\n"
