@@ -9,6 +9,7 @@ from fastapi import APIRouter, HTTPException, Request, status
 
 from server.classroom import Classroom, ClassServer
 from server.processes.command import graph_overrides
+from server.settings import Settings
 from server.transport.acl import Credentials
 
 from .deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_request, token_of
@@ -74,14 +75,15 @@ async def zenoh_join(request: Request, start: bool = False) -> dict[str, Any]:
             else "started with --no-zenoh"
         )
         raise HTTPException(status.HTTP_404_NOT_FOUND, f"this lab's graph is not on Zenoh ({why})")
-    join = _join(link.router_endpoint(), link.settings.domain_id, link.settings.login, _nice(classroom))
+    join = _join(link.router_endpoint(), link.settings.domain_id, link.settings.login, _nice(lab.settings))
     return _paced(request, start, join)
 
 
-def _nice(classroom: Classroom | None) -> int | None:
-    """A class's node processes run below its worlds (the niceness its sandbox gives students'
-    nodes, server/processes/priority.py); a single lab's run as they were started."""
-    return classroom.settings.sandbox.nice if classroom is not None else None
+def _nice(settings: Settings) -> int | None:
+    """Where the server serves others (a class, a lab beyond loopback), students' node processes
+    run below its worlds: the niceness its sandbox gives them (server/processes/priority.py). A
+    lab on loopback serves its user alone, whose nodes run as they were started."""
+    return settings.sandbox.nice if settings.confines_paths else None
 
 
 def _paced(request: Request, start: bool, join: dict[str, Any]) -> dict[str, Any]:
@@ -105,7 +107,7 @@ def _class_graph_join(classroom: Classroom) -> dict[str, Any]:
     ):
         raise HTTPException(status.HTTP_404_NOT_FOUND, "this class server has no Zenoh graph of its own")
     login = classroom.zenoh_auth.class_credentials()
-    return _join(router, classroom.settings.lab.zenoh.domain_id, login, _nice(classroom))
+    return _join(router, classroom.settings.lab.zenoh.domain_id, login, _nice(classroom.settings))
 
 
 def _join(router: str, domain_id: int, login: Credentials | None, nice: int | None) -> dict[str, Any]:

@@ -155,7 +155,7 @@ class SandboxSettings(Section):
     open_files: int = Field(default=256, ge=64)
     file_size_mib: int = Field(default=64, ge=1)
     cpu_s: int = Field(default=3600, ge=1)  # CPU seconds of one run
-    nice: int = Field(default=10, ge=0, le=19)  # below the sims' loop
+    nice: int = Field(default=19, ge=0, le=19)  # below the sims' loop
 
 
 class WorldLimits(Section):

@@ -14,7 +14,8 @@ import signal
 import sys
 from types import FrameType
 
-from .client import DEFAULT_URL, URL_ENV, CliError, LabClient
+from .environment import DEFAULT_URL, TOKEN_ENV, URL_ENV
+from .priority import start_below_the_worlds
 
 VERBS = (
     "topic",
@@ -97,8 +98,12 @@ def main(argv: list[str] | None = None) -> int:
         print(COLCON_HINT)
         return 0
     verb = verb_of(argv)
+    if verb == "run" and os.environ.get(TOKEN_ENV):
+        start_below_the_worlds()  # before its imports: see server/cli/priority.py
     args = build_parser(verb if verb == "run" else None).parse_args(argv)
     url = args.url or os.environ.get(URL_ENV) or DEFAULT_URL
+    from .client import CliError, LabClient  # its HTTP client, once the command has its priority
+
     # SIGTERM cleans up as Ctrl-C does: a launch's nodes and a periodic publisher are stopped.
     signal.signal(signal.SIGTERM, _interrupt)
     try:

@@ -15,16 +15,13 @@ import httpx
 from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus
 from websockets.sync.client import connect
 
-DEFAULT_URL = "http://127.0.0.1:8000"
-URL_ENV = "TELEOP_URL"
+from .environment import TOKEN_ENV
+
 TIMEOUT_S = 10.0
 # The app's close code for "not found", here an unknown topic (api.errors.CloseCode.NOT_FOUND; a test keeps them equal).
 CLOSE_NOT_FOUND = 4404
 # What FastAPI answers for a path no route serves: an older server than this CLI.
 NO_ROUTE_DETAIL = "Not Found"
-
-
-TOKEN_ENV = "ROS2LAB_TOKEN"
 
 
 class CliError(Exception):

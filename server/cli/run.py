@@ -28,6 +28,7 @@ from server.transport.config import domain_id_from_env
 
 from .client import CliError, LabClient
 from .join import WAIT_S, Pacing, join_graph
+from .priority import take_the_labs_nice
 from .workspace import WORKSPACE_ENV, add_workspace_option, workspace_of
 
 STOP_GRACE_S = 10.0
@@ -71,7 +72,7 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
     )
     nice = join.get("nice")
     if isinstance(nice, int) and nice > 0:
-        os.nice(nice)  # the child inherits it; this command only waits
+        take_the_labs_nice(nice)  # the child inherits it; this command only waits
     child = subprocess.Popen(command.argv, env=command.env, start_new_session=True)
     if isinstance(nice, int) and nice > 0:
         set_session_group_nice(child.pid, nice)

@@ -37,7 +37,7 @@ class Confinement:
     open_files: int = 256  # RLIMIT_NOFILE
     file_size_mib: int = 64  # the largest file it may write (RLIMIT_FSIZE)
     cpu_s: int = 3600  # CPU seconds of one run (RLIMIT_CPU)
-    nice: int = 10  # added to its niceness: the sims' loop goes first
+    nice: int = 19  # added to its niceness (19 at most): the sims' loop goes first
     uid: int = 61000  # a server running as root starts the node as this user (plus its ROS domain)
     gid: int = 61000
     drop_root: bool = False  # started by root: become ``uid``/``gid``

@@ -27,6 +27,9 @@ import zenoh
 from support.app import end, free_port
 from support.wait import wait_until
 
+from server.cli.environment import TOKEN_ENV
+from server.cli.priority import START_NICE
+
 from .conftest import make_workspace
 
 NODE = """
@@ -57,8 +60,10 @@ def workspace(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return make_workspace(tmp_path_factory.mktemp("run_join"), {"src/demo/late_joiner.py": NODE})
 
 
-def ros2lab_run(url: str, workspace: Path, *extra: str) -> subprocess.Popen[str]:
-    env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE")}
+def ros2lab_run(url: str, workspace: Path, *extra: str, token: str | None = None) -> subprocess.Popen[str]:
+    env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE", TOKEN_ENV)}
+    if token is not None:
+        env[TOKEN_ENV] = token
     return subprocess.Popen(
         [sys.executable, "-m", "server", "--url", url, "run", "--workspace", str(workspace),
          "--join-timeout", str(JOIN_TIMEOUT_S), *extra, "demo", "late_joiner.py"],
@@ -87,6 +92,32 @@ def test_run_against_a_lab_that_never_replies_is_one_line_and_a_non_zero_exit(wo
     assert code != 0 and len(lines) == 1, err
     assert "did not tell how to join its graph within 3 s" in lines[0] and "not started" in lines[0]
     assert took < JOIN_TIMEOUT_S + 20  # the bound, plus the interpreter's start on a loaded machine
+
+
+@pytest.mark.parametrize("token", [None, "a-students-token"], ids=["no token", "a token"])
+def test_run_with_a_token_is_below_the_worlds_before_it_asks_the_lab(
+    workspace: Path, token: str | None
+) -> None:
+    """A lab behind a token serves others, whose students' nodes run below its worlds: the command
+    takes that priority before its imports, so twenty started at once on the lab's machine do not
+    import at the worlds' priority (server/cli/priority.py). Read while it asks a socket that
+    never answers; without a token it runs as it was started."""
+    with socket.socket() as silent:
+        silent.bind(("127.0.0.1", 0))
+        silent.listen(16)
+        silent.settimeout(60)
+        proc = ros2lab_run(f"http://127.0.0.1:{silent.getsockname()[1]}", workspace, token=token)
+        try:
+            conn, _ = silent.accept()
+            with conn:
+                conn.settimeout(60)
+                assert conn.recv(4096).startswith(b"GET /api/zenoh/join")  # it is asking now
+                nice = os.getpriority(os.PRIO_PROCESS, proc.pid)
+        finally:
+            end(proc)
+            proc.communicate()
+    own = os.getpriority(os.PRIO_PROCESS, 0)
+    assert nice == (min(19, own + START_NICE) if token else own)
 
 
 def test_run_where_nothing_listens_is_one_line_and_a_non_zero_exit(workspace: Path) -> None:

@@ -19,6 +19,8 @@ from support.http import HTTP
 from support.sandbox import require_sandbox
 from support.wait import wait_until
 
+from server.settings import SandboxSettings
+
 
 @pytest.fixture(autouse=True, scope="module")
 def _a_sandbox_on_this_machine() -> None:
@@ -219,9 +221,10 @@ def test_sandbox_node_runs_below_the_worlds_with_its_sessions_group(klass: Class
     """bubblewrap gives the node a session of its own, where a niceness alone would count only
     against the session's own processes (server/processes/priority.py): its session's scheduling
     group is lowered with it. An unsandboxed node runs as it was started."""
-    group = "10" if Path("/proc/self/autogroup").exists() else "none"
+    nice = SandboxSettings().nice
+    group = str(nice) if Path("/proc/self/autogroup").exists() else "none"
     own = os.getpriority(os.PRIO_PROCESS, 0)
-    assert probe_line(klass.ada, "priority") == f"PROBE priority ok nice {own + 10} group {group}"
+    assert probe_line(klass.ada, "priority") == f"PROBE priority ok nice {min(19, own + nice)} group {group}"
     assert probe_line(klass.cy, "priority").startswith(f"PROBE priority ok nice {own} ")
 
 
