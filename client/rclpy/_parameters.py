@@ -21,6 +21,7 @@ from rcl_interfaces.msg import (
 from rcl_interfaces.srv import ListParameters
 
 from server.bus.parameter_checks import override_as_declared, refusal
+from server.bus.parameter_values import parameter_event
 
 from .exceptions import (
     InvalidParameterException,
@@ -322,12 +323,12 @@ class ParameterAPI:
         if publisher is None or publisher.destroyed:
             return
         publisher.publish(
-            ParameterEvent(
-                stamp=self.get_clock().now().to_msg(),  # type: ignore[attr-defined]
-                node=self.get_fully_qualified_name(),  # type: ignore[attr-defined]
-                new_parameters=[p.to_parameter_msg() for p in new],
-                changed_parameters=[p.to_parameter_msg() for p in changed],
-                deleted_parameters=[p.to_parameter_msg() for p in deleted],
+            parameter_event(
+                self.get_fully_qualified_name(),  # type: ignore[attr-defined]
+                self.get_clock().now().to_msg(),  # type: ignore[attr-defined]
+                [p.to_parameter_msg() for p in new],
+                [p.to_parameter_msg() for p in changed],
+                [p.to_parameter_msg() for p in deleted],
             )
         )
 

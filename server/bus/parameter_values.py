@@ -4,11 +4,15 @@ with (read-only, a double range). What a descriptor allows is ``server.bus.param
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
+from ..msgs.generated.builtin_interfaces import Time
 from ..msgs.generated.rcl_interfaces import (
     FloatingPointRange,
+    Parameter,
     ParameterDescriptor,
+    ParameterEvent,
     ParameterType,
     ParameterValue,
 )
@@ -102,3 +106,21 @@ __all__ = [
     "to_value_msg",
     "type_of",
 ]
+
+
+def parameter_event(
+    node: str,
+    stamp: Time,
+    new: Sequence[Parameter] = (),
+    changed: Sequence[Parameter] = (),
+    deleted: Sequence[Parameter] = (),
+) -> ParameterEvent:
+    """The ParameterEvent a node publishes on ``/parameter_events`` for one declaration or one set,
+    as rclpy does (in-app nodes and node processes alike)."""
+    return ParameterEvent(
+        stamp=stamp,
+        node=node,
+        new_parameters=list(new),
+        changed_parameters=list(changed),
+        deleted_parameters=list(deleted),
+    )

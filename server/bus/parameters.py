@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 from ..msgs.generated.rcl_interfaces import Parameter as ParameterMsg
 from ..msgs.generated.rcl_interfaces import ParameterDescriptor, ParameterEvent
 from .parameter_checks import override_as_declared, refusal
-from .parameter_values import to_value_msg, type_of
+from .parameter_values import parameter_event, to_value_msg, type_of
 
 if TYPE_CHECKING:
     from .clock import NodeClock
@@ -175,12 +175,12 @@ class NodeParameters:
         if publisher is None or publisher.destroyed:
             return
         publisher.publish(
-            ParameterEvent(
-                stamp=self.get_clock().now().to_msg(),
-                node=self.fully_qualified_name,
-                new_parameters=[_message(p) for p in new],
-                changed_parameters=[_message(p) for p in changed],
-                deleted_parameters=[_message(p) for p in deleted],
+            parameter_event(
+                self.fully_qualified_name,
+                self.get_clock().now().to_msg(),
+                [_message(p) for p in new],
+                [_message(p) for p in changed],
+                [_message(p) for p in deleted],
             )
         )
 
