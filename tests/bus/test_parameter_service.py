@@ -56,6 +56,14 @@ def _param(name: str, value: Any) -> Parameter:
     return Parameter(name=name, value=to_value_msg(value))
 
 
+def _set_one(bus: Bus, executor: Executor, node: str, name: str, value: Any) -> Any:
+    """The one result of ``node``'s ``set_parameters`` for one parameter, as ``ros2 param set``."""
+    (result,) = _call(
+        bus, executor, SetParameters, f"{node}/set_parameters", parameters=[_param(name, value)]
+    ).results
+    return result
+
+
 def test_a_served_node_lists_its_parameters_and_prefixes(bus: Bus, executor: Executor, tuned: _Tuned) -> None:
     result = _call(bus, executor, ListParameters, "/lab/tuned/list_parameters").result
     assert sorted(result.names) == ["gain", "label", "limits.low", "seed", "use_sim_time"]
@@ -239,13 +247,7 @@ def test_a_lab_node_publishes_an_event_for_a_set_and_none_while_it_only_runs(
     executor.spin_until(clock.now() + 2.0)  # its timer publishes at 20 Hz
     assert manager.timer is not None and manager.timer.call_count >= 39
     assert events == []  # no tick publishes one
-    (result,) = _call(
-        bus,
-        executor,
-        SetParameters,
-        "/KeyboardManagerNode/set_parameters",
-        parameters=[_param("rate_hz", 50.0)],
-    ).results
+    result = _set_one(bus, executor, "/KeyboardManagerNode", "rate_hz", 50.0)
     assert result.successful
     executor.spin_until(clock.now() + 2.0)
     assert [_names(e.changed_parameters) for e in events] == [["rate_hz"]]  # the set's, and only it
@@ -278,24 +280,12 @@ def test_a_keyboard_managers_rate_set_over_its_service_changes_how_often_it_publ
     Node("listener", context=bus).create_subscription(Vector3, "/uav/input/position", seen.append, 100)
     executor.spin_until(clock.now() + 1.0)
     at_20_hz = len(seen)
-    (result,) = _call(
-        bus,
-        executor,
-        SetParameters,
-        "/KeyboardManagerNode/set_parameters",
-        parameters=[_param("rate_hz", 50.0)],
-    ).results
+    result = _set_one(bus, executor, "/KeyboardManagerNode", "rate_hz", 50.0)
     assert result.successful
     seen.clear()
     executor.spin_until(clock.now() + 1.0)
     assert 19 <= at_20_hz <= 21 and 49 <= len(seen) <= 51
-    (refused,) = _call(
-        bus,
-        executor,
-        SetParameters,
-        "/KeyboardManagerNode/set_parameters",
-        parameters=[_param("rate_hz", 0.0)],
-    ).results
+    refused = _set_one(bus, executor, "/KeyboardManagerNode", "rate_hz", 0.0)
     assert not refused.successful and "rate_hz" in refused.reason
     assert manager.get_parameter("rate_hz").value == 50.0
 
@@ -313,24 +303,12 @@ def test_the_position_controllers_lab_gains_set_over_its_service_scale_its_comma
     talker.create_publisher(PoseStamped, "/uav/sensors/gps", 10).publish(PoseStamped())
     executor.spin_until(clock.now() + 0.1)
     before = commands[-1]
-    (result,) = _call(
-        bus,
-        executor,
-        SetParameters,
-        "/PositionControllerNode/set_parameters",
-        parameters=[_param("gains.p", 2.0)],
-    ).results
+    result = _set_one(bus, executor, "/PositionControllerNode", "gains.p", 2.0)
     assert result.successful
     executor.spin_until(clock.now() + 0.1)
     after = commands[-1]
     assert (before.x, before.z) == pytest.approx((1.0, 2.0))  # P alone: gain 1 × the error
     assert (after.x, after.z) == pytest.approx((2.0, 4.0))
-    (refused,) = _call(
-        bus,
-        executor,
-        SetParameters,
-        "/PositionControllerNode/set_parameters",
-        parameters=[_param("gains.p", -1.0)],
-    ).results
+    refused = _set_one(bus, executor, "/PositionControllerNode", "gains.p", -1.0)
     assert not refused.successful and "out of range" in refused.reason
     assert controller.controller.pids[0].kp == 2.0
