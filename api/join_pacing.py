@@ -1,8 +1,8 @@
 """How many node processes may start at once on this server: ``GET /api/zenoh/join?start=true``
 (a node process about to start, as ``ros2lab run`` asks) admits a start into one of a few slots,
 each held for about as long as a node process takes to import its libraries and join; a start
-that finds every slot held is answered 429 with ``Retry-After``, and ``ros2lab run`` waits that
-long and asks again. A join without ``start`` (``ros2lab env``, a tool reading the router) is
+that finds every slot held is answered 429 with ``Retry-After``: the time of its turn, after the
+starts told to come back before it, and ``ros2lab run`` waits that long and asks again. A join without ``start`` (``ros2lab env``, a tool reading the router) is
 never paced.
 
 Why: a node's start is a burst of CPU (the interpreter, rclpy, the messages, the Zenoh session).
@@ -40,11 +40,15 @@ class JoinPacer:
             raise ValueError(f"a join pacer needs slots >= 1 and hold_s > 0, got {slots} and {hold_s}")
         self.slots, self.hold_s, self._clock = slots, hold_s, clock
         self._held: list[float] = []  # when each held slot frees, oldest first
+        self._last_turn = -math.inf  # the latest time a deferred start was told to come back at
         self.admitted = 0
         self.deferred = 0
 
     def admit(self) -> float | None:
-        """None if this join may go ahead now (it holds a slot), else seconds until one frees."""
+        """None if this join may go ahead now (it holds a slot), else seconds until its turn: when
+        the first slot frees, and after every start told to come back before it (one slot's share
+        of ``hold_s`` apart), so each waiting start asks again about once rather than every time a
+        slot might have freed."""
         now = self._clock()
         self._held = [t for t in self._held if t > now]
         if len(self._held) < self.slots:
@@ -52,7 +56,8 @@ class JoinPacer:
             self.admitted += 1
             return None
         self.deferred += 1
-        return self._held[0] - now
+        self._last_turn = max(self._held[0], self._last_turn + self.hold_s / self.slots)
+        return self._last_turn - now
 
 
 def retry_after(wait_s: float) -> str:

@@ -30,6 +30,7 @@ MAX_PAUSE_S = 4.0
 NOTE_AFTER_S = 5.0  # a wait this long is said once on stderr
 TOO_MANY = 429
 RETRIED_STATUSES = (502, 503, 504)
+JITTER_S = 0.25  # at most this much added to a "not yet"'s wait: spreads a class's retries
 
 
 class JoinError(CliError):
@@ -66,7 +67,7 @@ def join_graph(client: LabClient, pacing: Pacing | None = None, *, start: bool =
         except ApiError as exc:
             if exc.status == TOO_MANY and exc.retry_after_s is not None:
                 unanswered_since, pause = None, FIRST_PAUSE_S
-                delay = exc.retry_after_s + pacing.jitter() * exc.retry_after_s
+                delay = exc.retry_after_s + pacing.jitter() * min(exc.retry_after_s, JITTER_S)
                 if pacing.clock() + delay - started > pacing.queue_s:
                     raise JoinError(
                         f"the lab at {client.base_url} was still pacing node starts after "

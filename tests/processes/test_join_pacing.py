@@ -89,6 +89,22 @@ def test_pacer_admits_up_to_its_slots_then_says_when_one_frees() -> None:
     assert (retry_after(0.2), retry_after(1.2)) == ("1", "2")
 
 
+def test_pacer_gives_each_waiting_start_a_turn_of_its_own() -> None:
+    """Starts that wait are told to come back one slot's share of the hold apart, in the order they
+    asked, so each asks again about once; a start admitted meanwhile takes nothing from them."""
+    now = [0.0]
+    pacer = JoinPacer(1, hold_s=1.0, clock=lambda: now[0])
+    assert pacer.admit() is None
+    turns = [pacer.admit() for _ in range(3)]
+    assert turns == [pytest.approx(1.0), pytest.approx(2.0), pytest.approx(3.0)]
+    now[0] = 1.0  # the first comes back at its turn: the slot is free
+    assert pacer.admit() is None
+    assert pacer.admit() == pytest.approx(3.0)  # a newcomer waits behind the two told before it
+    now[0] = 10.0  # long after: the turns are past, the next waits only for the held slot
+    assert pacer.admit() is None
+    assert pacer.admit() == pytest.approx(1.0)
+
+
 def test_pacer_refuses_no_slots() -> None:
     with pytest.raises(ValueError, match="slots >= 1"):
         JoinPacer(0)
