@@ -10,6 +10,10 @@ server. Measured on a 2-core machine, two busy loops on one core, one at nice 19
 session it got 1 % of the core; in a session of its own, 50 %. So the session's group gets the
 same niceness (``/proc/PID/autogroup``), which only a process leading its own session may set for
 itself: a node in its terminal's session leaves the terminal's other processes as they are.
+
+A process whose session never left the system's first one (a service's, a container's) is in the
+root group, and its ``/proc/PID/autogroup`` reads empty: there a niceness counts against every
+process of that group, as on a kernel without autogroups.
 """
 
 from __future__ import annotations
@@ -25,16 +29,24 @@ def set_session_group_nice(pid: int, nice: int) -> bool:
     try:
         with open(AUTOGROUP.format(pid=pid), "w") as group:
             group.write(str(nice))
-    except FileNotFoundError:
+    except OSError:
         return False
     return True
 
 
+def group_nice(line: str) -> int | None:
+    """The niceness a ``/proc/PID/autogroup`` line gives (``/autogroup-42 nice 10`` → 10); None for
+    the empty line of a process in the root group."""
+    words = line.split()
+    return int(words[-1]) if words else None
+
+
 def session_group_nice(pid: int) -> int | None:
-    """The niceness of ``pid``'s session group (``/autogroup-42 nice 10`` → 10), None without one."""
+    """The niceness of ``pid``'s session group, None where it has none of its own (no autogroups,
+    or the root group)."""
     try:
         with open(AUTOGROUP.format(pid=pid)) as group:
-            return int(group.read().split()[-1])
+            return group_nice(group.read())
     except FileNotFoundError:
         return None
 

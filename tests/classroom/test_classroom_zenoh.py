@@ -22,6 +22,7 @@ from support.http import HTTP
 
 from server.msgs import Key
 from server.msgs.wire import dds_type_name, serialize, type_hash
+from server.processes.priority import session_group_nice
 from server.settings import SandboxSettings
 from server.transport.acl import ClassAuth, Credentials
 from server.transport.attachment import Attachment
@@ -156,17 +157,15 @@ def test_a_students_node_process_runs_below_the_worlds(classroom: tuple[App, Pat
     app, root, tokens = classroom
     nice = SandboxSettings().nice
     assert get(app, tokens["ada"], "/api/zenoh/join").json()["nice"] == nice
-    ours = Path("/proc/self/autogroup")
-    ours_before = ours.read_text().split()[-1] if ours.exists() else None
+    ours_before = session_group_nice(os.getpid())
     with adas_talker(app, root, tokens) as run:
         app.wait_for(lambda: "/talker" in ada_nodes(app, tokens), "the talker in Ada's world")
         (node,) = children_of(run.pid)
         assert os.getpriority(os.PRIO_PROCESS, node) == min(19, os.getpriority(os.PRIO_PROCESS, 0) + nice)
         assert os.getsid(node) == node != os.getsid(0)
-        group = Path(f"/proc/{node}/autogroup")
-        if group.exists():  # a kernel with autogroup scheduling
-            assert group.read_text().split()[-1] == str(nice)
-            assert ours.read_text().split()[-1] == ours_before  # ours as it was
+        if Path(f"/proc/{node}/autogroup").exists():  # a kernel with autogroup scheduling
+            assert session_group_nice(node) == nice  # a new session's group, even beside the root's
+            assert session_group_nice(os.getpid()) == ours_before  # ours as it was
 
 
 def test_a_student_gets_their_worlds_login_and_the_environment_that_uses_it(

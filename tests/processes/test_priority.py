@@ -12,6 +12,8 @@ from pathlib import Path
 import pytest
 from support.app import REPO
 
+from server.processes.priority import group_nice, session_group_nice
+
 GROUP = Path("/proc/self/autogroup")
 PROBE = (
     "import os\n"
@@ -30,7 +32,13 @@ def lowered(*, own_session: bool) -> tuple[int, str]:
 
 
 def own_group() -> str:
-    return GROUP.read_text().split()[-1] if GROUP.exists() else "None"
+    return str(session_group_nice(os.getpid()))  # "None" in the root group, whose line is empty
+
+
+def test_a_group_line_gives_its_niceness_and_the_root_groups_empty_line_none() -> None:
+    assert group_nice("/autogroup-42 nice 10\n") == 10
+    assert group_nice("/autogroup-7 nice -3\n") == -3
+    assert group_nice("") is None
 
 
 @pytest.mark.parametrize("own_session", [True, False], ids=["leads its session", "in ours"])

@@ -71,7 +71,8 @@ def write(path):
 def priority(_arg):
     try:
         with open("/proc/self/autogroup") as file:
-            group = file.read().split()[-1]
+            words = file.read().split()  # empty in the root group
+        group = words[-1] if words else "none"
     except FileNotFoundError:
         group = "none"
     return f"nice {os.getpriority(os.PRIO_PROCESS, 0)} group {group}"
