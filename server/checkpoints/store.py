@@ -46,7 +46,6 @@ class ProgressStore:
         self._live: dict[str, object] = {}  # world → the key of its Progress now (open() made it)
         self._pending: dict[str, tuple[object, Snapshot]] = {}
         self._written: dict[str, dict[str, bytes]] = {}  # world → the captures on disk, by checkpoint
-        self._owners: dict[str, Owner] = {}  # claimed before the world had progress: written with it
         self._busy = False
         self._closing = False
         self._thread: threading.Thread | None = None
@@ -86,7 +85,6 @@ class ProgressStore:
             self._pending.pop(world, None)
             self._written.pop(world, None)
         with self._io:
-            self._owners.pop(world, None)
             try:
                 return remove_folder(folder)
             except FileNotFoundError:  # removed meanwhile (a worker sharing this folder did)
@@ -108,15 +106,12 @@ class ProgressStore:
         return (self.world_folder(world) / PROGRESS_FILE).is_file()
 
     def claim(self, world: str, owner: Owner) -> None:
-        """Record ``owner`` as whose ``world``'s files are, from now on: at once where the world
-        has progress on disk, else with its first progress (a world with none has nothing to keep
-        from anyone, and a join writes nothing). Blocking."""
+        """Record ``owner`` as whose ``world``'s files are, from now on, at once: what the world
+        keeps from then on (its progress, or its workspace's files, which live elsewhere) is
+        theirs even if the server stops before anything else is written. Blocking."""
         folder = self.world_folder(world)
         with self._io:
-            if not (folder / PROGRESS_FILE).is_file():
-                self._owners[world] = owner
-                return
-            self._owners.pop(world, None)
+            folder.mkdir(parents=True, exist_ok=True, mode=0o700)
             write_atomic(folder / OWNER_FILE, owner.encode())
 
     def release(self, world: str, stamp: str) -> Path | None:
@@ -213,10 +208,6 @@ class ProgressStore:
     def _write(self, world: str, snapshot: Snapshot) -> None:
         folder = self.world_folder(world)
         folder.mkdir(parents=True, exist_ok=True, mode=0o700)
-        owner = self._owners.get(world)
-        if owner is not None:  # whose it is, before the progress that makes it worth knowing
-            write_atomic(folder / OWNER_FILE, owner.encode())
-            del self._owners[world]
         written = self._written.setdefault(world, {})
         for name, png in snapshot.captures.items():
             if written.get(name) is not png and _NAME.fullmatch(name):

@@ -21,7 +21,7 @@ from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth
 from server.workspace.class_mark import leave_mark
-from server.workspace.location import remove_world_workspace
+from server.workspace.location import remove_world_workspace, world_has_files
 
 from . import remote_checkpoints, remote_worlds
 from .admission import Admission, check_student_name, new_code
@@ -75,8 +75,12 @@ class ClassServer:
         self.placement = Placement(settings, self.labs, self.graph, self.cpu, self._end)
         self.load = ClassLoad(self.labs, self.graph, self.cpu, self.placement)
         self.queue = JoinQueue(self.class_settings.join_queue, self.clock)
-        # The progress on disk: whose each world's is, and those not joined since the start.
-        self.saved = SavedStudents(self.labs.progress, lambda: load_checkpoints(settings.lab.checkpoints))
+        # The progress and code on disk: whose each world's are, and those not joined since the start.
+        self.saved = SavedStudents(
+            self.labs.progress,
+            lambda: load_checkpoints(settings.lab.checkpoints),
+            lambda name: world_has_files(self.class_settings.workspaces_dir, name),
+        )
         self.local_workers: LocalWorkers | None = None  # world workers started here (--workers)
         self.view: ClassView | None = None  # the instructor's 3D view of every world
         self.workspaces_mark: str | None = None  # its workspaces folder's mark, once open

@@ -2,13 +2,16 @@
 started, as their files keep them (the instructor's table lists them), and the rule that gives a
 world's progress to its own student only.
 
-A join under a name whose progress is on disk takes it when that progress is nobody's yet (no owner
-record: released by the instructor, or kept before owners were recorded) or when the join presents
-the token its student was given last (the join page's cookie, which outlives a restart of the class
-server though the token no longer grants anything): server/checkpoints/owner.py. Any other join
-under that name is refused with 409, and nothing changes. A join that starts a world records its
-student as the owner. The instructor releases a student's progress (their owner record is set
-aside, never removed) for a student who lost their cookie: the next join under the name takes it.
+A world keeps two things on disk under its name: its progress (the state folder) and its
+workspace (the class's workspaces folder, the student's code). A join under a name that keeps
+either takes them when they are nobody's yet (no owner record: released by the instructor, or kept
+before owners were recorded) or when the join presents the token its student was given last (the
+join page's cookie, which outlives a restart of the class server though the token no longer grants
+anything): server/checkpoints/owner.py. Any other join under that name is refused with 409, and
+nothing changes. A join that starts a world records its student as the owner at once, so code
+written before any progress is theirs too. The instructor releases a student's progress and code
+(their owner record is set aside, never removed) for a student who lost their cookie: the next join
+under the name takes them.
 """
 
 from __future__ import annotations
@@ -30,11 +33,18 @@ log = logging.getLogger("classroom")
 
 
 class SavedStudents:
-    """The progress ``store`` keeps, read once at the start (``load``), and its owners."""
+    """The progress ``store`` keeps, read once at the start (``load``), and the owners of it and of
+    the worlds' workspaces (``has_code``: whether a world's workspace holds any file; blocking)."""
 
-    def __init__(self, store: ProgressStore, checkpoints: Callable[[], tuple[Checkpoint, ...]]) -> None:
+    def __init__(
+        self,
+        store: ProgressStore,
+        checkpoints: Callable[[], tuple[Checkpoint, ...]],
+        has_code: Callable[[str], bool],
+    ) -> None:
         self.store = store
         self._checkpoints = checkpoints
+        self._has_code = has_code
         self._saved: dict[str, Progress] = {}  # by world: those not joined since the start
 
     async def load(self) -> None:
@@ -58,10 +68,10 @@ class SavedStudents:
         return progress
 
     async def check(self, name: str, student: str, token: str | None) -> None:
-        """A join as ``student`` into world ``name``: 409 unless there is no progress on disk under
-        that name, or it is nobody's yet, or ``token`` proves the join is its student's."""
+        """A join as ``student`` into world ``name``: 409 unless there is no progress nor code on
+        disk under that name, or it is nobody's yet, or ``token`` proves the join is its student's."""
         try:
-            owner = await asyncio.to_thread(self._owner_of_progress, name)
+            owner = await asyncio.to_thread(self._owner_of_saved, name)
         except OwnerFileError as exc:
             raise ClassroomError(409, f"the name {student!r} (world {name!r}) has saved progress whose "
                                       f"owner record cannot be read ({exc}): ask the instructor to release "
@@ -69,15 +79,17 @@ class SavedStudents:
         if owner is None or owner.proven_by(token):
             return
         raise ClassroomError(
-            409, f"the name {student!r} (world {name!r}) has saved progress that belongs to the student who "
-            f"joined as {owner.student!r} earlier, and this join does not show it is them: join again from "
+            409, f"the name {student!r} (world {name!r}) has saved progress or code that belongs to the "
+            f"student who joined as {owner.student!r} earlier, and this join does not show it is them: join again from "
             "the browser used then (its cookie shows it), ask the instructor to release that progress to "
             "you, or join under another name",
         )  # fmt: skip
 
-    def _owner_of_progress(self, name: str) -> Owner | None:
-        """Whose world ``name``'s saved progress is; None when it has none, or nobody's."""
-        return self.store.owner(name) if self.store.has_progress(name) else None
+    def _owner_of_saved(self, name: str) -> Owner | None:
+        """Whose world ``name``'s saved progress and code are; None when it has neither, or they
+        are nobody's."""
+        kept = self.store.has_progress(name) or self._has_code(name)
+        return self.store.owner(name) if kept else None
 
     async def claim(self, name: str, student: str, token: str) -> None:
         """``student`` joined world ``name`` with ``token``: its progress is theirs from now on."""

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import os
 import shutil
 from pathlib import Path
 
@@ -13,6 +14,15 @@ def world_workspace(workspaces_dir: Path, world: str) -> Path:
     """The folder of ``world``'s workspace (a world's name is one plain name: no ``/``, no ``..``)."""
     (name,) = parts_of(world)
     return workspaces_dir / name
+
+
+def world_has_files(workspaces_dir: Path, world: str) -> bool:
+    """Whether the world's workspace holds anything (it is made with the first file written)."""
+    try:
+        with os.scandir(world_workspace(workspaces_dir, world)) as entries:
+            return any(True for _ in entries)
+    except (FileNotFoundError, NotADirectoryError):
+        return False
 
 
 def remove_world_workspace(workspaces_dir: Path, world: str) -> bool:

@@ -5,7 +5,9 @@ the class server is ended and a new one started on the same state folder.
 Before anyone joins again, the instructor's table, its CSV and the class's zip list both, as not
 joined, with what their files keep. Eve joining as "Ada" without Ada's token (or with a made-up
 one) is refused with 409 and changes nothing; Ada joining again from her browser (the old token in
-her cookie) takes her progress. The instructor releases Bob's progress, and the next join as "Bob"
+her cookie) takes her progress. Code is kept as progress is: Cy, who wrote code and met no
+checkpoint, is refused the same way to anyone else and gets it back from her browser; Dan, who
+joined and kept nothing, leaves his name free. The instructor releases Bob's progress, and the next join as "Bob"
 takes it; the owner record released is kept beside, never removed."""
 
 from __future__ import annotations
@@ -65,6 +67,21 @@ def answer(app: App, token: str, text: str, qid: str = "q1") -> None:
     assert reply.status_code == 200, reply.text
 
 
+CY_CODE = "print('my keyboard manager')\n"
+CY_FILE = "src/mine/mine/keyboard_manager.py"
+
+
+def save_code(app: App, token: str, text: str) -> None:
+    reply = HTTP.put(f"{app.url}/api/workspace/files/{CY_FILE}", json={"text": text}, headers=bearer(token))
+    assert reply.status_code == 201, reply.text
+
+
+def code_of(app: App, token: str) -> str:
+    reply = HTTP.get(f"{app.url}/api/workspace/files/{CY_FILE}", headers=bearer(token), timeout=10)
+    assert reply.status_code == 200, reply.text
+    return str(reply.json()["text"])
+
+
 def world_view(app: App, token: str) -> dict[str, Any]:
     reply = HTTP.get(f"{app.url}/api/checkpoints", headers=bearer(token), timeout=10)
     assert reply.status_code == 200, reply.text
@@ -95,8 +112,11 @@ def test_a_restarted_class_lists_saved_students_and_gives_their_progress_to_them
     try:
         ada = joined(first, "Ada")
         bob = joined(first, "Bob")
+        cy = joined(first, "Cy")  # writes code and meets no checkpoint
+        joined(first, "Dan")  # does nothing
         answer(first, ada, "four nodes")
         answer(first, bob, "two nodes")
+        save_code(first, cy, CY_CODE)
         met = meet_fly_to_point(World(first, ada))  # type: ignore[arg-type]
     finally:
         first.stop()  # Ctrl-C to its id: it writes what waits, then ends
@@ -147,6 +167,12 @@ def test_a_restarted_class_lists_saved_students_and_gives_their_progress_to_them
         after = students(second, teacher)
         assert after["ada"]["joined"] is True and after["bob"]["joined"] is False
         assert json.loads(owner.read_text())["token_sha256"] == hashlib.sha256(ada_again.encode()).hexdigest()
+
+        # Cy's code is hers as her progress would be; Dan kept nothing, so his name is anyone's.
+        refused = join(second, "Cy")
+        assert refused.status_code == 409 and "progress or code" in refused.json()["detail"], refused.text
+        assert code_of(second, joined(second, "Cy", Cookie=f"lab_token={cy}")) == CY_CODE
+        assert join(second, "Dan").status_code == 201
 
         # Bob lost his cookie: the instructor releases his progress, and the next "Bob" takes it.
         def release(world: str, token: str = teacher) -> httpx.Response:

@@ -179,18 +179,18 @@ def test_a_class_folder_is_read_bounded_with_owners_names_and_nothing_moved(tmp_
     ]
 
 
-def test_a_join_with_no_progress_writes_nothing_and_its_owner_comes_with_the_first_progress(
-    tmp_path: Path,
-) -> None:
+def test_a_join_writes_its_owner_at_once_and_progress_keeps_it(tmp_path: Path) -> None:
+    """Code a student writes before any progress is theirs too: the owner is on disk from the join."""
     from server.checkpoints.owner import OWNER_FILE, Owner
 
     store = ProgressStore.in_state_dir(tmp_path)
     try:
         store.claim("eve", Owner.of("Eve", "token-of-eve"))
-        assert not store.folder.exists()  # a join alone leaves no folder behind
+        assert (store.world_folder("eve") / OWNER_FILE).is_file() and not store.has_progress("eve")
+        assert store.owner("eve") == Owner.of("Eve", "token-of-eve")
         store.open("eve", CHECKPOINTS).answer("q1", "Eve's answer")
         assert store.flush()
     finally:
         store.close()
-    assert (store.world_folder("eve") / OWNER_FILE).is_file()
+    assert store.has_progress("eve")
     assert store.owner("eve") == Owner.of("Eve", "token-of-eve")
