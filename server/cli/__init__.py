@@ -61,9 +61,10 @@ def verb_of(argv: list[str]) -> str | None:
 
 
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
-    """The whole command line, or with ``only`` (a verb) that verb's alone: ``ros2lab run``
-    then imports none of the other verbs' modules (bag's MCAP, the interfaces, the formatting),
-    which at a class's "run it now" twenty starts at once would import beside the worlds."""
+    """The whole command line, or with ``only`` (a verb) that verb's alone: a command then imports
+    none of the other verbs' modules (bag's MCAP, the interfaces, package creation), a third of a
+    CPU second at every start, and at a class's "run it now" twenty ``ros2lab run`` at once would
+    import them beside the worlds. ``ros2lab --help`` and an unknown verb get every verb."""
     parser = argparse.ArgumentParser(
         prog="ros2lab",
         description="ros2's command-line tools for the teleop lab's running server.",
@@ -100,7 +101,7 @@ def main(argv: list[str] | None = None) -> int:
     verb = verb_of(argv)
     if verb == "run" and os.environ.get(TOKEN_ENV):
         start_below_the_worlds()  # before its imports: see server/cli/priority.py
-    args = build_parser(verb if verb == "run" else None).parse_args(argv)
+    args = build_parser(verb).parse_args(argv)
     url = args.url or os.environ.get(URL_ENV) or DEFAULT_URL
     from .client import CliError, LabClient  # its HTTP client, once the command has its priority
 
