@@ -1,13 +1,35 @@
-"""Fixtures shared by the unit tests: a bus on a manual clock, and its executor.
+"""Fixtures shared by the unit tests: a bus on a manual clock, and its executor; and a working
+folder of each test's own.
 
 Time moves only when a test moves it (``executor.spin_until`` / ``spin_for``).
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from pathlib import Path
+
 import pytest
 
 from server.bus import Bus, Executor, ManualClock
+
+
+@pytest.fixture(scope="session", autouse=True)
+def session_folder(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
+    """The working folder of the fixtures that outlive one test (a module's app, a session's):
+    one per pytest process, never the repository's."""
+    with pytest.MonkeyPatch.context() as patch:
+        folder = tmp_path_factory.mktemp("cwd")
+        patch.chdir(folder)
+        yield folder
+
+
+@pytest.fixture(autouse=True)
+def own_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """Each test runs in a folder of its own: what an app made in the test keeps in its working
+    folder by default (``state/``, ``workspaces/``, ``bags/``) is never another test's."""
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
 
 
 @pytest.fixture

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from classroom.test_classroom_api import auth, class_settings, join
+from classroom.test_classroom_api import CODE, auth, class_settings, join
 from fastapi.testclient import TestClient
 from support.app import free_port
 from support.sandbox import require_sandbox
@@ -130,12 +130,17 @@ def test_class_removing_a_student_removes_their_workspace_only(client: TestClien
     assert not (folder / "gus").exists()
 
 
-def test_class_a_workspace_outlives_a_restart_of_the_server(tmp_path: Path) -> None:
+def test_class_a_workspace_outlives_a_restart_of_the_server_for_its_student_alone(tmp_path: Path) -> None:
+    """Dana's code is hers after the restart: another "Dana" is refused (409), Dana from her
+    browser (the old token in her cookie) gets it back."""
     folder = tmp_path / "workspaces"
     with TestClient(create_app(settings_in(folder), ManualClock(1_000.0))) as first:
-        token = join(first, "Dana")
-        assert first.put(f"{FILES}/src/d/d.py", json={"text": "d\n"}, headers=auth(token)).status_code == 201
+        old = join(first, "Dana")
+        assert first.put(f"{FILES}/src/d/d.py", json={"text": "d\n"}, headers=auth(old)).status_code == 201
     with TestClient(create_app(settings_in(folder), ManualClock(1_000.0))) as second:
+        other = second.post("/api/classroom/join", json={"name": "Dana", "code": CODE})
+        assert other.status_code == 409 and "progress or code" in other.json()["detail"], other.text
+        second.cookies.set("lab_token", old)
         token = join(second, "Dana")
         assert second.get(f"{FILES}/src/d/d.py", headers=auth(token)).json()["text"] == "d\n"
 
