@@ -2,8 +2,8 @@
 (a node process about to start, as ``ros2lab run`` asks) admits a start into one of a few slots,
 each held for about as long as a node process takes to import its libraries and join; a start
 that finds every slot held is answered 429 with ``Retry-After``: the time of its turn, after the
-starts told to come back before it, and ``ros2lab run`` waits that long and asks again. A join without ``start`` (``ros2lab env``, a tool reading the router) is
-never paced.
+starts told to come back before it, and ``ros2lab run`` waits that long and asks again. A join
+without ``start`` (``ros2lab env``, a tool reading the router) is never paced.
 
 Why: a node's start is a burst of CPU (the interpreter, rclpy, the messages, the Zenoh session).
 Sixty of them at once on a 2-core class server (a class told "run it now") share the cores with

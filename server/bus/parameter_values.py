@@ -88,26 +88,6 @@ def double_range(
     return ParameterDescriptor(description=description, read_only=fixed, floating_point_range=[bounds])
 
 
-__all__ = [
-    "BOOL",
-    "BOOL_ARRAY",
-    "BYTE_ARRAY",
-    "DOUBLE",
-    "DOUBLE_ARRAY",
-    "FIELDS",
-    "INTEGER",
-    "INTEGER_ARRAY",
-    "NOT_SET",
-    "STRING",
-    "STRING_ARRAY",
-    "double_range",
-    "from_value_msg",
-    "read_only",
-    "to_value_msg",
-    "type_of",
-]
-
-
 def parameter_event(
     node: str,
     stamp: Time,
@@ -124,3 +104,24 @@ def parameter_event(
         changed_parameters=list(changed),
         deleted_parameters=list(deleted),
     )
+
+
+__all__ = [
+    "BOOL",
+    "BOOL_ARRAY",
+    "BYTE_ARRAY",
+    "DOUBLE",
+    "DOUBLE_ARRAY",
+    "FIELDS",
+    "INTEGER",
+    "INTEGER_ARRAY",
+    "NOT_SET",
+    "STRING",
+    "STRING_ARRAY",
+    "double_range",
+    "from_value_msg",
+    "parameter_event",
+    "read_only",
+    "to_value_msg",
+    "type_of",
+]

@@ -73,16 +73,16 @@ class SavedStudents:
         try:
             owner = await asyncio.to_thread(self._owner_of_saved, name)
         except OwnerFileError as exc:
-            raise ClassroomError(409, f"the name {student!r} (world {name!r}) has saved progress whose "
-                                      f"owner record cannot be read ({exc}): ask the instructor to release "
+            raise ClassroomError(409, f"the name {student!r} (world {name!r}) has saved progress or code "
+                                      f"whose owner record cannot be read ({exc}): ask the instructor to release "
                                       "it, or join under another name") from None  # fmt: skip
         if owner is None or owner.proven_by(token):
             return
         raise ClassroomError(
             409, f"the name {student!r} (world {name!r}) has saved progress or code that belongs to the "
-            f"student who joined as {owner.student!r} earlier, and this join does not show it is them: join again from "
-            "the browser used then (its cookie shows it), ask the instructor to release that progress to "
-            "you, or join under another name",
+            f"student who joined as {owner.student!r} earlier, and this join does not show it is them: "
+            "join again from the browser used then (its cookie shows it), ask the instructor to release "
+            "it to you, or join under another name",
         )  # fmt: skip
 
     def _owner_of_saved(self, name: str) -> Owner | None:

@@ -16,21 +16,19 @@ from __future__ import annotations
 import os
 
 START_NICE = 19  # the sandbox's default (server/settings.py): the lowest
-
-
-class _Start:
-    niceness: int | None = None  # the command's own niceness before START_NICE (None: not taken)
+_started_at: int | None = None  # the command's own niceness before START_NICE (None: not taken)
 
 
 def start_below_the_worlds() -> None:
     """Take ``START_NICE`` now, before the command's imports."""
-    _Start.niceness = os.getpriority(os.PRIO_PROCESS, 0)
+    global _started_at
+    _started_at = os.getpriority(os.PRIO_PROCESS, 0)
     os.nice(START_NICE)
 
 
 def take_the_labs_nice(nice: int) -> None:
     """At least ``nice`` below the niceness the command started with (part of it may be taken)."""
-    start = _Start.niceness if _Start.niceness is not None else os.getpriority(os.PRIO_PROCESS, 0)
     now = os.getpriority(os.PRIO_PROCESS, 0)
+    start = _started_at if _started_at is not None else now
     if start + nice > now:
         os.nice(start + nice - now)

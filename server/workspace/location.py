@@ -20,7 +20,7 @@ def world_has_files(workspaces_dir: Path, world: str) -> bool:
     """Whether the world's workspace holds anything (it is made with the first file written)."""
     try:
         with os.scandir(world_workspace(workspaces_dir, world)) as entries:
-            return any(True for _ in entries)
+            return next(entries, None) is not None
     except (FileNotFoundError, NotADirectoryError):
         return False
 
