@@ -14,6 +14,9 @@ from .viser_guard import guarded_serve, new_token
 
 log = logging.getLogger("viewer")
 
+SKY_GROUND = (110, 110, 110)  # the hemisphere light's colour from below
+SKY_INTENSITY = 2.0
+
 
 class Display:
     """Owns the ViserServer; view nodes draw through ``scene`` and ``gui``.
@@ -35,6 +38,14 @@ class Display:
         # Shadows cost a fixed depth pass per frame, which software WebGL pays in full; the labs
         # read fine without them.
         self.server.scene.configure_default_lights(enabled=True, cast_shadow=False)
+        # No image-based light: viser's default HDRI is filtered into an environment map in the
+        # page, which froze a software-WebGL page for about 6 s a few seconds after each load. A
+        # hemisphere light (white sky, grey ground) lights the sides the HDRI lit, at no cost.
+        self.server.scene.configure_environment_map(None)
+        self.server.scene.add_light_hemisphere(
+            "/lights/sky", sky_color=(255, 255, 255), ground_color=SKY_GROUND, intensity=SKY_INTENSITY,
+            position=(0.0, 0.0, 1.0),
+        )  # fmt: skip
 
     def add_view(
         self,
