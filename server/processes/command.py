@@ -102,6 +102,9 @@ def node_command(
     child_env = {
         **base,
         "PYTHONUNBUFFERED": "1",
+        # A node imports the student's own modules from the workspace: their compiled copies
+        # (__pycache__) would appear beside them, in the page's tree and the workspace's zip.
+        "PYTHONDONTWRITEBYTECODE": "1",
         "ROS_DOMAIN_ID": str(domain_id),
         "ZENOH_CONFIG_OVERRIDE": ";".join(filter(None, [inherited, *overrides])),
         PARENT_ENV: str(os.getpid()),

@@ -37,7 +37,13 @@ INSIDE_UID = 1000  # the node's uid inside its user namespace (not root)
 PROJECT = Path(__file__).resolve().parents[2]
 CLIENT_CODE = ("server", "sim", "client")  # the lab's code a node process imports
 # Only what a node process needs; the server's own environment never reaches it.
-KEPT_ENV = ("PYTHONUNBUFFERED", "ROS_DOMAIN_ID", "ZENOH_CONFIG_OVERRIDE", WORKSPACE_ENV)
+KEPT_ENV = (
+    "PYTHONUNBUFFERED",
+    "PYTHONDONTWRITEBYTECODE",
+    "ROS_DOMAIN_ID",
+    "ZENOH_CONFIG_OVERRIDE",
+    WORKSPACE_ENV,
+)
 
 
 INSIDE_ROUTER = socket_endpoint(f"{SOCKET_DIR}/{SOCKET_NAME}")

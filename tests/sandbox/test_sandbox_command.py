@@ -51,7 +51,7 @@ def test_sandbox_command_binds_the_workspace_rw_and_the_code_read_only(wrapped: 
 def test_sandbox_command_environment_is_only_what_a_node_needs(wrapped: tuple[list[str], dict[str, str], Path]) -> None:  # fmt: skip
     _argv, env, workspace = wrapped
     assert "ROS2LAB_SERVER_SECRET" not in env and "ROS2LAB_PARENT_PID" not in env
-    assert set(env) == {"PYTHONUNBUFFERED", "ROS_DOMAIN_ID", "ZENOH_CONFIG_OVERRIDE", "ROS2LAB_WORKSPACE",
+    assert set(env) == {"PYTHONUNBUFFERED", "PYTHONDONTWRITEBYTECODE", "ROS_DOMAIN_ID", "ZENOH_CONFIG_OVERRIDE", "ROS2LAB_WORKSPACE",
                         "PATH", "HOME", "TMPDIR", "LANG", LIMITS_ENV}  # fmt: skip
     assert env["ROS_DOMAIN_ID"] == "3" and env["ROS2LAB_WORKSPACE"] == str(workspace.resolve())
     assert f'connect/endpoints=["{INSIDE_ROUTER}"]' in env["ZENOH_CONFIG_OVERRIDE"]

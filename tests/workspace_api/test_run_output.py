@@ -156,6 +156,25 @@ def test_run_output_a_fast_printer_drops_lines_and_counts_them(client: TestClien
     assert client.delete(f"/api/launches/{group}").status_code == 200
 
 
+def test_run_leaves_no_compiled_files_in_the_workspace(
+    client: TestClient, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # As on most machines: Python writes what it compiles beside the module it imported.
+    monkeypatch.delenv("PYTHONDONTWRITEBYTECODE", raising=False)
+    monkeypatch.delenv("PYTHONPYCACHEPREFIX", raising=False)
+    group = run(client, "quick")  # its entry point imports simple_control.quick from the workspace
+
+    def exited() -> bool:
+        launches = {g["id"]: g for g in client.get("/api/launches").json()}
+        return launches[group]["nodes"][0]["exit_code"] == 3
+
+    wait_until(exited, "the node to exit", START_S)
+    assert client.delete(f"/api/launches/{group}").status_code == 200
+    paths = [entry["path"] for entry in client.get("/api/workspace/files").json()["entries"]]
+    assert f"src/{PACKAGE}/{PACKAGE}/quick.py" in paths
+    assert [p for p in paths if "__pycache__" in p or p.endswith(".pyc")] == []
+
+
 def test_run_output_the_running_limit_is_429_with_the_reason(client: TestClient) -> None:
     groups = [run(client, "talker"), run(client, "talker")]
     try:
