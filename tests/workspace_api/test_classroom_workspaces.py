@@ -111,7 +111,9 @@ def test_class_a_reset_keeps_the_workspace(client: TestClient, students: dict[st
     assert paths(client, auth(students["ada"])) == ["src/ada_pkg/ada.py"]
 
 
-def test_class_removing_a_student_removes_their_workspace_only(client: TestClient, folder: Path) -> None:
+def test_class_removing_a_student_removes_their_workspace_only(
+    client: TestClient, students: dict[str, str], folder: Path
+) -> None:
     token = join(client, "Cleo")
     assert client.put(f"{FILES}/src/c/c.py", json={"text": "c\n"}, headers=auth(token)).status_code == 201
     assert (folder / "cleo" / "src/c/c.py").exists()
