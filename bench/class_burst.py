@@ -1,6 +1,7 @@
 """Bench: a class told "run it now", measured from outside.
 
     .venv/bin/python bench/class_burst.py [--worlds 30] [--per-world 2] [--joined-timeout-s 300]
+        [--steady-s 30] [--via cli|page]
 
 A class server (``--classroom --launch fly``, its Zenoh router on a free loopback port) with
 ``--worlds`` students joined, one world each. Then ``--worlds`` × ``--per-world`` ``ros2lab run``
@@ -14,7 +15,13 @@ and a node name of its own, all started at once, as a class does. What is measur
 * the class server's CPU (cores) over that time, the share of the machine's CPU time the
   hypervisor stole, and the load average;
 * then, one second later, each node process's RSS (the ``runner`` children of the ``ros2lab run``
-  processes): median, max and sum.
+  processes): median, max and sum;
+* then, with every node running, ``--steady-s`` seconds of the class as it then is: every world's
+  dynamics rate, the class server's CPU and that of every node process (with its sandbox).
+
+``--via page`` starts the nodes as the page's Run does instead: the keyboard manager saved into
+each student's workspace through the workspace API, then ``POST /api/run`` with the student's
+token, so the class server starts each node process (in its sandbox, where bubblewrap is installed).
 
 Every child is ended by its own id (Ctrl-C to each ``ros2lab run``, which passes it on). Prints
 the machine (bench/machine.py) and one JSON object, also written to bench/results/class_burst.json.
@@ -23,6 +30,7 @@ the machine (bench/machine.py) and one JSON object, also written to bench/result
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import shutil
@@ -46,6 +54,7 @@ DYNAMICS = "flightgoggles_uav_dynamics"
 WORKSPACE = REPO / "examples" / "workspace"
 ROS2LAB = str(Path(sys.executable).parent / "ros2lab")
 POLL_S = 0.5
+JOIN_WAIT_S = 120.0  # a join the class queues at its capacity
 
 
 def cpu_jiffies() -> tuple[int, int]:
@@ -68,6 +77,25 @@ def get(server: LiveServer, token: str, path: str) -> Any:
 def dynamics_calls(server: LiveServer, token: str) -> tuple[int, float]:
     timers = get(server, token, f"/api/nodes/{DYNAMICS}")["timers"]
     return int(timers[0]["calls"]), time.monotonic()
+
+
+def is_runner(pid: int) -> bool:
+    """Whether ``pid`` is a node process (the lab's runner, whatever started it)."""
+    try:  # bubblewrap's own process carries the same command line: not a node
+        proc = Path(f"/proc/{pid}")
+        return (proc / "comm").read_text().strip() != "bwrap" and b"server.processes.runner" in (
+            proc / "cmdline"
+        ).read_bytes()
+    except FileNotFoundError:
+        return False
+
+
+def is_worker(pid: int) -> bool:
+    """Whether ``pid`` is a world worker the class server started (``--workers``)."""
+    try:
+        return b"world-worker" in Path(f"/proc/{pid}/cmdline").read_bytes()
+    except FileNotFoundError:
+        return False
 
 
 def children(pid: int) -> list[int]:
@@ -95,18 +123,105 @@ def start(server: LiveServer, token: str, node: str, env: dict[str, str]) -> sub
     )  # fmt: skip
 
 
-def burst(server: LiveServer, tokens: dict[str, str], per_world: int, timeout_s: float) -> dict[str, Any]:
+def join(server: LiveServer, name: str) -> tuple[str, str]:
+    """(world, token) of a new student; a join queued at the class's capacity (202) is polled."""
+    reply = httpx.post(f"{server.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=180)
+    deadline = time.monotonic() + JOIN_WAIT_S
+    while reply.status_code == 202 and time.monotonic() < deadline:
+        time.sleep(float(reply.json().get("poll_s", 2.0)))
+        reply = httpx.get(f"{server.url}/api/classroom/join/{reply.json()['ticket']}", timeout=180)
+    if reply.status_code != 201:
+        raise RuntimeError(f"{name}'s join answered {reply.status_code}: {reply.text}")
+    return reply.json()["world"], reply.json()["token"]
+
+
+def save_manager(server: LiveServer, token: str) -> None:
+    """The handout's keyboard manager in the student's workspace, as the page's editor saves it."""
+    path = "src/rocketship/src/keyboard_manager.py"
+    reply = READER.put(f"{server.url}/api/workspace/files/{path}", headers={"Authorization": f"Bearer {token}"},
+                       json={"text": (WORKSPACE / path).read_text()})  # fmt: skip
+    if reply.status_code not in (200, 201):
+        raise RuntimeError(f"saving the keyboard manager: {reply.status_code} {reply.text}")
+
+
+def start_in_page(server: LiveServer, token: str, node: str) -> str:
+    """The page's Run of the student's keyboard manager as ``node``: the launch's id."""
+    reply = READER.post(f"{server.url}/api/run", headers={"Authorization": f"Bearer {token}"},
+                        json={"package": "rocketship", "executable": "keyboard_manager.py", "name": node})  # fmt: skip
+    if reply.status_code != 201:
+        raise RuntimeError(f"POST /api/run: {reply.status_code} {reply.text}")
+    return str(reply.json()["id"])
+
+
+def descendants(pid: int) -> list[int]:
+    """Every process below ``pid``."""
+    found, todo = [], [pid]
+    while todo:
+        kids = children(todo.pop())
+        found += kids
+        todo += kids
+    return found
+
+
+def tree_cpu_s(pids: list[int]) -> dict[int, float]:
+    out = {}
+    for pid in pids:
+        with contextlib.suppress(FileNotFoundError, ProcessLookupError):
+            out[pid] = process_cpu_s(pid)
+    return out
+
+
+def steady(server: LiveServer, tokens: dict[str, str], roots: list[int], seconds: float) -> dict[str, Any]:
+    """The class with every node running, over ``seconds``: each world's dynamics rate, the class
+    server's CPU, the node processes' and the world workers' (of the processes below ``roots``
+    alive throughout)."""
+    nodes = [p for root in {*roots, server.proc.pid} for p in descendants(root)]  # the workers too
+    steal0, total0 = cpu_jiffies()
+    cpu0, nodes0 = process_cpu_s(server.proc.pid), tree_cpu_s(nodes)
+    before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
+    time.sleep(seconds)
+    after = {w: dynamics_calls(server, t) for w, t in tokens.items()}
+    cpu1, nodes1 = process_cpu_s(server.proc.pid), tree_cpu_s(nodes)
+    steal1, total1 = cpu_jiffies()
+    window_s = max(t for _, t in after.values()) - min(t for _, t in before.values())
+    rates = sorted((after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens)
+    used = {p: nodes1[p] - nodes0[p] for p in nodes1 if p in nodes0}
+    node_s = sum(t for p, t in used.items() if is_runner(p))
+    workers_s = sum(t for p, t in used.items() if is_worker(p))
+    return {
+        "window_s": round(window_s, 1),
+        "dynamics_hz": {"median": round(statistics.median(rates), 1), "lowest": round(rates[0], 1)},
+        "server_cpu_cores": round((cpu1 - cpu0) / window_s, 2),
+        "node_processes": sum(1 for p in nodes1 if is_runner(p)),
+        "node_processes_cpu_cores": round(node_s / window_s, 2),
+        "world_workers_cpu_cores": round(workers_s / window_s, 2),
+        "stolen": round((steal1 - steal0) / max(1, total1 - total0), 4),
+    }
+
+
+def burst(
+    server: LiveServer, tokens: dict[str, str], per_world: int, timeout_s: float, via: str, steady_s: float
+) -> dict[str, Any]:
     wanted = {w: {f"/{w}_node{i}" for i in range(per_world)} for w in tokens}
+    if via == "page":
+        for token in tokens.values():
+            save_manager(server, token)
     steal0, total0 = cpu_jiffies()
     cpu0 = process_cpu_s(server.proc.pid)
     before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE")}
     t0 = time.monotonic()
-    runs = [
-        start(server, tokens[w], name.lstrip("/"), env)
-        for w, names in wanted.items()
-        for name in sorted(names)
-    ]
+    runs: list[subprocess.Popen[bytes]] = []
+    if via == "page":
+        for w, names in wanted.items():
+            for name in sorted(names):
+                start_in_page(server, tokens[w], name.lstrip("/"))
+    else:
+        runs = [
+            start(server, tokens[w], name.lstrip("/"), env)
+            for w, names in wanted.items()
+            for name in sorted(names)
+        ]
     try:
         pending = dict(wanted)
         joined_at: list[float] = []
@@ -128,14 +243,17 @@ def burst(server: LiveServer, tokens: dict[str, str], per_world: int, timeout_s:
         steal1, total1 = cpu_jiffies()
         window_s = max(t for _, t in after.values()) - min(t for _, t in before.values())
         time.sleep(1.0)
-        node_rss = [rss_mib(c) for run in runs for c in children(run.pid)]
+        roots = [run.pid for run in runs] if runs else [server.proc.pid]
+        node_rss = [rss_mib(p) for root in roots for p in descendants(root) if is_runner(p)]
         exited = sum(1 for run in runs if run.poll() is not None)
+        running = steady(server, tokens, roots, steady_s) if steady_s > 0 and not pending else None
     finally:
         for run in runs:
             end(run)
     rates = sorted((after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens)
     return {
-        "nodes": len(runs),
+        "nodes": sum(len(names) for names in wanted.values()),
+        "via": via,
         "all_joined_s": round(all_joined_s, 1) if all_joined_s is not None else None,
         "not_joined_worlds": sorted(pending),
         "node_lists_unanswered_in_60_s": unanswered,
@@ -149,6 +267,7 @@ def burst(server: LiveServer, tokens: dict[str, str], per_world: int, timeout_s:
             "median": round(statistics.median(node_rss), 1), "max": round(max(node_rss), 1),
             "sum": round(sum(node_rss), 1), "count": len(node_rss),
         } if node_rss else None,
+        "steady": running,
     }  # fmt: skip
 
 
@@ -157,22 +276,32 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--worlds", type=int, default=30)
     parser.add_argument("--per-world", type=int, default=2)
     parser.add_argument("--joined-timeout-s", type=float, default=300.0)
+    parser.add_argument("--workers", type=int, default=0, help="world workers on this machine (--workers)")
+    parser.add_argument(
+        "--local-worlds", type=int, default=0, help="with --workers: worlds the class server hosts"
+    )
+    parser.add_argument(
+        "--steady-s", type=float, default=30.0, help="the class measured with every node running"
+    )
+    parser.add_argument(
+        "--via", choices=["cli", "page"], default="cli", help="ros2lab run, or the page's Run"
+    )
     args = parser.parse_args(argv)
     print(json.dumps(machine_info()), flush=True)
     root = Path(tempfile.mkdtemp(prefix="class_burst_"))
-    server = LiveServer(root, "fly", "--classroom", "--class-code", CODE, "--max-worlds", str(args.worlds))
+    spread = (
+        ["--workers", str(args.workers), "--local-worlds", str(args.local_worlds)] if args.workers else []
+    )
+    server = LiveServer(
+        root, "fly", "--classroom", "--class-code", CODE, "--max-worlds", str(args.worlds), *spread
+    )
     try:
-        tokens: dict[str, str] = {}
-        for i in range(args.worlds):
-            reply = httpx.post(
-                f"{server.url}/api/classroom/join",
-                json={"name": f"student{i:02d}", "code": CODE},
-                timeout=180,
-            )
-            reply.raise_for_status()
-            tokens[reply.json()["world"]] = reply.json()["token"]
+        tokens = dict(join(server, f"student{i:02d}") for i in range(args.worlds))
         time.sleep(3.0)  # every world flying before the starts
-        results = {"args": vars(args), **burst(server, tokens, args.per_world, args.joined_timeout_s)}
+        results = {
+            "args": vars(args),
+            **burst(server, tokens, args.per_world, args.joined_timeout_s, args.via, args.steady_s),
+        }
     finally:
         server.stop()
         shutil.rmtree(root, ignore_errors=True)
