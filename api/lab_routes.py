@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import time
 from typing import Any
 
@@ -9,11 +10,11 @@ from fastapi import APIRouter, HTTPException, Request, status
 
 from server.classroom import Classroom, ClassServer
 from server.processes.command import graph_overrides
+from server.processes.start_pacing import StartPacer
 from server.settings import Settings
 from server.transport.acl import Credentials
 
 from .deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_request, token_of
-from .join_pacing import pacer_of, retry_after
 from .responses import responses
 from .schemas import Health, WorkspaceInfo, ZenohJoin
 
@@ -60,12 +61,13 @@ async def zenoh_join(request: Request, start: bool = False) -> dict[str, Any]:
     world's domain only). ``env`` is ready to export, for ``ros2lab run`` or a ROS 2 node on rmw_zenoh.
     The instructor naming no world gets the class's own graph, where every world's topics show
     under its name (``/ada/uav/sensors/gps``). ``start=true`` (as ``ros2lab run`` asks) is a node
-    process about to start: such joins are paced (api/join_pacing.py), with too many starting at
-    once 429 and ``Retry-After``, after the request's own checks."""
+    process about to start: such joins are paced (server/processes/start_pacing.py), with too
+    many starting at once 429 and ``Retry-After``, after the request's own checks."""
     classroom = classroom_of(request)
     named = request.headers.get(WORLD_HEADER) or request.query_params.get("world")
     if classroom is not None and not named and grant_of(request, classroom).is_instructor:
-        return _paced(request, start, _class_graph_join(classroom))
+        return _paced(classroom.labs.start_pacer if isinstance(classroom, ClassServer) else None, start,
+                      _class_graph_join(classroom))  # fmt: skip
     lab = lab_for_request(request)
     link = lab.zenoh
     if link is None:
@@ -76,7 +78,7 @@ async def zenoh_join(request: Request, start: bool = False) -> dict[str, Any]:
         )
         raise HTTPException(status.HTTP_404_NOT_FOUND, f"this lab's graph is not on Zenoh ({why})")
     join = _join(link.router_endpoint(), link.settings.domain_id, link.settings.login, _nice(lab.settings))
-    return _paced(request, start, join)
+    return _paced(lab.start_pacer, start, join)
 
 
 def _nice(settings: Settings) -> int | None:
@@ -86,8 +88,15 @@ def _nice(settings: Settings) -> int | None:
     return settings.sandbox.nice if settings.confines_paths else None
 
 
-def _paced(request: Request, start: bool, join: dict[str, Any]) -> dict[str, Any]:
-    wait_s = pacer_of(request.app).admit() if start else None
+def retry_after(wait_s: float) -> str:
+    """``Retry-After`` in whole seconds, as HTTP writes it (at least 1)."""
+    return str(max(1, math.ceil(wait_s)))
+
+
+def _paced(pacer: StartPacer | None, start: bool, join: dict[str, Any]) -> dict[str, Any]:
+    """The join, or 429 with the time of its turn (``Retry-After``) when it is a start the server's
+    pacer defers (server/processes/start_pacing.py)."""
+    wait_s = pacer.admit() if start and pacer is not None else None
     if wait_s is not None:
         raise HTTPException(
             status.HTTP_429_TOO_MANY_REQUESTS,

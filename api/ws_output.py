@@ -1,8 +1,9 @@
 """WebSocket: ``/ws/launches/{id}/output`` streams what a launch's or run's node processes print.
 
 Frames (JSON text): ``line`` (``seq``, ``node``, ``stream``, ``text``), ``dropped`` (``count``:
-lines a fast printer lost before this socket read them), ``exit`` (``node``, ``code`` or
-``signal``) and, once every node of the group has ended, ``end``, after which the server closes
+lines a fast printer lost before this socket read them), ``waiting`` (``node``: a node process
+that waits for its turn to start, on a server that starts a few at a time), ``exit`` (``node``,
+``code`` or ``signal``; neither for one stopped before it started) and, once every node of the group has ended, ``end``, after which the server closes
 the socket (1000). A new socket first gets the lines still kept. The output is read from the
 processes' own bounded buffers every ``POLL_S``, so a flood costs this socket no memory and
 the lab nothing; the lab's frame budget paces the sends. An unknown id closes with 4404; the

@@ -35,6 +35,7 @@ from server.limits import RateLimit, check_finite_json, check_topic_limits, per_
 from server.msgs import Message, get_type
 from server.packages import PackageIndex
 from server.packages.rocketship.controls import RocketControls
+from server.processes.start_pacing import StartPacer, default_slots
 from server.publishers import PublisherManager
 from server.rest_node import ApiNode
 from server.service_calls import ServiceCaller
@@ -59,6 +60,7 @@ class Lab:
         executors: ExecutorGroup | None = None,
         progress: Progress | None = None,
         node_budget: NodeBudget | None = None,
+        start_pacer: StartPacer | None = None,
     ) -> None:
         self.settings = settings
         limits = settings.limits
@@ -71,6 +73,12 @@ class Lab:
         self.launcher = Launcher(self.bus, self.packages)
         self.launcher.all_processes = settings.lab.node_processes == "all"
         self.launcher.confined = settings.confines_paths
+        # Node processes starting at once on this server's cores: a class server's worlds share
+        # one pacer. ``ros2lab run`` asks it before it starts (GET /api/zenoh/join?start=true);
+        # where the server serves others, the page's runs of students' files wait for it too.
+        self.start_pacer = start_pacer or StartPacer(default_slots(), clock=self.bus.clock.now)
+        if settings.confines_paths:
+            self.launcher.start_pacer = self.start_pacer
         self.keyboard = KeyboardDevice()
         self.bus.devices["keyboard"] = self.keyboard
         self.key_deadman = KeyDeadMan(self.keyboard, self.bus, limits.deadman_s)

@@ -22,6 +22,7 @@ from server.lab import Lab
 from server.launch.groups import NodeBudget
 from server.limits import RateLimit
 from server.processes.sandbox import StudentCodeRefusedError, probe
+from server.processes.start_pacing import StartPacer, default_slots
 from server.settings import Settings, class_section
 from server.transport.acl import Credentials
 from server.transport.config import ZenohSettings
@@ -50,6 +51,7 @@ class WorldLabs:
         self.simple_physics = SharedSimpleSim(clock)  # the worlds flown with simple:=true
         self.executors = ExecutorGroup()
         self.node_budget = NodeBudget(settings.limits.max_server_nodes)  # every world's node processes
+        self.start_pacer = StartPacer(default_slots(), clock=clock.now)  # and their starts
         # Each world's checkpoints and answers, kept in the state folder across restarts.
         self.progress = ProgressStore.in_state_dir(settings.lab.state_dir)
 
@@ -122,7 +124,12 @@ class WorldLabs:
             checkpoints = load_checkpoints(self.settings.lab.checkpoints)
             progress = await asyncio.to_thread(self.progress.open, name, checkpoints)
         lab = Lab(
-            settings, self.clock, executors=self.executors, progress=progress, node_budget=self.node_budget
+            settings,
+            self.clock,
+            executors=self.executors,
+            progress=progress,
+            node_budget=self.node_budget,
+            start_pacer=self.start_pacer,
         )
         lab.bus.label = name  # its nodes' console lines carry its name (server/console.py)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch

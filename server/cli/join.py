@@ -6,8 +6,8 @@ is asked again with a growing pause, for at most ``wait_s`` seconds in all (one 
 all that is left: a saturated lab answers slowly, and that answer is good); then one line says
 so and the command ends non-zero. Nothing falls back to another router or domain: a node started
 anyway would join a graph nobody watches. A lab that answers "not yet" (429 with
-``Retry-After``: too many node processes starting at once on it, see api/join_pacing.py) is asked
-again after the time it gives, for at most ``queue_s`` seconds; that wait is the lab's own pacing
+``Retry-After``: too many node processes starting at once on it, see
+server/processes/start_pacing.py) is asked again after the time it gives, for at most ``queue_s`` seconds; that wait is the lab's own pacing
 and does not count as not answering. Any other error (no Zenoh graph, a bad token) ends at once.
 """
 

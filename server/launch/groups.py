@@ -43,7 +43,7 @@ class LaunchGroup:
                     "pkg": e.action.pkg,
                     "exec": e.action.exec,
                     "error": e.error,
-                    # a node here: active, crashed or destroyed; a node process: running, died or stopped
+                    # a node here: active, crashed or destroyed; a node process: waiting, running, died or stopped
                     "state": e.node.state if e.node is not None else e.process.state if e.process else None,
                     "exit_code": e.process.exit_code if e.process is not None else None,
                     "process": e.process.label if e.process is not None else None,  # ros2 launch's label
@@ -62,9 +62,9 @@ class LaunchGroup:
         return {"group": self.describe(), "processes": processes}
 
     def running_processes(self) -> int:
-        """Its node processes that have not ended."""
+        """Its node processes that have not ended (those waiting for their turn to start too)."""
         return sum(1 for e in self.entries if e.process is not None and e.process.exit_code is None
-                   and e.process.state == "running")  # fmt: skip
+                   and e.process.state in ("running", "waiting"))  # fmt: skip
 
 
 class NodeBudget:

@@ -14,6 +14,7 @@ from server.bus.parameter_service import serve_parameters
 from server.packages import Executable, PackageIndex
 from server.processes.command import node_command, ros_args
 from server.processes.sandbox import INSIDE_ROUTER, Sandbox, StudentCodeRefusedError
+from server.processes.start_pacing import StartPacer
 from server.processes.supervisor import ProcessNode, Supervisor
 from server.transport.acl import Credentials
 
@@ -85,7 +86,6 @@ class Launcher:
         self.packages = packages
         self.respawn_policy = respawn_policy or RespawnPolicy()
         self.launched: list[LaunchedNode] = []
-        self._respawner: Node | None = None
         bus.crash_handlers.append(self._on_crash)
         self.transport: ProcessTransport | None = None  # set once the app's graph is on Zenoh
         self.all_processes = False  # every lab node in its own process too (but the device nodes)
@@ -94,6 +94,10 @@ class Launcher:
         # Students' files on a server that serves others: in this sandbox, or refused (why).
         self.sandbox: Sandbox | StudentCodeRefusedError | None = None
         self.on_process_start: list[Callable[[ProcessNode], None]] = []
+        # Students' node processes start at their turn on a server that serves others (a class:
+        # sixty "Run"s at once must not take the worlds' cores), None: at once.
+        self.start_pacer: StartPacer | None = None
+        self._timers: Node | None = None  # a hidden node for the respawns' and waiting starts' timers
         # Told of every launch file's nodes once started (server/checkpoints watches launches).
         self.on_launch: list[Callable[[LaunchDescription, list[LaunchedNode]], None]] = []
 
@@ -137,16 +141,57 @@ class Launcher:
         )  # fmt: skip
         if sandbox is not None:
             command = sandbox.wrap(command, self.packages.workspace)
-        entry.process = self.supervisor.start(
+        process = self.supervisor.prepare(
             command, action.exec, screen=action.output in SCREEN_OUTPUTS, node_name=action.name
         )
-        entry.node, entry.error = None, None
-        for hook in self.on_process_start:
-            hook(entry.process)
+        entry.process, entry.node, entry.error = process, None, None
+        wait_s = self.start_pacer.admit() if self.start_pacer is not None and exe.file is not None else None
+        if wait_s is None:
+            try:
+                self._spawn(process)
+            except OSError:
+                entry.process = None
+                raise
+        else:
+            self._start_later(entry, process, wait_s)
         if action.respawn:
             entry.respawn = entry.respawn or RespawnBackoff(self.respawn_policy, self.bus.clock)
             entry.respawn.started()
         return entry
+
+    def _spawn(self, process: ProcessNode) -> None:
+        self.supervisor.spawn(process)
+        for hook in self.on_process_start:
+            hook(process)
+
+    def _start_later(self, entry: LaunchedNode, process: ProcessNode, wait_s: float) -> None:
+        """Start ``process`` at its turn (asking the pacer again then), unless stopped before."""
+        log.info("%s: waiting %.1f s for its turn to start (node processes start a few at a time here)",
+                 self.bus.tagged(f"[{process.label}]"), wait_s)  # fmt: skip
+
+        def turn() -> None:
+            timer.cancel()
+            if process.state != "waiting" or entry.process is not process:
+                return  # stopped (or started again) while it waited
+            again = self.start_pacer.admit() if self.start_pacer is not None else None
+            if again is not None:
+                self._start_later(entry, process, again)
+                return
+            try:
+                self._spawn(process)
+            except OSError as exc:
+                entry.process, entry.error = None, f"{type(exc).__name__}: {exc}"
+                log.error("%s: node %s (%s %s) failed to start: %s", entry.action.location,
+                          entry.action.name or entry.action.exec, entry.action.pkg, entry.action.exec,
+                          entry.error)  # fmt: skip
+
+        timer = self._timer_node().create_timer(wait_s, turn)
+
+    def _timer_node(self) -> Node:
+        if self._timers is None:
+            with self.bus.activate():
+                self._timers = Node("_launch_timers")
+        return self._timers
 
     def start(self, action: NodeAction, entry: LaunchedNode | None = None) -> LaunchedNode:
         """Start the node: inside the app, or as its own process (a student's file; every lab node
@@ -230,9 +275,9 @@ class Launcher:
         for entry in reversed(self.launched):
             self.stop(entry)
         self.launched.clear()
-        if self._respawner is not None:
-            self._respawner.destroy_node()
-            self._respawner = None
+        if self._timers is not None:
+            self._timers.destroy_node()
+            self._timers = None
 
     def _on_process_exit(self, process: ProcessNode) -> None:
         entry = next((e for e in self.launched if e.process is process), None)
@@ -257,9 +302,6 @@ class Launcher:
             log.error("%s crashed %d times soon after starting; no more respawns", who,
                       entry.respawn.fast_failures - 1)  # fmt: skip
             return
-        if self._respawner is None:
-            with self.bus.activate():
-                self._respawner = Node("_launch_respawner")
         log.warning("%s crashed; respawning in %.2f s", who, delay)
 
         def respawn() -> None:
@@ -267,4 +309,4 @@ class Launcher:
             self.stop(entry)
             self.start(entry.action, entry)
 
-        timer = self._respawner.create_timer(delay, respawn)
+        timer = self._timer_node().create_timer(delay, respawn)

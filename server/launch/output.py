@@ -4,7 +4,9 @@ Each node process keeps its last lines (a bounded buffer, server/processes/super
 how many it printed in all, so a reader that fell behind learns how many lines it lost (a
 ``dropped`` frame) instead of holding up the process; then come its lines, each with its number
 in the process's output (``seq``), and once the process has ended and every line is read, its
-exit. A group has ended when each of its processes has and no node of it runs any more (a node
+exit. A process that waits for its turn to start (server/processes/start_pacing.py) is first a
+``waiting`` frame; one stopped before it started ends with an exit frame of no code and no
+signal. A group has ended when each of its processes has and no node of it runs any more (a node
 with ``respawn`` keeps it open while the group is not stopped).
 
 The supervisor merges a process's stderr into its stdout (as a terminal shows them), so every
@@ -31,6 +33,7 @@ class _Seen:
     node: str
     sent: int = 0  # lines of its output sent (or counted as dropped)
     exited: bool = False  # its exit frame sent
+    waiting: bool = False  # its waiting frame sent
 
 
 def exit_frame(process: ProcessNode, node: str) -> Frame:
@@ -68,6 +71,14 @@ class GroupOutput:
         frames: list[Frame] = []
         for seen in self._seen:
             if seen.exited:
+                continue
+            if seen.process.proc is None:  # not started: waiting for its turn, or stopped first
+                if seen.process.state == "waiting" and not seen.waiting:
+                    frames.append({"type": "waiting", "node": seen.node})
+                    seen.waiting = True
+                elif seen.process.state in ("stopped", "died"):
+                    frames.append({"type": "exit", "node": seen.node, "code": None, "signal": None})
+                    seen.exited = True
                 continue
             ended = seen.process.exit_code is not None  # read first: once set, every line is kept
             lines, printed = seen.process.output()

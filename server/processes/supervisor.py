@@ -36,7 +36,8 @@ log = logging.getLogger("launch")
 KEEP_LINES = 200
 MAX_LINE_CHARS = 4096  # a longer line is kept cut (it still prints whole on the console)
 STOP_GRACE_S = 3.0
-ProcessState = Literal["running", "died", "stopped"]
+# waiting: not started yet, its turn to come (server/processes/start_pacing.py)
+ProcessState = Literal["waiting", "running", "died", "stopped"]
 _labels = itertools.count(1)
 _print_lock = threading.Lock()
 
@@ -90,17 +91,39 @@ class Supervisor:
     def start(
         self, command: NodeCommand, executable: str, *, screen: bool, node_name: str | None
     ) -> ProcessNode:
-        process = ProcessNode(command, executable, screen, node_name, label=f"{executable}-{next(_labels)}")
+        return self.spawn(self.prepare(command, executable, screen=screen, node_name=node_name))
+
+    def prepare(
+        self, command: NodeCommand, executable: str, *, screen: bool, node_name: str | None
+    ) -> ProcessNode:
+        """A node process with its label, not started yet (``waiting``): ``spawn`` starts it, and
+        ``stop`` before that means it never starts."""
+        process = ProcessNode(
+            command, executable, screen, node_name, label=f"{executable}-{next(_labels)}", state="waiting"
+        )
+        self.processes.append(process)
+        return process
+
+    def spawn(self, process: ProcessNode) -> ProcessNode:
+        """Start a prepared process (OSError if it cannot start: it is then ``died``)."""
+        if process.state != "waiting":
+            raise ValueError(f"{process.label} is {process.state}, not waiting to start")
+        command = process.command
         env, keep = command.env, list[int]()
         if command.sandboxed:  # its lifeline to this process: it ends when the server does
             keep.append(lifeline.read_end())
             env = {**env, lifeline.LIFELINE_ENV: str(keep[0])}
-        process.proc = subprocess.Popen(
-            command.argv, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT, text=True, errors="replace", bufsize=1, pass_fds=keep,
-        )  # fmt: skip
+        try:
+            process.proc = subprocess.Popen(
+                command.argv, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                stderr=subprocess.STDOUT, text=True, errors="replace", bufsize=1, pass_fds=keep,
+            )  # fmt: skip
+        except OSError:
+            process.state = "died"
+            self.forget(process)
+            raise
+        process.state = "running"
         log.info("%s: process started with pid [%d]", self.bus.tagged(f"[{process.label}]"), process.proc.pid)
-        self.processes.append(process)
         threading.Thread(
             target=self._watch, args=(process,), name=f"out-{process.label}", daemon=True
         ).start()

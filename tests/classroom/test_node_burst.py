@@ -1,7 +1,7 @@
 """A class told "run it now": 20 ``ros2lab run`` started at once against a class server with 10
 worlds of the fly launch, two per student with the student's token. Every node joins its own
 world (each world's node list holds its two and no one else's) and every ``ros2lab run`` ends
-cleanly; the lab paces the starts (api/join_pacing.py), and the commands and their nodes run
+cleanly; the lab paces the starts (server/processes/start_pacing.py), and the commands and their nodes run
 below the worlds (server/cli/priority.py, server/processes/priority.py). The worlds' dynamics
 rates during the burst are written to artifacts/node_burst.json beside the time it took;
 bench/class_burst.py measures them (on two cores they stay just under 95 Hz while the nodes

@@ -1,4 +1,4 @@
-"""Node starts paced on the server (api/join_pacing.py) and ``ros2lab``'s join asked with a bounded
+"""Node starts paced on the server (server/processes/start_pacing.py) and ``ros2lab``'s join asked with a bounded
 wait (server/cli/join.py), on a manual clock: a lab that never answers is given up after the
 bound, one that answers late is joined, a lab's "not yet" is waited out for as long as it says,
 and an error that retrying cannot mend (no Zenoh graph) ends at once."""
@@ -10,9 +10,10 @@ from collections.abc import Callable
 import httpx
 import pytest
 
-from api.join_pacing import JoinPacer, retry_after
+from api.lab_routes import retry_after
 from server.cli.client import ApiError, LabClient
 from server.cli.join import JoinError, Pacing, join_graph
+from server.processes.start_pacing import StartPacer
 
 URL = "http://lab.test"
 JOIN = {"router": "tcp/127.0.0.1:7447", "domain_id": 3, "user": None, "password": None, "env": {}}
@@ -79,7 +80,7 @@ def pacing(clock: ManualClock, **kw: float) -> Pacing:
 
 def test_pacer_admits_up_to_its_slots_then_says_when_one_frees() -> None:
     now = [100.0]
-    pacer = JoinPacer(2, hold_s=1.0, clock=lambda: now[0])
+    pacer = StartPacer(2, hold_s=1.0, clock=lambda: now[0])
     assert [pacer.admit(), pacer.admit()] == [None, None]
     now[0] += 0.25
     assert pacer.admit() == pytest.approx(0.75)
@@ -93,7 +94,7 @@ def test_pacer_gives_each_waiting_start_a_turn_of_its_own() -> None:
     """Starts that wait are told to come back one slot's share of the hold apart, in the order they
     asked, so each asks again about once; a start admitted meanwhile takes nothing from them."""
     now = [0.0]
-    pacer = JoinPacer(1, hold_s=1.0, clock=lambda: now[0])
+    pacer = StartPacer(1, hold_s=1.0, clock=lambda: now[0])
     assert pacer.admit() is None
     turns = [pacer.admit() for _ in range(3)]
     assert turns == [pytest.approx(1.0), pytest.approx(2.0), pytest.approx(3.0)]
@@ -107,7 +108,7 @@ def test_pacer_gives_each_waiting_start_a_turn_of_its_own() -> None:
 
 def test_pacer_refuses_no_slots() -> None:
     with pytest.raises(ValueError, match="slots >= 1"):
-        JoinPacer(0)
+        StartPacer(0)
 
 
 def test_join_gives_up_on_a_lab_that_never_answers_within_the_bound() -> None:

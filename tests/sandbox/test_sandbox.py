@@ -149,7 +149,7 @@ def output_of(world: World, group: str) -> list[str]:
     def ended() -> list[str] | None:
         reply = world.get(f"/api/launches/{group}/output").json()
         (node,) = reply["group"]["nodes"]
-        if node["state"] == "running":
+        if node["state"] in ("waiting", "running"):  # waiting: its turn to start has not come
             return None
         return [line for process in reply["processes"] for line in process["lines"]] or [f"exit {node}"]
 

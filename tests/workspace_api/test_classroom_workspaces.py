@@ -215,3 +215,45 @@ def test_class_a_students_run_and_its_output_are_theirs_alone(tmp_path: Path) ->
                 frames.append(json.loads(message["text"]))
         assert "only ada sees this" in [f["text"] for f in frames if f["type"] == "line"]
         assert next(f for f in frames if f["type"] == "exit")["code"] == 0
+
+
+def test_class_students_runs_at_once_start_at_their_turns_and_the_page_is_told(tmp_path: Path) -> None:
+    """The class's node starts share one pacer (server/processes/start_pacing.py), set here to one
+    start a second as on a 2-core server: of two students' Runs at once, the second, in another
+    world, waits with no pid (its output says so) and then starts and prints; meanwhile a
+    ``ros2lab run`` asking to start is told to come back (429), as the pacer is the same."""
+    require_sandbox()
+    zenoh = ZenohSettings(listen=(f"tcp/127.0.0.1:{free_port()}",))
+    with TestClient(create_app(class_settings(workspaces_dir=tmp_path, world=ROOM, zenoh=zenoh))) as client:
+        tokens = {name: join(client, name.title()) for name in ("ada", "bob")}
+        for name, token in tokens.items():
+            made = client.post("/api/workspace/packages", headers=auth(token),
+                               json={"name": "hi", "build_type": "ament_python", "node_name": "hi"})  # fmt: skip
+            assert made.status_code == 201, made.text
+            text = f"def main():\n    print('{name} started', flush=True)\n"
+            saved = client.put(f"{FILES}/src/hi/hi/hi.py", json={"text": text}, headers=auth(token))
+            assert saved.status_code == 200, saved.text
+        pacer = client.app.state.classroom.labs.start_pacer  # type: ignore[attr-defined]
+        pacer.slots, pacer.hold_s = 1, 1.0
+
+        runs = {name: client.post("/api/run", json={"package": "hi", "executable": "hi"}, headers=auth(token))
+                for name, token in tokens.items()}  # fmt: skip
+        assert [r.status_code for r in runs.values()] == [201, 201], [r.text for r in runs.values()]
+        ada, bob = (r.json()["nodes"][0] for r in runs.values())
+        assert ada["state"] == "running" and bob["state"] == "waiting", (ada, bob)
+        asked = client.get("/api/zenoh/join", params={"start": "true"}, headers=auth(tokens["ada"]))
+        assert asked.status_code == 429 and int(asked.headers["Retry-After"]) >= 1, asked.text
+        assert client.get("/api/zenoh/join", headers=auth(tokens["ada"])).status_code == 200  # not a start
+
+        group = runs["bob"].json()["id"]
+        with client.websocket_connect(f"/ws/launches/{group}/output", headers=auth(tokens["bob"])) as ws:
+            frames: list[dict[str, Any]] = []
+            while not frames or frames[-1]["type"] != "end":
+                message = receive_within(ws, 30.0)
+                assert message["type"] == "websocket.send", (message, frames[-5:])
+                frames.append(json.loads(message["text"]))
+        kinds = [f["type"] for f in frames]
+        assert kinds[0] == "waiting" and frames[0]["node"] == bob["process"], frames
+        assert "bob started" in [f["text"] for f in frames if f["type"] == "line"]
+        assert next(f for f in frames if f["type"] == "exit")["code"] == 0
+        assert pacer.admitted >= 2 and pacer.deferred >= 2  # Bob's start and the join were deferred

@@ -2,7 +2,7 @@
 // log line coloured by its level), a traceback's `File "...", line N` as a link that opens the
 // file at that line when it is in the workspace, what a fast printer lost, and each exit. The
 // page keeps the last MAX_LINES lines; older ones scroll away.
-import type { ExitFrame, LineFrame } from "./frames";
+import type { ExitFrame, LineFrame, WaitingFrame } from "./frames";
 
 const MAX_LINES = 2000;
 const LOG_LEVEL = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;
@@ -87,8 +87,13 @@ export class OutputPane {
     this.element.dataset.dropped = String(this.dropped);
   }
 
+  waiting(frame: WaitingFrame): void {
+    this.note(`[${frame.node}] waiting for its turn to start: this server starts a few node processes at a time`, "waiting");
+  }
+
   exit(frame: ExitFrame): void {
-    const how = frame.signal ? `ended by ${frame.signal}` : `exited with code ${frame.code ?? "?"}`;
+    const how = frame.signal ? `ended by ${frame.signal}`
+      : frame.code === null ? "stopped before it started" : `exited with code ${frame.code}`;
     this.note(`[${frame.node}] ${how}`, frame.code === 0 || frame.signal === "SIGINT" ? "exit" : "exit failed");
   }
 }

@@ -129,6 +129,9 @@ export class Runner {
       case "dropped":
         this.output.droppedLines(frame.count);
         return;
+      case "waiting":
+        this.output.waiting(frame);
+        return;
       case "exit":
         this.output.exit(frame);
         return;

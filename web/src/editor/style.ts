@@ -53,6 +53,7 @@ export const CSS = `
   #teleop-code .output .note.heading { color: #8ab4f8; font-style: normal; }
   #teleop-code .output .note.error, #teleop-code .output .note.failed { color: #ff8a80; }
   #teleop-code .output .note.dropped { color: #ffd166; }
+  #teleop-code .output .note.waiting { color: #9ecbff; }
   #teleop-code .output a.traceback { color: #8ab4f8; }
   #teleop-code .code-dialog { border: 1px solid #bbb; border-radius: 8px; padding: 14px 18px; min-width: 300px; }
   #teleop-code .code-dialog h3 { margin: 0 0 8px; font-size: 15px; }

@@ -1,0 +1,132 @@
+"""Students' node processes started at their turn (server/processes/start_pacing.py), as the
+page's Run and Launch start them where the server serves others, on a ManualClock: a start the
+pacer defers is a process waiting with no pid, which starts when its turn comes; one stopped
+while it waits never starts; the run's output says it waited; waiting starts count against the
+running limits. The processes are real (a student's file that prints and sleeps), ended by the
+launcher."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from support.wait import wait_until
+
+from server.bus import ManualClock
+from server.lab import Lab
+from server.launch.launcher import ProcessTransport
+from server.launch.output import GroupOutput
+from server.limits import LimitExceededError
+from server.processes.start_pacing import StartPacer
+from server.settings import LabLimits, LabSettings, Settings
+
+SLEEPER = """import time
+
+
+def main():
+    print('sleeper up', flush=True)
+    time.sleep(60)
+
+
+if __name__ == '__main__':
+    main()
+"""
+
+
+@pytest.fixture
+def lab(tmp_path: Path) -> Iterator[Lab]:
+    workspace = tmp_path / "workspace"
+    (workspace / "src" / "pacing").mkdir(parents=True)
+    (workspace / "src" / "pacing" / "sleeper.py").write_text(SLEEPER)
+    settings = Settings(
+        lab=LabSettings(launch="rocket", viewer=False, workspace=workspace),
+        limits=LabLimits(max_running_nodes=3),
+    )
+    lab = Lab(settings, ManualClock(0.0))
+    # A router nobody listens on: the sleeper never asks for one, and each start is real.
+    lab.launcher.transport = ProcessTransport("tcp/127.0.0.1:9")
+    lab.launcher.start_pacer = StartPacer(1, hold_s=1.0, clock=lab.bus.clock.now)
+    try:
+        yield lab
+    finally:
+        lab.launcher.shutdown()
+
+
+def started(lab: Lab, group_id: str) -> bool:
+    process = lab.launch_groups.get(group_id).entries[0].process
+    return process is not None and process.pid is not None
+
+
+def test_a_deferred_start_waits_with_no_pid_and_starts_at_its_turn(lab: Lab) -> None:
+    first = lab.launch_groups.run("pacing", "sleeper.py")
+    second = lab.launch_groups.run("pacing", "sleeper.py")
+    assert started(lab, first.id)
+    waiting = second.describe()["nodes"][0]
+    assert (waiting["state"], waiting["exit_code"]) == ("waiting", None)
+    assert second.entries[0].process is not None and second.entries[0].process.pid is None
+
+    lab.executor.spin_until(0.9)  # the first still holds the one slot
+    assert second.describe()["nodes"][0]["state"] == "waiting"
+    lab.executor.spin_until(1.0)  # its turn
+    assert second.describe()["nodes"][0]["state"] == "running" and started(lab, second.id)
+    assert (lab.launcher.start_pacer.admitted, lab.launcher.start_pacer.deferred) == (2, 1)  # type: ignore[union-attr]
+
+    reader = GroupOutput(second, lambda: second.id in lab.launch_groups)
+    process = second.entries[0].process
+    wait_until(lambda: process.output()[1] >= 1, "the second sleeper's first line")
+    assert [f["text"] for f in reader.poll() if f["type"] == "line"] == ["sleeper up"]
+
+
+def test_a_start_stopped_while_it_waits_never_starts_and_its_output_says_so(lab: Lab) -> None:
+    lab.launch_groups.run("pacing", "sleeper.py")
+    second = lab.launch_groups.run("pacing", "sleeper.py")
+    reader = GroupOutput(second, lambda: second.id in lab.launch_groups)
+    process = second.entries[0].process
+    assert process is not None
+    assert reader.poll() == [{"type": "waiting", "node": process.label}]
+    assert reader.poll() == []  # said once
+
+    lab.launch_groups.stop(second.id)
+    lab.executor.spin_until(5.0)  # long past its turn
+    assert (process.state, process.pid) == ("stopped", None)
+    assert process not in lab.launcher.supervisor.processes
+    assert reader.poll() == [
+        {"type": "exit", "node": process.label, "code": None, "signal": None},
+        {"type": "end"},
+    ]
+    assert reader.ended
+
+
+def test_waiting_starts_count_against_the_running_limit(lab: Lab) -> None:
+    for _ in range(3):  # one starts, two wait
+        lab.launch_groups.run("pacing", "sleeper.py")
+    states = [g.describe()["nodes"][0]["state"] for g in lab.launch_groups.values()]
+    assert states == ["running", "waiting", "waiting"]
+    with pytest.raises(LimitExceededError, match="running node processes in this world"):
+        lab.launch_groups.run("pacing", "sleeper.py")
+
+
+def test_each_waiting_start_takes_its_own_turn_in_order(lab: Lab) -> None:
+    groups = [lab.launch_groups.run("pacing", "sleeper.py") for _ in range(3)]
+    turns = []
+    for t in (0.5, 1.0, 1.5, 2.0):
+        lab.executor.spin_until(t)
+        turns.append([g.describe()["nodes"][0]["state"] for g in groups])
+    assert turns == [
+        ["running", "waiting", "waiting"],
+        ["running", "running", "waiting"],
+        ["running", "running", "waiting"],
+        ["running", "running", "running"],
+    ]
+
+
+def test_a_lab_node_and_a_lab_on_loopback_start_at_once(tmp_path: Path) -> None:
+    """Only students' files are paced, and only where the lab serves others: a lab on loopback
+    has no pacer on its launcher, so its user's runs start as they ask."""
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, workspace=None)), ManualClock(0.0))
+    try:
+        assert lab.launcher.start_pacer is None
+        assert lab.start_pacer.admit() is None  # the joins of ros2lab run are still paced
+    finally:
+        lab.launcher.shutdown()
