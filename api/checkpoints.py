@@ -8,12 +8,14 @@ import re
 from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter, Depends, Path, Query, Request, Response
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 from starlette.requests import HTTPConnection
 
 from server.checkpoints.catalog import load
 from server.checkpoints.class_table import Row, reports_zip, table, table_csv
+from server.checkpoints.handover import tag, to_wire
 from server.checkpoints.report import build, signed_files
+from server.checkpoints.saved import Snapshot
 from server.checkpoints.signing import ReportSigner
 from server.checkpoints.view import world_view
 from server.classroom import ClassroomError, ClassServer
@@ -28,15 +30,28 @@ class_router = APIRouter(prefix="/api/classroom/checkpoints", tags=["classroom"]
 
 MAX_CAPTURE_BODY = 2 * 1024 * 1024
 MAX_REPORT_BODY = 8 * 1024 * 1024
+# A world handed to a world worker with its progress (its file, and its captures in base64).
+MAX_HOST_BODY = 24 * 1024 * 1024
 # Bodies larger than the app's limit (a PNG, a report with its pictures): GuardMiddleware's.
 LARGE_BODIES = (
     (re.compile(r"/api/checkpoints/[A-Za-z0-9_]+/capture"), MAX_CAPTURE_BODY),
     (re.compile(r"/api/checkpoints/verify"), MAX_REPORT_BODY),
+    (re.compile(r"/api/classroom/host"), MAX_HOST_BODY),
 )
+WorldName = Annotated[str, StringConstraints(max_length=32)]
+Tag = Annotated[str, StringConstraints(max_length=64)]
 
 
 class AnswerBody(BaseModel):
     text: str = Field(description="the answer, at most 8 KiB of UTF-8")
+
+
+class KnownCopies(BaseModel):
+    model_config = ConfigDict(strict=True, extra="forbid")
+    known: dict[WorldName, Tag] = Field(
+        default_factory=dict, max_length=256,
+        description="the tag of the copy the caller has of each world's progress",
+    )  # fmt: skip
 
 
 class VerifyResult(BaseModel):
@@ -177,6 +192,22 @@ async def class_checkpoints(
             headers={"Content-Disposition": 'attachment; filename="checkpoints.csv"'},
         )  # fmt: skip
     return view
+
+
+@class_router.post("/progress", responses=responses(UNAUTHORIZED, 403, body=True))
+async def progress_copies(body: KnownCopies, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+    """The progress of each world hosted here whose tag is not the one ``known`` gives: what a
+    class server copies from its world workers (server/classroom/progress_copies.py), each as
+    ``{"tag", "progress": {"progress": <the progress file>, "captures": {checkpoint: base64}}}``."""
+    changed: dict[str, Any] = {}
+    for world in classroom.worlds.values():
+        if world.lab is None:
+            continue  # on a world worker: that worker is asked
+        progress = world.lab.checkpoints.progress
+        now = tag(progress)
+        if body.known.get(world.name) != now:
+            changed[world.name] = {"tag": now, "progress": to_wire(Snapshot.of(progress))}
+    return {"worlds": changed}
 
 
 @class_router.get(

@@ -14,6 +14,9 @@ from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field, model_validator, with_config
 from typing_extensions import TypedDict
 
+from server.checkpoints.catalog import load as load_checkpoints
+from server.checkpoints.handover import from_wire
+from server.checkpoints.saved import SavedProgressError
 from server.classroom import Classroom, ClassroomError, ClassServer, Grant, WorldWorker
 from server.classroom.join_queue import JoinWaits
 from server.transport.acl import Credentials
@@ -66,6 +69,9 @@ class HostRequest(BaseModel):
     # The class router's Unix socket: a worker on its machine runs the world's students' nodes
     # in a sandbox that reaches the router there.
     router_socket: str | None = Field(None, min_length=2, max_length=256, pattern=r"^/[A-Za-z0-9_./-]+$")
+    # The class server's copy of the world's progress, for a worker whose own folder lacks it
+    # (server/checkpoints/handover.py's form).
+    progress: dict[str, Any] | None = None
 
     @model_validator(mode="after")
     def _login_whole(self) -> HostRequest:
@@ -307,8 +313,23 @@ async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> 
     if not isinstance(classroom, WorldWorker):
         raise ClassroomError(404, "only a world worker hosts worlds for a class server")
     login = Credentials(body.zenoh_user, body.zenoh_password or "") if body.zenoh_user is not None else None
+    progress = None
+    if body.progress is not None:
+        try:
+            progress = from_wire(body.progress, load_checkpoints(classroom.settings.lab.checkpoints))
+        except SavedProgressError as exc:
+            raise ClassroomError(
+                422, f"the progress handed over with world {body.world!r} is not one: {exc}"
+            ) from None
     world = await classroom.host(
-        body.world, body.student, body.domain_id, body.launch, body.launch_args, login, body.router_socket
+        body.world,
+        body.student,
+        body.domain_id,
+        body.launch,
+        body.launch_args,
+        login,
+        body.router_socket,
+        progress,
     )
     return world.describe()
 

@@ -4,6 +4,7 @@ store.py keeps it on disk across restarts of the server."""
 
 from __future__ import annotations
 
+import secrets
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -68,6 +69,8 @@ class Progress:
         self.answers: dict[str, Answer] = {q.id: Answer() for c in checkpoints for q in c.questions}
         self.captures: dict[str, bytes] = {}  # PNG bytes, by checkpoint
         self.version = 0
+        # Tells this Progress from another of the same world (handover.py's tag, with ``version``).
+        self.instance = secrets.token_hex(8)
         # Called after every change (store.py's: queues a copy to write; never blocks).
         self.on_change: Callable[[], None] | None = None
 

@@ -94,6 +94,29 @@ class ProgressStore:
                 return False
             return True
 
+    # -- a copy kept for another place (handover.py) ---------------------------------------------
+    def put(self, world: str, snapshot: Snapshot) -> None:
+        """Write ``snapshot`` as ``world``'s progress now: a copy of a world that runs elsewhere (a
+        class server's), or one handed over before the world starts here (a worker's). A Progress
+        of this world opened before saves nothing more. Blocking."""
+        folder = self.world_folder(world)
+        with self._cond:
+            self._live.pop(world, None)
+            self._pending.pop(world, None)
+        with self._io:
+            folder.mkdir(parents=True, exist_ok=True, mode=0o700)
+            self._written[world] = {}
+            self._write(world, snapshot)
+            for stale in set(capture_names(folder)) - set(snapshot.captures):
+                (folder / f"{stale}.png").unlink(missing_ok=True)
+
+    def snapshot(self, world: str, checkpoints: tuple[Checkpoint, ...]) -> Snapshot | None:
+        """``world``'s progress as its files keep it (None: none kept), to hand over. Blocking."""
+        progress = Progress(checkpoints)
+        with self._io:
+            self._read(self.world_folder(world), world, progress)
+        return Snapshot.of(progress) if progress.version else None
+
     # -- whose it is (a class server's) -----------------------------------------------------------
     def owner(self, world: str) -> Owner | None:
         """The student ``world``'s files belong to (None: nobody recorded); OwnerFileError for a
@@ -214,6 +237,14 @@ class ProgressStore:
                 write_atomic(folder / f"{name}.png", png)
                 written[name] = png
         write_atomic(folder / PROGRESS_FILE, encode(snapshot))
+
+
+def capture_names(folder: Path) -> list[str]:
+    """The checkpoints whose captures ``folder`` holds a file of."""
+    try:
+        return [p.stem for p in folder.glob("*.png") if _NAME.fullmatch(p.stem)]
+    except OSError:
+        return []
 
 
 def read_capture(folder: Path, name: str) -> bytes | None:

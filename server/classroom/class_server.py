@@ -32,6 +32,7 @@ from .grants import Grants, world_for
 from .join_queue import JoinQueue, JoinWaits
 from .load import CpuMeter, machine_id
 from .placement import Placement
+from .progress_copies import ProgressCopies
 from .saved_students import SavedStudents
 from .tokens import Grant, TokenSigner
 from .world import World, world_name
@@ -72,7 +73,9 @@ class ClassServer:
         # This process's and machine's CPU, read every WATCH_PERIOD_S (a watch round): a
         # placement weighs the last seconds.
         self.cpu = CpuMeter(machine=machine_id())
-        self.placement = Placement(settings, self.labs, self.graph, self.cpu, self._end)
+        # A copy of the progress of worlds on workers that keep it in folders of their own.
+        self.progress_copies = ProgressCopies(self.labs.progress, load_checkpoints(settings.lab.checkpoints))
+        self.placement = Placement(settings, self.labs, self.graph, self.cpu, self._end, self.progress_copies)
         self.load = ClassLoad(self.labs, self.graph, self.cpu, self.placement)
         self.queue = JoinQueue(self.class_settings.join_queue, self.clock)
         # The progress and code on disk: whose each world's are, and those not joined since the start.
@@ -157,6 +160,11 @@ class ClassServer:
             log.warning(
                 "no mark left in the workspaces folder %s: %s", self.class_settings.workspaces_dir, exc
             )
+        # Workers that read this mark in their own progress folder share this one (progress_copies.py).
+        try:
+            await asyncio.to_thread(self.progress_copies.leave_mark)
+        except OSError as exc:  # then every worker's worlds' progress is copied here
+            log.warning("no mark left in the progress folder %s: %s", self.labs.progress.folder, exc)
         if self.settings.lab.viewer:
             from server.viewer.class_view import ClassView, run_class_view
 
@@ -310,6 +318,7 @@ class ClassServer:
         except OSError:
             log.exception("world %s: its workspace was not removed completely", name)
         await self.labs.remove_progress(name)
+        self.progress_copies.forget(name)
         log.info("%s kicked: world %s removed", world.student, name)
         return world
 

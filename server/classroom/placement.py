@@ -23,6 +23,7 @@ from server.transport.acl import Credentials
 from .class_graph import ClassGraph
 from .errors import ClassroomError
 from .load import Choice, CpuMeter, choose
+from .progress_copies import ProgressCopies
 from .remote_worlds import on_workers
 from .workers import WATCH_PERIOD_S, Silence, WorkerRef
 from .world import World
@@ -42,6 +43,7 @@ class Placement:
         graph: ClassGraph,
         cpu: CpuMeter,
         end: Callable[[World], Awaitable[None]],
+        copies: ProgressCopies | None = None,
     ) -> None:
         self.settings = settings
         self.class_settings = class_section(settings)
@@ -49,6 +51,7 @@ class Placement:
         self.graph = graph
         self.cpu = cpu
         self._end = end
+        self.copies = copies  # the progress of worlds on workers with folders of their own
         self._hosting: set[tuple[str, str]] = set()  # (worker id, world) while it is placed there
         self._local_starting = 0  # worlds being started here
         self._silent_workers = Silence(self.class_settings.worker_timeout_s)
@@ -120,6 +123,9 @@ class Placement:
             socket = self.graph.process_socket()
             if socket is not None:  # a worker on this machine runs students' nodes through it
                 body["router_socket"] = str(socket)
+            handed = await self.copies.handover(ref, name) if self.copies is not None else None
+            if handed is not None:  # its progress, which that worker's own folder does not hold
+                body["progress"] = handed
             await self.graph.workers.checked(ref, "POST", "/api/classroom/host", body=body)
         finally:
             self._hosting.discard((ref.id, name))
@@ -158,6 +164,8 @@ class Placement:
             and name not in ref.hosted
         }  # fmt: skip
         await self._end_strays(answered)
+        if self.copies is not None:
+            await self.copies.refresh(workers, worlds, answered)
         for world in list(worlds.values()):
             if world.worker is None:
                 continue

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from server.bus import Clock, ExecutorGroup, SystemClock
+from server.checkpoints.saved import Snapshot
 from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth, Credentials
@@ -175,10 +176,12 @@ class WorldWorker:
         launch_args: dict[str, str],
         login: Credentials | None = None,
         router_socket: str | None = None,
+        progress: Snapshot | None = None,
     ) -> World:
         """Start the world a class server placed here, in the domain it chose. ``router_socket``:
         the class router's Unix socket, which its students' sandboxed nodes reach when it is on
-        this machine (else they cannot run here)."""
+        this machine (else they cannot run here). ``progress``: the class server's copy of the
+        world's progress (server/classroom/progress_copies.py), which it starts with."""
         self.heard_from_class()
         if router_socket is not None:
             self._router_socket = socket_here(router_socket)
@@ -188,6 +191,8 @@ class WorldWorker:
             raise ClassroomError(429, f"this worker is full ({self.class_settings.max_worlds} worlds)")
         self.labs.starting[name] = domain_id
         try:
+            if progress is not None:
+                await asyncio.to_thread(self.labs.progress.put, name, progress)
             lab = await self.labs.start(name, domain_id, (launch, launch_args), login)
         finally:
             del self.labs.starting[name]
@@ -260,7 +265,8 @@ class WorldWorker:
         hosted = sorted(self.worlds)
         return {"worlds": len(hosted) + len(self.labs.starting), "max_worlds": self.class_settings.max_worlds,
                 "hosted": hosted, "cpu": self.cpu.read().describe(), "late": self._late(),
-                "workspaces": read_mark(self.class_settings.workspaces_dir)}  # fmt: skip
+                "workspaces": read_mark(self.class_settings.workspaces_dir),
+                "progress": read_mark(self.labs.progress.folder)}  # fmt: skip
 
     def _late(self) -> int | None:
         """Its late worlds, read on Zenoh's thread while the loop runs them: a world or node added

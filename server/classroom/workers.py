@@ -142,6 +142,7 @@ class WorkerRef:
     late: int | None = None  # its worlds that are late (lateness.py; None: it did not say)
     # The mark in its workspaces folder (server/workspace/class_mark.py; None: it has none).
     workspaces_mark: str | None = None
+    progress_mark: str | None = None  # and in its progress folder (progress_copies.py)
 
     def describe(self) -> dict[str, Any]:
         cpu = self.load.describe() if self.load is not None else None
@@ -168,10 +169,13 @@ def _worker_ref(body: dict[str, Any], class_token: str) -> WorkerRef | None:
     load = CpuLoad.parse(body.get("cpu"))
     late = body.get("late")
     late = late if isinstance(late, int) and not isinstance(late, bool) and 0 <= late <= most else None
-    mark = body.get("workspaces")
-    mark = mark if isinstance(mark, str) and 0 < len(mark) <= MAX_MARK_CHARS else None
+    mark, progress_mark = (_mark(body.get("workspaces")), _mark(body.get("progress")))
     token = worker_api_token(class_token, wid)
-    return WorkerRef(wid, url.rstrip("/"), worlds, most, token, hosted, load, late, mark)
+    return WorkerRef(wid, url.rstrip("/"), worlds, most, token, hosted, load, late, mark, progress_mark)
+
+
+def _mark(value: Any) -> str | None:
+    return value if isinstance(value, str) and 0 < len(value) <= MAX_MARK_CHARS else None
 
 
 class WorkerDirectory:

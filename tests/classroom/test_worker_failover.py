@@ -1,5 +1,6 @@
 """When a world worker or the class server goes away: a class server starts a gone
-worker's worlds again elsewhere, under the same names and tokens; a worker frees its worlds when
+worker's worlds again elsewhere, under the same names and tokens and with their progress (the
+class server's copy, handed to a worker whose own folder never held it); a worker frees its worlds when
 the class server has said no hello for its orphan timeout; hellos not sealed with the class's
 token get no answer.
 
@@ -143,6 +144,23 @@ def wait_until(check: Any, what: str, logs: Any, timeout_s: float = GONE_WAIT_S)
     return support_wait_until(check, what, timeout_s, poll_s=0.25, detail=logs)
 
 
+def worker(tmp_path: Path, app: App, instructor: str, wid: str) -> WorldWorker:
+    """World worker ``wid`` with a state folder of its own (as on another machine): a world's
+    progress on it is its own, and the class server keeps a copy (progress_copies.py)."""
+    return WorldWorker(
+        tmp_path, app.router, instructor, wid, "--max-worlds", "1", "--orphan-timeout", str(ORPHAN_TIMEOUT_S),
+        "--state-dir", str(tmp_path / f"state-{wid}"),
+    )  # fmt: skip
+
+
+def answer_of(app: App, token: str) -> str | None:
+    """Ada's answer to q1, as her world (wherever it runs) gives it."""
+    reply = api(app.url, "/api/checkpoints", token)
+    if reply.status_code != 200:
+        return None
+    return next(q["answer"] for q in reply.json()["questions"] if q["id"] == "q1")
+
+
 @pytest.fixture
 def failover_class(tmp_path: Path) -> Iterator[tuple[App, dict[str, WorldWorker], str]]:
     # Every world on a worker (--local-worlds 0), each worker for one world: a gone worker's world
@@ -155,21 +173,12 @@ def failover_class(tmp_path: Path) -> Iterator[tuple[App, dict[str, WorldWorker]
     try:
         instructor = instructor_token(app.log_tail(10**6))
         for wid in ("wa", "wb"):
-            workers[wid] = WorldWorker(
-                tmp_path,
-                app.router,
-                instructor,
-                wid,
-                "--max-worlds",
-                "1",
-                "--orphan-timeout",
-                str(ORPHAN_TIMEOUT_S),
-            )
+            workers[wid] = worker(tmp_path, app, instructor, wid)
         wait_for_workers(app.url, instructor, {"wa", "wb"})
         yield app, workers, instructor
     finally:
-        for worker in workers.values():
-            worker.stop()
+        for started in workers.values():
+            started.stop()
         app.stop()
 
 
@@ -194,6 +203,18 @@ def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_fr
         if w["id"] == other
     )
     domain = ada()["domain_id"]
+    # Ada answers a question in her world on the first worker, which keeps it in its own folder;
+    # the class server copies it at its next round of hellos.
+    answered = HTTP.put(
+        f"{app.url}/api/checkpoints/answers/q1", headers={"Authorization": f"Bearer {token}"},
+        json={"text": "four nodes"}, timeout=30,
+    )  # fmt: skip
+    assert answered.status_code == 200, answered.text
+    copy = tmp_path / "state" / "progress" / "ada" / "progress.json"
+    wait_until(
+        lambda: copy.is_file() and "four nodes" in copy.read_text(), "the class server's copy", app.log_tail
+    )
+    assert not (tmp_path / f"state-{other}" / "progress" / "ada").exists()
 
     os.kill(workers[first].proc.pid, signal.SIGKILL)  # no goodbye: the worker is just gone
     workers[first].proc.wait(timeout=10)
@@ -202,6 +223,8 @@ def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_fr
     )
     assert moved["worker"] == other and moved["domain_id"] == domain
     assert f"world worker {first} lost world ada (no hello for" in app.log_tail(10**6)
+    # Her answer went with the world to a worker whose folder never held it.
+    assert answer_of(app, token) == "four nodes"
 
     # The student's token opens the new world, which flies.
     def gps() -> dict[str, Any] | None:
@@ -229,16 +252,7 @@ def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_fr
     os.kill(workers[other].proc.pid, signal.SIGKILL)
     workers[other].proc.wait(timeout=10)
     workers[other].stop()
-    workers[other] = restarted = WorldWorker(
-        tmp_path,
-        app.router,
-        instructor,
-        other,
-        "--max-worlds",
-        "1",
-        "--orphan-timeout",
-        str(ORPHAN_TIMEOUT_S),
-    )
+    workers[other] = restarted = worker(tmp_path, app, instructor, other)
     again = wait_until(
         lambda: (w := ada())["moves"] == 2 and w["lost"] is None and w,
         "ada's world to start again",
@@ -247,6 +261,7 @@ def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_fr
     assert again["worker"] == other  # the only worker with room: the restarted one
     assert f"world worker {other} lost world ada (it answers but no longer hosts" in app.log_tail(10**6)
     wait_until(gps, "a GPS fix from ada's world on the restarted worker", app.log_tail)
+    assert answer_of(app, token) == "four nodes"
     other_url = next(
         w["url"]
         for w in api(app.url, "/api/classroom/workers", instructor).json()["workers"]
