@@ -19,6 +19,13 @@ and a node name of its own, all started at once, as a class does. What is measur
 * then, with every node running, ``--steady-s`` seconds of the class as it then is: every world's
   dynamics rate, the class server's CPU and that of every node process (with its sandbox).
 
+``--page-clients`` opens a page-like client per student (bench/page_client.py: viser's scene and
+GUI stream, the HUD's pose stream, the key channel's heartbeat) once they have joined, held open
+through the starts and the steady window, and adds each channel's median rate over the steady
+window (``steady.page_hz``): the class as it is with every page open. The clients run in this
+bench's process, on the same cores as the class (``steady.bench_cpu_cores``), where a class's
+pages would run on the students' machines.
+
 ``--via page`` starts the nodes as the page's Run does instead: the keyboard manager saved into
 each student's workspace through the workspace API, then ``POST /api/run`` with the student's
 token, so the class server starts each node process (in its sandbox, where bubblewrap is installed).
@@ -46,8 +53,9 @@ REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
 import httpx
-from live_server import READER, LiveServer, end, rss_mib
+from live_server import READER, LiveServer, class_join, end, rss_mib
 from machine import machine_info, save_results
+from page_client import OpenPages, PageClient, median_rates
 
 CODE = "BURST1"
 DYNAMICS = "flightgoggles_uav_dynamics"
@@ -125,11 +133,7 @@ def start(server: LiveServer, token: str, node: str, env: dict[str, str]) -> sub
 
 def join(server: LiveServer, name: str) -> tuple[str, str]:
     """(world, token) of a new student; a join queued at the class's capacity (202) is polled."""
-    reply = httpx.post(f"{server.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=180)
-    deadline = time.monotonic() + JOIN_WAIT_S
-    while reply.status_code == 202 and time.monotonic() < deadline:
-        time.sleep(float(reply.json().get("poll_s", 2.0)))
-        reply = httpx.get(f"{server.url}/api/classroom/join/{reply.json()['ticket']}", timeout=180)
+    reply = class_join(server.url, name, CODE, JOIN_WAIT_S, timeout_s=180)
     if reply.status_code != 201:
         raise RuntimeError(f"{name}'s join answered {reply.status_code}: {reply.text}")
     return reply.json()["world"], reply.json()["token"]
@@ -171,15 +175,22 @@ def tree_cpu_s(pids: list[int]) -> dict[int, float]:
     return out
 
 
-def steady(server: LiveServer, tokens: dict[str, str], roots: list[int], seconds: float) -> dict[str, Any]:
+def steady(
+    server: LiveServer, tokens: dict[str, str], roots: list[int], seconds: float, pages: OpenPages | None
+) -> dict[str, Any]:
     """The class with every node running, over ``seconds``: each world's dynamics rate, the class
     server's CPU, the node processes' and the world workers' (of the processes below ``roots``
-    alive throughout)."""
+    alive throughout); with ``pages``, what each page's channels carried a second."""
     nodes = [p for root in {*roots, server.proc.pid} for p in descendants(root)]  # the workers too
     steal0, total0 = cpu_jiffies()
     cpu0, nodes0 = process_cpu_s(server.proc.pid), tree_cpu_s(nodes)
     before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
+    if pages is not None:
+        pages.mark()
+    own0 = time.process_time()  # this bench's own CPU: the page clients run on the same cores
     time.sleep(seconds)
+    own1 = time.process_time()
+    page_rates, page_errors = pages.rates() if pages is not None else ([], [])
     after = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     cpu1, nodes1 = process_cpu_s(server.proc.pid), tree_cpu_s(nodes)
     steal1, total1 = cpu_jiffies()
@@ -196,11 +207,20 @@ def steady(server: LiveServer, tokens: dict[str, str], roots: list[int], seconds
         "node_processes_cpu_cores": round(node_s / window_s, 2),
         "world_workers_cpu_cores": round(workers_s / window_s, 2),
         "stolen": round((steal1 - steal0) / max(1, total1 - total0), 4),
+        "bench_cpu_cores": round((own1 - own0) / window_s, 2),
+        "page_hz": median_rates(page_rates) if pages is not None else None,
+        "page_errors": page_errors[:5],
     }
 
 
 def burst(
-    server: LiveServer, tokens: dict[str, str], per_world: int, timeout_s: float, via: str, steady_s: float
+    server: LiveServer,
+    tokens: dict[str, str],
+    per_world: int,
+    timeout_s: float,
+    via: str,
+    steady_s: float,
+    pages: OpenPages | None = None,
 ) -> dict[str, Any]:
     wanted = {w: {f"/{w}_node{i}" for i in range(per_world)} for w in tokens}
     if via == "page":
@@ -246,7 +266,7 @@ def burst(
         roots = [run.pid for run in runs] if runs else [server.proc.pid]
         node_rss = [rss_mib(p) for root in roots for p in descendants(root) if is_runner(p)]
         exited = sum(1 for run in runs if run.poll() is not None)
-        running = steady(server, tokens, roots, steady_s) if steady_s > 0 and not pending else None
+        running = steady(server, tokens, roots, steady_s, pages) if steady_s > 0 and not pending else None
     finally:
         for run in runs:
             end(run)
@@ -286,6 +306,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--via", choices=["cli", "page"], default="cli", help="ros2lab run, or the page's Run"
     )
+    parser.add_argument(
+        "--page-clients", action="store_true", help="a page-like client per student, open throughout"
+    )
     args = parser.parse_args(argv)
     print(json.dumps(machine_info()), flush=True)
     root = Path(tempfile.mkdtemp(prefix="class_burst_"))
@@ -295,14 +318,20 @@ def main(argv: list[str] | None = None) -> int:
     server = LiveServer(
         root, "fly", "--classroom", "--class-code", CODE, "--max-worlds", str(args.worlds), *spread
     )
+    pages: OpenPages | None = None
     try:
         tokens = dict(join(server, f"student{i:02d}") for i in range(args.worlds))
-        time.sleep(3.0)  # every world flying before the starts
+        if args.page_clients:
+            pages = OpenPages([PageClient(server.url, t) for t in tokens.values()])
+            pages.open()
+        time.sleep(3.0)  # every world flying (and every page open) before the starts
         results = {
             "args": vars(args),
-            **burst(server, tokens, args.per_world, args.joined_timeout_s, args.via, args.steady_s),
+            **burst(server, tokens, args.per_world, args.joined_timeout_s, args.via, args.steady_s, pages),
         }
     finally:
+        if pages is not None:
+            pages.close()
         server.stop()
         shutil.rmtree(root, ignore_errors=True)
     print(json.dumps(results, indent=1))

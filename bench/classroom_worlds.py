@@ -35,7 +35,7 @@ from typing import Any
 import httpx
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from live_server import READER, FrameReader, LiveServer, rss_mib
+from live_server import READER, FrameReader, LiveServer, class_join, rss_mib
 from machine import machine_info, save_results
 from page_client import PageClient, PageClients, median_rates
 
@@ -105,11 +105,7 @@ def dynamics_timer(server: LiveServer, token: str) -> dict[str, Any]:
 def join(url: str, name: str) -> str | None:
     """The new world's token; a join the class server queues at its capacity (202) is polled
     until it is admitted, or None when it is refused or still waits after ADMIT_WAIT_S."""
-    reply = httpx.post(f"{url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=30)
-    deadline = time.monotonic() + ADMIT_WAIT_S
-    while reply.status_code == 202 and time.monotonic() < deadline:
-        time.sleep(float(reply.json().get("poll_s", 2.0)))
-        reply = httpx.get(f"{url}/api/classroom/join/{reply.json()['ticket']}", timeout=30)
+    reply = class_join(url, name, CODE, ADMIT_WAIT_S)
     if reply.status_code == 201:
         return str(reply.json()["token"])
     if reply.status_code in (202, 503):

@@ -1,5 +1,6 @@
 """A lab server as a child process on a free loopback port, for the benches that measure it from
-outside: start, wait until healthy, read its memory, stop it by its own id."""
+outside: start, wait until healthy, read its memory, stop it by its own id; and a student's join
+to a class server, followed through the class's join queue."""
 
 from __future__ import annotations
 
@@ -130,3 +131,15 @@ class LiveServer:
     def stop(self) -> None:
         end(self.proc)
         self._log.close()
+
+
+def class_join(url: str, name: str, code: str, wait_s: float, timeout_s: float = 30.0) -> httpx.Response:
+    """``POST /api/classroom/join`` as student ``name``; a join the class server queues at its
+    capacity (202, a ticket) is polled as the page polls it, for at most ``wait_s``. The last answer:
+    201 with the world's token once admitted, else what the class server said (202 if still waiting)."""
+    reply = httpx.post(f"{url}/api/classroom/join", json={"name": name, "code": code}, timeout=timeout_s)
+    deadline = time.monotonic() + wait_s
+    while reply.status_code == 202 and time.monotonic() < deadline:
+        time.sleep(float(reply.json().get("poll_s", 2.0)))
+        reply = httpx.get(f"{url}/api/classroom/join/{reply.json()['ticket']}", timeout=timeout_s)
+    return reply

@@ -145,14 +145,29 @@ class PageClient:
 
     async def run(self, seconds: float, warm_s: float = 2.0) -> dict[str, float]:
         """Open every channel, count for ``seconds`` after ``warm_s``, close; the rates."""
-        channels = [self._guarded("viser", self._viser()), self._guarded("keys", self._keys())]
-        channels += [self._guarded(name, self._pose(name, topic)) for name, topic in POSE_TOPICS.items()]
-        tasks = [asyncio.create_task(c) for c in channels]
-        try:
+
+        async def window() -> dict[str, float]:
             await asyncio.sleep(warm_s)
             self.counts.restart()
             await asyncio.sleep(seconds)
             return self.counts.rates()
+
+        return await self._open_while(window())
+
+    async def hold(self, closed: asyncio.Event) -> None:
+        """Every channel open until ``closed`` is set (``counts`` read by the caller)."""
+
+        async def until() -> None:
+            await closed.wait()
+
+        await self._open_while(until())
+
+    async def _open_while(self, body: Any) -> Any:
+        channels = [self._guarded("viser", self._viser()), self._guarded("keys", self._keys())]
+        channels += [self._guarded(name, self._pose(name, topic)) for name, topic in POSE_TOPICS.items()]
+        tasks = [asyncio.create_task(c) for c in channels]
+        try:
+            return await body
         finally:
             for task in tasks:
                 task.cancel()
@@ -185,6 +200,47 @@ class PageClients:
         if self._thread.is_alive():
             raise TimeoutError(f"the page clients did not finish within {timeout_s:g} s")
         return self._rates, [e for c in self.clients for e in c.errors]
+
+
+class OpenPages:
+    """Many page clients held open on a thread of their own for as long as a bench needs (a
+    burst, then a steady window): ``mark`` starts counting afresh, ``rates`` reads each client's
+    since the mark, ``close`` closes them all."""
+
+    def __init__(self, clients: list[PageClient]) -> None:
+        self.clients = clients
+        self._loop = asyncio.new_event_loop()
+        self._closed: asyncio.Event | None = None
+        self._thread = threading.Thread(target=self._run, daemon=True)
+
+    def _run(self) -> None:
+        async def every() -> None:
+            self._closed = asyncio.Event()
+            await asyncio.gather(*(c.hold(self._closed) for c in self.clients))
+
+        self._loop.run_until_complete(every())
+
+    def open(self) -> None:
+        self._thread.start()
+
+    def _on_loop(self, call: Any) -> Any:
+        async def run() -> Any:
+            return call()
+
+        return asyncio.run_coroutine_threadsafe(run(), self._loop).result(timeout=30)
+
+    def mark(self) -> None:
+        self._on_loop(lambda: [c.counts.restart() for c in self.clients])
+
+    def rates(self) -> tuple[list[dict[str, float]], list[str]]:
+        """Each client's rates since the mark, and every channel error so far."""
+        rates: list[dict[str, float]] = self._on_loop(lambda: [c.counts.rates() for c in self.clients])
+        return rates, [e for c in self.clients for e in c.errors]
+
+    def close(self, timeout_s: float = 30.0) -> None:
+        if self._closed is not None:
+            self._loop.call_soon_threadsafe(self._closed.set)
+        self._thread.join(timeout_s)
 
 
 def median_rates(rates: list[dict[str, float]]) -> dict[str, float]:
