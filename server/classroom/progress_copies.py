@@ -16,7 +16,6 @@ from __future__ import annotations
 import asyncio
 import logging
 from collections.abc import Mapping
-from pathlib import Path
 from typing import Any
 
 from server.checkpoints.declared import Checkpoint
@@ -46,8 +45,7 @@ class ProgressCopies:
 
     def leave_mark(self) -> None:
         """Mark the progress folder (blocking): a worker that reads this mark shares it."""
-        folder: Path = self.store.folder
-        self.mark = leave_mark(folder)
+        self.mark = leave_mark(self.store.folder)
 
     def shares(self, ref: WorkerRef) -> bool:
         return self.mark is not None and ref.progress_mark == self.mark

@@ -121,12 +121,12 @@ def test_each_waiting_start_takes_its_own_turn_in_order(lab: Lab) -> None:
     ]
 
 
-def test_a_lab_node_and_a_lab_on_loopback_start_at_once(tmp_path: Path) -> None:
-    """Only students' files are paced, and only where the lab serves others: a lab on loopback
-    has no pacer on its launcher, so its user's runs start as they ask."""
+def test_a_lab_on_loopback_does_not_pace_its_launchers_starts(tmp_path: Path) -> None:
+    """Starts are paced only where the lab serves others: a lab on loopback has no pacer on its
+    launcher, so its user's runs start as they ask; it keeps one for ros2lab run's joins."""
     lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, workspace=None)), ManualClock(0.0))
     try:
         assert lab.launcher.start_pacer is None
-        assert lab.start_pacer.admit() is None  # the joins of ros2lab run are still paced
+        assert lab.start_pacer.admit() is None  # the pacer its join route asks
     finally:
         lab.launcher.shutdown()
