@@ -10,8 +10,18 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from support.schedule import BROWSER_FOLDER, browser_tests_astray, longest_files_first
 
 from server.bus import Bus, Executor, ManualClock
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The longest files first (support.schedule); a browser test outside tests/browser/ is an
+    error, as the check gate's browser part collects only there."""
+    astray = browser_tests_astray(items)
+    if astray:
+        raise pytest.UsageError(f"browser tests belong in {BROWSER_FOLDER}: {astray}")
+    items[:] = longest_files_first(items)
 
 
 @pytest.fixture(scope="session", autouse=True)

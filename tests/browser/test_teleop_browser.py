@@ -190,6 +190,7 @@ def brief_hold(page: Page, server: LabServer) -> tuple[float, int, int] | None:
     return x0, before, deadman_before
 
 
+@pytest.mark.timing  # a hold's travel is timed on the wall clock; scripts/check runs it alone
 @pytest.mark.usefixtures("home")
 class TestHoldMode:
     """Holds in one open page, each tried up to HOLD_ATTEMPTS times.
@@ -285,6 +286,7 @@ class TestHoldMode:
         pytest.fail(f"in each of {HOLD_ATTEMPTS} holds the page stalled and the dead-man released the key")
 
 
+@pytest.mark.timing  # as TestHoldMode
 @pytest.mark.usefixtures("home")
 class TestHoldModePageGone:
     """Pages that go during a hold; a server of their own, so the hold page above is closed and

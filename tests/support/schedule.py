@@ -1,0 +1,56 @@
+"""The order in which the check gate's workers take the test files."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TypeVar
+
+import pytest
+
+# The browser tests' folder: the check gate's browser part collects only this one.
+BROWSER_FOLDER = "tests/browser/"
+
+# The test files that take longest in their part of the suite (pytest --durations on this 2-core
+# machine), in that order. The check gate hands out whole files to its workers in collection order
+# (--no-loadscope-reorder), so these go first: started last, one of them would keep its worker
+# busy after the others finished.
+# Only the schedule depends on this list; tests/test_schedule.py checks that each file exists.
+LONGEST_FILES = (
+    # The browser part's
+    "tests/browser/test_page_browser.py",
+    "tests/browser/test_teleop_browser.py",
+    "tests/browser/test_editor_browser.py",
+    # The parallel part's
+    "tests/contract/test_class_schemathesis.py",
+    "tests/contract/test_openapi_schemathesis.py",
+    "tests/classroom/test_worker_failover.py",
+    "tests/checkpoints/test_live.py",
+    "tests/processes/test_handout_nodes.py",
+    "tests/listeners/test_every_port.py",
+    "tests/interop/test_zenoh_ros2_sdk.py",
+    "tests/classroom/test_local_workers.py",
+    "tests/processes/test_faults.py",
+    "tests/checkpoints/test_worker_rows.py",
+    "tests/sandbox/test_sandbox.py",
+    "tests/checkpoints/test_restart.py",
+    "tests/workspace/test_action_tutorial.py",
+    "tests/checkpoints/test_class_restart.py",
+    "tests/checkpoints/test_api.py",
+)
+
+Test = TypeVar("Test", bound=pytest.Item)
+
+
+def longest_files_first(items: Sequence[Test]) -> list[Test]:
+    """The tests of LONGEST_FILES first, in its order; the rest after them as collected."""
+    rank = {path: index for index, path in enumerate(LONGEST_FILES)}
+    return sorted(items, key=lambda item: rank.get(item.nodeid.split("::", 1)[0], len(rank)))
+
+
+def browser_tests_astray(items: Sequence[pytest.Item]) -> list[str]:
+    """The browser tests that are not in BROWSER_FOLDER."""
+    return [
+        item.nodeid
+        for item in items
+        if item.get_closest_marker("browser") is not None and not item.nodeid.startswith(BROWSER_FOLDER)
+    ]
