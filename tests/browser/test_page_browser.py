@@ -234,7 +234,6 @@ def test_follow_camera_keeps_drone_framed_as_it_flies_to_5_5_10(
     assert arena.hub_px < there.hub_px
 
 
-@pytest.mark.timing  # a latency in animation frames; scripts/check runs it alone
 @pytest.mark.parametrize("path", ["dom", "scene"])
 def test_keydown_moves_setpoint_marker_within_two_animation_frames(
     chromium: Browser, lab_server: LabServer, path: str

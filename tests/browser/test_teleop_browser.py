@@ -286,7 +286,6 @@ class TestHoldMode:
         pytest.fail(f"in each of {HOLD_ATTEMPTS} holds the page stalled and the dead-man released the key")
 
 
-@pytest.mark.timing  # as TestHoldMode
 @pytest.mark.usefixtures("home")
 class TestHoldModePageGone:
     """Pages that go during a hold; a server of their own, so the hold page above is closed and
