@@ -30,8 +30,9 @@ from shots import blobs, hub_green
 from support.http import HTTP
 
 # timing: whether a drone keeps still is read across seconds of real time, beside a second
-# student's page; with another file's page drawing beside them (software WebGL), a starved world
-# drifted 0.33 m while "still". scripts/check runs timing tests alone.
+# student's page; with another file's page drawing beside them (software WebGL) and the run held
+# to 1.3 CPUs, a starved world's drone moved 0.33 m after it was read as still. scripts/check runs
+# timing tests alone.
 pytestmark = [pytest.mark.browser, pytest.mark.timing]
 
 CODE = "TEST42"
