@@ -8,12 +8,11 @@ from __future__ import annotations
 
 import os
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 from support.app import end, free_ports, own_state, wait_healthy
+from support.forked_server import start_server
 
 REPO = Path(__file__).resolve().parents[2]
 CHROMIUM_ARGS = [
@@ -45,11 +44,10 @@ class LabServer:
         self.url = f"http://127.0.0.1:{self.port}"
         self.log_path = log_path
         self._log = log_path.open("w")
-        self.proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(self.port),
-             "--zenoh-listen", f"tcp/127.0.0.1:{self.zenoh_port}", *own_state(log_path.parent, launch_args),
-             *launch_args],
-            cwd=REPO, stdout=self._log, stderr=subprocess.STDOUT,
+        self.proc = start_server(
+            ["--host", "127.0.0.1", "--port", str(self.port), "--zenoh-listen", f"tcp/127.0.0.1:{self.zenoh_port}",
+             *own_state(log_path.parent, launch_args), *launch_args],
+            cwd=REPO, log=log_path,
         )  # fmt: skip
 
     def wait_ready(self, timeout_s: float = SERVER_READY_S) -> None:

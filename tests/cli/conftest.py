@@ -20,6 +20,7 @@ from typing import IO, Any
 
 import pytest
 from support.app import end, free_ports, wait_healthy
+from support.forked_server import ServerProcess, start_server
 from support.http import HTTP
 from support.wait import wait_until
 
@@ -32,7 +33,7 @@ READ_TIMEOUT_S = 10.0
 @dataclass
 class LiveServer:
     url: str
-    proc: subprocess.Popen[bytes]
+    proc: ServerProcess
     log_path: Path
 
     def log_tail(self, lines: int = 40) -> str:
@@ -58,12 +59,11 @@ def live_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LiveServer
     workdir = tmp_path_factory.mktemp("cli_server")
     port, zenoh_port = free_ports(2)
     log_path = workdir / "server.log"
-    with log_path.open("wb") as log:
-        proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(port), "--launch", "rocket",
-             "--zenoh-listen", f"tcp/127.0.0.1:{zenoh_port}", "start_delay:=0.5"],
-            cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
-        )  # fmt: skip
+    proc = start_server(
+        ["--host", "127.0.0.1", "--port", str(port), "--launch", "rocket",
+         "--zenoh-listen", f"tcp/127.0.0.1:{zenoh_port}", "start_delay:=0.5"],
+        cwd=workdir, log=log_path,
+    )  # fmt: skip
     server = LiveServer(f"http://127.0.0.1:{port}", proc, log_path)
     try:
         wait_healthy(server.url, proc, SERVER_READY_S, server.log_tail)

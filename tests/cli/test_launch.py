@@ -62,7 +62,7 @@ def test_launch_file_nodes_run_until_ctrl_c_then_stop(
     )
     assert "/CliCountDown" in node_names(live_server)
     code, err = launching.interrupt()
-    assert (code, err) == (0, "")
+    assert (code, err) == (0, ""), err  # the whole of stderr, a traceback in full
     assert "/CliCountDown" not in node_names(live_server)
     assert not [g for g in live_server.get("/api/launches") if "cli_test.launch" in g["file"]]
 
@@ -93,7 +93,7 @@ def test_launch_prints_its_nodes_log_lines_from_the_first_as_ros2_launch_does(
         launching.seen
     )
     code, err = launching.interrupt()
-    assert (code, err) == (0, "")
+    assert (code, err) == (0, ""), err  # the whole of stderr, a traceback in full
 
 
 def test_a_launched_node_that_crashes_or_dies_is_reported_once() -> None:

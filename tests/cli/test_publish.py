@@ -98,7 +98,7 @@ def test_pub_rate_runs_a_server_publisher_until_ctrl_c_then_deletes_it(
     pub.read_until(lambda line: line == "publishing #2: std_msgs.msg.Int64(data=7)")
     assert [p["topic"] for p in live_server.get("/api/publishers")] == ["/cli_rate"]
     code, err = pub.interrupt()
-    assert (code, err) == (0, "")
+    assert (code, err) == (0, ""), err  # the whole of stderr, a traceback in full
     assert live_server.get("/api/publishers") == []
 
 

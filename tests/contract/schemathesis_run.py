@@ -14,6 +14,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from support.app import end, free_ports, wait_healthy
+from support.forked_server import start_server
 
 HERE = Path(__file__).resolve().parent
 SCHEMATHESIS = Path(sys.executable).with_name("schemathesis")
@@ -30,18 +31,16 @@ def live_server(workdir: Path, *args: str) -> Iterator[tuple[str, Path]]:
     port, zenoh_port = free_ports(2)
     url = f"http://127.0.0.1:{port}"
     log_path = workdir / "server.log"
-    log = log_path.open("wb")
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "server", "--port", str(port), "--zenoh-listen", f"tcp/127.0.0.1:{zenoh_port}",
-         *args],
-        cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
-    )  # fmt: skip
+    proc = start_server(
+        ["--port", str(port), "--zenoh-listen", f"tcp/127.0.0.1:{zenoh_port}", *args],
+        cwd=workdir,
+        log=log_path,
+    )
     try:
         wait_healthy(url, proc, READY_S, lambda: log_path.read_text()[-2000:])
         yield url, log_path
     finally:
         end(proc)
-        log.close()
         # A node that a /api/run request names may fail to start (logged, and reported in the
         # answer); what must never appear is a bug: a traceback or the error net's entry.
         lines = log_path.read_text().splitlines()

@@ -7,14 +7,13 @@ through the REST API first, so it sees a countdown from 10 and a rocket that has
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 from support.app import end, free_ports, wait_healthy
+from support.forked_server import start_server
 from support.http import HTTP
 
 READY_S = 30.0
@@ -51,12 +50,11 @@ def rosbridge_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Rosbr
     workdir = tmp_path_factory.mktemp("rosbridge_server")
     port, rosbridge_port = free_ports(2)
     server = RosbridgeServer(port, rosbridge_port, workdir / "server.log")
-    with server.log_path.open("wb") as log:
-        proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(server.port), "--launch", "rocket",
-             "--rosbridge-port", str(server.rosbridge_port), "--no-foxglove", "--no-zenoh", "start_delay:=1"],
-            cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
-        )  # fmt: skip
+    proc = start_server(
+        ["--host", "127.0.0.1", "--port", str(server.port), "--launch", "rocket",
+         "--rosbridge-port", str(server.rosbridge_port), "--no-foxglove", "--no-zenoh", "start_delay:=1"],
+        cwd=workdir, log=server.log_path,
+    )  # fmt: skip
     try:
         wait_healthy(server.url, proc, READY_S, server.log_tail)
         yield server

@@ -11,7 +11,6 @@ import re
 import signal
 import socket
 import subprocess
-import sys
 import threading
 import time
 from collections.abc import Callable
@@ -21,6 +20,7 @@ from typing import IO, Any
 import httpx
 import pytest
 
+from support.forked_server import ForkedProcess, ServerProcess, start_server
 from support.http import HTTP
 from support.wait import wait_until
 
@@ -68,7 +68,7 @@ def free_port() -> int:
     return free_ports(1)[0]
 
 
-def end(proc: subprocess.Popen[Any], timeout_s: float = 10.0) -> None:
+def end(proc: subprocess.Popen[Any] | ForkedProcess, timeout_s: float = 10.0) -> None:
     """Ctrl-C, then a kill if it does not stop in time."""
     if proc.poll() is None:
         proc.send_signal(signal.SIGINT)
@@ -86,9 +86,7 @@ def healthy(url: str) -> bool:
         return False
 
 
-def wait_healthy(
-    url: str, proc: subprocess.Popen[Any], timeout_s: float, log_tail: Callable[[], str]
-) -> None:
+def wait_healthy(url: str, proc: ServerProcess, timeout_s: float, log_tail: Callable[[], str]) -> None:
     """Until the app at ``url`` answers /api/health; the test fails, with the log's tail, if its
     process ends first or ``timeout_s`` passes."""
 
@@ -110,7 +108,7 @@ def own_state(workdir: Path, args: tuple[str, ...] | list[str]) -> list[str]:
 class LoggedProcess:
     """A ``python -m server`` process whose output goes to ``log_path``; ``stop`` ends it by its id."""
 
-    proc: subprocess.Popen[bytes]
+    proc: ServerProcess
     log_path: Path
     _log: IO[str]
 
@@ -134,10 +132,10 @@ class App(LoggedProcess):
         self.router = f"127.0.0.1:{self.zenoh_port}"
         self.log_path = workdir / "app.log"
         self._log = self.log_path.open("w")
-        self.proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "--host", "127.0.0.1", "--port", str(self.port),
-             "--zenoh-listen", f"tcp/{self.router}", *own_state(workdir, launch), *launch],
-            cwd=cwd or REPO, stdout=self._log, stderr=subprocess.STDOUT,
+        self.proc = start_server(
+            ["--host", "127.0.0.1", "--port", str(self.port), "--zenoh-listen", f"tcp/{self.router}",
+             *own_state(workdir, launch), *launch],
+            cwd=cwd or REPO, log=self.log_path,
         )  # fmt: skip
         try:
             wait_healthy(self.url, self.proc, ready_s, self.log_tail)
@@ -273,12 +271,20 @@ class WorldWorker(LoggedProcess):
         self.id = worker_id
         self.log_path = workdir / f"worker-{worker_id}.log"
         self._log = self.log_path.open("w")
-        env = {**os.environ, "ROS2LAB_TOKEN": class_token}
-        self.proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "world-worker", "--connect", f"tcp/{router}", "--id", worker_id,
-             *own_state(workdir, extra), *extra],
-            cwd=cwd or REPO, stdout=self._log, stderr=subprocess.STDOUT, env=env,
-        )  # fmt: skip
+        self.proc = start_server(
+            [
+                "world-worker",
+                "--connect",
+                f"tcp/{router}",
+                "--id",
+                worker_id,
+                *own_state(workdir, extra),
+                *extra,
+            ],
+            cwd=cwd or REPO,
+            log=self.log_path,
+            env={**os.environ, "ROS2LAB_TOKEN": class_token},
+        )
 
 
 def wait_for_workers(url: str, token: str, ids: set[str], timeout_s: float = READY_S) -> list[dict[str, Any]]:
