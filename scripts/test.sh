@@ -35,4 +35,12 @@ debian_tool docker-compose docker-compose "to check docker-compose.yml" "the com
 web_build
 npm ci --prefix tests/js --no-audit --no-fund --loglevel=error >/dev/null
 
+# pip compiled the packages' bytecode beside them, but scripts/check has Python keep bytecode in
+# $VENV/pycache (PYTHONPYCACHEPREFIX), where it looks for nothing else: compile everything there
+# once now, as pip does at install, rather than in each of the gate's first processes at once.
+# (A file or two of the packages' own that is not Python 3 makes compileall exit non-zero.)
+env -u PYTHONDONTWRITEBYTECODE PYTHONPYCACHEPREFIX="$(cd "$VENV" && pwd)/pycache" "$VENV/bin/python" -m compileall \
+  -q -j0 "$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')" \
+  server api sim client tests >/dev/null || true
+
 exec env TELEOP_VENV="$VENV" bash scripts/check "$@"

@@ -11,14 +11,14 @@ from pathlib import Path
 
 import pytest
 from support.app import end, free_ports, wait_healthy
-from support.forked_server import ForkedProcess, _Starter
+from support.forked_server import ForkedProcess, Starter
 from support.http import HTTP
 from support.wait import wait_until
 
 
 @pytest.fixture(scope="module")
-def starter() -> _Starter:
-    own = _Starter()  # not the process's shared one, so this module can close it
+def starter() -> Starter:
+    own = Starter()  # not the process's shared one, so this module can close it
     yield own
     own.close()
 
@@ -37,7 +37,7 @@ def alive(pid: int) -> bool:
 
 
 def test_a_forked_server_serves_from_its_folder_with_its_environment_and_ends_on_ctrl_c(
-    starter: _Starter, tmp_path: Path
+    starter: Starter, tmp_path: Path
 ) -> None:
     port, zenoh_port = free_ports(2)
     log = tmp_path / "server.log"
@@ -60,7 +60,7 @@ def test_a_forked_server_serves_from_its_folder_with_its_environment_and_ends_on
     assert proc.wait(timeout=1) == 0
 
 
-def test_a_forked_server_refuses_a_bad_option_as_the_shell_would(starter: _Starter, tmp_path: Path) -> None:
+def test_a_forked_server_refuses_a_bad_option_as_the_shell_would(starter: Starter, tmp_path: Path) -> None:
     log = tmp_path / "server.log"
     proc = starter.start(["--no-such-option"], tmp_path, log, dict(os.environ))
     assert proc.wait(timeout=30) == 2
@@ -68,7 +68,7 @@ def test_a_forked_server_refuses_a_bad_option_as_the_shell_would(starter: _Start
     assert "usage: python -m server" in log.read_text()
 
 
-def test_wait_times_out_while_the_server_runs_and_kill_ends_it(starter: _Starter, tmp_path: Path) -> None:
+def test_wait_times_out_while_the_server_runs_and_kill_ends_it(starter: Starter, tmp_path: Path) -> None:
     port, zenoh_port = free_ports(2)
     log = tmp_path / "server.log"
     proc = starter.start(lab_args(port, zenoh_port, tmp_path / "state"), tmp_path, log, dict(os.environ))
@@ -83,7 +83,7 @@ def test_wait_times_out_while_the_server_runs_and_kill_ends_it(starter: _Starter
 
 
 def test_a_starter_whose_test_process_goes_kills_what_it_started(tmp_path: Path) -> None:
-    own = _Starter()
+    own = Starter()
     port, zenoh_port = free_ports(2)
     log = tmp_path / "server.log"
     proc: ForkedProcess = own.start(

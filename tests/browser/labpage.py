@@ -22,6 +22,7 @@ WAIT_S = 15.0
 STILL_M_S = 0.1
 STILL_WINDOW_S = 0.5
 STILL_DRIFT_M = 0.05
+STILL_SIM_WAIT_S = 10.0  # for the sim to run a STILL_WINDOW_S of its own (a starved world lags)
 # The drone stops in about 1.5 s, but each check is 4 requests, and a loaded 2-core machine (a
 # page drawing in software beside the server) answered each in 0.4-4 s.
 STOP_WAIT_S = 30.0
@@ -68,18 +69,40 @@ def speed(server: LabServer) -> float:
     return math.hypot(v["x"], v["y"], v["z"])
 
 
-def wait_stopped(server: LabServer, timeout_s: float = STOP_WAIT_S) -> tuple[float, float, float]:
-    """Until the drone is still (under 0.1 m/s, and two positions 0.5 s apart within 5 cm); where."""
+def still(read: Callable[[str], dict[str, Any]]) -> tuple[float, float, float] | None:
+    """Where the drone is if it is still, else None; ``read`` answers a topic as GET /api/topics does.
 
-    def still() -> tuple[float, float, float] | None:
-        if speed(server) >= STILL_M_S:
+    Still: under 0.1 m/s at both ends of a window, and two GPS fixes at least 0.5 s apart *on the
+    sim's clock* (their stamps) within 5 cm. The window is the sim's, not the test's: a world
+    starved of CPU can publish late, and two readings half a second apart on the wall clock may
+    then hold the same fix, or two a few ticks apart, while the drone is still braking."""
+
+    def fix() -> tuple[tuple[float, float, float], float]:
+        pose = read("/uav/sensors/gps")["latest"]
+        p, stamp = pose["pose"]["position"], pose["header"]["stamp"]
+        return (p["x"], p["y"], p["z"]), stamp["sec"] + stamp["nanosec"] * 1e-9
+
+    def slow() -> bool:
+        v = read("/uav/sensors/velocity")["latest"]["twist"]["linear"]
+        return math.hypot(v["x"], v["y"], v["z"]) < STILL_M_S
+
+    if not slow():
+        return None
+    before, t0 = fix()
+    time.sleep(STILL_WINDOW_S)
+    after, t1 = fix()
+    give_up = time.monotonic() + STILL_SIM_WAIT_S
+    while t1 - t0 < STILL_WINDOW_S:  # the sim has not yet run the window: read again a little later
+        if time.monotonic() > give_up:
             return None
-        before = position(server)
-        time.sleep(STILL_WINDOW_S)
-        after = position(server)
-        return after if math.dist(before, after) < STILL_DRIFT_M and speed(server) < STILL_M_S else None
+        time.sleep(STILL_WINDOW_S / 5)
+        after, t1 = fix()
+    return after if math.dist(before, after) < STILL_DRIFT_M and slow() else None
 
-    return wait_until(still, "the drone to stop", timeout_s)
+
+def wait_stopped(server: LabServer, timeout_s: float = STOP_WAIT_S) -> tuple[float, float, float]:
+    """Until the drone is still (``still``); where."""
+    return wait_until(lambda: still(lambda name: topic(server, name)), "the drone to stop", timeout_s)
 
 
 # -- the page ------------------------------------------------------------------------------------

@@ -7,7 +7,6 @@ from __future__ import annotations
 import io
 import math
 import re
-import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -16,11 +15,10 @@ import numpy as np
 import pytest
 from labpage import (
     LOAD_WAIT_MS,
-    STILL_DRIFT_M,
-    STILL_WINDOW_S,
     lab_page,
     open_lab_page,
     save_screenshot,
+    still,
     wait_until,
 )
 from labserver import LabServer
@@ -29,11 +27,10 @@ from playwright.sync_api import Browser, Page
 from shots import blobs, hub_green
 from support.http import HTTP
 
-# timing: whether a drone keeps still is read across seconds of real time, beside a second
-# student's page; with another file's page drawing beside them (software WebGL) and the run held
-# to 1.3 CPUs, a starved world's drone moved 0.33 m after it was read as still. scripts/check runs
-# timing tests alone.
-pytestmark = [pytest.mark.browser, pytest.mark.timing]
+# Whether a drone keeps still is judged on its sim's clock (labpage.still): judged on the wall clock,
+# with another file's page drawing beside it and the run held to 1.3 CPUs, a starved world's drone
+# was once read as still while it braked, and moved 0.33 m after.
+pytestmark = pytest.mark.browser
 
 CODE = "TEST42"
 HOME_M = (0.0, 0.0, 3.0)  # the drone keyboard manager's start setpoint
@@ -103,11 +100,8 @@ class Student:
         return p["x"], p["y"], p["z"]
 
     def still(self) -> tuple[float, float, float] | None:
-        """Where the drone is, if it moved under 5 cm in half a second; else None."""
-        before = self.position()
-        time.sleep(STILL_WINDOW_S)
-        after = self.position()
-        return after if math.dist(before, after) < STILL_DRIFT_M else None
+        """Where the drone is if it is still (labpage.still: judged on the sim's clock); else None."""
+        return still(self.topic)
 
     def aborted(self) -> bool:
         return bool((self.topic("/abort_takeoff")["latest"] or {}).get("data"))

@@ -160,7 +160,7 @@ def _serve_forks() -> None:
 class ForkedProcess:
     """A server the starter forked: the part of ``subprocess.Popen`` the tests use."""
 
-    def __init__(self, starter: _Starter, pid: int, args: list[str]) -> None:
+    def __init__(self, starter: Starter, pid: int, args: list[str]) -> None:
         self._starter = starter
         self.pid = pid
         self.args = args
@@ -189,7 +189,7 @@ class ForkedProcess:
         self.send_signal(signal.SIGKILL)
 
 
-class _Starter:
+class Starter:
     """The test process's one starter, and what it has said about its children."""
 
     def __init__(self) -> None:
@@ -266,7 +266,7 @@ class _Starter:
 
 
 ServerProcess = ForkedProcess | subprocess.Popen[bytes]
-_starter: _Starter | None = None
+_starter: Starter | None = None
 _starting = threading.Lock()
 
 
@@ -286,7 +286,7 @@ def start_server(
     global _starter
     with _starting:
         if _starter is None:
-            _starter = _Starter()
+            _starter = Starter()
             atexit.register(_starter.close)
     return _starter.start(args, cwd, log, environment)
 
