@@ -2,7 +2,7 @@
 page's Run and Launch start them where the server serves others, on a ManualClock: a start the
 pacer defers is a process waiting with no pid, which starts when its turn comes; one stopped
 while it waits never starts; the run's output says it waited; waiting starts count against the
-running limits. The processes are real (a student's file that prints and sleeps), ended by the
+running limits; the lab's own nodes, run as processes, are never paced. The processes are real (a student's file that prints and sleeps), ended by the
 launcher."""
 
 from __future__ import annotations
@@ -130,3 +130,22 @@ def test_a_lab_on_loopback_does_not_pace_its_launchers_starts(tmp_path: Path) ->
         assert lab.start_pacer.admit() is None  # the pacer its join route asks
     finally:
         lab.launcher.shutdown()
+
+
+def test_the_labs_own_nodes_run_as_processes_start_at_once_while_students_starts_wait(lab: Lab) -> None:
+    """With every lab node as its own process (``--node-processes all``), the lab's nodes are not
+    students' code: they start as asked even when the pacer has no slot free, and never take one."""
+    lab.launcher.all_processes = True
+    held = lab.launch_groups.run("pacing", "sleeper.py")  # takes the pacer's one slot
+    waiting = lab.launch_groups.run("pacing", "sleeper.py")
+    assert started(lab, held.id) and waiting.describe()["nodes"][0]["state"] == "waiting"
+    pacer = lab.launcher.start_pacer
+    assert pacer is not None
+    counts = (pacer.admitted, pacer.deferred)
+
+    lab_node = lab.launch_groups.run("rocketship", "countdown")
+    entry = lab_node.entries[0]
+    assert entry.process is not None, entry.error  # a process, not a node inside the app
+    assert entry.process.pid is not None  # started now, not told to wait for a turn
+    assert (pacer.admitted, pacer.deferred) == counts  # and it asked the pacer nothing
+    assert waiting.describe()["nodes"][0]["state"] == "waiting"  # the student's start still waits
