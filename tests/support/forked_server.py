@@ -15,7 +15,8 @@ use (``pid``, ``poll``, ``wait``, ``send_signal``, ``terminate``, ``kill``, ``re
 starter is the child's parent, so it reaps the child and reports the exit code, and it sends the
 signals a test asks for only to a child it has not reaped yet, so a signal can never reach a
 process that later took the same id. When its pytest process ends (or dies), the starter's stdin
-closes; it kills the children still running, reaps them and exits.
+closes; it kills the children still running, reaps them and exits. (``ps`` shows a forked server
+with the starter's command line, ``python tests/support/forked_server.py``: look for its children.)
 
 ``TELEOP_TEST_FORK=0`` starts every server with ``subprocess.Popen`` instead.
 """
