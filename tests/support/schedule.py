@@ -20,7 +20,6 @@ LONGEST_FILES = (
     "tests/browser/test_page_browser.py",
     "tests/browser/test_teleop_browser.py",
     "tests/browser/test_editor_browser.py",
-    "tests/browser/test_classroom_browser.py",
     # The parallel part's
     "tests/contract/test_class_schemathesis.py",
     "tests/contract/test_openapi_schemathesis.py",
