@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import signal
 import subprocess
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -17,7 +18,7 @@ from support.wait import wait_until
 
 
 @pytest.fixture(scope="module")
-def starter() -> Starter:
+def starter() -> Iterator[Starter]:
     own = Starter()  # not the process's shared one, so this module can close it
     yield own
     own.close()

@@ -64,11 +64,6 @@ def position(server: LabServer) -> tuple[float, float, float]:
     return p["x"], p["y"], p["z"]
 
 
-def speed(server: LabServer) -> float:
-    v = topic(server, "/uav/sensors/velocity")["latest"]["twist"]["linear"]
-    return math.hypot(v["x"], v["y"], v["z"])
-
-
 def still(read: Callable[[str], dict[str, Any]]) -> tuple[float, float, float] | None:
     """Where the drone is if it is still, else None; ``read`` answers a topic as GET /api/topics does.
 

@@ -1,8 +1,8 @@
 """``python -m server`` started by a fork of a process that has imported the app already.
 
-A server's start is mostly imports: about 1.2 of its 1.8 CPU seconds go to importing FastAPI,
-pydantic, viser, Zenoh, numpy and the app's own modules, and the suite starts well over a hundred
-servers on two cores. So each pytest process keeps one *starter*: this file run as a program, which
+A server's start is mostly imports: of the 1.2 CPU seconds a fly lab takes to answer /api/health,
+forking skips about 1.0 (bench/server_start.py), the imports of FastAPI, pydantic, viser, Zenoh,
+numpy and the app's own modules; and the suite starts dozens of servers on two cores. So each pytest process keeps one *starter*: this file run as a program, which
 imports those modules once and then, for every server a test asks for, forks a child that runs
 ``server/__main__.py`` as ``python -m server ARGS`` would (``sys.argv``, the working folder, the
 environment, stdin from /dev/null, stdout and stderr to the test's log file, Ctrl-C as
@@ -43,7 +43,7 @@ PRELOAD = (
     "server.bridges", "server.processes", "uvicorn", "uvicorn.loops.auto", "uvicorn.protocols.http.auto",
     "uvicorn.protocols.websockets.auto", "uvicorn.lifespan.on", "viser", "zenoh", "numpy", "rich",
 )  # fmt: skip
-START_S = 60.0  # the starter's imports: about 1.3 s on a quiet 2-core machine
+START_S = 60.0  # the starter's imports: about 1 s on a quiet 2-core machine
 
 
 def enabled() -> bool:
