@@ -19,7 +19,13 @@ from server.bus import Clock
 from sim.quadrotor import QuadrotorBatch, SimpleDrone, SimpleSimBatch, SimpleSimParams
 from sim.quadrotor.batch import Drone
 
-MAX_CATCH_UP_S = 0.1  # after a stall the batch skips ahead, as a single world's sim does
+# How much time one late advance may fly; the rest of a stall is skipped, so a world starved of
+# CPU flies slower than real time instead of flying open-loop on its last command.
+# The quadrotor: one period of the flight controllers (50 Hz). Flying 0.1 s on a stale command, a
+# 2 m step overshot by 0.24 m instead of 1.5 cm when the world ran 50-150 ms late.
+QUADROTOR_MAX_CATCH_UP_S = 0.02
+# simple_sim: its own 20 Hz ticks are the lab's timer, so a late world runs the ticks it missed.
+SIMPLE_SIM_MAX_CATCH_UP_S = 0.1
 
 H = TypeVar("H")
 H_co = TypeVar("H_co", covariant=True)
@@ -34,9 +40,10 @@ class _Batch(Protocol[H_co]):
 class SharedBatch(Generic[H]):
     """One batch of drones on the class clock, shared by every world's node (H: a drone's handle)."""
 
-    def __init__(self, clock: Clock, batch: _Batch[H]) -> None:
+    def __init__(self, clock: Clock, batch: _Batch[H], max_catch_up_s: float) -> None:
         self.clock = clock
         self.batch = batch
+        self.max_catch_up_s = max_catch_up_s
         self._at_s = clock.now()
 
     def __len__(self) -> int:
@@ -48,11 +55,12 @@ class SharedBatch(Generic[H]):
         return self.batch.add(rng=np.random.default_rng(seed) if noise else None, noise=noise)
 
     def advance_to(self, now_s: float) -> None:
-        """Step every drone up to ``now_s`` (nothing if it is already there)."""
+        """Step every drone up to ``now_s`` (nothing if it is already there), at most
+        ``max_catch_up_s`` of it: the rest of a longer gap is skipped."""
         elapsed = now_s - self._at_s
         if elapsed <= 0.0:
             return
-        self.batch.advance(min(elapsed, MAX_CATCH_UP_S))
+        self.batch.advance(min(elapsed, self.max_catch_up_s))
         self._at_s = now_s
 
 
@@ -60,7 +68,7 @@ class SharedQuadrotorPhysics(SharedBatch[Drone]):
     """Every fly world's drone in one QuadrotorBatch, stepped at ``physics_rate_hz``."""
 
     def __init__(self, clock: Clock, physics_rate_hz: float = 1000.0) -> None:
-        super().__init__(clock, QuadrotorBatch(physics_rate_hz=physics_rate_hz))
+        super().__init__(clock, QuadrotorBatch(physics_rate_hz=physics_rate_hz), QUADROTOR_MAX_CATCH_UP_S)
         self.physics_rate_hz = float(physics_rate_hz)
 
 
@@ -74,5 +82,5 @@ class SharedSimpleSim(SharedBatch[SimpleDrone]):
 
     def __init__(self, clock: Clock, params: SimpleSimParams | None = None) -> None:
         batch = SimpleSimBatch(params)
-        super().__init__(clock, batch)
+        super().__init__(clock, batch, SIMPLE_SIM_MAX_CATCH_UP_S)
         self.params = batch.params

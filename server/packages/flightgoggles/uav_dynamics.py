@@ -5,7 +5,9 @@ Out, at ``publish_rate_hz`` (100 by default): /uav/sensors/gps (PoseStamped, fra
 /uav/sensors/velocity (TwistStamped: linear = world velocity m/s, angular = body rates rad/s),
 /uav/sensors/attitude (Vector3: roll, pitch, yaw rad), and the pose on /tf (``world`` →
 ``uav/imu``, as FlightGoggles broadcasts it, for Foxglove's 3D panel). The physics steps at
-``physics_rate_hz`` (1000) and follows the bus clock, so sim time is real time.
+``physics_rate_hz`` (1000) and follows the bus clock, so sim time is real time while the world
+keeps up. A tick that comes late flies at most one flight-controller period on the last command
+and skips the rest, so a world starved of CPU flies slower than real time, not open-loop.
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ import numpy as np
 
 from server.bus import Node
 from server.bus.parameter_values import double_range, read_only
-from server.devices.shared_physics import SharedQuadrotorPhysics
+from server.devices.shared_physics import QUADROTOR_MAX_CATCH_UP_S, SharedQuadrotorPhysics
 from server.msgs import (
     Header,
     Point,
@@ -33,7 +35,6 @@ from sim.quadrotor.rotation import quat_to_euler_sxyz
 from sim.quadrotor.state import Kinematics
 
 BODY_FRAME = "uav/imu"  # FlightGoggles' name for the body frame
-MAX_CATCH_UP_S = 0.1  # after a stall, the sim skips ahead rather than running a burst of steps
 
 
 class UavDynamicsNode(Node):
@@ -58,8 +59,13 @@ class UavDynamicsNode(Node):
         # On a class server every world's drone steps in one shared batch (server/devices/
         # shared_physics.py); alone, the drone has a QuadrotorSim of its own. Same model either way.
         self.shared: SharedQuadrotorPhysics | None = self.bus.devices.get("quadrotor_physics")
-        if self.shared is not None and self.shared.physics_rate_hz != physics_hz:
-            self.shared = None  # another physics rate than the class's: this world steps its own
+        # A late tick flies at most this long on the last command (a slower publish rate ticks
+        # further apart than the controllers' period, so it may fly up to two of its own ticks).
+        self.max_catch_up_s = max(QUADROTOR_MAX_CATCH_UP_S, 2.0 / rate_hz)
+        if self.shared is not None and (
+            self.shared.physics_rate_hz != physics_hz or self.shared.max_catch_up_s < self.max_catch_up_s
+        ):
+            self.shared = None  # another physics rate or tick than the class's: this world steps its own
         self.sim: QuadrotorSim | Drone = (
             self.shared.add(seed, noise)
             if self.shared is not None
@@ -90,7 +96,7 @@ class UavDynamicsNode(Node):
         if self.shared is not None:
             self.shared.advance_to(now)
         elif isinstance(self.sim, QuadrotorSim):
-            self.sim.advance(min(max(now - self._last_s, 0.0), MAX_CATCH_UP_S))
+            self.sim.advance(min(max(now - self._last_s, 0.0), self.max_catch_up_s))
         self._last_s = now
         self.publish_state(self.sim.kinematics())
 
