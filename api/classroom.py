@@ -156,6 +156,11 @@ class ClassWorkers(BaseModel):
         description="the world workers this server started on its machine (--workers): id, pid (null while "
         "down), restarts, and given_up once it kept dying",
     )
+    spread: dict[str, int] | None = Field(
+        default=None,
+        description="with --workers auto: another world worker on this machine each at_worlds worlds, at most "
+        "up_to (the machine's spare cores); null when workers start only as --workers N said",
+    )
 
 
 class ClassGraph(BaseModel):
@@ -281,6 +286,7 @@ async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
         },
         workers=[ref.describe() for ref in found],
         started_here=started.describe() if started is not None else [],
+        spread=started.describe_spread() if started is not None else None,
     )
 
 

@@ -296,9 +296,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--worlds", type=int, default=30)
     parser.add_argument("--per-world", type=int, default=2)
     parser.add_argument("--joined-timeout-s", type=float, default=300.0)
-    parser.add_argument("--workers", type=int, default=0, help="world workers on this machine (--workers)")
     parser.add_argument(
-        "--local-worlds", type=int, default=0, help="with --workers: worlds the class server hosts"
+        "--workers",
+        default="auto",
+        help="world workers on this machine: the server's --workers (N, auto or 0)",
+    )
+    parser.add_argument(
+        "--local-worlds", type=int, default=0, help="with --workers N: worlds the class server hosts"
     )
     parser.add_argument(
         "--steady-s", type=float, default=30.0, help="the class measured with every node running"
@@ -312,9 +316,9 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     print(json.dumps(machine_info()), flush=True)
     root = Path(tempfile.mkdtemp(prefix="class_burst_"))
-    spread = (
-        ["--workers", str(args.workers), "--local-worlds", str(args.local_worlds)] if args.workers else []
-    )
+    spread = ["--workers", args.workers]
+    if args.workers not in ("auto", "0"):
+        spread += ["--local-worlds", str(args.local_worlds)]
     server = LiveServer(
         root, "fly", "--classroom", "--class-code", CODE, "--max-worlds", str(args.worlds), *spread
     )

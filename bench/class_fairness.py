@@ -181,8 +181,9 @@ def attack(url: str, token: str, seconds: float, sockets: int, attacks: list[str
 def run(quiet: int, window_s: float, ramp_s: float, sockets: int, attacks: list[str]) -> dict[str, Any]:
     with tempfile.TemporaryDirectory() as tmp:
         server = LiveServer(
-            Path(tmp), "fly", "--classroom", "--class-code", CODE, "--max-worlds", str(quiet + 1)
-        )
+            Path(tmp), "fly", "--classroom", "--class-code", CODE, "--max-worlds", str(quiet + 1),
+            "--workers", "0",  # every world in the one process whose fairness this measures
+        )  # fmt: skip
         try:
             tokens = [join(server, f"quiet {i}") for i in range(quiet)]
             worst_token = join(server, "worst")

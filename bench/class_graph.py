@@ -151,6 +151,8 @@ def main() -> None:
             "--max-worlds",
             str(args.worlds),
             "--no-foxglove",
+            "--workers",
+            "0",  # every world on the class server's own graph
         )
         try:
             found = re.search(r"/instructor\?token=(\S+)", server.log_path.read_text())

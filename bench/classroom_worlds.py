@@ -124,7 +124,17 @@ def measure(
     page_clients: bool = False,
 ) -> dict[str, Any]:
     with tempfile.TemporaryDirectory() as tmp:
-        args = ["--classroom", "--class-code", CODE, "--max-worlds", str(max(size, 1)), *extra]
+        # The bench places its own workers (none by default): the server starts none itself.
+        args = [
+            "--classroom",
+            "--class-code",
+            CODE,
+            "--max-worlds",
+            str(max(size, 1)),
+            "--workers",
+            "0",
+            *extra,
+        ]
         if workers:
             args += ["--local-worlds", str(local_worlds)]
         server = LiveServer(Path(tmp), "fly", *args)

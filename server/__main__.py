@@ -15,6 +15,7 @@ from server import cli
 from server.console import LEVELS, setup_logging
 from server.settings import (
     ANY_ADDRESS,
+    SPREAD_AT_WORLDS,
     WORKER_TIMEOUT_S,
     Settings,
     explain,
@@ -122,9 +123,14 @@ def build_parser() -> argparse.ArgumentParser:
              f"(ros2lab {cli.WORKER_VERB} --connect tcp/HOST:7447, which join this server's Zenoh router)",
     )  # fmt: skip
     classroom.add_argument(
-        "--workers", type=int, default=0, metavar="N",
-        help="start N world workers on this machine (processes of their own on this server's router, so "
-             "a class uses more cores); they stop with it (default 0)",
+        "--workers", type=workers_arg, default="auto", metavar="N|auto",
+        help="world workers on this machine (processes of their own on this server's router, so a class "
+             "uses more cores; they stop with it): N at the start, or auto (default): one each --spread-at "
+             "worlds as the class grows, at most one per spare core; 0: none",
+    )  # fmt: skip
+    classroom.add_argument(
+        "--spread-at", type=int, default=SPREAD_AT_WORLDS, metavar="N",
+        help=f"with --workers auto: another world worker each N worlds (default {SPREAD_AT_WORLDS})",
     )  # fmt: skip
     classroom.add_argument(
         "--world-log-level", default="warning", choices=list(LEVELS),
@@ -200,6 +206,16 @@ def banner(host: str, port: int, launch: str) -> str:
     )
 
 
+def workers_arg(arg: str) -> int | str:
+    """``--workers``: ``auto`` or a count (its range is the settings' rule)."""
+    if arg == "auto":
+        return arg
+    try:
+        return int(arg)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"N or auto, not {arg!r}") from None
+
+
 def lab_token(arg: str | None) -> str | None:
     if arg is None:
         return None
@@ -227,11 +243,18 @@ def classroom_banner(settings: Settings, code: str, instructor_token: str) -> st
             f"rosbridge, every world as /<world>/...: ws://{shown}:{rosbridge}/?token=<the instructor's token>"
         )
     assert settings.classroom is not None
-    started = settings.classroom.local_workers
+    from server.classroom.local_workers import spare_cores
+
+    started, spare = settings.classroom.workers_at_start, spare_cores()
     if started:
         ids = "local-1" if started == 1 else f"local-1..local-{started}"
         lines.append(
             f"World workers on this machine: {started} ({ids}), started and stopped with this server"
+        )
+    elif settings.classroom.auto_workers and router is not None and spare:
+        lines.append(
+            f"World workers on this machine: one each {settings.classroom.spread_at} worlds, at most {spare} "
+            "(its spare cores), started as the class grows and stopped with this server (--workers)"
         )
     if router is not None:
         endpoint = router.listen[0].replace("0.0.0.0", "<this machine's address>")
@@ -245,7 +268,7 @@ def classroom_banner(settings: Settings, code: str, instructor_token: str) -> st
 
 
 # Options of the class's section: without --classroom there is no class for them to shape.
-CLASS_ONLY = {"workers": "--workers", "local_worlds": "--local-worlds",
+CLASS_ONLY = {"workers": "--workers", "spread_at": "--spread-at", "local_worlds": "--local-worlds",
               "max_worlds_per_address": "--max-worlds-per-address", "workspaces_dir": "--workspaces-dir"}  # fmt: skip
 
 
@@ -256,7 +279,7 @@ def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settin
     if args.classroom:
         classroom = {
             "code": args.class_code, "max_worlds": args.max_worlds, "local_worlds": args.local_worlds,
-            "local_workers": args.workers, "worker_timeout_s": args.worker_timeout,
+            "local_workers": args.workers, "spread_at": args.spread_at, "worker_timeout_s": args.worker_timeout,
             "world_log_level": args.world_log_level, "workspaces_dir": Path(args.workspaces_dir),
             "joins": {"max_worlds_per_address": args.max_worlds_per_address},
         }  # fmt: skip

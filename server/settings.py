@@ -34,11 +34,12 @@ ANY_ADDRESS = ("0.0.0.0", "::")
 WORKER_TIMEOUT_S = 20.0
 ORPHAN_TIMEOUT_S = 12.0
 MAX_LOCAL_WORKERS = 32  # --workers: world workers a class server starts on its own machine
+SPREAD_AT_WORLDS = 10  # --workers auto: another world worker on this machine each this many worlds
 REFUSAL = "login_required"  # the error type of an app that would listen beyond loopback with no login
 
 WORKERS_RULE = (
     "--workers needs --classroom and this server's own Zenoh router (world workers join it), "
-    f"and N in 0..{MAX_LOCAL_WORKERS}"
+    f"and N in 0..{MAX_LOCAL_WORKERS} or auto"
 )
 LOCAL_WORLDS_RULE = "--local-worlds needs --classroom and Zenoh (world workers join its router), and N >= 0"
 
@@ -229,8 +230,10 @@ class ClassroomSettings(Section):
     join_queue: JoinQueueSettings = JoinQueueSettings()
     # Worlds the class server hosts itself; the rest go to world workers (None: up to max_worlds).
     local_worlds: int | None = None
-    # World workers the class server starts on its own machine (--workers), on its own router.
-    local_workers: int = 0
+    # World workers the class server starts on its own machine (--workers), on its own router:
+    # N at its start, or "auto": one per spare core as the class grows, each ``spread_at`` worlds.
+    local_workers: int | Literal["auto"] = "auto"
+    spread_at: int = Field(default=SPREAD_AT_WORLDS, ge=1, le=1000)
     worker_timeout_s: float = WORKER_TIMEOUT_S  # a world worker silent this long is gone: its worlds move
     world_log_level: str = "warning"  # the lowest level of a class world's node lines on the console
     # Each world's workspace is the folder of its name in here: kept across resets and restarts of
@@ -253,10 +256,20 @@ class ClassroomSettings(Section):
 
     @field_validator("local_workers")
     @classmethod
-    def _local_workers(cls, value: int) -> int:
-        if not 0 <= value <= MAX_LOCAL_WORKERS:
+    def _local_workers(cls, value: int | str) -> int | str:
+        if value != "auto" and not 0 <= int(value) <= MAX_LOCAL_WORKERS:
             raise ValueError(WORKERS_RULE)
         return value
+
+    @property
+    def auto_workers(self) -> bool:
+        """Whether world workers start on this machine as the class grows (``--workers auto``)."""
+        return self.local_workers == "auto"
+
+    @property
+    def workers_at_start(self) -> int:
+        """World workers started with the class server (``--workers N``; none with auto)."""
+        return 0 if self.local_workers == "auto" else self.local_workers
 
     @field_validator("worker_timeout_s")
     @classmethod
@@ -315,7 +328,8 @@ class Settings(Section):
         classroom = self.classroom
         if classroom is None:
             return self
-        if classroom.local_workers and self.lab.zenoh_router is None:
+        # auto needs no router: without one (--no-zenoh, or a client of another) none are started
+        if classroom.workers_at_start and self.lab.zenoh_router is None:
             raise ValueError(WORKERS_RULE)
         if classroom.local_worlds is not None and self.lab.zenoh is None:
             raise ValueError(LOCAL_WORLDS_RULE)

@@ -31,6 +31,7 @@ from .errors import ClassroomError
 from .grants import Grants, world_for
 from .join_queue import JoinQueue, JoinWaits
 from .load import CpuMeter, machine_id
+from .local_workers import LocalWorkers, spare_cores
 from .placement import Placement
 from .progress_copies import ProgressCopies
 from .saved_students import SavedStudents
@@ -44,7 +45,6 @@ if TYPE_CHECKING:
     from server.viewer.class_view import ClassView
 
     from .class_bridges import ClassBridges
-    from .local_workers import LocalWorkers
     from .workers import WorkerDirectory, WorkerRef
 
 log = logging.getLogger("classroom")
@@ -175,13 +175,14 @@ class ClassServer:
         self._tasks.append(asyncio.create_task(self.placement.watch()))
         endpoint = self.graph.endpoint()
         # Started last: a start-up that fails earlier leaves no worker behind to clean up.
-        if endpoint is not None and self.class_settings.local_workers > 0:
-            from .local_workers import LocalWorkers
-
+        klass = self.class_settings
+        spare = spare_cores() if klass.auto_workers else 0
+        if endpoint is not None and (klass.workers_at_start > 0 or spare > 0):
             self.local_workers = LocalWorkers(
-                self.class_settings.local_workers, endpoint, self.instructor_token, self.class_settings.max_worlds,
-                self.settings.lab.workspace, self.class_settings.workspaces_dir, self.settings.lab.bag_dir,
-                world_log_level=self.class_settings.world_log_level, state_dir=self.settings.lab.state_dir,
+                klass.workers_at_start, endpoint, self.instructor_token, klass.max_worlds,
+                self.settings.lab.workspace, klass.workspaces_dir, self.settings.lab.bag_dir,
+                world_log_level=klass.world_log_level, state_dir=self.settings.lab.state_dir,
+                spread_at=klass.spread_at if klass.auto_workers else None, spare=spare,
             )  # fmt: skip
             self.local_workers.start()
 
@@ -279,6 +280,8 @@ class ClassServer:
             placed_at=self.clock.now(), login=login, address=address, reset_limit=resets,
         )  # fmt: skip
         self.graph.show(world)
+        if self.local_workers is not None:  # --workers auto: another worker as the class grows
+            self.local_workers.spread(len(self.worlds))
         await self.saved.claim(name, student, token)
         where = f" on world worker {place.id}" if place is not None else ""
         log.info("%s joined: world %s%s", student, name, where)

@@ -1,10 +1,13 @@
-"""World workers a class server starts on its own machine (``--workers N``).
+"""World workers a class server starts on its own machine (``--workers``).
 
-A class server runs its own worlds in one Python thread, so on its own it uses about one core. With
-``--workers N`` it starts N ``ros2lab world-worker`` processes next to itself, joined to its own
-Zenoh router, so a class spreads over the machine's other cores with one command. They are
-ordinary world workers: placement by load, the hello, failover and the proxy treat them as any
-other (``workers.py``).
+A class server runs its own worlds in one Python thread, so on its own it uses about one core. By
+default (``--workers auto``) it starts ``ros2lab world-worker`` processes next to itself as the
+class grows, joined to its own Zenoh router: one each ``--spread-at`` worlds (10), at most one per
+spare core (the cores it may run on, less its own). A class of a few students then costs one
+process and starts at once, and a large class spreads over the machine. ``--workers N`` starts N
+at once instead, and ``--workers 0`` none. They are ordinary world workers: placement by load, the
+hello, failover and the proxy treat them as any other (``workers.py``), so the worlds that join
+after a worker answers go to it until the places are even.
 
 The class server owns them: each starts in a session of its own (a Ctrl-C in the terminal stops
 the class server, which then ends them, rather than reaching every process at once), gets the
@@ -43,9 +46,19 @@ class _Child:
     given_up: bool = False
 
 
+def spare_cores() -> int:
+    """The cores this process may run on, less one for itself."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # no affinity on this platform
+        cores = os.cpu_count() or 1
+    return max(0, cores - 1)
+
+
 @dataclass
 class LocalWorkers:
-    """``count`` world workers on this machine, joined to ``router`` (the class's own endpoint)."""
+    """World workers on this machine, joined to ``router`` (the class's own endpoint): ``count``
+    at the start, and with ``spread_at`` one more each that many worlds, up to ``spare``."""
 
     count: int
     router: str
@@ -57,16 +70,30 @@ class LocalWorkers:
     log_level: str = "warning"
     world_log_level: str = "warning"
     state_dir: Path = Path("state")  # the class server's: its worlds' progress and report key, shared
+    spread_at: int | None = None  # auto: another worker each this many worlds (None: only ``count``)
+    spare: int = 0  # auto: at most this many
     _children: list[_Child] = field(default_factory=list, init=False)
     _watch: asyncio.Task[None] | None = field(default=None, init=False)
     _stopping: bool = field(default=False, init=False)
 
     def start(self) -> None:
-        """Start every worker (they join the router and answer hellos a few seconds later)."""
-        self._children = [_Child(f"local-{i + 1}") for i in range(self.count)]
-        for child in self._children:
-            self._spawn(child)
+        """Start ``count`` workers (they join the router and answer hellos a few seconds later)."""
+        self._grow_to(self.count)
         self._watch = asyncio.get_running_loop().create_task(self._watch_loop(), name="local workers")
+
+    def spread(self, worlds: int) -> None:
+        """With auto, as many workers as a class of ``worlds`` calls for: one each ``spread_at``
+        worlds, at most ``spare``. Started when the class reaches the count, so the worker is
+        ready for the joins after it (none when the class is full: no join would come); never
+        stopped while the class server runs."""
+        if self.spread_at is not None and not self._stopping and worlds < self.max_worlds:
+            self._grow_to(min(self.spare, worlds // self.spread_at))
+
+    def _grow_to(self, count: int) -> None:
+        while len(self._children) < count:
+            child = _Child(f"local-{len(self._children) + 1}")
+            self._children.append(child)
+            self._spawn(child)
 
     def describe(self) -> list[dict[str, object]]:
         """Each worker's id, process id (None when down) and restarts, for the instructor."""
@@ -79,6 +106,10 @@ class LocalWorkers:
             }
             for c in self._children
         ]
+
+    def describe_spread(self) -> dict[str, int] | None:
+        """With auto: a worker each ``at_worlds`` worlds, ``up_to`` of them; else None."""
+        return None if self.spread_at is None else {"at_worlds": self.spread_at, "up_to": self.spare}
 
     def _command(self, child: _Child) -> list[str]:
         command = [

@@ -1,4 +1,5 @@
-"""``--workers N``: world workers a class server starts on its own machine.
+"""``--workers``: world workers a class server starts on its own machine, N at its start or (auto,
+the default) one per spare core as the class grows.
 
 The class server runs as a process of its own on loopback and starts its workers itself; the
 tests find them by the ids the server reports (``started_here``), check them in /proc, and end
@@ -64,6 +65,13 @@ def end_pids(pids: set[int]) -> None:
     for pid in pids:
         if alive(pid):
             os.kill(pid, signal.SIGKILL)
+
+
+def join(klass: Class, name: str) -> str:
+    reply = HTTP.post(f"{klass.app.url}/api/classroom/join", json={"name": name, "code": CODE}, timeout=60)
+    assert reply.status_code == 201, reply.text
+    world: str = reply.json()["world"]
+    return world
 
 
 def start_class(root: Path, *extra: str) -> Class:
@@ -182,6 +190,47 @@ def test_a_killed_class_server_leaves_no_worker_behind(tmp_path: Path) -> None:
         end_pids(started.seen_pids)
 
 
+def test_by_default_a_worker_starts_as_the_class_grows_and_takes_the_next_worlds(tmp_path: Path) -> None:
+    spare = len(os.sched_getaffinity(0)) - 1  # the class server runs on the cores this test may use
+    klass = start_class(tmp_path, "--spread-at", "2")  # --workers auto, the default
+    try:
+        assert klass.get("/api/classroom/workers").json()["spread"] == {"at_worlds": 2, "up_to": spare}
+        if spare:
+            assert f"one each 2 worlds, at most {spare} (its spare cores)" in klass.app.log_tail(10**6)
+        join(klass, "Ada")
+        assert klass.started_here() == []  # a class of one: no other process
+        join(klass, "Bob")  # two worlds: a worker for the joins after them
+        assert [w["id"] for w in klass.started_here()] == ["local-1"][:spare]
+        if spare:
+            (worker,) = klass.started_here()
+            assert parent_of(worker["pid"]) == klass.app.proc.pid
+            wait_for_workers(klass.app.url, klass.instructor, {"local-1"})
+        cy = join(klass, "Cy")
+        assert klass.worlds()[cy]["worker"] == ("local-1" if spare else None)
+        join(klass, "Dee")  # four worlds call for two workers: at most one per spare core
+        assert len(klass.started_here()) == min(spare, 2)
+        placed = sorted((row["worker"] for row in klass.worlds().values()), key=str)
+        assert placed == ([None, None, "local-1", "local-1"] if spare else [None] * 4)  # even
+    finally:
+        klass.app.stop()
+        end_pids(klass.seen_pids)
+    for pid in klass.seen_pids:  # stopped with the class server, by their ids
+        wait_until(lambda pid=pid: not alive(pid), f"worker {pid} ends with its class server", GONE_WAIT_S)
+
+
+def test_workers_0_starts_none_however_large_the_class(tmp_path: Path) -> None:
+    klass = start_class(tmp_path, "--workers", "0", "--spread-at", "1")
+    try:
+        assert klass.get("/api/classroom/workers").json()["spread"] is None
+        join(klass, "Ada")
+        join(klass, "Bob")
+        assert klass.started_here() == []
+        assert "World workers on this machine" not in klass.app.log_tail(10**6)
+    finally:
+        klass.app.stop()
+        end_pids(klass.seen_pids)
+
+
 @pytest.mark.parametrize(
     "argv",
     [
@@ -199,3 +248,14 @@ def test_workers_flag_refused_where_it_cannot_work(
         server_main(argv)
     assert exited.value.code == 2
     assert "--workers needs --classroom" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv", [["--classroom", "--workers", "some"], ["--classroom", "--spread-at", "0"]])
+def test_workers_auto_or_a_count_and_spread_at_least_one(
+    argv: list[str], capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as exited:
+        server_main(argv)
+    assert exited.value.code == 2
+    err = capsys.readouterr().err
+    assert ("N or auto, not 'some'" in err) if "some" in argv else ("spread_at" in err), err

@@ -63,9 +63,19 @@ def admitted(url: str, reply: httpx.Response) -> httpx.Response:
 def class_of_thirty(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, dict[str, str]]]:
     root: Path = tmp_path_factory.mktemp("thirty_worlds")
     app = App(
-        root, "--classroom", "--class-code", CODE, "--launch", "fly",
-        "--max-worlds", str(WORLDS), "--local-worlds", str(WORLDS // 2),
-    )  # fmt: skip
+        root,
+        "--classroom",
+        "--class-code",
+        CODE,
+        "--launch",
+        "fly",
+        "--max-worlds",
+        str(WORLDS),
+        "--local-worlds",
+        str(WORLDS // 2),
+        "--workers",
+        "0",
+    )  # fmt: skip  (its own worker w1 below, none started as the class grows)
     worker: WorldWorker | None = None
     try:
         instructor = instructor_token(app.log_tail(100_000))
