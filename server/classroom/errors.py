@@ -17,13 +17,14 @@ class ClassroomError(Exception):
 
 
 class StudentCodeElsewhereError(StudentCodeRefusedError):
-    """A world worker without the class router's Unix socket (it runs on another machine than the
-    class server): its worlds' sandboxed nodes could not reach their graph, so none start."""
+    """A world worker with no way for a sandboxed node to reach the class's router: not on the class
+    server's machine, and joined to the router over something other than plain TCP, which its relay
+    cannot carry (server/transport/socket_relay.py). None of its worlds' students' nodes start."""
 
     def __init__(self, world: str) -> None:
         RuntimeError.__init__(
             self,
             f"students' nodes do not run in world {world!r}: it runs on a world worker on another machine "
-            "than the class server, and a student's node reaches the class's router only through its "
-            "Unix socket there",
+            "than the class server, joined to the class's router other than by plain tcp/, and a student's "
+            "sandboxed node reaches the router only through a Unix socket there or the worker's relay to tcp/",
         )

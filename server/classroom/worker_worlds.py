@@ -23,6 +23,7 @@ from server.checkpoints.saved import Snapshot
 from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth, Credentials
+from server.transport.socket_relay import SocketRelay, tcp_target
 from server.workspace.class_mark import read_mark
 from server.workspace.location import remove_world_workspace
 
@@ -69,8 +70,10 @@ class WorldWorker:
         self.grants = Grants(signer)
         self.labs = WorldLabs(settings, self.clock, self.router_endpoint)
         self.labs.process_socket = lambda: self._router_socket
-        # The class router's Unix socket when it is on this machine (the class server says where).
+        # The class router's Unix socket when it is on this machine (the class server says where),
+        # else this worker's relay to the router's TCP endpoint (socket_relay.py).
         self._router_socket: Path | None = None
+        self._relay: SocketRelay | None = None
         # This process's and machine's CPU: each hello (every WATCH_PERIOD_S) reads it, so a
         # load covers the last seconds.
         self.cpu = CpuMeter(machine=machine_id())
@@ -165,6 +168,23 @@ class WorldWorker:
         if self._control_session is not None:
             self._control_session.close()
             self._control_session = None
+        if self._relay is not None:
+            await self._relay.close()
+            self._relay = None
+
+    async def _relayed_socket(self) -> Path | None:
+        """On another machine than the class server: a Unix socket of this worker's own that
+        carries each sandboxed node's link on to the router's TCP endpoint (None: not TCP)."""
+        if self._relay is None:
+            target = tcp_target(self.router_endpoint())
+            if target is None:
+                return None
+            try:
+                self._relay = await SocketRelay.open(*target)
+            except OSError as exc:
+                log.warning("no relay to the class's router for students' nodes: %s", exc)
+                return None
+        return self._relay.path
 
     # -- worlds --------------------------------------------------------------------------------
     async def host(
@@ -180,11 +200,11 @@ class WorldWorker:
     ) -> World:
         """Start the world a class server placed here, in the domain it chose. ``router_socket``:
         the class router's Unix socket, which its students' sandboxed nodes reach when it is on
-        this machine (else they cannot run here). ``progress``: the class server's copy of the
+        this machine (else through this worker's relay to the router's TCP endpoint). ``progress``: the class server's copy of the
         world's progress (server/classroom/progress_copies.py), which it starts with."""
         self.heard_from_class()
-        if router_socket is not None:
-            self._router_socket = socket_here(router_socket)
+        if router_socket is not None:  # the class sandboxes students' nodes: they need a way in
+            self._router_socket = socket_here(router_socket) or await self._relayed_socket()
         if self.labs.taken(name):
             raise ClassroomError(409, f"world {name!r} is already here")
         if self.labs.full():

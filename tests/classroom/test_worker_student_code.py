@@ -1,7 +1,8 @@
 """A student's node on a world worker runs in the sandbox through the class router's Unix socket,
-which the class server names when it places a world; a worker that was not given one (it runs on
-another machine than the class server) refuses a student's node with 409, saying why, and starts
-nothing.
+which the class server names when it places a world. A worker on another machine (the socket named
+is not there) opens a Unix socket of its own that relays to the router's TCP endpoint, and the
+node joins its world's graph through it. A worker that was not given one refuses a student's node
+with 409, saying why, and starts nothing.
 
 A class server and a world worker in this process (TestClient each), the worker joined to the
 class server's router on loopback; the worker is called as the class server calls it: with its
@@ -29,6 +30,20 @@ from server.transport.config import ZenohSettings
 
 WORKER = "wt"
 NODE = "def main():\n    print('hello from a worker', flush=True)\n"
+TALKER = """
+import rclpy
+from rclpy.node import Node
+from std_msgs.msg import Int64
+
+
+def main():
+    rclpy.init()
+    node = Node('far_talker')
+    pub = node.create_publisher(Int64, '/far_chatter', 10)
+    node.create_timer(0.1, lambda: pub.publish(Int64(data=5)))
+    print('talking', flush=True)
+    rclpy.spin(node)
+"""
 RUN = {"package": "hello_pkg", "executable": "hello"}
 
 
@@ -52,14 +67,16 @@ def classes(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[ClassSer
                 viewer=False,
                 zenoh=ZenohSettings(mode="client", listen=(), connect=(endpoint,)),
             ),
-            classroom=ClassroomSettings(max_worlds=2, workspaces_dir=folder),
+            classroom=ClassroomSettings(max_worlds=3, workspaces_dir=folder),
             worker=WorkerSettings(id=WORKER, url="http://127.0.0.1:1", class_token=server.instructor_token),
         )
         with TestClient(create_app(worker)) as worker_client:
             yield server, worker_client
 
 
-def host(server: ClassServer, worker: TestClient, world: str, domain_id: int, socket: Path | None) -> str:
+def host(
+    server: ClassServer, worker: TestClient, world: str, domain_id: int, socket: Path | None, node: str = NODE
+) -> str:
     """Host ``world`` on the worker as the class server does; the student's credential for it."""
     login = server.graph.login(domain_id)
     assert login is not None
@@ -74,7 +91,7 @@ def host(server: ClassServer, worker: TestClient, world: str, domain_id: int, so
     made = worker.post("/api/workspace/packages", headers={"Authorization": f"Bearer {token}"},
                        json={"name": "hello_pkg", "build_type": "ament_python", "node_name": "hello"})  # fmt: skip
     assert made.status_code == 201, made.text
-    saved = worker.put("/api/workspace/files/src/hello_pkg/hello_pkg/hello.py", json={"text": NODE},
+    saved = worker.put("/api/workspace/files/src/hello_pkg/hello_pkg/hello.py", json={"text": node},
                        headers={"Authorization": f"Bearer {token}"})  # fmt: skip
     assert saved.status_code == 200, saved.text
     return token
@@ -108,3 +125,36 @@ def test_a_worker_given_the_class_routers_socket_runs_a_students_node(
         return any("hello from a worker" in line for p in reply.json()["processes"] for line in p["lines"])
 
     wait_until(printed, "the student's node's line, from the sandbox on the worker", 60.0, poll_s=0.2)
+
+
+def test_a_worker_on_another_machine_relays_a_students_node_to_the_router_over_tcp(
+    classes: tuple[ClassServer, TestClient],
+) -> None:
+    server, worker = classes
+    elsewhere = Path("/on-the-class-servers-machine/ros2lab-router-x/router.sock")  # no such socket here
+    token = host(server, worker, "relayed", 9, elsewhere, TALKER)
+    headers = {"Authorization": f"Bearer {token}"}
+    relay = worker.app.state.classroom._relay  # type: ignore[attr-defined]
+    assert relay is not None and relay.path.is_socket()  # the worker's own, not the one named
+    run = worker.post("/api/run", json=RUN, headers=headers)
+    assert run.status_code == 201, run.text
+
+    def joined() -> bool:
+        names = {n["name"] for n in worker.get("/api/nodes", headers=headers).json()}
+        return "/far_talker" in names
+
+    wait_until(joined, "the sandboxed node in its world's graph, through the relay", 60.0, poll_s=0.2)
+    assert relay.links >= 1  # its session is a link the relay carries
+    echoed = worker.get("/api/topics/far_chatter", headers=headers)
+    assert echoed.status_code == 200, echoed.text
+    wait_until(
+        lambda: (
+            (worker.get("/api/topics/far_chatter", headers=headers).json().get("latest") or {}).get("data")
+            == 5
+        ),
+        "its messages in the world",
+        30.0,
+        poll_s=0.2,
+    )
+    stopped = worker.delete(f"/api/launches/{run.json()['id']}", headers=headers)
+    assert stopped.status_code in (200, 204), stopped.text

@@ -1,0 +1,145 @@
+"""The relay a world worker on another machine opens for its sandboxed nodes: a Unix socket whose
+connections go on to the router's TCP endpoint byte for byte, each end closing the other.
+
+A TCP echo server on loopback stands in for the router (the Zenoh link itself is checked in
+tests/classroom/test_worker_student_code.py, where a sandboxed node joins its world through it).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+
+import pytest
+
+from server.transport import socket_relay
+from server.transport.socket_relay import SocketRelay, tcp_target
+
+WAIT_S = 10.0
+
+
+@pytest.mark.parametrize(
+    ("endpoint", "target"),
+    [
+        ("tcp/127.0.0.1:7447", ("127.0.0.1", 7447)),
+        ("tcp/[::1]:7447", ("::1", 7447)),
+        ("tcp/router.example:7447#iface=eth0", ("router.example", 7447)),
+        ("tls/127.0.0.1:7447", None),  # the node would have to speak TLS itself
+        ("quic/127.0.0.1:7447", None),
+        ("tcp/127.0.0.1", None),
+        ("tcp/127.0.0.1:99999", None),
+        ("tcp/:7447", None),
+        (None, None),
+    ],
+)
+def test_only_a_plain_tcp_endpoint_is_relayed(endpoint: str | None, target: tuple[str, int] | None) -> None:
+    assert tcp_target(endpoint) == target
+
+
+async def echo_server() -> tuple[asyncio.Server, int, list[asyncio.StreamWriter]]:
+    """A TCP server on loopback that sends back what it gets; the list holds its connections."""
+    accepted: list[asyncio.StreamWriter] = []
+
+    async def echo(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        accepted.append(writer)
+        while data := await reader.read(65536):
+            writer.write(data)
+            await writer.drain()
+        writer.close()
+
+    server = await asyncio.start_server(echo, "127.0.0.1", 0)
+    return server, server.sockets[0].getsockname()[1], accepted
+
+
+def test_the_relay_carries_bytes_both_ways_and_cleans_up() -> None:
+    async def scenario() -> None:
+        server, port, accepted = await echo_server()
+        relay = await SocketRelay.open("127.0.0.1", port)
+        try:
+            assert relay.path.is_socket()
+            assert relay.path.stat().st_mode & 0o777 == 0o666  # a sandboxed node of another uid connects
+            reader, writer = await asyncio.open_unix_connection(str(relay.path))
+            payload = os.urandom(300_000)  # several chunks each way
+            writer.write(payload)
+            await writer.drain()
+            echoed = await asyncio.wait_for(reader.readexactly(len(payload)), WAIT_S)
+            assert echoed == payload and len(accepted) == 1 and relay.links == 1
+            writer.close()  # the node's end closes: the relay closes its end to the router too
+            await ended(relay)
+        finally:
+            await relay.close()
+            server.close()
+            await server.wait_closed()
+        assert not relay.path.parent.exists()  # the socket's folder goes with it
+
+    asyncio.run(scenario())
+
+
+def test_a_router_that_goes_closes_the_nodes_link() -> None:
+    async def scenario() -> None:
+        server, port, accepted = await echo_server()
+        relay = await SocketRelay.open("127.0.0.1", port)
+        try:
+            reader, writer = await asyncio.open_unix_connection(str(relay.path))
+            writer.write(b"ping")
+            assert await asyncio.wait_for(reader.readexactly(4), WAIT_S) == b"ping"
+            server.close()
+            accepted[0].close()  # the router ends the link
+            assert await asyncio.wait_for(reader.read(), WAIT_S) == b""  # end of stream, not a hang
+            await ended(relay)
+            writer.close()
+        finally:
+            await relay.close()
+            await server.wait_closed()
+
+    asyncio.run(scenario())
+
+
+def test_no_router_there_closes_the_link_at_once() -> None:
+    async def scenario() -> None:
+        server, port, _ = await echo_server()
+        server.close()
+        await server.wait_closed()  # nothing listens on the port now
+        relay = await SocketRelay.open("127.0.0.1", port)
+        try:
+            reader, writer = await asyncio.open_unix_connection(str(relay.path))
+            assert await asyncio.wait_for(reader.read(), WAIT_S) == b""
+            writer.close()
+        finally:
+            await relay.close()
+
+    asyncio.run(scenario())
+
+
+def test_links_past_the_limit_are_closed_and_the_others_keep_working(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(socket_relay, "MAX_LINKS", 2)
+
+    async def scenario() -> None:
+        server, port, accepted = await echo_server()
+        relay = await SocketRelay.open("127.0.0.1", port)
+        try:
+            links = [await asyncio.open_unix_connection(str(relay.path)) for _ in range(2)]
+            for reader, writer in links:  # both carried through
+                writer.write(b"x")
+                assert await asyncio.wait_for(reader.readexactly(1), WAIT_S) == b"x"
+            reader3, writer3 = await asyncio.open_unix_connection(str(relay.path))
+            assert await asyncio.wait_for(reader3.read(), WAIT_S) == b""  # the third is closed
+            writer3.close()
+            reader, writer = links[0]
+            writer.write(b"y")  # and the first still carries
+            assert await asyncio.wait_for(reader.readexactly(1), WAIT_S) == b"y"
+            assert len(accepted) == 2
+            for _, link in links:
+                link.close()
+        finally:
+            await relay.close()
+            server.close()
+            await server.wait_closed()
+
+    asyncio.run(scenario())
+
+
+async def ended(relay: SocketRelay) -> None:
+    """Until every link the relay carries has ended (each one's task)."""
+    await asyncio.wait_for(asyncio.gather(*list(relay._links)), WAIT_S)
+    assert relay.links == 0
