@@ -16,12 +16,12 @@ import functools
 import weakref
 from typing import Annotated, Any, Literal
 
-from fastapi import APIRouter, Header, Request, Response, status
+from fastapi import APIRouter, Header, Query, Request, Response, status
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from server.lab import Lab
 from server.packages.templates import PackageSpec
-from server.workspace.archive import pack, unpack
+from server.workspace.archive import pack, replace, unpack
 from server.workspace.errors import NoWorkspaceError
 from server.workspace.files import WorkspaceFiles
 from server.workspace.package_create import create_package
@@ -187,8 +187,11 @@ async def download(lab: LabDep) -> Response:
     },
     responses=responses(NOT_FOUND, TOO_LARGE, NOT_TEXT, body=True),
 )
-async def upload(request: Request, lab: LabDep) -> dict[str, list[str]]:
-    """Write a zip's files into the workspace: all of them, or (one entry refused) none."""
+async def upload(
+    request: Request, lab: LabDep, replace_all: Annotated[bool, Query(alias="replace")] = False
+) -> dict[str, list[str]]:
+    """Write a zip's files into the workspace: all of them, or (one entry refused) none. With
+    ``replace=true`` the workspace then holds the zip's files only: every other file goes."""
     files = files_of(lab)
     data = await request.body()
-    return {"written": await asyncio.to_thread(unpack, files, data)}
+    return {"written": await asyncio.to_thread(replace if replace_all else unpack, files, data)}

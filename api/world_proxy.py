@@ -10,8 +10,8 @@ own calls go on as the instructor. The path goes on exactly as it was checked: o
 would change never gets here (api/canonical_path.py), and the URL sent must carry the same path.
 A worker that does not answer is a 502 (HTTP) or close 1011 (WebSocket) that says so; a closed
 world's socket keeps its worker's close code (1012 on a reset). A world's workspace routes go on
-only to a worker that shares the class's workspaces folder (server/workspace/class_mark.py), so
-a world that moves keeps its files; on any other they are a 409 that says why.
+like the rest: a worker that keeps the files in a folder of its own is kept in step with the
+class's copy (server/classroom/workspace_copies.py).
 """
 
 from __future__ import annotations
@@ -58,12 +58,6 @@ def passed_on(scope: Scope) -> bool:
     return path.startswith("/api/") or path == "/page/views"
 
 
-def workspace_route(scope: Scope) -> bool:
-    """Whether a request reads or writes the world's workspace (``/api/workspace...``)."""
-    path: str = scope["path"]
-    return scope["type"] == "http" and (path == "/api/workspace" or path.startswith("/api/workspace/"))
-
-
 class WorldProxyMiddleware:
     def __init__(self, app: ASGIApp) -> None:
         self.app = app
@@ -101,13 +95,6 @@ class WorldProxyMiddleware:
                 )
             return
         assert grant is not None
-        if workspace_route(scope) and not classroom.shares_workspaces(world.worker):
-            detail = (f"world {world.name!r} runs on world worker {world.worker.id!r}, which does not share this "
-                      "class's workspaces folder (its --workspaces-dir): files saved there would be lost when the "
-                      "world moves, so its workspace is not served; the instructor can start that worker on the "
-                      "class server's folder")  # fmt: skip
-            await SafeJSONResponse({"detail": detail}, status.HTTP_409_CONFLICT)(scope, receive, send)
-            return
         if scope["type"] == "websocket":
             await _forward_ws(directory, grant, world, world.worker, scope, receive, send)
             return

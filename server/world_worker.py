@@ -71,8 +71,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--workspaces-dir", default="workspaces", metavar="DIR",
         help="the class's students' workspaces, a folder per world (default ./workspaces): the class "
-             "server's own folder (the same path on its machine, or a mount of it), so a world that moves "
-             "keeps its files; a worker that does not share it refuses the workspace routes (409)",
+             "server's own folder (the same path on its machine, or a mount of it); a folder of its own "
+             "works too: the class server then hands each world's files over and copies them back",
     )  # fmt: skip
     parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
     parser.add_argument(

@@ -36,6 +36,7 @@ from .placement import Placement
 from .progress_copies import ProgressCopies
 from .saved_students import SavedStudents
 from .tokens import Grant, TokenSigner
+from .workspace_copies import WorkspaceCopies
 from .world import World, world_name
 from .world import drones as world_drones
 from .worlds import WorldLabs
@@ -75,7 +76,13 @@ class ClassServer:
         self.cpu = CpuMeter(machine=machine_id())
         # A copy of the progress of worlds on workers that keep it in folders of their own.
         self.progress_copies = ProgressCopies(self.labs.progress, load_checkpoints(settings.lab.checkpoints))
-        self.placement = Placement(settings, self.labs, self.graph, self.cpu, self._end, self.progress_copies)
+        # A copy of the files of worlds on workers that keep them in folders of their own.
+        self.workspace_copies = WorkspaceCopies(
+            self.class_settings.workspaces_dir, settings.workspace, self.shares_workspaces
+        )
+        self.placement = Placement(
+            settings, self.labs, self.graph, self.cpu, self._end, self.progress_copies, self.workspace_copies
+        )
         self.load = ClassLoad(self.labs, self.graph, self.cpu, self.placement)
         self.queue = JoinQueue(self.class_settings.join_queue, self.clock)
         # The progress and code on disk: whose each world's are, and those not joined since the start.

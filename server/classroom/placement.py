@@ -26,6 +26,7 @@ from .load import Choice, CpuMeter, choose
 from .progress_copies import ProgressCopies
 from .remote_worlds import on_workers
 from .workers import WATCH_PERIOD_S, Silence, WorkerRef
+from .workspace_copies import WorkspaceCopies
 from .world import World
 from .worlds import WorldLabs
 
@@ -44,6 +45,7 @@ class Placement:
         cpu: CpuMeter,
         end: Callable[[World], Awaitable[None]],
         copies: ProgressCopies | None = None,
+        workspaces: WorkspaceCopies | None = None,
     ) -> None:
         self.settings = settings
         self.class_settings = class_section(settings)
@@ -52,6 +54,7 @@ class Placement:
         self.cpu = cpu
         self._end = end
         self.copies = copies  # the progress of worlds on workers with folders of their own
+        self.workspaces = workspaces  # and their files
         self._hosting: set[tuple[str, str]] = set()  # (worker id, world) while it is placed there
         self._local_starting = 0  # worlds being started here
         self._silent_workers = Silence(self.class_settings.worker_timeout_s)
@@ -127,6 +130,8 @@ class Placement:
             if handed is not None:  # its progress, which that worker's own folder does not hold
                 body["progress"] = handed
             await self.graph.workers.checked(ref, "POST", "/api/classroom/host", body=body)
+            if self.workspaces is not None:  # its files, before its student can reach it there
+                await self.workspaces.hand_over(self.graph.workers, ref, name)
         finally:
             self._hosting.discard((ref.id, name))
 
@@ -166,6 +171,8 @@ class Placement:
         await self._end_strays(answered)
         if self.copies is not None:
             await self.copies.refresh(workers, worlds, answered)
+        if self.workspaces is not None:
+            await self.workspaces.refresh(workers, worlds, answered)
         for world in list(worlds.values()):
             if world.worker is None:
                 continue

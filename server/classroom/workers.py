@@ -212,14 +212,26 @@ class WorkerDirectory:
         return sorted(found.values(), key=lambda r: r.id)
 
     async def call(
-        self, ref: WorkerRef, method: str, path: str, *, world: str | None = None, body: Any = None
+        self,
+        ref: WorkerRef,
+        method: str,
+        path: str,
+        *,
+        world: str | None = None,
+        body: Any = None,
+        content: bytes | None = None,
     ) -> httpx.Response:
-        """One call to a worker's API as its instructor; ClassroomError 502 if it cannot answer."""
+        """One call to a worker's API as its instructor, with a JSON ``body`` or raw ``content``;
+        ClassroomError 502 if it cannot answer."""
         headers = {"Authorization": f"Bearer {ref.token}"}
         if world is not None:
             headers["X-Lab-World"] = world
+        if content is not None:
+            headers["Content-Type"] = "application/octet-stream"
         try:
-            return await self.http.request(method, ref.url + path, headers=headers, json=body)
+            return await self.http.request(
+                method, ref.url + path, headers=headers, json=body, content=content
+            )
         except httpx.HTTPError as exc:
             raise ClassroomError(
                 502, f"world worker {ref.id!r} did not answer: {exc or type(exc).__name__}"

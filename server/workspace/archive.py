@@ -11,6 +11,7 @@ content that is not UTF-8 text.
 from __future__ import annotations
 
 import io
+import shutil
 import stat
 import zipfile
 
@@ -40,6 +41,53 @@ def add_to(archive: zipfile.ZipFile, files: WorkspaceFiles, folder: str = "") ->
 
 def unpack(files: WorkspaceFiles, data: bytes) -> list[str]:
     """Write the zip's files into the workspace (folders are made as needed); the paths written."""
+    contents = _contents(files, data)
+    with files.lock:
+        targets = {relative: confine(files.root, relative) for relative in contents}
+        for relative, target in targets.items():
+            if target.is_dir():
+                raise BadArchiveError(f"{relative}: a folder of that name is in the workspace")
+            try:
+                check_parents(files.root, target, relative)
+            except TakenError as exc:
+                raise BadArchiveError(f"zip entry {exc}") from None
+        files.check_room({relative: len(raw) for relative, raw in contents.items()})
+        for relative, raw in contents.items():
+            write_atomic(targets[relative], raw)
+    return sorted(contents)
+
+
+def replace(files: WorkspaceFiles, data: bytes) -> list[str]:
+    """Make the workspace hold exactly the zip's files: checked as ``unpack`` checks them (against
+    the workspace's limits, as if it were empty) before anything changes; then every file of the
+    tree that the zip does not hold is removed, with the folders left empty, and the zip's files
+    are written. Names the tree does not list (hidden ones, links) are left alone. The paths written."""
+    contents = _contents(files, data)
+    with files.lock:
+        tree = files.tree()
+        for entry in tree.files:
+            if entry.path not in contents:
+                confine(files.root, entry.path).unlink(missing_ok=True)
+        for entry in reversed(tree.entries):  # deepest first: a folder after what it held
+            if entry.kind != "dir":
+                continue
+            folder = confine(files.root, entry.path)
+            if entry.path in contents:  # a file of the zip goes where this folder is
+                shutil.rmtree(folder)
+            elif not any(folder.iterdir()):  # emptied
+                folder.rmdir()
+        for relative, raw in contents.items():
+            target = confine(files.root, relative)
+            try:
+                check_parents(files.root, target, relative)
+            except TakenError as exc:  # a name the tree does not list stands where a folder goes
+                raise BadArchiveError(f"zip entry {exc}") from None
+            write_atomic(target, raw)
+    return sorted(contents)
+
+
+def _contents(files: WorkspaceFiles, data: bytes) -> dict[str, bytes]:
+    """The zip's files, each checked and read within the workspace's limits."""
     limits = files.limits
     try:
         archive = zipfile.ZipFile(io.BytesIO(data))
@@ -56,20 +104,7 @@ def unpack(files: WorkspaceFiles, data: bytes) -> list[str]:
         if declared > limits.max_workspace_bytes:
             raise TooLargeError(f"the zip's files declare {declared} bytes, over the workspace's limit of "
                                 f"{limits.max_workspace_bytes}")  # fmt: skip
-        contents = _read_all(archive, chosen, limits.max_file_bytes, limits.max_workspace_bytes)
-    with files.lock:
-        targets = {relative: confine(files.root, relative) for relative in contents}
-        for relative, target in targets.items():
-            if target.is_dir():
-                raise BadArchiveError(f"{relative}: a folder of that name is in the workspace")
-            try:
-                check_parents(files.root, target, relative)
-            except TakenError as exc:
-                raise BadArchiveError(f"zip entry {exc}") from None
-        files.check_room({relative: len(raw) for relative, raw in contents.items()})
-        for relative, raw in contents.items():
-            write_atomic(targets[relative], raw)
-    return sorted(contents)
+        return _read_all(archive, chosen, limits.max_file_bytes, limits.max_workspace_bytes)
 
 
 def _checked(info: zipfile.ZipInfo, max_file_bytes: int) -> bool:

@@ -1,11 +1,12 @@
 """Students' code in worlds on world workers: a worker that shares the class's workspaces folder
 serves a student's workspace and runs their node, as a world on the class server does; one that
-does not share it refuses the workspace routes (409, saying why) and writes nothing; and a world
-moved by failover to another worker that shares the folder serves the same files.
+keeps a folder of its own serves it from there, and the class server keeps its own copy in step
+(server/classroom/workspace_copies.py); a world moved by failover keeps its files, to a worker that
+shares the folder or to one that does not.
 
 A class server that hosts no world itself and world workers, each a process of its own on
-loopback, ended by their ids: ``wa`` and later ``wb`` on the class's folder, ``wc`` on one of its
-own. Each worker hosts one world, so where each world goes is known.
+loopback, ended by their ids: ``wa`` and later ``wb`` on the class's folder, ``wc`` and later
+``wd`` on folders of their own. Each worker hosts one world, so where each world goes is known.
 """
 
 from __future__ import annotations
@@ -49,6 +50,7 @@ class Class:
     workdir: Path
     shared: Path  # the class's workspaces folder
     apart: Path  # wc's own
+    apart_too: Path  # wd's own
     instructor: str
     tokens: dict[str, str]  # world → its student's token
     workers: dict[str, WorldWorker]
@@ -73,19 +75,20 @@ class Class:
                 self.workdir, self.app.router, self.instructor, worker_id, "--max-worlds", "1",
                 "--orphan-timeout", str(ORPHAN_TIMEOUT_S), "--workspaces-dir", str(workspaces), cwd=self.workdir,
             )  # fmt: skip
-        wait_for_workers(self.app.url, self.instructor, set(self.workers))
+        alive = {worker_id for worker_id, worker in self.workers.items() if worker.proc.poll() is None}
+        wait_for_workers(self.app.url, self.instructor, alive)
 
 
 @pytest.fixture(scope="module")
 def klass(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     workdir = tmp_path_factory.mktemp("class")
-    shared, apart = workdir / "workspaces", workdir / "apart"
+    shared, apart, apart_too = workdir / "workspaces", workdir / "apart", workdir / "apart_too"
     app = App(
         workdir, "--classroom", "--class-code", CODE, "--launch", "rocket", "--local-worlds", "0",
         "--no-foxglove", "--worker-timeout", str(WORKER_TIMEOUT_S), "--workspaces-dir", str(shared),
         cwd=workdir,
     )  # fmt: skip
-    klass = Class(app, workdir, shared, apart, instructor_token(app.log_tail(10**6)), {}, {})
+    klass = Class(app, workdir, shared, apart, apart_too, instructor_token(app.log_tail(10**6)), {}, {})
     try:
         klass.add_workers({"wa": shared, "wc": apart})
         for student in ("Ada", "Bob"):
@@ -107,18 +110,30 @@ def output_of(klass: Class, token: str, group: str) -> list[str]:
     return [line for p in reply.json()["processes"] for line in p["lines"]]
 
 
-def test_a_worker_world_serves_and_runs_its_code_only_on_the_classs_folder(klass: Class) -> None:
-    shared_world, apart_world = klass.on("wa"), klass.on("wc")
-    token, refused = klass.tokens[shared_world], klass.tokens[apart_world]
+def instructor_reads(klass: Class, world: str, path: str) -> str | None:
+    """The file as the instructor's page reads it: from the class server's own folder."""
+    read = klass.call("GET", f"/api/classroom/worlds/{world}/workspace/files/{path}", klass.instructor)
+    return str(read.json()["text"]) if read.status_code == 200 else None
 
-    # On wc, which keeps another folder, the workspace is refused, saying why, and nothing is written.
-    saved = klass.call("PUT", f"/api/workspace/files/{NODE_PATH}", refused, {"text": NODE})
-    assert saved.status_code == 409, saved.text
-    assert "does not share this class's workspaces folder" in saved.json()["detail"]
-    assert klass.call("GET", "/api/workspace/files", refused).status_code == 409
-    assert not (klass.apart / apart_world).exists() and not (klass.shared / apart_world).exists()
-    # Its other routes still go on to its worker.
-    assert klass.call("GET", "/api/topics", refused).status_code == 200
+
+def test_a_worker_world_serves_and_runs_its_code_on_the_classs_folder_or_its_own(klass: Class) -> None:
+    shared_world, apart_world = klass.on("wa"), klass.on("wc")
+    token, apart_token = klass.tokens[shared_world], klass.tokens[apart_world]
+
+    # On wc, which keeps another folder: saved there, and copied to the class's folder within a round.
+    saved = klass.call("PUT", f"/api/workspace/files/{NODE_PATH}", apart_token, {"text": NODE})
+    assert saved.status_code == 201, saved.text
+    assert (klass.apart / apart_world / NODE_PATH).read_text() == NODE
+    tree = klass.call("GET", "/api/workspace/files", apart_token).json()
+    assert NODE_PATH in [e["path"] for e in tree["entries"]]
+    wait_until(lambda: instructor_reads(klass, apart_world, NODE_PATH) == NODE, "the class's copy", 30.0)
+    assert (klass.shared / apart_world / NODE_PATH).read_text() == NODE
+    # A removal there goes to the copy too.
+    extra = "src/hello_pkg/notes.txt"
+    assert klass.call("PUT", f"/api/workspace/files/{extra}", apart_token, {"text": "x\n"}).status_code == 201
+    wait_until(lambda: instructor_reads(klass, apart_world, extra) == "x\n", "the new file's copy", 30.0)
+    assert klass.call("DELETE", f"/api/workspace/files/{extra}", apart_token).status_code in (200, 204)
+    wait_until(lambda: not (klass.shared / apart_world / extra).exists(), "the removal copied", 30.0)
 
     # On wa, on the class's folder: a new package, a node saved in it, and Run.
     made = klass.call("POST", "/api/workspace/packages", token,
@@ -175,3 +190,26 @@ def test_a_world_moved_by_failover_keeps_its_files(klass: Class) -> None:
     assert (klass.shared / world / NODE_PATH).read_text().endswith("# moved\n")
     stale = klass.call("PUT", path, token, {"text": "stale\n"}, **{"If-Match": f'"{etag}"'})
     assert stale.status_code == 412
+
+
+def test_a_world_on_a_folder_of_its_own_moved_by_failover_keeps_its_files(klass: Class) -> None:
+    world = klass.on("wc")
+    token = klass.tokens[world]
+    path = f"/api/workspace/files/{NODE_PATH}"
+    if klass.call("GET", path, token).status_code == 404:  # this test alone: save it here
+        assert klass.call("PUT", path, token, {"text": NODE}).status_code == 201
+    wait_until(lambda: instructor_reads(klass, world, NODE_PATH) == NODE, "the class's copy", 30.0)
+
+    klass.add_workers({"wd": klass.apart_too})  # the one place with room once wc is gone
+    os.kill(klass.workers["wc"].proc.pid, signal.SIGKILL)
+    klass.workers["wc"].proc.wait(timeout=10)
+    moved = wait_until(
+        lambda: (w := klass.worlds()[world])["moves"] == 1 and w["lost"] is None and w,
+        f"{world}'s world to move", MOVE_WAIT_S, poll_s=0.25, detail=klass.app.log_tail,
+    )  # fmt: skip
+    assert moved["worker"] == "wd"
+    # wd's own folder never held it: the class's copy was handed over with the world.
+    after = klass.call("GET", path, token)
+    assert after.status_code == 200, after.text
+    assert after.json()["text"] == NODE
+    assert (klass.apart_too / world / NODE_PATH).read_text() == NODE

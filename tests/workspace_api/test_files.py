@@ -204,3 +204,41 @@ def test_files_an_upload_is_the_zips_bytes_whatever_its_type(client: TestClient,
         "/api/workspace/archive", content=data, headers={"content-type": "application/octet-stream"}
     )
     assert reply.status_code == 200 and reply.json() == {"written": ["src/typed/t.py"]}
+
+
+def test_files_an_upload_with_replace_leaves_the_zips_files_only(tmp_path: Path) -> None:
+    with lab_client(lab_settings(tmp_path)) as client:
+        for path in ("src/a/b.py", "src/a/c.py", "src/keep/k.py", "src/d/e.py"):
+            assert save(client, path, "old = 1\n").status_code == 201
+        (tmp_path / ".hidden").write_text("not in the tree\n")
+        before = tree(client)
+
+        # Refused (one bad entry): nothing changes, nothing goes.
+        bad = client.post(
+            "/api/workspace/archive?replace=true",
+            content=zip_of({"src/a/b.py": "new = 2\n", "../out.py": "x\n"}),
+            headers={"content-type": "application/zip"},
+        )
+        assert bad.status_code == 422, bad.text
+        assert tree(client) == before
+
+        reply = client.post(
+            "/api/workspace/archive?replace=true",
+            content=zip_of({"src/a/b.py": "new = 2\n", "src/n/new.py": "n = 3\n", "src/d": "a file now\n"}),
+            headers={"content-type": "application/zip"},
+        )
+        assert reply.status_code == 200, reply.text
+        assert reply.json() == {"written": ["src/a/b.py", "src/d", "src/n/new.py"]}
+        files = sorted(e["path"] for e in tree(client)["entries"] if e["kind"] == "file")
+        assert files == ["src/a/b.py", "src/d", "src/n/new.py"]  # c.py, k.py and d/e.py went
+        assert not (tmp_path / "src/keep").exists()  # the folder they left empty too
+        assert (tmp_path / "src/a/b.py").read_text() == "new = 2\n"
+        assert (tmp_path / "src/d").read_text() == "a file now\n"  # a file where a folder was
+        assert (
+            tmp_path / ".hidden"
+        ).read_text() == "not in the tree\n"  # a name the tree does not list stays
+
+        # Without replace the same upload adds and overwrites, and removes nothing.
+        added = upload(client, zip_of({"src/z.py": "z = 4\n"}))
+        assert added.status_code == 200
+        assert {"src/a/b.py", "src/z.py"} <= {e["path"] for e in tree(client)["entries"]}

@@ -1,0 +1,108 @@
+"""The class server's copy of the workspaces of worlds on world workers that keep them in folders
+of their own.
+
+A worker that shares the class's workspaces folder (the same mark, server/workspace/class_mark.py)
+works in the class's own copy of each world's files. One with a folder of its own (another
+machine, no shared mount) serves and runs its worlds' files from there, so the class server keeps
+them in step both ways, as it does the worlds' progress (progress_copies.py):
+
+- **Handed over** when a world starts on such a worker (a new student, a move, a returning
+  student): the class's copy goes with it and replaces whatever that worker's folder held for the
+  world. Until that has worked nothing is copied back from it, so an empty or stale folder there
+  never overwrites the class's copy; a hand-over that fails is tried again each round.
+- **Copied back** at every round of hellos: each such world's tree version is asked for (one
+  small call), and when it changed the world's files come back as a zip and replace the class's
+  copy (the instructor's reads, the download of every workspace, a later move read that).
+
+What a student saved after the last round before their worker went is lost (at most one round,
+WATCH_PERIOD_S), as for progress.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import Callable, Mapping
+from pathlib import Path
+
+from server.settings import WorkspaceLimits
+from server.workspace.archive import pack, replace
+from server.workspace.errors import WorkspaceFileError
+from server.workspace.files import WorkspaceFiles
+from server.workspace.location import world_workspace
+
+from .errors import ClassroomError
+from .workers import WorkerDirectory, WorkerRef
+from .world import World
+
+log = logging.getLogger("classroom")
+TREE_PATH = "/api/workspace/files"
+ARCHIVE_PATH = "/api/workspace/archive"
+
+
+class WorkspaceCopies:
+    """The copies, in ``folder`` (the class's workspaces folder); ``shares`` says whether a worker
+    works in that folder itself."""
+
+    def __init__(self, folder: Path, limits: WorkspaceLimits, shares: Callable[[WorkerRef], bool]) -> None:
+        self.folder = folder
+        self.limits = limits
+        self.shares = shares
+        self._handed: dict[str, str] = {}  # world → the worker its files were handed to
+        self._copied: dict[str, str] = {}  # world → the version of that worker's tree copied back
+
+    def files(self, world: str) -> WorkspaceFiles:
+        return WorkspaceFiles(world_workspace(self.folder, world), self.limits)
+
+    async def hand_over(self, workers: WorkerDirectory, ref: WorkerRef, world: str) -> bool:
+        """Give ``world``, started on ``ref``, the class's copy of its files (nothing to do on a
+        worker that shares the folder); whether it has them now."""
+        if self.shares(ref):
+            return True
+        try:
+            data = await asyncio.to_thread(pack, self.files(world))
+            reply = await workers.call(ref, "POST", f"{ARCHIVE_PATH}?replace=true", world=world, content=data)
+        except (ClassroomError, OSError) as exc:
+            log.warning("world %s's files not handed to world worker %s: %s", world, ref.id, exc)
+            return False
+        if reply.status_code != 200:
+            log.warning("world %s's files not handed to world worker %s: %s %s",
+                        world, ref.id, reply.status_code, reply.text[:200])  # fmt: skip
+            return False
+        self._handed[world] = ref.id
+        self._copied.pop(world, None)
+        return True
+
+    async def refresh(
+        self, workers: WorkerDirectory, worlds: Mapping[str, World], answered: list[WorkerRef]
+    ) -> None:
+        """One round: each world on a worker that answered and keeps its own folder is handed its
+        files if it has not had them, else copied back if its tree changed."""
+        answering = {ref.id for ref in answered}
+        for name, world in list(worlds.items()):
+            ref = world.worker
+            if ref is None or ref.id not in answering or world.lost is not None or self.shares(ref):
+                continue
+            if self._handed.get(name) != ref.id:
+                await self.hand_over(workers, ref, name)
+                continue
+            try:
+                await self._copy_back(workers, ref, name)
+            except (ClassroomError, WorkspaceFileError, OSError) as exc:
+                log.warning("world %s's files not copied from world worker %s: %s", name, ref.id, exc)
+        for name in set(self._handed) - set(worlds):  # removed: forget it
+            self._handed.pop(name, None)
+            self._copied.pop(name, None)
+
+    async def _copy_back(self, workers: WorkerDirectory, ref: WorkerRef, name: str) -> None:
+        tree = await workers.checked(ref, "GET", TREE_PATH, world=name)
+        version = tree.get("version") if isinstance(tree, dict) else None
+        if not isinstance(version, str) or version == self._copied.get(name):
+            return
+        reply = await workers.call(ref, "GET", ARCHIVE_PATH, world=name)
+        if reply.status_code != 200:
+            raise ClassroomError(502, f"the archive: {reply.status_code} {reply.text[:200]}")
+        if self._handed.get(name) != ref.id:  # it moved while its files were on their way
+            return
+        await asyncio.to_thread(replace, self.files(name), reply.content)
+        self._copied[name] = version
