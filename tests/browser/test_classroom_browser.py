@@ -27,11 +27,10 @@ from playwright.sync_api import Browser, Page
 from shots import blobs, hub_green
 from support.http import HTTP
 
-# timing: Ada's drone must hover where it stopped (still is judged on the sim's clock, labpage.still)
-# while two pages draw beside it. With the CPU short (three browser files at once on 2 cores: 1.85
-# cores busy) her world's drone, read as still, then moved 0.74 m: a world starved of CPU flies
-# worse, so this file runs alone, as scripts/check runs timing tests.
-pytestmark = [pytest.mark.browser, pytest.mark.timing]
+# Ada's drone must hover where it stopped (still is judged on the sim's clock, labpage.still) while
+# two pages draw beside it. A world starved of CPU flies slower than real time rather than on stale
+# commands (tests/quadrotor/test_late_ticks.py), so this runs in the browser part with the others.
+pytestmark = pytest.mark.browser
 
 CODE = "TEST42"
 HOME_M = (0.0, 0.0, 3.0)  # the drone keyboard manager's start setpoint

@@ -161,23 +161,34 @@ def test_a_worker_world_serves_and_runs_its_code_on_the_classs_folder_or_its_own
     )  # fmt: skip
 
 
-def test_a_world_moved_by_failover_keeps_its_files(klass: Class) -> None:
-    world = klass.on("wa")
+def saved_world(klass: Class, worker: str) -> tuple[str, str, str]:
+    """The world on ``worker``, its student's token and its node file's route, the file saved."""
+    world = klass.on(worker)
     token = klass.tokens[world]
     path = f"/api/workspace/files/{NODE_PATH}"
     if klass.call("GET", path, token).status_code == 404:  # this test alone: save it here
         assert klass.call("PUT", path, token, {"text": NODE}).status_code == 201
-    before = klass.call("GET", path, token)
-    assert before.status_code == 200, before.text
+    return world, token, path
 
-    klass.add_workers({"wb": klass.shared})  # the one place with room once wa is gone
-    os.kill(klass.workers["wa"].proc.pid, signal.SIGKILL)  # no goodbye: the worker is just gone
-    klass.workers["wa"].proc.wait(timeout=10)
+
+def fail_over(klass: Class, world: str, gone: str, to: str, folder: Path) -> None:
+    """Start worker ``to`` on ``folder`` (the one place with room once ``gone`` is), kill ``gone``
+    with no goodbye, and wait for ``world`` to start again on ``to``."""
+    klass.add_workers({to: folder})
+    os.kill(klass.workers[gone].proc.pid, signal.SIGKILL)
+    klass.workers[gone].proc.wait(timeout=10)
     moved = wait_until(
         lambda: (w := klass.worlds()[world])["moves"] == 1 and w["lost"] is None and w,
         f"{world}'s world to move", MOVE_WAIT_S, poll_s=0.25, detail=klass.app.log_tail,
     )  # fmt: skip
-    assert moved["worker"] == "wb"
+    assert moved["worker"] == to
+
+
+def test_a_world_moved_by_failover_keeps_its_files(klass: Class) -> None:
+    world, token, path = saved_world(klass, "wa")
+    before = klass.call("GET", path, token)
+    assert before.status_code == 200, before.text
+    fail_over(klass, world, "wa", "wb", klass.shared)
 
     # The same file, by its version: what wb serves is what wa saved.
     after = klass.call("GET", path, token)
@@ -193,21 +204,9 @@ def test_a_world_moved_by_failover_keeps_its_files(klass: Class) -> None:
 
 
 def test_a_world_on_a_folder_of_its_own_moved_by_failover_keeps_its_files(klass: Class) -> None:
-    world = klass.on("wc")
-    token = klass.tokens[world]
-    path = f"/api/workspace/files/{NODE_PATH}"
-    if klass.call("GET", path, token).status_code == 404:  # this test alone: save it here
-        assert klass.call("PUT", path, token, {"text": NODE}).status_code == 201
+    world, token, path = saved_world(klass, "wc")
     wait_until(lambda: instructor_reads(klass, world, NODE_PATH) == NODE, "the class's copy", 30.0)
-
-    klass.add_workers({"wd": klass.apart_too})  # the one place with room once wc is gone
-    os.kill(klass.workers["wc"].proc.pid, signal.SIGKILL)
-    klass.workers["wc"].proc.wait(timeout=10)
-    moved = wait_until(
-        lambda: (w := klass.worlds()[world])["moves"] == 1 and w["lost"] is None and w,
-        f"{world}'s world to move", MOVE_WAIT_S, poll_s=0.25, detail=klass.app.log_tail,
-    )  # fmt: skip
-    assert moved["worker"] == "wd"
+    fail_over(klass, world, "wc", "wd", klass.apart_too)
     # wd's own folder never held it: the class's copy was handed over with the world.
     after = klass.call("GET", path, token)
     assert after.status_code == 200, after.text
