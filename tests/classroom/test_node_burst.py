@@ -2,10 +2,11 @@
 worlds of the fly launch, two per student with the student's token. Every node joins its own
 world (each world's node list holds its two and no one else's) and every ``ros2lab run`` ends
 cleanly; the lab paces the starts (server/processes/start_pacing.py), and the commands and their nodes run
-below the worlds (server/cli/priority.py, server/processes/priority.py). The worlds' dynamics
-rates during the burst are written to artifacts/node_burst.json beside the time it took;
-bench/class_burst.py measures them (on two cores they stay just under 95 Hz while the nodes
-join: docs/performance.md).
+below the worlds (server/cli/priority.py, server/processes/priority.py). No world's dynamics
+drops below 95 % of its 100 Hz during the burst (less the share of CPU time the hypervisor stole,
+as in test_thirty_worlds.py); the rates are written to artifacts/node_burst.json beside the time
+it took (98.8 to 99.4 Hz in the fresh-clone runs of 2026-11-28, run alone as the gate runs
+timing tests).
 
 Every process is ended by its own id: the node processes through their ``ros2lab run`` (Ctrl-C,
 as a student's terminal), the class server last.
@@ -114,4 +115,9 @@ def test_a_burst_of_twenty_node_starts_joins_every_node_to_its_own_world(
         "nodes": len(runs), "all_joined_s": round(took_s, 1), "stolen": round(stolen, 4),
         "floor_hz": round(floor, 2), "hz": {w: round(hz, 2) for w, hz in sorted(rates.items())},
     }))  # fmt: skip
+    slow = {world: round(hz, 1) for world, hz in rates.items() if hz < floor}
+    assert not slow, (
+        f"worlds below {floor:.1f} Hz during the burst ({KEEPS:.0%} of {NOMINAL_HZ:.0f} Hz, less the "
+        f"{stolen:.1%} of CPU time the hypervisor stole): {slow}; all: {sorted(rates.values())}"
+    )
     assert max(rates.values()) <= NOMINAL_HZ * 1.01, rates  # a dynamics that ran on, never ahead of time
