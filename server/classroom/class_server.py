@@ -31,7 +31,7 @@ from .errors import ClassroomError
 from .grants import Grants, world_for
 from .join_queue import JoinQueue, JoinWaits
 from .load import CpuMeter, machine_id
-from .local_workers import LocalWorkers, spare_cores
+from .local_workers import LocalWorkers, local_workers_for
 from .placement import Placement
 from .progress_copies import ProgressCopies
 from .saved_students import SavedStudents
@@ -182,16 +182,10 @@ class ClassServer:
         self._tasks.append(asyncio.create_task(self.placement.watch()))
         endpoint = self.graph.endpoint()
         # Started last: a start-up that fails earlier leaves no worker behind to clean up.
-        klass = self.class_settings
-        spare = spare_cores() if klass.auto_workers else 0
-        if endpoint is not None and (klass.workers_at_start > 0 or spare > 0):
-            self.local_workers = LocalWorkers(
-                klass.workers_at_start, endpoint, self.instructor_token, klass.max_worlds,
-                self.settings.lab.workspace, klass.workspaces_dir, self.settings.lab.bag_dir,
-                world_log_level=klass.world_log_level, state_dir=self.settings.lab.state_dir,
-                spread_at=klass.spread_at if klass.auto_workers else None, spare=spare,
-            )  # fmt: skip
-            self.local_workers.start()
+        if endpoint is not None:
+            self.local_workers = local_workers_for(self.settings, endpoint, self.instructor_token)
+            if self.local_workers is not None:
+                self.local_workers.start()
 
     async def stop(self) -> None:
         for task in self._tasks:

@@ -29,6 +29,8 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from server.settings import Settings, class_section
+
 from .worker_control import TOKEN_ENV
 
 log = logging.getLogger("classroom.local_workers")
@@ -160,6 +162,20 @@ class LocalWorkers:
             self._watch = None
         procs = [c.proc for c in self._children if c.proc is not None]
         await asyncio.to_thread(_end_all, procs)
+
+
+def local_workers_for(settings: Settings, endpoint: str, class_token: str) -> LocalWorkers | None:
+    """The world workers a class server on router ``endpoint`` starts on its machine, as
+    ``--workers`` says (None: none, ever)."""
+    klass = class_section(settings)
+    spare = spare_cores() if klass.auto_workers else 0
+    if klass.workers_at_start == 0 and spare == 0:
+        return None
+    return LocalWorkers(
+        klass.workers_at_start, endpoint, class_token, klass.max_worlds, settings.lab.workspace,
+        klass.workspaces_dir, settings.lab.bag_dir, world_log_level=klass.world_log_level,
+        state_dir=settings.lab.state_dir, spread_at=klass.spread_at if klass.auto_workers else None, spare=spare,
+    )  # fmt: skip
 
 
 def _end_all(procs: list[subprocess.Popen[bytes]]) -> None:
