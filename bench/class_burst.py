@@ -82,6 +82,12 @@ def get(server: LiveServer, token: str, path: str) -> Any:
     return reply.json()
 
 
+def dynamics_lateness_p99_ms(server: LiveServer, token: str) -> float:
+    """The p99 of how late the world's dynamics timer ran over its last ticks (the node's own record)."""
+    timers = get(server, token, f"/api/nodes/{DYNAMICS}")["timers"]
+    return float(timers[0]["lateness_p99_ms"] or 0.0)
+
+
 def dynamics_calls(server: LiveServer, token: str) -> tuple[int, float]:
     timers = get(server, token, f"/api/nodes/{DYNAMICS}")["timers"]
     return int(timers[0]["calls"]), time.monotonic()
@@ -194,6 +200,7 @@ def steady(
     after = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     cpu1, nodes1 = process_cpu_s(server.proc.pid), tree_cpu_s(nodes)
     steal1, total1 = cpu_jiffies()
+    late = sorted(dynamics_lateness_p99_ms(server, t) for t in tokens.values())
     window_s = max(t for _, t in after.values()) - min(t for _, t in before.values())
     rates = sorted((after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens)
     used = {p: nodes1[p] - nodes0[p] for p in nodes1 if p in nodes0}
@@ -202,6 +209,7 @@ def steady(
     return {
         "window_s": round(window_s, 1),
         "dynamics_hz": {"median": round(statistics.median(rates), 1), "lowest": round(rates[0], 1)},
+        "tick_lateness_p99_ms": {"median": round(statistics.median(late), 2), "largest": round(late[-1], 2)},
         "server_cpu_cores": round((cpu1 - cpu0) / window_s, 2),
         "node_processes": sum(1 for p in nodes1 if is_runner(p)),
         "node_processes_cpu_cores": round(node_s / window_s, 2),
