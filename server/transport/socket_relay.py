@@ -8,8 +8,10 @@ the node's session and the router see an ordinary link; the router still asks ea
 login. Only a plain ``tcp/`` endpoint can be relayed: over TLS or QUIC the node would have to speak
 that itself, and a node in a sandbox cannot.
 
-Each direction is read in bounded chunks and written with back-pressure, so a slow end slows its
-own link only; connections past ``MAX_LINKS`` are closed at once.
+The relay runs on an event loop of its own, in a thread of its own, so the nodes' traffic never
+takes a turn of the loop that runs the worker's worlds. Each direction is read in bounded chunks
+and written with back-pressure, so a slow end slows its own link only; connections past
+``MAX_LINKS`` are closed at once.
 """
 
 from __future__ import annotations
@@ -17,7 +19,10 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
+import threading
+from collections.abc import Coroutine
 from pathlib import Path
+from typing import Any, TypeVar
 
 from .router_socket import new_socket_path, open_to_nodes, remove
 
@@ -26,6 +31,8 @@ log = logging.getLogger("transport.socket_relay")
 CHUNK = 64 * 1024
 MAX_LINKS = 256  # a worker's sandboxed nodes at once (each node process holds one link)
 CONNECT_TIMEOUT_S = 5.0
+STOP_WAIT_S = 5.0
+T = TypeVar("T")
 
 
 def tcp_target(endpoint: str | None) -> tuple[str, int] | None:
@@ -40,7 +47,7 @@ def tcp_target(endpoint: str | None) -> tuple[str, int] | None:
 
 
 class SocketRelay:
-    """One Unix socket (``path``) whose connections go on to ``host:port``."""
+    """One Unix socket (``path``) whose connections go on to ``host:port``, on a thread of its own."""
 
     def __init__(self, host: str, port: int) -> None:
         self.host = host
@@ -48,13 +55,17 @@ class SocketRelay:
         self.path: Path = new_socket_path()
         self._server: asyncio.Server | None = None
         self._links: set[asyncio.Task[None]] = set()
+        self._loop = asyncio.new_event_loop()
+        self._thread = threading.Thread(target=self._loop.run_forever, name="router relay", daemon=True)
 
     @classmethod
     async def open(cls, host: str, port: int) -> SocketRelay:
         relay = cls(host, port)
+        relay._thread.start()
         try:
-            relay._server = await asyncio.start_unix_server(relay._accept, path=str(relay.path))
+            await relay._on_own_loop(relay._listen())
         except OSError:
+            await relay._end_thread()
             remove(relay.path)
             raise
         open_to_nodes(relay.path)
@@ -65,6 +76,19 @@ class SocketRelay:
     def links(self) -> int:
         """Connections being carried now."""
         return len(self._links)
+
+    async def drained(self) -> None:
+        """Until every link being carried now has ended."""
+        await self._on_own_loop(self._gather_links())
+
+    async def _on_own_loop(self, work: Coroutine[Any, Any, T]) -> T:
+        return await asyncio.wrap_future(asyncio.run_coroutine_threadsafe(work, self._loop))
+
+    async def _listen(self) -> None:
+        self._server = await asyncio.start_unix_server(self._accept, path=str(self.path))
+
+    async def _gather_links(self) -> None:
+        await asyncio.gather(*list(self._links), return_exceptions=True)
 
     async def _accept(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
         if len(self._links) >= MAX_LINKS:
@@ -103,7 +127,13 @@ class SocketRelay:
                 end.close()
 
     async def close(self) -> None:
-        """Stop accepting, end every link and remove the socket's folder."""
+        """Stop accepting, end every link, end the relay's thread and remove the socket's folder."""
+        if self._thread.is_alive():
+            await self._on_own_loop(self._shutdown())
+            await self._end_thread()
+        remove(self.path)
+
+    async def _shutdown(self) -> None:
         if self._server is not None:
             self._server.close()
             self._server = None
@@ -111,7 +141,12 @@ class SocketRelay:
         for link in links:
             link.cancel()
         await asyncio.gather(*links, return_exceptions=True)
-        remove(self.path)
+
+    async def _end_thread(self) -> None:
+        self._loop.call_soon_threadsafe(self._loop.stop)
+        await asyncio.to_thread(self._thread.join, STOP_WAIT_S)
+        if not self._thread.is_alive():
+            self._loop.close()
 
 
 async def _pump(source: asyncio.StreamReader, sink: asyncio.StreamWriter) -> None:

@@ -9,6 +9,9 @@ from __future__ import annotations
 
 import asyncio
 import os
+import socket
+import socketserver
+import threading
 
 import pytest
 
@@ -139,7 +142,46 @@ def test_links_past_the_limit_are_closed_and_the_others_keep_working(monkeypatch
     asyncio.run(scenario())
 
 
+class _Echo(socketserver.BaseRequestHandler):
+    def handle(self) -> None:
+        while data := self.request.recv(65536):
+            self.request.sendall(data)
+
+
+def test_the_relay_carries_while_the_loop_that_opened_it_is_busy() -> None:
+    """The worlds' loop opens the relay; the nodes' traffic must not wait for that loop's turn. A
+    client and a router on threads of their own exchange bytes through the relay while the loop
+    that opened it is blocked (joining the client's thread): they get through only if the relay
+    runs elsewhere."""
+    with socketserver.ThreadingTCPServer(("127.0.0.1", 0), _Echo) as router:
+        threading.Thread(target=router.serve_forever, daemon=True).start()
+        got: list[bytes] = []
+
+        def node(path: str) -> None:
+            with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as link:
+                link.settimeout(WAIT_S)
+                link.connect(path)
+                link.sendall(b"ping")
+                got.append(link.recv(4))
+
+        async def scenario() -> None:
+            relay = await SocketRelay.open("127.0.0.1", router.server_address[1])
+            try:
+                client = threading.Thread(target=node, args=(str(relay.path),))
+                client.start()
+                client.join(WAIT_S)  # blocks this loop: no turn for anything on it
+                assert got == [b"ping"]
+            finally:
+                await relay.close()
+            assert not relay.path.parent.exists()
+
+        try:
+            asyncio.run(scenario())
+        finally:
+            router.shutdown()
+
+
 async def ended(relay: SocketRelay) -> None:
-    """Until every link the relay carries has ended (each one's task)."""
-    await asyncio.wait_for(asyncio.gather(*list(relay._links)), WAIT_S)
+    """Until every link the relay carries has ended."""
+    await asyncio.wait_for(relay.drained(), WAIT_S)
     assert relay.links == 0
