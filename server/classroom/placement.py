@@ -12,6 +12,7 @@ is ended.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 from collections.abc import Awaitable, Callable
 from typing import Any
@@ -131,7 +132,12 @@ class Placement:
                 body["progress"] = handed
             await self.graph.workers.checked(ref, "POST", "/api/classroom/host", body=body)
             if self.workspaces is not None:  # its files, before its student can reach it there
-                await self.workspaces.hand_over(self.graph.workers, ref, name)
+                try:
+                    await self.workspaces.hand_over(self.graph.workers, ref, name)
+                except ClassroomError:  # not started there after all: never run it without its files
+                    with contextlib.suppress(ClassroomError):
+                        await self.graph.workers.checked(ref, "DELETE", f"/api/classroom/worlds/{name}")
+                    raise
         finally:
             self._hosting.discard((ref.id, name))
 

@@ -200,8 +200,9 @@ class WorldWorker:
     ) -> World:
         """Start the world a class server placed here, in the domain it chose. ``router_socket``:
         the class router's Unix socket, which its students' sandboxed nodes reach when it is on
-        this machine (else through this worker's relay to the router's TCP endpoint). ``progress``: the class server's copy of the
-        world's progress (server/classroom/progress_copies.py), which it starts with."""
+        this machine (else through this worker's relay to the router's TCP endpoint).
+        ``progress``: the class server's copy of the world's progress
+        (server/classroom/progress_copies.py), which it starts with."""
         self.heard_from_class()
         if router_socket is not None:  # the class sandboxes students' nodes: they need a way in
             self._router_socket = socket_here(router_socket) or await self._relayed_socket()

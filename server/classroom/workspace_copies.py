@@ -8,8 +8,9 @@ them in step both ways, as it does the worlds' progress (progress_copies.py):
 
 - **Handed over** when a world starts on such a worker (a new student, a move, a returning
   student): the class's copy goes with it and replaces whatever that worker's folder held for the
-  world. Until that has worked nothing is copied back from it, so an empty or stale folder there
-  never overwrites the class's copy; a hand-over that fails is tried again each round.
+  world, before its student can reach it there. A hand-over that fails fails the start (the world
+  is ended there), so an empty or stale folder never overwrites the class's copy, and a copy
+  handed late never overwrites a student's saves.
 - **Copied back** at every round of hellos: each such world's tree version is asked for (one
   small call), and when it changed the world's files come back as a zip and replace the class's
   copy (the instructor's reads, the download of every workspace, a later move read that).
@@ -54,37 +55,33 @@ class WorkspaceCopies:
     def files(self, world: str) -> WorkspaceFiles:
         return WorkspaceFiles(world_workspace(self.folder, world), self.limits)
 
-    async def hand_over(self, workers: WorkerDirectory, ref: WorkerRef, world: str) -> bool:
+    async def hand_over(self, workers: WorkerDirectory, ref: WorkerRef, world: str) -> None:
         """Give ``world``, started on ``ref``, the class's copy of its files (nothing to do on a
-        worker that shares the folder); whether it has them now."""
+        worker that shares the folder); ClassroomError 502 if the worker did not take them."""
         if self.shares(ref):
-            return True
+            return
         try:
             data = await asyncio.to_thread(pack, self.files(world))
-            reply = await workers.call(ref, "POST", f"{ARCHIVE_PATH}?replace=true", world=world, content=data)
-        except (ClassroomError, OSError) as exc:
-            log.warning("world %s's files not handed to world worker %s: %s", world, ref.id, exc)
-            return False
+        except OSError as exc:
+            raise ClassroomError(502, f"world {world!r}'s files could not be read: {exc}") from None
+        reply = await workers.call(ref, "POST", f"{ARCHIVE_PATH}?replace=true", world=world, content=data)
         if reply.status_code != 200:
-            log.warning("world %s's files not handed to world worker %s: %s %s",
-                        world, ref.id, reply.status_code, reply.text[:200])  # fmt: skip
-            return False
+            raise ClassroomError(502, f"world worker {ref.id!r} did not take world {world!r}'s files: "
+                                      f"{reply.status_code} {reply.text[:200]}")  # fmt: skip
         self._handed[world] = ref.id
         self._copied.pop(world, None)
-        return True
 
     async def refresh(
         self, workers: WorkerDirectory, worlds: Mapping[str, World], answered: list[WorkerRef]
     ) -> None:
-        """One round: each world on a worker that answered and keeps its own folder is handed its
-        files if it has not had them, else copied back if its tree changed."""
+        """One round: each world handed to a worker that answered (one that keeps its own folder)
+        is copied back if its tree changed."""
         answering = {ref.id for ref in answered}
         for name, world in list(worlds.items()):
             ref = world.worker
-            if ref is None or ref.id not in answering or world.lost is not None or self.shares(ref):
+            if ref is None or ref.id not in answering or world.lost is not None:
                 continue
-            if self._handed.get(name) != ref.id:
-                await self.hand_over(workers, ref, name)
+            if self._handed.get(name) != ref.id:  # here, on a worker that shares the folder, or moving
                 continue
             try:
                 await self._copy_back(workers, ref, name)
