@@ -14,6 +14,7 @@ import io
 import shutil
 import stat
 import zipfile
+from pathlib import PurePosixPath
 
 from .errors import BadArchiveError, BadPathError, NotTextError, TakenError, TooLargeError
 from .files import WorkspaceFiles, check_parents, decode_text, write_atomic
@@ -65,9 +66,20 @@ def replace(files: WorkspaceFiles, data: bytes) -> list[str]:
     contents = _contents(files, data)
     with files.lock:
         tree = files.tree()
-        for entry in tree.files:
-            if entry.path not in contents:
-                confine(files.root, entry.path).unlink(missing_ok=True)
+        going = {entry.path for entry in tree.files if entry.path not in contents}
+        # Before anything changes: no link on the way to a file of the zip, and nothing the tree
+        # does not list where one of its folders goes.
+        for relative in contents:
+            try:
+                confine(files.root, relative)
+            except BadPathError as exc:
+                raise BadArchiveError(f"zip entry {exc}") from None
+            for parent in list(PurePosixPath(relative).parents)[:-1]:
+                path = files.root / parent
+                if path.exists() and not path.is_dir() and parent.as_posix() not in going:
+                    raise BadArchiveError(f"zip entry {relative!r}: {parent.as_posix()} is not a folder")
+        for relative in going:
+            confine(files.root, relative).unlink(missing_ok=True)
         for entry in reversed(tree.entries):  # deepest first: a folder after what it held
             if entry.kind != "dir":
                 continue
@@ -77,12 +89,7 @@ def replace(files: WorkspaceFiles, data: bytes) -> list[str]:
             elif not any(folder.iterdir()):  # emptied
                 folder.rmdir()
         for relative, raw in contents.items():
-            target = confine(files.root, relative)
-            try:
-                check_parents(files.root, target, relative)
-            except TakenError as exc:  # a name the tree does not list stands where a folder goes
-                raise BadArchiveError(f"zip entry {exc}") from None
-            write_atomic(target, raw)
+            write_atomic(confine(files.root, relative), raw)
     return sorted(contents)
 
 

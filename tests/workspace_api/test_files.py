@@ -242,3 +242,29 @@ def test_files_an_upload_with_replace_leaves_the_zips_files_only(tmp_path: Path)
         added = upload(client, zip_of({"src/z.py": "z = 4\n"}))
         assert added.status_code == 200
         assert {"src/a/b.py", "src/z.py"} <= {e["path"] for e in tree(client)["entries"]}
+
+
+def test_files_a_replace_through_a_link_is_refused_before_anything_goes(tmp_path: Path) -> None:
+    root, outside = tmp_path / "ws", tmp_path / "outside"
+    outside.mkdir()
+    with lab_client(lab_settings(root)) as client:
+        assert save(client, "src/a/b.py", "old = 1\n").status_code == 201
+        (root / "src/linked").symlink_to(outside, target_is_directory=True)
+        before = tree(client)
+        reply = client.post(
+            "/api/workspace/archive?replace=true",
+            content=zip_of({"src/linked/x.py": "x = 1\n"}),
+            headers={"content-type": "application/zip"},
+        )
+        assert reply.status_code == 422, reply.text
+        assert "symbolic link" in reply.json()["detail"]
+        assert tree(client) == before and (root / "src/a/b.py").read_text() == "old = 1\n"  # nothing went
+        assert list(outside.iterdir()) == []  # and nothing was written through the link
+        # Without the link the same upload goes through.
+        (root / "src/linked").unlink()
+        assert client.post(
+            "/api/workspace/archive?replace=true",
+            content=zip_of({"src/linked/x.py": "x = 1\n"}),
+            headers={"content-type": "application/zip"},
+        ).json() == {"written": ["src/linked/x.py"]}
+        assert not (root / "src/a/b.py").exists()
