@@ -125,6 +125,9 @@ class SocketRelay:
             await asyncio.gather(*pumps, return_exceptions=True)
             for end in (writer, far_writer):
                 end.close()
+            for end in (writer, far_writer):  # closed for real before the relay's loop may stop
+                with contextlib.suppress(OSError):
+                    await end.wait_closed()
 
     async def close(self) -> None:
         """Stop accepting, end every link, end the relay's thread and remove the socket's folder."""

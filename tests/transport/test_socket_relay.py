@@ -143,9 +143,17 @@ def test_links_past_the_limit_are_closed_and_the_others_keep_working(monkeypatch
 
 
 class _Echo(socketserver.BaseRequestHandler):
+    ended = threading.Event()  # set when the relay closed its link to this router
+
     def handle(self) -> None:
         while data := self.request.recv(65536):
             self.request.sendall(data)
+        _Echo.ended.set()
+
+
+class _Router(socketserver.ThreadingTCPServer):
+    daemon_threads = True
+    block_on_close = False  # a link left open fails the test below; it never hangs it
 
 
 def test_the_relay_carries_while_the_loop_that_opened_it_is_busy() -> None:
@@ -153,7 +161,8 @@ def test_the_relay_carries_while_the_loop_that_opened_it_is_busy() -> None:
     client and a router on threads of their own exchange bytes through the relay while the loop
     that opened it is blocked (joining the client's thread): they get through only if the relay
     runs elsewhere."""
-    with socketserver.ThreadingTCPServer(("127.0.0.1", 0), _Echo) as router:
+    _Echo.ended.clear()
+    with _Router(("127.0.0.1", 0), _Echo) as router:
         threading.Thread(target=router.serve_forever, daemon=True).start()
         got: list[bytes] = []
 
@@ -174,6 +183,7 @@ def test_the_relay_carries_while_the_loop_that_opened_it_is_busy() -> None:
             finally:
                 await relay.close()
             assert not relay.path.parent.exists()
+            assert _Echo.ended.wait(WAIT_S)  # its link to the router closed with it
 
         try:
             asyncio.run(scenario())
