@@ -97,7 +97,5 @@ def test_a_starter_whose_test_process_goes_kills_what_it_started(tmp_path: Path)
         assert own.proc.returncode == 0
         assert not alive(proc.pid)
     finally:
-        if own.proc.poll() is None:
-            own.proc.kill()
-            own.proc.wait(timeout=10)
+        own.close()  # again on a failure before it: its pipes closed and it reaped, whatever happened
         wait_until(lambda: not alive(proc.pid), "the forked server to be gone", 10.0)

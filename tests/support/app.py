@@ -37,12 +37,27 @@ def _ephemeral_low() -> int:
         return 32768
 
 
+def _own_range(low: int, high: int) -> tuple[int, int]:
+    """This pytest-xdist worker's share of the ports ``low`` to ``high``: each worker picks from
+    its own slice, so a port one worker picked and has not bound yet is never picked by another
+    (with shared ports that happened about once a run: a server failed with "address already in
+    use")."""
+    worker = os.environ.get("PYTEST_XDIST_WORKER", "")
+    count = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1") or 1)
+    if not worker.startswith("gw") or not worker[2:].isdigit() or count < 2:
+        return low, high
+    size = (high - low) // count
+    start = low + int(worker[2:]) % count * size
+    return start, start + size
+
+
 def free_ports(count: int) -> list[int]:
     """``count`` distinct loopback ports that are free now, picked below the kernel's ephemeral
     range: a port the kernel gives out by itself (to a Zenoh session or WebSocket server the app
     binds to port 0, or to any outgoing connection) can then never be one a test hands the app.
-    All are held until all are picked, so two never come out the same."""
-    low, high = 20000, _ephemeral_low()
+    All are held until all are picked, so two never come out the same; each xdist worker picks
+    from a slice of its own."""
+    low, high = _own_range(20000, _ephemeral_low())
     rng = random.Random()
     held: list[socket.socket] = []
     try:
