@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import os
 
-START_NICE = 19  # the sandbox's default (server/settings.py): the lowest
+START_NICE = 19  # the sandbox's default (server/settings/): the lowest
 _started_at: int | None = None  # the command's own niceness before START_NICE (None: not taken)
 
 
