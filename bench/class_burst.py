@@ -1,7 +1,7 @@
 """Bench: a class told "run it now", measured from outside.
 
     .venv/bin/python bench/class_burst.py [--worlds 30] [--per-world 2] [--joined-timeout-s 300]
-        [--steady-s 30] [--via cli|page]
+        [--steady-s 30] [--via cli|page] [--page-clients [--clients-nice N]]
 
 A class server (``--classroom --launch fly``, its Zenoh router on a free loopback port) with
 ``--worlds`` students joined, one world each. Then ``--worlds`` × ``--per-world`` ``ros2lab run``
@@ -24,7 +24,8 @@ GUI stream, the HUD's pose stream, the key channel's heartbeat) once they have j
 through the starts and the steady window, and adds each channel's median rate over the steady
 window (``steady.page_hz``): the class as it is with every page open. The clients run in this
 bench's process, on the same cores as the class (``steady.bench_cpu_cores``), where a class's
-pages would run on the students' machines.
+pages would run on the students' machines; ``--clients-nice 10`` runs their thread below the
+class's processes, so they take the cores only when the class leaves them free.
 
 ``--via page`` starts the nodes as the page's Run does instead: the keyboard manager saved into
 each student's workspace through the workspace API, then ``POST /api/run`` with the student's
@@ -321,6 +322,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--page-clients", action="store_true", help="a page-like client per student, open throughout"
     )
+    parser.add_argument(
+        "--clients-nice",
+        type=int,
+        default=0,
+        help="added to the page clients' thread's niceness: they stand for pages on the students' machines",
+    )
     args = parser.parse_args(argv)
     print(json.dumps(machine_info()), flush=True)
     root = Path(tempfile.mkdtemp(prefix="class_burst_"))
@@ -334,7 +341,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         tokens = dict(join(server, f"student{i:02d}") for i in range(args.worlds))
         if args.page_clients:
-            pages = OpenPages([PageClient(server.url, t) for t in tokens.values()])
+            pages = OpenPages([PageClient(server.url, t) for t in tokens.values()], args.clients_nice)
             pages.open()
         time.sleep(3.0)  # every world flying (and every page open) before the starts
         results = {

@@ -26,6 +26,7 @@ import argparse
 import asyncio
 import contextlib
 import json
+import os
 import statistics
 import sys
 import threading
@@ -207,13 +208,19 @@ class OpenPages:
     burst, then a steady window): ``mark`` starts counting afresh, ``rates`` reads each client's
     since the mark, ``close`` closes them all."""
 
-    def __init__(self, clients: list[PageClient]) -> None:
+    def __init__(self, clients: list[PageClient], nice: int = 0) -> None:
         self.clients = clients
+        self.nice = nice  # added to the clients' thread's niceness (Linux: per thread)
         self._loop = asyncio.new_event_loop()
         self._closed: asyncio.Event | None = None
         self._thread = threading.Thread(target=self._run, daemon=True)
 
     def _run(self) -> None:
+        if self.nice:
+            os.setpriority(
+                os.PRIO_PROCESS, threading.get_native_id(), os.getpriority(os.PRIO_PROCESS, 0) + self.nice
+            )
+
         async def every() -> None:
             self._closed = asyncio.Event()
             await asyncio.gather(*(c.hold(self._closed) for c in self.clients))
