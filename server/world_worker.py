@@ -87,6 +87,8 @@ def build_parser() -> argparse.ArgumentParser:
     )  # fmt: skip
     # Set by a class server that started this worker itself (--workers): end when that process is gone.
     parser.add_argument("--parent-pid", type=int, help=argparse.SUPPRESS)
+    # A worker its class server started here: the machine's node-start slots, shared with it.
+    parser.add_argument("--start-slots", type=Path, help=argparse.SUPPRESS)
     return parser
 
 
@@ -134,7 +136,7 @@ def worker_settings(args: argparse.Namespace, class_token: str, port: int) -> Se
     shown = f"[{advertise}]" if ":" in advertise else advertise
     worker = {
         "id": _worker_id(args.worker_id), "url": f"http://{shown}:{port}", "class_token": class_token,
-        "orphan_timeout_s": args.orphan_timeout,
+        "orphan_timeout_s": args.orphan_timeout, "start_slots": args.start_slots,
     }  # fmt: skip
     listen = {
         "host": args.host,

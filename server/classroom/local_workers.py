@@ -29,6 +29,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from server.processes.start_pacing import machine_slots_file
 from server.settings import Settings, class_section
 
 from .worker_control import TOKEN_ENV
@@ -120,6 +121,7 @@ class LocalWorkers:
             "--state-dir", str(self.state_dir.resolve()),
             "--log-level", self.log_level, "--world-log-level", self.world_log_level,
             "--parent-pid", str(os.getpid()),
+            "--start-slots", str(machine_slots_file(self.state_dir).resolve()),
         ]  # fmt: skip
         if self.workspace is not None:
             command += ["--workspace", str(self.workspace.resolve())]

@@ -22,7 +22,7 @@ from server.lab import Lab
 from server.launch.groups import NodeBudget
 from server.limits import RateLimit
 from server.processes.sandbox import StudentCodeRefusedError, probe
-from server.processes.start_pacing import StartPacer, default_slots
+from server.processes.start_pacing import MachineStartPacer, StartPacer, default_slots, machine_slots_file
 from server.settings import Settings, class_section
 from server.transport.acl import Credentials
 from server.transport.config import ZenohSettings
@@ -51,7 +51,7 @@ class WorldLabs:
         self.simple_physics = SharedSimpleSim(clock)  # the worlds flown with simple:=true
         self.executors = ExecutorGroup()
         self.node_budget = NodeBudget(settings.limits.max_server_nodes)  # every world's node processes
-        self.start_pacer = StartPacer(default_slots(), clock=clock.now)  # and their starts
+        self.start_pacer = _start_pacer(settings, clock)  # and their starts
         # Each world's checkpoints and answers, kept in the state folder across restarts.
         self.progress = ProgressStore.in_state_dir(settings.lab.state_dir)
 
@@ -173,3 +173,13 @@ class WorldLabs:
             launch if launch is not None else (self.settings.lab.launch, self.settings.lab.launch_args)
         )
         return self.settings.for_world(name, zenoh, file, args)
+
+
+def _start_pacer(settings: Settings, clock: Clock) -> StartPacer:
+    """The class server's node starts and those of the world workers it started on this machine
+    take turns at the machine's slots; a world worker started by hand paces its own."""
+    if settings.worker is None:
+        return MachineStartPacer(machine_slots_file(settings.lab.state_dir), default_slots())
+    if settings.worker.start_slots is not None:
+        return MachineStartPacer(settings.worker.start_slots, default_slots())
+    return StartPacer(default_slots(), clock=clock.now)

@@ -157,6 +157,9 @@ class WorkerSettings(Section):
     url: str  # where the class server reaches its HTTP API
     class_token: str = Field(repr=False)  # the instructor's token of its class (never sent anywhere)
     orphan_timeout_s: float = ORPHAN_TIMEOUT_S  # no hello from the class server this long: free the worlds
+    # A worker its class server started on its own machine shares that machine's node-start slots
+    # with it (server/processes/start_pacing.py): the file they are kept in. None: its own.
+    start_slots: Path | None = None
 
     @field_validator("orphan_timeout_s")
     @classmethod

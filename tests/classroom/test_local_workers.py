@@ -204,6 +204,11 @@ def test_by_default_a_worker_starts_as_the_class_grows_and_takes_the_next_worlds
         if spare:
             (worker,) = klass.started_here()
             assert parent_of(worker["pid"]) == klass.app.proc.pid
+            # It takes turns at the machine's node-start slots with the class server: their file.
+            argv = Path(f"/proc/{worker['pid']}/cmdline").read_bytes().decode().split("\0")
+            assert argv[argv.index("--start-slots") + 1] == str(
+                (tmp_path / "state" / "start-slots").resolve()
+            )
             wait_for_workers(klass.app.url, klass.instructor, {"local-1"})
         cy = join(klass, "Cy")
         assert klass.worlds()[cy]["worker"] == ("local-1" if spare else None)

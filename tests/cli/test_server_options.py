@@ -3,6 +3,8 @@ and print its error: a bad combination exits 2 naming the options, a good one be
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from server import world_worker
@@ -90,6 +92,12 @@ def test_a_world_workers_options_land_in_its_sections() -> None:
     args = world_worker.build_parser().parse_args(worker_args("--host", "::1"))
     loopback = world_worker.worker_settings(args, "t", 8124)
     assert loopback.worker is not None and loopback.worker.url == "http://[::1]:8124"
+    assert loopback.worker.start_slots is None  # started by hand: it paces its own node starts
+    args = world_worker.build_parser().parse_args(
+        worker_args("--start-slots", "/srv/class/state/start-slots")
+    )
+    shared = world_worker.worker_settings(args, "t", 8125).worker
+    assert shared is not None and shared.start_slots == Path("/srv/class/state/start-slots")
 
 
 @pytest.mark.parametrize(

@@ -97,7 +97,10 @@ def test_wheel_holds_the_client_and_nothing_of_the_web_server(wheel: Path) -> No
     for app_side in ("server/app.py", "server/lab.py", "server/settings/__init__.py", "server/processes/supervisor.py",
                      "server/packages/rocketship/keyboard_manager.py"):  # fmt: skip
         assert app_side not in names
-    assert not any(n.startswith(("server/viewer/", "server/bridges/", "server/classroom/", "server/settings/")) for n in names)
+    assert not any(
+        n.startswith(("server/viewer/", "server/bridges/", "server/classroom/", "server/settings/"))
+        for n in names
+    )
     metadata = zipfile.ZipFile(wheel).read("teleop_lab_client-0.1.0.dist-info/METADATA").decode()
     assert "Requires-Dist: eclipse-zenoh==1.10.2" in metadata
     assert not any(dep in metadata.lower() for dep in ("fastapi", "uvicorn", "viser"))

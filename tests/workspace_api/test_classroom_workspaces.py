@@ -21,6 +21,7 @@ from support.ws import receive_within
 from api.errors import CloseCode
 from server.app import create_app
 from server.bus import ManualClock
+from server.processes.start_pacing import MachineStartPacer, machine_slots_file
 from server.settings import Settings
 from server.transport.config import ZenohSettings
 
@@ -257,3 +258,7 @@ def test_class_students_runs_at_once_start_at_their_turns_and_the_page_is_told(t
         assert "bob started" in [f["text"] for f in frames if f["type"] == "line"]
         assert next(f for f in frames if f["type"] == "exit")["code"] == 0
         assert pacer.admitted >= 2 and pacer.deferred >= 2  # Bob's start and the join were deferred
+        # The class server's slots are the machine's: kept in its state folder, where the world
+        # workers it starts on this machine take their turns too.
+        assert isinstance(pacer, MachineStartPacer) and pacer.path == machine_slots_file(Path("state"))
+        assert json.loads(pacer.path.read_text())["held"]
