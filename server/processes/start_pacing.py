@@ -6,10 +6,10 @@ to start, as ``ros2lab run`` asks; api/lab_routes.py answers a deferred one 429 
 ``Retry-After``, and ``ros2lab run`` waits that long and asks again), and, where the server
 serves others, a student's node the page's Run or Launch starts (server/launch/launcher.py
 keeps it waiting, then starts it at its turn). A join without ``start`` (``ros2lab env``, a tool
-reading the router) is never paced. A server process has one pacer: its cores are shared. So
-does a class server with the world workers it starts on its own machine (``MachineStartPacer``):
-their slots are the machine's, kept in one small file they all lock, not one set per process (a
-class spread over the cores of an 8-core machine would otherwise start 7 × 8 nodes at once).
+reading the router) is never paced. A server process has one pacer: its cores are shared. A
+class server and the world workers it starts on its own machine share one too
+(``MachineStartPacer``): the machine's slots, kept in one small file they all lock, not a set per
+process (a class spread over an 8-core machine would otherwise start 8 × 7 nodes at once).
 
 Why: a node's start is a burst of CPU (the interpreter, rclpy, the messages, the Zenoh session).
 Sixty of them at once on a 2-core class server (a class told "run it now") share the cores with
