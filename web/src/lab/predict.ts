@@ -18,6 +18,10 @@ const PARAMS_POLL_MS = 3000;
 const MATCH_M = 0.1;  // a bus setpoint this close to the prediction confirms it
 const GRACE_MS = 250;  // a differing bus setpoint wins only after this (lab mode publishes the old one first)
 const EXPIRE_MS = 1000;  // no confirmation by then: the bus setpoint is what the drone flies to
+const SILENT_MS = 3000;  // no setpoint at all since the key: the prediction stands this long
+// On a busy server the manager's answer may reach the page later than GRACE_MS, or even EXPIRE_MS:
+// the setpoint from before the key then wins only at EXPIRE_MS, and silence only at SILENT_MS,
+// so the marker does not go back for a moment before it goes forward (a CI run saw that).
 
 /** The keyboard manager's parameters the prediction needs (its node's live parameters). */
 export interface KeyManagerParams {
@@ -27,8 +31,9 @@ export interface KeyManagerParams {
   lead_s: number;
   brake_s: number;
 }
-/** A predicted setpoint (m), when it was made (ms), and the keydown that made it (none on a keyup). */
-export interface Prediction { p: V3; made: number; key: KeyboardEvent | null }
+/** A predicted setpoint (m), when it was made (ms), the keydown that made it (none on a keyup), the
+ * bus's setpoint then (none yet), and whether a setpoint has come since. */
+export interface Prediction { p: V3; made: number; key: KeyboardEvent | null; from: V3 | null; heard: boolean }
 
 export const predict = {
   params: null as KeyManagerParams | null,
@@ -38,6 +43,7 @@ export const predict = {
   made: 0,
   confirmed: 0,
   overruled: 0,
+  checks: 0,  // rounds of the expiry check
   // Where the server drew the marker: set by answer.ts, which finds it in the scene.
   markerPosition: (): V3 | null => null,
   // Where the marker stands now: the live prediction, else the bus's setpoint, else where the
@@ -95,7 +101,9 @@ const onKey = (e: KeyboardEvent, k: string): void => {
   if (e.repeat) return;
   const p = predictSetpoint(keys.held, k, e.type === "keydown");
   if (!p) return;
-  const prediction: Prediction = { p, made: performance.now(), key: e.type === "keydown" ? e : null };
+  const prediction: Prediction = {
+    p, made: performance.now(), key: e.type === "keydown" ? e : null, from: poses.setpoint, heard: false,
+  };
   predict.prediction = prediction;
   predict.made++;
   notify(predict.listeners, prediction);
@@ -107,18 +115,25 @@ export function startPredict(): void {
   setInterval(() => void pollParams(), PARAMS_POLL_MS);
   keys.listeners.push(onKey);
 
-  // The bus's setpoint confirms the prediction (close to it) or, after a grace time, overrules it.
+  // The bus's setpoint confirms the prediction (close to it) or, after a grace time, overrules it:
+  // a new one after GRACE_MS, the one from before the key only at EXPIRE_MS, none at SILENT_MS.
+  const near = (a: V3, b: V3): boolean => Math.hypot(...a.map((v, i) => v - b[i]!)) < MATCH_M;
   poses.listeners.push((_samples, setpoint, received) => {
     const pred = predict.prediction;
     if (!pred) return;
-    if (setpoint && Math.hypot(...setpoint.p.map((v, i) => v - pred.p[i]!)) < MATCH_M) {
+    const age = received - pred.made;
+    if (setpoint) pred.heard = true;
+    if (setpoint && near(setpoint.p, pred.p)) {
       predict.prediction = null; predict.confirmed++;
-    } else if ((setpoint && received - pred.made > GRACE_MS) || received - pred.made > EXPIRE_MS) {
+    } else if ((setpoint && !(pred.from && near(setpoint.p, pred.from)) && age > GRACE_MS)
+      || age > (pred.heard ? EXPIRE_MS : SILENT_MS)) {
       predict.prediction = null; predict.overruled++;
     }
   });
   setInterval(() => {
-    if (predict.prediction && performance.now() - predict.prediction.made > EXPIRE_MS) {
+    predict.checks++;
+    const pred = predict.prediction;
+    if (pred && performance.now() - pred.made > (pred.heard ? EXPIRE_MS : SILENT_MS)) {
       predict.prediction = null; predict.overruled++;
     }
   }, 250);
