@@ -127,9 +127,11 @@ def test_fly_to_point_by_rest_at_5_hz_is_not_done_and_at_1_hz_is(fly: TestClient
     state = checkpoint(fly, "fly_to_point")
     assert state["state"] == "in_progress" and state["done_at"] is None, state
     # What keeps it from done is the rate it reads, far above 1.2 Hz (on a loaded machine the REST
-    # publisher's 5 Hz timer runs late and reads as low as 2.9 Hz: still not once a second).
+    # publisher's 5 Hz timer runs late and reads as low as 2.9 Hz: still not once a second; and a
+    # first tick late by up to 0.16 s, the rest on their schedule, reads up to 6.25 Hz over its 5
+    # positions: a CI run read 5.2).
     read = re.search(r" at ([0-9.]+) Hz", state["progress"])
-    assert read is not None and 2.0 <= float(read.group(1)) <= 5.05, state["progress"]
+    assert read is not None and 2.0 <= float(read.group(1)) <= 6.25, state["progress"]
     # The same publisher at 1 Hz: the legitimate use is met.
     assert fly.patch(f"/api/publishers/{publisher}", json={"rate_hz": 1.0}).status_code == 200
     done = wait_until(
