@@ -17,7 +17,9 @@ and a node name of its own, all started at once, as a class does. What is measur
 * then, one second later, each node process's RSS (the ``runner`` children of the ``ros2lab run``
   processes): median, max and sum;
 * then, with every node running, ``--steady-s`` seconds of the class as it then is: every world's
-  dynamics rate, the class server's CPU and that of every node process (with its sandbox).
+  dynamics rate, the class server's CPU and that of every node process (with its sandbox), and at
+  its end the class's memory (RSS of the class server, its world workers, the nodes, and all of
+  them with their sandboxes: ``steady.rss_mib``).
 
 ``--page-clients`` opens a page-like client per student (bench/page_client.py: viser's scene and
 GUI stream, the HUD's pose stream, the key channel's heartbeat) once they have joined, held open
@@ -219,6 +221,24 @@ def steady(
         "bench_cpu_cores": round((own1 - own0) / window_s, 2),
         "page_hz": median_rates(page_rates) if pages is not None else None,
         "page_errors": page_errors[:5],
+        "rss_mib": class_rss_mib(server, nodes),
+    }
+
+
+def class_rss_mib(server: LiveServer, below: list[int]) -> dict[str, float]:
+    """The class's memory at the end of the window: the class server's RSS, its world workers',
+    the node processes', and all of them with every other process below them (the sandboxes), a
+    sum of RSS (pages two processes share count twice: an upper bound)."""
+    alive: dict[int, float] = {}
+    for pid in below:
+        with contextlib.suppress(FileNotFoundError, ProcessLookupError, RuntimeError):
+            alive[pid] = rss_mib(pid)
+    own = server.rss_mib()
+    return {
+        "class_server": round(own, 1),
+        "world_workers": round(sum(m for p, m in alive.items() if is_worker(p)), 1),
+        "node_processes": round(sum(m for p, m in alive.items() if is_runner(p)), 1),
+        "all": round(own + sum(alive.values()), 1),
     }
 
 
