@@ -12,16 +12,16 @@ from typing import Any
 from pydantic import ValidationError
 
 from server import cli
+from server.banner import classroom_banner, print_lab_lines, student_code_line
 from server.console import LEVELS, setup_logging
 from server.settings import (
-    ANY_ADDRESS,
     SPREAD_AT_WORLDS,
     WORKER_TIMEOUT_S,
     Settings,
     explain,
     is_refusal,
 )
-from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env, is_loopback
+from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env
 
 
 def parse_launch_arg(text: str) -> tuple[str, str]:
@@ -193,19 +193,6 @@ def check_launch(settings: Settings) -> str | None:
     return None
 
 
-def shown_host(host: str) -> str:
-    return "127.0.0.1" if host in ANY_ADDRESS else host
-
-
-def banner(host: str, port: int, launch: str) -> str:
-    """The first lines a student reads: where to open the page, and which keys fly."""
-    return (
-        f"Teleop lab: open http://{shown_host(host)}:{port}/ in a browser (launch: {launch}; Ctrl-C stops it)\n"
-        "Keys, after a click in the 3D view: arrows fly the drone, PgUp/PgDn climb and sink, "
-        "a aborts the rocket, ? shows help"
-    )
-
-
 def workers_arg(arg: str) -> int | str:
     """``--workers``: ``auto`` or a count (its range is the settings' rule)."""
     if arg == "auto":
@@ -220,51 +207,6 @@ def lab_token(arg: str | None) -> str | None:
     if arg is None:
         return None
     return secrets.token_urlsafe(24) if arg == "auto" else arg
-
-
-def classroom_banner(settings: Settings, code: str, instructor_token: str) -> str:
-    """The class code for the projector, the instructor's link (its token, printed once) and, with
-    Zenoh, how to add a world worker."""
-    host, port = settings.listen.host, settings.listen.port
-    shown = shown_host(host)
-    lan = " (and this machine's LAN address)" if host in ANY_ADDRESS else ""
-    lines = [
-        f"Class server: students open http://{shown}:{port}/{lan} and join with class code {code}",
-        f"Instructor (keep this link to yourself): http://127.0.0.1:{port}/instructor?token={instructor_token}",
-    ]
-    router = settings.lab.zenoh_router
-    foxglove, rosbridge = settings.lab.foxglove_port, settings.lab.rosbridge_port
-    if router is not None and foxglove is not None:
-        lines.append(
-            f"Foxglove, every world as /<world>/...: ws://{shown}:{foxglove}/?token=<the instructor's token>"
-        )
-    if router is not None and rosbridge is not None:
-        lines.append(
-            f"rosbridge, every world as /<world>/...: ws://{shown}:{rosbridge}/?token=<the instructor's token>"
-        )
-    assert settings.classroom is not None
-    from server.classroom.local_workers import spare_cores
-
-    started, spare = settings.classroom.workers_at_start, spare_cores()
-    if started:
-        ids = "local-1" if started == 1 else f"local-1..local-{started}"
-        lines.append(
-            f"World workers on this machine: {started} ({ids}), started and stopped with this server"
-        )
-    elif settings.classroom.auto_workers and router is not None and spare:
-        lines.append(
-            f"World workers on this machine: one each {settings.classroom.spread_at} worlds, at most {spare} "
-            "(its spare cores), started as the class grows and stopped with this server (--workers)"
-        )
-    if router is not None:
-        endpoint = router.listen[0].replace("0.0.0.0", "<this machine's address>")
-        lines.append(f"More cores or machines: ROS2LAB_TOKEN=<the instructor's token> ros2lab {cli.WORKER_VERB} "
-                     f"--connect {endpoint}")  # fmt: skip
-    level = settings.classroom.world_log_level
-    if level != "debug":
-        lines.append(f"This console shows the worlds' node lines at {level} and above, each under its world's "
-                     "name; every line is on its world's /rosout (--world-log-level to change)")  # fmt: skip
-    return "\n".join(lines)
 
 
 # Options of the class's section: without --classroom there is no class for them to shape.
@@ -297,40 +239,6 @@ def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settin
         "listen": listen, "lab": lab, "classroom": classroom, "log_level": args.log_level,
         "sandbox": {"student_code": args.student_code},
     })  # fmt: skip
-
-
-def print_lab_lines(settings: Settings) -> None:
-    """Where to open the page, the lab's token link, and where its graph is."""
-    listen, zenoh = settings.listen, settings.lab.zenoh
-    print(banner(listen.host, listen.port, settings.lab.launch), flush=True)
-    if listen.token is not None and settings.classroom is None:
-        print(f"This lab needs its token: open http://{shown_host(listen.host)}:{listen.port}/?token={listen.token} "
-              "(bridges: ?token= or Authorization: Bearer)", flush=True)  # fmt: skip
-    if zenoh is not None:
-        wide = [e for e in zenoh.listen if not is_loopback(e)] if zenoh.mode == "router" else []
-        where = ", ".join(zenoh.listen) if zenoh.mode == "router" else "router " + ", ".join(zenoh.connect)
-        domains = "a ROS domain per world (1, 2, ...)" if settings.classroom else f"domain {zenoh.domain_id}"
-        print(f"ROS graph on Zenoh ({where}, {domains})", flush=True)
-        if wide:
-            print(f"note: Zenoh listens on {', '.join(wide)}: other machines with the login can join this graph "
-                  "(GET /api/zenoh/join with the token gives it; see docs/zenoh.md)", flush=True)  # fmt: skip
-
-
-def student_code_line(settings: Settings) -> str | None:
-    """How students' nodes run here, in one line, when the server serves others."""
-    if not settings.confines_paths:
-        return None
-    if not settings.sandboxes_students:
-        return ("warning: --student-code unsandboxed: students' nodes run as this server's user, with "
-                "everything it can read and reach (tokens, other workspaces, the network)")  # fmt: skip
-    from server.processes.sandbox import StudentCodeRefusedError, probe
-
-    why = probe()
-    if why is not None:
-        return f"error: {StudentCodeRefusedError(why)}"
-    limits = settings.sandbox
-    return (f"Students' nodes run sandboxed (bubblewrap: no network but their world's graph, "
-            f"{limits.memory_mib} MiB, {limits.processes} processes, nice {limits.nice})")  # fmt: skip
 
 
 def main(argv: list[str] | None = None) -> int:
