@@ -20,7 +20,6 @@ from server.limits import RateLimit
 from server.settings import Settings, class_section
 from server.tasks import cancel_and_wait
 from server.transport.acl import ClassAuth
-from server.workspace.class_mark import leave_mark
 from server.workspace.location import remove_world_workspace, world_has_files
 
 from . import remote_checkpoints, remote_worlds
@@ -46,7 +45,7 @@ if TYPE_CHECKING:
     from server.viewer.class_view import ClassView
 
     from .class_bridges import ClassBridges
-    from .workers import WorkerDirectory, WorkerRef
+    from .workers import WorkerDirectory
 
 log = logging.getLogger("classroom")
 
@@ -77,9 +76,7 @@ class ClassServer:
         # A copy of the progress of worlds on workers that keep it in folders of their own.
         self.progress_copies = ProgressCopies(self.labs.progress, load_checkpoints(settings.lab.checkpoints))
         # A copy of the files of worlds on workers that keep them in folders of their own.
-        self.workspace_copies = WorkspaceCopies(
-            self.class_settings.workspaces_dir, settings.workspace, self.shares_workspaces
-        )
+        self.workspace_copies = WorkspaceCopies(self.class_settings.workspaces_dir, settings.workspace)
         self.placement = Placement(
             settings, self.labs, self.graph, self.cpu, self._end, self.progress_copies, self.workspace_copies
         )
@@ -93,7 +90,6 @@ class ClassServer:
         )
         self.local_workers: LocalWorkers | None = None  # world workers started here (--workers)
         self.view: ClassView | None = None  # the instructor's 3D view of every world
-        self.workspaces_mark: str | None = None  # its workspaces folder's mark, once open
         self._tasks: list[asyncio.Task[None]] = []  # the watch over the workers, the view's loop
 
     # -- what the routes read ------------------------------------------------------------------
@@ -137,10 +133,6 @@ class ClassServer:
     def router_endpoint(self) -> str | None:
         return self.graph.endpoint()
 
-    def shares_workspaces(self, ref: WorkerRef) -> bool:
-        """Whether world worker ``ref`` works in this class's workspaces folder (the same mark)."""
-        return self.workspaces_mark is not None and ref.workspaces_mark == self.workspaces_mark
-
     # -- who is calling ------------------------------------------------------------------------
     def grant(self, token: str | None) -> Grant | None:
         """The grant of a genuine, current token: a student's world must still be theirs."""
@@ -162,7 +154,7 @@ class ClassServer:
         await self.saved.load()
         # Workers that read this mark in their own workspaces folder share this one (class_mark.py).
         try:
-            self.workspaces_mark = await asyncio.to_thread(leave_mark, self.class_settings.workspaces_dir)
+            await asyncio.to_thread(self.workspace_copies.leave_mark)
         except OSError as exc:  # no worker shares it then: their worlds' workspaces are refused (409)
             log.warning(
                 "no mark left in the workspaces folder %s: %s", self.class_settings.workspaces_dir, exc
@@ -335,17 +327,7 @@ class ClassServer:
     # -- what the instructor sees --------------------------------------------------------------
     async def describe_all(self) -> list[dict[str, Any]]:
         """Every world as the instructor's page shows it; a worker's worlds as their worker reports."""
-        reports, errors = await remote_worlds.worker_reports(self.workers, self.worlds)
-        out = []
-        for world in self.worlds.values():
-            mine = world.describe()
-            if world.worker is not None:
-                reported = reports.get((world.worker.id, world.name), {})
-                mine = {**reported, **mine}
-                if world.worker.id in errors:
-                    mine["worker_error"] = errors[world.worker.id]
-            out.append(mine)
-        return out
+        return await remote_worlds.describe_worlds(self.workers, self.worlds)
 
     async def worker_checkpoints(self, checkpoints: list[str]) -> tuple[list[dict[str, Any]], dict[str, str]]:
         """The checkpoint table's rows of the worlds on world workers, as their workers keep them

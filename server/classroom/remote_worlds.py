@@ -45,6 +45,23 @@ async def worker_reports(
     return reports, errors
 
 
+async def describe_worlds(
+    workers: WorkerDirectory | None, worlds: Mapping[str, World]
+) -> list[dict[str, Any]]:
+    """Every world as the instructor's page shows it: its own description, over what its world
+    worker reports of it (and why that worker did not answer, if it did not)."""
+    reports, errors = await worker_reports(workers, worlds)
+    out = []
+    for world in worlds.values():
+        mine = world.describe()
+        if world.worker is not None:
+            mine = {**reports.get((world.worker.id, world.name), {}), **mine}
+            if world.worker.id in errors:
+                mine["worker_error"] = errors[world.worker.id]
+        out.append(mine)
+    return out
+
+
 async def broadcast(
     workers: WorkerDirectory | None, worlds: Mapping[str, World], body: dict[str, Any]
 ) -> tuple[list[str], dict[str, str]]:

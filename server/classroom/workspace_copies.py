@@ -23,11 +23,12 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from pathlib import Path
 
 from server.settings import WorkspaceLimits
 from server.workspace.archive import pack, replace
+from server.workspace.class_mark import leave_mark
 from server.workspace.errors import WorkspaceFileError
 from server.workspace.files import WorkspaceFiles
 from server.workspace.location import world_workspace
@@ -42,15 +43,24 @@ ARCHIVE_PATH = "/api/workspace/archive"
 
 
 class WorkspaceCopies:
-    """The copies, in ``folder`` (the class's workspaces folder); ``shares`` says whether a worker
-    works in that folder itself."""
+    """The copies, in ``folder`` (the class's workspaces folder), for the workers that do not work
+    in that folder themselves (``shares``: the same mark, left by ``leave_mark``)."""
 
-    def __init__(self, folder: Path, limits: WorkspaceLimits, shares: Callable[[WorkerRef], bool]) -> None:
+    def __init__(self, folder: Path, limits: WorkspaceLimits) -> None:
         self.folder = folder
         self.limits = limits
-        self.shares = shares
+        self.mark: str | None = None  # the folder's mark, once left
         self._handed: dict[str, str] = {}  # world → the worker its files were handed to
         self._copied: dict[str, str] = {}  # world → the version of that worker's tree copied back
+
+    def leave_mark(self) -> None:
+        """Mark the workspaces folder (blocking): a worker that reads this mark shares it
+        (server/workspace/class_mark.py)."""
+        self.mark = leave_mark(self.folder)
+
+    def shares(self, ref: WorkerRef) -> bool:
+        """Whether world worker ``ref`` works in this class's workspaces folder (the same mark)."""
+        return self.mark is not None and ref.workspaces_mark == self.mark
 
     def files(self, world: str) -> WorkspaceFiles:
         return WorkspaceFiles(world_workspace(self.folder, world), self.limits)
