@@ -73,9 +73,9 @@ class StartPacer:
             return self._admit(self._clock())
 
     def _admit(self, now: float) -> float | None:
-        # A slot that frees within a quarter of ``hold_s`` counts as free: a start that comes back
-        # at its turn a little before the start ahead of it (admitted a little late) frees its
-        # slot goes now, not to the back of the line (which had 60 paced starts take 104 s).
+        # A slot that frees within a quarter of ``hold_s`` counts as free. The start ahead may have
+        # been admitted a little late, so its slot frees a little after the next start's turn: that
+        # start goes at its turn, not to the back of the line (60 paced starts took 104 s so).
         self._held = [t for t in self._held if t > now + self.hold_s * GRACE]
         if len(self._held) < self.slots:
             self._held.append(now + self.hold_s)
