@@ -96,6 +96,9 @@ def student_code_line(settings: Settings) -> str | None:
     why = probe()
     if why is not None:
         return f"error: {StudentCodeRefusedError(why)}"
+    from server.processes.sandbox import memory_layer
+
     limits = settings.sandbox
-    return (f"Students' nodes run sandboxed (bubblewrap: no network but their world's graph, "
-            f"{limits.memory_mib} MiB, {limits.processes} processes, nice {limits.nice})")  # fmt: skip
+    return (f"Students' nodes run sandboxed (bubblewrap, seccomp, no capability, the workspace read-only, "
+            f"no network but their world's graph; {limits.memory_mib} MiB counted {memory_layer()}, "
+            f"{limits.processes} processes, nice {limits.nice})")  # fmt: skip

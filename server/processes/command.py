@@ -7,7 +7,7 @@ import json
 import os
 import secrets
 import sys
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -20,6 +20,18 @@ from .interface_modules import WORKSPACE_ENV
 from .runner import PARENT_ENV
 
 CLIENT_DIR = Path(__file__).resolve().parents[2] / "client"
+RUNNER_MODULE = "server.processes.runner"
+
+
+@dataclass(frozen=True)
+class PreparedStart:
+    """What a node's start needs at the moment it starts, made then (a sandboxed node's control
+    group and seccomp filter: server/processes/sandbox.py)."""
+
+    argv: list[str]
+    pass_fds: tuple[int, ...] = ()  # descriptors the new process gets; closed here once it started
+    # Called once the process has ended, with its exit code: a line to add to its output, or None.
+    finish: Callable[[int], str | None] = lambda _code: None
 
 
 @dataclass(frozen=True)
@@ -28,6 +40,8 @@ class NodeCommand:
     env: dict[str, str]
     zid: str  # the Zenoh session id the process will have, so the graph can tell which process it is
     sandboxed: bool = False  # argv is bwrap's: the node is its child (server/processes/sandbox.py)
+    # Makes what the start needs when it starts (None: argv as it is, nothing to pass or clean up).
+    prepare: Callable[[list[str], str], PreparedStart] | None = None
 
 
 def ros_args(
@@ -81,7 +95,9 @@ def node_command(
     """Run ``target`` (a student's file or console script, or ``module:Class`` of a built-in node) in
     its own process, joined to the router at ``router`` (``tcp/HOST:PORT``); the interface packages
     of ``workspace`` import in it."""
-    runner = [sys.executable, "-u", "-m", "server.processes.runner"]
+    # -P: neither the current folder nor a script's folder goes first on sys.path (a student's
+    # ``server/`` package there would replace the runner).
+    runner = [sys.executable, "-P", "-u", "-m", RUNNER_MODULE]
     # Absolute: a sandboxed node starts in its workspace, not in the server's folder.
     if isinstance(target, Path):
         target = target.resolve()

@@ -1,16 +1,18 @@
 """The limits a sandboxed node process takes on as it starts, before any of the student's code runs.
 
 The sandbox (server/processes/sandbox.py) passes them in ``$ROS2LAB_SANDBOX``; the runner applies
-them first thing: rlimits on memory (its data: heap, stacks and private mappings; not the address
-space, which Zenoh's threads reserve by the hundred MiB unused), processes, open files, file size
-and CPU time; a lower CPU priority than the sims (nice, for its session's scheduling group too:
-server/processes/priority.py); and, when the sandbox was started by root, a uid and gid of its
-own with no supplementary groups (which also drops every capability). Hard limits go down with the
-soft ones, so the node cannot raise them again.
+them first thing: rlimits on memory (its data: heap, stacks and private mappings), processes, open
+files, file size and CPU time, and a lower CPU priority than the sims (nice, for its session's
+scheduling group too: server/processes/priority.py). Hard limits go down with the soft ones, so
+the node cannot raise them again. Where the machine gives the server no memory cgroup
+(server/processes/cgroups.py), which counts shared mappings and tmpfs pages too, the address space
+is limited as well (``RLIMIT_AS``, with room for what Zenoh's threads reserve and never touch).
 
-Processes are counted per user namespace (Linux 5.14 and later), so a non-root server's sandboxes
-each get their own 64 without the server's own threads counted in; under a root server, per uid,
-and each world's nodes have a uid of their own (``for_domain``).
+The uid is not changed here: under a root server, ``setpriv`` made the process a uid of its world's
+before Python started (the sandbox's command). Processes are counted per user namespace (Linux 5.14
+and later), so a non-root server's sandboxes each get their own 64 without the server's own
+threads counted in; under a root server, per uid, and each world's nodes have a uid of their own
+(``for_domain``).
 """
 
 from __future__ import annotations
@@ -19,7 +21,6 @@ import dataclasses
 import os
 import resource
 from dataclasses import dataclass, fields
-from pathlib import Path
 
 from .priority import run_below_sims
 
@@ -40,18 +41,21 @@ class Confinement:
     nice: int = 19  # added to its niceness (19 at most): the sims' loop goes first
     uid: int = 61000  # a server running as root starts the node as this user (plus its ROS domain)
     gid: int = 61000
-    drop_root: bool = False  # started by root: become ``uid``/``gid``
+    address_space_mib: int = 0  # RLIMIT_AS where no cgroup counts the memory (0: not limited)
+    reserved_mib: int = 1536  # what the address space may hold beyond memory_mib: unused reservations
 
-    def encode(self, *, drop_root: bool) -> str:
-        values = {f.name: getattr(self, f.name) for f in fields(self)} | {"drop_root": int(drop_root)}
-        return ",".join(f"{k}={int(v)}" for k, v in values.items())
+    def encode(self) -> str:
+        return ",".join(f"{f.name}={int(getattr(self, f.name))}" for f in fields(self))
 
     @classmethod
     def decode(cls, text: str) -> Confinement:
         pairs = dict(item.split("=", 1) for item in text.split(",") if "=" in item)
         known = {f.name for f in fields(cls)}
-        values = {k: int(v) for k, v in pairs.items() if k in known and k != "drop_root"}
-        return cls(**values, drop_root=pairs.get("drop_root") == "1")
+        return cls(**{k: int(v) for k, v in pairs.items() if k in known})
+
+    def counting_address_space(self) -> Confinement:
+        """These limits with the address space limited too (no cgroup counts shared memory)."""
+        return dataclasses.replace(self, address_space_mib=self.memory_mib + self.reserved_mib)
 
     def apply(self) -> None:
         """Take the limits on, in this process (the runner, before the student's code)."""
@@ -62,20 +66,11 @@ class Confinement:
             resource.RLIMIT_FSIZE: self.file_size_mib * MIB,
             resource.RLIMIT_CPU: self.cpu_s,
         }
+        if self.address_space_mib:
+            limits[resource.RLIMIT_AS] = self.address_space_mib * MIB
         for which, value in limits.items():
             resource.setrlimit(which, (value, value))
         run_below_sims(self.nice)  # with its session's group: bubblewrap made it a session leader
-        if self.drop_root and os.getuid() == 0:
-            os.setgroups([])
-            os.setgid(self.gid)
-            os.setuid(self.uid)
-
-    def give(self, workspace: Path) -> None:
-        """Make ``workspace`` the node's own (a root server's node runs as ``uid``, not as root)."""
-        for path in [workspace, *workspace.rglob("*")]:
-            info = path.lstat()
-            if (info.st_uid, info.st_gid) != (self.uid, self.gid):
-                os.lchown(path, self.uid, self.gid)
 
     def for_domain(self, domain_id: int) -> Confinement:
         """The limits of a node of the world in ROS domain ``domain_id``: its own uid and gid."""

@@ -43,7 +43,7 @@ from server.bus.parameter_service import serve_parameters
 from server.packages.entry_points import EntryPoint
 from server.params_file import ParamsFileError, read_params_file
 
-from . import confinement, interface_modules, lifeline
+from . import confinement, interface_modules, lab_packages, node_init
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
@@ -225,13 +225,14 @@ def main(argv: list[str] | None = None) -> int:
     limits = confinement.from_env()
     if limits is not None:  # a sandboxed node: its limits before any of its code
         limits.apply()
-        lifeline.hold_on_from_env()  # it ends when the server does
+        node_init.split()  # pid 1 stays the lab's, holding the lifeline; the node runs in the child
     _die_with_parent()
     problem = params_files_problem(argv)
     if problem is not None:
         _say(problem)
         return EXIT_USAGE
     interface_modules.install()
+    lab_packages.pin()  # before any student's folder is on sys.path
     if len(argv) >= 2 and argv[0] == "--builtin":
         return run_builtin(argv[1], argv[2:])
     if len(argv) >= 5 and argv[0] == "--entry-point":

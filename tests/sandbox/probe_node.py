@@ -3,13 +3,20 @@
 server that sandboxes students' nodes and through one started with ``--student-code unsandboxed``.
 """
 
+import ctypes
+import mmap
 import os
 import socket
 import sys
+import time
 
 FORKS = 100  # more than the sandbox's 64 processes, few enough for any machine
 MEMORY_MIB = 768  # more than the sandbox's 512 MiB
 CHUNK_MIB = 64
+SHARED_MIB = 1024  # shared memory, which RLIMIT_DATA does not count: twice the sandbox's 512 MiB
+SHM_MIB = 256
+DEEP = 1100  # nested folders: deeper than Python's recursion limit
+SWAP_S = 8.0  # how long the link race runs
 
 
 def param(name):
@@ -68,6 +75,91 @@ def write(path):
     return f"wrote {path}"
 
 
+def status(_arg):
+    """What the kernel says of this process as the student's code starts."""
+    fields = {}
+    with open("/proc/self/status") as file:
+        for line in file:
+            key, _, value = line.partition(":")
+            fields[key] = value.split()[0] if value.split() else ""
+    return " ".join(f"{k}={fields[k]}" for k in ("Uid", "CapEff", "NoNewPrivs", "Seccomp"))
+
+
+def handle(path):
+    """Open ``path`` by its file handle (past mounts and namespaces, given CAP_DAC_READ_SEARCH)."""
+    libc = ctypes.CDLL(None, use_errno=True)
+    buffer = ctypes.create_string_buffer(8 + 128)
+    ctypes.memmove(buffer, (128).to_bytes(4, sys.byteorder), 4)
+    mount_id = ctypes.c_int()
+    if libc.name_to_handle_at(-100, path.encode(), buffer, ctypes.byref(mount_id), 0) != 0:
+        raise OSError(ctypes.get_errno(), f"name_to_handle_at: {os.strerror(ctypes.get_errno())}")
+    root = os.open("/", os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        fd = libc.open_by_handle_at(root, buffer, os.O_RDONLY | os.O_DIRECTORY)
+        if fd < 0:
+            raise OSError(ctypes.get_errno(), f"open_by_handle_at: {os.strerror(ctypes.get_errno())}")
+        os.close(fd)
+    finally:
+        os.close(root)
+    return f"opened {path} by its handle"
+
+
+def shm(path):
+    """Fill a file in a tmpfs (its pages are memory no rlimit counts)."""
+    try:
+        with open(path, "wb") as file:
+            block = b"x" * (1024 * 1024)
+            for _ in range(SHM_MIB):
+                file.write(block)
+    finally:
+        if os.path.exists(path):
+            os.remove(path)
+    return f"wrote {SHM_MIB} MiB to {path}"
+
+
+def shared(_arg):
+    """Touch shared anonymous memory (not counted by RLIMIT_DATA)."""
+    size = SHARED_MIB * 1024 * 1024
+    region = mmap.mmap(-1, size, flags=mmap.MAP_SHARED)
+    for offset in range(0, size, mmap.PAGESIZE):
+        region[offset] = 1
+    return f"touched {SHARED_MIB} MiB of shared memory"
+
+
+def link(pair):
+    """A symbolic link at ``where`` to ``target`` (``where=target``)."""
+    where, target = pair.split("=", 1)
+    os.symlink(target, where)
+    return f"linked {where} to {target}"
+
+
+def swap(pair):
+    """Swap the file ``where`` for a link to ``target`` and back, for SWAP_S seconds."""
+    where, target = pair.split("=", 1)
+    with open(where, "rb") as file:
+        original = file.read()
+    spare, swaps, until = where + "-link", 0, time.monotonic() + SWAP_S
+    while time.monotonic() < until:
+        os.symlink(target, spare)
+        os.rename(spare, where)  # now a link
+        with open(spare, "wb") as file:
+            file.write(original)
+        os.rename(spare, where)  # a file again
+        swaps += 1
+    return f"swapped {swaps} times"
+
+
+def deep(folder):
+    os.mkdir(folder)
+    path = folder
+    for _ in range(DEEP):
+        path = os.path.join(path, "d")
+        os.mkdir(path)
+    with open(os.path.join(path, "deep.txt"), "w") as file:
+        file.write("at the bottom\n")
+    return f"made {DEEP} nested folders"
+
+
 def priority(_arg):
     try:
         with open("/proc/self/autogroup") as file:
@@ -87,6 +179,13 @@ CHECKS = {
     "memory": memory,
     "write": write,
     "priority": priority,
+    "status": status,
+    "handle": handle,
+    "shm": shm,
+    "shared": shared,
+    "link": link,
+    "swap": swap,
+    "deep": deep,
 }
 
 

@@ -199,11 +199,22 @@ def test_sandbox_cannot_fork_past_its_process_limit(klass: Class) -> None:
     blocked_sandboxed_works_unsandboxed(klass, "fork", "")
 
 
-def test_sandbox_cannot_write_outside_its_workspace_but_writes_inside(klass: Class) -> None:
+def test_sandbox_cannot_write_outside_its_workspace(klass: Class) -> None:
     blocked_sandboxed_works_unsandboxed(klass, "write", str(klass.root / "outside" / "note.txt"))
-    inside = world_workspace(klass.root, klass.ada) / "src" / "probe" / "note.txt"
-    assert probe_line(klass.ada, "write", str(inside)).startswith("PROBE write ok")
-    assert inside.read_text() == "written by a student's node\n"
+
+
+def test_sandbox_workspace_is_read_only_to_a_node_which_writes_in_its_tmp(klass: Class) -> None:
+    """A node never changes the tree the API serves (no link, no race, no disk filled through it):
+    its workspace is read-only inside, and its /tmp takes what it writes."""
+    for world in (klass.cy, klass.ada):  # the unsandboxed control first
+        inside = world_workspace(klass.root, world) / "src" / "probe" / "note.txt"
+        line = probe_line(world, "write", str(inside))
+        assert line.startswith("PROBE write blocked" if world is klass.ada else "PROBE write ok"), line
+        assert inside.exists() is (world is klass.cy)
+    assert probe_line(klass.ada, "write", "/tmp/note.txt").startswith("PROBE write ok")
+    assert probe_line(klass.ada, "read", "src/probe/probe_node.py").startswith(
+        "PROBE read ok"
+    )  # its own files
 
 
 def test_sandbox_node_over_its_memory_limit_is_killed_with_a_clear_line(klass: Class) -> None:
@@ -270,3 +281,139 @@ def test_sandbox_handout_keyboard_manager_runs_and_its_messages_reach_its_world(
         assert "a key was pressed!" in lines, lines
     finally:
         klass.ada.stop(group)
+
+
+# Attacks by a student who reads the code: each tried on the sandboxing server, and on the
+# unsandboxed one where the blocked step must work (so the test cannot pass by accident).
+
+
+def put_file(world: World, path: str, text: str) -> None:
+    saved = HTTP.put(f"{world.app.url}/api/workspace/files/{path}", json={"text": text},
+                     headers=world.headers(), timeout=30.0)  # fmt: skip
+    assert saved.status_code in (200, 201), saved.text
+
+
+SHADOW = "print('SHADOW RAN as', __import__('os').getuid(), flush=True)\n"
+
+
+def test_sandbox_a_shadow_runner_in_the_workspace_never_runs(klass: Class) -> None:
+    """``server/processes/runner.py`` (and ``rclpy``, ``std_msgs``) saved at the workspace's root
+    and beside the node: the lab's runner and packages run, never these, on both servers."""
+    shadows = ["server/__init__.py", "server/processes/__init__.py", "server/processes/runner.py",
+               "rclpy/__init__.py", "std_msgs/__init__.py", "src/probe/rclpy/__init__.py",
+               "src/probe/std_msgs/__init__.py", "src/probe/server/__init__.py"]  # fmt: skip
+    node = (
+        "import rclpy\nimport std_msgs.msg\nimport server.processes.runner as runner\n"
+        "print('FILES', rclpy.__file__, std_msgs.msg.__file__, runner.__file__, flush=True)\n"
+        "if __name__ == '__main__':\n    pass\n"
+    )
+    for world in (klass.cy, klass.ada):
+        for path in shadows:
+            put_file(world, path, SHADOW)
+        put_file(world, "src/probe/lab_first.py", node)
+        try:
+            lines = output_of(world, run(world, "lab_first.py"))
+            assert not any("SHADOW" in line for line in lines), lines
+            (files,) = [line.split()[1:] for line in lines if line.startswith("FILES ")]
+            assert all(Path(f).is_relative_to(REPO) and "workspaces" not in Path(f).parts for f in files), (
+                files
+            )
+        finally:
+            for path in (
+                "server",
+                "rclpy",
+                "std_msgs",
+                "src/probe/rclpy",
+                "src/probe/std_msgs",
+                "src/probe/server",
+            ):
+                HTTP.delete(
+                    f"{world.app.url}/api/workspace/files/{path}", headers=world.headers(), timeout=30.0
+                )
+
+
+def test_sandbox_node_starts_with_no_capability_no_root_no_new_privileges_and_seccomp(klass: Class) -> None:
+    fields = dict(item.split("=") for item in probe_line(klass.ada, "status").split()[3:])
+    assert fields["CapEff"] == "0000000000000000" and fields["Uid"] != "0", fields
+    assert fields["NoNewPrivs"] == "1" and fields["Seccomp"] == "2", fields
+    control = dict(item.split("=") for item in probe_line(klass.cy, "status").split()[3:])
+    if os.geteuid() == 0:  # the unsandboxed node is the root server's own user
+        assert control["CapEff"] != "0000000000000000" and control["Seccomp"] == "0", control
+
+
+def test_sandbox_files_cannot_be_opened_by_handle(klass: Class) -> None:
+    if os.geteuid() != 0:
+        pytest.skip("opening by handle needs CAP_DAC_READ_SEARCH: the control works only under a root server")
+    blocked_sandboxed_works_unsandboxed(klass, "handle", "/")
+
+
+def test_sandbox_shared_memory_and_tmpfs_are_counted(klass: Class) -> None:
+    """Shared mappings and tmpfs pages escape RLIMIT_DATA: a cgroup (or the address space) counts
+    them, and /dev/shm is capped."""
+    blocked_sandboxed_works_unsandboxed(klass, "shm", "/dev/shm/ros2lab-probe")
+    assert probe_line(klass.cy, "shared").startswith("PROBE shared ok touched")
+    lines = output_of(klass.ada, run(klass.ada, "probe_node.py", check="shared"))
+    assert not any(line.startswith("PROBE shared ok") for line in lines), lines
+    assert "node killed: memory limit 512 MiB" in lines or any("blocked" in line for line in lines), lines
+
+
+def test_sandbox_a_link_at_the_saves_temporary_name_is_not_followed(klass: Class) -> None:
+    """A node plants ``.victim.py.saving`` pointing at another student's file, then its student
+    saves ``victim.py``: sandboxed, the node cannot plant it; unsandboxed it can, and the save
+    still writes its own file only."""
+    for world in (klass.cy, klass.ada):
+        ws = world_workspace(klass.root, world)
+        victim = ws / "src" / "probe" / "victim.py"
+        put_file(world, "src/probe/victim.py", "# mine\n")
+        target = world_workspace(klass.root, klass.bob) / "notes.txt"
+        before = target.read_text()
+        planted = ws / "src" / "probe" / ".victim.py.saving"
+        line = probe_line(world, "link", f"{planted}={target}")
+        assert line.startswith("PROBE link ok" if world is klass.cy else "PROBE link blocked"), line
+        put_file(world, "src/probe/victim.py", "# saved again\n")
+        assert victim.read_text() == "# saved again\n" and not victim.is_symlink()
+        assert target.read_text() == before
+        planted.unlink(missing_ok=True)
+
+
+def test_sandbox_reads_never_follow_a_link_a_node_swaps_in(klass: Class) -> None:
+    """Unsandboxed, a node swaps its file for a link to another student's file and back while its
+    student reads it: no answer holds the other file. Sandboxed, it cannot swap at all."""
+    secret = world_workspace(klass.root, klass.bob) / "notes.txt"
+    for world in (klass.cy, klass.ada):
+        put_file(world, "src/probe/swapped.txt", "my own text\n")
+        where = world_workspace(klass.root, world) / "src" / "probe" / "swapped.txt"
+        group = run(world, "probe_node.py", check="swap", arg=f"{where}={secret}")
+        answers: dict[int, int] = {}
+        try:
+            for _ in range(300):  # bounded; the node swaps for 8 s
+                reply = world.get("/api/workspace/files/src/probe/swapped.txt")
+                answers[reply.status_code] = answers.get(reply.status_code, 0) + 1
+                assert "another student's work" not in reply.text, reply.text
+        finally:
+            lines = output_of(world, group)
+        assert set(answers) <= {200, 404, 422}, answers
+        if world is klass.cy:
+            assert any(line.startswith("PROBE swap ok") for line in lines), lines
+        else:
+            assert any(line.startswith("PROBE swap blocked") for line in lines), lines
+            assert answers == {200: 300}, answers
+
+
+def test_sandbox_a_node_cannot_fill_or_nest_its_workspace_and_the_api_survives_a_deep_one(
+    klass: Class,
+) -> None:
+    for world in (klass.cy, klass.ada):
+        folder = world_workspace(klass.root, world) / "src" / "probe" / "deep"
+        line = probe_line(world, "deep", str(folder))
+        assert line.startswith("PROBE deep ok" if world is klass.cy else "PROBE deep blocked"), line
+        # Whatever is on the disk, the API answers: the unsandboxed node made 1,100 folders.
+        assert world.get("/api/workspace/tree").status_code == 200
+        assert world.get("/api/workspace/archive").status_code == 200
+        put_file(world, "src/probe/after_deep.py", "# still saves\n")
+        removed = HTTP.delete(
+            f"{world.app.url}/api/workspace/files/src/probe/deep", headers=world.headers(), timeout=60.0
+        )
+        assert removed.status_code in (200, 204, 404), removed.text
+        assert not folder.exists()
+    assert probe_line(klass.ada, "write", "/tmp/fits.txt").startswith("PROBE write ok")

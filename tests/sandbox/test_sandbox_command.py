@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from server.processes.command import node_command
+from server.processes.command import RUNNER_MODULE, node_command
 from server.processes.confinement import LIMITS_ENV, Confinement
-from server.processes.sandbox import INSIDE_ROUTER, PROJECT, SOCKET_DIR, Sandbox
+from server.processes.sandbox import INSIDE_ROUTER, PROJECT, SECCOMP_FD, SETPRIV, SOCKET_DIR, Sandbox
 from server.transport.acl import Credentials
 
 
@@ -36,16 +36,36 @@ def wrapped(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> tuple[list[str],
     return out.argv, out.env, workspace
 
 
-def test_sandbox_command_binds_the_workspace_rw_and_the_code_read_only(wrapped: tuple[list[str], dict[str, str], Path]) -> None:  # fmt: skip
+def test_sandbox_command_binds_the_workspace_and_the_code_read_only(wrapped: tuple[list[str], dict[str, str], Path]) -> None:  # fmt: skip
     argv, _env, workspace = wrapped
     read_write, read_only = binds(argv, "--bind"), binds(argv, "--ro-bind")
-    assert read_write == {str(workspace): str(workspace)}
+    assert read_write == {} and read_only[str(workspace)] == str(workspace)
     assert read_only[SOCKET_DIR] == str(workspace.parent / "router")
     assert {str(PROJECT / name) for name in ("server", "sim", "client")} <= set(read_only)
     assert str(PROJECT) not in read_only and str(PROJECT / "tests") not in read_only
     for namespace in ("--unshare-user", "--unshare-pid", "--unshare-net", "--unshare-ipc", "--unshare-uts"):
         assert namespace in argv
     assert argv[argv.index("--uid") + 1] != "0"
+    assert argv[argv.index("--seccomp") + 1] == SECCOMP_FD  # the filter's descriptor, made at the start
+    inside = argv[argv.index("--") + 1 :]
+    assert (
+        inside[1:3] == ["-I", "-B"] and RUNNER_MODULE in inside
+    )  # isolated: no folder of the student's first
+
+
+def test_sandbox_command_as_root_drops_every_capability_and_becomes_the_worlds_uid(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr("server.processes.sandbox.shutil.which", lambda _name: "/usr/bin/bwrap")
+    monkeypatch.setattr("server.processes.sandbox.os.geteuid", lambda: 0)
+    (tmp_path / "ws").mkdir()
+    command = node_command(tmp_path / "ws" / "n.py", [], router=INSIDE_ROUTER, env={}, domain_id=4,
+                           workspace=tmp_path / "ws")  # fmt: skip
+    argv = Sandbox(tmp_path / "router.sock", Confinement()).wrap(command, tmp_path / "ws").argv
+    own, inside = argv[: argv.index("--")], argv[argv.index("--") + 1 :]
+    assert own[own.index("--cap-drop") + 1] == "ALL" and "--unshare-user" not in own
+    assert inside[0] == SETPRIV and inside[inside.index("--reuid") + 1] == str(Confinement().uid + 4)
+    assert {"--clear-groups", "--no-new-privs"} <= set(inside[: inside.index("--")])
 
 
 def test_sandbox_command_environment_is_only_what_a_node_needs(wrapped: tuple[list[str], dict[str, str], Path]) -> None:  # fmt: skip
@@ -60,10 +80,9 @@ def test_sandbox_command_environment_is_only_what_a_node_needs(wrapped: tuple[li
 
 def test_confinement_round_trips_through_its_variable() -> None:
     limits = Confinement(memory_mib=300, processes=20, open_files=100, file_size_mib=5, cpu_s=9, nice=4)
-    assert Confinement.decode(limits.encode(drop_root=True)) == Confinement(
-        memory_mib=300, processes=20, open_files=100, file_size_mib=5, cpu_s=9, nice=4, drop_root=True
-    )
-    assert Confinement.decode(limits.encode(drop_root=False)).drop_root is False
+    assert Confinement.decode(limits.encode()) == limits
+    counted = limits.counting_address_space()
+    assert Confinement.decode(counted.encode()) == counted and counted.address_space_mib > 300
 
 
 def test_confinement_of_each_world_is_a_uid_of_its_own() -> None:
