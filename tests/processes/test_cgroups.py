@@ -1,0 +1,55 @@
+"""A node's control group (server/processes/cgroups.py): where it is found from the process's
+own groups and the mounts, what a new group is given, and how an OOM kill is read. The kernel's
+side (a node over its limit ended) is tests/sandbox/test_sandbox.py's, on a live class server."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from server.processes.cgroups import JOIN_SCRIPT, CgroupParent, NodeCgroup, _folder
+
+
+def test_cgroups_folder_is_the_group_below_its_mounts_root() -> None:
+    assert _folder("/", "/sys/fs/cgroup/memory", "/class/a") == Path("/sys/fs/cgroup/memory/class/a")
+    assert _folder("/docker/x", "/sys/fs/cgroup", "/docker/x/inner") == Path("/sys/fs/cgroup/inner")
+    assert _folder("/docker/x", "/sys/fs/cgroup", "/docker/x") == Path("/sys/fs/cgroup")
+    assert _folder("/docker/x", "/sys/fs/cgroup", "/elsewhere") is None  # not reachable through it
+
+
+def test_cgroups_version_2_group_gets_memory_and_pids_limits(tmp_path: Path) -> None:
+    group = CgroupParent(tmp_path, tmp_path, 2).make("node-1", memory_mib=512, processes=65)
+    (folder,) = group.folders
+    assert (folder / "memory.max").read_text() == str(512 * 1024 * 1024)
+    assert (folder / "pids.max").read_text() == "65"
+    assert group.oom_kills() == 0
+    (folder / "memory.events").write_text("low 0\nhigh 0\nmax 3\noom 1\noom_kill 1\n")
+    assert group.oom_kills() == 1
+
+
+def test_cgroups_version_1_group_has_a_folder_in_each_hierarchy(tmp_path: Path) -> None:
+    (tmp_path / "memory").mkdir()
+    (tmp_path / "pids").mkdir()
+    group = CgroupParent(tmp_path / "memory", tmp_path / "pids", 1).make(
+        "node-2", memory_mib=64, processes=20
+    )
+    memory, pids = group.folders
+    assert (memory / "memory.limit_in_bytes").read_text() == str(64 * 1024 * 1024)
+    assert (pids / "pids.max").read_text() == "20"
+    (memory / "memory.oom_control").write_text("oom_kill_disable 0\nunder_oom 0\noom_kill 2\n")
+    assert group.oom_kills() == 2
+
+
+def test_cgroups_join_prefix_writes_the_shells_pid_into_each_group_then_runs_the_command(
+    tmp_path: Path,
+) -> None:
+    import subprocess
+
+    group = NodeCgroup((tmp_path / "a", tmp_path / "b"), 1)
+    for folder in group.folders:
+        folder.mkdir()
+    done = subprocess.run(
+        [*group.join_prefix(), "/bin/sh", "-c", "echo ran $$"], capture_output=True, text=True, check=True
+    )
+    pid = done.stdout.split()[1]  # exec: the command is the shell that joined
+    assert [(f / "cgroup.procs").read_text().strip() for f in group.folders] == [pid, pid]
+    assert "exit 125" in JOIN_SCRIPT  # a group that refuses the pid stops the start
