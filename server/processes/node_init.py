@@ -33,21 +33,25 @@ def split() -> None:
     ended (or the server has) and never returns."""
     line = os.environ.pop(lifeline.LIFELINE_ENV, None)
     fd = int(line) if line is not None and line.isdigit() else None
+    # Held until pid 1 forwards them: a Ctrl-C that comes as the node starts reaches the node.
+    held = signal.pthread_sigmask(signal.SIG_BLOCK, FORWARDED)
     child = os.fork()
     if child == 0:
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)
         if fd is not None:
             with contextlib.suppress(OSError):
                 os.close(fd)
         return
-    os._exit(_stay(child, fd))
+    os._exit(_stay(child, fd, held))
 
 
-def _stay(child: int, fd: int | None) -> int:
+def _stay(child: int, fd: int | None, held: set[int | signal.Signals]) -> int:
     """Pid 1's life: the node's exit code, as a shell reports it (128 + a signal that ended it)."""
     libc = ctypes.CDLL(None, use_errno=True)
     libc.prctl(PR_SET_DUMPABLE, 0, 0, 0, 0)
     for sig in FORWARDED:
         signal.signal(sig, lambda number, _frame: _forward(child, number))
+    signal.pthread_sigmask(signal.SIG_SETMASK, held)
     if fd is not None:
         threading.Thread(target=_hold, args=(fd,), name="lifeline", daemon=True).start()
     while True:
