@@ -230,12 +230,19 @@ async def type_info(type_name: str) -> dict[str, Any]:
 
 
 def died_nodes(lab: Lab) -> list[dict[str, Any]]:
-    """Node processes that ended and are not running again (yet), for the node list."""
+    """Node processes that ended and that their launch respawns, while they wait for their next try.
+
+    A process that ended for good is no node any more: it leaves the lists at once (its run's
+    output said so with its exit code, and its launch, GET /api/launches, keeps it). Listing it
+    as "died" made a crash outlive the fixed run that followed it, so Stop looked as if it failed.
+    """
     out = []
     remote = lab.remote_graph()
     for entry in lab.launcher.launched:
         process = entry.process
         if process is None or process.state != "died":
+            continue
+        if entry.respawn is None or entry.respawn.state != "waiting":
             continue
         action = entry.action
         namespace = action.namespace or "/"

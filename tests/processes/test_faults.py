@@ -1,11 +1,13 @@
-"""A node process's faults stay in its process: a raise ends it (listed as died, with its exit code),
-a loop that never returns leaves every other node running, and no node process outlives the app."""
+"""A node process's faults stay in its process: a raise ends it (its launch says died, with its exit
+code, and it leaves the node list), a loop that never returns leaves every other node running, and
+no node process outlives the app."""
 
 from __future__ import annotations
 
 import os
 import signal
 from pathlib import Path
+from typing import Any
 
 from support.app import App
 
@@ -22,33 +24,59 @@ def _countdown_count(app: App) -> int:
     return int(app.get("/api/topics/countdown")["publish_count"])
 
 
-def test_a_node_process_that_raises_dies_alone_listed_as_died_with_its_exit_code(tmp_path: Path) -> None:
+def _launch_of(app: App, launch_id: object) -> dict[str, Any] | None:
+    return next((g for g in app.get("/api/launches") if g["id"] == launch_id), None)
+
+
+def _died(app: App, launch_id: object) -> bool:
+    group = _launch_of(app, launch_id)
+    return group is not None and group["nodes"][0]["state"] == "died"
+
+
+def _listed(app: App, name: str) -> bool:
+    return node_entry(app, name) is not None or any(n["name"] == name for n in app.get("/api/graph")["nodes"])
+
+
+def test_a_node_process_that_raises_dies_alone_and_leaves_the_node_list(tmp_path: Path) -> None:
     make_workspace(tmp_path, {"src/faults/crasher.py": CRASHES})
     app = App(tmp_path, "--launch", "rocket", "start_delay:=1", cwd=tmp_path)
     try:
         started = app.post("/api/run", {"package": "faults", "executable": "crasher.py"})
         assert started.status_code == 201, started.text
-
-        def died() -> bool:
-            entry = node_entry(app, "/Crasher")
-            return entry is not None and entry["state"] == "died"
-
-        app.wait_for(died, "the crashing node to be listed as died")
-        entry = node_entry(app, "/Crasher")
-        assert entry is not None and entry["exit_code"] == 1 and str(entry["location"]).startswith("process ")
-        # Its launch says so too (what ``ros2lab launch`` reports once, as ros2 launch does).
-        (launched,) = next(g for g in app.get("/api/launches") if g["id"] == started.json()["id"])["nodes"]
+        launch_id = started.json()["id"]
+        app.wait_for(lambda: node_entry(app, "/Crasher") is not None, "the crashing node in the graph")
+        app.wait_for(lambda: _died(app, launch_id), "the crashing node's launch to say it died")
+        # Its launch says so, with its exit code (what ``ros2lab launch`` reports once, as ros2
+        # launch does); the graph and the node list no longer have it.
+        (launched,) = _launch_of(app, launch_id)["nodes"]  # type: ignore[index]
         assert (launched["state"], launched["exit_code"]) == ("died", 1)
-        graph = app.get("/api/graph")
-        assert {"name": "/Crasher", "state": "died"}.items() <= next(
-            n for n in graph["nodes"] if n["name"] == "/Crasher"
-        ).items()
+        app.wait_for(lambda: not _listed(app, "/Crasher"), "the dead node to leave the lists", 2.0)
         log = app.log_tail(50000)
         assert "RuntimeError: sensor unplugged" in log and "Traceback" in log  # its traceback, printed
         assert "process has died" in log
         before = _countdown_count(app)
         app.wait_for(lambda: _countdown_count(app) >= before + 2, "the countdown to keep going")
-        assert all(n["state"] == "active" for n in app.get("/api/nodes") if n["name"] != "/Crasher")
+        assert all(n["state"] == "active" for n in app.get("/api/nodes"))
+    finally:
+        app.stop()
+
+
+def test_a_crashed_node_run_again_and_stopped_is_in_no_list_5_s_after_stop(tmp_path: Path) -> None:
+    """The tester's case: a run that crashed, then the corrected file run and stopped (the page's
+    Run and Stop): nothing of either stays in the graph, alive or dead."""
+    workspace = make_workspace(tmp_path, {"src/faults/crasher.py": CRASHES})
+    app = App(tmp_path, "--launch", "rocket", cwd=tmp_path)
+    try:
+        crashed = app.post("/api/run", {"package": "faults", "executable": "crasher.py"})
+        assert crashed.status_code == 201, crashed.text
+        app.wait_for(lambda: _died(app, crashed.json()["id"]), "the first run to crash")
+        (workspace / "src/faults/crasher.py").write_text(CRASHES.replace("raise RuntimeError", "print"))
+        fixed = app.post("/api/run", {"package": "faults", "executable": "crasher.py"})
+        assert fixed.status_code == 201, fixed.text
+        app.wait_for(lambda: (node_entry(app, "/Crasher") or {}).get("state") == "active", "the fixed run")
+        assert app.delete(f"/api/launches/{fixed.json()['id']}").status_code == 200
+        app.wait_for(lambda: not _listed(app, "/Crasher"), "the stopped node to leave the lists", 5.0)
+        assert not any(n["name"] == "/Crasher" for n in app.get("/api/nodes", hidden=True))
     finally:
         app.stop()
 
