@@ -11,8 +11,10 @@ limits, connecting over the Unix socket). What is measured, each from just befor
 
 * start → joined: until the node's liveliness token is on the router (a Zenoh liveliness query
   for ``@ros2_lv/0/**`` every 20 ms, matching the node's name);
-* RSS one second later: the node process's VmRSS (/proc/PID/status); for the sandbox also the
-  bwrap process above it, which stays as its parent.
+* memory one second later: the node process's VmRSS (/proc/PID/status), and the PSS of every
+  process it takes (/proc/PID/smaps_rollup: shared pages counted once across them): the node alone
+  as today; in the sandbox bwrap, the sandbox's pid 1 (server/processes/node_init.py, which
+  stays as the node's parent) and the node.
 
 Then Ctrl-C (as the supervisor sends it) and the process is ended by its id. Median and max over
 ``--tries``. Prints the machine (bench/machine.py) and one JSON object, also written to
@@ -41,7 +43,7 @@ import zenoh
 from live_server import end, rss_mib
 from machine import machine_info, save_results
 
-from server.processes.command import node_command
+from server.processes.command import NodeCommand, node_command
 from server.processes.confinement import Confinement
 from server.processes.sandbox import INSIDE_ROUTER, Sandbox, probe
 from server.transport.router_socket import new_socket_path, open_to_nodes, remove, socket_endpoint
@@ -50,6 +52,14 @@ KEYBOARD_MANAGER = REPO / "examples" / "workspace" / "src" / "rocketship" / "src
 NODE_NAME = "KeyboardManagerNode"
 JOIN_TIMEOUT_S = 60.0
 SETTLE_S = 1.0
+
+
+def pss_mib(pid: int) -> float:
+    """Proportional set size of the process, in MiB."""
+    for line in Path(f"/proc/{pid}/smaps_rollup").read_text().splitlines():
+        if line.startswith("Pss:"):
+            return int(line.split()[1]) / 1024.0
+    raise RuntimeError(f"no Pss for pid {pid}")
 
 
 def child_pid(pid: int) -> int | None:
@@ -81,10 +91,15 @@ def joined(session: Any) -> bool:
                if reply.ok is not None)  # fmt: skip
 
 
-def one_start(session: Any, argv: list[str], env: dict[str, str], sandboxed: bool) -> dict[str, float]:
+def one_start(session: Any, command: NodeCommand) -> dict[str, float]:
+    prepared = command.prepare(command.argv, "bench") if command.prepare is not None else None
+    argv, fds = (prepared.argv, prepared.pass_fds) if prepared is not None else (command.argv, ())
     started = time.perf_counter()
-    proc = subprocess.Popen(argv, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL)  # fmt: skip
+    proc = subprocess.Popen(argv, env=command.env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL, pass_fds=fds)  # fmt: skip
+    for fd in fds:
+        os.close(fd)
+    sandboxed = command.sandboxed
     try:
         while not joined(session):
             if time.perf_counter() - started > JOIN_TIMEOUT_S or proc.poll() is not None:
@@ -92,15 +107,26 @@ def one_start(session: Any, argv: list[str], env: dict[str, str], sandboxed: boo
             time.sleep(0.02)
         start_s = time.perf_counter() - started
         time.sleep(SETTLE_S)
-        node_pid = child_pid(proc.pid) if sandboxed else proc.pid
-        node = rss_mib(node_pid) if node_pid is not None else float("nan")
-        wrapper = rss_mib(proc.pid) if sandboxed else 0.0
-        return {"start_s": start_s, "node_rss_mib": node, "total_rss_mib": node + wrapper}
+        # In the sandbox: bwrap, the sandbox's pid 1 below it, and the node below that.
+        chain = [proc.pid]
+        while sandboxed and len(chain) < 3 and (below := child_pid(chain[-1])) is not None:
+            chain.append(below)
+        if sandboxed and len(chain) < 3:
+            raise RuntimeError(f"the sandbox's processes were not all there: {chain}")
+        return {
+            "start_s": start_s,
+            "node_rss_mib": rss_mib(chain[-1]),
+            "total_pss_mib": sum(map(pss_mib, chain)),
+        }
     finally:
         target = child_pid(proc.pid) if sandboxed and proc.poll() is None else None
         if target is not None:
-            os.kill(target, signal.SIGINT)  # Ctrl-C to the node itself, by its id
+            os.kill(
+                target, signal.SIGINT
+            )  # Ctrl-C to the sandbox's pid 1, by its id, as the supervisor sends it
         end(proc)
+        if prepared is not None:
+            prepared.finish(proc.returncode or 0)
 
 
 def summary(rows: list[dict[str, float]]) -> dict[str, float]:
@@ -136,7 +162,7 @@ def main() -> int:
                     )
                 else:
                     command = node_command(node_file, [], router=tcp, workspace=workspace)
-                rows[kind].append(one_start(session, command.argv, command.env, kind == "sandboxed"))
+                rows[kind].append(one_start(session, command))
     finally:
         session.close()
         remove(socket_path)

@@ -21,11 +21,14 @@ import contextlib
 import functools
 import os
 import signal
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
 PREFIX = "ros2lab-"
 MIB = 1024 * 1024
+REMOVE_TRIES = 10
+REMOVE_WAIT_S = 0.05
 JOIN_SCRIPT = 'while [ "$1" != -- ]; do echo $$ > "$1" || exit 125; shift; done; shift; exec "$@"'
 
 
@@ -59,11 +62,18 @@ class NodeCgroup:
         return 0
 
     def remove(self) -> None:
-        """End what is left in it and remove it (its node has ended)."""
+        """End what is left in it and remove it (its node has ended). The kernel may take a moment
+        to let the last processes of the sandbox go: a few tries, on the node's own output thread."""
         for folder in self.folders:
-            _empty(folder)
-            with contextlib.suppress(OSError):
-                folder.rmdir()
+            for _ in range(REMOVE_TRIES):
+                _empty(folder)
+                try:
+                    folder.rmdir()
+                    break
+                except FileNotFoundError:
+                    break
+                except OSError:  # EBUSY: a process is still leaving
+                    time.sleep(REMOVE_WAIT_S)
 
 
 @dataclass(frozen=True)
@@ -78,6 +88,8 @@ class CgroupParent:
     def make(self, name: str, memory_mib: int, processes: int) -> NodeCgroup:
         """A new group ``name`` with these limits (OSError if the kernel refuses one)."""
         folders = tuple(dict.fromkeys([self.memory / name, self.pids / name]))
+        stale = NodeCgroup(tuple(f for f in folders if f.exists()), self.version)
+        stale.remove()  # one of the same name that a node left behind
         for folder in folders:
             folder.mkdir()
         limit = str(memory_mib * MIB)

@@ -38,12 +38,16 @@ import sys
 import traceback
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from server.bus.parameter_service import serve_parameters
-from server.packages.entry_points import EntryPoint
-from server.params_file import ParamsFileError, read_params_file
+from . import confinement, lab_packages, node_init
 
-from . import confinement, interface_modules, lab_packages, node_init
+if TYPE_CHECKING:
+    from server.packages.entry_points import EntryPoint
+
+# The lab's heavier modules (the bus, the workspace's packages, YAML) are imported where they are
+# used, after a sandboxed node's split (server/processes/node_init.py): the sandbox's pid 1 then
+# holds little more than the interpreter, and its pages are not copied into the node as it runs.
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
@@ -195,6 +199,8 @@ def run_builtin(target: str, args: list[str]) -> int:
     rclpy.init(args=[target, *args])
     try:
         node = node_class()
+        from server.bus.parameter_service import serve_parameters
+
         serve_parameters(node)  # a lab node is the bus's, not rclpy's: it serves them as the app's do
         rclpy.spin(node)
     except KeyboardInterrupt:
@@ -206,6 +212,8 @@ def run_builtin(target: str, args: list[str]) -> int:
 
 def params_files_problem(args: list[str]) -> str | None:
     """The first ``--params-file`` among the ROS arguments that does not parse, in one line."""
+    from server.params_file import ParamsFileError, read_params_file
+
     inside = False
     for i, arg in enumerate(args):
         if arg == "--ros-args":
@@ -231,6 +239,10 @@ def main(argv: list[str] | None = None) -> int:
     if problem is not None:
         _say(problem)
         return EXIT_USAGE
+    from server.packages.entry_points import EntryPoint
+
+    from . import interface_modules
+
     interface_modules.install()
     lab_packages.pin()  # before any student's folder is on sys.path
     if len(argv) >= 2 and argv[0] == "--builtin":
