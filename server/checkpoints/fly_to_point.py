@@ -2,7 +2,8 @@
 
 Met when one publisher's last RATE_MESSAGES setpoints at the target came at RATE_HZ (the panel, the
 CLI or REST alike), the newest within STALE_S, and the drone's GPS has stayed within NEAR_M of the
-target for HOLD_S.
+target for HOLD_S. It is met once per stay at the target: a drone that keeps hovering there while
+the publisher goes on publishing is the same success, not a new one every HOLD_S.
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ class FlyToPointCheck:
         self.track = Track()
         self._times: OrderedDict[str, deque[float]] = OrderedDict()  # per publisher, at the target
         self._near_since: float | None = None
+        self._held = False  # met during this stay near the target
         self._distance_m: float | None = None
         self._last_s = 0.0
         self.started = False
@@ -78,17 +80,18 @@ class FlyToPointCheck:
                     self._near_since = event.t_s
             else:
                 self._near_since = None
+                self._held = False
         return self.tick(event.t_s)
 
     def tick(self, now_s: float) -> Evidence | None:
         self._last_s = now_s
         near = self._near_since
-        if near is None or now_s - near < HOLD_S:
+        if near is None or self._held or now_s - near < HOLD_S:
             return None
         rate = self._rate(now_s)
         if rate is None:
             return None
-        self._near_since = None  # met: it may be met again, later, with newer evidence
+        self._held = True  # met: it may be met again after the drone has left and come back
         return {
             "target": list(TARGET),
             "publisher": rate[0],
@@ -99,6 +102,8 @@ class FlyToPointCheck:
         }
 
     def progress(self, now_s: float) -> str:
+        if self._held:
+            return "done: the drone held (5, 5, 10) for 3 s"
         count, rate = self._latest_rate()
         where = "" if self._distance_m is None else f"; {self._distance_m:.1f} m from (5, 5, 10)"
         if count == 0:

@@ -1,4 +1,4 @@
-"""One world's checkpoints as they stand: what was met (with its newest evidence and time), the
+"""One world's checkpoints as they stand: what was met (the first time, the newest evidence), the
 answers, the page's captures. It outlives the world's lab: a reset starts the checks over, not this;
 store.py keeps it on disk across restarts of the server."""
 
@@ -44,7 +44,7 @@ class NotPngError(ValueError):
 
 @dataclass
 class Record:
-    done_at_s: float  # wall clock, s since the epoch (the newest time it was met)
+    done_at_s: float  # wall clock, s since the epoch (the first time it was met: it never moves)
     evidence: Evidence
     times: int = 1
 
@@ -85,9 +85,15 @@ class Progress:
         raise UnknownCheckpointError(name, [c.name for c in self.checkpoints])
 
     def met(self, name: str, evidence: Evidence) -> Record:
-        """Checkpoint ``name`` was met (again): keep it done, with this newest evidence."""
+        """Checkpoint ``name`` was met (again): keep it done, with this newest evidence. Its done
+        time stays the first: the student's Guide and the instructor's table read it at different
+        moments, and a time that moved with every repeat showed them two."""
         old = self.records.get(name)
-        record = self.records[name] = Record(self.wall(), evidence, (old.times + 1) if old else 1)
+        if old is None:
+            record = Record(self.wall(), evidence)
+        else:
+            record = Record(old.done_at_s, evidence, old.times + 1)
+        self.records[name] = record
         self._changed()
         return record
 

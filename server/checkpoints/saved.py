@@ -1,4 +1,4 @@
-"""One world's progress as its file keeps it: what was met (its newest evidence, time and count)
+"""One world's progress as its file keeps it: what was met (its first time, newest evidence and count)
 and the answers, as JSON; the captures are PNG files beside it (store.py). Reading takes only what
 the lab still declares, within the limits Progress itself keeps; anything else is left out."""
 
