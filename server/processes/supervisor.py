@@ -2,12 +2,12 @@
 
 Like ``ros2 launch``: each process is labelled ``<executable>-<n>``; with ``output="screen"`` its
 lines are printed with that label in front; its start and its death (pid, exit code) are logged.
-Output is read by a thread per process and kept (the last lines) for the API
-(``GET /api/launches/{id}/output``, which ``ros2lab launch`` prints); an exit is handed
-to the bus's executor through a poller, so respawning happens on the executor's thread. Stopping
-sends Ctrl-C (SIGINT), then SIGTERM, then SIGKILL, each after a grace period. A sandboxed node
-(server/processes/sandbox.py) is bwrap's child: Ctrl-C goes to the node itself, the rest to bwrap,
-whose end ends the sandbox.
+Output is read by a thread per process, a chunk at a time, and kept (the last lines, each cut
+at ``MAX_LINE_CHARS``) for the API (``GET /api/launches/{id}/output``, which ``ros2lab launch``
+prints); an exit is handed to the bus's executor through a poller, so respawning happens on the
+executor's thread. Stopping sends Ctrl-C (SIGINT), then SIGTERM, then SIGKILL, each after a
+grace period. A sandboxed node (server/processes/sandbox.py) is bwrap's child: Ctrl-C goes to the
+node itself, the rest to bwrap, whose end ends the sandbox.
 """
 
 from __future__ import annotations
@@ -34,7 +34,8 @@ from .command import NodeCommand
 
 log = logging.getLogger("launch")
 KEEP_LINES = 200
-MAX_LINE_CHARS = 4096  # a longer line is kept cut (it still prints whole on the console)
+MAX_LINE_CHARS = 4096  # a longer line is kept cut and marked so (on the console too)
+READ_CHUNK_BYTES = 64 * 1024  # one read of a node's output (a pipe's buffer on Linux)
 STOP_GRACE_S = 3.0
 # waiting: not started yet, its turn to come (server/processes/start_pacing.py)
 ProcessState = Literal["waiting", "running", "died", "stopped"]
@@ -51,7 +52,7 @@ class ProcessNode:
     screen: bool
     node_name: str | None = None  # the name it was given (a launch's name=), if any
     label: str = ""
-    proc: subprocess.Popen[str] | None = None
+    proc: subprocess.Popen[bytes] | None = None
     state: ProcessState = "running"
     exit_code: int | None = None
     lines: deque[str] = field(default_factory=lambda: deque(maxlen=KEEP_LINES))
@@ -59,9 +60,9 @@ class ProcessNode:
     _lines_lock: threading.Lock = field(default_factory=threading.Lock, init=False, repr=False)
 
     def keep(self, line: str) -> None:
-        """One more line it printed (from its output thread)."""
+        """One more line it printed, as ``LineSplitter`` cut it (from its output thread)."""
         with self._lines_lock:
-            self.lines.append(line[:MAX_LINE_CHARS])
+            self.lines.append(line)
             self.printed += 1
 
     def output(self) -> tuple[list[str], int]:
@@ -116,7 +117,7 @@ class Supervisor:
         try:
             process.proc = subprocess.Popen(
                 command.argv, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                stderr=subprocess.STDOUT, text=True, errors="replace", bufsize=1, pass_fds=keep,
+                stderr=subprocess.STDOUT, pass_fds=keep,
             )  # fmt: skip
         except OSError:
             process.state = "died"
@@ -132,20 +133,22 @@ class Supervisor:
     def _watch(self, process: ProcessNode) -> None:
         """The process's output, line by line, until it ends; then its exit, to the executor."""
         assert process.proc is not None and process.proc.stdout is not None
-        stream: IO[str] = process.proc.stdout
+        stream: IO[bytes] = process.proc.stdout
         # A class world's screen lines reach the console only when its nodes' info lines do
         # (--world-log-level); they are kept for the API either way.
         echo = process.screen and (
             self.bus.label is None
             or logging.getLogger(world_logger(self.bus.label)).isEnabledFor(logging.INFO)
         )
-        for line in stream:
-            text = line.rstrip("\n")
+
+        def line(text: str) -> None:
             process.keep(text)
             if echo:
                 with _print_lock:
                     sys.stdout.write(self.bus.tagged(f"[{process.label}] {text}\n"))
                     sys.stdout.flush()
+
+        read_lines(stream, line)
         stream.close()
         process.exit_code = process.proc.wait()
         with self._lock:
@@ -208,6 +211,71 @@ class Supervisor:
 
     def by_zid(self, zid: str) -> ProcessNode | None:
         return next((p for p in self.processes if p.command.zid == zid and p.state == "running"), None)
+
+
+class LineSplitter:
+    """A node's output, fed in chunks of bytes as they come, handed to ``sink`` line by line: a
+    line ends at ``\\n``, ``\\r\\n`` or ``\\r`` (as a text stream's universal newlines read them),
+    is decoded as UTF-8 (a bad byte shown as U+FFFD) and keeps at most ``max_chars`` characters.
+    A longer line goes on as soon as its limit is reached, with a mark that says it was cut; the
+    rest of it is dropped as it comes, up to its end. So what is held is never more than one
+    line's limit in bytes, however long a line a node prints without a newline."""
+
+    def __init__(self, sink: Callable[[str], None], max_chars: int = MAX_LINE_CHARS) -> None:
+        self._sink = sink
+        self._max_chars = max_chars
+        self._mark = f" … [cut: line longer than {max_chars} characters]"
+        # A character takes at most 4 bytes: these hold max_chars whole characters before the
+        # start of one cut off, so the cut line never ends in a needless U+FFFD.
+        self._max_bytes = 4 * max_chars + 3
+        self._line = bytearray()
+        self._dropping = False  # this line's kept part has gone on: the rest waits for its end
+        self._after_cr = False  # the last chunk ended with \r: a \n first in this one ends nothing
+
+    def feed(self, chunk: bytes) -> None:
+        if self._after_cr and chunk.startswith(b"\n"):
+            chunk = chunk[1:]
+        self._after_cr = chunk.endswith(b"\r")
+        if b"\r" in chunk:
+            chunk = chunk.replace(b"\r\n", b"\n").replace(b"\r", b"\n")
+        *ended, rest = chunk.split(b"\n")
+        for part in ended:
+            self._add(part)
+            if not self._dropping:
+                self._hand_on(cut=False)
+            self._dropping = False
+        self._add(rest)
+
+    def close(self) -> None:
+        """The output's end: a last line with no newline goes on too."""
+        if self._line:
+            self._hand_on(cut=False)
+
+    def _add(self, part: bytes) -> None:
+        if self._dropping or not part:
+            return
+        room = self._max_bytes - len(self._line)
+        self._line += part[:room]
+        if len(part) > room:
+            self._hand_on(cut=True)
+            self._dropping = True
+
+    def _hand_on(self, *, cut: bool) -> None:
+        text = self._line.decode(errors="replace")
+        self._line.clear()
+        if cut or len(text) > self._max_chars:
+            text = text[: self._max_chars] + self._mark
+        self._sink(text)
+
+
+def read_lines(stream: IO[bytes], sink: Callable[[str], None]) -> None:
+    """Each line of a binary stream to ``sink`` (``LineSplitter``) until the stream ends; read a
+    chunk at a time, as it comes, so nothing waits for a line's end to be read."""
+    lines = LineSplitter(sink)
+    fd = stream.fileno()
+    while chunk := os.read(fd, READ_CHUNK_BYTES):
+        lines.feed(chunk)
+    lines.close()
 
 
 def _node_argv(command: NodeCommand) -> list[str]:
