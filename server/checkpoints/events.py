@@ -52,10 +52,11 @@ class CmdVel:
 
 @dataclass(frozen=True)
 class Countdown:
-    """A count on /countdown, s before lift-off."""
+    """A count on /countdown, s before lift-off, and who counts (two rockets may count at once)."""
 
     t_s: float
     value: int
+    source: Source = UNKNOWN
 
 
 @dataclass(frozen=True)

@@ -24,46 +24,54 @@ def from_keyboard(source: Source) -> bool:
 
 
 class KeyboardAbortCheck:
+    """The line (``progress``) says where the student is and what is missing; it changes when that
+    changes, never with each repeat of an abort (a manager publishes it at 10 Hz) nor with each
+    count: an abort is judged once per node, from a key (or a countdown) to the next."""
+
     def __init__(self) -> None:
         self.timeline = Timeline(200)
-        self._count: int | None = None
-        self._count_s = -1e18
+        self._counts: dict[Source, tuple[int, float]] = {}  # each counter's last count and its time
         self._lifted = False
         self._key_s: float | None = None
         self._pending: tuple[float, Source] | None = None
-        self._note = "start the rocket's launch: the countdown begins"
-        self._counting_note = True  # the line only counts down: nothing else was said in this countdown
+        self._note = "press Reset rocket, then press a during its countdown"
+        self._counting_note = True  # the line only says the countdown is on: nothing else was said in it
         self._judged = False  # an abort was judged in this countdown
-        self._aborters: set[str] = set()  # nodes whose abort the timeline has since the last key
+        self._aborters: set[Source] = (
+            set()
+        )  # publishers whose abort was judged since the last key or countdown
         self.started = False
 
     def _counting(self, t_s: float) -> bool:
-        return self._count is not None and self._count > 0 and t_s - self._count_s <= COUNTDOWN_GONE_S
+        return any(value > 0 and t_s - at_s <= COUNTDOWN_GONE_S for value, at_s in self._counts.values())
+
+    def _on_countdown(self, event: Countdown) -> None:
+        last = self._counts.get(event.source)
+        if last is None or event.value > last[0] or event.t_s - last[1] > COUNTDOWN_GONE_S:
+            self._lifted = False  # a new countdown (a reset rocket); a second rocket counting is not one
+            self.timeline.clear()
+            self._counting_note = True
+            self._judged = False
+            self._aborters.clear()
+        self._counts = {
+            who: count for who, count in self._counts.items() if event.t_s - count[1] <= COUNTDOWN_GONE_S
+        }
+        self._counts[event.source] = (event.value, event.t_s)
+        self.timeline.add(event.t_s, "countdown", event.value)
+        if self._counting_note:  # what was said in this countdown stays said until the next
+            self._note = "the countdown is on: press a" if event.value > 0 else self._note
 
     def feed(self, event: Event) -> Evidence | None:
         if isinstance(event, Countdown):
-            if (
-                self._count is None
-                or event.value > self._count
-                or event.t_s - self._count_s > COUNTDOWN_GONE_S
-            ):
-                self._lifted = False  # a new countdown (a reset rocket)
-                self.timeline.clear()
-                self._counting_note = True
-                self._judged = False
-                self._aborters.clear()
-            self._count, self._count_s = event.value, event.t_s
-            self.timeline.add(event.t_s, "countdown", event.value)
-            if self._counting_note:  # what was said in this countdown stays said until the next
-                self._note = f"countdown at {event.value} s: press a"
+            self._on_countdown(event)
         elif isinstance(event, CmdVel) and event.value_mps > 0:
             if not self._lifted:
                 self.timeline.add(event.t_s, "cmd_vel", event.value_mps)
+                if self._pending is not None:
+                    self._say("the rocket lifted off after your abort: press Reset rocket and try again")
+                else:
+                    self._say("the rocket lifted off: press Reset rocket, then press a during its countdown")
             self._lifted = True
-            if self._pending is not None:
-                self._say("the rocket lifted off after your abort: reset the rocket and try again")
-            else:
-                self._say("the rocket lifted off: reset the rocket and abort it during the countdown")
             self._pending = None
         elif isinstance(event, KeyDown) and event.code == KEY_A and from_keyboard(event.source):
             self.started = True  # the student's own doing (a countdown alone is the lab's)
@@ -71,13 +79,14 @@ class KeyboardAbortCheck:
             self._aborters.clear()
             if self._counting(event.t_s) and not self._lifted:
                 self._key_s = event.t_s
-                self._say("a pressed: waiting for /abort_takeoff from your keyboard manager")
+                if self._pending is None:
+                    self._say("a pressed: waiting for /abort_takeoff from your keyboard manager")
         elif isinstance(event, Abort) and event.value:
             self.started = True
-            if event.source.node not in self._aborters:  # a manager may repeat its abort: once is told
-                self._aborters.add(event.source.node)
+            if event.source not in self._aborters:  # a manager repeats its abort: once is judged
+                self._aborters.add(event.source)
                 self.timeline.add(event.t_s, "abort", True, event.source)
-            self._on_abort(event)
+                self._on_abort(event)
         return self.tick(event.t_s)
 
     def _on_abort(self, event: Abort) -> None:
@@ -88,17 +97,18 @@ class KeyboardAbortCheck:
         self._judged = True
         key_s = self._key_s
         if self._lifted:
-            self._say("the rocket had lifted off: reset the rocket and abort it during the countdown")
+            self._say("the rocket had lifted off: press Reset rocket, then press a during its countdown")
         elif not self._counting(event.t_s):
-            self._say("no countdown running: start (or reset) the rocket and abort during the countdown")
+            self._say("no countdown running: press Reset rocket, then press a during its countdown")
         elif key_s is None or not 0 <= event.t_s - key_s <= ABORT_WITHIN_S:
             self._say(
-                f"/abort_takeoff from {event.source.node or 'someone'} without an a pressed just before"
+                f"/abort_takeoff from {event.source.node or 'someone'} without an a pressed just "
+                "before: press a during the countdown"
             )
         elif not event.source.student:
             self._say(
                 f"/abort_takeoff came from {event.source.node} in {event.source.process}, not from a "
-                "keyboard manager of your workspace: run yours (ros2lab run) instead of the lab's"
+                "keyboard manager of your workspace: open yours in the Code view and press Run"
             )
         else:
             self._pending = (event.t_s, event.source)

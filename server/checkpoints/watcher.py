@@ -51,7 +51,7 @@ def _event(t_s: float, topic: str, msg: Any, source: ev.Source) -> ev.Event | No
         if topic == "/cmd_vel":
             return ev.CmdVel(t_s, float(msg.data))
         if topic == "/countdown":
-            return ev.Countdown(t_s, int(msg.data))
+            return ev.Countdown(t_s, int(msg.data), source)
     except (AttributeError, TypeError, ValueError):
         return None
     return None

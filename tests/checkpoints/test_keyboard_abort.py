@@ -129,7 +129,7 @@ def test_keyboard_abort_what_went_wrong_stays_said_while_the_countdown_goes_on()
     countdown(check, start_s=t + 1, counts=range(4, 0, -1))
     assert "/_rest_api" in check.progress(t + 5)
     countdown(check, start_s=t + 10, counts=range(10, 8, -1))  # a new countdown: a new line
-    assert check.progress(t + 12) == "countdown at 9 s: press a"
+    assert check.progress(t + 12) == "the countdown is on: press a"
 
 
 def test_keyboard_abort_repeated_by_the_labs_manager_past_the_countdown_keeps_its_reason() -> None:
@@ -142,3 +142,46 @@ def test_keyboard_abort_repeated_by_the_labs_manager_past_the_countdown_keeps_it
             check.feed(Countdown(t + 0.5, 0))
     assert "not from a keyboard manager of your workspace" in check.progress(t + 4)
     assert sum(1 for e in check.timeline.entries() if e["what"] == "abort") == 1
+
+
+def _manager_at_10_hz(check: KeyboardAbortCheck, key_s: float, until_s: float) -> tuple[list[str], int]:
+    """The handout's manager (and the lab's) publishing /abort_takeoff at 10 Hz, true from the
+    "a" at ``key_s`` on, while the countdown goes on once a second: the line after each message,
+    and how many times the check was met."""
+    lines, met = [], 0
+    for i in range(round((until_s - key_s) * 10)):
+        t = round(key_s + 0.05 + 0.1 * i, 3)
+        if i % 10 == 5:
+            check.feed(Countdown(t, max(0, 5 - i // 10)))
+        met += check.feed(Abort(t, True, STUDENT)) is not None
+        met += check.feed(Abort(t + 0.01, True, LAB_MANAGER)) is not None
+        met += check.tick(t + 0.02) is not None
+        lines.append(check.progress(t + 0.02))
+    return lines, met
+
+
+def test_keyboard_abort_a_manager_at_10_hz_after_the_a_that_met_it_leaves_the_done_line() -> None:
+    check = KeyboardAbortCheck()
+    t = countdown(check)
+    check.feed(KeyDown(t, KEY_A, KEYBOARD))
+    lines, met = _manager_at_10_hz(check, t, t + 6.2)  # the 5 s after the met tick and more
+    assert check.progress(t + 6.2) == "done: the rocket stayed on the pad"
+    assert not any("without an a pressed" in line for line in lines)
+    after = lines[lines.index("done: the rocket stayed on the pad") :]
+    assert set(after) == {"done: the rocket stayed on the pad"}  # nothing changed: nor did the line
+    assert met == 1
+    assert sum(1 for e in check.timeline.entries() if e["what"] == "abort") == 2  # one per node
+
+
+def test_keyboard_abort_two_rockets_counting_at_once_do_not_flip_the_line() -> None:
+    check = KeyboardAbortCheck()
+    other = Source("/CountDownNode", "process 77")
+    for i in range(6):  # the lab's rocket and a second one launched by hand, 0.5 s apart
+        check.feed(Countdown(float(i), 10 - i))
+        check.feed(Countdown(i + 0.5, 7 - i, other))
+    check.feed(Abort(6.0, True, BY_HAND))
+    said = check.progress(6.0)
+    for i in range(6, 9):
+        check.feed(Countdown(float(i), 10 - i))
+        check.feed(Countdown(i + 0.5, max(0, 7 - i), other))
+        assert check.progress(i + 0.6) == said
