@@ -30,7 +30,7 @@ from server.bus import Bus
 from server.console import world_logger
 
 from . import lifeline
-from .command import NodeCommand
+from .command import RUNNER_MODULE, NodeCommand
 
 log = logging.getLogger("launch")
 KEEP_LINES = 200
@@ -57,6 +57,7 @@ class ProcessNode:
     exit_code: int | None = None
     lines: deque[str] = field(default_factory=lambda: deque(maxlen=KEEP_LINES))
     printed: int = 0  # lines it has printed in all (``lines`` keeps the last KEEP_LINES)
+    finish: Callable[[int], str | None] | None = None  # called with its exit code once it has ended
     _lines_lock: threading.Lock = field(default_factory=threading.Lock, init=False, repr=False)
 
     def keep(self, line: str) -> None:
@@ -114,15 +115,23 @@ class Supervisor:
         if command.sandboxed:  # its lifeline to this process: it ends when the server does
             keep.append(lifeline.read_end())
             env = {**env, lifeline.LIFELINE_ENV: str(keep[0])}
+        passed: tuple[int, ...] = ()
         try:
+            argv = command.argv
+            if command.prepare is not None:  # a sandboxed node's control group and seccomp filter
+                prepared = command.prepare(argv, process.label)
+                argv, passed, process.finish = prepared.argv, prepared.pass_fds, prepared.finish
             process.proc = subprocess.Popen(
-                command.argv, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                stderr=subprocess.STDOUT, pass_fds=keep,
+                argv, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                stderr=subprocess.STDOUT, pass_fds=[*keep, *passed],
             )  # fmt: skip
         except OSError:
             process.state = "died"
             self.forget(process)
             raise
+        finally:
+            for fd in passed:
+                os.close(fd)
         process.state = "running"
         log.info("%s: process started with pid [%d]", self.bus.tagged(f"[{process.label}]"), process.proc.pid)
         threading.Thread(
@@ -151,6 +160,10 @@ class Supervisor:
         read_lines(stream, line)
         stream.close()
         process.exit_code = process.proc.wait()
+        if process.finish is not None:  # e.g. its control group says the kernel ended it for memory
+            last = process.finish(process.exit_code)
+            if last is not None:
+                process.keep(last)
         with self._lock:
             self._exited.append(process)
         self.bus.wake_threadsafe()
@@ -167,7 +180,7 @@ class Supervisor:
             code = process.exit_code
             level = logging.INFO if code == 0 else logging.ERROR
             log.log(level, "%s: process has died [pid %s, exit code %s, cmd '%s']", self.bus.tagged(f"[{process.label}]"),
-                    process.pid, code, " ".join(_node_argv(process.command)[3:]))  # fmt: skip
+                    process.pid, code, " ".join(_node_argv(process.command)))  # fmt: skip
             self.on_exit(process)
 
     def stop(self, process: ProcessNode, grace_s: float = STOP_GRACE_S) -> None:
@@ -279,9 +292,10 @@ def read_lines(stream: IO[bytes], sink: Callable[[str], None]) -> None:
 
 
 def _node_argv(command: NodeCommand) -> list[str]:
-    """The node's own command line (inside bwrap's, for a sandboxed node)."""
-    if command.sandboxed and "--" in command.argv:
-        return command.argv[command.argv.index("--") + 1 :]
+    """What the runner runs: its arguments after the runner's module (inside bwrap's command line
+    too, for a sandboxed node)."""
+    if RUNNER_MODULE in command.argv:
+        return command.argv[command.argv.index(RUNNER_MODULE) + 1 :]
     return command.argv
 
 
