@@ -17,7 +17,8 @@ from support.wait import wait_until
 
 from server.bus import Bus, Executor
 from server.processes.command import NodeCommand
-from server.processes.supervisor import MAX_LINE_CHARS, LineSplitter, ProcessNode, Supervisor, read_lines
+from server.processes.output_lines import MAX_LINE_CHARS, LineSplitter, read_lines
+from server.processes.supervisor import ProcessNode, Supervisor
 
 MARK = f" … [cut: line longer than {MAX_LINE_CHARS} characters]"
 MIB = 1 << 20
