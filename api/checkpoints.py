@@ -87,10 +87,10 @@ async def checkpoints(
     """Every checkpoint with its state, time, steps, live progress and evidence; the questions and
     answers. ``version`` rises on any change: with ``?since=`` it, nothing new is a 204."""
     watch = lab.checkpoints
-    lines = watch.lines()
+    lines, running = watch.lines(), watch.running()
     if since is not None and since == watch.version:
         return Response(status_code=204)
-    return world_view(watch.progress, lines, watch.version)
+    return world_view(watch.progress, lines, watch.version, running)
 
 
 @router.put("/answers/{question}", responses=responses(UNAUTHORIZED, NOT_FOUND, 413, body=True))

@@ -18,8 +18,16 @@ Evidence = dict[str, Any]  # JSON-ready: timelines, tracks, texts; the watcher a
 
 @dataclass(frozen=True)
 class Step:
+    """One thing to do. ``text`` says what; ``page`` says how in the page, naming its own controls
+    as it shows them (the Code view, Run, Reset rocket, the Message Publisher panel, the starting
+    files); ``commands`` do the same in a terminal, the alternative. A step whose ``running`` nodes
+    all run already (the lab's launch started them) shows ``already`` instead of asking again."""
+
     text: str
     commands: tuple[str, ...] = ()
+    page: str = ""
+    running: tuple[str, ...] = ()  # fully qualified node names
+    already: str = ""
 
 
 @dataclass(frozen=True)

@@ -89,7 +89,7 @@ class Launch:
     """A launch file started (at the lab's start or through the API)."""
 
     t_s: float
-    file: str
+    file: str  # its path in the workspace, or "<file> of the package <pkg>" (watcher.launch_label)
     text: str  # the file's text, at most MAX_LAUNCH_TEXT characters
     in_workspace: bool  # the file is in the student's workspace
     nodes: tuple[LaunchedNode, ...]

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from .declared import Checkpoint, Evidence, Question, Step
 from .events import LAB, Abort, CmdVel, Countdown, Event, KeyDown, Source
+from .page_names import CODE, GRAPH, NEW_FILE, NEW_PACKAGE, RESET_ROCKET, ROCKET_TEMPLATE, RUN
 from .timeline import Timeline
 
 KEY_A = 97  # SDL's code for "a", as keyboard_msgs/Key carries it
@@ -108,7 +109,7 @@ class KeyboardAbortCheck:
         elif not event.source.student:
             self._say(
                 f"/abort_takeoff came from {event.source.node} in {event.source.process}, not from a "
-                "keyboard manager of your workspace: open yours in the Code view and press Run"
+                f"keyboard manager of your workspace: open yours in the {CODE} view and press {RUN}"
             )
         else:
             self._pending = (event.t_s, event.source)
@@ -141,11 +142,19 @@ CHECKPOINT = Checkpoint(
     title="Abort the rocket with your keyboard manager",
     steps=(
         Step("Write a keyboard manager in your workspace: it subscribes to /keydown and publishes "
-             "std_msgs/Bool true on /abort_takeoff when the key is 'a'.", ("ros2lab pkg create --build-type ament_python rocket_keys",)),
-        Step("Start the rocket's launch and run your keyboard manager as its own process.",
-             ("ros2lab launch rocketship rocket.launch", "ros2lab run rocket_keys keyboard_manager")),
-        Step("Open the graph and find your node between the keyboard and the rocket's controller.", ("ros2lab node list",)),
-        Step("During the countdown, press a in the page: your node aborts the launch and the rocket stays on the pad.", ()),
+             "std_msgs/Bool true on /abort_takeoff when the key is 'a'.",
+             ("ros2lab pkg create --build-type ament_python rocket_keys",),
+             page=f"In the {CODE} view: {NEW_PACKAGE} (rocket_keys), then {NEW_FILE} in it, Start from "
+                  f"\u201c{ROCKET_TEMPLATE}\u201d, and fill in its TODOs."),
+        Step("Start the rocket's launch.", ("ros2lab launch rocketship rocket.launch",),
+             running=("/CountDownNode", "/MainControllerNode"),
+             already="The rocket is already running (the lab's launch started it): nothing to start."),
+        Step("Run your keyboard manager as its own process.", ("ros2lab run rocket_keys keyboard_manager",),
+             page=f"Open your keyboard_manager.py in the {CODE} view and press {RUN}."),
+        Step("Open the graph and find your node between the keyboard and the rocket's controller.",
+             ("ros2lab node list",), page=f"Open {GRAPH} at the top of the page."),
+        Step("During the countdown, press a: your node aborts the launch and the rocket stays on the pad.",
+             (), page=f"Press {RESET_ROCKET} to start a new countdown, click the 3D view, then press a."),
     ),
     check=KeyboardAbortCheck,
     questions=(

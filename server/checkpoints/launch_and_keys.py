@@ -11,6 +11,7 @@ from __future__ import annotations
 from .declared import Checkpoint, Evidence, Question, Step
 from .events import Event, Gps, KeyDown, Launch, Setpoint
 from .keyboard_abort import from_keyboard
+from .page_names import CODE, DRONE_TEMPLATE, LAUNCH_TEMPLATE, NEW_FILE, NEW_PACKAGE, RUN
 from .timeline import Timeline, Track
 
 ARROWS = {273: "up", 274: "down", 275: "right", 276: "left"}  # SDL codes
@@ -22,7 +23,10 @@ MOVE_M = 2.0
 def qualifies(launch: Launch) -> str | None:
     """Why this launch is not checkpoint 3's, or None when it is."""
     if not launch.in_workspace:
-        return f"{launch.file} is not a file of your workspace"
+        return (
+            f"{launch.file} is the lab's, not a file of your workspace: open your launch file in "
+            f"the {CODE} view and press {RUN}"
+        )
     pkgs = {node.pkg for node in launch.nodes}
     if not pkgs & SIMULATORS:
         return f"{launch.file} starts no simulator ({' or '.join(sorted(SIMULATORS))})"
@@ -42,7 +46,7 @@ class LaunchAndKeysCheck:
         self._reach = [0.0, 0.0]
         self._keys = 0
         self._setpoints = 0
-        self._note = "start one launch file of your workspace"
+        self._note = f"start one launch file of your workspace: open it in the {CODE} view and press {RUN}"
         self.started = False
 
     def feed(self, event: Event) -> Evidence | None:
@@ -109,9 +113,14 @@ CHECKPOINT = Checkpoint(
     title="One launch file, then fly with the arrow keys",
     steps=(
         Step("Write a launch file in your workspace that starts the simulator, the keyboard and your "
-             "drone keyboard manager.", ("ros2lab pkg create --build-type ament_python drone_keys",)),
-        Step("Start it: one command starts everything.", ("ros2lab launch drone_keys fly_keys.launch",)),
-        Step("Fly with the arrow keys in the page: at least 2 m in x and 2 m in y.", ()),
+             "drone keyboard manager.", ("ros2lab pkg create --build-type ament_python drone_keys",),
+             page=f"In the {CODE} view: {NEW_PACKAGE} (drone_keys), then {NEW_FILE} in it twice: Start "
+                  f"from \u201c{DRONE_TEMPLATE}\u201d, then from \u201c{LAUNCH_TEMPLATE}\u201d; fill "
+                  "in their TODOs."),
+        Step("Start it: one launch starts everything.", ("ros2lab launch drone_keys fly.launch",),
+             page=f"Open your launch file in the {CODE} view and press {RUN}."),
+        Step("Fly with the arrow keys: at least 2 m in x and 2 m in y.", (),
+             page="Click the 3D view, then press the arrow keys."),
     ),
     check=LaunchAndKeysCheck,
     questions=(

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from typing import Any
 
+from .declared import Step
 from .progress import Progress, iso
 
 Lines = dict[str, tuple[bool, str]]  # by checkpoint: (started, progress line), from the watch
@@ -29,7 +31,21 @@ def questions(progress: Progress) -> list[dict[str, Any]]:
     return out
 
 
-def world_view(progress: Progress, lines: Lines, version: int) -> dict[str, Any]:
+def step_view(step: Step, running: Collection[str]) -> dict[str, Any]:
+    """A step as the Guide shows it: the page's way first, the terminal's as the alternative, or
+    what already runs when its nodes do (``running``: the names of the nodes running now)."""
+    already = bool(step.running) and all(name in running for name in step.running)
+    return {
+        "text": step.text,
+        "page": step.page,
+        "commands": list(step.commands),
+        "already": step.already if already else None,
+    }
+
+
+def world_view(
+    progress: Progress, lines: Lines, version: int, running: Collection[str] = ()
+) -> dict[str, Any]:
     checkpoints = []
     for c in progress.checkpoints:
         record = progress.records.get(c.name)
@@ -39,7 +55,7 @@ def world_view(progress: Progress, lines: Lines, version: int) -> dict[str, Any]
             "state": state(progress, lines, c.name),
             "done_at": iso(record.done_at_s) if record is not None else None,
             "times_done": record.times if record is not None else 0,
-            "steps": [{"text": s.text, "commands": list(s.commands)} for s in c.steps],
+            "steps": [step_view(s, running) for s in c.steps],
             "progress": lines.get(c.name, (False, ""))[1],
             "evidence": record.evidence if record is not None else None,
             "has_capture": c.name in progress.captures,

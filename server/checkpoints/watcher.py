@@ -57,6 +57,23 @@ def _event(t_s: float, topic: str, msg: Any, source: ev.Source) -> ev.Event | No
     return None
 
 
+def launch_label(path: Path, packages: PackageIndex) -> str:
+    """How the Guide names a launch file: by its path in the student's workspace, or by its name
+    and package; never by a path of the server's own machine (a student has no use for it)."""
+    resolved = path.resolve()
+    workspace = packages.workspace
+    if workspace is not None and resolved.is_relative_to(workspace.resolve()):
+        return resolved.relative_to(workspace.resolve()).as_posix()
+    for pkg in packages.names():
+        try:
+            share = packages.share_dir(pkg).resolve()
+        except (LookupError, OSError):
+            continue
+        if resolved.is_relative_to(share):
+            return f"{path.name} of the package {pkg}"
+    return path.name
+
+
 class CheckpointWatch:
     def __init__(
         self,
@@ -78,6 +95,8 @@ class CheckpointWatch:
         self.dropped = 0
         self.live_version = 0
         self._lines: dict[str, tuple[bool, str]] = {}
+        self._watched = frozenset(n for c in progress.checkpoints for s in c.steps for n in s.running)
+        self._running: frozenset[str] = frozenset()
         self._node: Node | None = None
 
     # -- life ----------------------------------------------------------------------------------
@@ -120,6 +139,7 @@ class CheckpointWatch:
         top = Path(description.files[0])
         workspace = self._packages.workspace
         in_workspace = workspace is not None and top.resolve().is_relative_to(workspace.resolve())
+        label = launch_label(top, self._packages)
         try:
             text = top.read_text(errors="replace")[: ev.MAX_LAUNCH_TEXT]
         except OSError:
@@ -129,7 +149,7 @@ class CheckpointWatch:
                             self.sources.student_executable(e.action.pkg, e.action.exec))
             for e in started
         )  # fmt: skip
-        self.feed(ev.Launch(self.bus.clock.now(), str(top), text, in_workspace, nodes))
+        self.feed(ev.Launch(self.bus.clock.now(), label, text, in_workspace, nodes))
 
     # -- the checks' side ----------------------------------------------------------------------
     def drain(self) -> None:
@@ -166,6 +186,15 @@ class CheckpointWatch:
             self._lines = lines
             self.live_version += 1
         return lines
+
+    def running(self) -> frozenset[str]:
+        """Which nodes the steps watch (Step.running) run now; ``live_version`` moves when that
+        changes, as for the lines."""
+        running = frozenset(n.fully_qualified_name for n in self.bus.nodes) & self._watched
+        if running != self._running:
+            self._running = running
+            self.live_version += 1
+        return running
 
     @property
     def version(self) -> int:

@@ -6,8 +6,10 @@
 
 export type CheckState = "not_started" | "in_progress" | "done";
 
-/** One thing to do, and the commands or buttons it needs (shown as code). */
-export interface Step { text: string; commands: string[] }
+/** One thing to do: what (`text`), how in the page (`page`: its buttons, panels, starting files),
+ * and the same in a terminal (`commands`, the alternative). `already`: what runs already, when
+ * the step's nodes run (the lab's launch started them); the Guide shows it instead of asking. */
+export interface Step { text: string; page: string; commands: string[]; already: string | null }
 
 export interface Checkpoint {
   name: string;

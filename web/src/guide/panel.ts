@@ -1,13 +1,14 @@
 // The guide panel: the lab's checkpoints in order (from GET /api/checkpoints, in the server's
 // words), each with its state (not started, in progress, done at a time), its live progress
-// line, its steps with the commands or buttons they need, and its questions as answer boxes;
-// then the questions of no checkpoint, and the report to download. It folds to its header bar
-// (remembered in the browser) and layout.ts keeps it clear of the HUD, viser's notices and its
-// panel. Buttons never take the keyboard from the 3D view; keys typed in an answer box stop at
-// the panel, so neither the keyboard node nor viser's camera sees them.
+// line, its steps (the page's way first, the terminal's as the alternative, or what runs already)
+// and its questions as answer boxes; then the questions of no checkpoint, and the report to
+// download. It folds to its header bar (remembered in the browser) and layout.ts keeps it clear
+// of the HUD, viser's notices and its panel. Buttons never take the keyboard from the 3D view;
+// keys typed in an answer box stop at the panel, so neither the keyboard node nor viser's camera
+// sees them.
 import { LAYOUT_EVENT } from "../lab/layout";
 import { answerBox, type AnswerBox } from "./answers";
-import { reportUrl, type Checkpoint, type Checkpoints, type Question } from "./contract";
+import { reportUrl, type Checkpoint, type Checkpoints, type Question, type Step } from "./contract";
 import { graphFigure, type GraphFigure } from "./graph";
 import { progress } from "./progress";
 import { GUIDE_CSS } from "./style";
@@ -57,19 +58,40 @@ const time = (iso: string): string => {
   return today ? d.toLocaleTimeString([], { hour12: false }) : d.toLocaleString([], { hour12: false });
 };
 
-function stepList(c: Checkpoint): HTMLOListElement {
-  const ol = document.createElement("ol");
-  ol.className = "steps";
-  for (const step of c.steps) {
-    const li = document.createElement("li");
-    li.append(step.text);
+// A step: what to do, then how in the page, then the terminal's way as the alternative; or,
+// when its nodes run already, only that (nothing to ask).
+function stepItem(step: Step): HTMLLIElement {
+  const li = document.createElement("li");
+  if (step.already) {
+    li.className = "already";
+    li.textContent = `\u2713 ${step.already}`;
+    return li;
+  }
+  li.append(step.text);
+  if (step.page) {
+    const page = document.createElement("div");
+    page.className = "page";
+    page.textContent = step.page;
+    li.append(page);
+  }
+  if (step.commands.length) {
+    const terminal = document.createElement("div");
+    terminal.className = "terminal";
+    terminal.append(step.page ? "Or in a terminal:" : "In a terminal:");
     for (const command of step.commands) {
       const code = document.createElement("code");
       code.textContent = command;
-      li.append(" ", code);
+      terminal.append(" ", code);
     }
-    ol.append(li);
+    li.append(terminal);
   }
+  return li;
+}
+
+function stepList(c: Checkpoint): HTMLOListElement {
+  const ol = document.createElement("ol");
+  ol.className = "steps";
+  ol.append(...c.steps.map(stepItem));
   return ol;
 }
 

@@ -26,6 +26,9 @@ export const GUIDE_CSS = `
 #teleop-guide .progress { margin: 2px 0; font-style: italic; opacity: 0.8; }
 #teleop-guide .progress:empty { display: none; }
 #teleop-guide ol.steps { margin: 4px 0; padding-left: 18px; }
+#teleop-guide ol.steps .page { margin: 1px 0; }
+#teleop-guide ol.steps .terminal { font-size: 11px; opacity: 0.8; }
+#teleop-guide ol.steps li.already { color: #135c13; }
 #teleop-guide code {
   display: inline-block; max-width: 100%; box-sizing: border-box; margin: 1px 0; padding: 0 4px; border-radius: 3px;
   font: 11px/1.4 ui-monospace, monospace; background: rgba(0, 0, 0, 0.07); word-break: break-all; user-select: all;
