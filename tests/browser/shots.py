@@ -23,15 +23,18 @@ ARM_PER_HUB_RADIUS = 4.0  # ... or this many hub radii (arm 1 m, hub 0.3 m): clo
 
 # The 3D canvas's rectangle, and which of its points (on a grid of SAMPLE_PX) show the canvas
 # itself: not viser's control panel or a 3D label floating over it, nor one of our overlays
-# (the HUD lets the pointer through, so elementFromPoint does not see it).
+# (the HUD lets the pointer through, so elementFromPoint does not see it); the workbench's panes
+# that hold the canvas are not overlays.
 SAMPLE_PX = 4
 SCENE_POINTS_JS = """(step) => {
-  const canvas = [...document.querySelectorAll('canvas')].sort((a, b) => b.width * b.height - a.width * a.height)[0];
+  const canvas = window.__viserMutable?.canvas
+    ?? [...document.querySelectorAll('canvas')].sort((a, b) => b.width * b.height - a.width * a.height)[0];
   const box = canvas.getBoundingClientRect();
   // viser stacks a pointer-catching canvas of the same size over the WebGL one.
   const isScene = (e) => { if (!e || e.tagName !== 'CANVAS') return false; const r = e.getBoundingClientRect();
     return Math.abs(r.left - box.left) < 1 && Math.abs(r.top - box.top) < 1 && Math.abs(r.width - box.width) < 1; };
-  const ours = [...document.querySelectorAll('[id^="teleop-"]')].map((e) => e.getBoundingClientRect());
+  const ours = [...document.querySelectorAll('[id^="teleop-"]')].filter((e) => !e.contains(canvas))
+    .map((e) => e.getBoundingClientRect());
   const cols = Math.ceil(box.width / step), rows = Math.ceil(box.height / step);
   let shown = '';
   for (let j = 0; j < rows; j++) for (let i = 0; i < cols; i++) {

@@ -2,6 +2,7 @@
 // tree, the editor with its save state, Run/Stop for the open file and the run's live output. The
 // tree follows the workspace: it is listed again every POLL_MS while the view is shown, and a file
 // changed on disk reloads in the editor when nothing here is unsaved.
+import Split from "split.js";
 import * as actions from "./actions";
 import { ApiError, workspace, type Entry } from "./api";
 import { OpenFile, type SaveState } from "./autosave";
@@ -12,6 +13,8 @@ import { CSS } from "./style";
 import { FileTree } from "./tree";
 
 const POLL_MS = 1500;
+const STORE_OUTPUT_SPLIT = "teleop.workbench.output";
+const OUTPUT_SPLIT = [70, 30];  // % of the code pane's height: the editor, the output
 const SAVE_WORDS: Record<SaveState, string> = {
   none: "", saved: "\u2713 saved", unsaved: "\u25CF unsaved", saving: "saving \u2026", failed: "\u26A0 not saved", conflict: "\u26A0 changed elsewhere",
 };
@@ -33,6 +36,21 @@ const button = (label: string, title: string, cls = ""): HTMLButtonElement => {
 };
 const message = (exc: unknown): string => (exc instanceof ApiError ? exc.message : exc instanceof Error ? exc.message : String(exc));
 
+/** The editor above, the run's output below, with a gutter between them; the student's split
+ * is kept in the browser. */
+function splitOutput(top: HTMLElement, output: HTMLElement): void {
+  let sizes = OUTPUT_SPLIT;
+  try {
+    const saved = JSON.parse(localStorage.getItem(STORE_OUTPUT_SPLIT) ?? "null") as unknown;
+    if (Array.isArray(saved) && saved.length === 2 && saved.every((v) => typeof v === "number")) sizes = saved;
+  } catch { /* the defaults */ }
+  Split([top, output], {
+    direction: "vertical", sizes, minSize: [160, 48], gutterSize: 6, snapOffset: 0,
+    gutter: () => { const g = el("div", "teleop-gutter gutter-vertical"); g.title = "Drag to size the output"; return g; },
+    onDragEnd: (s) => localStorage.setItem(STORE_OUTPUT_SPLIT, JSON.stringify(s)),
+  });
+}
+
 /** Build the code view inside ``host`` (the lab page's panel). */
 export function mountCodeView(host: HTMLElement, lab: CodeViewHost): CodeViewHandle {
   const style = el("style");
@@ -48,7 +66,7 @@ export function mountCodeView(host: HTMLElement, lab: CodeViewHost): CodeViewHan
     button("Delete", "Delete the selected file or folder"),
     el("a", "button", "Download zip"),
     button("Upload", "Upload a zip of a workspace, or files into the selected folder"),
-    button("\u2715", "Close the code view (the 3D view takes the whole page)"),
+    button("\u2715", "Close the code view (the 3D view takes its room)"),
   ] as const;
   download.href = workspace.archiveUrl;
   download.setAttribute("download", "workspace.zip");
@@ -114,8 +132,11 @@ export function mountCodeView(host: HTMLElement, lab: CodeViewHost): CodeViewHan
   });
   stopB.disabled = true;
   runB.disabled = true;
-  body.append(bar, problem, split, runBar, output.element);
+  const top = el("div", "code-top");
+  top.append(bar, problem, split, runBar);
+  body.append(top, output.element);
   host.append(body);
+  splitOutput(top, output.element);
 
   function showConflict(detail: string | null): void {
     conflict.hidden = detail === null;

@@ -1,6 +1,7 @@
 // The code view's looks: a toolbar, the tree beside the editor, the run bar and the output below.
 export const CSS = `
   #teleop-code .code-body { flex: 1; display: flex; flex-direction: column; min-height: 0; }
+  #teleop-code .code-top { display: flex; flex-direction: column; min-height: 0; overflow: hidden; }
   #teleop-code .bar {
     display: flex; flex-wrap: wrap; align-items: center; gap: 4px; padding: 5px 8px;
     border-bottom: 1px solid #ddd; background: #f6f7f9;
@@ -41,7 +42,7 @@ export const CSS = `
   #teleop-code .run-bar { border-top: 1px solid #ddd; border-bottom: 1px solid #ddd; }
   #teleop-code .run-state { font-family: ui-monospace, monospace; font-size: 12px; }
   #teleop-code .output {
-    height: 32%; min-height: 60px; resize: vertical; overflow: auto; padding: 4px 8px; background: #1e1f22;
+    min-height: 0; overflow: auto; padding: 4px 8px; box-sizing: border-box; background: #1e1f22;
     color: #ddd; font: 12px/1.4 ui-monospace, monospace; white-space: pre-wrap; word-break: break-word;
   }
   #teleop-code .output .stderr { color: #ff8a80; }

@@ -1,21 +1,20 @@
-// Where the page's overlays go, so that none covers another at any window size: a column on the
-// left (the tools link, then the HUD, then viser's notices, moved below the HUD, then the guide,
-// down to the window's bottom at most, scrolling inside, or only its header when the room left is
-// small), viser's control panel on the right (minimised to a strip when the window is narrow),
-// and the help overlay in the largest free area between them. It runs on resize, when the help
-// opens or closes, and twice a second (notices and the panel come and go on their own).
+// Where things go inside the scene's pane of the workbench (workbench.ts places the panes), so
+// that none covers another: the HUD in its top-left corner with viser's notices moved below it,
+// viser's control panel at its top right (minimised to a strip when the pane is narrow), and the
+// help overlay in the largest free area between them. It runs on resize, when the help opens or
+// closes, and twice a second (notices and the panel come and go on their own).
 import { scene } from "./scene";
 
 /** Dispatch this on window to lay the overlays out again now (the help opened or closed). */
 export const LAYOUT_EVENT = "teleop-layout";
 const GAP = 8;
 const MARGIN = 16;
-const COLLAPSE_BELOW_PX = 1000;  // narrower than this, the panel starts as a strip
+const HUD_INSET = 10;  // the HUD's distance from its pane's top-left corner
+const COLLAPSE_BELOW_PX = 1000;  // a scene pane narrower than this: the panel starts as a strip
 const HELP_WIDTH = 460;
 const MIN_HELP_WIDTH = 280;
 const STRIP_MAX_PX = 60;  // a minimised panel is about 41 px high
 const CLICK_AGAIN_MS = 1500;  // a click toggles: never a second one before the first has shown
-const GUIDE_MIN_PX = 120;  // less room than this below the column: the guide shows its header only
 
 export const layout = {
   collapsedPanel: false,
@@ -25,8 +24,10 @@ export const layout = {
 };
 
 const rect = (e: Element | null): DOMRect | null => (e ? e.getBoundingClientRect() : null);
-// The 3D view's width: the window's, less the code view's when it is open (codeview.ts narrows viser's root).
+// The 3D view's width: its pane's in the workbench.
 const viewWidth = (): number => document.getElementById("root")?.clientWidth || window.innerWidth;
+const sceneBox = (): DOMRect =>
+  rect(document.getElementById("teleop-pane-scene")) ?? new DOMRect(0, 0, window.innerWidth, window.innerHeight);
 const panelEl = (): Element | null => document.querySelector('[data-testid="floating-panel"]');
 
 // Minimise the panel when the page opens narrow, or is made narrow; what the student does with
@@ -54,8 +55,8 @@ const collapsePanelIfNarrow = (): void => {
 const resized = typeof ResizeObserver === "function" ? new ResizeObserver(() => layOut()) : null;
 let observedHud: HTMLElement | null = null;
 
+// The HUD's corner: viser's notices go below it. Returns the right edge of the column they make.
 const placeColumn = (): number | null => {
-  const nav = document.getElementById("teleop-nav-tools");
   const hud = document.getElementById("teleop-hud");
   if (!hud) return null;
   if (resized && hud !== observedHud) {
@@ -63,43 +64,34 @@ const placeColumn = (): number | null => {
     resized.observe(hud);
     observedHud = hud;
   }
-  const top = nav ? rect(nav)!.bottom + GAP : MARGIN;
-  hud.style.top = `${top}px`;
+  // The HUD in the pane's corner; below viser's panel when it is a strip that would reach it.
+  const pane = sceneBox(), panel = rect(panelEl());
+  const reaches = !!panel && panel.height > 0 && panel.height <= STRIP_MAX_PX
+    && panel.left < pane.left + HUD_INSET + hud.offsetWidth + GAP;
+  hud.style.top = `${reaches ? panel.bottom - pane.top + GAP : HUD_INSET}px`;
   const notices = document.querySelector<HTMLElement>(".mantine-Notifications-root");
   const below = rect(hud)!.bottom + GAP;
   if (notices?.offsetParent) {
     const origin = rect(notices.offsetParent)!.top;
     document.documentElement.style.setProperty("--teleop-notices-top", `${below - origin}px`);
   }
-  const shown = [...document.querySelectorAll(".mantine-Notification-root")].map(rect)
-    .filter((r): r is DOMRect => !!r && r.height > 0);
-  const guide = placeGuide(Math.max(below - GAP, ...shown.map((r) => r.bottom)) + GAP);
-  const boxes = [nav, hud, notices, guide].map(rect).filter((r): r is DOMRect => !!r && r.width > 0);
+  const boxes = [hud, notices].map(rect).filter((r): r is DOMRect => !!r && r.width > 0);
   return Math.max(...boxes.map((r) => r.right));
-};
-
-const placeGuide = (top: number): HTMLElement | null => {
-  const guide = document.getElementById("teleop-guide");
-  if (!guide) return null;
-  const room = window.innerHeight - MARGIN - top;
-  guide.style.top = `${top}px`;
-  guide.style.maxHeight = `${Math.max(0, room)}px`;
-  guide.classList.toggle("squeezed", room < GUIDE_MIN_PX);
-  return guide;
 };
 
 interface Region { x0: number; x1: number; y0: number; y1: number }
 interface Fit { r: Region; width: number; height: number }
 
-// The help overlay in the free area right of the column: beside the panel, or below it when the
-// panel is a strip; whichever lets it be widest.
+// The help overlay in the scene pane's free area right of the column: beside the panel, or below
+// it when the panel is a strip; whichever lets it be widest.
 const placeHelp = (columnRight: number): void => {
   const help = document.getElementById("teleop-help");
   if (!help || help.hidden) return;
-  const W = viewWidth(), H = window.innerHeight;
+  const box = sceneBox();
+  const W = box.right, H = box.bottom, top = box.top + MARGIN;
   const panel = rect(panelEl());
   const left = columnRight + MARGIN;
-  const regions: Region[] = [{ x0: left, x1: W - MARGIN, y0: MARGIN, y1: H - MARGIN }];
+  const regions: Region[] = [{ x0: left, x1: W - MARGIN, y0: top, y1: H - MARGIN }];
   if (panel?.width) {
     regions[0]!.x1 = Math.min(regions[0]!.x1, panel.left - MARGIN);
     regions.push({ x0: left, x1: W - MARGIN, y0: panel.bottom + MARGIN, y1: H - MARGIN });
@@ -126,7 +118,7 @@ function layOut(): void {
   collapsePanelIfNarrow();
   const columnRight = placeColumn();
   if (columnRight !== null) placeHelp(columnRight);
-  const ids = ["teleop-nav-tools", "teleop-hud", "teleop-guide", "teleop-help"];
+  const ids = ["teleop-toolbar", "teleop-nav-tools", "teleop-hud", "teleop-guide", "teleop-help"];
   layout.boxes = Object.fromEntries(ids.map((id) => [id, rect(document.getElementById(id))]));
 }
 
