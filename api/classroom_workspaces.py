@@ -1,6 +1,6 @@
 """The instructor's view of the students' workspaces on a class server: any world's tree and
 files, read-only (the shapes of ``/api/workspace/files``), and every workspace in one zip with a
-folder per world.
+folder per world, built in a temporary file and sent from there as the student's own zip is.
 
 Every world's workspace is the folder of its name in the class's ``workspaces_dir``, wherever the
 world runs: a world worker serves a workspace only when it shares that folder (api/world_proxy.py),
@@ -9,21 +9,18 @@ so the class server reads each one from its own disk, also while the world's wor
 from __future__ import annotations
 
 import asyncio
-import io
-import zipfile
 from typing import Any
 
 from fastapi import APIRouter, Response
 from fastapi.responses import JSONResponse
 
 from server.classroom import Classroom, World
-from server.workspace.archive import add_to
 from server.workspace.files import WorkspaceFiles
 from server.workspace.location import world_workspace
 
 from .classroom import ClassroomDep, InstructorDep
 from .responses import FORBIDDEN, NOT_FOUND, UNAUTHORIZED, UNPROCESSABLE, responses
-from .workspace import ZIP, files_of, tree_body
+from .workspace import ZIP, WorkspaceTree, files_of, tree_body, zip_response
 
 router = APIRouter(prefix="/api/classroom", tags=["classroom"])
 REFUSED = responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND)
@@ -39,7 +36,7 @@ def workspace_of(classroom: Classroom, world: World) -> WorkspaceFiles:
 
 
 @router.get("/worlds/{name}/workspace/files", responses=REFUSED)
-async def world_tree(name: str, _: InstructorDep, classroom: ClassroomDep) -> Any:
+async def world_tree(name: str, _: InstructorDep, classroom: ClassroomDep) -> WorkspaceTree:
     """A student's workspace tree, as ``GET /api/workspace/files`` gives it to them."""
     files = workspace_of(classroom, classroom.get(name))
     return tree_body(await asyncio.to_thread(files.tree))
@@ -62,16 +59,5 @@ async def world_file(name: str, path: str, _: InstructorDep, classroom: Classroo
 )
 async def all_workspaces(_: InstructorDep, classroom: ClassroomDep) -> Response:
     """Every student's workspace in one zip: a folder per world (``ada/src/...``)."""
-    workspaces = {w.name: workspace_of(classroom, w) for w in list(classroom.worlds.values())}
-    data = await asyncio.to_thread(_pack_all, workspaces)
-    return Response(
-        data, media_type=ZIP, headers={"Content-Disposition": 'attachment; filename="workspaces.zip"'}
-    )
-
-
-def _pack_all(workspaces: dict[str, WorkspaceFiles]) -> bytes:
-    buffer = io.BytesIO()
-    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as archive:
-        for name, files in workspaces.items():
-            add_to(archive, files, f"{name}/")
-    return buffer.getvalue()
+    workspaces = {f"{w.name}/": workspace_of(classroom, w) for w in list(classroom.worlds.values())}
+    return await zip_response(workspaces, "workspaces.zip")

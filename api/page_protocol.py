@@ -24,6 +24,7 @@ from .introspection import GraphOut, NodeDetailOut, NodeSummaryOut, RateOut
 from .responses import ErrorBody
 from .schemas import TopicDetail, TopicSummary
 from .ts_types import declaration
+from .workspace import WorkspaceTree
 from .ws_keys import ControlFrame, KeyChannelError, KeyFrame
 from .ws_topics import EchoFrame
 
@@ -54,6 +55,7 @@ SHAPES: tuple[tuple[Any, Mode], ...] = (
     (ClassWorlds, "serialization"),
     (BroadcastRequest, "validation"),
     (ErrorBody, "serialization"),
+    (WorkspaceTree, "serialization"),  # the editor, the instructor's code view: GET .../workspace/files
 )
 # Messages the page reads from the pose stream, as the server sends them (every field present).
 MESSAGES = ("geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/Vector3")

@@ -4,24 +4,29 @@ and the whole workspace as a zip, down and up.
 
 The workspace is the lab's folder (``settings.lab.workspace``: ``./workspace`` on a single lab,
 the world's own folder on a class server), reached with the caller's token as every route is.
-Paths are confined to it (server/workspace/paths.py); errors map in api/errors.py. The disk is
+Paths are confined to it (server/workspace/paths.py), and opened one folder at a time, never
+through a symbolic link (server/workspace/handles.py); errors map in api/errors.py. The disk is
 read and written in a worker thread (a tree is a walk of up to thousands of ``stat`` calls), never
-on the loop that runs the labs.
+on the loop that runs the labs. A zip is built in a temporary file and sent from there in chunks:
+a workspace a node filled may hold far more than the API would ever write.
 """
 
 from __future__ import annotations
 
 import asyncio
 import functools
+import os
 import weakref
-from typing import Annotated, Any, Literal
+from collections.abc import AsyncIterator, Mapping
+from typing import IO, Annotated, Any, Literal
 
 from fastapi import APIRouter, Header, Query, Request, Response, status
+from fastapi.responses import StreamingResponse
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from server.lab import Lab
 from server.packages.templates import PackageSpec
-from server.workspace.archive import pack, replace, unpack
+from server.workspace.archive import packed, replace, unpack
 from server.workspace.errors import NoWorkspaceError
 from server.workspace.files import WorkspaceFiles
 from server.workspace.package_create import create_package
@@ -40,6 +45,7 @@ NOT_TEXT = 415
 Name = Annotated[str, StringConstraints(max_length=256)]
 Text = Annotated[str, StringConstraints(max_length=1024)]
 ZIP = "application/zip"
+ZIP_CHUNK = 256 * 1024  # bytes read from the zip's temporary file per send
 
 
 def files_of(lab: Lab) -> WorkspaceFiles:
@@ -53,11 +59,48 @@ def files_of(lab: Lab) -> WorkspaceFiles:
     return files
 
 
-def tree_body(tree: Tree) -> dict[str, Any]:
-    return {
-        "version": tree.version,
-        "entries": [{"path": e.path, "kind": e.kind, "size": e.size, "etag": e.etag} for e in tree.entries],
-    }
+class WorkspaceEntry(BaseModel):
+    """A file or folder of the workspace."""
+
+    path: str = Field(description="POSIX, relative to the workspace")
+    kind: Literal["file", "dir"]
+    size: int = Field(description="bytes (0 for a folder)")
+    etag: str | None = Field(description="the file's version; null for a folder")
+
+
+class WorkspaceTree(BaseModel):
+    """The workspace's files and folders, sorted by path, down to the depth a path may have."""
+
+    version: str = Field(description="changes with any change in the tree ('empty' for none)")
+    entries: list[WorkspaceEntry]
+    too_deep: int = Field(
+        description="entries just past the depth limit (WorkspaceLimits.max_depth, 16 folders): "
+        "neither they nor what they hold are listed, zipped or served"
+    )
+    too_deep_example: str | None = Field(description="the path of one of them, or null")
+
+
+def tree_body(tree: Tree) -> WorkspaceTree:
+    entries = [WorkspaceEntry(path=e.path, kind=e.kind, size=e.size, etag=e.etag) for e in tree.entries]
+    return WorkspaceTree(
+        version=tree.version, entries=entries, too_deep=tree.too_deep, too_deep_example=tree.too_deep_example
+    )
+
+
+async def zip_response(sources: Mapping[str, WorkspaceFiles], filename: str) -> StreamingResponse:
+    """The workspaces' zip (``archive.packed``), built in a worker thread and sent in chunks."""
+    out = await asyncio.to_thread(packed, sources)
+    size = os.fstat(out.fileno()).st_size
+    headers = {"Content-Disposition": f'attachment; filename="{filename}"', "Content-Length": str(size)}
+    return StreamingResponse(_chunks(out), media_type=ZIP, headers=headers)
+
+
+async def _chunks(out: IO[bytes]) -> AsyncIterator[bytes]:
+    try:
+        while chunk := await asyncio.to_thread(out.read, ZIP_CHUNK):
+            yield chunk
+    finally:
+        out.close()  # the temporary file goes with it
 
 
 def etag_value(header: str | None) -> str | None:
@@ -94,8 +137,9 @@ CREATED: dict[int | str, dict[str, Any]] = {201: {"description": "a new file was
 
 
 @router.get("/files", responses=responses(NOT_FOUND))
-async def tree(lab: LabDep) -> dict[str, Any]:
-    """Every file and folder, sorted by path; ``version`` changes with any change in the tree."""
+async def tree(lab: LabDep) -> WorkspaceTree:
+    """Every file and folder, sorted by path; ``version`` changes with any change in the tree.
+    Entries deeper than the depth limit are counted in ``too_deep``, not listed."""
     return tree_body(await asyncio.to_thread(files_of(lab).tree))
 
 
@@ -166,12 +210,9 @@ async def templates(_lab: LabDep) -> list[dict[str, Any]]:
     "/archive", response_class=Response, responses={200: {"content": {ZIP: {}}}, **responses(NOT_FOUND)}
 )
 async def download(lab: LabDep) -> Response:
-    """The workspace's files in one zip."""
-    data = await asyncio.to_thread(pack, files_of(lab))
-    name = lab.settings.lab.workspace.name if lab.settings.lab.workspace is not None else "workspace"
-    return Response(
-        data, media_type=ZIP, headers={"Content-Disposition": f'attachment; filename="{name}.zip"'}
-    )
+    """The workspace's files in one zip (every file the tree lists, whatever its size)."""
+    files = files_of(lab)
+    return await zip_response({"": files}, f"{files.root.name}.zip")
 
 
 @router.post(

@@ -70,9 +70,9 @@ class WorkspaceCopies:
         worker that shares the folder); ClassroomError 502 if the worker did not take them."""
         if self.shares(ref):
             return
-        try:
-            data = await asyncio.to_thread(pack, self.files(world))
-        except OSError as exc:
+        try:  # no more than the worker takes in an upload: a larger zip is refused there anyway
+            data = await asyncio.to_thread(pack, self.files(world), self.limits.max_body_bytes)
+        except (OSError, WorkspaceFileError) as exc:
             raise ClassroomError(502, f"world {world!r}'s files could not be read: {exc}") from None
         reply = await workers.call(ref, "POST", f"{ARCHIVE_PATH}?replace=true", world=world, content=data)
         if reply.status_code != 200:

@@ -12,6 +12,8 @@ from pydantic import Field, InstanceOf
 from server.settings.base import ANY_ADDRESS, LOOPBACK_HOSTS, Section, is_loopback_host
 from server.transport.config import ZenohSettings
 
+WORKSPACE_DEPTH = 16  # the default depth of a workspace path (server/workspace/paths.py)
+
 
 class Listening(Section):
     """Where the app listens and what its doors let in (the HTTP port and every bridge port)."""
@@ -103,6 +105,10 @@ class WorkspaceLimits(Section):
     max_workspace_bytes: int = Field(default=20 * 1024 * 1024, ge=1024)
     max_files: int = Field(default=2000, ge=1)
     max_body_bytes: int = Field(default=8 * 1024 * 1024, ge=1024)
+    # Folders a path may go down (a file at this depth is the deepest the API reads, writes and
+    # lists); the tree counts what lies deeper instead of listing it. At most 64: a walk holds a
+    # folder open per level.
+    max_depth: int = Field(default=WORKSPACE_DEPTH, ge=1, le=64)
 
 
 class SandboxSettings(Section):

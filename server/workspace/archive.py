@@ -1,60 +1,116 @@
 """A workspace as one zip, out and in.
 
-Out: every file the tree lists, under its path. In: every entry is checked before anything is
-written, and one bad entry refuses the whole upload: a name that is not a workspace path (``..``,
-absolute, a backslash), a symbolic link, an encrypted entry, a name given twice, more entries than
-the workspace may hold, an entry or a total over the limits by its declared size or by what it
-really inflates to (a zip bomb lies in its header; the reading stops one byte past the limit), and
-content that is not UTF-8 text.
+Out: every file the tree lists, under its path, each read from the file the walk opened (never
+through a link, ``handles.py``), into a temporary file rather than memory (a workspace a node
+filled may be far larger than the limits of what the API writes); the caller sends it from there.
+In: every entry is checked before anything is written, and one bad entry refuses the whole upload:
+a name that is not a workspace path (``..``, absolute, a backslash), a symbolic link, an encrypted
+entry, a name given twice, more entries than the workspace may hold, an entry or a total over the
+limits by its declared size or by what it really inflates to (a zip bomb lies in its header; the
+reading stops one byte past the limit), and content that is not UTF-8 text.
 """
 
 from __future__ import annotations
 
+import errno
 import io
-import shutil
+import os
 import stat
+import tempfile
+import time
 import zipfile
-from pathlib import PurePosixPath
+import zlib
+from collections.abc import Mapping
+from contextlib import ExitStack
+from typing import IO, Literal
 
 from .errors import BadArchiveError, BadPathError, NotTextError, TakenError, TooLargeError
-from .files import WorkspaceFiles, check_parents, decode_text, write_atomic
-from .paths import confine, parts_of
+from .files import WorkspaceFiles, decode_text
+from .handles import NotAFolderError, descend, lstat_in, open_root, through_link
+from .paths import parts_of
+from .removal import remove_folder
 
 READ_CHUNK = 64 * 1024
+# An entry whose first chunk deflates to more than this share of itself is stored as it is:
+# deflate spends about 30 s of CPU a GiB on bytes it cannot shrink (random, already compressed).
+STORED_ABOVE = 0.9
+SMALL = 4096  # bytes below which an entry is always deflated (its sample says little)
+EARLIEST = (1980, 1, 1, 0, 0, 0)  # the times a zip can hold
+LATEST = (2107, 12, 31, 23, 59, 58)
 
 
-def pack(files: WorkspaceFiles, folder: str = "") -> bytes:
-    """The workspace's files in a zip, each under ``folder`` + its path."""
-    buffer = io.BytesIO()
-    with files.lock, zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as archive:
-        add_to(archive, files, folder)
-    return buffer.getvalue()
+def packed(sources: Mapping[str, WorkspaceFiles]) -> IO[bytes]:
+    """The files of every workspace in one zip, each under its folder (the key: '' or 'ada/') and
+    its path: a temporary file, at its start, that the caller closes (it goes with its closing)."""
+    out = tempfile.TemporaryFile()  # noqa: SIM115 (the caller's to close)
+    try:
+        with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as archive:
+            for folder, files in sources.items():
+                with files.lock:
+                    add_to(archive, files, folder)
+        out.seek(0)
+    except BaseException:
+        out.close()
+        raise
+    return out
+
+
+def pack(files: WorkspaceFiles, max_bytes: int) -> bytes:
+    """The workspace's zip as bytes, for a receiver that takes at most ``max_bytes`` (TooLargeError
+    past it)."""
+    with packed({"": files}) as out:
+        size = os.fstat(out.fileno()).st_size
+        if size > max_bytes:
+            raise TooLargeError(f"the workspace's zip is {size} bytes, over the limit of {max_bytes}")
+        return out.read()
 
 
 def add_to(archive: zipfile.ZipFile, files: WorkspaceFiles, folder: str = "") -> None:
     for entry in files.tree().files:
-        path = files.root / entry.path
-        try:
-            archive.write(path, folder + entry.path)
-        except OSError:
-            continue  # removed while the zip was made
+        with ExitStack() as stack:
+            try:
+                found = stack.enter_context(files.opened(entry.path))
+            except (BadPathError, OSError):
+                continue  # a link now, or gone or unreadable since the tree listed it
+            if found is not None:
+                _add(archive, folder + entry.path, *found)
+
+
+def _add(archive: zipfile.ZipFile, name: str, fd: int, status: os.stat_result) -> None:
+    """The open file as the entry ``name``: its size as it was opened, no byte more; deflated
+    unless its first chunk shows that deflate would not shrink it."""
+    when = min(max(time.localtime(status.st_mtime)[:6], EARLIEST), LATEST)
+    info = zipfile.ZipInfo(name, when)
+    info.external_attr = (status.st_mode & 0xFFFF) << 16
+    info.file_size = status.st_size  # zipfile picks ZIP64 from it
+    first = os.read(fd, min(READ_CHUNK, status.st_size))
+    shrinks = len(first) < SMALL or len(zlib.compress(first, 1)) < STORED_ABOVE * len(first)
+    info.compress_type = zipfile.ZIP_DEFLATED if shrinks else zipfile.ZIP_STORED
+    left = status.st_size - len(first)
+    with archive.open(info, "w") as entry:
+        entry.write(first)
+        while left > 0:
+            chunk = os.read(fd, min(READ_CHUNK, left))
+            if not chunk:
+                break
+            entry.write(chunk)
+            left -= len(chunk)
 
 
 def unpack(files: WorkspaceFiles, data: bytes) -> list[str]:
     """Write the zip's files into the workspace (folders are made as needed); the paths written."""
     contents = _contents(files, data)
     with files.lock:
-        targets = {relative: confine(files.root, relative) for relative in contents}
-        for relative, target in targets.items():
-            if target.is_dir():
-                raise BadArchiveError(f"{relative}: a folder of that name is in the workspace")
+        for relative in contents:
             try:
-                check_parents(files.root, target, relative)
+                found = files.probe(relative)
             except TakenError as exc:
                 raise BadArchiveError(f"zip entry {exc}") from None
+            if found is not None and stat.S_ISDIR(found.st_mode):
+                raise BadArchiveError(f"{relative}: a folder of that name is in the workspace")
         files.check_room({relative: len(raw) for relative, raw in contents.items()})
         for relative, raw in contents.items():
-            write_atomic(targets[relative], raw)
+            files.put(relative, raw)
     return sorted(contents)
 
 
@@ -67,30 +123,62 @@ def replace(files: WorkspaceFiles, data: bytes) -> list[str]:
     with files.lock:
         tree = files.tree()
         going = {entry.path for entry in tree.files if entry.path not in contents}
-        # Before anything changes: no link on the way to a file of the zip, and nothing the tree
-        # does not list where one of its folders goes.
-        for relative in contents:
-            try:
-                confine(files.root, relative)
-            except BadPathError as exc:
-                raise BadArchiveError(f"zip entry {exc}") from None
-            for parent in list(PurePosixPath(relative).parents)[:-1]:
-                path = files.root / parent
-                if path.exists() and not path.is_dir() and parent.as_posix() not in going:
-                    raise BadArchiveError(f"zip entry {relative!r}: {parent.as_posix()} is not a folder")
+        for relative in contents:  # before anything changes
+            _check_replacing(files, relative, going)
         for relative in going:
-            confine(files.root, relative).unlink(missing_ok=True)
+            _remove(files, relative, "file")
         for entry in reversed(tree.entries):  # deepest first: a folder after what it held
-            if entry.kind != "dir":
-                continue
-            folder = confine(files.root, entry.path)
-            if entry.path in contents:  # a file of the zip goes where this folder is
-                shutil.rmtree(folder)
-            elif not any(folder.iterdir()):  # emptied
-                folder.rmdir()
+            if entry.kind == "dir":  # a file of the zip where it is: it goes, else only if emptied
+                _remove(files, entry.path, "folder" if entry.path in contents else "emptied")
         for relative, raw in contents.items():
-            write_atomic(confine(files.root, relative), raw)
+            files.put(relative, raw)
     return sorted(contents)
+
+
+def _check_replacing(files: WorkspaceFiles, relative: str, going: set[str]) -> None:
+    """BadArchiveError for a link on the way to ``relative`` (or there), or something on its way
+    that is not a folder and does not go (a file the tree lists does)."""
+    parts = files.parts(relative)
+    top = open_root(files.root)
+    if top is None:
+        return
+    try:
+        folder, depth = descend(top, parts[:-1], relative)
+    except BadPathError as exc:
+        raise BadArchiveError(f"zip entry {exc}") from None
+    except NotAFolderError as exc:
+        taken = "/".join(parts[: exc.depth + 1])
+        if taken in going:
+            return
+        raise BadArchiveError(f"zip entry {relative!r}: {taken} is not a folder") from None
+    finally:
+        os.close(top)
+    try:
+        found = lstat_in(folder, parts[-1]) if depth == len(parts) - 1 else None
+    finally:
+        os.close(folder)
+    if found is not None and stat.S_ISLNK(found.st_mode):
+        raise BadArchiveError(f"zip entry {through_link(relative)}")
+
+
+def _remove(files: WorkspaceFiles, relative: str, what: Literal["file", "folder", "emptied"]) -> None:
+    """Remove a file, a folder with all in it, or a folder if it is empty; nothing if it is gone."""
+    parts = files.parts(relative)
+    with files.folder(parts[:-1], relative, "read") as folder:
+        if folder is None:
+            return
+        try:
+            if what == "file":
+                os.unlink(parts[-1], dir_fd=folder)
+            elif what == "folder":
+                remove_folder(folder, parts[-1], relative)
+            else:
+                os.rmdir(parts[-1], dir_fd=folder)
+        except (FileNotFoundError, IsADirectoryError, NotADirectoryError):
+            pass
+        except OSError as exc:
+            if exc.errno != errno.ENOTEMPTY:
+                raise
 
 
 def _contents(files: WorkspaceFiles, data: bytes) -> dict[str, bytes]:

@@ -3,11 +3,13 @@
 
 from __future__ import annotations
 
+import errno
 import os
-import shutil
 from pathlib import Path
 
+from .errors import WorkspaceFileError
 from .paths import parts_of
+from .removal import remove_folder as remove_within
 
 
 def world_workspace(workspaces_dir: Path, world: str) -> Path:
@@ -32,11 +34,18 @@ def remove_world_workspace(workspaces_dir: Path, world: str) -> bool:
 
 def remove_folder(folder: Path) -> bool:
     """Remove ``folder`` with everything in it (a link to one: the link alone, never what it
-    points at); whether there was one."""
+    points at; a link inside it likewise), by a loop however deep it goes; whether there was one.
+    OSError when it could not be removed (its callers log it and go on)."""
     if folder.is_symlink():
         folder.unlink()
         return True
     if not folder.is_dir():
         return False
-    shutil.rmtree(folder)
+    parent = os.open(folder.parent, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)
+    try:
+        remove_within(parent, folder.name, folder.name)
+    except WorkspaceFileError as exc:  # a link or a file in its place, or it kept filling
+        raise OSError(errno.ENOTEMPTY, str(exc)) from None
+    finally:
+        os.close(parent)
     return True

@@ -12,8 +12,7 @@ from pathlib import Path
 from server.packages.templates import PackageSpec, package_files
 
 from .errors import BadPackageError, TakenError
-from .files import WorkspaceFiles, check_parents, write_atomic
-from .paths import confine
+from .files import WorkspaceFiles, write_atomic
 
 NAME = re.compile(r"^[a-z][a-z0-9_]*$")  # REP 144's package names
 NODE_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -76,12 +75,13 @@ def create_package(files: WorkspaceFiles, spec: PackageSpec) -> CreatedPackage:
     if refusal is not None:
         raise BadPackageError(refusal)
     folder = f"{SOURCE}/{spec.name}"
-    package_dir = confine(files.root, folder)
     texts = {f"{folder}/{relative}": text for relative, text in package_files(spec).items()}
     with files.lock:
-        if package_dir.exists() or package_dir.is_symlink():
+        if files.probe(folder) is not None:
             raise TakenError(f"{folder} exists already: remove it or choose another package name")
-        check_parents(files.root, package_dir, folder)
         files.check_room({path: len(text.encode("utf-8")) for path, text in texts.items()})
-        write_package(package_dir, spec)
+        for inside in folders_of(spec):
+            files.make_folder(f"{folder}/{inside}" if inside else folder)
+        for path, text in texts.items():
+            files.put(path, text.encode("utf-8"))
     return CreatedPackage(spec.name, folder, list(texts))

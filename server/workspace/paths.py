@@ -1,23 +1,25 @@
 """Paths inside a workspace: POSIX, relative, made of names ROS and colcon accept, never leaving
-the folder. Checked on the text first (no ``..``, no absolute path, no backslash, no NUL, no hidden
-name), then on the disk (no symlink on the way: a link could lead out)."""
+the folder. Checked here on the text (no ``..``, no absolute path, no backslash, no NUL, no hidden
+name, no deeper than the limit); on the disk, the folders are then opened one name at a time with
+no symbolic link on the way (``handles.py``): a link could lead out."""
 
 from __future__ import annotations
 
 import re
-from pathlib import Path
+
+from server.settings.lab import WORKSPACE_DEPTH
 
 from .errors import BadPathError
 
 MAX_PATH_CHARS = 1024
 MAX_NAME_CHARS = 255
-MAX_DEPTH = 16
+MAX_DEPTH = WORKSPACE_DEPTH  # WorkspaceLimits.max_depth's default
 # A file or folder name: letters, digits, ``_``, ``-`` and dots, not starting with a dot or a dash
 # (colcon skips hidden folders; a leading dash reads as an option on a command line).
 NAME = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.\-]*$")
 
 
-def parts_of(relative: str) -> tuple[str, ...]:
+def parts_of(relative: str, max_depth: int = MAX_DEPTH) -> tuple[str, ...]:
     """The names of a workspace path as sent; BadPathError naming what is wrong with it."""
     if not relative:
         raise BadPathError("an empty path: name a file or folder inside the workspace")
@@ -30,8 +32,8 @@ def parts_of(relative: str) -> tuple[str, ...]:
     if relative.startswith("/"):
         raise BadPathError(f"an absolute path {relative!r}: paths are relative to the workspace")
     parts = tuple(relative.split("/"))
-    if len(parts) > MAX_DEPTH:
-        raise BadPathError(f"a path deeper than {MAX_DEPTH} folders")
+    if len(parts) > max_depth:
+        raise BadPathError(f"a path deeper than {max_depth} folders")
     for part in parts:
         if part in ("", ".", ".."):
             raise BadPathError(
@@ -45,22 +47,3 @@ def parts_of(relative: str) -> tuple[str, ...]:
                 "and '.', not starting with '.' or '-'"
             )
     return parts
-
-
-def confine(root: Path, relative: str) -> Path:
-    """The path ``relative`` names inside ``root``, with no symlink on the way (it may not exist)."""
-    parts = parts_of(relative)
-    path = root
-    for part in parts:
-        path = path / part
-        if path.is_symlink():
-            raise BadPathError(
-                f"{relative!r} goes through a symbolic link, which could lead out of the workspace"
-            )
-    if not path.resolve().is_relative_to(root.resolve()):
-        raise BadPathError(f"{relative!r} leads out of the workspace")
-    return path
-
-
-def relative_of(root: Path, path: Path) -> str:
-    return path.relative_to(root).as_posix()

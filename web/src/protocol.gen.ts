@@ -331,6 +331,28 @@ export interface WaitingOut {
   waited_s: number;
 }
 
+/** A file or folder of the workspace. */
+export interface WorkspaceEntry {
+  /** POSIX, relative to the workspace */
+  path: string;
+  kind: "file" | "dir";
+  /** bytes (0 for a folder) */
+  size: number;
+  /** the file's version; null for a folder */
+  etag: string | null;
+}
+
+/** The workspace's files and folders, sorted by path, down to the depth a path may have. */
+export interface WorkspaceTree {
+  /** changes with any change in the tree ('empty' for none) */
+  version: string;
+  entries: WorkspaceEntry[];
+  /** entries just past the depth limit (WorkspaceLimits.max_depth, 16 folders): neither they nor what they hold are listed, zipped or served */
+  too_deep: number;
+  /** the path of one of them, or null */
+  too_deep_example: string | null;
+}
+
 /** geometry_msgs/msg/PoseStamped, as the server sends it */
 export interface PoseStamped {
   header: {

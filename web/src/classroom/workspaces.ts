@@ -2,10 +2,8 @@
 // /api/classroom/worlds/{world}/workspace/files) and one file's text at a time, read-only: the
 // instructor reads a student's code here and never edits it. Every workspace in one zip is the
 // header's link (GET /api/classroom/workspaces/archive).
-import type { ErrorBody } from "../protocol.gen";
+import type { ErrorBody, WorkspaceEntry, WorkspaceTree } from "../protocol.gen";
 
-interface Entry { path: string; kind: "file" | "dir" }
-interface Tree { entries: Entry[] }
 interface FileText { path: string; text: string }
 
 const $ = <E extends HTMLElement = HTMLElement>(id: string): E => document.getElementById(id) as E;
@@ -44,9 +42,11 @@ export async function openWorkspace(world: string, student: string): Promise<voi
   $("workspace-text").textContent = "";
   list.replaceChildren();
   if (!dialog.open) dialog.showModal();
-  let files: Entry[];
+  let files: WorkspaceEntry[];
+  let tree: WorkspaceTree;
   try {
-    files = (await read<Tree>(base)).entries.filter((e) => e.kind === "file");
+    tree = await read<WorkspaceTree>(base);
+    files = tree.entries.filter((e) => e.kind === "file");
   } catch (err) {
     $("workspace-text").textContent = messageOf(err);
     return;
@@ -60,6 +60,12 @@ export async function openWorkspace(world: string, student: string): Promise<voi
     b.addEventListener("click", () => void show(base, entry.path));
     item.append(b);
     list.append(item);
+  }
+  if (tree.too_deep) {
+    const note = document.createElement("li");
+    note.textContent = `${tree.too_deep} more deeper than a workspace path may go, not listed ` +
+      `(one is ${tree.too_deep_example ?? "?"})`;
+    list.append(note);
   }
   const first = files[0];
   if (first) await show(base, first.path);

@@ -2,8 +2,10 @@
 // token, when there is one, travels in its cookie). Every answer that is not a success becomes an
 // ApiError carrying the status and the server's own words.
 
-export interface Entry { path: string; kind: "file" | "dir"; size: number; etag: string | null }
-export interface Tree { version: string; entries: Entry[] }
+import type { WorkspaceEntry, WorkspaceTree } from "../protocol.gen";
+
+export type Entry = WorkspaceEntry;
+export type Tree = WorkspaceTree;
 export interface FileText { path: string; text: string; etag: string }
 export interface Saved { path: string; etag: string; size: number }
 export interface Template { name: string; title: string; description: string; path: string; text: string }
