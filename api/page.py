@@ -32,6 +32,8 @@ INJECT_SCRIPTS = ("build/lab.js",)
 INJECT = "".join(f'<link rel="stylesheet" href="/static/{name}">' for name in INJECT_STYLES) + "".join(
     f'<script src="/static/{name}"></script>' for name in INJECT_SCRIPTS
 )
+# The browser's tab says which page this is (viser's says "Viser"), as the tools page's does.
+VISER_TITLE, LAB_TITLE = "<title>Viser</title>", "<title>Teleop lab · ROS 2 Lab 2</title>"
 PROXY_MAX_FRAME_BYTES = 1 << 20  # browser → viser: camera moves and GUI clicks, all small
 # Cross-origin isolation, so the page may share memory with its pose worker (web/src/lab/poses.ts):
 # everything the page loads comes from this origin, and it opens other pages only as new tabs.
@@ -48,11 +50,11 @@ def viser_html() -> str:
 @cache
 def index_html() -> str:
     html = viser_html()
-    if "</head>" not in html:
+    if "</head>" not in html or VISER_TITLE not in html:
         raise RuntimeError(f"viser's page at {VISER_INDEX} changed shape; pin viser==1.1.1")
     if not all((STATIC / name).is_file() for name in INJECT_SCRIPTS):
         log.warning("the page's scripts are not built (static/build): run scripts/run.sh, which builds them")
-    return html.replace("</head>", INJECT + "</head>", 1)
+    return html.replace(VISER_TITLE, LAB_TITLE, 1).replace("</head>", INJECT + "</head>", 1)
 
 
 @router.get("/")

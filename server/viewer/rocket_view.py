@@ -24,6 +24,7 @@ REDRAW_HZ = 30.0
 # From the south-east, close enough that the rocket stands a quarter of the view's height, and
 # high enough to keep its whole (squeezed) flight, pad to ceiling, in the picture.
 CAMERA_OFFSET_M, CAMERA_LOOK_AT_Z_M = (11.0, -11.0, 9.0), 7.5
+LABEL_ABOVE_PAD_M = 6.2  # the label's bottom in the rocket's frame (0.3 m up): 6.5 m, over the 6 m tower
 
 
 @dataclass
@@ -140,7 +141,11 @@ class RocketScene:
         self.flame = scene.add_mesh_simple(
             "/rocket_lab/rocket/flame", flame_v, flame_f, color=(255, 150, 20), visible=False, side="double"
         )
-        self.label = scene.add_label("/rocket_lab/rocket/label", "Ready", position=(0.8, 0, 5.5))
+        # Above the nose, its bottom edge centred on the rocket's axis: clear of the tower beside it
+        # (whose top is 6 m up) whatever the text's length.
+        self.label = scene.add_label(
+            "/rocket_lab/rocket/label", "Ready", position=(0, 0, LABEL_ABOVE_PAD_M), anchor="bottom-center"
+        )
         with gui.add_folder("Rocket lab"):
             self.status = gui.add_markdown("**Ready for countdown**")
             self.countdown = gui.add_number("Countdown (s)", 10, disabled=True)

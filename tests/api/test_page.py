@@ -28,6 +28,7 @@ def test_index_serves_viser_page_with_key_script_injected(make_lab: Callable[...
     head, _, body = html.partition("</head>")
     assert '<script src="/static/build/lab.js"></script>' in head
     assert '<div id="root"></div>' in body  # viser's client mounts here
+    assert "<title>Teleop lab" in head and "<title>Viser" not in head  # the tab is titled after the lab
     script = lab.http.get("/static/build/lab.js")
     assert script.status_code == 200
     assert "/ws/keys" in script.text and "window.__teleop" in script.text
