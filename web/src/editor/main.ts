@@ -168,6 +168,10 @@ export function mountCodeView(host: HTMLElement, lab: CodeViewHost): CodeViewHan
       if (force || listing.version !== version) {
         version = listing.version;
         tree.show(listing.entries);
+        if (listing.too_deep) {
+          showProblem(`${listing.too_deep} file(s) or folder(s) lie deeper than a workspace path may go and are not ` +
+            `listed, zipped or run from here (one is ${listing.too_deep_example ?? "?"}).`);
+        }
         if (file.path !== null) {
           const mine = listing.entries.find((e) => e.path === file.path);
           await file.changedElsewhere(mine?.etag ?? null, listedAt);
