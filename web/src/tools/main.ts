@@ -11,7 +11,9 @@ import { assignLayers, backEdges, crossings, layout, type Point } from "./layout
 const POLL_MS = 1000;
 const ECHO_RETRY_MS = 2000;
 const MAX_FIT_SCALE = 1.5;  // a small graph is not blown up past this
-const MIN_PANEL_H = 180;  // px; the panel grows with the drawing's height up to 42% of the window
+const MIN_FIT_SCALE = 0.85;  // a big graph is not shrunk past this (its text stays readable): pan to see the rest
+const MIN_PANEL_H = 180;  // px; the panel grows with the drawing's height up to the window's, less the toolbar
+const PANEL_MARGIN_PX = 20;
 
 interface Selected { kind: Kind; name: string }
 
@@ -75,22 +77,28 @@ function setViewBox(v: ViewBox): void {
   state.view = v;
   svg.setAttribute("viewBox", `${v.x} ${v.y} ${v.w} ${v.h}`);
 }
-// Size the panel to the drawing (a wide, short graph needs little height), then show it all.
+// Size the panel to the drawing at the scale it will be drawn (a wide, short graph needs little
+// height; a tall one takes up to the window), then show it all, or as much as is readable.
 function fitPanel(): void {
   const panel = $("#graph-panel");
   const b = state.bounds;
   if (!b) return;
-  const want = panel.clientWidth * Math.min(b.h / b.w, 1 / 1.2) + 2;
-  panel.style.height = `${Math.round(Math.min(Math.max(want, MIN_PANEL_H), 0.42 * innerHeight))}px`;
+  const scale = Math.max(Math.min(panel.clientWidth / b.w, MAX_FIT_SCALE), MIN_FIT_SCALE);
+  const want = b.h * scale + 2;
+  const room = innerHeight - $("#toolbar").offsetHeight - PANEL_MARGIN_PX;
+  panel.style.height = `${Math.round(Math.min(Math.max(want, MIN_PANEL_H), room))}px`;
   if (!state.userView) fit(b);
 }
 function fit(b: ViewBox): void {
   const cw = svg.clientWidth || 1;
   const ch = svg.clientHeight || 1;
-  const scale = Math.min(cw / b.w, ch / b.h, MAX_FIT_SCALE);
+  const scale = Math.max(Math.min(cw / b.w, ch / b.h, MAX_FIT_SCALE), MIN_FIT_SCALE);
   const w = cw / scale;
   const h = ch / scale;
-  setViewBox({ x: b.x - (w - b.w) / 2, y: b.y - (h - b.h) / 2, w, h });
+  // Too big to show whole at a readable size: its left (where the graph starts) and middle.
+  const x = w >= b.w ? b.x - (w - b.w) / 2 : b.x;
+  const y = h >= b.h ? b.y - (h - b.h) / 2 : b.y;
+  setViewBox({ x, y, w, h });
 }
 function toUser(clientX: number, clientY: number): Point {
   const m = svg.getScreenCTM();
