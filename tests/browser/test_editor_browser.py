@@ -336,6 +336,11 @@ def test_editor_output_counts_drops_shows_the_exit_and_links_a_traceback_to_its_
     assert link.last.get_attribute("data-line") == str(
         CRASHER.splitlines().index("    raise RuntimeError('sensor unplugged')") + 1
     )
+    # The student's line shows; the lab's own frames (rclpy, the launcher), if any, are folded.
+    assert link.last.is_visible()
+    folds = page.locator("#teleop-code .output details.lab-frames")
+    assert all(not fold.get_attribute("open") for fold in folds.all())
+    assert folds.locator(f'a.traceback[data-path="{path}"]').count() == 0
     page.get_by_role("button", name="\u25b6 Run").wait_for()
     link.last.click()
     page.locator("#teleop-code .cm-activeLine", has_text="raise RuntimeError('sensor unplugged')").wait_for()
@@ -355,6 +360,10 @@ def test_editor_new_file_from_a_template_renamed_then_deleted_after_confirming(
     dialog.get_by_role("button", name="Create").click()
     page.locator("#teleop-code .file-bar .path", has_text=created).wait_for()
     page.locator("#teleop-code .cm-content", has_text="TODO").wait_for()
+    # A long line wraps in the pane (no line runs past the editor's right edge).
+    assert page.locator("#teleop-code .cm-content.cm-lineWrapping").count() == 1
+    assert page.evaluate("""() => { const c = document.querySelector('#teleop-code .cm-content');
+      return [...c.querySelectorAll('.cm-line')].every((l) => l.getBoundingClientRect().right <= c.getBoundingClientRect().right + 1); }""")
     assert "TODO" in file_text(server, created)
 
     page.get_by_role("button", name="Rename").click()

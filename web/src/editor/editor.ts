@@ -43,6 +43,7 @@ export class CodeEditor {
         languageOf(path),
         EditorState.readOnly.of(path === ""),
         EditorView.theme({ "&": { height: "100%" }, ".cm-scroller": { overflow: "auto" } }),
+        EditorView.lineWrapping,  // a long line wraps in a narrow pane rather than hiding its end
       ],
     });
   }

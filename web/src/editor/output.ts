@@ -1,12 +1,19 @@
 // A run's output as the page shows it: each line as the node printed it (stderr in red, a ROS 2
 // log line coloured by its level), a traceback's `File "...", line N` as a link that opens the
-// file at that line when it is in the workspace, what a fast printer lost, and each exit. The
-// page keeps the last MAX_LINES lines; older ones scroll away.
+// file at that line when it is in the workspace, what a fast printer lost, and each exit. In a
+// traceback the student's frames show and the lab's own frames (rclpy, the launcher: files outside
+// the workspace) fold behind a toggle right after its first line, so the student's line is not
+// buried under them. The page keeps the last MAX_LINES lines; older ones scroll away.
 import type { ExitFrame, LineFrame, WaitingFrame } from "./frames";
 
 const MAX_LINES = 2000;
 const LOG_LEVEL = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;
 const TRACEBACK_FILE = /File "([^"]+)", line (\d+)/;
+const TRACEBACK_START = /^Traceback \(most recent call last\):/;
+const INDENTED = /^\s/;
+
+/** A traceback being printed by one node: the fold that holds the lab's frames. */
+interface Traceback { fold: HTMLDetailsElement; label: HTMLElement; frames: number; inLab: boolean }
 
 /** Where a path a node printed is in the workspace (a workspace path), or null. */
 export type Resolve = (printed: string) => string | null;
@@ -18,6 +25,7 @@ export class OutputPane {
   dropped = 0;
   lines = 0;
   private droppedNote: HTMLElement | null = null;
+  private readonly tracebacks = new Map<string, Traceback>();
 
   constructor(private readonly resolve: Resolve, private readonly openAt: OpenAt) {
     this.element.className = "output";
@@ -29,6 +37,7 @@ export class OutputPane {
     this.dropped = 0;
     this.lines = 0;
     this.droppedNote = null;
+    this.tracebacks.clear();
     this.element.replaceChildren();
     this.note(heading, "heading");
   }
@@ -76,7 +85,37 @@ export class OutputPane {
       row.append(frame.text);
     }
     this.lines++;
-    this.append(row);
+    this.place(frame, row, file !== null && path === null);
+  }
+
+  /** A line where it goes: in its node's traceback, the lab's frames into the fold. */
+  private place(frame: LineFrame, row: HTMLElement, labFile: boolean): void {
+    const text = frame.text;
+    const open = this.tracebacks.get(frame.node);
+    if (TRACEBACK_START.test(text)) {
+      this.append(row);
+      const fold = document.createElement("details");
+      fold.className = "lab-frames";
+      fold.hidden = true;
+      const label = document.createElement("summary");
+      fold.append(label);
+      this.append(fold);
+      this.tracebacks.set(frame.node, { fold, label, frames: 0, inLab: false });
+      return;
+    }
+    if (!open || !INDENTED.test(text)) {
+      this.tracebacks.delete(frame.node);  // the exception's own line ends the traceback
+      this.append(row);
+      return;
+    }
+    if (TRACEBACK_FILE.test(text)) open.inLab = labFile;
+    if (!open.inLab) { this.append(row); return; }
+    if (TRACEBACK_FILE.test(text)) {
+      open.frames++;
+      open.label.textContent = `${open.frames} frame${open.frames === 1 ? "" : "s"} of the lab's own code (rclpy, the launcher)`;
+      open.fold.hidden = false;
+    }
+    open.fold.append(row);
   }
 
   droppedLines(count: number): void {

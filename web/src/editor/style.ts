@@ -56,6 +56,8 @@ export const CSS = `
   #teleop-code .output .note.dropped { color: #ffd166; }
   #teleop-code .output .note.waiting { color: #9ecbff; }
   #teleop-code .output a.traceback { color: #8ab4f8; }
+  #teleop-code .output details.lab-frames { color: #999; margin-left: 2ch; }
+  #teleop-code .output details.lab-frames > summary { cursor: pointer; font-style: italic; }
   #teleop-code .code-dialog { border: 1px solid #bbb; border-radius: 8px; padding: 14px 18px; min-width: 300px; }
   #teleop-code .code-dialog h3 { margin: 0 0 8px; font-size: 15px; }
   #teleop-code .code-dialog label { display: block; margin: 6px 0; }
