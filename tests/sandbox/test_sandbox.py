@@ -429,7 +429,9 @@ def test_sandbox_a_node_cannot_fill_or_nest_its_workspace_and_the_api_survives_a
             line = probe_line(world, "deep", str(folder))
             assert line.startswith("PROBE deep ok" if world is klass.cy else "PROBE deep blocked"), line
             # Whatever is on the disk, the API answers: the unsandboxed node made 1,100 folders.
-            assert world.get("/api/workspace/tree").status_code == 200
+            tree = world.get("/api/workspace/files")
+            assert tree.status_code == 200, tree.text
+            assert tree.json()["too_deep"] == (1 if world is klass.cy else 0), tree.json()
             assert world.get("/api/workspace/archive").status_code == 200
             put_file(world, "src/probe/after_deep.py", "# still saves\n")
             removed = HTTP.delete(
