@@ -10,7 +10,8 @@ export const LAYOUT_EVENT = "teleop-layout";
 const GAP = 8;
 const MARGIN = 16;
 const HUD_INSET = 10;  // the HUD's distance from its pane's top-left corner
-const COLLAPSE_BELOW_PX = 1000;  // a scene pane narrower than this: the panel starts as a strip
+const COLLAPSE_BELOW_PX = 1000;  // a window narrower than this: the panel starts as a strip
+const PANEL_SCENE_MIN_PX = 700;  // and a scene pane narrower than this: no room for it beside the HUD
 const HELP_WIDTH = 460;
 const MIN_HELP_WIDTH = 280;
 const STRIP_MAX_PX = 60;  // a minimised panel is about 41 px high
@@ -30,24 +31,37 @@ const sceneBox = (): DOMRect =>
   rect(document.getElementById("teleop-pane-scene")) ?? new DOMRect(0, 0, window.innerWidth, window.innerHeight);
 const panelEl = (): Element | null => document.querySelector('[data-testid="floating-panel"]');
 
-// Minimise the panel when the page opens narrow, or is made narrow; what the student does with
-// it afterwards is theirs. viser resets the panel when it connects, so the wish stands until
-// the panel is a strip.
-let wantStrip = false, clickedAt = -Infinity;
+// Minimise the panel when the page opens narrow or is made narrow: a narrow window, the code view
+// open (the scene's pane is then small, and kept uncovered), or a scene pane too narrow for the
+// panel beside the HUD. When that ends, a panel minimised here opens again; what the student does
+// with it meanwhile is theirs. viser resets the panel when it connects, so a wish stands until
+// the panel is as wished.
+let wantStrip = false, wantOpen = false, autoStrip = false, wasNarrow: boolean | null = null, clickedAt = -Infinity;
+const codeOpen = (): boolean => document.getElementById("teleop-code")?.hidden === false;
+const isNarrow = (): boolean =>
+  window.innerWidth < COLLAPSE_BELOW_PX || codeOpen() || viewWidth() < PANEL_SCENE_MIN_PX;
+const clickOnce = (button: HTMLElement | null): void => {
+  if (button && performance.now() - clickedAt > CLICK_AGAIN_MS) { button.click(); clickedAt = performance.now(); }
+};
 const collapsePanelIfNarrow = (): void => {
-  const w = viewWidth();
   if (!panelEl() || !scene.ready) return;  // viser rebuilds its panel when it connects
-  if (w < COLLAPSE_BELOW_PX && (layout.lastWidth === null || layout.lastWidth >= COLLAPSE_BELOW_PX)) wantStrip = true;
-  layout.lastWidth = w;
-  if (!wantStrip) return;
+  const narrow = isNarrow();
+  if (narrow && wasNarrow !== true) { wantStrip = true; wantOpen = false; }
+  if (!narrow && wasNarrow === true && autoStrip) { wantOpen = true; wantStrip = false; }
+  wasNarrow = narrow;
+  layout.lastWidth = viewWidth();
   const expand = document.querySelector<HTMLElement>('[aria-label="Expand panel"]');
-  if (expand) {
-    wantStrip = false; layout.collapsedPanel = true;
-    if (document.activeElement === expand) expand.blur();  // viser hands it focus; Space would reopen it
-    return;
+  if (wantStrip) {
+    if (expand) {
+      wantStrip = false; autoStrip = true; layout.collapsedPanel = true;
+      if (document.activeElement === expand) expand.blur();  // viser hands it focus; Space would reopen it
+      return;
+    }
+    clickOnce(document.querySelector<HTMLElement>('[aria-label="Minimize panel"]'));
+  } else if (wantOpen) {
+    if (!expand) { wantOpen = false; autoStrip = false; layout.collapsedPanel = false; return; }
+    clickOnce(expand);
   }
-  const minimise = document.querySelector<HTMLElement>('[aria-label="Minimize panel"]');
-  if (minimise && performance.now() - clickedAt > CLICK_AGAIN_MS) { minimise.click(); clickedAt = performance.now(); }
 };
 
 // The HUD grows when its telemetry arrives: lay out again at once, so viser's notices below it
