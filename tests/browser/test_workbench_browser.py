@@ -136,28 +136,32 @@ def test_workbench_with_code_open_shows_the_scene_and_the_reset_without_overlaps
 ) -> None:
     width, height = size
     window = [0.0, 0.0, float(width), float(height)]
-    with lab_page(chromium, {"width": width, "height": height}) as page:
-        with screenshot_on_failure(page, screenshot_dir, f"workbench_{width}x{height}.png"):
-            open_lab_page(page, lab_server, settle_ms=0)
-            open_code_view(page)
-            page.evaluate("window.__teleop.layout.layout()")
-            share = page.evaluate(SCENE_SHARE_JS, list(GRID))
-            reset = page.evaluate(TOPMOST_JS, "#teleop-reset-rocket")
-            layout = page.evaluate(PANES_JS)
-            print(f"\n{width}x{height}: {share:.1%} of the window shows the scene with the code view open")
+    with (
+        lab_page(chromium, {"width": width, "height": height}) as page,
+        screenshot_on_failure(page, screenshot_dir, f"workbench_{width}x{height}.png"),
+    ):
+        open_lab_page(page, lab_server, settle_ms=0)
+        open_code_view(page)
+        page.evaluate("window.__teleop.layout.layout()")
+        share = page.evaluate(SCENE_SHARE_JS, list(GRID))
+        reset = page.evaluate(TOPMOST_JS, "#teleop-reset-rocket")
+        layout = page.evaluate(PANES_JS)
+        print(f"\n{width}x{height}: {share:.1%} of the window shows the scene with the code view open")
 
-            assert share >= LEAST_SCENE, f"{share:.1%} of the window shows the scene"
-            assert reset is not None and inside(reset["box"], window) and reset["topmost"], reset
-            panes = layout["panes"]
-            assert {"teleop-toolbar", "teleop-pane-guide", "teleop-pane-scene", "teleop-code"} <= set(panes), panes
-            assert overlaps(panes) == [], panes
-            assert all(inside(box, window) for box in panes.values()), panes
-            scene_pane = panes["teleop-pane-scene"]
-            assert all(inside(box, scene_pane) for box in layout["inScene"].values()), layout
-            assert overlaps(layout["inScene"]) == [], layout["inScene"]
+        assert share >= LEAST_SCENE, f"{share:.1%} of the window shows the scene"
+        assert reset is not None and inside(reset["box"], window) and reset["topmost"], reset
+        panes = layout["panes"]
+        assert {"teleop-toolbar", "teleop-pane-guide", "teleop-pane-scene", "teleop-code"} <= set(panes), (
+            panes
+        )
+        assert overlaps(panes) == [], panes
+        assert all(inside(box, window) for box in panes.values()), panes
+        scene_pane = panes["teleop-pane-scene"]
+        assert all(inside(box, scene_pane) for box in layout["inScene"].values()), layout
+        assert overlaps(layout["inScene"]) == [], layout["inScene"]
 
-            page.locator("#teleop-reset-rocket").click()  # a real click, at the control's centre
-            page.wait_for_selector('#teleop-reset-rocket[data-done="ok"]', timeout=ROCKET_RESET_WAIT_MS)
+        page.locator("#teleop-reset-rocket").click()  # a real click, at the control's centre
+        page.wait_for_selector('#teleop-reset-rocket[data-done="ok"]', timeout=ROCKET_RESET_WAIT_MS)
 
 
 def publish(server: LabServer, target: tuple[float, float, float]) -> str:
@@ -172,35 +176,37 @@ def test_publisher_flying_the_drone_switches_the_view_to_it_without_a_click(
     chromium: Browser, lab_server: LabServer, screenshot_dir: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     width, height = 1366, 768
-    with lab_page(chromium, {"width": width, "height": height}) as page:
-        with screenshot_on_failure(page, screenshot_dir, "workbench_follows_the_drone.png"):
-            open_lab_page(page, lab_server)
-            wait_until(lambda: math.dist(position(lab_server), HOME_M) < ARRIVED_M, "the drone at home")
-            open_code_view(page)
-            first = page.evaluate("window.__teleop.scene.view.name")
-            page.wait_for_function("() => window.__teleop.autoview.rest !== null")  # the page saw it rest
-            publisher = publish(lab_server, FAR_M)
-            try:
-                wait_until(
-                    lambda: math.dist(position(lab_server), FAR_M) < ARRIVED_M, "the drone at (5, 5, 10)",
-                    FLIGHT_WAIT_S,
-                )  # fmt: skip
-                wait_stopped(lab_server)
-                wait_frames(page, 20)  # the follow camera catches up (0.15 s behind the drone)
-                seen = page.evaluate(DRONE_ON_SCREEN_JS)
-                png = page.screenshot()
-            finally:
-                HTTP.delete(f"{lab_server.url}/api/publishers/{publisher}", timeout=HTTP_TIMEOUT_S)
-                HTTP.post(
-                    f"{lab_server.url}/api/publish",
-                    json={"topic": "/uav/input/position", "msg": dict(zip("xyz", HOME_M, strict=True))},
-                    timeout=HTTP_TIMEOUT_S,
-                )
-            drone = find_drone(CanvasShot.of(page, png))
+    with (
+        lab_page(chromium, {"width": width, "height": height}) as page,
+        screenshot_on_failure(page, screenshot_dir, "workbench_follows_the_drone.png"),
+    ):
+        open_lab_page(page, lab_server)
+        wait_until(lambda: math.dist(position(lab_server), HOME_M) < ARRIVED_M, "the drone at home")
+        open_code_view(page)
+        first = page.evaluate("window.__teleop.scene.view.name")
+        page.wait_for_function("() => window.__teleop.autoview.rest !== null")  # the page saw it rest
+        publisher = publish(lab_server, FAR_M)
+        try:
+            wait_until(
+                lambda: math.dist(position(lab_server), FAR_M) < ARRIVED_M, "the drone at (5, 5, 10)",
+                FLIGHT_WAIT_S,
+            )  # fmt: skip
+            wait_stopped(lab_server)
+            wait_frames(page, 20)  # the follow camera catches up (0.15 s behind the drone)
+            seen = page.evaluate(DRONE_ON_SCREEN_JS)
+            png = page.screenshot()
+        finally:
+            HTTP.delete(f"{lab_server.url}/api/publishers/{publisher}", timeout=HTTP_TIMEOUT_S)
+            HTTP.post(
+                f"{lab_server.url}/api/publish",
+                json={"topic": "/uav/input/position", "msg": dict(zip("xyz", HOME_M, strict=True))},
+                timeout=HTTP_TIMEOUT_S,
+            )
+        drone = find_drone(CanvasShot.of(page, png))
 
-            assert first == "Rocket", first  # the page opened on the rocket waiting for its countdown
-            assert (seen["view"], seen["follow"], seen["switches"]) == ("Quadrotor", True, 1), seen
-            left, top, right, bottom = seen["canvas"]
-            assert seen["front"] and left <= seen["x"] <= right and top <= seen["y"] <= bottom, seen
-            assert seen["topmost"], seen  # no pane or overlay over the drone
-            assert_drone_seen(drone, "the drone at (5, 5, 10), followed")
+        assert first == "Rocket", first  # the page opened on the rocket waiting for its countdown
+        assert (seen["view"], seen["follow"], seen["switches"]) == ("Quadrotor", True, 1), seen
+        left, top, right, bottom = seen["canvas"]
+        assert seen["front"] and left <= seen["x"] <= right and top <= seen["y"] <= bottom, seen
+        assert seen["topmost"], seen  # no pane or overlay over the drone
+        assert_drone_seen(drone, "the drone at (5, 5, 10), followed")
