@@ -17,21 +17,21 @@ import importlib.machinery
 import importlib.util
 import sys
 from collections.abc import Sequence
-from pathlib import Path
 from types import ModuleType
 
-CLIENT_DIR = Path(__file__).resolve().parents[2] / "client"
+# The client's packages: rclpy and the message packages (client/; top-level in the client wheel,
+# where there is no client/ folder to list: tests/processes/test_lab_packages.py keeps them equal).
+CLIENT_PACKAGES = (
+    "action_msgs", "action_tutorials_interfaces", "builtin_interfaces", "example_interfaces",
+    "geometry_msgs", "keyboard_msgs", "rcl_interfaces", "rclpy", "sensor_msgs", "std_msgs",
+    "std_srvs", "tf2_msgs", "unique_identifier_msgs",
+)  # fmt: skip
 OWN = ("server", "sim")
 
 
 def names() -> list[str]:
-    """The lab's top-level packages a node process may import: its own and those of ``client/``."""
-    found = (
-        sorted(p.name for p in CLIENT_DIR.iterdir() if (p / "__init__.py").is_file())
-        if CLIENT_DIR.is_dir()
-        else []
-    )
-    return [*OWN, *found]
+    """The lab's top-level packages a node process may import: its own and the client's."""
+    return [*OWN, *CLIENT_PACKAGES]
 
 
 class _LabFirst(importlib.abc.MetaPathFinder):
