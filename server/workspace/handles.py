@@ -29,6 +29,8 @@ FOLDER = os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW | os.O_CLOEXEC
 # O_NONBLOCK: a FIFO left where a file was expected opens at once (and is then passed over as no
 # regular file) instead of waiting for a writer that never comes.
 READ = os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC
+FILE_MODE = 0o644  # the workspace's files and folders are readable by all: a sandboxed node runs
+FOLDER_MODE = 0o755  # as its world's uid, with the workspace bound read-only
 CREATE = os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC
 NOT_A_FOLDER = (errno.ENOTDIR, errno.ELOOP)  # O_DIRECTORY|O_NOFOLLOW on a link: ENOTDIR on Linux
 CHUNK = 64 * 1024
@@ -116,8 +118,20 @@ def folder_in(folder: int, name: str, relative: str, depth: int, make: bool) -> 
                 raise through_link(relative) from None
             raise NotAFolderError(depth) from None
         with suppress(FileExistsError):  # made meanwhile: opened (or refused) at the next turn
-            os.mkdir(name, dir_fd=folder)
+            os.mkdir(name, FOLDER_MODE, dir_fd=folder)
+            _open_to_all(folder, name)
     raise TakenError(f"{relative}: a folder on its way kept going while it was made")
+
+
+def _open_to_all(folder: int, name: str) -> None:
+    """The folder just made readable by all, whatever the server's umask (a sandboxed node lists
+    it as another uid). Swapped meanwhile: the next turn's open refuses what is there."""
+    with suppress(OSError):
+        made = os.open(name, FOLDER, dir_fd=folder)
+        try:
+            os.fchmod(made, FOLDER_MODE)
+        finally:
+            os.close(made)
 
 
 def open_file(folder: int, name: str, relative: str) -> tuple[int, os.stat_result] | None:
@@ -208,7 +222,9 @@ def _temporary(folder: int, name: str) -> tuple[str, int]:
     for _ in range(ATTEMPTS):
         temporary = f".{name[:64]}.{secrets.token_hex(8)}.saving"
         try:
-            return temporary, os.open(temporary, CREATE, 0o666, dir_fd=folder)
+            fd = os.open(temporary, CREATE, FILE_MODE, dir_fd=folder)
         except FileExistsError:
             continue
+        os.fchmod(fd, FILE_MODE)  # whatever the server's umask: a sandboxed node reads it as another uid
+        return temporary, fd
     raise FileExistsError(errno.EEXIST, f"no free temporary name beside {name}")

@@ -13,7 +13,6 @@ import time
 FORKS = 100  # more than the sandbox's 64 processes, few enough for any machine
 MEMORY_MIB = 768  # more than the sandbox's 512 MiB
 CHUNK_MIB = 64
-SHARED_MIB = 2304  # shared memory, which RLIMIT_DATA does not count: past the sandbox's 512 MiB and past its 2 GiB address space where no cgroup counts it
 SHM_MIB = 256
 DEEP = 1100  # nested folders: deeper than Python's recursion limit
 SWAP_S = 8.0  # how long the link race runs
@@ -117,13 +116,13 @@ def shm(path):
     return f"wrote {SHM_MIB} MiB to {path}"
 
 
-def shared(_arg):
-    """Touch shared anonymous memory (not counted by RLIMIT_DATA)."""
-    size = SHARED_MIB * 1024 * 1024
+def shared(mib):
+    """Touch ``mib`` MiB of shared anonymous memory (not counted by RLIMIT_DATA)."""
+    size = int(mib) * 1024 * 1024
     region = mmap.mmap(-1, size, flags=mmap.MAP_SHARED)
     for offset in range(0, size, mmap.PAGESIZE):
         region[offset] = 1
-    return f"touched {SHARED_MIB} MiB of shared memory"
+    return f"touched {mib} MiB of shared memory"
 
 
 def link(pair):
