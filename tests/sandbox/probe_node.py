@@ -15,7 +15,7 @@ MEMORY_MIB = 768  # more than the sandbox's 512 MiB
 CHUNK_MIB = 64
 SHM_MIB = 256
 DEEP = 1100  # nested folders: deeper than Python's recursion limit
-SWAP_S = 8.0  # how long the link race runs
+SWAP_S = 4.0  # how long the link race runs
 
 
 def param(name):
@@ -138,6 +138,7 @@ def swap(pair):
     with open(where, "rb") as file:
         original = file.read()
     spare, swaps, until = where + "-link", 0, time.monotonic() + SWAP_S
+    print("PROBE swap started", flush=True)  # the test reads while it swaps
     while time.monotonic() < until:
         os.symlink(target, spare)
         os.rename(spare, where)  # now a link

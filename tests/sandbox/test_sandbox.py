@@ -6,6 +6,7 @@ ended by their ids."""
 
 from __future__ import annotations
 
+import functools
 import os
 import shutil
 from collections.abc import Iterator
@@ -159,6 +160,13 @@ def output_of(world: World, group: str) -> list[str]:
         world.stop(group)
 
 
+def swap_begun(world: World, group: str) -> bool:
+    """The swapping node said it started (or that it could not)."""
+    reply = world.get(f"/api/launches/{group}/output").json()
+    lines = [line for process in reply["processes"] for line in process["lines"]]
+    return any(line.startswith(("PROBE swap started", "PROBE swap blocked")) for line in lines)
+
+
 def probe_line(world: World, check: str, arg: str = "") -> str:
     lines = output_of(world, run(world, "probe_node.py", check=check, arg=arg))
     found = [line for line in lines if line.startswith(f"PROBE {check} ")]
@@ -293,6 +301,7 @@ def put_file(world: World, path: str, text: str) -> None:
     assert saved.status_code in (200, 201), saved.text
 
 
+READS = 150  # the student's reads while their node swaps
 SHADOW = "print('SHADOW RAN as', __import__('os').getuid(), flush=True)\n"
 
 
@@ -390,7 +399,8 @@ def test_sandbox_reads_never_follow_a_link_a_node_swaps_in(klass: Class) -> None
         group = run(world, "probe_node.py", check="swap", arg=f"{where}={secret}")
         answers: dict[int, int] = {}
         try:
-            for _ in range(300):  # bounded; the node swaps for 8 s
+            wait_until(functools.partial(swap_begun, world, group), "the node to start swapping", 60.0)
+            for _ in range(READS):  # bounded; the node swaps for 4 s
                 reply = world.get("/api/workspace/files/src/probe/swapped.txt")
                 answers[reply.status_code] = answers.get(reply.status_code, 0) + 1
                 assert "another student's work" not in reply.text, reply.text
@@ -401,7 +411,7 @@ def test_sandbox_reads_never_follow_a_link_a_node_swaps_in(klass: Class) -> None
             assert any(line.startswith("PROBE swap ok") for line in lines), lines
         else:
             assert any(line.startswith("PROBE swap blocked") for line in lines), lines
-            assert answers == {200: 300}, answers
+            assert answers == {200: READS}, answers
 
 
 def remove_nested(folder: Path) -> None:
