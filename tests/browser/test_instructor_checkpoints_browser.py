@@ -6,7 +6,9 @@ reports' zip download, and a report checked on the page is named valid, an edite
 
 No drone is flown to the end here: two whole worlds on a loaded 2-core machine do not keep real
 time (test_guide_browser.py ticks checkpoint 2 in a lab of its own; tests/checkpoints the class's
-done cells on a stepped clock). Every wait is bounded.
+done cells on a stepped clock). So the evidence of a done checkpoint 2 is served in place of
+Ada's where the page asks for it, and the page draws it: the flight's picture as the report makes
+it, the timeline in the instructor's local time. Every wait is bounded.
 """
 
 from __future__ import annotations
@@ -153,3 +155,64 @@ def test_instructor_table_shows_each_student_where_they_are_with_evidence_answer
         page.set_input_files("#verify-file", str(tmp_path / "ada-edited.json"))
         page.wait_for_function("() => /: edited/.test(document.getElementById('verify-result').textContent)")
         assert result.get_attribute("class") == "bad"
+
+
+# A done checkpoint 2 as the server records it (the lab's clock reads as Unix time), served in
+# place of Ada's, whose drone is not flown to the end here (see the module's note).
+FLOWN_AT_S = 1_795_000_000.0  # 2026-11-18, in the afternoon (UTC)
+TRACK = [[FLOWN_AT_S + t, 0.05 * t, 0.05 * t, 3 + 0.07 * t] for t in range(0, 100, 2)]
+EVIDENCE = {
+    "target": [5.0, 5.0, 10.0], "publisher": "/position_publisher", "rate_hz": 1.0, "held_s": 3.02,
+    "setpoints": [{"t_s": FLOWN_AT_S + t, "what": "/uav/input/position", "value": [5.0, 5.0, 10.0],
+                   "by": "/position_publisher"} for t in range(0, 100, 10)],
+    "track": TRACK,
+}  # fmt: skip
+
+
+def test_instructor_evidence_shows_the_flights_picture_and_its_timeline_in_local_time(
+    chromium: Browser, class_server: LabServer, class_with_two: tuple[Auth, Auth, Auth]
+) -> None:
+    from server.checkpoints.plot import svg_data_url, track_svg
+
+    instructor, _ada, _bob = class_with_two
+    token = instructor["Authorization"].removeprefix("Bearer ")
+    drawn = svg_data_url(track_svg(TRACK, EVIDENCE["target"], "fly_to_point: the drone's track"))
+
+    def done_checkpoints(route: Any) -> None:
+        body = route.fetch().json()
+        for c in body["checkpoints"]:
+            if c["name"] == "fly_to_point":
+                c.update(state="done", done_at="2026-11-18T15:33:20+00:00", evidence=EVIDENCE)
+        route.fulfill(json=body)
+
+    def report_with_picture(route: Any) -> None:
+        body = route.fetch().json()
+        for c in body["checkpoints"]:
+            if c["name"] == "fly_to_point":
+                c["picture"] = drawn
+        route.fulfill(json=body)
+
+    with lab_page(chromium) as page:
+        page.route(re.compile(r"/api/checkpoints\?world="), done_checkpoints)
+        page.route(re.compile(r"/api/checkpoints/report\?format=json&world="), report_with_picture)
+        page.goto(f"{class_server.url}/instructor?token={token}", timeout=LOAD_WAIT_MS)
+        page.wait_for_function(
+            "() => document.querySelectorAll('#checkpoints-rows tr').length === 2", timeout=LOAD_WAIT_MS
+        )
+        page.locator(
+            "#checkpoints-rows tr[data-student='Ada' i] button[data-checkpoint='fly_to_point']"
+        ).click()
+        body = page.locator("#evidence-body")
+        body.locator("img").wait_for(timeout=LOAD_WAIT_MS)
+        assert body.locator("img").first.get_attribute("src") == drawn  # the flight, drawn
+        assert body.locator("img").first.evaluate("img => img.complete && img.naturalWidth > 0")
+        local = page.evaluate(f"() => new Date({FLOWN_AT_S} * 1000).toLocaleTimeString()")
+        cells = body.locator("section.timeline td").all_inner_texts()
+        assert cells[:4] == [local, "/uav/input/position", "[5,5,10]", "/position_publisher"], cells
+        visible = body.evaluate(
+            "b => [...b.childNodes].filter(n => n.nodeName !== 'DETAILS').map(n => n.textContent).join(' ')"
+        )
+        assert str(int(FLOWN_AT_S)) not in visible  # no epoch seconds outside the folded JSON
+        assert "held_s" in body.locator("table.facts").inner_text()
+        box = page.locator("#evidence").bounding_box()
+        assert box is not None and box["x"] >= 0 and box["x"] + box["width"] <= page.viewport_size["width"]
