@@ -21,8 +21,7 @@ NODE = """
 import os, sys, time
 from server.processes import node_init
 node_init.split()
-print('node', os.getpid(), flush=True)
-if sys.argv[1] == 'stubborn':
+if sys.argv[1] == 'stubborn':  # its handlers before it says it is there
     import signal
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGUSR1, lambda *_: print('still here', flush=True))
@@ -33,6 +32,7 @@ if sys.argv[1] == 'stubborn':
                 os.dup2(null, fd)
             except OSError:
                 pass
+print('node', os.getpid(), flush=True)
 if sys.argv[1] == 'exit7':
     sys.exit(7)
 time.sleep(60)
