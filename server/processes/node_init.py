@@ -51,9 +51,11 @@ def _stay(child: int, fd: int | None, held: set[int | signal.Signals]) -> int:
     libc.prctl(PR_SET_DUMPABLE, 0, 0, 0, 0)
     for sig in FORWARDED:
         signal.signal(sig, lambda number, _frame: _forward(child, number))
-    signal.pthread_sigmask(signal.SIG_SETMASK, held)
-    if fd is not None:
+    if fd is not None:  # started while they are blocked, it keeps them blocked: they come to the
+        # main thread, which runs Python's handlers (one delivered to this thread would wait there
+        # until the main thread next woke, at the node's end)
         threading.Thread(target=_hold, args=(fd,), name="lifeline", daemon=True).start()
+    signal.pthread_sigmask(signal.SIG_SETMASK, held)
     while True:
         try:
             pid, status = os.waitpid(-1, 0)  # orphans the node left are reaped too
