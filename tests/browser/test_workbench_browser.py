@@ -1,6 +1,6 @@
 """The student's workbench in a real headless Chromium (SwiftShader), against ``python -m server
---launch all`` with the rocket's countdown an hour away (issue 46: the page was overlays stacked
-on a full-screen 3D view, and with the code view open the scene was buried):
+--launch all`` with the rocket's countdown an hour away (the page was once overlays stacked on a
+full-screen 3D view, and with the code view open the scene was buried):
 
 - at a laptop's 1366x768 and at 1920x1080, with the code view open, at least 40 % of a 20x12 grid
   of points over the window hits viser's 3D canvas (``elementFromPoint``: nothing lies on it
