@@ -26,7 +26,6 @@ LONGEST_FILES = (
     # The parallel part's
     "tests/contract/test_class_schemathesis.py",
     "tests/contract/test_openapi_schemathesis.py",
-    "tests/sandbox/test_sandbox.py",
     "tests/classroom/test_worker_failover.py",
     "tests/checkpoints/test_live.py",
     "tests/processes/test_handout_nodes.py",
@@ -36,6 +35,7 @@ LONGEST_FILES = (
     "tests/classroom/test_local_workers.py",
     "tests/processes/test_faults.py",
     "tests/checkpoints/test_worker_rows.py",
+    "tests/sandbox/test_sandbox.py",
     "tests/checkpoints/test_restart.py",
     "tests/workspace/test_action_tutorial.py",
     "tests/checkpoints/test_class_restart.py",
