@@ -90,8 +90,17 @@ class CgroupParent:
         folders = tuple(dict.fromkeys([self.memory / name, self.pids / name]))
         stale = NodeCgroup(tuple(f for f in folders if f.exists()), self.version)
         stale.remove()  # one of the same name that a node left behind
-        for folder in folders:
-            folder.mkdir()
+        group = NodeCgroup(folders, self.version)
+        try:
+            for folder in folders:
+                folder.mkdir()
+            self._limit(folders, memory_mib, processes)
+        except OSError:
+            group.remove()  # none left half made
+            raise
+        return group
+
+    def _limit(self, folders: tuple[Path, ...], memory_mib: int, processes: int) -> None:
         limit = str(memory_mib * MIB)
         if self.version == 2:
             (folders[0] / "memory.max").write_text(limit)
@@ -104,7 +113,6 @@ class CgroupParent:
             with contextlib.suppress(OSError):  # swap accounting may be off (no memsw files)
                 (memory / "memory.memsw.limit_in_bytes").write_text(limit)
             (pids / "pids.max").write_text(str(processes))
-        return NodeCgroup(folders, self.version)
 
 
 def _empty(folder: Path) -> None:

@@ -127,6 +127,8 @@ class Supervisor:
         except OSError:
             process.state = "died"
             self.forget(process)
+            if process.finish is not None:  # what its start made (a control group) goes with it
+                process.finish(-1)
             raise
         finally:
             for fd in passed:

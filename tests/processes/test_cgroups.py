@@ -6,6 +6,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from server.processes.cgroups import JOIN_SCRIPT, CgroupParent, NodeCgroup, _folder
 
 
@@ -53,3 +55,11 @@ def test_cgroups_join_prefix_writes_the_shells_pid_into_each_group_then_runs_the
     pid = done.stdout.split()[1]  # exec: the command is the shell that joined
     assert [(f / "cgroup.procs").read_text().strip() for f in group.folders] == [pid, pid]
     assert "exit 125" in JOIN_SCRIPT  # a group that refuses the pid stops the start
+
+
+def test_cgroups_a_group_the_kernel_refuses_halfway_is_not_left_behind(tmp_path: Path) -> None:
+    (tmp_path / "memory").mkdir()  # no pids folder: its group cannot be made
+    parent = CgroupParent(tmp_path / "memory", tmp_path / "pids", 1)
+    with pytest.raises(OSError):
+        parent.make("node-3", memory_mib=64, processes=20)
+    assert not (tmp_path / "memory" / "node-3").exists()
