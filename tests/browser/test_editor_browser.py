@@ -242,11 +242,22 @@ def test_editor_simple_control_written_run_flown_stopped_and_kept_across_a_reloa
     page.wait_for_function(
         "() => window.__teleop !== undefined", timeout=LOAD_WAIT_MS
     )  # the code view needs no 3D view
-    open_code_view(page)
+    # It was open: the reload opens it again, with no click.
+    page.wait_for_function("() => window.__teleop.codeview.loaded", timeout=EDITOR_LOAD_MS)
+    assert page.locator("#teleop-code").is_visible()
+    assert page.locator("#teleop-code-tab").get_attribute("aria-pressed") == "true"
     page.locator(f'#teleop-code .tree [data-path="{NODE_FILE}"]').click()
     page.locator("#teleop-code .cm-content", has_text="class KeyboardManager(Node):").wait_for()
     assert save_state(page) == "saved"
     assert file_text(server, NODE_FILE) == KEYBOARD_MANAGER
+    # Closed, it stays closed across the next reload.
+    page.locator("#teleop-code-tab").click()
+    assert page.locator("#teleop-code").is_hidden()
+    page.reload(wait_until="commit")
+    # The workbench is built after the code view has its panel, and opened it if it was open.
+    page.wait_for_function("() => document.getElementById('teleop-workbench') !== null", timeout=LOAD_WAIT_MS)
+    assert page.evaluate("window.__teleop.codeview.open") is False
+    assert page.locator("#teleop-code").is_hidden()
 
 
 def put(server: LabServer, path: str, text: str) -> str:

@@ -1,7 +1,8 @@
 // The code view's place in the lab page: a "Code" toggle in the workbench's toolbar, and a pane
 // of the workbench (workbench.ts) beside the 3D view, sized by the gutter between them. The
 // editor itself (web/src/editor, CodeMirror) is a bundle of its own, loaded the first time the
-// pane opens, so the lab page's first load stays light.
+// pane opens, so the lab page's first load stays light. Whether it was open is kept in the
+// browser: a reload opens it again.
 //
 // The pane owns its keys: keys.ts sends none typed in it to the lab's keyboard, and its keydown
 // and keyup stop at its edge, so viser's camera keys do not move the view while the student types.
@@ -11,6 +12,8 @@ import { workbench } from "./workbench";
 /** The attribute keys.ts looks for: keys typed inside such an element never fly the drone. */
 export const OWN_KEYS_ATTR = "data-teleop-own-keys";
 const EDITOR_BUNDLE = "/static/build/editor.js";
+/** Whether the code view was open, kept in the browser so a reload brings it back as it was. */
+const STORE_OPEN = "teleop.code.open";
 const CSS = `
   #teleop-code {
     box-sizing: border-box; display: flex; flex-direction: column; min-width: 0; background: #fff; color: #222;
@@ -47,9 +50,25 @@ const loadEditor = async (host: HTMLElement): Promise<void> => {
   }
 };
 
+const wasOpen = (): boolean => {
+  try {
+    return localStorage.getItem(STORE_OPEN) === "1";
+  } catch {
+    return false;  // storage refused (a private window's policy): the view starts closed
+  }
+};
+const keepOpen = (open: boolean): void => {
+  try {
+    localStorage.setItem(STORE_OPEN, open ? "1" : "0");
+  } catch {
+    // storage refused: the state lasts as long as the page
+  }
+};
+
 function setOpen(open: boolean): void {
   if (!panel || !tab) return;
   codeview.open = open;
+  keepOpen(open);
   panel.hidden = !open;
   tab.setAttribute("aria-pressed", String(open));
   tab.setAttribute("aria-expanded", String(open));
@@ -83,6 +102,7 @@ function addPanel(): void {
   for (const type of ["keydown", "keyup", "keypress"]) panel.addEventListener(type, (e) => e.stopPropagation());
   document.head.append(style);
   document.body.append(panel, tab);
+  if (wasOpen()) setOpen(true);  // the workbench, built next, lays the pane out
 }
 
 /** Add the tab and the (closed) panel once the page has a body. */
