@@ -24,7 +24,7 @@ from types import ModuleType
 CLIENT_PACKAGES = (
     "action_msgs", "action_tutorials_interfaces", "builtin_interfaces", "example_interfaces",
     "geometry_msgs", "keyboard_msgs", "rcl_interfaces", "rclpy", "sensor_msgs", "std_msgs",
-    "std_srvs", "tf2_msgs", "unique_identifier_msgs",
+    "std_srvs", "tf2_msgs", "turtlesim", "unique_identifier_msgs",
 )  # fmt: skip
 OWN = ("server", "sim")
 

@@ -14,6 +14,7 @@ from . import (
     std_msgs,
     std_srvs,
     tf2_msgs,
+    turtlesim,
     unique_identifier_msgs,
 )
 
@@ -31,5 +32,6 @@ __all__ = [
     "std_msgs",
     "std_srvs",
     "tf2_msgs",
+    "turtlesim",
     "unique_identifier_msgs",
 ]
