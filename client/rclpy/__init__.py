@@ -15,6 +15,7 @@ from server.bus import Future
 from ._context import Context, RCLError, default_context
 from .executors import Executor, ExternalShutdownException, SingleThreadedExecutor
 from .parameter import Parameter
+from .utilities import get_default_context, ok
 
 _global_executor: Executor | None = None
 
@@ -44,10 +45,6 @@ def init(
     ctx = context or default_context
     ctx.init(args, domain_id)
     return InitContextManager(ctx)
-
-
-def ok(*, context: Context | None = None) -> bool:
-    return (context or default_context).ok()
 
 
 def shutdown(*, context: Context | None = None) -> None:
@@ -97,10 +94,6 @@ def create_node(node_name: str, *, context: Context | None = None, **kwargs: Any
     from .node import Node
 
     return Node(node_name, context=context, **kwargs)
-
-
-def get_default_context() -> Context:
-    return default_context
 
 
 __all__ = [

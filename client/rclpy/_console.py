@@ -23,6 +23,11 @@ def set_level(name: str, level: int) -> None:
         _levels.pop(name, None)
 
 
+def own_level(name: str) -> int:
+    """The level set for this logger itself; 0 (UNSET) when it follows the process's."""
+    return _levels.get(name, 0)
+
+
 def effective_level(name: str) -> int:
     return _levels.get(name, _threshold)
 

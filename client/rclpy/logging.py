@@ -10,7 +10,7 @@ from typing import Any
 
 from server.bus.node import NodeLogger
 
-from ._console import console_line, effective_level, set_level
+from ._console import console_line, effective_level, own_level, set_level
 
 
 class LoggingSeverity(IntEnum):
@@ -135,7 +135,20 @@ def get_logger(name: str) -> RcutilsLogger:
 
 
 def set_logger_level(name: str, level: int, detailed_error: bool = False) -> None:
-    set_level(name, int(level))
+    """ValueError for a level that is not a severity (rclpy's)."""
+    set_level(name, int(LoggingSeverity(level)))
+
+
+def get_logger_level(name: str) -> LoggingSeverity:
+    """The level set for logger ``name`` itself (UNSET when none was)."""
+    return LoggingSeverity(own_level(name))
+
+
+def get_logging_severity_from_string(log_severity: str) -> LoggingSeverity:
+    try:
+        return LoggingSeverity[log_severity.strip().upper()]
+    except KeyError:
+        raise RuntimeError(f"invalid log severity {log_severity!r}") from None
 
 
 def get_logger_effective_level(name: str) -> LoggingSeverity:
@@ -147,5 +160,7 @@ __all__ = [
     "RcutilsLogger",
     "get_logger",
     "get_logger_effective_level",
+    "get_logger_level",
+    "get_logging_severity_from_string",
     "set_logger_level",
 ]

@@ -5,29 +5,46 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from server.bus import INTERNAL_TOPICS
 from server.bus import Node as BusNode
-from server.bus import Publisher, ServiceServer, Subscription, Timer
-from server.msgs import Message, Service
+from server.msgs import Message
+from server.msgs import Service as ServiceType
 
 from ._context import Context, default_context
 from ._parameters import ParameterAPI
 from .callback_groups import CallbackGroup, GroupedCallback, MutuallyExclusiveCallbackGroup
 from .client import Client
 from .clock import ROSClock
+from .event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
 from .guard_condition import GuardCondition
 from .logging import NodeRcutilsLogger
+from .logging_service import LoggingService
 from .parameter import Parameter
 from .parameter_service import ParameterService
-from .qos import QoSProfile, WireQoS, keep_depth
+from .publisher import Publisher
+from .qos import QoSProfile, WireQoS, keep_depth, qos_profile_services_default
+from .qos_overriding_options import QoSOverridingOptions, declare_qos_parameters
 from .rate import Rate
+from .service import Service
+from .subscription import Subscription
+from .timer import Timer
 
 
-def _for_bus(qos_profile: Any) -> Any:
-    """A bare depth stays one; a profile goes to the bus with the depth its queue keeps (and its
-    reliability and durability, which the Zenoh transport writes into the endpoint's token)."""
-    if isinstance(qos_profile, QoSProfile):
-        return WireQoS(keep_depth(qos_profile), int(qos_profile.reliability), int(qos_profile.durability))
-    return qos_profile
+def _profile(qos_or_depth: Any) -> QoSProfile:
+    """rclpy's rule: a profile, or a depth that makes a keep-last one."""
+    if isinstance(qos_or_depth, QoSProfile):
+        return qos_or_depth
+    if isinstance(qos_or_depth, int) and not isinstance(qos_or_depth, bool):
+        if qos_or_depth < 0:
+            raise ValueError("history depth must be greater than or equal to zero")
+        return QoSProfile(depth=qos_or_depth)
+    raise TypeError(f"Expected QoSProfile or int, but received {type(qos_or_depth)!r}")
+
+
+def _for_bus(qos: QoSProfile) -> WireQoS:
+    """The profile as the bus takes it: the depth its queue keeps, and the reliability and
+    durability the Zenoh transport writes into the endpoint's token."""
+    return WireQoS(keep_depth(qos), int(qos.reliability), int(qos.durability))
 
 
 class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter API over the bus's
@@ -42,6 +59,7 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
         parameter_overrides: list[Parameter] | None = None,
         allow_undeclared_parameters: bool = False,
         automatically_declare_parameters_from_overrides: bool = False,
+        enable_logger_service: bool = False,
         **kwargs: Any,
     ) -> None:
         self._rcl_context = context or default_context
@@ -58,10 +76,23 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
         )
         if start_parameter_services:
             self._parameter_service = ParameterService(self)
+        if enable_logger_service:
+            self._logger_service = LoggingService(self)
         self._warn_if_name_taken()
 
     # -- entities, with rclpy's keywords -----------------------------------------------------
-    def _grouped(self, callback: Callable[..., Any], group: CallbackGroup | None, entity: object) -> Any:
+    publisher_type = Publisher
+    subscription_type = Subscription
+    timer_type = Timer
+    service_type = Service
+
+    @property
+    def context(self) -> Context:
+        return self._rcl_context
+
+    def _grouped(
+        self, callback: Callable[..., Any], group: CallbackGroup | None, entity: object
+    ) -> GroupedCallback:
         group = group or self.default_callback_group
         group.add_entity(entity)
         return GroupedCallback(callback, group)
@@ -70,80 +101,106 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
         self,
         msg_type: type[Message],
         topic: str,
-        qos_profile: Any,
+        qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: Any = None,
-        qos_overriding_options: Any = None,
+        event_callbacks: PublisherEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
         publisher_class: Any = None,
         hand_over: bool = False,
-    ) -> Publisher:
-        """rclpy's call; ``event_callbacks`` are accepted (the lab raises no QoS events)."""
-        pub = super().create_publisher(msg_type, topic, _for_bus(qos_profile), hand_over=hand_over)
-        (callback_group or self.default_callback_group).add_entity(pub)
+    ) -> Publisher[Any]:
+        qos = _profile(qos_profile)
+        if qos_overriding_options is not None:
+            declare_qos_parameters(True, self, self.resolve_topic_name(topic), qos, qos_overriding_options)
+        pub = super().create_publisher(msg_type, topic, _for_bus(qos), hand_over=hand_over)
+        assert isinstance(pub, Publisher)
+        pub.qos_profile = qos
+        pub.callback_group = group = callback_group or self.default_callback_group
+        group.add_entity(pub)
+        if event_callbacks is not None or pub.topic_name not in INTERNAL_TOPICS:
+            pub.event_handlers = (event_callbacks or PublisherEventCallbacks()).create_event_handlers(
+                group, pub
+            )
         return pub
 
     def create_subscription(
         self,
         msg_type: type[Message],
         topic: str,
-        callback: Callable[[Any], Any],
-        qos_profile: Any,
+        callback: Callable[..., Any],
+        qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: Any = None,
-        qos_overriding_options: Any = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
         raw: bool = False,
         read_only: bool = False,
-    ) -> Subscription:
-        sub = super().create_subscription(
-            msg_type, topic, callback, _for_bus(qos_profile), read_only=read_only
-        )
-        sub.callback = self._grouped(callback, callback_group, sub)
+    ) -> Subscription[Any]:
+        qos = _profile(qos_profile)
+        if qos_overriding_options is not None:
+            declare_qos_parameters(False, self, self.resolve_topic_name(topic), qos, qos_overriding_options)
+        sub = super().create_subscription(msg_type, topic, callback, _for_bus(qos), read_only=read_only)
+        assert isinstance(sub, Subscription)
+        sub.qos_profile, sub.raw = qos, raw
+        sub.callback = grouped = self._grouped(sub.adapt(callback), callback_group, sub)
+        sub.callback_group = group = grouped.callback_group
+        if event_callbacks is not None or sub.topic_name not in INTERNAL_TOPICS:
+            sub.event_handlers = (event_callbacks or SubscriptionEventCallbacks()).create_event_handlers(
+                group, sub
+            )
         return sub
 
     def create_timer(
         self,
         timer_period_sec: float,
-        callback: Callable[[], Any],
+        callback: Callable[..., Any] | None,
         callback_group: CallbackGroup | None = None,
         clock: Any = None,
         autostart: bool = True,
     ) -> Timer:
-        timer = super().create_timer(timer_period_sec, callback)
-        timer.callback = self._grouped(callback, callback_group, timer)
+        timer = super().create_timer(timer_period_sec, lambda: None)
+        assert isinstance(timer, Timer)
+        timer.clock_source = clock or self._ros_clock
+        timer.callback = grouped = self._grouped(timer.adapt(callback), callback_group, timer)
+        timer.callback_group = grouped.callback_group
         if not autostart:
             timer.cancel()
         return timer
 
     def create_service(  # type: ignore[override]
         self,
-        srv_type: type[Service],
+        srv_type: type[ServiceType],
         srv_name: str,
         callback: Callable[[Any, Any], Any],
         *,
-        qos_profile: Any = None,
+        qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
-    ) -> ServiceServer:
+    ) -> Service:
         server = super().create_service(srv_type, srv_name, callback)
-        server.callback = self._grouped(callback, callback_group, server)
+        assert isinstance(server, Service)
+        server.callback = grouped = self._grouped(callback, callback_group, server)
+        server.callback_group, server.qos_profile = grouped.callback_group, qos_profile
+        server.given_name = srv_name
         return server
 
     def create_client(  # type: ignore[override]
         self,
-        srv_type: type[Service],
+        srv_type: type[ServiceType],
         srv_name: str,
         *,
-        qos_profile: Any = None,
+        qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
     ) -> Client:
         self._check_alive()
         channel = self.bus.service(self.resolve_topic_name(srv_name), srv_type)
         client = Client(self, channel)
+        client.given_name = srv_name
+        client.callback_group = callback_group or self.default_callback_group
+        client.qos_profile = qos_profile
         channel.clients.append(client)
         self.clients.append(client)
         self.bus.endpoint_added(client)
-        (callback_group or self.default_callback_group).add_entity(client)
+        client.callback_group.add_entity(client)
         return client
 
     def create_guard_condition(

@@ -61,6 +61,25 @@ _POLICIES: dict[str, type[IntEnum]] = {
 _DURATIONS = ("deadline", "lifespan", "liveliness_lease_duration")
 
 
+class QoSPolicyKind(IntEnum):
+    """Which policy an incompatible-QoS event names, and which a QoS override sets (rmw's bits)."""
+
+    INVALID = 1 << 0
+    DURABILITY = 1 << 1
+    DEADLINE = 1 << 2
+    LIVELINESS = 1 << 3
+    RELIABILITY = 1 << 4
+    HISTORY = 1 << 5
+    LIFESPAN = 1 << 6
+    DEPTH = 1 << 7
+    LIVELINESS_LEASE_DURATION = 1 << 8
+    AVOID_ROS_NAMESPACE_CONVENTIONS = 1 << 9
+
+
+def qos_policy_name_from_kind(policy_kind: QoSPolicyKind | int) -> str:
+    return QoSPolicyKind(policy_kind).name
+
+
 class InvalidQoSProfileException(Exception):
     """A profile that cannot be (KEEP_LAST without a depth, an unknown policy)."""
 
@@ -169,10 +188,12 @@ __all__ = [
     "QoSDurabilityPolicy",
     "QoSHistoryPolicy",
     "QoSLivelinessPolicy",
+    "QoSPolicyKind",
     "QoSPresetProfiles",
     "QoSProfile",
     "QoSReliabilityPolicy",
     "ReliabilityPolicy",
+    "qos_policy_name_from_kind",
     "qos_profile_action_status_default",
     "qos_profile_parameter_events",
     "qos_profile_parameters",

@@ -122,6 +122,9 @@ class Bus:
         self._seq = itertools.count()
         self._wakers: list[Callable[[], None]] = []
         self.observers: list[GraphObserver] = []
+        # Called after every change of the graph, here or (through the transport) elsewhere: rclpy's
+        # matched and incompatible-QoS events look again. A listener must be quick and not raise.
+        self.graph_listeners: list[Callable[[], None]] = []
         # Called at the start of every executor pass, on the executor's thread (the transport's inbox).
         self.pollers: list[Callable[[], None]] = []
         # Set by a running executor: wakes it from another thread.
@@ -190,6 +193,8 @@ class Bus:
 
     def graph_changed(self) -> None:
         self.graph_version += 1
+        for listener in list(self.graph_listeners):
+            listener()
 
     # -- topics ----------------------------------------------------------
     def topic(self, name: str, msg_type: type[Message]) -> Topic:

@@ -64,6 +64,12 @@ class NodeLogger:
 class Node(NodeParameters):
     """A participant in the graph. Subclass it as in rclpy: ``super().__init__('MyNode')``."""
 
+    # What the create_* calls make: rclpy's client library gives its own subclasses (rclpy.publisher ...).
+    publisher_type: type[Publisher] = Publisher
+    subscription_type: type[Subscription] = Subscription
+    timer_type: type[Timer] = Timer
+    service_type: type[ServiceServer] = ServiceServer
+
     def __init__(
         self,
         node_name: str,
@@ -138,7 +144,7 @@ class Node(NodeParameters):
         self._check_alive()
         depth = qos_depth(qos_profile)
         t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
-        pub = Publisher(self, t, msg_type, depth, hand_over=hand_over)
+        pub = self.publisher_type(self, t, msg_type, depth, hand_over=hand_over)
         pub.qos = None if isinstance(qos_profile, int) else qos_profile
         t.publishers.append(pub)
         self.publishers.append(pub)
@@ -159,7 +165,7 @@ class Node(NodeParameters):
         self._check_alive()
         depth = qos_depth(qos_profile)
         t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
-        sub = Subscription(self, t, msg_type, callback, depth, read_only=read_only)
+        sub = self.subscription_type(self, t, msg_type, callback, depth, read_only=read_only)
         sub.qos = None if isinstance(qos_profile, int) else qos_profile
         t.subscriptions.append(sub)
         self.subscriptions.append(sub)
@@ -168,7 +174,7 @@ class Node(NodeParameters):
 
     def create_timer(self, timer_period_sec: float, callback: Callable[[], Any]) -> Timer:
         self._check_alive()
-        timer = Timer(self, timer_period_sec, callback, self.bus.clock.now())
+        timer = self.timer_type(self, timer_period_sec, callback, self.bus.clock.now())
         self.timers.append(timer)
         self.bus.schedule(timer)
         return timer
@@ -179,7 +185,7 @@ class Node(NodeParameters):
         """Serve ``srv_name``: ``callback(request, response)`` fills and returns the response."""
         self._check_alive()
         channel = self.bus.service(self.resolve_topic_name(srv_name), srv_type)
-        server = ServiceServer(self, channel, callback)
+        server = self.service_type(self, channel, callback)
         channel.servers.append(server)
         self.services.append(server)
         self.bus.endpoint_added(server)

@@ -37,7 +37,7 @@ def serve_parameters(node: Node) -> list[ServiceServer]:
     """Serve the six services under the node's name (none if it serves them already, as an rclpy
     node does); they go when the node is destroyed."""
     name = node.get_name()
-    if any(s.srv_name == node.resolve_topic_name(f"{name}/list_parameters") for s in node.services):
+    if any(s.channel.name == node.resolve_topic_name(f"{name}/list_parameters") for s in node.services):
         return []
     return [
         node.create_service(srv, f"{name}/{suffix}", partial(answer, node))

@@ -160,7 +160,7 @@ class ServiceClient:
         if any(s.active for s in self.channel.servers):
             return True
         remote = bus.remote_services
-        return remote is not None and remote.has_server(self.srv_name, self.srv_type)
+        return remote is not None and remote.has_server(self.channel.name, self.srv_type)
 
     def call_async(self, request: Message) -> Future[Message]:
         if self.destroyed:

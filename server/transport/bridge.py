@@ -144,7 +144,7 @@ class ZenohBridge:
             self._add_server(endpoint)
         elif isinstance(endpoint, ServiceClient):
             token = self._endpoint_token(
-                endpoint.node, EntityKind.CLIENT, endpoint.srv_name, endpoint.srv_type.TYPE, 10
+                endpoint.node, EntityKind.CLIENT, endpoint.channel.name, endpoint.srv_type.TYPE, 10
             )
             self._declare(endpoint, token)
 
@@ -224,9 +224,9 @@ class ZenohBridge:
 
     def _add_server(self, server: ServiceServer) -> None:
         token = self._endpoint_token(
-            server.node, EntityKind.SERVICE, server.srv_name, server.srv_type.TYPE, 10
+            server.node, EntityKind.SERVICE, server.channel.name, server.srv_type.TYPE, 10
         )
-        key = data_key(self.domain_id, server.srv_name, token.dds_type or "", token.type_hash or "")
+        key = data_key(self.domain_id, server.channel.name, token.dds_type or "", token.type_hash or "")
         self._declare(server, token, self.services.serve(server, key))
 
     # -- Zenoh's threads: only hand over -------------------------------------------------------
@@ -298,6 +298,11 @@ class ZenohBridge:
     # -- services (the bus's RemoteServices) --------------------------------------------------
     def has_server(self, name: str, srv_type: type[Service]) -> bool:
         return self.services.has_server(name, srv_type)
+
+    def gid_of(self, endpoint: object) -> bytes | None:
+        """The GID of a node's or endpoint's token (service events name a client by it)."""
+        entity = self._entities.get(id(endpoint))
+        return None if entity is None else entity.token.gid
 
     def call(self, client: ServiceClient, request: Message, future: Future[Message]) -> None:
         entity = self._entities.get(id(client))

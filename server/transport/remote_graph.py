@@ -12,7 +12,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from ..msgs.wire import ros_type_name
-from .keys import EntityKind, EntityToken, entity_gid
+from .keys import RMW_ZENOH_DEFAULT_QOS, EntityKind, EntityToken, QoS, entity_gid
 
 
 @dataclass(frozen=True)
@@ -32,6 +32,7 @@ class RemoteEndpoint:
     type_hash: str
     depth: int
     zid: str
+    qos: QoS = RMW_ZENOH_DEFAULT_QOS  # the profile its token gives (rclpy's incompatible-QoS events)
 
 
 MAX_SESSIONS_REMEMBERED = 1024
@@ -129,6 +130,7 @@ class RemoteGraph:
                     type_hash=t.type_hash or "",
                     depth=t.qos.depth if t.qos is not None else 0,
                     zid=t.zid,
+                    qos=t.qos or RMW_ZENOH_DEFAULT_QOS,
                 )
             )
         return sorted(out, key=lambda e: (e.name, e.kind.value, e.node))

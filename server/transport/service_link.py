@@ -89,7 +89,7 @@ class ServiceLink:
         seq = self._client_seq.get(id(client), 0) + 1
         self._client_seq[id(client)] = seq
         att = Attachment(seq, time.time_ns(), token.gid).pack()
-        key = data_key(token.domain_id, client.srv_name, token.dds_type or "", token.type_hash or "")
+        key = data_key(token.domain_id, client.channel.name, token.dds_type or "", token.type_hash or "")
         response_type = client.srv_type.Response
         self.session.get(
             key,
