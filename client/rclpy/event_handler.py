@@ -47,34 +47,35 @@ class UnsupportedEventTypeError(Exception):
     """An event the middleware cannot raise (rclpy's; the lab accepts every event instead)."""
 
 
+# The events' infos, named as rclpy's (the rmw structs its bindings expose) and by rclpy's aliases.
 @dataclass
 class _Counted:
     total_count: int = 0
     total_count_change: int = 0
 
 
-class QoSRequestedDeadlineMissedInfo(_Counted):
+class rmw_requested_deadline_missed_status_t(_Counted):
     pass
 
 
-class QoSOfferedDeadlineMissedInfo(_Counted):
+class rmw_offered_deadline_missed_status_t(_Counted):
     pass
 
 
-class QoSLivelinessLostInfo(_Counted):
+class rmw_liveliness_lost_status_t(_Counted):
     pass
 
 
-class QoSMessageLostInfo(_Counted):
+class rmw_message_lost_status_t(_Counted):
     pass
 
 
-class IncompatibleTypeInfo(_Counted):
+class rmw_incompatible_type_status_t(_Counted):
     pass
 
 
 @dataclass
-class QoSLivelinessChangedInfo:
+class rmw_liveliness_changed_status_t:
     alive_count: int = 0
     not_alive_count: int = 0
     alive_count_change: int = 0
@@ -82,20 +83,26 @@ class QoSLivelinessChangedInfo:
 
 
 @dataclass
-class QoSRequestedIncompatibleQoSInfo(_Counted):
+class rmw_requested_qos_incompatible_event_status_t(_Counted):
     last_policy_kind: QoSPolicyKind = QoSPolicyKind.INVALID
 
 
-QoSOfferedIncompatibleQoSInfo = QoSRequestedIncompatibleQoSInfo
-
-
 @dataclass
-class QoSSubscriptionMatchedInfo(_Counted):
+class rmw_matched_status_t(_Counted):
     current_count: int = 0
     current_count_change: int = 0
 
 
-QoSPublisherMatchedInfo = QoSSubscriptionMatchedInfo
+QoSRequestedDeadlineMissedInfo = rmw_requested_deadline_missed_status_t
+QoSOfferedDeadlineMissedInfo = rmw_offered_deadline_missed_status_t
+QoSLivelinessLostInfo = rmw_liveliness_lost_status_t
+QoSMessageLostInfo = rmw_message_lost_status_t
+IncompatibleTypeInfo = rmw_incompatible_type_status_t
+QoSLivelinessChangedInfo = rmw_liveliness_changed_status_t
+QoSRequestedIncompatibleQoSInfo = rmw_requested_qos_incompatible_event_status_t
+QoSOfferedIncompatibleQoSInfo = QoSRequestedIncompatibleQoSInfo
+QoSSubscriptionMatchedInfo = rmw_matched_status_t
+QoSPublisherMatchedInfo = rmw_matched_status_t
 
 
 class EventHandler:
