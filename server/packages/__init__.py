@@ -40,6 +40,18 @@ BUILTIN: dict[str, dict[str, str]] = {
     "simple_control": {"keyboard_manager": "server.packages.simple_control.keyboard_manager:KeyboardManager"},
     "visualizer": {"gui_controller.py": "server.packages.visualizer.gui_controller:GUIControllerNode"},
     "sensor_simulation": {"pressure.py": "server.packages.sensor_simulation.pressure:PressureSensorNode"},
+    "demo_nodes_py": {
+        "talker": "server.packages.demo_nodes_py.talker:Talker",
+        "listener": "server.packages.demo_nodes_py.listener:Listener",
+    },
+    "demo_nodes_cpp": {
+        "talker": "server.packages.demo_nodes_cpp.talker:Talker",
+        "listener": "server.packages.demo_nodes_py.listener:Listener",
+    },
+    "turtlesim": {
+        "turtlesim_node": "server.packages.turtlesim.turtlesim_node:TurtlesimNode",
+        "mimic": "server.packages.turtlesim.mimic:MimicNode",
+    },
     "lab": {},
 }
 
