@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# Set up what the tests need (the app, pytest, Playwright, Debian's Chromium, bubblewrap and
-# docker-compose, the linters, the page's scripts) and run the check gate (scripts/check: ruff, ruff
-# format, mypy --strict, tsc, eslint, then the whole suite). Extra arguments go to pytest. CI runs
-# exactly this (.ci/run).
+# Set up what the tests need (the app, pytest, ROS 2's rclpy for the differential suite, Playwright,
+# Debian's Chromium, bubblewrap and docker-compose, the linters, the page's scripts) and run the
+# check gate (scripts/check: ruff, ruff format, mypy --strict, tsc, eslint, then the whole suite).
+# Extra arguments go to pytest. CI runs exactly this (.ci/run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/_venv.sh
 source scripts/_web.sh
+source scripts/_oracle.sh
 install_once '.[test]'
+# ROS 2's own rclpy, the differential suite's reference (tests/differential), in a venv of its own.
+oracle_install
 
 debian_tool() {  # COMMAND PACKAGE FOR-WHAT IF-NOT: Debian's PACKAGE where COMMAND is missing (root with apt)
   if command -v "$1" >/dev/null 2>&1; then

@@ -1,0 +1,1 @@
+"""example_interfaces for the differential suite's oracle: test_msgs' identical Fibonacci (README.md)."""

@@ -1,0 +1,88 @@
+"""Every program in programs/ prints the same on the lab's rclpy as on ROS 2's own (harness.py).
+
+The programs of the tests a run collects start together when the first of them asks (a few at a
+time, each on both sides at once, each in a ROS domain of its own), so the file takes about as long
+as its slowest programs rather than their sum; a program whose name ends in ``_timing`` measures a
+rate and runs alone, under the timing mark."""
+
+from __future__ import annotations
+
+import threading
+from concurrent.futures import Future, ThreadPoolExecutor
+from pathlib import Path
+
+import pytest
+
+from .harness import PROGRAMS, Run, compare, domain_of, run_lab, run_oracle
+
+ALL = sorted(PROGRAMS.glob("*.py"))
+if not ALL:  # an empty parametrisation would skip, and the suite must not pass by running nothing
+    raise RuntimeError(f"no programs in {PROGRAMS}")
+AT_ONCE = 3  # programs in flight together (each two processes); the machine has two cores
+
+
+def timed(program: Path) -> bool:
+    return program.stem.endswith("_timing")
+
+
+def case(program: Path) -> object:
+    return pytest.param(program, id=program.stem, marks=[pytest.mark.timing] if timed(program) else [])
+
+
+def both(oracle: Path, router: str, program: Path) -> tuple[Run, Run]:
+    domain = domain_of(program, ALL)
+    with ThreadPoolExecutor(2) as pool:
+        theirs = pool.submit(run_oracle, oracle, program, domain)
+        ours = pool.submit(run_lab, program, domain, router)
+        return theirs.result(), ours.result()
+
+
+class Batch:
+    """The collected programs' runs, started together on first use."""
+
+    def __init__(self, oracle: Path, router: str, programs: list[Path]) -> None:
+        self.oracle, self.router, self.programs = oracle, router, programs
+        self.lock = threading.Lock()
+        self.pool: ThreadPoolExecutor | None = None
+        self.runs: dict[Path, Future[tuple[Run, Run]]] = {}
+
+    def result(self, program: Path) -> tuple[Run, Run]:
+        with self.lock:
+            if self.pool is None:
+                self.pool = ThreadPoolExecutor(AT_ONCE)
+                for each in self.programs:
+                    self.runs[each] = self.pool.submit(both, self.oracle, self.router, each)
+        return self.runs[program].result()
+
+    def close(self) -> None:
+        if self.pool is not None:
+            self.pool.shutdown(wait=True)
+
+
+@pytest.fixture(scope="module")
+def batch(request: pytest.FixtureRequest, oracle: Path, router: str) -> object:
+    collected = [
+        item.callspec.params["program"]
+        for item in request.session.items
+        if item.path == Path(__file__)
+        and hasattr(item, "callspec")
+        and not timed(item.callspec.params["program"])
+    ]
+    runs = Batch(oracle, router, collected)
+    request.addfinalizer(runs.close)
+    return runs
+
+
+@pytest.mark.parametrize("program", [case(p) for p in ALL])
+def test_program_prints_what_ros2_rclpy_prints(
+    program: Path, request: pytest.FixtureRequest, oracle: Path, router: str
+) -> None:
+    if timed(program):
+        domain = domain_of(program, ALL)
+        theirs = run_oracle(oracle, program, domain)
+        ours = run_lab(program, domain, router)  # after it, not beside it: each measures a rate
+    else:
+        theirs, ours = request.getfixturevalue("batch").result(program)
+    assert theirs.code == 0, f"{program.name} failed on ROS 2's own rclpy:\n{theirs.output}"
+    problem = compare(theirs, ours)
+    assert problem is None, f"{program.name}: the lab's rclpy differs from ROS 2's\n{problem}"
