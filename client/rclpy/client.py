@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 from server.bus import Future, ServiceClient
 from server.msgs import Message
 
+from ._wait_set import Response
 from .qos import QoSProfile, qos_profile_services_default
 from .service_introspection import Introspection, ServiceIntrospectionState
 
@@ -62,6 +63,9 @@ class Client(ServiceClient):
             for poll in list(bus.pollers):
                 poll()
 
+    def new_future(self) -> Future[Message]:
+        return Response(self)  # completed by the executor that takes the response, as in rclpy
+
     def call_async(self, request: Message) -> Future[Message]:
         future = super().call_async(request)
         self._sequence += 1
@@ -72,7 +76,7 @@ class Client(ServiceClient):
 
             def received(done: Future[Message]) -> None:
                 if not done.cancelled() and done.exception() is None:
-                    introspection.emit(RESPONSE_RECEIVED, sequence, gid, request, done.result())
+                    introspection.emit(RESPONSE_RECEIVED, sequence, gid, None, done.result())
 
             future.add_done_callback(received)
         return future

@@ -48,7 +48,7 @@ class Service(ServiceServer):
         self._requests += 1
         self._introspection.emit(REQUEST_RECEIVED, self._requests, NO_CLIENT, request, None)
         response = super().handle(request)
-        self._introspection.emit(RESPONSE_SENT, self._requests, NO_CLIENT, request, response)
+        self._introspection.emit(RESPONSE_SENT, self._requests, NO_CLIENT, None, response)
         return response
 
     def configure_introspection(

@@ -36,19 +36,16 @@ class Introspection:
 
     def configure(self, clock: Any, qos: QoSProfile, state: ServiceIntrospectionState) -> None:
         state = ServiceIntrospectionState(state)
-        event_type = getattr(self._entity.srv_type, "Event", None)
-        if state is not ServiceIntrospectionState.OFF and event_type is None:
-            raise RuntimeError(
-                f"{self._entity.srv_type.TYPE} has no Event message in this lab's interfaces: "
-                "service introspection cannot describe its calls"
-            )
         node = self._entity.node
         if self._publisher is not None and state is ServiceIntrospectionState.OFF:
             node.destroy_publisher(self._publisher)
             self._publisher = None
         elif self._publisher is None and state is not ServiceIntrospectionState.OFF:
             self._publisher = node.create_publisher(
-                event_type, self._entity.service_name + EVENT_SUFFIX, qos, event_callbacks=_no_events()
+                event_message(self._entity.srv_type),
+                self._entity.service_name + EVENT_SUFFIX,
+                qos,
+                event_callbacks=_no_events(),
             )
         self.state, self._clock = state, clock
 
@@ -75,6 +72,30 @@ class Introspection:
             response=[response] if contents and response is not None else [],
         )
         publisher.publish(event)
+
+
+_EVENTS: dict[str, type[Message]] = {}
+
+
+def event_message(srv_type: Any) -> type[Message]:
+    """``<Srv>.Event``, the message a service's events travel in: the service type's own if its
+    package declares it, else made here once as rosidl makes it (the info, then at most one
+    request and one response)."""
+    declared = getattr(srv_type, "Event", None)
+    if declared is not None:
+        return declared  # type: ignore[no-any-return]
+    name = f"{srv_type.TYPE}_Event"
+    if name not in _EVENTS:
+        from server.msgs._base import define_message
+        from server.msgs.idl import parse_message
+
+        text = (
+            f"service_msgs/ServiceEventInfo info\n{srv_type.Request.TYPE}[<=1] request\n"
+            f"{srv_type.Response.TYPE}[<=1] response\n"
+        )
+        module = srv_type.__module__ if srv_type.__module__.endswith(".srv") else __name__
+        _EVENTS[name] = define_message(parse_message(name, text), module)
+    return _EVENTS[name]
 
 
 def _no_events() -> Any:
