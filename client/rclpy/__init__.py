@@ -10,11 +10,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from server.bus import Future
-
 from ._context import Context, RCLError, default_context
 from .executors import Executor, ExternalShutdownException, SingleThreadedExecutor
 from .parameter import Parameter
+from .task import Future
 from .utilities import get_default_context, ok
 
 _global_executor: Executor | None = None
@@ -51,6 +50,7 @@ def shutdown(*, context: Context | None = None) -> None:
     global _global_executor
     ctx = context or default_context
     if _global_executor is not None and _global_executor.context is ctx:
+        _global_executor.shutdown()
         _global_executor = None
     ctx.shutdown()
 
@@ -69,24 +69,40 @@ def get_global_executor() -> Executor:
 
 
 def spin(node: Any, executor: Executor | None = None) -> None:
-    """Run the process's callbacks until shutdown; Ctrl-C raises KeyboardInterrupt, as in rclpy."""
+    """Run ``node``'s callbacks until shutdown; Ctrl-C raises KeyboardInterrupt, as in rclpy."""
     executor = executor or get_global_executor()
-    executor.add_node(node)
-    executor.spin()
+    try:
+        executor.add_node(node)
+        with executor._spinning():
+            while executor.context.ok():
+                executor.spin_once()
+    finally:
+        executor.remove_node(node)
 
 
 def spin_once(node: Any, *, executor: Executor | None = None, timeout_sec: float | None = None) -> None:
+    """Run one callback (or wait ``timeout_sec`` for one); the node is the executor's meanwhile."""
     executor = executor or get_global_executor()
-    executor.add_node(node)
-    executor.spin_once(timeout_sec)
+    added = False
+    try:
+        added = executor.add_node(node)
+        executor.spin_once(timeout_sec)
+    finally:
+        if added:
+            executor.remove_node(node)
 
 
 def spin_until_future_complete(
     node: Any, future: Future[Any], executor: Executor | None = None, timeout_sec: float | None = None
 ) -> None:
     executor = executor or get_global_executor()
-    executor.add_node(node)
-    executor.spin_until_future_complete(future, timeout_sec)
+    added = False
+    try:
+        added = executor.add_node(node)
+        executor.spin_until_future_complete(future, timeout_sec)
+    finally:
+        if added:
+            executor.remove_node(node)
 
 
 def create_node(node_name: str, *, context: Context | None = None, **kwargs: Any) -> Any:

@@ -25,6 +25,7 @@ from server.transport.config import DEFAULT_ROUTER_ENDPOINT, domain_id_from_env
 
 from ._console import console_line, set_threshold
 from ._ros_args import RosArgs, parse_ros_args
+from ._wait_set import WaitSet
 
 ROUTER_WAIT_NOTE_S = 1.0  # say once that the lab's router is not there yet, then keep waiting
 
@@ -116,7 +117,7 @@ class Context:
             bus = Bus(SystemClock())
             bus.lock = threading.RLock()
             bus.console = console_line
-            self.executor = BlockingExecutor(bus)
+            self.executor = WaitSet(bus)
             domain = domain_id if domain_id is not None else domain_id_from_env()
             if os.environ.get("ROS2LAB_NO_ZENOH") != "1":
                 self.session = open_peer_session(domain)

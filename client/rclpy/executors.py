@@ -1,264 +1,408 @@
 """rclpy's executors for a node process.
 
-Every node of the process lives on one bus; an executor collects what is ready on it (messages,
-due timers, service requests, triggered guard conditions) as handlers and runs them: one at a
-time on the spinning thread (SingleThreadedExecutor), or on a pool of threads with each callback
-group's rule (MultiThreadedExecutor). A custom executor subclasses ``Executor`` and overrides
+An executor spins the nodes added to it: it waits on the context's wait set (``_wait_set.py``)
+and turns each ready entity of its nodes whose callback group lets it run into a Task that asks
+the group (``beginning_execution``), runs the callback (awaiting it if it is ``async def``) and
+tells the group it ended. Tasks made with ``create_task`` and callbacks that wait on a future come
+back each round, before the wait, as in rclpy. ``SingleThreadedExecutor`` runs each task on the
+spinning thread, ``MultiThreadedExecutor`` on a pool of threads; a custom executor overrides
 ``spin_once`` with ``wait_for_ready_callbacks``, as rclpy's examples do.
 """
 
 from __future__ import annotations
 
+import contextlib
+import os
 import threading
 import time
-from collections import deque
-from collections.abc import Callable
+import warnings
+from collections.abc import Callable, Generator
 from concurrent.futures import ThreadPoolExecutor
-from typing import Any
+from typing import Any, cast
 
-from server.bus import Future, Node
-from server.bus.blocking import BlockingExecutor
-from server.bus.services import PendingCall
+from server.bus import Node
 
 from ._context import Context, default_context
-from .callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
+from ._wait_set import Ready, WaitSet, is_async
+from .task import Future, Task, wake_when_done
+
+Handler = Task  # what wait_for_ready_callbacks hands out: call it to run (or resume) the callback
+Yielded = tuple[Task[Any], Any, Any]
 
 
-class ExternalShutdownException(Exception):
-    """The context was shut down (by ``rclpy.shutdown()`` from another thread) while spinning."""
-
-
-class ShutdownException(Exception):
-    """The executor was shut down while waiting."""
+async def await_or_execute(callback: Callable[..., Any], *args: Any) -> Any:
+    """Await ``callback(*args)`` if ``callback`` is ``async def``, else just call it."""
+    if is_async(callback):
+        return await callback(*args)
+    return callback(*args)
 
 
 class TimeoutException(Exception):
     """``wait_for_ready_callbacks`` with a timeout that passed without work."""
 
 
-class Handler:
-    """One ready callback: call it to run it; ``result()`` re-raises what it raised."""
-
-    def __init__(self, node: Node, fn: Callable[..., Any], args: tuple[Any, ...]) -> None:
-        self.node = node
-        self._fn = fn
-        self._args = args
-        self._error: BaseException | None = None
-        group = getattr(fn, "callback_group", None)
-        self.callback_group: CallbackGroup = (
-            group or getattr(node, "default_callback_group", None) or _FALLBACK
-        )
-
-    def __call__(self) -> None:
-        try:
-            self._fn(*self._args)
-        except BaseException as exc:
-            self._error = exc
-            raise
-
-    def result(self) -> None:
-        if self._error is not None:
-            raise self._error
+class ShutdownException(Exception):
+    """The executor was shut down while waiting."""
 
 
-_FALLBACK = MutuallyExclusiveCallbackGroup()  # the lab's own bus nodes have no group of their own
+class ExternalShutdownException(Exception):
+    """The context was shut down (by ``rclpy.shutdown()`` from another thread) while spinning."""
+
+
+class ConditionReachedException(Exception):
+    """The condition ``wait_for_ready_callbacks`` was given became true (a future is done)."""
+
+
+class TimeoutObject:
+    """A timeout the caller shortens between calls (``spin_until_future_complete``'s)."""
+
+    def __init__(self, timeout: float) -> None:
+        self.timeout = timeout
+
+
+class _WorkTracker:
+    """How many callbacks are running, so ``shutdown`` can wait for them."""
+
+    def __init__(self) -> None:
+        self._running = 0
+        self._condition = threading.Condition()
+
+    def __enter__(self) -> None:
+        with self._condition:
+            self._running += 1
+
+    def __exit__(self, *_exc: object) -> None:
+        with self._condition:
+            self._running -= 1
+            self._condition.notify_all()
+
+    def wait(self, timeout_sec: float | None = None) -> bool:
+        if timeout_sec is not None and timeout_sec < 0:
+            timeout_sec = None
+        with self._condition:
+            return self._condition.wait_for(lambda: self._running == 0, timeout_sec)
+
+
+def _never() -> bool:
+    return False
 
 
 class Executor:
-    """Spins the process's nodes; ``add_node`` is kept for rclpy's API (``get_nodes`` reports it)."""
+    """The base of every executor; a subclass defines ``spin_once``."""
 
     def __init__(self, *, context: Context | None = None) -> None:
-        self.context = context or default_context
+        self._context = context or default_context
         self._nodes: list[Node] = []
-        self._shut_down = False
-        self._waiting: deque[Handler] = deque()
-        self._collect_lock = threading.Lock()
+        self._nodes_lock = threading.RLock()
+        self._tasks: list[Yielded] = []
+        self._tasks_lock = threading.Lock()
+        self._is_shutdown = False
+        self._shutdown_lock = threading.Lock()
+        self._work_tracker = _WorkTracker()
+        self._cb_iter: Generator[Yielded, None, None] | None = None
+        self._last_args: tuple[Any, ...] | None = None
+        self._last_kwargs: dict[str, Any] | None = None
 
-    def _core(self) -> BlockingExecutor:
-        _bus, executor = self.context.require()
-        return executor
+    @property
+    def context(self) -> Context:
+        return self._context
 
+    def _wait_set(self) -> WaitSet:
+        wait_set = self._context.executor
+        if not self._context.ok() or wait_set is None:
+            raise ExternalShutdownException("the context was shut down")
+        return cast(WaitSet, wait_set)
+
+    def _spinning(self) -> contextlib.AbstractContextManager[None]:
+        wait_set = self._context.executor
+        return wait_set.spinning() if isinstance(wait_set, WaitSet) else contextlib.nullcontext()
+
+    # -- work ----------------------------------------------------------------------------------
+    def create_task(self, callback: Callable[..., Any], *args: Any, **kwargs: Any) -> Task[Any]:
+        """Run ``callback`` (a function or an ``async def``) while spinning; a Future of its result."""
+        task: Task[Any] = Task(callback, args, kwargs, executor=self)
+        with self._tasks_lock:
+            self._tasks.append((task, None, None))
+        self.wake()
+        return task
+
+    def create_future(self) -> Future[Any]:
+        return Future(executor=self)
+
+    def wake(self) -> None:
+        """Have the executor look again (a task was created, a group let go of a callback)."""
+        wait_set = self._context.executor
+        if isinstance(wait_set, WaitSet):
+            wait_set.wake()
+
+    # -- nodes ---------------------------------------------------------------------------------
     def add_node(self, node: Node) -> bool:
-        if node in self._nodes:
-            return False
-        self._nodes.append(node)
+        with self._nodes_lock:
+            if node in self._nodes:
+                return False
+            self._nodes.append(node)
+        if getattr(node, "executor", None) is not self:
+            node.executor = self  # type: ignore[attr-defined]  # rclpy's Node moves to this executor
+        self.wake()
         return True
 
     def remove_node(self, node: Node) -> None:
-        if node in self._nodes:
+        with self._nodes_lock:
+            if node not in self._nodes:
+                return
             self._nodes.remove(node)
+        self.wake()
 
     def get_nodes(self) -> list[Node]:
-        return list(self._nodes)
-
-    def _check(self) -> None:
-        if not self.context.ok():
-            raise ExternalShutdownException("the context was shut down")
-        if self._shut_down:
-            raise ShutdownException("the executor was shut down")
-
-    # -- collecting ----------------------------------------------------------------------------
-    def _collect(self, timeout_sec: float | None) -> list[Handler]:
-        """What became ready within ``timeout_sec`` (None: wait for something), not yet run."""
-        core = self._core()
-        got: list[Handler] = []
-
-        def capture(node: Node, fn: Callable[..., Any], *args: Any) -> None:
-            got.append(Handler(node, fn, args))
-            core.callbacks_run += 1
-
-        def capture_call(call: PendingCall) -> bool:
-            server = call.server
-            if not server.active:
-                return False  # the server went away: the client keeps waiting, as in ROS 2
-
-            def answer() -> None:
-                server.answer(call)
-
-            answer.callback_group = getattr(server.callback, "callback_group", None)  # type: ignore[attr-defined]
-            got.append(Handler(server.node, answer, ()))
-            return True
-
-        with self._collect_lock:
-            core._run = capture  # type: ignore[method-assign]
-            core._run_call = capture_call  # type: ignore[method-assign]
-            try:
-                core.spin_once(timeout_sec)
-            finally:
-                del core._run, core._run_call
-        return got
-
-    def wait_for_ready_callbacks(self, timeout_sec: float | None = None) -> tuple[Handler, Any, Node]:
-        """The next ready callback as (handler, entity's group, node); raises TimeoutException."""
-        if not self._waiting:
-            self._check()
-            self._waiting.extend(self._collect(timeout_sec))
-        if not self._waiting:
-            self._check()
-            raise TimeoutException(f"nothing became ready within {timeout_sec} s")
-        handler = self._waiting.popleft()
-        return handler, handler.callback_group, handler.node
-
-    # -- spinning ------------------------------------------------------------------------------
-    def _dispatch(self, handler: Handler) -> None:
-        handler()
-
-    def spin_once(self, timeout_sec: float | None = None) -> None:
-        try:
-            handler, _group, _node = self.wait_for_ready_callbacks(timeout_sec)
-        except TimeoutException:
-            return
-        self._dispatch(handler)
-
-    def spin(self) -> None:
-        """Until the context shuts down; Ctrl-C raises KeyboardInterrupt here, as in rclpy."""
-        try:
-            while not self._shut_down:
-                self.spin_once(None)
-        except ShutdownException:
-            pass  # this executor's shutdown() ends its spin quietly; the context's raises
-        if not self.context.ok():
-            raise ExternalShutdownException("the context was shut down")
-
-    def spin_until_future_complete(self, future: Future[Any], timeout_sec: float | None = None) -> None:
-        end = None if timeout_sec is None or timeout_sec < 0 else time.monotonic() + timeout_sec
-        while not future.done() and not self._shut_down:
-            left = None if end is None else end - time.monotonic()
-            if left is not None and left <= 0:
-                return
-            try:
-                self.spin_once(left)
-            except ShutdownException:
-                return
+        with self._nodes_lock:
+            return list(self._nodes)
 
     def shutdown(self, timeout_sec: float | None = None) -> bool:
-        self._shut_down = True
-        if self.context.ok():
-            self._core().wake()
+        """Stop executing callbacks. rclpy 9 does not wait for those running (its check comes
+        after the flag it checks is set), so neither does this: it returns True."""
+        with self._shutdown_lock:
+            first = not self._is_shutdown
+            self._is_shutdown = True
+        if first:
+            self.wake()
+        with self._nodes_lock:
+            self._nodes = []
+        self._cb_iter = None
+        self._last_args = self._last_kwargs = None
         return True
+
+    def __enter__(self) -> Executor:
+        return self
+
+    def __exit__(self, *_exc: object) -> None:
+        self.shutdown()
+
+    # -- spinning ------------------------------------------------------------------------------
+    def spin(self) -> None:
+        """Until the context or this executor shuts down; Ctrl-C raises KeyboardInterrupt, as in rclpy."""
+        with self._spinning():
+            while self._context.ok() and not self._is_shutdown:
+                self.spin_once()
+
+    def spin_until_future_complete(self, future: Future[Any], timeout_sec: float | None = None) -> None:
+        """Until ``future`` is done (or cancelled), the context shuts down or ``timeout_sec`` passes."""
+        wake_when_done(future, self.wake)
+
+        def waiting() -> bool:
+            return (
+                self._context.ok() and not future.done() and not future.cancelled() and not self._is_shutdown
+            )
+
+        with self._spinning():
+            self._spin_until(future, timeout_sec, waiting)
+
+    def _spin_until(
+        self, future: Future[Any], timeout_sec: float | None, waiting: Callable[[], bool]
+    ) -> None:
+        if timeout_sec is None or timeout_sec < 0:
+            while waiting():
+                self._spin_once_until_future_complete(future, timeout_sec)
+            return
+        end = time.monotonic() + timeout_sec
+        left = TimeoutObject(timeout_sec)
+        while waiting():
+            self._spin_once_until_future_complete(future, left)
+            now = time.monotonic()
+            if now >= end:
+                return
+            left.timeout = end - now
+
+    def spin_once(self, timeout_sec: float | None = None) -> None:
+        """Wait for and run one callback; what a custom executor overrides."""
+        raise NotImplementedError()
+
+    def spin_once_until_future_complete(
+        self, future: Future[Any], timeout_sec: float | TimeoutObject | None = None
+    ) -> None:
+        raise NotImplementedError()
+
+    def _spin_once_until_future_complete(
+        self, future: Future[Any], timeout_sec: float | TimeoutObject | None = None
+    ) -> None:
+        raise NotImplementedError()
+
+    # -- handing out work ----------------------------------------------------------------------
+    def can_execute(self, entity: Any) -> bool:
+        group = getattr(entity, "callback_group", None)
+        return group is None or bool(group.can_execute(entity))
+
+    def _make_handler(self, ready: Ready, wait_set: WaitSet) -> Task[None]:
+        """The task that runs ``ready``'s callback, if its group lets it when the task starts."""
+
+        async def handler() -> None:
+            if self._is_shutdown or not ready.group.beginning_execution(ready.entity):
+                wait_set.put_back(ready)  # not taken: it stays ready, as an entity does in rclpy
+                return
+            with self._work_tracker:
+                wait_set.started(ready)
+                try:
+                    work = ready.run()
+                    if work is not None:
+                        await work
+                finally:
+                    ready.group.ending_execution(ready.entity)
+                    self.wake()  # the group may let the next one in
+
+        task: Task[None] = Task(handler, executor=self)
+        with self._tasks_lock:
+            self._tasks.append((task, ready.entity, ready.node))
+        return task
+
+    def _wait_for_ready_callbacks(
+        self,
+        timeout_sec: float | TimeoutObject | None = None,
+        nodes: list[Node] | None = None,
+        condition: Callable[[], bool] = _never,
+    ) -> Generator[Yielded, None, None]:
+        """Tasks in progress first, then a wait, then each ready entity its group lets run; each
+        at most once a round. Raises TimeoutException, ShutdownException, ExternalShutdownException,
+        or ConditionReachedException once ``condition()``."""
+        timeout = timeout_sec.timeout if isinstance(timeout_sec, TimeoutObject) else timeout_sec
+        end = None if timeout is None or timeout < 0 else time.monotonic() + timeout
+        yielded = False
+        while not yielded and not self._is_shutdown and not condition():
+            use = self.get_nodes() if nodes is None else list(nodes)
+            wait_set = self._wait_set()
+            since = wait_set.generation()
+            with self._tasks_lock:
+                tasks = list(self._tasks)
+            for task, entity, node in tasks:
+                if task.executing() or not task._pending() or not task._resumable():
+                    continue
+                if node is None or node in use:
+                    yielded = True
+                    yield task, entity, node
+            with self._tasks_lock:
+                self._tasks = [t for t in self._tasks if t[0]._pending()]
+
+            def wanted(ready: Ready, use: list[Node] = use) -> bool:
+                return ready.node in use and bool(ready.group.can_execute(ready.entity))
+
+            left = None if end is None else max(0.0, end - time.monotonic())
+            wait_set.wait(0.0 if wait_set.any(wanted) else left, since)
+            if self._is_shutdown:
+                raise ShutdownException()
+            if not self._context.ok():
+                raise ExternalShutdownException()
+            seen: set[int] = set()
+            while (ready := wait_set.take(wanted, seen)) is not None:
+                yielded = True
+                yield self._make_handler(ready, wait_set), ready.entity, ready.node
+            if timeout == 0 or (end is not None and time.monotonic() >= end):
+                raise TimeoutException()
+        if self._is_shutdown:
+            raise ShutdownException()
+        if condition():
+            raise ConditionReachedException()
+
+    def wait_for_ready_callbacks(self, *args: Any, **kwargs: Any) -> Yielded:
+        """The next (handler, entity, node) to run; waits as long as ``timeout_sec`` says (None:
+        until there is one). Call the handler to run it."""
+        while True:
+            if self._cb_iter is None or self._last_args != args or self._last_kwargs != kwargs:
+                self._last_args, self._last_kwargs = args, kwargs
+                self._cb_iter = self._wait_for_ready_callbacks(*args, **kwargs)
+            try:
+                return next(self._cb_iter)
+            except StopIteration:
+                self._cb_iter = None
 
 
 class SingleThreadedExecutor(Executor):
-    """Runs every callback on the spinning thread, one at a time."""
+    """Runs every callback on the thread that spins, one at a time."""
+
+    def _spin_once_impl(
+        self, timeout_sec: float | TimeoutObject | None = None, wait_condition: Callable[[], bool] = _never
+    ) -> None:
+        try:
+            handler, _entity, _node = self.wait_for_ready_callbacks(timeout_sec, None, wait_condition)
+        except (ShutdownException, TimeoutException, ConditionReachedException):
+            return
+        handler()
+        exception = handler.exception()
+        if exception is not None:
+            raise exception
+        handler.result()
+
+    def spin_once(self, timeout_sec: float | None = None) -> None:
+        self._spin_once_impl(timeout_sec)
+
+    def _spin_once_until_future_complete(
+        self, future: Future[Any], timeout_sec: float | TimeoutObject | None = None
+    ) -> None:
+        self._spin_once_impl(timeout_sec, future.done)
+
+    def spin_once_until_future_complete(
+        self, future: Future[Any], timeout_sec: float | TimeoutObject | None = None
+    ) -> None:
+        wake_when_done(future, self.wake)
+        self._spin_once_until_future_complete(future, timeout_sec)
 
 
 class MultiThreadedExecutor(Executor):
-    """Callbacks run on a pool of threads: a mutually exclusive group's one at a time and in the
-    order they became ready, a reentrant group's in parallel. The spinning thread only collects
-    (and so keeps answering the Zenoh side: a synchronous service call from a callback completes)."""
+    """Runs callbacks on a pool of threads (one per CPU this process may use, unless told):
+    a mutually exclusive group's one at a time, a reentrant group's side by side. An exception
+    in a callback comes out of ``spin`` on the spinning thread, as in rclpy."""
 
     def __init__(self, num_threads: int | None = None, *, context: Context | None = None) -> None:
         super().__init__(context=context)
-        self._pool = ThreadPoolExecutor(max_workers=num_threads or 4, thread_name_prefix="rclpy-cb")
-        self._lock = threading.Lock()
-        self._queues: dict[int, deque[Handler]] = {}
-        self._error: BaseException | None = None
+        if num_threads is None:
+            affinity = getattr(os, "sched_getaffinity", None)
+            num_threads = len(affinity(0)) if affinity is not None else (os.cpu_count() or 2)
+        if num_threads == 1:
+            warnings.warn(
+                "MultiThreadedExecutor is used with a single thread.\nUse the SingleThreadedExecutor instead.",
+                stacklevel=2,
+            )
+        self._futures: list[Task[Any]] = []
+        self._executor = ThreadPoolExecutor(num_threads, thread_name_prefix="rclpy-cb")
 
-    def _run_caught(self, handler: Handler) -> None:
+    def _spin_once_impl(
+        self, timeout_sec: float | TimeoutObject | None = None, wait_condition: Callable[[], bool] = _never
+    ) -> None:
         try:
-            handler()
-        except BaseException as exc:  # handed to the spinning thread, as rclpy does
-            self._error = exc
-            if self.context.bus is not None:
-                self.context.bus.wake_threadsafe()
-
-    def _drain_group(self, key: int) -> None:
-        while True:
-            with self._lock:
-                queue = self._queues[key]
-                if not queue:
-                    del self._queues[key]
-                    return
-                handler = queue[0]
-            self._run_caught(handler)
-            with self._lock:
-                queue.popleft()
-
-    def _submit(self, fn: Callable[..., None], arg: Any) -> None:
-        try:
-            self._pool.submit(fn, arg)
-        except RuntimeError:  # shut down from another thread while this one handed work out
-            if not self._shut_down:
-                raise
-
-    def _dispatch(self, handler: Handler) -> None:
-        group = handler.callback_group
-        if not isinstance(group, MutuallyExclusiveCallbackGroup):
-            self._submit(self._run_caught, handler)
+            handler, _entity, _node = self.wait_for_ready_callbacks(timeout_sec, None, wait_condition)
+        except (ExternalShutdownException, ShutdownException, TimeoutException, ConditionReachedException):
             return
-        key = id(group)
-        with self._lock:
-            queue = self._queues.get(key)
-            if queue is not None:
-                queue.append(handler)  # its drainer runs it after the ones before it
-                return
-            self._queues[key] = deque([handler])
-        self._submit(self._drain_group, key)
-
-    def _raise_pending(self) -> None:
-        error, self._error = self._error, None
-        if error is not None:
-            raise error
+        try:
+            self._executor.submit(handler)
+        except RuntimeError:  # shut down from another thread while this one handed work out
+            if not self._is_shutdown:
+                raise
+            return
+        self._futures.append(handler)
+        for future in self._futures[:]:
+            if future.done():
+                self._futures.remove(future)
+                future.result()  # what a callback raised comes out here
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
-        self._raise_pending()
-        while True:  # hand out everything ready now, not one per wake-up
-            try:
-                handler, _group, _node = self.wait_for_ready_callbacks(timeout_sec)
-            except TimeoutException:
-                break
-            self._dispatch(handler)
-            if not self._waiting:
-                break
-        self._raise_pending()
+        self._spin_once_impl(timeout_sec)
 
-    def shutdown(self, timeout_sec: float | None = None) -> bool:
-        super().shutdown(timeout_sec)
-        self._pool.shutdown(wait=timeout_sec is None or timeout_sec > 0)
-        return True
+    def _spin_once_until_future_complete(
+        self, future: Future[Any], timeout_sec: float | TimeoutObject | None = None
+    ) -> None:
+        self._spin_once_impl(timeout_sec, future.done)
+
+    def spin_once_until_future_complete(
+        self, future: Future[Any], timeout_sec: float | TimeoutObject | None = None
+    ) -> None:
+        wake_when_done(future, self.wake)
+        self._spin_once_until_future_complete(future, timeout_sec)
+
+    def shutdown(self, timeout_sec: float | None = None, *, wait_for_threads: bool = True) -> bool:
+        done = super().shutdown(timeout_sec)
+        self._executor.shutdown(wait=wait_for_threads)
+        return done
 
 
 __all__ = [
+    "ConditionReachedException",
     "Executor",
     "ExternalShutdownException",
     "Handler",
@@ -266,4 +410,6 @@ __all__ = [
     "ShutdownException",
     "SingleThreadedExecutor",
     "TimeoutException",
+    "TimeoutObject",
+    "await_or_execute",
 ]

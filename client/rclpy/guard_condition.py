@@ -30,12 +30,12 @@ class GuardCondition:
         return not self.destroyed and self.node.state == "active"
 
     def handle(self, _request: object) -> object:
+        """Run the callback; what it returned (the coroutine of an ``async def`` one, to await)."""
         self._pending = False
-        self.callback()
-        return None
+        return self.callback()
 
-    def answer(self, _call: PendingCall) -> None:
-        self.handle(None)
+    def answer(self, _call: PendingCall) -> object:
+        return self.handle(None)
 
     def trigger(self) -> None:
         if self.destroyed or self._pending:

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from server.bus import INTERNAL_TOPICS
 from server.bus import Node as BusNode
@@ -28,6 +29,9 @@ from .rate import Rate
 from .service import Service
 from .subscription import Subscription
 from .timer import Timer
+
+if TYPE_CHECKING:
+    from .executors import Executor
 
 
 def _profile(qos_or_depth: Any) -> QoSProfile:
@@ -89,6 +93,24 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
     @property
     def context(self) -> Context:
         return self._rcl_context
+
+    @property
+    def executor(self) -> Executor | None:
+        """The executor the node was last added to, or None (rclpy's)."""
+        ref = self.__dict__.get("_executor_ref")
+        return None if ref is None else ref()
+
+    @executor.setter
+    def executor(self, new_executor: Executor | None) -> None:
+        """Move the node to ``new_executor`` (out of the one it was in), as rclpy does."""
+        current = self.executor
+        if current is new_executor:
+            return
+        if current is not None:
+            current.remove_node(self)
+        if new_executor is not None:
+            new_executor.add_node(self)
+        self._executor_ref = None if new_executor is None else weakref.ref(new_executor)
 
     def _grouped(
         self, callback: Callable[..., Any], group: CallbackGroup | None, entity: object

@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
-import threading
 import time
-
-from server.bus.blocking import BlockingExecutor
+import weakref
+from typing import Any, cast
 
 from ._context import Context
+from ._wait_set import WaitSet
+from .executors import SingleThreadedExecutor
 
 
 class Rate:
@@ -33,20 +34,34 @@ class Rate:
         if self._destroyed:
             raise RuntimeError("this rate was destroyed")
         deadline = self._next_deadline()
-        _bus, executor = self._context.require()
-        others_spin = bool(executor.spinning_threads - {threading.get_ident()})
-        if others_spin:
+        _bus, wait_set = self._context.require()
+        if cast(WaitSet, wait_set).spun_elsewhere():
             time.sleep(max(0.0, deadline - time.monotonic()))
             return
+        runner = _runner(self._context, cast(WaitSet, wait_set))
         while True:
             left = deadline - time.monotonic()
             if left <= 0 or not self._context.ok():
                 return
-            _spin_for(executor, left)
+            runner.spin_once(left)
 
     def destroy(self) -> None:
         self._destroyed = True
 
 
-def _spin_for(executor: BlockingExecutor, seconds: float) -> None:
-    executor.spin_once(seconds)
+class _EveryNode(SingleThreadedExecutor):
+    """Runs the callbacks of every node of the process (no one spins them while a rate sleeps)."""
+
+    def get_nodes(self) -> list[Any]:
+        bus = self._context.bus
+        return [] if bus is None else list(bus.nodes)
+
+
+_runners: weakref.WeakKeyDictionary[WaitSet, _EveryNode] = weakref.WeakKeyDictionary()
+
+
+def _runner(context: Context, wait_set: WaitSet) -> _EveryNode:
+    runner = _runners.get(wait_set)
+    if runner is None:
+        runner = _runners[wait_set] = _EveryNode(context=context)
+    return runner

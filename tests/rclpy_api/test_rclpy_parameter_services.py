@@ -48,8 +48,11 @@ def ctx(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Iterator[rclpy.Conte
 
 
 def spun(ctx: rclpy.Context, node: Node, future: Any) -> Any:
+    """Spin every node of the process (the server is one too: as in rclpy, a node no executor
+    has runs nothing) until ``future`` is done."""
     executor = rclpy.executors.SingleThreadedExecutor(context=ctx)
-    executor.add_node(node)
+    for each in node.bus.nodes:
+        executor.add_node(each)
     executor.spin_until_future_complete(future, timeout_sec=5.0)
     assert future.done(), "the service did not answer"
     return future.result()

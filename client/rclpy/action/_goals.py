@@ -66,17 +66,18 @@ def action_names(action_name: str) -> dict[str, str]:
 
 class LaterServer(ServiceServer):
     """A service server whose handler gets the call's future and completes it when it can (the
-    result of a goal still running), so the executor is not held meanwhile."""
+    result of a goal still running), so the executor is not held meanwhile; an ``async def``
+    handler is awaited by the executor."""
 
-    def __init__(self, node: Any, channel: Any, handler: Callable[[Message, Future[Message]], None]) -> None:
+    def __init__(self, node: Any, channel: Any, handler: Callable[[Message, Future[Message]], Any]) -> None:
         super().__init__(node, channel, handler)
 
-    def answer(self, call: PendingCall) -> None:
-        self.callback(call.request, call.future)
+    def answer(self, call: PendingCall) -> Any:
+        return self.callback(call.request, call.future)  # an async handler's coroutine, to await
 
 
 def serve_later(
-    node: Any, srv_type: Any, name: str, handler: Callable[[Message, Future[Message]], None], group: Any
+    node: Any, srv_type: Any, name: str, handler: Callable[[Message, Future[Message]], Any], group: Any
 ) -> LaterServer:
     """``node.create_service`` for a :class:`LaterServer`."""
     node._check_alive()

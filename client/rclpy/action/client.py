@@ -8,12 +8,13 @@ import time
 from collections.abc import Callable
 from typing import Any, cast
 
-from server.bus import Future
 from server.msgs import Message
 from server.msgs.generated.action_msgs import CancelGoal, GoalStatus, GoalStatusArray
 from server.msgs.generated.unique_identifier_msgs import UUID
 
+from ..executors import await_or_execute
 from ..qos import QoSProfile, qos_profile_action_status_default
+from ..task import Future
 from ._goals import ACTIVE, action_names, new_goal_id
 
 WAIT_POLL_S = 0.02  # how often wait_for_server looks at the graph
@@ -150,6 +151,7 @@ class ActionClient:
         outcome: Future[ClientGoalHandle] = Future()
 
         def answered(done: Future[Message]) -> None:
+            outcome._set_executor(getattr(self._node, "executor", None))  # its callbacks run there
             failure = done.exception()
             if done.cancelled() or failure is not None:
                 self._feedback_callbacks.pop(key, None)
@@ -177,13 +179,12 @@ class ActionClient:
     def _cancel_goal_async(self, handle: ClientGoalHandle) -> Future[Message]:
         request = CancelGoal.Request()
         request.goal_info.goal_id = handle.goal_id
-        future: Future[Message] = self._cancel_client.call_async(request)
-        return future
+        return cast(Future[Message], self._cancel_client.call_async(request))
 
     def _get_result_async(self, handle: ClientGoalHandle) -> Future[Message]:
         key = bytes(handle.goal_id.uuid)
         request = self._action_type.Impl.GetResultService.Request(goal_id=handle.goal_id)
-        future: Future[Message] = self._result_client.call_async(request)
+        future = cast(Future[Message], self._result_client.call_async(request))
 
         def finished(done: Future[Message]) -> None:
             response = done.result() if not done.cancelled() and done.exception() is None else None
@@ -199,10 +200,10 @@ class ActionClient:
         return future
 
     # -- topics --------------------------------------------------------------------------------
-    def _on_feedback(self, message: Any) -> None:
+    async def _on_feedback(self, message: Any) -> None:
         callback = self._feedback_callbacks.get(bytes(message.goal_id.uuid))
         if callback is not None:
-            callback(message)
+            await await_or_execute(callback, message)
 
     def _on_status(self, message: Any) -> None:
         for status in message.status_list:

@@ -12,10 +12,11 @@ from enum import Enum
 from typing import Any, cast
 
 from server.bus import Future
-from server.bus.services import PendingCall, ServiceServer
 from server.msgs import Message
 from server.msgs.generated.action_msgs import GoalInfo, GoalStatus, GoalStatusArray
 
+from .._context import RCLError
+from ..executors import await_or_execute
 from ..qos import QoSProfile, qos_profile_action_status_default
 from ._goals import ACTIVE, CANCELING, action_names, next_status, serve_later
 from .cancel import goals_to_cancel
@@ -120,25 +121,6 @@ class ServerGoalHandle:
         self._server.forget(self)
 
 
-class _Execution:
-    """One goal's execute callback, queued on the bus as a call is, so the executor runs it in
-    the server's callback group (a MultiThreadedExecutor with a reentrant group runs goals at once)."""
-
-    def __init__(
-        self, server: ActionServer, handle: ServerGoalHandle, callback: Callable[[Any], Any]
-    ) -> None:
-        self.node = server.node
-        self.server = server
-        self.callback = server.node._grouped(lambda: server.run_goal(handle, callback), server.group, self)
-
-    @property
-    def active(self) -> bool:
-        return not self.server.destroyed and self.node.state == "active"
-
-    def answer(self, _call: PendingCall) -> None:
-        self.callback()
-
-
 class ActionServer:
     """``ActionServer(node, Fibonacci, 'fibonacci', execute_callback, goal_callback=...,
     cancel_callback=..., handle_accepted_callback=...)``, as in rclpy."""
@@ -176,8 +158,8 @@ class ActionServer:
         self._send_goal = serve_later(
             node, impl.SendGoalService, names["send_goal"], self._on_goal, self.group
         )
-        self._cancel = node.create_service(
-            impl.CancelGoalService, names["cancel_goal"], self._on_cancel, callback_group=self.group
+        self._cancel = serve_later(
+            node, impl.CancelGoalService, names["cancel_goal"], self._on_cancel, self.group
         )
         self._result = serve_later(
             node, impl.GetResultService, names["get_result"], self._on_result, self.group
@@ -205,12 +187,12 @@ class ActionServer:
         self._handle_accepted_callback = callback or default_handle_accepted_callback
 
     # -- the three services ------------------------------------------------------------------
-    def _on_goal(self, request: Any, future: Future[Message]) -> None:
+    async def _on_goal(self, request: Any, future: Future[Message]) -> None:
         goal_id = bytes(request.goal_id.uuid)
         response = self.action_type.Impl.SendGoalService.Response()
         accepted = False
         if goal_id not in self._goals:
-            verdict = self._goal_callback(request.goal)
+            verdict = await await_or_execute(self._goal_callback, request.goal)
             if not isinstance(verdict, GoalResponse):
                 self.node.get_logger().warning(
                     "Goal request callback did not return a GoalResponse type. Rejecting goal."
@@ -227,19 +209,24 @@ class ActionServer:
         response.accepted, response.stamp = True, info.stamp
         future.set_result(response)
         self.publish_status()
-        self._handle_accepted_callback(handle)
+        await await_or_execute(self._handle_accepted_callback, handle)
 
-    def _on_cancel(self, request: Any, response: Any) -> Any:
+    async def _on_cancel(self, request: Any, future: Future[Message]) -> None:
+        response = self.action_type.Impl.CancelGoalService.Response()
         with self._lock:
             handles = list(self._goals.values())
         candidates, response.return_code = goals_to_cancel(request.goal_info, handles)
         for handle in candidates:
-            if self._cancel_callback(handle) == CancelResponse.ACCEPT:
+            if await await_or_execute(self._cancel_callback, handle) != CancelResponse.ACCEPT:
+                continue
+            try:  # the goal may have ended while its cancel callback ran
                 handle._update_state("cancel_goal")
-                response.goals_canceling.append(handle.goal_info)
+            except RCLError:
+                continue
+            response.goals_canceling.append(handle.goal_info)
         if candidates and not response.goals_canceling:
             response.return_code = response.ERROR_REJECTED
-        return response
+        future.set_result(response)
 
     def _on_result(self, request: Any, future: Future[Message]) -> None:
         handle = self._goals.get(bytes(request.goal_id.uuid))
@@ -251,20 +238,16 @@ class ActionServer:
 
     # -- executing ---------------------------------------------------------------------------
     def notify_execute(self, handle: ServerGoalHandle, callback: Callable[[Any], Any] | None) -> None:
-        execution = _Execution(self, handle, callback or self._execute_callback)
-        bus = self.node.bus
-        call = PendingCall(cast(ServiceServer, execution), cast(Any, None), Future())
-        if bus.lock is None:
-            bus.queue_call(call)
-        else:
-            with bus.lock:
-                bus.queue_call(call)
-        bus.wake_threadsafe()
+        """Have the node's executor run the execute callback as a task of its own (outside the
+        server's callback group), as rclpy does; a node in no executor runs no goal."""
+        executor = getattr(self.node, "executor", None)
+        if executor is not None:
+            executor.create_task(self._execute_goal, callback or self._execute_callback, handle)
 
-    def run_goal(self, handle: ServerGoalHandle, callback: Callable[[Any], Any]) -> None:
+    async def _execute_goal(self, callback: Callable[[Any], Any], handle: ServerGoalHandle) -> None:
         logger = self.node.get_logger()
         try:
-            result = callback(handle)
+            result = await await_or_execute(callback, handle)
         except Exception as exc:
             result = self.action_type.Result()
             logger.error(f"Error raised in execute callback: {exc}")
