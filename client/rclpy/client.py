@@ -76,7 +76,7 @@ class Client(ServiceClient):
 
             def received(done: Future[Message]) -> None:
                 if not done.cancelled() and done.exception() is None:
-                    introspection.emit(RESPONSE_RECEIVED, sequence, gid, request, done.result())
+                    introspection.emit(RESPONSE_RECEIVED, sequence, gid, None, done.result())
 
             future.add_done_callback(received)
         return future
