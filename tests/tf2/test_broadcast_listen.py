@@ -1,0 +1,83 @@
+"""Broadcasters and a listener on nodes of one process (no Zenoh): the topics and QoS tf2_ros
+uses, the static broadcaster's set of frames, and a buffer filled by the listener."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import pytest
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.time import Time
+from tf2_msgs.msg import TFMessage
+from tf2_ros import Buffer, StaticTransformBroadcaster, TransformBroadcaster, TransformListener
+
+from .frames import stamped, xyz
+
+SPINS = 50  # only bounds a broken run: each test stops spinning once what it waits for is there
+
+TRANSIENT_LOCAL, VOLATILE, RELIABLE = 1, 2, 1
+
+
+@pytest.fixture
+def node(monkeypatch: pytest.MonkeyPatch) -> Iterator[Node]:
+    monkeypatch.setenv("ROS2LAB_NO_ZENOH", "1")
+    ctx = rclpy.Context()
+    with rclpy.init(args=[], context=ctx):
+        yield Node("tf_test", context=ctx)
+
+
+def spin_until(executor: SingleThreadedExecutor, done: object) -> None:
+    for _ in range(SPINS):
+        if callable(done) and done():
+            return
+        executor.spin_once(timeout_sec=0.0)
+    raise AssertionError("what the test waited for never came")
+
+
+def test_broadcasters_and_listener_use_tf2_ros_topics_and_qos(node: Node) -> None:
+    dynamic = TransformBroadcaster(node)
+    static = StaticTransformBroadcaster(node)
+    listener = TransformListener(Buffer(), node)
+    assert (dynamic.pub_tf.topic_name, dynamic.pub_tf.qos.depth) == ("/tf", 100)
+    assert dynamic.pub_tf.qos.durability in (0, VOLATILE)
+    assert (static.pub_tf.topic_name, static.pub_tf.qos.depth) == ("/tf_static", 1)
+    assert (static.pub_tf.qos.durability, static.pub_tf.qos.reliability) == (TRANSIENT_LOCAL, RELIABLE)
+    assert (listener.tf_sub.topic_name, listener.tf_sub.qos.depth, listener.tf_sub.qos.durability) == (
+        "/tf", 100, VOLATILE
+    )  # fmt: skip
+    assert (listener.tf_static_sub.topic_name, listener.tf_static_sub.qos.durability) == (
+        "/tf_static",
+        TRANSIENT_LOCAL,
+    )
+
+
+def test_a_listener_fills_its_buffer_from_both_topics(node: Node) -> None:
+    buffer = Buffer()
+    TransformListener(buffer, node)
+    executor = SingleThreadedExecutor(context=node._rcl_context)
+    executor.add_node(node)
+    StaticTransformBroadcaster(node).sendTransform(stamped("base", "laser", 0.0, (0.2, 0.0, 0.1)))
+    TransformBroadcaster(node).sendTransform(
+        [stamped("odom", "base", 3.0, (1.0, 0.0, 0.0)), stamped("odom", "base", 4.0, (2.0, 0.0, 0.0))]
+    )
+    spin_until(executor, lambda: buffer.can_transform("odom", "laser", Time(seconds=3.5)))
+    assert xyz(buffer.lookup_transform("odom", "laser", Time(seconds=3.5))) == pytest.approx((1.7, 0.0, 0.1))
+    assert "broadcaster: 'default_authority'" in buffer.all_frames_as_yaml()
+
+
+def test_a_static_broadcaster_resends_all_its_frames_and_replaces_a_child_sent_again(node: Node) -> None:
+    heard: list[TFMessage] = []
+    node.create_subscription(TFMessage, "/tf_static", heard.append, 10)
+    executor = SingleThreadedExecutor(context=node._rcl_context)
+    executor.add_node(node)
+    static = StaticTransformBroadcaster(node)
+    static.sendTransform(stamped("base", "laser", 0.0, (0.2, 0.0, 0.0)))
+    static.sendTransform([stamped("base", "camera", 0.0), stamped("base", "imu", 0.0)])
+    static.sendTransform(stamped("base", "laser", 0.0, (0.5, 0.0, 0.0)))
+    spin_until(executor, lambda: len(heard) == 3)
+    assert [[t.child_frame_id for t in m.transforms] for m in heard] == [
+        ["laser"], ["laser", "camera", "imu"], ["laser", "camera", "imu"]
+    ]  # fmt: skip
+    assert heard[-1].transforms[0].transform.translation.x == 0.5
