@@ -21,6 +21,7 @@ from server.bus import Bus, Node, UnknownTopicError, validate_topic_name
 from server.lab import Lab
 from server.limits import LimitExceededError, RateLimit
 from server.msgs import Message
+from server.transport.keys import TRANSIENT_LOCAL, VOLATILE, EntityKind, QoS
 
 from .deps import WsLabDep
 from .errors import CloseCode, close_code, close_reason
@@ -51,13 +52,16 @@ class EchoRequestError(ValueError):
 class EchoNode(Node):
     """Hidden node ``_ws_echo_N``: one per WebSocket client, as ros2 topic echo makes one."""
 
-    def __init__(self, number: int, topic: str, msg_type: type[Message], queue_length: int, bus: Bus) -> None:
+    def __init__(
+        self, number: int, topic: str, msg_type: type[Message], queue_length: int, bus: Bus, durability: int
+    ) -> None:
         super().__init__(f"{NODE_PREFIX}{number}", context=bus)
         self.number = number
         self.outbox: deque[tuple[Message, float]] = deque(maxlen=queue_length)
         self.dropped = 0
         self.ready = asyncio.Event()
-        self.sub = self.create_subscription(msg_type, topic, self.on_message, queue_length)
+        qos = QoS(depth=queue_length, durability=durability)
+        self.sub = self.create_subscription(msg_type, topic, self.on_message, qos)
 
     def on_message(self, msg: Message) -> None:
         if len(self.outbox) == self.outbox.maxlen:
@@ -79,6 +83,18 @@ def _int_param(name: str, text: str | None, default: int, low: int, high: int) -
     return value
 
 
+def offered_durability(lab: Lab, topic: str) -> int:
+    """Transient local when every publisher on ``topic`` offers it, else volatile: ros2 topic echo
+    adapts its QoS so, and so prints what a transient-local publisher (``/tf_static``) sent
+    before the echo began."""
+    local = lab.bus.topics.get(topic)
+    offered = [getattr(p.qos, "durability", 0) for p in (local.publishers if local is not None else [])]
+    remote = lab.remote_graph()
+    if remote is not None:
+        offered += [e.qos.durability for e in remote.endpoints([EntityKind.PUBLISHER]) if e.name == topic]
+    return TRANSIENT_LOCAL if offered and all(d == TRANSIENT_LOCAL for d in offered) else VOLATILE
+
+
 def _echo_nodes(bus: Bus) -> list[EchoNode]:
     return [n for n in bus.nodes if isinstance(n, EchoNode)]
 
@@ -91,7 +107,7 @@ def open_echo(lab: Lab, name: str, type_name: str | None, depth: int) -> EchoNod
     if len(taken) >= lab.settings.limits.max_echo_sockets:
         raise LimitExceededError("echo sockets", lab.settings.limits.max_echo_sockets)
     number = next(i for i in range(1, len(taken) + 2) if i not in taken)
-    return EchoNode(number, topic, msg_type, depth, lab.bus)
+    return EchoNode(number, topic, msg_type, depth, lab.bus, offered_durability(lab, topic))
 
 
 def _refusal(exc: Exception, topic: str) -> tuple[int, str]:
