@@ -21,12 +21,13 @@ import threading
 from collections.abc import Callable, Iterator
 from typing import Any, cast
 
+from server.bus import Future as BusFuture
 from server.bus import Node, Subscription
 from server.bus.blocking import BlockingExecutor
 from server.bus.graph import Bus
 from server.bus.services import PendingCall, ServiceServer
 
-from .callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
+from .callback_groups import CallbackGroup, GroupedCallback, MutuallyExclusiveCallbackGroup
 from .task import Future
 
 Run = Callable[[], Any]  # takes the entity's data and runs its callback; an awaitable if it is async
@@ -113,7 +114,8 @@ class WaitSet(BlockingExecutor):
             return False  # the server went away: the client keeps waiting, as in ROS 2
         # Each request is work of its own (a guard condition collapses its triggers itself).
         group = group_of(server.node, server.callback)
-        self.add(Ready(server.node, server, group, lambda: answer(pending), once=False))
+        entity = getattr(server, "entity", server)  # a response's: its client
+        self.add(Ready(server.node, entity, group, lambda: answer(pending), once=False))
         return True
 
     # -- taking (any executor's thread) -------------------------------------------------------
@@ -234,9 +236,10 @@ async def _answer_async(server: ServiceServer, pending: PendingCall) -> None:
 
 class Response(Future[Any]):
     """A service client's future: the response the bus hands it is work for the client (in its
-    callback group, on its node's executor), which completes the future when an executor takes
-    it, as rclpy's executor takes a client's response; its done callbacks then run as tasks of
-    that executor. With no executor about (the context gone), it completes at once."""
+    callback group, on its node's executor), queued on the bus behind what came before it (the
+    feedback an action server published before its result), which completes the future when an
+    executor takes it, as rclpy's executor takes a client's response; its done callbacks then run
+    as tasks of that executor. With the context gone, it completes at once."""
 
     def __init__(self, client: Any) -> None:
         super().__init__()
@@ -245,13 +248,31 @@ class Response(Future[Any]):
     def set_result(self, result: Any) -> None:
         node = self._client.node
         context = getattr(node, "_rcl_context", None)
-        wait_set = getattr(context, "executor", None)
-        if self._done or not isinstance(wait_set, WaitSet) or not context.ok():  # type: ignore[union-attr]
+        if self._done or context is None or not context.ok():
             Future.set_result(self, result)
             return
+        bus = node.bus
+        call = PendingCall(cast(ServiceServer, _Delivery(self, result)), cast(Any, None), BusFuture())
+        with bus.lock if bus.lock is not None else contextlib.nullcontext():
+            bus.queue_call(call)
+        bus.wake_threadsafe()
 
-        def run() -> None:
-            self._set_executor(getattr(node, "executor", None))
-            Future.set_result(self, result)
+    def _deliver(self, result: Any) -> None:
+        self._set_executor(getattr(self._client.node, "executor", None))
+        Future.set_result(self, result)
 
-        wait_set.add(Ready(node, self._client, group_of(node, self._client), run, once=False))
+
+class _Delivery:
+    """A response on its way to its future, queued on the bus as a request is."""
+
+    def __init__(self, future: Response, result: Any) -> None:
+        client = future._client
+        self.node, self.entity = client.node, client
+        self.callback = GroupedCallback(lambda: future._deliver(result), group_of(client.node, client))
+
+    @property
+    def active(self) -> bool:
+        return not self.entity.destroyed and self.node.state == "active"
+
+    def answer(self, _call: PendingCall) -> None:
+        self.callback()
