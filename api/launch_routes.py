@@ -1,11 +1,13 @@
 """REST: launch files and single nodes into the running graph (``ros2 launch``, ``ros2 run``).
 
-Handlers are ``async def`` so they run on the loop that owns the bus, never in a worker thread.
+Handlers are ``async def`` so they run on the loop that owns the bus, never in a worker thread
+(reading a launch file, which touches no node, is the one thing done in one).
 Errors are mapped in api/errors.py; handlers do not catch.
 """
 
 from __future__ import annotations
 
+import asyncio
 from typing import Annotated, Any
 
 from fastapi import APIRouter, status
@@ -52,7 +54,10 @@ class RunRequest(BaseModel):
 async def launch(body: LaunchRequest, lab: LabDep) -> dict[str, Any]:
     """Start a launch file's nodes; a node that fails to start is reported, the others run."""
     path = launch_file(lab.packages, body.package, body.file, confined=lab.settings.confines_paths)
-    return lab.launch_groups.launch(path, body.args).describe()
+    # Read off the loop: a Python launch file is evaluated in a process of its own. Reading
+    # touches no node; the nodes start on the loop.
+    description = await asyncio.to_thread(lab.launcher.parse, path, body.args)
+    return lab.launch_groups.launch(path, body.args, description).describe()
 
 
 @router.post("/run", status_code=status.HTTP_201_CREATED, responses=responses(NOT_FOUND, TOO_MANY, body=True))

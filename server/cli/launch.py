@@ -147,7 +147,10 @@ def _node_label(node: Mapping[str, Any]) -> str:
 
 
 def report_started(group: Mapping[str, Any]) -> int:
-    """ros2 launch's lines for each node; returns how many started."""
+    """What the launch file said as it was read (a Python file's LogInfo), then ros2 launch's lines
+    for each node; returns how many started."""
+    for message in group.get("messages") or []:
+        say(str(message))
     started = 0
     for node in group.get("nodes", []):
         what = f"{_node_label(node)} ({node.get('pkg')} {node.get('exec')})"

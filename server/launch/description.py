@@ -1,7 +1,7 @@
 """What a launch file describes, as plain typed data: the nodes to start and the arguments used.
 
-The parser (``xml_parser``) produces these values; the launcher executes them. Nothing here
-runs a node or touches the bus.
+The front-ends (XML and YAML in ``xml_parser``, Python in ``python_launch``) produce these
+values; the launcher executes them. Nothing here runs a node or touches the bus.
 """
 
 from __future__ import annotations
@@ -62,6 +62,7 @@ class NodeAction:
       its sections of each, then ``parameters`` (which win over a file's, wherever written).
     - ``remappings``: ``(from, to)`` in document order.
     - ``shutdown_on_exit``: ``on_exit="shutdown"``: when this node exits, the whole launch ends.
+    - ``arguments``, ``ros_arguments``: a Python launch file's ``Node(arguments=, ros_arguments=)``.
     """
 
     pkg: str
@@ -76,6 +77,8 @@ class NodeAction:
     location: SourceLocation
     shutdown_on_exit: bool = False
     parameter_files: tuple[ParamsFile, ...] = ()
+    arguments: tuple[str, ...] = ()  # a Python launch file's Node(arguments=...): before --ros-args
+    ros_arguments: tuple[str, ...] = ()  # its Node(ros_arguments=...): after the lab's own ROS arguments
 
 
 @dataclass(frozen=True)
@@ -86,8 +89,11 @@ class LaunchDescription:
       included files expanded in place.
     - ``args``: the top-level file's declared arguments with their final values (read-only).
     - ``files``: every file read, the top-level one first, each once, in the order first read.
+    - ``messages``: lines to show with the launch: a Python file's ``LogInfo`` and what it printed,
+      and what the lab does not run (an ``ExecuteProcess``).
     """
 
     nodes: tuple[NodeAction, ...]
     args: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     files: tuple[str, ...] = ()
+    messages: tuple[str, ...] = ()

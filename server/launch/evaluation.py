@@ -15,16 +15,20 @@ from types import MappingProxyType
 from server.params_file import ParamsFile
 
 from .description import LaunchDescription, LaunchFileError, NodeAction, ParamValue, SourceLocation
+from .frontends import load_frontend_tree
 from .param_files import load_param_file
 from .substitutions import SubstitutionError, arity, package_not_found, substitute
 from .values import OUTPUTS, join_namespace, parse_bool, typed_param
-from .xml_tree import ACTIONS, Element, declared_names, did_you_mean, load_tree, read_bytes
+from .xml_tree import ACTIONS, Element, declared_names, did_you_mean, read_bytes
 
 MAX_INCLUDE_DEPTH = 32
 MAX_FILES_READ = 256  # counted with repetition: a diamond of includes doubles the work per level
 
 FindPackageShare = Callable[[str], Path]
 """Maps a package name to its share directory; raises ``LookupError`` for an unknown package."""
+IncludePython = Callable[["Session", Path, Mapping[str, str], "str | None", tuple[Path, ...]], None]
+"""Evaluates a Python launch file into the session: its path, the arguments passed, the namespace
+pushed where it is included, and the chain of files that include it (server/launch/python_launch.py)."""
 
 
 @dataclass
@@ -34,8 +38,10 @@ class Session:
     # Where included files may lie (resolved, links followed); None: anywhere. A file elsewhere is
     # refused as a missing one is, so the answer tells nothing of what exists outside.
     roots: tuple[Path, ...] | None = None
+    include_python: IncludePython | None = None  # None: a Python launch file cannot be included
     nodes: list[NodeAction] = field(default_factory=list)
     files: list[str] = field(default_factory=list)
+    messages: list[str] = field(default_factory=list)  # lines to show with the launch (LogInfo's)
     files_read: int = 1
 
     def may_read(self, path: Path) -> bool:
@@ -50,6 +56,10 @@ class Session:
     def note_file(self, file: str) -> None:
         if file not in self.files:
             self.files.append(file)
+
+    def description(self, args: Mapping[str, str]) -> LaunchDescription:
+        return LaunchDescription(tuple(self.nodes), MappingProxyType(dict(args)), tuple(self.files),
+                                 tuple(self.messages))  # fmt: skip
 
 
 @dataclass
@@ -266,14 +276,7 @@ class FileEvaluator:
                 raise self._error(child, f"parameter '{name}': {err}") from None
 
     def _read_param_file(self, element: Element, frame: _Frame) -> ParamsFile:
-        self.session.files_read += 1
-        if self.session.files_read > MAX_FILES_READ:
-            raise self._error(element, f"more than {MAX_FILES_READ} files read in one launch")
-        loaded = load_param_file(self._sub(element, "from", frame), self.file, self.session.may_read)
-        if isinstance(loaded, str):
-            raise self._error(element, loaded)
-        self.session.note_file(loaded.path)
-        return loaded
+        return read_param_file(self.session, self._sub(element, "from", frame), self.file, element.line)
 
     def _run_include(self, element: Element, frame: _Frame) -> None:
         path = Path(self._sub(element, "file", frame))
@@ -284,7 +287,10 @@ class FileEvaluator:
             if arg.attrs["name"] in passed:
                 raise self._error(arg, f"argument '{arg.attrs['name']}' is passed twice")
             passed[arg.attrs["name"]] = self._sub(arg, "value", frame)
-        root = self._load_include(element, path)
+        if is_python(path):
+            include_python(self.session, path, passed, frame.namespace, self.stack, (self.file, element.line))
+            return
+        root = load_include(self.session, self.stack, path, (self.file, element.line))
         declared = declared_names(root)
         for arg in element.children:
             if arg.attrs["name"] not in declared:
@@ -298,26 +304,63 @@ class FileEvaluator:
         stack = (*self.stack, path.resolve())
         FileEvaluator(self.session, str(path), passed, stack, origin).run(root, frame.namespace)
 
-    def _load_include(self, element: Element, path: Path) -> Element:
-        if path.suffix in (".py", ".yaml", ".yml"):
-            raise self._error(element, f"cannot include {path}: only XML launch files are supported")
-        if path.resolve() in self.stack:
-            chain = " -> ".join(str(p) for p in (*self.stack, path.resolve()))
-            raise self._error(element, f"include cycle: {chain}")
-        if len(self.stack) >= MAX_INCLUDE_DEPTH:
-            raise self._error(element, f"includes are nested more than {MAX_INCLUDE_DEPTH} deep")
-        self.session.files_read += 1
-        if self.session.files_read > MAX_FILES_READ:
-            raise self._error(element, f"more than {MAX_FILES_READ} files included in one launch")
-        if not self.session.may_read(path):
-            raise self._error(element, f"included file not found: {path}")
-        try:
-            data = read_bytes(path)
-        except FileNotFoundError:
-            raise self._error(element, f"included file not found: {path}") from None
-        except OSError as err:
-            raise self._error(element, f"cannot read included file {path}: {err.strerror}") from None
-        return load_tree(data, str(path))
+
+def read_param_file(session: Session, text: str, file: str, line: int) -> ParamsFile:
+    """The parameters file ``text`` names, for a node written at ``file``:``line``."""
+    session.files_read += 1
+    if session.files_read > MAX_FILES_READ:
+        raise LaunchFileError(file, line, f"more than {MAX_FILES_READ} files read in one launch")
+    loaded = load_param_file(text, file, session.may_read)
+    if isinstance(loaded, str):
+        raise LaunchFileError(file, line, loaded)
+    session.note_file(loaded.path)
+    return loaded
+
+
+def is_python(path: Path) -> bool:
+    """A Python launch file, by its name, as ``ros2 launch`` tells (``x.launch.py``, ``x_launch.py``)."""
+    return path.suffix == ".py"
+
+
+def _may_include(session: Session, stack: tuple[Path, ...], path: Path, at: tuple[str, int]) -> None:
+    if path.resolve() in stack:
+        chain = " -> ".join(str(p) for p in (*stack, path.resolve()))
+        raise LaunchFileError(*at, f"include cycle: {chain}")
+    if len(stack) >= MAX_INCLUDE_DEPTH:
+        raise LaunchFileError(*at, f"includes are nested more than {MAX_INCLUDE_DEPTH} deep")
+    session.files_read += 1
+    if session.files_read > MAX_FILES_READ:
+        raise LaunchFileError(*at, f"more than {MAX_FILES_READ} files included in one launch")
+    if not session.may_read(path) or (is_python(path) and not path.is_file()):
+        raise LaunchFileError(*at, f"included file not found: {path}")
+
+
+def load_include(session: Session, stack: tuple[Path, ...], path: Path, at: tuple[str, int]) -> Element:
+    """The checked tree of an XML or YAML file included at ``at`` (file and line)."""
+    _may_include(session, stack, path, at)
+    try:
+        data = read_bytes(path)
+    except FileNotFoundError:
+        raise LaunchFileError(*at, f"included file not found: {path}") from None
+    except OSError as err:
+        raise LaunchFileError(*at, f"cannot read included file {path}: {err.strerror}") from None
+    return load_frontend_tree(data, str(path))
+
+
+def include_python(
+    session: Session,
+    path: Path,
+    passed: Mapping[str, str],
+    namespace: str | None,
+    stack: tuple[Path, ...],
+    at: tuple[str, int],
+) -> None:
+    """A Python launch file included at ``at``, evaluated by ``session.include_python``."""
+    if session.include_python is None:
+        raise LaunchFileError(*at, f"cannot include {path}: Python launch files are not evaluated here")
+    _may_include(session, stack, path, at)
+    session.note_file(str(path))
+    session.include_python(session, path, passed, namespace, (*stack, path.resolve()))
 
 
 def evaluate(
@@ -327,6 +370,7 @@ def evaluate(
     find_package_share: FindPackageShare,
     environ: Mapping[str, str] | None,
     roots: tuple[Path, ...] | None = None,
+    include_python: IncludePython | None = None,
 ) -> LaunchDescription:
     """Evaluate a checked tree from ``file`` with the caller's ``args`` into one flat description;
     with ``roots``, an include outside them is refused as a missing file."""
@@ -337,8 +381,8 @@ def evaluate(
             raise LaunchFileError(
                 file, 0, f"argument '{name}' was given but the file declares no such argument{hint}"
             )
-    session = Session(find_package_share, os.environ if environ is None else environ, roots)
+    session = Session(find_package_share, os.environ if environ is None else environ, roots, include_python)
     session.note_file(file)
     evaluator = FileEvaluator(session, file, dict(args), (Path(file).resolve(),), "the caller")
     values = evaluator.run(root, None)
-    return LaunchDescription(tuple(session.nodes), MappingProxyType(dict(values)), tuple(session.files))
+    return session.description(values)

@@ -8,7 +8,7 @@ from __future__ import annotations
 import itertools
 import weakref
 from collections.abc import Iterator, ValuesView
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -32,11 +32,13 @@ class LaunchGroup:
     id: str
     source: str
     entries: list[LaunchedNode]
+    messages: list[str] = field(default_factory=list)  # a Python launch file's LogInfo lines, its prints
 
     def describe(self) -> dict[str, Any]:
         return {
             "id": self.id,
             "file": self.source,
+            "messages": self.messages,
             "nodes": [
                 {
                     "name": e.node.fully_qualified_name if e.node else (e.action.name or e.action.exec),
@@ -116,15 +118,20 @@ class LaunchGroups:
     def values(self) -> ValuesView[LaunchGroup]:
         return self._groups.values()
 
-    def launch(self, path: Path, args: dict[str, str]) -> LaunchGroup:
+    def launch(
+        self, path: Path, args: dict[str, str], description: LaunchDescription | None = None
+    ) -> LaunchGroup:
         """Launch a file into the running graph, as ``ros2 launch`` does; LaunchFileError if it is bad.
-        Everything is checked before the first node starts."""
+        Everything is checked before the first node starts. ``description``: the file already read
+        (``Launcher.parse``, which a caller may run off the loop: a Python file takes a process)."""
         self._check_room()
-        description = self._launcher.parse(path, args)
+        description = description or self._launcher.parse(path, args)
         if len(description.nodes) > self.max_nodes:
             raise LimitExceededError("nodes in one launch", self.max_nodes)
         self._check_processes(self._processes_in(description))
-        return self._add("launch", str(path), self._launcher.launch(description))
+        group = self._add("launch", str(path), self._launcher.launch(description))
+        group.messages = list(description.messages)
+        return group
 
     def run(
         self,

@@ -19,6 +19,8 @@ from server.processes.supervisor import ProcessNode, Supervisor
 from server.transport.acl import Credentials
 
 from .description import LaunchDescription, NodeAction
+from .python_launch import RunPython
+from .python_process import PythonLaunchProcess
 from .respawn import RespawnBackoff, RespawnPolicy
 from .xml_parser import parse_launch_file
 
@@ -48,17 +50,33 @@ class ProcessTransport:
 
 
 def parse_launch(
-    path: str | Path, args: Mapping[str, str] | None, packages: PackageIndex, *, confined: bool = False
+    path: str | Path,
+    args: Mapping[str, str] | None,
+    packages: PackageIndex,
+    *,
+    confined: bool = False,
+    run_python: RunPython | None = None,
 ) -> LaunchDescription:
     """Read a launch file, resolving ``$(find-pkg-share PKG)`` through ``packages``. A confined
     launch (a lab that serves others) includes only files of the world's packages, and
-    ``$(env NAME)`` sees no variable of the server's environment (a default given still applies)."""
+    ``$(env NAME)`` sees no variable of the server's environment (a default given still applies).
+    A Python launch file is evaluated by ``run_python`` (by default in a process of its own, as
+    the server's user)."""
+    run_python = run_python or PythonLaunchProcess(packages.workspace, confined=confined)
     if not confined:
-        return parse_launch_file(Path(path), args=dict(args or {}), find_package_share=packages.share_dir)
+        return parse_launch_file(Path(path), args=dict(args or {}), find_package_share=packages.share_dir,
+                                 run_python=run_python)  # fmt: skip
     return parse_launch_file(
         Path(path), args=dict(args or {}), find_package_share=packages.share_dir, environ={},
-        roots=packages.roots(),
+        roots=packages.roots(), run_python=run_python,
     )  # fmt: skip
+
+
+def with_ros_arguments(lab_args: list[str], ros_arguments: tuple[str, ...]) -> list[str]:
+    """The lab's ``--ros-args ...`` with a Python launch file's ``ros_arguments`` after them."""
+    if not ros_arguments:
+        return lab_args
+    return [*(lab_args or ["--ros-args"]), *ros_arguments]
 
 
 @dataclass
@@ -102,7 +120,17 @@ class Launcher:
         self.on_launch: list[Callable[[LaunchDescription, list[LaunchedNode]], None]] = []
 
     def parse(self, path: str | Path, args: Mapping[str, str] | None = None) -> LaunchDescription:
-        return parse_launch(path, args, self.packages, confined=self.confined)
+        return parse_launch(
+            path, args, self.packages, confined=self.confined, run_python=self.python_launch()
+        )
+
+    def python_launch(self) -> PythonLaunchProcess:
+        """How this lab evaluates a Python launch file: where its students' nodes run (in the
+        sandbox on a server that serves others; refused where that server has none)."""
+        if isinstance(self.sandbox, StudentCodeRefusedError):
+            raise self.sandbox
+        domain_id = self.transport.domain_id if self.transport is not None else 0
+        return PythonLaunchProcess(self.packages.workspace, self.sandbox, self.confined, domain_id)
 
     def launch_file(self, path: str | Path, args: Mapping[str, str] | None = None) -> list[LaunchedNode]:
         return self.launch(self.parse(path, args))
@@ -134,8 +162,9 @@ class Launcher:
         self.check_student_code(exe)
         sandbox = self.sandbox if exe.file is not None and isinstance(self.sandbox, Sandbox) else None
         command = node_command(
-            exe.target, ros_args(action.name, action.namespace, action.parameters, action.remappings,
-                                    [f.path for f in action.parameter_files]),
+            exe.target, [*action.arguments, *with_ros_arguments(ros_args(
+                action.name, action.namespace, action.parameters, action.remappings,
+                [f.path for f in action.parameter_files]), action.ros_arguments)],
             router=INSIDE_ROUTER if sandbox else self.transport.router, domain_id=self.transport.domain_id,
             login=self.transport.login, workspace=self.packages.workspace, env={} if sandbox else None,
         )  # fmt: skip

@@ -1,10 +1,11 @@
-"""Parse the subset of ROS 2 launch XML the lab uses into a ``LaunchDescription``.
+"""Read a launch file, in the front-end its name asks for, into a ``LaunchDescription``.
 
-Three stages, one module each: ``xml_tree`` reads the file into an element tree with line
-numbers and checks it against the schema; ``substitutions`` parses ``$(...)``; ``evaluation``
-performs substitutions and conditions, follows includes and collects the nodes in document
-order (``values`` types what it reads). Nothing is executed: the result is plain data for the
-launcher.
+XML and YAML in three stages, one module each: ``xml_tree`` (or ``yaml_tree``) reads the file
+into an element tree with line numbers and checks it against the schema; ``substitutions`` parses
+``$(...)``; ``evaluation`` performs substitutions and conditions, follows includes and collects
+the nodes in document order (``values`` types what it reads). A Python file is evaluated in a
+process of its own (``python_process``) and folded into the same model (``python_launch``).
+Nothing is executed: the result is plain data for the launcher.
 """
 
 from __future__ import annotations
@@ -15,7 +16,9 @@ from pathlib import Path
 from types import MappingProxyType
 
 from .description import LaunchDescription, LaunchFileError
-from .evaluation import FindPackageShare, evaluate
+from .evaluation import FindPackageShare, evaluate, is_python
+from .frontends import load_frontend_tree
+from .python_launch import RunPython, evaluate_python_file, include_python_with
 from .xml_tree import MAX_FILE_BYTES, load_tree, read_bytes
 
 __all__ = ["MAX_FILE_BYTES", "FindPackageShare", "parse_launch_file", "parse_launch_string"]
@@ -30,8 +33,10 @@ def parse_launch_file(
     find_package_share: FindPackageShare,
     environ: Mapping[str, str] | None = None,
     roots: tuple[Path, ...] | None = None,
+    run_python: RunPython | None = None,
 ) -> LaunchDescription:
-    """Parse a launch XML file and the files it includes into one flat ``LaunchDescription``.
+    """Parse a launch file (XML, YAML or, with ``run_python``, Python) and the files it includes
+    into one flat ``LaunchDescription``.
 
     ``args`` plays the role of ``ros2 launch ... name:=value``; every name must be declared by
     the file. ``environ`` (default ``os.environ``) answers ``$(env ...)``. Raises
@@ -39,6 +44,10 @@ def parse_launch_file(
     included from outside them is refused as a missing one.
     """
     file = os.fspath(path)
+    if is_python(Path(file)):
+        if run_python is None:
+            raise LaunchFileError(file, 0, "Python launch files are not evaluated here")
+        return evaluate_python_file(Path(file), args, find_package_share, run_python, environ, roots)
     try:
         data = read_bytes(Path(file))
     except FileNotFoundError:
@@ -47,7 +56,8 @@ def parse_launch_file(
         raise LaunchFileError(file, 0, f"cannot read launch file: {err.strerror}") from None
     except ValueError as err:  # a NUL byte in the path
         raise LaunchFileError(file[:200], 0, f"not a file path: {err}") from None
-    return evaluate(load_tree(data, file), file, args, find_package_share, environ, roots)
+    include = include_python_with(run_python) if run_python is not None else None
+    return evaluate(load_frontend_tree(data, file), file, args, find_package_share, environ, roots, include)
 
 
 def parse_launch_string(

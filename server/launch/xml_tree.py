@@ -155,7 +155,8 @@ _EXTRA_CHECKS: Mapping[str, Callable[[Element], str | None]] = MappingProxyType(
 )
 
 
-def _check_tree(root: Element, file: str) -> None:
+def check_tree(root: Element, file: str) -> None:
+    """The tree against the launch schema (the same for XML and YAML files)."""
     if root.tag != "launch":
         raise LaunchFileError(file, root.line, f"the root element must be <launch>, not <{root.tag}>")
     _check_element(root, "launch", file)
@@ -213,7 +214,7 @@ def load_tree(data: bytes, file: str, encoding: str | None = None) -> Element:
     if len(data) > MAX_FILE_BYTES:
         raise LaunchFileError(file, 0, f"file is larger than {MAX_FILE_BYTES} bytes; refusing to parse it")
     root = read_tree(data, file, encoding)
-    _check_tree(root, file)
+    check_tree(root, file)
     return root
 
 

@@ -17,7 +17,7 @@ from server.transport.acl import Credentials, process_config
 from server.transport.config import DEFAULT_ROUTER_ENDPOINT
 
 from .interface_modules import WORKSPACE_ENV
-from .runner import PARENT_ENV
+from .runner import LAUNCH_MODE, PARENT_ENV
 
 CLIENT_DIR = Path(__file__).resolve().parents[2] / "client"
 RUNNER_MODULE = "server.processes.runner"
@@ -128,3 +128,23 @@ def node_command(
     if workspace is not None:
         child_env[WORKSPACE_ENV] = str(workspace.resolve())
     return NodeCommand(argv, child_env, zid)
+
+
+def launch_command(
+    file: Path,
+    request: str,
+    *,
+    domain_id: int = 0,
+    env: Mapping[str, str] | None = None,
+    workspace: Path | None = None,
+) -> NodeCommand:
+    """Evaluate the Python launch file ``file`` with ``request`` (its arguments, as JSON) in a
+    process of its own, as a node process runs (server.processes.runner's ``--launch-description``);
+    it joins no graph."""
+    base = dict(os.environ if env is None else env)
+    child_env = {**base, "PYTHONUNBUFFERED": "1", "PYTHONDONTWRITEBYTECODE": "1",
+                 "ROS_DOMAIN_ID": str(domain_id), PARENT_ENV: str(os.getpid())}  # fmt: skip
+    if workspace is not None:
+        child_env[WORKSPACE_ENV] = str(workspace.resolve())
+    argv = [sys.executable, "-P", "-u", "-m", RUNNER_MODULE, LAUNCH_MODE, str(file.resolve()), request]
+    return NodeCommand(argv, child_env, new_zid())

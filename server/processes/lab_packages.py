@@ -19,12 +19,13 @@ import sys
 from collections.abc import Sequence
 from types import ModuleType
 
-# The client's packages: rclpy and the message packages (client/; top-level in the client wheel,
+# The client's packages: rclpy, the message packages, launch's (client/; top-level in the client wheel,
 # where there is no client/ folder to list: tests/processes/test_lab_packages.py keeps them equal).
 CLIENT_PACKAGES = (
-    "action_msgs", "action_tutorials_interfaces", "builtin_interfaces", "example_interfaces",
-    "geometry_msgs", "keyboard_msgs", "rcl_interfaces", "rclpy", "sensor_msgs", "std_msgs",
-    "std_srvs", "tf2_msgs", "turtlesim", "unique_identifier_msgs",
+    "action_msgs", "action_tutorials_interfaces", "ament_index_python", "builtin_interfaces",
+    "example_interfaces", "geometry_msgs", "keyboard_msgs", "launch", "launch_ros", "launch_xml",
+    "launch_yaml", "rcl_interfaces", "rclpy", "sensor_msgs", "std_msgs", "std_srvs", "tf2_msgs",
+    "turtlesim", "unique_identifier_msgs",
 )  # fmt: skip
 OWN = ("server", "sim")
 

@@ -14,6 +14,10 @@ that does not exist is one line naming where the script is declared (``setup.py:
 
 A lab's built-in node runs with rclpy's usual ``init``/``spin``/``try_shutdown``.
 
+``--launch-description FILE REQUEST`` evaluates a Python launch file instead of running a node
+(``launch.lab_evaluation``): its ``generate_launch_description()`` is a student's code, so it runs
+where a student's node would, in the sandbox on a server that serves others.
+
 The workspace's interface packages import as their generated modules would
 (server.processes.interface_modules), from ``$ROS2LAB_WORKSPACE``.
 
@@ -50,6 +54,7 @@ if TYPE_CHECKING:
 # holds little more than the interpreter, and its pages are not copied into the node as it runs.
 
 EXIT_USAGE = 2
+LAUNCH_MODE = "--launch-description"  # a Python launch file evaluated (launch.lab_evaluation)
 EXIT_FAILED = 1
 PARENT_ENV = "ROS2LAB_PARENT_PID"
 
@@ -239,6 +244,11 @@ def main(argv: list[str] | None = None) -> int:
     if problem is not None:
         _say(problem)
         return EXIT_USAGE
+    if len(argv) == 3 and argv[0] == LAUNCH_MODE:  # before the heavier imports a node needs
+        lab_packages.pin()
+        from launch.lab_evaluation import main as evaluate_launch_file
+
+        return evaluate_launch_file(argv[1], argv[2])
     from server.packages.entry_points import EntryPoint
 
     from . import interface_modules
@@ -253,7 +263,7 @@ def main(argv: list[str] | None = None) -> int:
     if not argv:
         _say(
             "usage: python -m server.processes.runner FILE [ARGS] | --builtin MODULE:CLASS [ARGS] "
-            "| --entry-point ROOT MODULE:FUNCTION NAME WHERE [ARGS]"
+            "| --entry-point ROOT MODULE:FUNCTION NAME WHERE [ARGS] | --launch-description FILE REQUEST"
         )
         return EXIT_USAGE
     return run_file(Path(argv[0]).resolve(), argv[1:])

@@ -174,7 +174,11 @@ def test_include_passing_undeclared_arg_rejected(write: Write, find_share: FindS
     assert "declares no argument 'robto'" in error.problem and "did you mean 'robot'" in error.problem
 
 
-def test_include_of_python_launch_file_rejected(write: Write, find_share: FindShare) -> None:
+def test_include_of_python_launch_file_needs_a_python_evaluator(write: Write, find_share: FindShare) -> None:
+    write("x.launch.py", "")
     path = write("main.launch", '<launch><include file="x.launch.py"/></launch>')
 
-    assert "only XML launch files" in file_error_of(path, find_share).problem
+    error = file_error_of(path, find_share)  # parsed without run_python: nothing may run the file
+
+    assert (error.file, error.line) == (str(path), 1)
+    assert "Python launch files are not evaluated here" in error.problem
