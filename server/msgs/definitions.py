@@ -1,5 +1,6 @@
-"""Sets of interface definitions by full type name: the lab's own (``interfaces/<pkg>/{msg,srv}/``),
-read once, and any other folder laid out the same way."""
+"""Sets of interface definitions by full type name: the lab's (its own packages in
+``interfaces/<pkg>/{msg,srv,action}/`` and ROS 2's in ``ros_interfaces/``, extracted from PyPI's
+wheels at set-up by server/ros_wheels.py), read once, and any other folder laid out the same way."""
 
 from __future__ import annotations
 
@@ -14,7 +15,8 @@ from .idl import DefinitionError, MessageSpec, ServiceSpec, parse_message, parse
 if TYPE_CHECKING:
     from .action_spec import ActionSpec
 
-INTERFACES_DIR = Path(__file__).resolve().parent / "interfaces"
+INTERFACES_DIR = Path(__file__).resolve().parent / "interfaces"  # the lab's own, kept here
+ROS_INTERFACES_DIR = Path(__file__).resolve().parent / "ros_interfaces"  # ROS 2's, not committed
 
 
 @dataclass(frozen=True)
@@ -58,15 +60,27 @@ def _interface_files(root: Path) -> Iterator[tuple[str, str, Path]]:
         yield f"{package}/{kind}/{path.stem}", kind, path
 
 
-def load_definitions(root: Path) -> Definitions:
+def _files(roots: tuple[Path, ...]) -> Iterator[tuple[str, str, Path]]:
+    """Every root's files; a package is in one root only."""
+    owner: dict[str, Path] = {}
+    for root in roots:
+        for name, kind, path in _interface_files(root):
+            package = name.split("/")[0]
+            if owner.setdefault(package, root) != root:
+                raise DefinitionError(f"{package} is both in {owner[package]} and in {root}")
+            yield name, kind, path
+
+
+def load_definitions(root: Path, *more: Path) -> Definitions:
     """Read every ``<pkg>/msg/*.msg``, ``<pkg>/srv/*.srv`` and ``<pkg>/action/*.action`` under
-    ``root``; an action adds the messages and services derived from it. Checks references."""
+    ``root`` (and ``more``); an action adds the messages and services derived from it. Checks
+    references."""
     from .action_spec import parse_action  # it builds on idl's grammar
 
     messages: dict[str, MessageSpec] = {}
     services: dict[str, ServiceSpec] = {}
     actions: dict[str, ActionSpec] = {}
-    for name, kind, path in _interface_files(root):
+    for name, kind, path in _files((root, *more)):
         text = path.read_text(encoding="utf-8")
         source = f"{path.parts[-3]}/{kind}/{path.name}"  # as the lab's own files are named in errors
         if kind == "msg":
@@ -86,7 +100,17 @@ def load_definitions(root: Path) -> Definitions:
     return definitions
 
 
+class MissingDefinitionsError(DefinitionError):
+    """ROS 2's definitions were not extracted: the set-up did not run here."""
+
+
 @cache
 def lab_definitions() -> Definitions:
-    """The lab's own interfaces (this package's ``interfaces/`` folder)."""
-    return load_definitions(INTERFACES_DIR)
+    """The lab's interfaces: its own (``interfaces/``) and ROS 2's (``ros_interfaces/``)."""
+    if not (ROS_INTERFACES_DIR / "std_msgs").is_dir():
+        raise MissingDefinitionsError(
+            f"ROS 2's interface definitions (std_msgs, geometry_msgs, ...) are not in {ROS_INTERFACES_DIR}:"
+            " run `python -m server.ros_wheels` to take them from PyPI (scripts/run.sh and"
+            " scripts/test.sh run it)"
+        )
+    return load_definitions(INTERFACES_DIR, ROS_INTERFACES_DIR)

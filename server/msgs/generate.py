@@ -1,10 +1,13 @@
 """Write the message classes from the interface definitions: ``python -m server.msgs.generate``.
 
 As rosidl generates Python classes from ``.msg`` files, this writes one module per package
-under ``server/msgs/generated/`` with a class per message and service. The classes only
-declare what a reader and mypy need to see (field names and Python types, constants, a typed
+under ``server/msgs/generated/`` with a class per message and service, and the package a
+student's node imports (``client/<pkg>/msg``, ``srv``, ``action``). The classes only declare
+what a reader and mypy need to see (field names and Python types, constants, a typed
 constructor); their behaviour, defaults and checks come from the definitions at import time,
-so the definitions stay the single source. A test checks the files are current.
+so the definitions stay the single source: the lab's own (``interfaces/``) and ROS 2's, taken
+from its wheels on PyPI at set-up (``ros_interfaces/``, server/ros_wheels.py). A test checks the
+files are current.
 """
 
 from __future__ import annotations
@@ -14,14 +17,17 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from ._field import ARRAY_TYPECODES
-from .definitions import Definitions, lab_definitions
+from .definitions import INTERFACES_DIR, Definitions, lab_definitions
 from .idl import FLOAT_TYPES, INT_RANGES, STRING_TYPES, FieldSpec, MessageSpec
 
 LINE_LENGTH = 110  # ruff's, in pyproject.toml
 GENERATED_DIR = Path(__file__).resolve().parent / "generated"
-HEADER = (
-    '"""{package}: generated from server/msgs/interfaces/{package} by `python -m server.msgs.generate`; '
-    'do not edit."""\n\n'
+CLIENT_DIR = Path(__file__).resolve().parents[2] / "client"
+HEADER = '"""{package}: generated from {source} by `python -m server.msgs.generate`; do not edit."""\n\n'
+ROS_SOURCE = "ROS 2's definitions (the wheels server/msgs/ros_packages.txt pins)"
+CLIENT_MODULE = (
+    "from server.msgs.generated.{package} import *  # noqa: F403\n"
+    "from server.msgs.generated.{package} import __all__ as __all__\n"
 )
 NUMPY_SCALARS = {
     "bool": "np.bool_",
@@ -68,6 +74,7 @@ def _python_types(field: FieldSpec) -> tuple[str, str]:
 
 def _doc(spec: MessageSpec) -> str:
     first = next((line.lstrip("# ").strip() for line in spec.text.splitlines() if line.startswith("#")), "")
+    first = first.replace("\\", "/").replace('"', "'")  # a docstring's text as it is
     return f"{spec.name}: {first}" if first else spec.name
 
 
@@ -190,13 +197,18 @@ def package_module(package: str, definitions: Definitions) -> str:
     for dep in sorted(foreign):
         by_package.setdefault(dep.split("/")[0], []).append(_class_name(dep))
     for pkg, names in sorted(by_package.items()):
-        imports.append(f"from .{pkg} import {', '.join(sorted(set(names)))}")
+        line = f"from .{pkg} import {', '.join(sorted(set(names)))}"
+        if len(line) > LINE_LENGTH:  # as ruff's isort wraps it
+            line = f"from .{pkg} import (\n" + "".join(f"    {n},\n" for n in sorted(set(names))) + ")"
+        imports.append(line)
     names = [
         _class_name(n)
         for n in [s.name for s in specs] + [s.name for s in services] + [a.name for a in actions]
     ]
     exports = "\n\n__all__ = [\n" + "".join(f'    "{n}",\n' for n in sorted(names)) + "]\n"
-    return HEADER.format(package=package) + "\n".join(imports) + "\n" + text + "\n" + exports
+    own = (INTERFACES_DIR / package).is_dir()
+    source = f"server/msgs/interfaces/{package}" if own else ROS_SOURCE
+    return HEADER.format(package=package, source=source) + "\n".join(imports) + "\n" + text + "\n" + exports
 
 
 def packages(definitions: Definitions) -> list[str]:
@@ -210,8 +222,8 @@ def type_hashes_module(definitions: Definitions) -> str:
 
     rows = "".join(f'    "{name}": "{value}",\n' for name, value in computed_type_hashes(definitions).items())
     return (
-        '"""RIHS01 type hashes of the lab\'s interfaces: generated from server/msgs/interfaces by '
-        '`python -m server.msgs.generate`; do not edit."""\n\n'
+        '"""RIHS01 type hashes of the lab\'s interfaces: generated from server/msgs/interfaces and '
+        f'{ROS_SOURCE} by `python -m server.msgs.generate`; do not edit."""\n\n'
         "# fmt: off\nTYPE_HASHES: dict[str, str] = {\n" + rows + "}\n# fmt: on\n"
     )
 
@@ -231,14 +243,31 @@ def generated_files(definitions: Definitions | None = None) -> dict[Path, str]:
         + "]\n"
     )
     files[GENERATED_DIR / "type_hashes.py"] = type_hashes_module(definitions)
+    files.update(client_files(definitions))
+    return files
+
+
+def client_files(definitions: Definitions) -> dict[Path, str]:
+    """``client/<pkg>/__init__.py`` and its ``msg``, ``srv`` and ``action`` modules, each giving the
+    package's classes, as rosidl's Python packages are imported (``from std_msgs.msg import String``)."""
+    kinds: dict[str, set[str]] = {}
+    for name in [*definitions.messages, *definitions.services, *definitions.actions]:
+        package, kind, _ = name.split("/")
+        kinds.setdefault(package, set()).add(kind)
+    files = {}
+    for package, found in kinds.items():
+        files[CLIENT_DIR / package / "__init__.py"] = "\n"
+        for kind in sorted(found):
+            files[CLIENT_DIR / package / kind / "__init__.py"] = CLIENT_MODULE.format(package=package)
     return files
 
 
 def main() -> int:
-    GENERATED_DIR.mkdir(exist_ok=True)
-    for path, text in generated_files().items():
+    files = generated_files()
+    for path, text in files.items():
+        path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text, encoding="utf-8")
-    print(f"wrote {len(generated_files())} files to {GENERATED_DIR}")
+    print(f"wrote {len(files)} files to {GENERATED_DIR} and {CLIENT_DIR}")
     return 0
 
 

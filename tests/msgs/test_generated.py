@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import typing
+from pathlib import Path
 
 import numpy
 import numpy.typing
@@ -11,12 +12,15 @@ import pytest
 from server.msgs import Message, get_type, type_names
 from server.msgs.generate import generated_files
 
+FILES = generated_files()  # the message modules and the client's packages, written once here
+ROOT = Path(__file__).resolve().parents[2]
 
-@pytest.mark.parametrize("path", sorted(generated_files()), ids=lambda p: p.name)
-def test_generated_module_matches_the_definitions(path) -> None:  # type: ignore[no-untyped-def]
-    expected = generated_files()[path]
-    assert path.read_text(encoding="utf-8") == expected, (
-        f"{path.name} is stale: run `python -m server.msgs.generate` after editing server/msgs/interfaces"
+
+@pytest.mark.parametrize("path", sorted(FILES), ids=lambda p: p.relative_to(ROOT).as_posix())
+def test_generated_module_matches_the_definitions(path: Path) -> None:
+    assert path.is_file() and path.read_text(encoding="utf-8") == FILES[path], (
+        f"{path.relative_to(ROOT)} is stale: run `python -m server.msgs.generate` after editing "
+        "server/msgs/interfaces or server/msgs/ros_packages.txt"
     )
 
 

@@ -9,6 +9,7 @@ encoder written here from the OMG rules, for every type with seeded random value
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
@@ -38,7 +39,7 @@ from server.msgs import (
     type_names,
 )
 from server.msgs._base import define_message
-from server.msgs.definitions import lab_definitions, load_definitions
+from server.msgs.definitions import ROS_INTERFACES_DIR, lab_definitions, load_definitions
 from server.msgs.wire import (
     WireError,
     build_typestore,
@@ -75,6 +76,7 @@ def _rosbags_fields(name: str, text: str) -> dict[str, list[tuple[str, Any]]]:
     return {n: f for n, (_, f) in get_types_from_msg(text, name).items()}
 
 
+@functools.cache
 def _all_descriptions() -> dict[str, list[tuple[str, Any]]]:
     """Every type's fields as rosbags parses them, services as rosidl expands them."""
     defs = lab_definitions()
@@ -183,6 +185,13 @@ def test_reference_hasher_here_agrees_with_ros_2_too(name: str, expected: str) -
 )
 def test_type_hash_of_every_type_equals_rep2016_computed_apart(name: str) -> None:
     assert type_hash(name) == rep2016_hash(name)
+
+
+def test_type_hash_of_every_ros_2_type_equals_the_one_rosidl_wrote_into_its_wheel() -> None:
+    """The hashes ROS 2's own build computed (share/<pkg>/msg/<Type>.json in its PyPI wheels)."""
+    ros = json.loads((ROS_INTERFACES_DIR / "type_hashes.json").read_text(encoding="utf-8"))
+    assert len(ros) > 200 and "sensor_msgs/msg/PointCloud2" in ros
+    assert {name: type_hash(name) for name in ros} == ros
 
 
 def test_dds_type_name_round_trips() -> None:

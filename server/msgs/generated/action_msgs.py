@@ -1,4 +1,4 @@
-"""action_msgs: generated from server/msgs/interfaces/action_msgs by `python -m server.msgs.generate`; do not edit."""
+"""action_msgs: generated from ROS 2's definitions (the wheels server/msgs/ros_packages.txt pins) by `python -m server.msgs.generate`; do not edit."""
 
 from __future__ import annotations
 

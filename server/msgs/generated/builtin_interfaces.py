@@ -1,4 +1,4 @@
-"""builtin_interfaces: generated from server/msgs/interfaces/builtin_interfaces by `python -m server.msgs.generate`; do not edit."""
+"""builtin_interfaces: generated from ROS 2's definitions (the wheels server/msgs/ros_packages.txt pins) by `python -m server.msgs.generate`; do not edit."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from .._base import Message
 
 
 class Duration(Message, type_name="builtin_interfaces/msg/Duration"):
-    """builtin_interfaces/msg/Duration: A span of time: whole seconds (may be negative) and nanoseconds."""
+    """builtin_interfaces/msg/Duration: Duration defines a period between two time points."""
 
     __slots__ = (
         "sec",
@@ -28,7 +28,7 @@ class Duration(Message, type_name="builtin_interfaces/msg/Duration"):
 
 
 class Time(Message, type_name="builtin_interfaces/msg/Time"):
-    """builtin_interfaces/msg/Time: A point in time: whole seconds and nanoseconds since the epoch (or since the clock's start)."""
+    """builtin_interfaces/msg/Time: This message communicates ROS Time defined here:"""
 
     __slots__ = (
         "sec",

@@ -1,4 +1,4 @@
-"""rcl_interfaces: generated from server/msgs/interfaces/rcl_interfaces by `python -m server.msgs.generate`; do not edit."""
+"""rcl_interfaces: generated from ROS 2's definitions (the wheels server/msgs/ros_packages.txt pins) by `python -m server.msgs.generate`; do not edit."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from .builtin_interfaces import Time
 
 
 class FloatingPointRange(Message, type_name="rcl_interfaces/msg/FloatingPointRange"):
-    """rcl_interfaces/msg/FloatingPointRange: Bounds (inclusive) and a step for a floating point parameter; step 0 means any value."""
+    """rcl_interfaces/msg/FloatingPointRange: Represents bounds and a step value for a floating point typed parameter."""
 
     __slots__ = (
         "from_value",
@@ -37,7 +37,7 @@ class FloatingPointRange(Message, type_name="rcl_interfaces/msg/FloatingPointRan
 
 
 class IntegerRange(Message, type_name="rcl_interfaces/msg/IntegerRange"):
-    """rcl_interfaces/msg/IntegerRange: Bounds (inclusive) and a step for an integer parameter; step 0 means any value."""
+    """rcl_interfaces/msg/IntegerRange: Represents bounds and a step value for an integer typed parameter."""
 
     __slots__ = (
         "from_value",
@@ -60,7 +60,7 @@ class IntegerRange(Message, type_name="rcl_interfaces/msg/IntegerRange"):
 
 
 class ListParametersResult(Message, type_name="rcl_interfaces/msg/ListParametersResult"):
-    """rcl_interfaces/msg/ListParametersResult: Parameter names and the prefixes they sit under."""
+    """rcl_interfaces/msg/ListParametersResult: The resulting parameters under the given prefixes."""
 
     __slots__ = (
         "names",
@@ -80,7 +80,7 @@ class ListParametersResult(Message, type_name="rcl_interfaces/msg/ListParameters
 
 
 class Log(Message, type_name="rcl_interfaces/msg/Log"):
-    """rcl_interfaces/msg/Log: One log line, as every node publishes it on /rosout. Severity levels:"""
+    """rcl_interfaces/msg/Log"""
 
     __slots__ = (
         "stamp",
@@ -119,8 +119,34 @@ class Log(Message, type_name="rcl_interfaces/msg/Log"):
         ) -> None: ...
 
 
+class LoggerLevel(Message, type_name="rcl_interfaces/msg/LoggerLevel"):
+    """rcl_interfaces/msg/LoggerLevel: All available logger levels; these correspond to the enum in rcutils/logger.h"""
+
+    __slots__ = (
+        "name",
+        "level",
+    )
+    LOG_LEVEL_UNKNOWN: ClassVar[int]
+    LOG_LEVEL_DEBUG: ClassVar[int]
+    LOG_LEVEL_INFO: ClassVar[int]
+    LOG_LEVEL_WARN: ClassVar[int]
+    LOG_LEVEL_ERROR: ClassVar[int]
+    LOG_LEVEL_FATAL: ClassVar[int]
+    name: str
+    level: int
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            name: str = ...,
+            level: int = ...,
+        ) -> None: ...
+
+
 class ParameterValue(Message, type_name="rcl_interfaces/msg/ParameterValue"):
-    """rcl_interfaces/msg/ParameterValue: A parameter value: type (a ParameterType constant) says which field holds it."""
+    """rcl_interfaces/msg/ParameterValue: Used to determine which of the next *_value fields are set."""
 
     __slots__ = (
         "type",
@@ -164,7 +190,7 @@ class ParameterValue(Message, type_name="rcl_interfaces/msg/ParameterValue"):
 
 
 class Parameter(Message, type_name="rcl_interfaces/msg/Parameter"):
-    """rcl_interfaces/msg/Parameter: A named parameter value."""
+    """rcl_interfaces/msg/Parameter: This is the message to communicate a parameter. It is an open struct with an enum in"""
 
     __slots__ = (
         "name",
@@ -184,7 +210,7 @@ class Parameter(Message, type_name="rcl_interfaces/msg/Parameter"):
 
 
 class ParameterDescriptor(Message, type_name="rcl_interfaces/msg/ParameterDescriptor"):
-    """rcl_interfaces/msg/ParameterDescriptor: A parameter's description and constraints (a range, read-only) for tools and checks."""
+    """rcl_interfaces/msg/ParameterDescriptor: This is the message to communicate a parameter's descriptor."""
 
     __slots__ = (
         "name",
@@ -222,7 +248,7 @@ class ParameterDescriptor(Message, type_name="rcl_interfaces/msg/ParameterDescri
 
 
 class ParameterEvent(Message, type_name="rcl_interfaces/msg/ParameterEvent"):
-    """rcl_interfaces/msg/ParameterEvent: What changed in one node's parameters, as published on /parameter_events."""
+    """rcl_interfaces/msg/ParameterEvent: This message contains a parameter event."""
 
     __slots__ = (
         "stamp",
@@ -250,8 +276,31 @@ class ParameterEvent(Message, type_name="rcl_interfaces/msg/ParameterEvent"):
         ) -> None: ...
 
 
+class ParameterEventDescriptors(Message, type_name="rcl_interfaces/msg/ParameterEventDescriptors"):
+    """rcl_interfaces/msg/ParameterEventDescriptors: This message contains descriptors of a parameter event."""
+
+    __slots__ = (
+        "new_parameters",
+        "changed_parameters",
+        "deleted_parameters",
+    )
+    new_parameters: list[ParameterDescriptor]
+    changed_parameters: list[ParameterDescriptor]
+    deleted_parameters: list[ParameterDescriptor]
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            new_parameters: Sequence[ParameterDescriptor] = ...,
+            changed_parameters: Sequence[ParameterDescriptor] = ...,
+            deleted_parameters: Sequence[ParameterDescriptor] = ...,
+        ) -> None: ...
+
+
 class ParameterType(Message, type_name="rcl_interfaces/msg/ParameterType"):
-    """rcl_interfaces/msg/ParameterType: What a parameter value may hold: the type tags of ParameterValue.type."""
+    """rcl_interfaces/msg/ParameterType: These types correspond to the value that is set in the ParameterValue message."""
 
     __slots__ = ()
     PARAMETER_NOT_SET: ClassVar[int]
@@ -266,8 +315,28 @@ class ParameterType(Message, type_name="rcl_interfaces/msg/ParameterType"):
     PARAMETER_STRING_ARRAY: ClassVar[int]
 
 
+class SetLoggerLevelsResult(Message, type_name="rcl_interfaces/msg/SetLoggerLevelsResult"):
+    """rcl_interfaces/msg/SetLoggerLevelsResult: True when succeed, false when failed."""
+
+    __slots__ = (
+        "successful",
+        "reason",
+    )
+    successful: bool
+    reason: str
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            successful: bool = ...,
+            reason: str = ...,
+        ) -> None: ...
+
+
 class SetParametersResult(Message, type_name="rcl_interfaces/msg/SetParametersResult"):
-    """rcl_interfaces/msg/SetParametersResult: Whether setting a parameter succeeded, and why not (for logs and tools)."""
+    """rcl_interfaces/msg/SetParametersResult: A true value of the same index indicates that the parameter was set"""
 
     __slots__ = (
         "successful",
@@ -287,7 +356,7 @@ class SetParametersResult(Message, type_name="rcl_interfaces/msg/SetParametersRe
 
 
 class DescribeParameters_Request(Message, type_name="rcl_interfaces/srv/DescribeParameters_Request"):
-    """rcl_interfaces/srv/DescribeParameters_Request: Descriptors of the named parameters."""
+    """rcl_interfaces/srv/DescribeParameters_Request: A list of parameters of which to get the descriptor."""
 
     __slots__ = ("names",)
     names: list[str]
@@ -302,7 +371,7 @@ class DescribeParameters_Request(Message, type_name="rcl_interfaces/srv/Describe
 
 
 class DescribeParameters_Response(Message, type_name="rcl_interfaces/srv/DescribeParameters_Response"):
-    """rcl_interfaces/srv/DescribeParameters_Response"""
+    """rcl_interfaces/srv/DescribeParameters_Response: A list of the descriptors of all parameters requested in the same order"""
 
     __slots__ = ("descriptors",)
     descriptors: list[ParameterDescriptor]
@@ -316,8 +385,38 @@ class DescribeParameters_Response(Message, type_name="rcl_interfaces/srv/Describ
         ) -> None: ...
 
 
+class GetLoggerLevels_Request(Message, type_name="rcl_interfaces/srv/GetLoggerLevels_Request"):
+    """rcl_interfaces/srv/GetLoggerLevels_Request: A list of logger names to get."""
+
+    __slots__ = ("names",)
+    names: list[str]
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            names: Sequence[str] = ...,
+        ) -> None: ...
+
+
+class GetLoggerLevels_Response(Message, type_name="rcl_interfaces/srv/GetLoggerLevels_Response"):
+    """rcl_interfaces/srv/GetLoggerLevels_Response: List of logger levels which is the same order as the provided names. If a"""
+
+    __slots__ = ("levels",)
+    levels: list[LoggerLevel]
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            levels: Sequence[LoggerLevel] = ...,
+        ) -> None: ...
+
+
 class GetParameterTypes_Request(Message, type_name="rcl_interfaces/srv/GetParameterTypes_Request"):
-    """rcl_interfaces/srv/GetParameterTypes_Request: Types (ParameterType constants) of the named parameters."""
+    """rcl_interfaces/srv/GetParameterTypes_Request: A list of parameter names."""
 
     __slots__ = ("names",)
     names: list[str]
@@ -332,7 +431,7 @@ class GetParameterTypes_Request(Message, type_name="rcl_interfaces/srv/GetParame
 
 
 class GetParameterTypes_Response(Message, type_name="rcl_interfaces/srv/GetParameterTypes_Response"):
-    """rcl_interfaces/srv/GetParameterTypes_Response"""
+    """rcl_interfaces/srv/GetParameterTypes_Response: List of types which is the same length and order as the provided names."""
 
     __slots__ = ("types",)
     types: IntArray
@@ -347,7 +446,7 @@ class GetParameterTypes_Response(Message, type_name="rcl_interfaces/srv/GetParam
 
 
 class GetParameters_Request(Message, type_name="rcl_interfaces/srv/GetParameters_Request"):
-    """rcl_interfaces/srv/GetParameters_Request: Values of the named parameters (type NOT_SET for an unknown name)."""
+    """rcl_interfaces/srv/GetParameters_Request: TODO(wjwwood): Decide on the rules for grouping, nodes, and parameter 'names'"""
 
     __slots__ = ("names",)
     names: list[str]
@@ -362,7 +461,7 @@ class GetParameters_Request(Message, type_name="rcl_interfaces/srv/GetParameters
 
 
 class GetParameters_Response(Message, type_name="rcl_interfaces/srv/GetParameters_Response"):
-    """rcl_interfaces/srv/GetParameters_Response"""
+    """rcl_interfaces/srv/GetParameters_Response: List of values which is the same length and order as the provided names. If a"""
 
     __slots__ = ("values",)
     values: list[ParameterValue]
@@ -377,7 +476,7 @@ class GetParameters_Response(Message, type_name="rcl_interfaces/srv/GetParameter
 
 
 class ListParameters_Request(Message, type_name="rcl_interfaces/srv/ListParameters_Request"):
-    """rcl_interfaces/srv/ListParameters_Request: Parameters under the prefixes, down to depth separators (0: all)."""
+    """rcl_interfaces/srv/ListParameters_Request: Recursively get parameters with unlimited depth."""
 
     __slots__ = (
         "prefixes",
@@ -398,7 +497,7 @@ class ListParameters_Request(Message, type_name="rcl_interfaces/srv/ListParamete
 
 
 class ListParameters_Response(Message, type_name="rcl_interfaces/srv/ListParameters_Response"):
-    """rcl_interfaces/srv/ListParameters_Response"""
+    """rcl_interfaces/srv/ListParameters_Response: The list of parameter names and their prefixes."""
 
     __slots__ = ("result",)
     result: ListParametersResult
@@ -412,8 +511,38 @@ class ListParameters_Response(Message, type_name="rcl_interfaces/srv/ListParamet
         ) -> None: ...
 
 
+class SetLoggerLevels_Request(Message, type_name="rcl_interfaces/srv/SetLoggerLevels_Request"):
+    """rcl_interfaces/srv/SetLoggerLevels_Request: A list of loggers to set."""
+
+    __slots__ = ("levels",)
+    levels: list[LoggerLevel]
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            levels: Sequence[LoggerLevel] = ...,
+        ) -> None: ...
+
+
+class SetLoggerLevels_Response(Message, type_name="rcl_interfaces/srv/SetLoggerLevels_Response"):
+    """rcl_interfaces/srv/SetLoggerLevels_Response: Indicates whether setting each logger succeeded or not and why."""
+
+    __slots__ = ("results",)
+    results: list[SetLoggerLevelsResult]
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            results: Sequence[SetLoggerLevelsResult] = ...,
+        ) -> None: ...
+
+
 class SetParameters_Request(Message, type_name="rcl_interfaces/srv/SetParameters_Request"):
-    """rcl_interfaces/srv/SetParameters_Request: Set each parameter on its own; one result per parameter."""
+    """rcl_interfaces/srv/SetParameters_Request: A list of parameters to set."""
 
     __slots__ = ("parameters",)
     parameters: list[Parameter]
@@ -428,7 +557,7 @@ class SetParameters_Request(Message, type_name="rcl_interfaces/srv/SetParameters
 
 
 class SetParameters_Response(Message, type_name="rcl_interfaces/srv/SetParameters_Response"):
-    """rcl_interfaces/srv/SetParameters_Response"""
+    """rcl_interfaces/srv/SetParameters_Response: Indicates whether setting each parameter succeeded or not and why."""
 
     __slots__ = ("results",)
     results: list[SetParametersResult]
@@ -445,7 +574,7 @@ class SetParameters_Response(Message, type_name="rcl_interfaces/srv/SetParameter
 class SetParametersAtomically_Request(
     Message, type_name="rcl_interfaces/srv/SetParametersAtomically_Request"
 ):
-    """rcl_interfaces/srv/SetParametersAtomically_Request: Set all the parameters or none."""
+    """rcl_interfaces/srv/SetParametersAtomically_Request: A list of parameters to set atomically."""
 
     __slots__ = ("parameters",)
     parameters: list[Parameter]
@@ -462,7 +591,7 @@ class SetParametersAtomically_Request(
 class SetParametersAtomically_Response(
     Message, type_name="rcl_interfaces/srv/SetParametersAtomically_Response"
 ):
-    """rcl_interfaces/srv/SetParametersAtomically_Response"""
+    """rcl_interfaces/srv/SetParametersAtomically_Response: Indicates whether setting all of the parameters succeeded or not and why."""
 
     __slots__ = ("result",)
     result: SetParametersResult
@@ -481,6 +610,13 @@ class DescribeParameters(Service, type_name="rcl_interfaces/srv/DescribeParamete
 
     Request = DescribeParameters_Request
     Response = DescribeParameters_Response
+
+
+class GetLoggerLevels(Service, type_name="rcl_interfaces/srv/GetLoggerLevels"):
+    """rcl_interfaces/srv/GetLoggerLevels: call with a GetLoggerLevels.Request, answered with a GetLoggerLevels.Response."""
+
+    Request = GetLoggerLevels_Request
+    Response = GetLoggerLevels_Response
 
 
 class GetParameterTypes(Service, type_name="rcl_interfaces/srv/GetParameterTypes"):
@@ -504,6 +640,13 @@ class ListParameters(Service, type_name="rcl_interfaces/srv/ListParameters"):
     Response = ListParameters_Response
 
 
+class SetLoggerLevels(Service, type_name="rcl_interfaces/srv/SetLoggerLevels"):
+    """rcl_interfaces/srv/SetLoggerLevels: call with a SetLoggerLevels.Request, answered with a SetLoggerLevels.Response."""
+
+    Request = SetLoggerLevels_Request
+    Response = SetLoggerLevels_Response
+
+
 class SetParameters(Service, type_name="rcl_interfaces/srv/SetParameters"):
     """rcl_interfaces/srv/SetParameters: call with a SetParameters.Request, answered with a SetParameters.Response."""
 
@@ -523,6 +666,9 @@ __all__ = [
     "DescribeParameters_Request",
     "DescribeParameters_Response",
     "FloatingPointRange",
+    "GetLoggerLevels",
+    "GetLoggerLevels_Request",
+    "GetLoggerLevels_Response",
     "GetParameterTypes",
     "GetParameterTypes_Request",
     "GetParameterTypes_Response",
@@ -535,11 +681,17 @@ __all__ = [
     "ListParameters_Request",
     "ListParameters_Response",
     "Log",
+    "LoggerLevel",
     "Parameter",
     "ParameterDescriptor",
     "ParameterEvent",
+    "ParameterEventDescriptors",
     "ParameterType",
     "ParameterValue",
+    "SetLoggerLevels",
+    "SetLoggerLevelsResult",
+    "SetLoggerLevels_Request",
+    "SetLoggerLevels_Response",
     "SetParameters",
     "SetParametersAtomically",
     "SetParametersAtomically_Request",

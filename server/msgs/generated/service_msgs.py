@@ -1,4 +1,4 @@
-"""service_msgs: generated from server/msgs/interfaces/service_msgs by `python -m server.msgs.generate`; do not edit."""
+"""service_msgs: generated from ROS 2's definitions (the wheels server/msgs/ros_packages.txt pins) by `python -m server.msgs.generate`; do not edit."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from .builtin_interfaces import Time
 
 
 class ServiceEventInfo(Message, type_name="service_msgs/msg/ServiceEventInfo"):
-    """service_msgs/msg/ServiceEventInfo: What a service event reports: which step of a call it is, when, and which client and call."""
+    """service_msgs/msg/ServiceEventInfo: The type of event this message represents"""
 
     __slots__ = (
         "event_type",

@@ -1,15 +1,20 @@
-"""std_msgs: generated from server/msgs/interfaces/std_msgs by `python -m server.msgs.generate`; do not edit."""
+"""std_msgs: generated from ROS 2's definitions (the wheels server/msgs/ros_packages.txt pins) by `python -m server.msgs.generate`; do not edit."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 from .._base import Message
+from .._field import FloatArray, IntArray
 from .builtin_interfaces import Time
 
 
 class Bool(Message, type_name="std_msgs/msg/Bool"):
-    """std_msgs/msg/Bool"""
+    """std_msgs/msg/Bool: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: bool
@@ -24,7 +29,7 @@ class Bool(Message, type_name="std_msgs/msg/Bool"):
 
 
 class Byte(Message, type_name="std_msgs/msg/Byte"):
-    """std_msgs/msg/Byte"""
+    """std_msgs/msg/Byte: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: int
@@ -38,8 +43,71 @@ class Byte(Message, type_name="std_msgs/msg/Byte"):
         ) -> None: ...
 
 
+class MultiArrayDimension(Message, type_name="std_msgs/msg/MultiArrayDimension"):
+    """std_msgs/msg/MultiArrayDimension: This was originally provided as an example message."""
+
+    __slots__ = (
+        "label",
+        "size",
+        "stride",
+    )
+    label: str
+    size: int
+    stride: int
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            label: str = ...,
+            size: int = ...,
+            stride: int = ...,
+        ) -> None: ...
+
+
+class MultiArrayLayout(Message, type_name="std_msgs/msg/MultiArrayLayout"):
+    """std_msgs/msg/MultiArrayLayout: This was originally provided as an example message."""
+
+    __slots__ = (
+        "dim",
+        "data_offset",
+    )
+    dim: list[MultiArrayDimension]
+    data_offset: int
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            dim: Sequence[MultiArrayDimension] = ...,
+            data_offset: int = ...,
+        ) -> None: ...
+
+
+class ByteMultiArray(Message, type_name="std_msgs/msg/ByteMultiArray"):
+    """std_msgs/msg/ByteMultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: IntArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[int] | npt.NDArray[Any] = ...,
+        ) -> None: ...
+
+
 class Char(Message, type_name="std_msgs/msg/Char"):
-    """std_msgs/msg/Char"""
+    """std_msgs/msg/Char: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: int
@@ -54,7 +122,7 @@ class Char(Message, type_name="std_msgs/msg/Char"):
 
 
 class ColorRGBA(Message, type_name="std_msgs/msg/ColorRGBA"):
-    """std_msgs/msg/ColorRGBA: A colour, each channel from 0 to 1."""
+    """std_msgs/msg/ColorRGBA"""
 
     __slots__ = (
         "r",
@@ -86,7 +154,7 @@ class Empty(Message, type_name="std_msgs/msg/Empty"):
 
 
 class Float32(Message, type_name="std_msgs/msg/Float32"):
-    """std_msgs/msg/Float32"""
+    """std_msgs/msg/Float32: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: float
@@ -97,11 +165,31 @@ class Float32(Message, type_name="std_msgs/msg/Float32"):
             self,
             *,
             data: float = ...,
+        ) -> None: ...
+
+
+class Float32MultiArray(Message, type_name="std_msgs/msg/Float32MultiArray"):
+    """std_msgs/msg/Float32MultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: FloatArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[float] | npt.NDArray[Any] = ...,
         ) -> None: ...
 
 
 class Float64(Message, type_name="std_msgs/msg/Float64"):
-    """std_msgs/msg/Float64"""
+    """std_msgs/msg/Float64: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: float
@@ -115,8 +203,28 @@ class Float64(Message, type_name="std_msgs/msg/Float64"):
         ) -> None: ...
 
 
+class Float64MultiArray(Message, type_name="std_msgs/msg/Float64MultiArray"):
+    """std_msgs/msg/Float64MultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: FloatArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[float] | npt.NDArray[Any] = ...,
+        ) -> None: ...
+
+
 class Header(Message, type_name="std_msgs/msg/Header"):
-    """std_msgs/msg/Header: When and in which coordinate frame data was taken."""
+    """std_msgs/msg/Header: Standard metadata for higher-level stamped data types."""
 
     __slots__ = (
         "stamp",
@@ -136,7 +244,7 @@ class Header(Message, type_name="std_msgs/msg/Header"):
 
 
 class Int16(Message, type_name="std_msgs/msg/Int16"):
-    """std_msgs/msg/Int16"""
+    """std_msgs/msg/Int16: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: int
@@ -147,11 +255,31 @@ class Int16(Message, type_name="std_msgs/msg/Int16"):
             self,
             *,
             data: int = ...,
+        ) -> None: ...
+
+
+class Int16MultiArray(Message, type_name="std_msgs/msg/Int16MultiArray"):
+    """std_msgs/msg/Int16MultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: IntArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[int] | npt.NDArray[Any] = ...,
         ) -> None: ...
 
 
 class Int32(Message, type_name="std_msgs/msg/Int32"):
-    """std_msgs/msg/Int32"""
+    """std_msgs/msg/Int32: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: int
@@ -162,11 +290,31 @@ class Int32(Message, type_name="std_msgs/msg/Int32"):
             self,
             *,
             data: int = ...,
+        ) -> None: ...
+
+
+class Int32MultiArray(Message, type_name="std_msgs/msg/Int32MultiArray"):
+    """std_msgs/msg/Int32MultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: IntArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[int] | npt.NDArray[Any] = ...,
         ) -> None: ...
 
 
 class Int64(Message, type_name="std_msgs/msg/Int64"):
-    """std_msgs/msg/Int64"""
+    """std_msgs/msg/Int64: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: int
@@ -177,11 +325,31 @@ class Int64(Message, type_name="std_msgs/msg/Int64"):
             self,
             *,
             data: int = ...,
+        ) -> None: ...
+
+
+class Int64MultiArray(Message, type_name="std_msgs/msg/Int64MultiArray"):
+    """std_msgs/msg/Int64MultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: IntArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[int] | npt.NDArray[Any] = ...,
         ) -> None: ...
 
 
 class Int8(Message, type_name="std_msgs/msg/Int8"):
-    """std_msgs/msg/Int8"""
+    """std_msgs/msg/Int8: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: int
@@ -195,8 +363,28 @@ class Int8(Message, type_name="std_msgs/msg/Int8"):
         ) -> None: ...
 
 
+class Int8MultiArray(Message, type_name="std_msgs/msg/Int8MultiArray"):
+    """std_msgs/msg/Int8MultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: IntArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[int] | npt.NDArray[Any] = ...,
+        ) -> None: ...
+
+
 class String(Message, type_name="std_msgs/msg/String"):
-    """std_msgs/msg/String"""
+    """std_msgs/msg/String: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: str
@@ -211,7 +399,7 @@ class String(Message, type_name="std_msgs/msg/String"):
 
 
 class UInt16(Message, type_name="std_msgs/msg/UInt16"):
-    """std_msgs/msg/UInt16"""
+    """std_msgs/msg/UInt16: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: int
@@ -222,11 +410,31 @@ class UInt16(Message, type_name="std_msgs/msg/UInt16"):
             self,
             *,
             data: int = ...,
+        ) -> None: ...
+
+
+class UInt16MultiArray(Message, type_name="std_msgs/msg/UInt16MultiArray"):
+    """std_msgs/msg/UInt16MultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: IntArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[int] | npt.NDArray[Any] = ...,
         ) -> None: ...
 
 
 class UInt32(Message, type_name="std_msgs/msg/UInt32"):
-    """std_msgs/msg/UInt32"""
+    """std_msgs/msg/UInt32: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: int
@@ -237,11 +445,31 @@ class UInt32(Message, type_name="std_msgs/msg/UInt32"):
             self,
             *,
             data: int = ...,
+        ) -> None: ...
+
+
+class UInt32MultiArray(Message, type_name="std_msgs/msg/UInt32MultiArray"):
+    """std_msgs/msg/UInt32MultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: IntArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[int] | npt.NDArray[Any] = ...,
         ) -> None: ...
 
 
 class UInt64(Message, type_name="std_msgs/msg/UInt64"):
-    """std_msgs/msg/UInt64"""
+    """std_msgs/msg/UInt64: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: int
@@ -255,8 +483,28 @@ class UInt64(Message, type_name="std_msgs/msg/UInt64"):
         ) -> None: ...
 
 
+class UInt64MultiArray(Message, type_name="std_msgs/msg/UInt64MultiArray"):
+    """std_msgs/msg/UInt64MultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: IntArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[int] | npt.NDArray[Any] = ...,
+        ) -> None: ...
+
+
 class UInt8(Message, type_name="std_msgs/msg/UInt8"):
-    """std_msgs/msg/UInt8"""
+    """std_msgs/msg/UInt8: This was originally provided as an example message."""
 
     __slots__ = ("data",)
     data: int
@@ -267,25 +515,58 @@ class UInt8(Message, type_name="std_msgs/msg/UInt8"):
             self,
             *,
             data: int = ...,
+        ) -> None: ...
+
+
+class UInt8MultiArray(Message, type_name="std_msgs/msg/UInt8MultiArray"):
+    """std_msgs/msg/UInt8MultiArray: This was originally provided as an example message."""
+
+    __slots__ = (
+        "layout",
+        "data",
+    )
+    layout: MultiArrayLayout
+    data: IntArray
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            layout: MultiArrayLayout = ...,
+            data: Sequence[int] | npt.NDArray[Any] = ...,
         ) -> None: ...
 
 
 __all__ = [
     "Bool",
     "Byte",
+    "ByteMultiArray",
     "Char",
     "ColorRGBA",
     "Empty",
     "Float32",
+    "Float32MultiArray",
     "Float64",
+    "Float64MultiArray",
     "Header",
     "Int16",
+    "Int16MultiArray",
     "Int32",
+    "Int32MultiArray",
     "Int64",
+    "Int64MultiArray",
     "Int8",
+    "Int8MultiArray",
+    "MultiArrayDimension",
+    "MultiArrayLayout",
     "String",
     "UInt16",
+    "UInt16MultiArray",
     "UInt32",
+    "UInt32MultiArray",
     "UInt64",
+    "UInt64MultiArray",
     "UInt8",
+    "UInt8MultiArray",
 ]

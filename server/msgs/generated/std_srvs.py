@@ -1,4 +1,4 @@
-"""std_srvs: generated from server/msgs/interfaces/std_srvs by `python -m server.msgs.generate`; do not edit."""
+"""std_srvs: generated from ROS 2's definitions (the wheels server/msgs/ros_packages.txt pins) by `python -m server.msgs.generate`; do not edit."""
 
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ class Empty_Response(Message, type_name="std_srvs/srv/Empty_Response"):
 
 
 class SetBool_Request(Message, type_name="std_srvs/srv/SetBool_Request"):
-    """std_srvs/srv/SetBool_Request: Switch something on (true) or off (false)."""
+    """std_srvs/srv/SetBool_Request"""
 
     __slots__ = ("data",)
     data: bool
@@ -55,7 +55,7 @@ class SetBool_Response(Message, type_name="std_srvs/srv/SetBool_Response"):
 
 
 class Trigger_Request(Message, type_name="std_srvs/srv/Trigger_Request"):
-    """std_srvs/srv/Trigger_Request: Ask for something to happen; the answer says whether it did, and a message."""
+    """std_srvs/srv/Trigger_Request"""
 
     __slots__ = ()
 

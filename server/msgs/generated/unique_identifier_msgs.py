@@ -1,4 +1,4 @@
-"""unique_identifier_msgs: generated from server/msgs/interfaces/unique_identifier_msgs by `python -m server.msgs.generate`; do not edit."""
+"""unique_identifier_msgs: generated from ROS 2's definitions (the wheels server/msgs/ros_packages.txt pins) by `python -m server.msgs.generate`; do not edit."""
 
 from __future__ import annotations
 

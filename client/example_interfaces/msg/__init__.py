@@ -1,0 +1,2 @@
+from server.msgs.generated.example_interfaces import *  # noqa: F403
+from server.msgs.generated.example_interfaces import __all__ as __all__

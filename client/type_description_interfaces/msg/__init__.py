@@ -1,0 +1,2 @@
+from server.msgs.generated.type_description_interfaces import *  # noqa: F403
+from server.msgs.generated.type_description_interfaces import __all__ as __all__
