@@ -81,3 +81,22 @@ def test_a_static_broadcaster_resends_all_its_frames_and_replaces_a_child_sent_a
         ["laser"], ["laser", "camera", "imu"], ["laser", "camera", "imu"]
     ]  # fmt: skip
     assert heard[-1].transforms[0].transform.translation.x == 0.5
+
+
+def test_a_task_awaiting_a_transform_resumes_once_the_listener_hears_it(node: Node) -> None:
+    """examples_tf2_py's async pattern: the coroutine waits, the executor keeps spinning."""
+    buffer = Buffer()
+    TransformListener(buffer, node)
+    executor = SingleThreadedExecutor(context=node._rcl_context)
+    executor.add_node(node)
+
+    async def find_robot() -> object:
+        return await buffer.lookup_transform_async("world", "robot", Time())
+
+    task = executor.create_task(find_robot)
+    executor.spin_once(timeout_sec=0.0)
+    assert not task.done()
+    TransformBroadcaster(node).sendTransform(stamped("world", "robot", 2.0, (5.0, 0.0, 0.0)))
+    spin_until(executor, task.done)
+    found = task.result()
+    assert found is not None and xyz(found) == (5.0, 0.0, 0.0)  # type: ignore[arg-type]

@@ -8,6 +8,7 @@ from collections.abc import Callable
 
 import pytest
 from rclpy.duration import Duration
+from rclpy.task import Future
 from rclpy.time import Time
 from tf2_ros import Buffer, ExtrapolationException, LookupException
 
@@ -49,6 +50,18 @@ def test_wait_for_transform_async_is_done_at_once_when_the_transform_is_there() 
     buffer.set_transform_static(stamped("world", "mast", 0.0, (0.0, 0.0, 3.0)), "test")
     future = buffer.wait_for_transform_async("world", "mast", Time())
     assert future.done() and xyz(future.result()) == (0.0, 0.0, 3.0)  # type: ignore[arg-type]
+
+
+def test_lookup_transform_async_parks_its_coroutine_until_the_transform_arrives() -> None:
+    buffer = Buffer()
+    lookup = buffer.lookup_transform_async("world", "robot", Time())
+    parked_on = lookup.send(None)  # as an executor's task would run it: it waits on this future
+    assert isinstance(parked_on, Future) and not parked_on.done()
+    buffer.set_transform(stamped("world", "robot", 3.0, (0.0, 4.0, 0.0)), "test")
+    assert parked_on.done()
+    with pytest.raises(StopIteration) as finished:
+        lookup.send(None)
+    assert xyz(finished.value.value) == (0.0, 4.0, 0.0)
 
 
 def test_lookup_with_a_timeout_returns_when_the_transform_arrives_while_it_waits() -> None:
