@@ -28,7 +28,6 @@ class Service(ServiceServer):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self._introspection = Introspection(self)
-        self._requests = 0
 
     given_name: str | None = None  # the name as the node's code wrote it (rclpy's ``srv_name``)
 
@@ -45,10 +44,13 @@ class Service(ServiceServer):
         if self._introspection.state is ServiceIntrospectionState.OFF:
             return super().handle(request)
         # The bus hands a service its request alone: the calling client's GID and number stay unknown.
-        self._requests += 1
-        self._introspection.emit(REQUEST_RECEIVED, self._requests, NO_CLIENT, request, None)
+        # Counted on the shared introspection: an async service answers through a copy of itself.
+        introspection = self._introspection
+        introspection.calls += 1
+        number = introspection.calls
+        introspection.emit(REQUEST_RECEIVED, number, NO_CLIENT, request, None)
         response = super().handle(request)
-        self._introspection.emit(RESPONSE_SENT, self._requests, NO_CLIENT, None, response)
+        introspection.emit(RESPONSE_SENT, number, NO_CLIENT, None, response)
         return response
 
     def configure_introspection(

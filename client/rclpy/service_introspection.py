@@ -33,6 +33,7 @@ class Introspection:
         self.state = ServiceIntrospectionState.OFF
         self._publisher: Any = None
         self._clock: Any = None
+        self.calls = 0  # a service's requests so far (the number its events carry)
 
     def configure(self, clock: Any, qos: QoSProfile, state: ServiceIntrospectionState) -> None:
         state = ServiceIntrospectionState(state)
