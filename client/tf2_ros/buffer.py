@@ -16,6 +16,7 @@ import rclpy.logging
 from geometry_msgs.msg import TransformStamped
 from rclpy.duration import Duration
 from rclpy.task import Future
+from tf2_msgs.srv import FrameGraph
 
 from ._buffer_core import BufferCore
 from ._time_cache import NS_PER_S
@@ -31,7 +32,8 @@ def _timeout_s(timeout: Any) -> float:
 
 
 class Buffer(BufferCore, BufferInterface):
-    """Known frames over the last ``cache_time`` (an rclpy Duration; 10 s unless given)."""
+    """Known frames over the last ``cache_time`` (an rclpy Duration; 10 s unless given). With a
+    ``node``, the node serves ``tf2_frames`` (tf2_msgs/srv/FrameGraph: the frames as YAML)."""
 
     def __init__(self, cache_time: Duration | None = None, node: Any = None) -> None:
         BufferCore.__init__(self, cache_time)
@@ -41,7 +43,12 @@ class Buffer(BufferCore, BufferInterface):
         self._new_data = threading.Condition()
         self._new_data_callbacks: list[Callable[[], None]] = []
         self.clock = node.get_clock() if node is not None else None
+        if node is not None:  # as tf2_ros: the frames as YAML for whoever asks the node
+            self.srv = node.create_service(FrameGraph, "tf2_frames", self._get_frames)
         self.monotonic: Callable[[], float] = _time.monotonic  # the clock a wait's timeout runs on
+
+    def _get_frames(self, _request: Any, _response: Any) -> Any:
+        return FrameGraph.Response(frame_yaml=self.all_frames_as_yaml())
 
     # -- storing, and telling whoever waits ---------------------------------------------------
     def set_transform(self, transform: TransformStamped, authority: str) -> bool:

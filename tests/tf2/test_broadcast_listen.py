@@ -11,6 +11,7 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.time import Time
 from tf2_msgs.msg import TFMessage
+from tf2_msgs.srv import FrameGraph
 from tf2_ros import Buffer, StaticTransformBroadcaster, TransformBroadcaster, TransformListener
 
 from .frames import stamped, xyz
@@ -100,3 +101,16 @@ def test_a_task_awaiting_a_transform_resumes_once_the_listener_hears_it(node: No
     spin_until(executor, task.done)
     found = task.result()
     assert found is not None and xyz(found) == (5.0, 0.0, 0.0)  # type: ignore[arg-type]
+
+
+def test_a_buffer_given_a_node_serves_its_frames_as_yaml(node: Node) -> None:
+    buffer = Buffer(node=node)
+    buffer.set_transform_static(stamped("base", "laser", 0.0), "urdf")
+    client = node.create_client(FrameGraph, "tf2_frames")
+    executor = SingleThreadedExecutor(context=node._rcl_context)
+    executor.add_node(node)
+    future = client.call_async(FrameGraph.Request())
+    spin_until(executor, future.done)
+    answer = future.result()
+    assert answer is not None and answer.frame_yaml == buffer.all_frames_as_yaml()
+    assert answer.frame_yaml.startswith("laser: \n  parent: 'base'\n  broadcaster: 'urdf'\n")
