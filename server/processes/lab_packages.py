@@ -22,10 +22,13 @@ from types import ModuleType
 # The client's packages: rclpy, the message packages, launch's (client/; top-level in the client wheel,
 # where there is no client/ folder to list: tests/processes/test_lab_packages.py keeps them equal).
 CLIENT_PACKAGES = (
-    "action_msgs", "action_tutorials_interfaces", "ament_index_python", "builtin_interfaces",
-    "example_interfaces", "geometry_msgs", "keyboard_msgs", "launch", "launch_ros", "launch_xml",
-    "launch_yaml", "rcl_interfaces", "rclpy", "sensor_msgs", "std_msgs", "std_srvs", "tf2_msgs",
-    "turtlesim", "unique_identifier_msgs",
+    "action_msgs", "action_tutorials_interfaces", "actionlib_msgs", "ament_index_python",
+    "builtin_interfaces", "diagnostic_msgs", "example_interfaces", "geometry_msgs", "keyboard_msgs",
+    "launch", "launch_ros", "launch_xml", "launch_yaml", "lifecycle_msgs", "nav_msgs",
+    "rcl_interfaces", "rclpy", "rosapi_msgs", "rosgraph_msgs", "sensor_msgs", "sensor_msgs_py",
+    "service_msgs", "shape_msgs", "std_msgs", "std_srvs", "stereo_msgs", "tf2_msgs",
+    "trajectory_msgs", "turtlesim", "type_description_interfaces", "unique_identifier_msgs",
+    "visualization_msgs",
 )  # fmt: skip
 OWN = ("server", "sim")
 
