@@ -28,6 +28,12 @@ class MessageInfo(TypedDict):
     received_timestamp: int
     publication_sequence_number: int | None
     reception_sequence_number: int | None
+    publisher_gid: dict[str, Any]
+
+
+# The bus's queues keep messages alone: the info a callback gets is this subscription's count of
+# them (a publisher's own count when it is the only one) and the time it takes them, and no GID.
+_NO_GID = {"implementation_identifier": "rmw_zenoh_cpp", "data": bytes(16)}
 
 
 class Subscription(BusSubscription, Generic[MsgT]):
@@ -82,7 +88,8 @@ class Subscription(BusSubscription, Generic[MsgT]):
             now = time.time_ns()
             info: MessageInfo = {
                 "source_timestamp": now, "received_timestamp": now,
-                "publication_sequence_number": None, "reception_sequence_number": self._received,
+                "publication_sequence_number": self._received, "reception_sequence_number": None,
+                "publisher_gid": dict(_NO_GID),
             }  # fmt: skip
             return callback(msg, info)
 

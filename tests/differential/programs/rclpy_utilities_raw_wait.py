@@ -1,5 +1,5 @@
-"""rclpy.utilities, a raw subscription's CDR bytes with rclpy.serialization, and
-rclpy.wait_for_message."""
+"""rclpy.utilities, a raw subscription's CDR bytes with rclpy.serialization, a callback that
+takes the message info too, and rclpy.wait_for_message."""
 
 import sys
 import threading
@@ -34,6 +34,14 @@ def main():
     while len(got) < 2:
         rclpy.spin_once(node, timeout_sec=1.0)
     print('published bytes:', deserialize_message(got[1], String).data)
+    infos = []
+    node.create_subscription(String, 'words', lambda msg, info: infos.append((msg, info)), 10)
+    pub.publish(String(data='with info'))
+    while not infos:
+        rclpy.spin_once(node, timeout_sec=1.0)
+    msg, info = infos[0]
+    print('message info:', msg.data, type(info).__name__, sorted(info),
+          info['received_timestamp'] >= info['source_timestamp'] > 0)
 
     print('nothing yet:', wait_for_message(Int32, node, 'numbers', time_to_wait=0.2))
     numbers = node.create_publisher(Int32, 'numbers', 10)
