@@ -1,0 +1,112 @@
+"""docs.ros.org's launch tutorials, whole: a workspace whose packages ``ros2lab pkg create`` made and
+the student then wrote as the pages say (tests/workspace/launch_tutorials.py), started with
+``ros2lab launch PKG FILE`` on a live lab and checked as the pages check them: the nodes' lines,
+``ros2lab topic list`` and ``ros2lab param get``."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from processes.node_process import NodeProcess
+from support.app import App
+
+from .launch_tutorials import (
+    EXAMPLE_MAIN,
+    EXAMPLE_SUBSTITUTIONS,
+    MY_SCRIPT,
+    PARAM_LAUNCH,
+    PARAM_NODE,
+    edit_setup_py,
+    write_files,
+)
+
+CLI_S = 60.0
+STAMP = r"\[\d+\.\d{9}\]"
+
+
+def ros2lab(*args: str, cwd: Path | None = None) -> tuple[int, str, str]:
+    done = subprocess.run([sys.executable, "-m", "server", *args], capture_output=True, text=True,
+                          timeout=CLI_S, check=False, cwd=cwd)  # fmt: skip
+    return done.returncode, done.stdout, done.stderr
+
+
+def create_package(src: Path, name: str) -> Path:
+    """``ros2 pkg create --build-type ament_python --license Apache-2.0 NAME`` in ``src``, as each page
+    starts (python_parameters with ``--dependencies rclpy``)."""
+    extra = ["--dependencies", "rclpy"] if name == "python_parameters" else []
+    code, _out, err = ros2lab("pkg", "create", "--build-type", "ament_python", "--license", "Apache-2.0", name,
+                              *extra, cwd=src)  # fmt: skip
+    assert code == 0, err
+    return src / name
+
+
+def tutorial_workspace(ws: Path) -> None:
+    src = ws / "src"
+    src.mkdir(parents=True)
+    params = create_package(src, "python_parameters")
+    edit_setup_py(params, ("minimal_param_node = python_parameters.python_parameters_node:main",))
+    write_files(params, {"python_parameters/python_parameters_node.py": PARAM_NODE,
+                         "launch/python_parameters_launch.py": PARAM_LAUNCH})  # fmt: skip
+    example = create_package(src, "py_launch_example")
+    edit_setup_py(example)
+    write_files(example, {f"launch/my_script_launch.{kind}": text for kind, text in MY_SCRIPT.items()})
+    tutorial = create_package(src, "launch_tutorial")
+    edit_setup_py(tutorial)
+    write_files(tutorial, {f"launch/example_main_launch.{kind}": text for kind, text in EXAMPLE_MAIN.items()})
+    write_files(tutorial, {f"launch/example_substitutions_launch.{kind}": text
+                           for kind, text in EXAMPLE_SUBSTITUTIONS.items()})  # fmt: skip
+
+
+@pytest.fixture(scope="module")
+def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[App]:
+    root = tmp_path_factory.mktemp("launch_tutorials")
+    tutorial_workspace(root / "ros2_ws")
+    (root / "nothing.launch.xml").write_text("<launch/>\n")
+    app = App(
+        root, "--launch", str(root / "nothing.launch.xml"), "--workspace", str(root / "ros2_ws"), cwd=root
+    )
+    try:
+        yield app
+    finally:
+        app.stop()
+
+
+@pytest.fixture
+def launch(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
+    """``ros2lab launch PKG FILE`` left running; each is stopped with Ctrl-C (its nodes with it)."""
+    started: list[NodeProcess] = []
+
+    class Launched(NodeProcess):
+        def __init__(self, package: str, file: str) -> None:
+            command = [sys.executable, "-m", "server", "--url", lab.url, "launch", package, file]
+            super().__init__(lab, tmp_path / file, command=command)
+            started.append(self)
+
+        def stop(self) -> None:
+            assert self.interrupt() == 0, self.text[-3000:]
+            assert "Traceback" not in self.text, self.text[-3000:]
+
+    yield Launched
+    for proc in started:
+        proc.kill()
+
+
+def graph(lab: App, verb: str) -> set[str]:
+    code, out, err = ros2lab("--url", lab.url, verb, "list")
+    assert code == 0, err
+    return set(out.splitlines())
+
+
+@pytest.mark.parametrize("kind", ["xml"])
+def test_integrating_launch_files_starts_the_cpp_talker(
+    lab: App, launch: type[NodeProcess], kind: str
+) -> None:
+    launched = launch("py_launch_example", f"my_script_launch.{kind}")
+    launched.wait_for(rf"^\[talker-\d+\] \[INFO\] {STAMP} \[talker\]: Publishing: 'Hello World: 1'$")
+    assert "/talker" in graph(lab, "node") and "/chatter" in graph(lab, "topic")
+    launched.stop()
+    assert "/talker" not in graph(lab, "node")
