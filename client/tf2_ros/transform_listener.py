@@ -52,7 +52,8 @@ class TransformListener:
             TFMessage, tf_static_topic, self.static_callback, static_qos, callback_group=self.group
         )
         if spin_thread:
-            self.executor = SingleThreadedExecutor()
+            # On the node's own context (tf2_ros takes the default one: the same, for most nodes).
+            self.executor = SingleThreadedExecutor(context=getattr(node, "context", None))
 
             def run() -> None:
                 self.executor.add_node(self.node)

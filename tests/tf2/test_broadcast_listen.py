@@ -7,6 +7,7 @@ from collections.abc import Iterator
 
 import pytest
 import rclpy
+from rclpy.duration import Duration
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.time import Time
@@ -114,3 +115,15 @@ def test_a_buffer_given_a_node_serves_its_frames_as_yaml(node: Node) -> None:
     answer = future.result()
     assert answer is not None and answer.frame_yaml == buffer.all_frames_as_yaml()
     assert answer.frame_yaml.startswith("laser: \n  parent: 'base'\n  broadcaster: 'urdf'\n")
+
+
+def test_a_listener_with_its_own_spin_thread_feeds_a_lookup_that_blocks_the_main_thread(node: Node) -> None:
+    """The blocking pattern: nobody spins but the listener's thread, the main thread waits."""
+    buffer = Buffer()
+    listener = TransformListener(buffer, node, spin_thread=True)
+    TransformBroadcaster(node).sendTransform(stamped("world", "robot", 1.0, (0.0, 0.0, 2.0)))
+    found = buffer.lookup_transform("world", "robot", Time(), timeout=Duration(seconds=10.0))
+    assert xyz(found) == (0.0, 0.0, 2.0)
+    listener.executor.shutdown()
+    listener.dedicated_listener_thread.join(10.0)
+    assert not listener.dedicated_listener_thread.is_alive()
