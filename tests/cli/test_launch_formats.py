@@ -156,7 +156,11 @@ def node_names(server: LiveServer) -> set[str]:
 
 
 def launched(
-    server: LiveServer, start: Callable[..., Running], ros2lab: Callable[..., Result], node: str, topic: str,
+    server: LiveServer,
+    start: Callable[..., Running],
+    ros2lab: Callable[..., Result],
+    node: str,
+    topic: str,
     *args: str,
 ) -> Running:
     """``ros2lab launch fmt_demo ARGS``, once its node is in the graph and ``node list`` and
@@ -165,7 +169,9 @@ def launched(
     launching.read_until(lambda line: line == f"[INFO] [launch]: process started: /talker ({PACKAGE} talker)")
     launching.read_until(lambda line: line.endswith("[talker]: talking"), timeout_s=30.0)
     server.wait_until(lambda: node in node_names(server), f"{node} in the graph", 20.0)
-    server.wait_until(lambda: topic in {t["name"] for t in server.get("/api/topics")}, f"{topic} listed", 20.0)
+    server.wait_until(
+        lambda: topic in {t["name"] for t in server.get("/api/topics")}, f"{topic} listed", 20.0
+    )
     nodes, topics = ros2lab("node", "list"), ros2lab("topic", "list")
     assert nodes.code == 0 and node in nodes.out.splitlines(), nodes
     assert topics.code == 0 and topic in topics.out.splitlines(), topics
@@ -180,7 +186,9 @@ def test_launch_file_in_each_format_starts_the_named_namespaced_remapped_node(
     live_server: LiveServer, package: Path, start: Callable[..., Running], ros2lab: Callable[..., Result],
     file: str, namespace: str,
 ) -> None:  # fmt: skip
-    launching = launched(live_server, start, ros2lab, f"/{namespace}/talker", f"/{namespace}/announcements", file)
+    launching = launched(
+        live_server, start, ros2lab, f"/{namespace}/talker", f"/{namespace}/announcements", file
+    )
     topics = ros2lab("topic", "list").out.splitlines()
     assert f"/{namespace}/chatter" not in topics, topics  # remapped, so never advertised
     code, err = launching.interrupt()
@@ -205,4 +213,6 @@ def test_a_broken_python_launch_file_is_one_line_naming_it(
 
     assert result.code == 1, result
     path = package / "launch" / "broken.launch.py"
-    assert result.err.splitlines() == [f"error: {path.resolve()}:5: ZeroDivisionError: division by zero"], result.err
+    assert result.err.splitlines() == [f"error: {path.resolve()}:5: ZeroDivisionError: division by zero"], (
+        result.err
+    )

@@ -129,16 +129,28 @@ def test_using_substitutions_include_arguments_conditions_and_namespaces(package
     description = launch(main)
 
     sim, listener = description.nodes
-    assert (sim.pkg, sim.exec, sim.name, sim.namespace) == ("turtlesim", "turtlesim_node", "sim", "/turtlesim2")
+    assert (sim.pkg, sim.exec, sim.name, sim.namespace) == (
+        "turtlesim",
+        "turtlesim_node",
+        "sim",
+        "/turtlesim2",
+    )
     assert (listener.exec, listener.namespace) == ("listener", "/turtlesim2")  # 200 == 200 and True
-    assert [Path(f).name for f in description.files] == ["example_main.launch.py", "example_substitutions.launch.py"]
+    assert [Path(f).name for f in description.files] == [
+        "example_main.launch.py",
+        "example_substitutions.launch.py",
+    ]
     assert (Path(sim.location.file).name, sim.location.line) == ("example_substitutions.launch.py", 18)
     assert any("ExecuteProcess not run" in m and "ros2 param set turtlesim2/sim background_r 200" in m
                for m in description.messages), description.messages  # fmt: skip
     assert any("TimerAction(period=2.0)" in m for m in description.messages), description.messages
     alone = launch(package / "example_substitutions.launch.py", new_background_r="100")
     assert [(n.name, n.namespace) for n in alone.nodes] == [("sim", "/turtlesim1")]  # the condition false
-    assert dict(alone.args) == {"turtlesim_ns": "turtlesim1", "use_provided_red": "False", "new_background_r": "100"}
+    assert dict(alone.args) == {
+        "turtlesim_ns": "turtlesim1",
+        "use_provided_red": "False",
+        "new_background_r": "100",
+    }
 
 
 def test_groups_scope_namespace_remaps_and_parameters(package: Path) -> None:
@@ -300,5 +312,6 @@ def test_arguments_given_must_be_declared_and_required_ones_given(package: Path)
     with pytest.raises(LaunchFileError) as caught:
         launch(path)
     assert (caught.value.line, caught.value.problem) == (
-        5, "required launch argument 'robot' (description: 'which robot') was not provided: give it as NAME:=VALUE"
+        5,
+        "required launch argument 'robot' (description: 'which robot') was not provided: give it as NAME:=VALUE",
     )

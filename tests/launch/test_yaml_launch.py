@@ -5,10 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from launchfiles import FindShare, Write, file_error_of
 
 from server.launch.xml_parser import parse_launch_file
-
-from launchfiles import FindShare, Write, file_error_of
 
 TUTORIAL_YAML = """\
 launch:
@@ -62,7 +61,13 @@ def test_yaml_nodes_arguments_params_remaps_and_groups(write: Write, find_share:
     description = parse_launch_file(path, args={"robot_ns": "t2"}, find_package_share=find_share)
 
     sim, grouped = description.nodes
-    assert (sim.pkg, sim.exec, sim.name, sim.namespace, sim.output) == ("rocketship", "countdown", "sim", "/t2", "screen")
+    assert (sim.pkg, sim.exec, sim.name, sim.namespace, sim.output) == (
+        "rocketship",
+        "countdown",
+        "sim",
+        "/t2",
+        "screen",
+    )
     assert sim.parameters == (
         ("start_delay_s", 2.5), ("gains", [1.0, 2.0]), ("gains_named", ["a", "b"]), ("limits.max", 3),
     )  # fmt: skip
@@ -78,24 +83,36 @@ def test_yaml_includes_and_is_included_by_xml_with_arguments(write: Write, find_
                                '<arg name="who" value="from_xml"/></include></launch>')  # fmt: skip
     top = write(
         "top_launch.yaml",
-        "launch:\n- include:\n    file: \"$(dirname)/middle.launch.xml\"\n"
-        "- include:\n    file: \"child_launch.yaml\"\n    arg:\n    - {name: who, value: direct}\n",
+        'launch:\n- include:\n    file: "$(dirname)/middle.launch.xml"\n'
+        '- include:\n    file: "child_launch.yaml"\n    arg:\n    - {name: who, value: direct}\n',
     )
 
     description = parse_launch_file(top, find_package_share=find_share)
 
     assert [n.exec for n in description.nodes] == ["from_xml", "direct"]
-    assert [Path(f).name for f in description.files] == ["top_launch.yaml", "middle.launch.xml", "child_launch.yaml"]
+    assert [Path(f).name for f in description.files] == [
+        "top_launch.yaml",
+        "middle.launch.xml",
+        "child_launch.yaml",
+    ]
 
 
 @pytest.mark.parametrize(
     ("text", "line", "problem"),
     [
-        ("launch:\n- node:\n    pkg: p\n    exe: x\n", 2, "unknown attribute 'exe' on <node>; did you mean 'exec'?"),
+        (
+            "launch:\n- node:\n    pkg: p\n    exe: x\n",
+            2,
+            "unknown attribute 'exe' on <node>; did you mean 'exec'?",
+        ),
         ("launch:\n- nod:\n    pkg: p\n", 2, "unknown element <nod> inside <launch>; did you mean <node>?"),
         ("launch:\n- node:\n    pkg: p\n   exec: x\n", 4, "not valid YAML"),
         ("nodes:\n- node: {pkg: p, exec: x}\n", 1, "a YAML launch file is one key, 'launch:'"),
-        ("launch:\n- node: {pkg: p, exec: x}\n  arg: {name: a}\n", 2, "each action is a mapping with one key"),
+        (
+            "launch:\n- node: {pkg: p, exec: x}\n  arg: {name: a}\n",
+            2,
+            "each action is a mapping with one key",
+        ),
         ("launch:\n- node: {pkg: p, exec: '$(var nope)'}\n", 2, "no argument or variable 'nope'"),
     ],
 )

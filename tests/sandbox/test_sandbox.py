@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import functools
 import os
+import re
 import shutil
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -456,3 +457,44 @@ def test_sandbox_a_node_cannot_fill_or_nest_its_workspace_and_the_api_survives_a
         finally:
             remove_nested(folder)
     assert probe_line(klass.ada, "write", "/tmp/fits.txt").startswith("PROBE write ok")
+
+
+LAUNCH_PROBE = """import os
+
+from launch import LaunchDescription
+from launch.actions import LogInfo
+
+
+def generate_launch_description():
+    target = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'written_by_launch.txt')
+    try:
+        with open(target, 'w') as out:
+            out.write('a launch file wrote this')
+        wrote = 'ok'
+    except OSError as exc:
+        wrote = 'blocked ' + type(exc).__name__
+    return LaunchDescription([LogInfo(msg=f'PROBE launch uid {os.getuid()} write {wrote}')])
+"""
+
+
+def test_sandbox_a_python_launch_file_is_evaluated_in_the_sandbox(klass: Class) -> None:
+    """A .launch.py's generate_launch_description() is a student's code: where students' nodes are
+    sandboxed it runs in the sandbox (another uid, the workspace read-only); the same file on the
+    unsandboxed server runs as the server's user and writes."""
+    probes: dict[str, str] = {}
+    for world in (klass.cy, klass.ada):  # the unsandboxed control first
+        launch_dir = world_workspace(klass.root, world) / "src" / "probe" / "launch"
+        launch_dir.mkdir(exist_ok=True)
+        (launch_dir / "probe.launch.py").write_text(LAUNCH_PROBE)
+        started = world.post("/api/launch", {"package": "probe", "file": "probe.launch.py"})
+        assert started.status_code == 201, started.text
+        world.stop(started.json()["id"])
+        (probes[world.name],) = [m for m in started.json()["messages"] if "PROBE launch" in m]
+        assert (launch_dir / "written_by_launch.txt").exists() is (world is klass.cy)
+    assert probes[klass.cy.name] == f"[INFO] [launch.user]: PROBE launch uid {os.getuid()} write ok"
+    sandboxed = re.fullmatch(
+        r"\[INFO\] \[launch\.user\]: PROBE launch uid (\d+) write blocked (OSError|PermissionError)",
+        probes[klass.ada.name],
+    )
+    assert sandboxed is not None, probes
+    assert int(sandboxed.group(1)) != os.getuid(), probes  # the world's uid (as root), or the sandbox's
