@@ -271,7 +271,9 @@ def _warn_incompatible(node: Any, topic_name: str, publisher: bool) -> Callable[
     return warn
 
 
-def _handlers(callbacks: Any, group: CallbackGroup, entity: Any, publisher: bool) -> list[EventHandler]:
+def _handlers(
+    callbacks: Any, group: CallbackGroup, entity: Any, topic_name: str, publisher: bool
+) -> list[EventHandler]:
     kinds = QoSPublisherEventType if publisher else QoSSubscriptionEventType
     prefix = "RCL_PUBLISHER_" if publisher else "RCL_SUBSCRIPTION_"
     deadline = "OFFERED_DEADLINE_MISSED" if publisher else "REQUESTED_DEADLINE_MISSED"
@@ -285,7 +287,7 @@ def _handlers(callbacks: Any, group: CallbackGroup, entity: Any, publisher: bool
     ]
     qos_callback = callbacks.incompatible_qos
     if qos_callback is None and callbacks.use_default_callbacks:
-        qos_callback = _warn_incompatible(entity.node, entity.topic_name, publisher)
+        qos_callback = _warn_incompatible(entity.node, topic_name, publisher)
     wanted.insert(1, (qos_callback, incompatible, IncompatibleQoSEvent))
     out: list[EventHandler] = []
     for callback, name, kind in wanted:
@@ -320,8 +322,11 @@ class SubscriptionEventCallbacks:
         self.matched = matched
         self.use_default_callbacks = use_default_callbacks
 
-    def create_event_handlers(self, callback_group: CallbackGroup, subscription: Any) -> list[EventHandler]:
-        return _handlers(self, callback_group, subscription, publisher=False)
+    def create_event_handlers(
+        self, callback_group: CallbackGroup, subscription: Any, topic_name: str
+    ) -> list[EventHandler]:
+        """The handlers of ``subscription`` (``topic_name`` as the node's code wrote it)."""
+        return _handlers(self, callback_group, subscription, topic_name, publisher=False)
 
 
 class PublisherEventCallbacks:
@@ -344,8 +349,11 @@ class PublisherEventCallbacks:
         self.matched = matched
         self.use_default_callbacks = use_default_callbacks
 
-    def create_event_handlers(self, callback_group: CallbackGroup, publisher: Any) -> list[EventHandler]:
-        return _handlers(self, callback_group, publisher, publisher=True)
+    def create_event_handlers(
+        self, callback_group: CallbackGroup, publisher: Any, topic_name: str
+    ) -> list[EventHandler]:
+        """The handlers of ``publisher`` (``topic_name`` as the node's code wrote it)."""
+        return _handlers(self, callback_group, publisher, topic_name, publisher=True)
 
 
 QoSEventHandler = EventHandler

@@ -141,7 +141,7 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
         group.add_entity(pub)
         if event_callbacks is not None or pub.topic_name not in INTERNAL_TOPICS:
             pub.event_handlers = (event_callbacks or PublisherEventCallbacks()).create_event_handlers(
-                group, pub
+                group, pub, topic
             )
         return pub
 
@@ -168,7 +168,7 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
         sub.callback_group = group = grouped.callback_group
         if event_callbacks is not None or sub.topic_name not in INTERNAL_TOPICS:
             sub.event_handlers = (event_callbacks or SubscriptionEventCallbacks()).create_event_handlers(
-                group, sub
+                group, sub, topic
             )
         return sub
 

@@ -97,7 +97,7 @@ def test_an_incompatible_subscription_is_warned_of_as_rclpy_words_it(
     lines = [line for line in capsys.readouterr().err.splitlines() if "incompatible" in line]
     assert len(lines) == 1, lines  # the publisher's default warning; the subscription asked for none
     assert lines[0].startswith("[WARN]") and lines[0].endswith(
-        "[qos_talker]: New subscription discovered on topic '/chatter', requesting incompatible QoS. "
+        "[qos_talker]: New subscription discovered on topic 'chatter', requesting incompatible QoS. "
         "No messages will be sent to it. Last incompatible policy: RELIABILITY"
     )
 
