@@ -14,7 +14,7 @@ from ._context import Context, RCLError, default_context
 from .executors import Executor, ExternalShutdownException, SingleThreadedExecutor
 from .parameter import Parameter
 from .task import Future
-from .utilities import get_default_context, ok
+from .utilities import get_default_context, get_rmw_implementation_identifier, ok
 
 _global_executor: Executor | None = None
 
@@ -122,6 +122,7 @@ __all__ = [
     "create_node",
     "get_default_context",
     "get_global_executor",
+    "get_rmw_implementation_identifier",
     "init",
     "ok",
     "shutdown",
