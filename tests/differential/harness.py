@@ -4,7 +4,9 @@ FILE`` on a Zenoh router of its own), and what each printed, compared.
 
 What a user sees is compared: everything the program prints and logs, in order (stdout and stderr
 in one pipe, both unbuffered), and its exit code. What legitimately differs is normalised first: a
-log line's time stamp. A line ``measured LABEL: NUMBER UNIT`` is a rate or a time the program
+log line's time stamp, and a traceback's frames (the files and lines of each rclpy's own code,
+and the lab's runner beneath a student's file): the traceback's first and last lines stay, the
+exception's type and message. A line ``measured LABEL: NUMBER UNIT`` is a rate or a time the program
 measured: the two runs' numbers must agree within TIMING_TOLERANCE instead of exactly.
 
 ``python tests/differential/harness.py PROGRAM...`` runs programs on both and prints the
@@ -124,10 +126,27 @@ def run_lab(program: Path, domain: int, router: str) -> Run:
     return run([sys.executable, "-m", "server.processes.runner", str(program)], lab_env(domain, router))
 
 
+def _without_frames(lines: list[str]) -> list[str]:
+    """Each traceback's frames (its indented lines) as one ``  ...`` line."""
+    kept: list[str] = []
+    in_traceback = False
+    for line in lines:
+        if line.startswith("Traceback (most recent call last):"):
+            in_traceback = True
+            kept.append(line)
+        elif in_traceback and line.startswith(" "):
+            if kept[-1] != "  ...":
+                kept.append("  ...")
+        else:
+            in_traceback = False
+            kept.append(line)
+    return kept
+
+
 def normalise(result: Run) -> list[str]:
     """The lines a user sees, less what legitimately differs, with the exit code last."""
     text = _STAMP.sub(r"[\1] [<stamp>] ", result.output)
-    lines = [line.rstrip() for line in text.splitlines()]
+    lines = _without_frames([line.rstrip() for line in text.splitlines()])
     while lines and not lines[-1]:
         lines.pop()
     code = "killed" if result.code is None else str(result.code)

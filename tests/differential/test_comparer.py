@@ -40,6 +40,20 @@ def test_any_other_output_is_a_difference_shown_as_a_diff(ours: Run, shown: str)
     assert shown in problem
 
 
+def test_tracebacks_compare_by_their_exception_not_by_their_frames() -> None:
+    theirs = 'Traceback (most recent call last):\n  File "/a/rclpy/node.py", line 3, in f\n    x()\nValueError: bad\n'
+    ours = 'Traceback (most recent call last):\n  File "/runner.py", line 9\n  File "/b/rclpy/node.py", line 7\nValueError: bad\n'
+    assert normalise(Run(theirs, 1)) == [
+        "Traceback (most recent call last):",
+        "  ...",
+        "ValueError: bad",
+        "(exit code 1)",
+    ]
+    assert compare(Run(theirs, 1), Run(ours, 1)) is None
+    problem = compare(Run(theirs, 1), Run(ours.replace("ValueError", "TypeError"), 1))
+    assert problem is not None and "+TypeError: bad" in problem
+
+
 def test_measured_numbers_agree_within_the_tolerance_only() -> None:
     theirs = Run("measured rate: 10.00 Hz\n", 0)
     assert compare(theirs, Run("measured rate: 9.1 Hz\n", 0), tolerance=0.2) is None
