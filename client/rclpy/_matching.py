@@ -9,6 +9,7 @@ rclpy's incompatible-QoS event, so a program learns what another middleware woul
 
 from __future__ import annotations
 
+import contextlib
 from dataclasses import dataclass
 from typing import Any
 
@@ -82,10 +83,15 @@ def peers(endpoint: BusPublisher | BusSubscription) -> list[Offer]:
     remote = _remote(node)
     if remote is not None:
         kind = EntityKind.SUBSCRIPTION if isinstance(endpoint, BusPublisher) else EntityKind.PUBLISHER
+        # The executor's pass changes the remote graph under the bus's lock; a count asked from
+        # another thread (a loop on get_subscription_count while spin runs) reads it under it too.
+        lock = node.bus.lock
+        with lock if lock is not None else contextlib.nullcontext():
+            remote_endpoints = remote.endpoints((kind,))
         type_name = endpoint.msg_type.TYPE
         found += [
             _remote_offer(e.qos)
-            for e in remote.endpoints((kind,))
+            for e in remote_endpoints
             if e.name == topic.name and e.type_name == type_name
         ]
     return found
