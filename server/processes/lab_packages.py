@@ -26,7 +26,7 @@ CLIENT_PACKAGES = (
     "builtin_interfaces", "diagnostic_msgs", "example_interfaces", "geometry_msgs", "keyboard_msgs",
     "launch", "launch_ros", "launch_xml", "launch_yaml", "lifecycle_msgs", "nav_msgs",
     "rcl_interfaces", "rclpy", "rosapi_msgs", "rosgraph_msgs", "sensor_msgs", "sensor_msgs_py",
-    "service_msgs", "shape_msgs", "std_msgs", "std_srvs", "stereo_msgs", "tf2_msgs",
+    "service_msgs", "shape_msgs", "std_msgs", "std_srvs", "stereo_msgs", "tf2_msgs", "tf2_ros",
     "trajectory_msgs", "turtlesim", "type_description_interfaces", "unique_identifier_msgs",
     "visualization_msgs",
 )  # fmt: skip
