@@ -119,21 +119,22 @@ class WaitSet(BlockingExecutor):
         return True
 
     # -- taking (any executor's thread) -------------------------------------------------------
-    def take(self, wanted: Callable[[Ready], bool], seen: set[int] | None = None) -> Ready | None:
-        """The oldest ready entry ``wanted`` accepts (its node is the executor's, its group lets
-        it run), out of the pool. ``seen``: ids of the entities handed out this round, each at
-        most once a round (a subscription ready again waits for the next)."""
+    def take(
+        self, wanted: Callable[[Ready], bool], seen: set[int], rank: Callable[[Ready], Any]
+    ) -> Ready | None:
+        """The first ready entry, in ``rank``'s order, that ``wanted`` accepts (its node is the
+        executor's, its group lets it run), out of the pool. ``seen``: ids of the entities handed
+        out this round, each at most once a round (a subscription ready again waits for the next)."""
         with self._lock:
-            candidates = [r for r in self._items if seen is None or id(r.entity) not in seen]
-        for ready in candidates:
+            candidates = [r for r in self._items if id(r.entity) not in seen]
+        for ready in sorted(candidates, key=rank):
             if not wanted(ready):
                 continue
             with self._lock:
                 if ready not in self._items:
                     continue  # another executor took it meanwhile
                 self._items.remove(ready)
-            if seen is not None:
-                seen.add(id(ready.entity))
+            seen.add(id(ready.entity))
             return ready
         return None
 

@@ -24,7 +24,7 @@ from server.bus import Node
 
 from ._context import Context, default_context
 from ._wait_set import Ready, WaitSet, is_async
-from .task import Future, Task, wake_when_done
+from .task import Future, Task
 
 Handler = Task  # what wait_for_ready_callbacks hands out: call it to run (or resume) the callback
 Yielded = tuple[Task[Any], Any, Any]
@@ -85,6 +85,27 @@ class _WorkTracker:
 
 def _never() -> bool:
     return False
+
+
+def _ranking(nodes: list[Node]) -> Callable[[Ready], tuple[int, int, int, int]]:
+    """rclpy's order within a round: the actions' entities (its waitables) of every node first,
+    then node by node its timers, subscriptions, guard conditions, clients and services, each
+    kind in the order the node made them. (An action client's feedback comes before its result
+    here: rclpy takes both in one callback, so a result never overtakes the feedback before it.)"""
+    where = {id(node): i for i, node in enumerate(nodes)}
+
+    def rank(ready: Ready) -> tuple[int, int, int, int]:
+        node, entity = ready.node, ready.entity
+        for kind, entities in enumerate(
+            (node.timers, node.subscriptions, getattr(node, "guards", ()), node.clients, node.services)
+        ):
+            if any(e is entity for e in entities):
+                index = next(i for i, e in enumerate(entities) if e is entity)
+                waitable = getattr(entity, "in_waitable", False)
+                return (0 if waitable else 1, where.get(id(node), len(where)), kind, index)
+        return (1, where.get(id(node), len(where)), 5, 0)
+
+    return rank
 
 
 class Executor:
@@ -186,7 +207,7 @@ class Executor:
 
     def spin_until_future_complete(self, future: Future[Any], timeout_sec: float | None = None) -> None:
         """Until ``future`` is done (or cancelled), the context shuts down or ``timeout_sec`` passes."""
-        wake_when_done(future, self.wake)
+        future.add_done_callback(lambda _done: self.wake())  # a task of its own, as in rclpy
 
         def waiting() -> bool:
             return (
@@ -290,7 +311,8 @@ class Executor:
             if not self._context.ok():
                 raise ExternalShutdownException()
             seen: set[int] = set()
-            while (ready := wait_set.take(wanted, seen)) is not None:
+            rank = _ranking(use)
+            while (ready := wait_set.take(wanted, seen, rank)) is not None:
                 yielded = True
                 yield self._make_handler(ready, wait_set), ready.entity, ready.node
             if timeout == 0 or (end is not None and time.monotonic() >= end):
@@ -340,7 +362,7 @@ class SingleThreadedExecutor(Executor):
     def spin_once_until_future_complete(
         self, future: Future[Any], timeout_sec: float | TimeoutObject | None = None
     ) -> None:
-        wake_when_done(future, self.wake)
+        future.add_done_callback(lambda _done: self.wake())  # a task of its own, as in rclpy
         self._spin_once_until_future_complete(future, timeout_sec)
 
 
@@ -392,7 +414,7 @@ class MultiThreadedExecutor(Executor):
     def spin_once_until_future_complete(
         self, future: Future[Any], timeout_sec: float | TimeoutObject | None = None
     ) -> None:
-        wake_when_done(future, self.wake)
+        future.add_done_callback(lambda _done: self.wake())  # a task of its own, as in rclpy
         self._spin_once_until_future_complete(future, timeout_sec)
 
     def shutdown(self, timeout_sec: float | None = None, *, wait_for_threads: bool = True) -> bool:

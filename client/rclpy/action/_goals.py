@@ -69,6 +69,8 @@ class LaterServer(ServiceServer):
     result of a goal still running), so the executor is not held meanwhile; an ``async def``
     handler is awaited by the executor."""
 
+    in_waitable = True  # part of an action, which rclpy's executor looks at before the rest
+
     def __init__(self, node: Any, channel: Any, handler: Callable[[Message, Future[Message]], Any]) -> None:
         super().__init__(node, channel, handler)
 

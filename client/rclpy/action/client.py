@@ -115,6 +115,10 @@ class ActionClient:
             GoalStatusArray, names["status"], self._on_status,
             status_sub_qos_profile or qos_profile_action_status_default, callback_group=group,
         )  # fmt: skip
+        for entity in (self._goal_client, self._cancel_client, self._result_client):
+            entity.in_waitable = True  # an action's, which rclpy's executor looks at first
+        for entity in (self._feedback_sub, self._status_sub):
+            entity.in_waitable = True
         self._goal_handles: dict[bytes, ClientGoalHandle] = {}
         self._feedback_callbacks: dict[bytes, Callable[[Any], Any]] = {}
         self._finished: set[bytes] = set()
