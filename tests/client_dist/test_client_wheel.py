@@ -118,6 +118,7 @@ def test_importing_the_client_loads_nothing_of_the_web_server(laptop: Path, tmp_
         from rclpy.parameter_client import AsyncParameterClient
         from example_interfaces.action import Fibonacci
         from action_tutorials_interfaces.action import Fibonacci as TutorialFibonacci
+        from tf2_ros import Buffer, StaticTransformBroadcaster, TransformListener
         import server.processes.runner
         print(json.dumps({"modules": sorted(sys.modules), "rclpy": rclpy.__file__}))
     """)
