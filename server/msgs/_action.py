@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-from ._base import Message, Service, define_message
+from ._base import Message, Service, define_message, load_generated
 from .action_spec import CANCEL_GOAL, GOAL_STATUS_ARRAY, ActionSpec, parse_action
 from .definitions import lab_definitions
 
@@ -54,10 +54,13 @@ class Action:
 
 def action_class(type_name: str) -> type[Action]:
     """The class declared for ``pkg/action/Name`` (KeyError if none)."""
+    if type_name not in _ACTIONS:
+        load_generated(type_name.split("/")[0])
     return _ACTIONS[type_name]
 
 
 def action_classes() -> dict[str, type[Action]]:
+    load_generated()
     return dict(_ACTIONS)
 
 

@@ -11,6 +11,7 @@ interfaces): :func:`define_message` and :func:`define_service`.
 
 from __future__ import annotations
 
+import importlib
 from collections.abc import Mapping
 from typing import Any, ClassVar
 
@@ -20,8 +21,8 @@ from .definitions import lab_definitions
 from .idl import MessageSpec, ServiceSpec
 
 __all__ = ["FLOAT32_MAX", "MAX_ARRAY_ITEMS", "MAX_STRING_CHARS", "Field", "Message", "MessageError",
-           "Service", "define_message", "define_service", "message_class", "message_classes",
-           "service_classes"]  # fmt: skip
+           "Service", "define_message", "define_service", "load_generated", "message_class",
+           "message_classes", "service_class", "service_classes"]  # fmt: skip
 
 _CLASSES: dict[str, type[Message]] = {}
 _SERVICES: dict[str, type[Service]] = {}
@@ -53,8 +54,8 @@ class Message:
         for f in spec.fields:
             if f.is_primitive:
                 fields.append(Field(f, f.base))
-            elif f.base in _CLASSES:
-                fields.append(Field(f, _CLASSES[f.base]))
+            elif (nested := _declared(f.base)) is not None:
+                fields.append(Field(f, nested))
             else:
                 raise TypeError(f"{type_name}.{f.name}: {f.base} has no class yet (declare it first)")
         cls.TYPE = type_name
@@ -160,14 +161,46 @@ def define_service(spec: ServiceSpec, module: str = __name__) -> type[Service]:
     return type(spec.name.rsplit("/", 1)[1], (Service,), namespace, type_name=spec.name, spec=spec)
 
 
+def load_generated(package: str | None = None) -> bool:
+    """Import the generated module of the lab's ``package`` (every one if None), whose classes
+    declare themselves as it runs; False if the lab generates no such package. A process loads
+    only the packages whose types it uses (each costs a few milliseconds to declare)."""
+    from .generated import PACKAGES  # names only: generated/__init__.py imports no module
+
+    if package is not None and package not in PACKAGES:
+        return False
+    for name in PACKAGES if package is None else (package,):
+        importlib.import_module(f"{__package__}.generated.{name}")
+    return True
+
+
+def _declared(type_name: str) -> type[Message] | None:
+    cls = _CLASSES.get(type_name)
+    if cls is None and load_generated(type_name.split("/")[0]):
+        cls = _CLASSES.get(type_name)
+    return cls
+
+
 def message_class(type_name: str) -> type[Message]:
     """The class declared for a full type name (KeyError if none)."""
-    return _CLASSES[type_name]
+    cls = _declared(type_name)
+    if cls is None:
+        raise KeyError(type_name)
+    return cls
 
 
 def message_classes() -> dict[str, type[Message]]:
+    load_generated()
     return dict(_CLASSES)
 
 
+def service_class(type_name: str) -> type[Service]:
+    """The class declared for ``pkg/srv/Name`` (KeyError if none)."""
+    if type_name not in _SERVICES:
+        load_generated(type_name.split("/")[0])
+    return _SERVICES[type_name]
+
+
 def service_classes() -> dict[str, type[Service]]:
+    load_generated()
     return dict(_SERVICES)

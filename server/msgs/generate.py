@@ -235,12 +235,12 @@ def generated_files(definitions: Definitions | None = None) -> dict[Path, str]:
     files = {GENERATED_DIR / f"{pkg}.py": package_module(pkg, definitions) for pkg in packages(definitions)}
     names = packages(definitions)
     files[GENERATED_DIR / "__init__.py"] = (
-        '"""The message and service classes, one module per ROS package (see server/msgs/generate.py)."""\n\n'
-        + "from . import (\n"
-        + "".join(f"    {pkg},\n" for pkg in names)
-        + ")\n\n__all__ = [\n"
+        '"""The message and service classes, one module per ROS package (see server/msgs/generate.py);\n'
+        "a module is imported when one of its types is first asked for (server/msgs/_base.py's\n"
+        'load_generated), so a process declares only the classes it uses."""\n\n'
+        + "PACKAGES = (\n"
         + "".join(f'    "{pkg}",\n' for pkg in names)
-        + "]\n"
+        + ")\n"
     )
     files[GENERATED_DIR / "type_hashes.py"] = type_hashes_module(definitions)
     files.update(client_files(definitions))

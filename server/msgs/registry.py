@@ -8,9 +8,8 @@ known yet asks the catalog to refresh (a package a student just wrote) before it
 from __future__ import annotations
 
 from . import catalog
-from . import generated as _generated  # declares every class  # noqa: F401
-from ._action import Action, action_classes
-from ._base import Message, Service, message_class, service_classes
+from ._action import Action, action_class, action_classes
+from ._base import Message, Service, message_class, service_class
 
 
 class UnknownTypeError(LookupError):
@@ -40,11 +39,19 @@ def _message(name: str) -> type[Message] | None:
 
 
 def _service(name: str) -> type[Service] | None:
-    return service_classes().get(name) if name in catalog.definitions().services else None
+    if name not in catalog.definitions().services:
+        return None
+    try:
+        return service_class(name)
+    except KeyError:
+        return None
 
 
 def _action(name: str) -> type[Action] | None:
-    return action_classes().get(name)  # the catalog's, and any made straight from a text
+    try:
+        return action_class(name)  # the catalog's, and any made straight from a text
+    except KeyError:
+        return None
 
 
 def _message_names() -> list[str]:

@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+import json
+import subprocess
+import sys
+from pathlib import Path
+
 import pytest
 
-from server.msgs import Bool, Key, UnknownTypeError, get_type, normalize_type_name, type_names
+from server.msgs import Bool, Key, UnknownTypeError, definitions, get_type, normalize_type_name, type_names
 
 
 @pytest.mark.parametrize("name", ["std_msgs/Bool", "std_msgs/msg/Bool", " std_msgs/Bool "])
@@ -35,3 +40,41 @@ def test_type_names_sorted_full_names() -> None:
     assert names == sorted(names)
     assert "std_msgs/msg/Bool" in names and "keyboard_msgs/msg/Key" in names
     assert all(n.count("/msg/") == 1 for n in names)
+
+
+LAZY_PROBE = """
+import json, sys
+from std_msgs.msg import String
+before = "server.msgs.generated.visualization_msgs" in sys.modules
+from server.msgs import get_service_type, get_type
+marker = get_type("visualization_msgs/msg/Marker")
+lifecycle = get_service_type("lifecycle_msgs/srv/ChangeState")
+print(json.dumps({"before": before, "marker": marker.__module__, "srv": lifecycle.TYPE,
+                  "after": "server.msgs.generated.visualization_msgs" in sys.modules}))
+"""
+
+
+def test_a_package_s_classes_are_declared_when_one_of_its_types_is_first_asked_for() -> None:
+    done = subprocess.run(
+        [sys.executable, "-c", LAZY_PROBE], capture_output=True, text=True, timeout=60, check=True
+    )
+    seen = json.loads(done.stdout)
+    assert seen == {"before": False, "marker": "server.msgs.generated.visualization_msgs",
+                    "srv": "lifecycle_msgs/srv/ChangeState", "after": True}  # fmt: skip
+
+
+def test_the_parsed_definitions_are_kept_and_parsed_again_when_a_file_changes(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    root = tmp_path / "interfaces"
+    (root / "demo_msgs" / "msg").mkdir(parents=True)
+    ping = root / "demo_msgs" / "msg" / "Ping.msg"
+    ping.write_text("uint32 seq\n")
+    monkeypatch.setattr(definitions, "_PARSED", tmp_path / ".parsed.pickle")
+    first = definitions._cached(root)
+    assert (tmp_path / ".parsed.pickle").is_file()
+    kept = definitions._cached(root)
+    assert kept == first and kept is not first  # read back, not parsed: equal, a new object
+    ping.write_text("uint32 seq\nstring note\n")
+    again = definitions._cached(root)
+    assert [f.name for f in again.messages["demo_msgs/msg/Ping"].fields] == ["seq", "note"]

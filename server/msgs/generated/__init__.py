@@ -1,34 +1,8 @@
-"""The message and service classes, one module per ROS package (see server/msgs/generate.py)."""
+"""The message and service classes, one module per ROS package (see server/msgs/generate.py);
+a module is imported when one of its types is first asked for (server/msgs/_base.py's
+load_generated), so a process declares only the classes it uses."""
 
-from . import (
-    action_msgs,
-    action_tutorials_interfaces,
-    actionlib_msgs,
-    builtin_interfaces,
-    diagnostic_msgs,
-    example_interfaces,
-    geometry_msgs,
-    keyboard_msgs,
-    lifecycle_msgs,
-    nav_msgs,
-    rcl_interfaces,
-    rosapi_msgs,
-    rosgraph_msgs,
-    sensor_msgs,
-    service_msgs,
-    shape_msgs,
-    std_msgs,
-    std_srvs,
-    stereo_msgs,
-    tf2_msgs,
-    trajectory_msgs,
-    turtlesim,
-    type_description_interfaces,
-    unique_identifier_msgs,
-    visualization_msgs,
-)
-
-__all__ = [
+PACKAGES = (
     "action_msgs",
     "action_tutorials_interfaces",
     "actionlib_msgs",
@@ -54,4 +28,4 @@ __all__ = [
     "type_description_interfaces",
     "unique_identifier_msgs",
     "visualization_msgs",
-]
+)
