@@ -28,7 +28,8 @@ RUN apt-get update && apt-get install -y --no-install-recommends bubblewrap libs
 RUN TELEOP_CACHE=/tmp/teleop-cache python -m server.ros_wheels && rm -rf /tmp/teleop-cache
 # state/ and workspaces/ exist and are the lab user's, so the named volumes docker-compose.yml
 # mounts there start as theirs (a new volume takes the folder's owner).
-RUN pip install --no-cache-dir -e . && useradd --create-home lab \
+# (Importing the messages once keeps their parsed definitions, which the lab user could not write.)
+RUN pip install --no-cache-dir -e . && python -c "import server.msgs" && useradd --create-home lab \
  && mkdir -p /app/state /app/workspaces && chown lab:lab /app/state /app/workspaces
 USER lab
 EXPOSE 8000 7447 8765
