@@ -1,7 +1,10 @@
 """docs.ros.org's launch tutorials, whole: a workspace whose packages ``ros2lab pkg create`` made and
 the student then wrote as the pages say (tests/workspace/launch_tutorials.py), started with
 ``ros2lab launch PKG FILE`` on a live lab and checked as the pages check them: the nodes' lines,
-``ros2lab topic list`` and ``ros2lab param get``."""
+``ros2lab node list`` and ``ros2lab topic list``. "Using substitutions" runs in Python; its
+ExecuteProcess commands (``ros2 service call``, ``ros2 param set``) are not run by the lab, and its
+YAML files' ``executable`` and ``timer`` are not read, so the test checks the namespaced turtlesim
+those files start, not the spawned turtle or the background they set."""
 
 from __future__ import annotations
 
@@ -81,8 +84,8 @@ def launch(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
     started: list[NodeProcess] = []
 
     class Launched(NodeProcess):
-        def __init__(self, package: str, file: str) -> None:
-            command = [sys.executable, "-m", "server", "--url", lab.url, "launch", package, file]
+        def __init__(self, package: str, file: str, *arguments: str) -> None:
+            command = [sys.executable, "-m", "server", "--url", lab.url, "launch", package, file, *arguments]
             super().__init__(lab, tmp_path / file, command=command)
             started.append(self)
 
@@ -101,7 +104,7 @@ def graph(lab: App, verb: str) -> set[str]:
     return set(out.splitlines())
 
 
-@pytest.mark.parametrize("kind", ["xml"])
+@pytest.mark.parametrize("kind", ["xml", "py", "yaml"])
 def test_integrating_launch_files_starts_the_cpp_talker(
     lab: App, launch: type[NodeProcess], kind: str
 ) -> None:
@@ -110,3 +113,40 @@ def test_integrating_launch_files_starts_the_cpp_talker(
     assert "/talker" in graph(lab, "node") and "/chatter" in graph(lab, "topic")
     launched.stop()
     assert "/talker" not in graph(lab, "node")
+
+
+def test_parameters_launch_file_sets_my_parameter_to_earth(lab: App, launch: type[NodeProcess]) -> None:
+    launched = launch("python_parameters", "python_parameters_launch.py")
+    launched.wait_for(
+        rf"^\[minimal_param_node-\d+\] \[INFO\] {STAMP} \[custom_minimal_param_node\]: Hello earth!$"
+    )
+    launched.wait_for(
+        rf"^\[minimal_param_node-\d+\] \[INFO\] {STAMP} \[custom_minimal_param_node\]: Hello world!$"
+    )
+    assert "/custom_minimal_param_node" in graph(lab, "node")
+    launched.stop()
+
+
+@pytest.mark.parametrize(
+    ("file", "arguments", "namespace"),
+    [
+        ("example_main_launch.py", (), "/turtlesim2"),
+        ("example_substitutions_launch.py", ("turtlesim_ns:=turtlesim3", "use_provided_red:=True",
+                                             "new_background_r:=200"), "/turtlesim3"),
+        ("example_substitutions_launch.py", (), "/turtlesim1"),
+    ],
+)  # fmt: skip
+def test_substitutions_put_turtlesim_in_the_namespace_given(
+    lab: App, launch: type[NodeProcess], file: str, arguments: tuple[str, ...], namespace: str
+) -> None:
+    launched = launch("launch_tutorial", file, *arguments)
+    launched.wait_for(rf"^\[turtlesim_node-\d+\] \[INFO\] {STAMP} \[[\w./]+\]: Starting turtlesim with node name "
+                      rf"{namespace}/sim$")  # fmt: skip
+    topics = graph(lab, "topic")
+    assert {
+        f"{namespace}/turtle1/pose",
+        f"{namespace}/turtle1/cmd_vel",
+        f"{namespace}/turtle1/color_sensor",
+    } <= topics
+    assert f"{namespace}/sim" in graph(lab, "node")
+    launched.stop()
