@@ -91,7 +91,8 @@ def test_wheel_holds_the_client_and_nothing_of_the_web_server(wheel: Path) -> No
     client_modules = {p.relative_to(REPO / "client").as_posix() for p in (REPO / "client").glob("*/**/*.py")}
     assert not {m for m in client_modules if not m.startswith("_build/")} - names
     definitions = {p.relative_to(REPO).as_posix() for p in (REPO / "server/msgs/interfaces").glob("*/*/*")}
-    assert not definitions - names
+    ros = {p.relative_to(REPO).as_posix() for p in (REPO / "server/msgs/ros_interfaces").glob("*/*/*")}
+    assert not definitions - names and not ros - names and len(ros) > 150  # ROS 2's, as the set-up took them
     assert {"server/processes/runner.py", "server/transport/bridge.py", "rclpy/node.py"} <= names
     assert "server/msgs/interfaces/keyboard_msgs/msg/Key.msg" in names
     for app_side in ("server/app.py", "server/lab.py", "server/settings/__init__.py", "server/processes/supervisor.py",
@@ -118,6 +119,9 @@ def test_importing_the_client_loads_nothing_of_the_web_server(laptop: Path, tmp_
         from rclpy.parameter_client import AsyncParameterClient
         from example_interfaces.action import Fibonacci
         from action_tutorials_interfaces.action import Fibonacci as TutorialFibonacci
+        from nav_msgs.msg import Odometry
+        from sensor_msgs_py import point_cloud2
+        assert point_cloud2.read_points_list(point_cloud2.create_cloud_xyz32(Odometry().header, [(1, 2, 3)])) == [(1, 2, 3)]
         from tf2_ros import Buffer, StaticTransformBroadcaster, TransformListener
         import server.processes.runner
         print(json.dumps({"modules": sorted(sys.modules), "rclpy": rclpy.__file__}))

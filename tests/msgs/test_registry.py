@@ -78,3 +78,11 @@ def test_the_parsed_definitions_are_kept_and_parsed_again_when_a_file_changes(
     ping.write_text("uint32 seq\nstring note\n")
     again = definitions._cached(root)
     assert [f.name for f in again.messages["demo_msgs/msg/Ping"].fields] == ["seq", "note"]
+
+
+def test_without_ros_2_s_definitions_the_messages_say_what_to_run(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(definitions, "ROS_INTERFACES_DIR", tmp_path / "ros_interfaces")
+    with pytest.raises(definitions.MissingDefinitionsError, match=r"run `python -m server.ros_wheels`"):
+        definitions.lab_definitions.__wrapped__()
