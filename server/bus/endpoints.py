@@ -26,6 +26,14 @@ def qos_depth(qos: Any) -> int:
     return depth
 
 
+TRANSIENT_LOCAL = 1  # rmw's durability value (a profile's, or the bus's WireQoS)
+
+
+def transient_local(qos: Any) -> bool:
+    """Whether a profile (or a bare depth, never) asks for transient-local durability."""
+    return getattr(qos, "durability", 0) == TRANSIENT_LOCAL
+
+
 class RemoteOut(Protocol):
     """Where a publisher's messages also go when another process subscribes (the transport)."""
 
@@ -46,6 +54,8 @@ class Publisher:
         self.destroyed = False
         self.remote: RemoteOut | None = None
         self.qos: Any = None  # the QoS profile it was made with, when not a bare depth (for the wire)
+        # A transient-local publisher's last ``depth`` messages, for subscriptions that come later.
+        self.history: deque[Message] | None = None
 
     @property
     def topic_name(self) -> str:
@@ -62,12 +72,18 @@ class Publisher:
             )
         lock = self.topic.bus.lock
         if lock is None:
-            reached = self.topic.deliver(msg, handed_over=self.hand_over, source=self)
+            reached = self._deliver(msg)
         else:
             with lock:
-                reached = self.topic.deliver(msg, handed_over=self.hand_over, source=self)
+                reached = self._deliver(msg)
         if self.remote is not None:
             self.remote.put(msg)
+        return reached
+
+    def _deliver(self, msg: Message) -> int:
+        reached = self.topic.deliver(msg, handed_over=self.hand_over, source=self)
+        if self.history is not None and self.topic.latest is not None:
+            self.history.append(self.topic.latest)  # the snapshot deliver made: nobody changes it
         return reached
 
     def get_subscription_count(self) -> int:

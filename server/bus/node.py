@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import logging
+from collections import deque
 from collections.abc import Callable
 from typing import Any, Literal
 
 from ..console import world_logger
 from ..msgs import Log, Message, Service
 from .clock import NodeClock
-from .endpoints import Publisher, Subscription, Timer, qos_depth
+from .endpoints import Publisher, Subscription, Timer, qos_depth, transient_local
 from .errors import DestroyedError
 from .graph import Bus, current_bus, current_overrides
 from .names import resolve_topic_name, validate_namespace, validate_node_name
@@ -146,6 +147,8 @@ class Node(NodeParameters):
         t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
         pub = self.publisher_type(self, t, msg_type, depth, hand_over=hand_over)
         pub.qos = None if isinstance(qos_profile, int) else qos_profile
+        if transient_local(pub.qos):
+            pub.history = deque(maxlen=depth)
         t.publishers.append(pub)
         self.publishers.append(pub)
         self.bus.endpoint_added(pub)
@@ -170,6 +173,12 @@ class Node(NodeParameters):
         t.subscriptions.append(sub)
         self.subscriptions.append(sub)
         self.bus.endpoint_added(sub)
+        if transient_local(sub.qos):
+            if self.bus.lock is None:
+                t.hand_history(sub)
+            else:
+                with self.bus.lock:
+                    t.hand_history(sub)
         return sub
 
     def create_timer(self, timer_period_sec: float, callback: Callable[[], Any]) -> Timer:

@@ -79,3 +79,13 @@ class Topic:
         if delivered:
             self.bus._wake()
         return delivered
+
+    def hand_history(self, sub: Subscription) -> None:
+        """Queue for ``sub`` (transient local, new) what the topic's transient-local publishers
+        kept, as a late joiner gets it in ROS 2."""
+        kept = [m for p in self.publishers if p.history and not p.destroyed for m in p.history]
+        for msg in kept:
+            sub.queue.append(msg if sub.read_only else msg.copy())
+            self.bus._ready.append(sub)
+        if kept:
+            self.bus._wake()

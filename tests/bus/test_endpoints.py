@@ -35,6 +35,28 @@ def test_create_subscription_qos_profile_with_depth_is_accepted(bus: Bus) -> Non
     assert sub.depth == 3 and sub.queue.maxlen == 3
 
 
+# -- transient local --------------------------------------------------------------------------
+def test_a_late_transient_local_subscription_gets_what_transient_local_publishers_kept(
+    bus: Bus, executor: Executor
+) -> None:
+    latched, kept_last_two = SimpleNamespace(depth=5, durability=1), SimpleNamespace(depth=2, durability=1)
+    node = Node("n", context=bus)
+    node.create_publisher(Int64, "/map", kept_last_two).publish(Int64(data=1))
+    latching = node.create_publisher(Int64, "/map", kept_last_two)
+    for n in (2, 3, 4):
+        latching.publish(Int64(data=n))
+    node.create_publisher(Int64, "/map", 5).publish(Int64(data=99))  # volatile: keeps nothing
+    late: list[int] = []
+    node.create_subscription(Int64, "/map", lambda m: late.append(m.data), latched)
+    volatile: list[int] = []
+    node.create_subscription(Int64, "/map", lambda m: volatile.append(m.data), 5)
+    executor.spin_some()
+    assert late == [1, 3, 4] and volatile == []  # each publisher's last two, in its order
+    latching.publish(Int64(data=5))  # the marker: from now on both hear alike
+    executor.spin_some()
+    assert late == [1, 3, 4, 5] and volatile == [5]
+
+
 # -- timers -----------------------------------------------------------------------------------
 def test_timer_10hz_over_10s_fires_100_times_at_exact_deadlines(
     bus: Bus, clock: ManualClock, executor: Executor

@@ -127,3 +127,13 @@ def test_a_listener_with_its_own_spin_thread_feeds_a_lookup_that_blocks_the_main
     listener.executor.shutdown()
     listener.dedicated_listener_thread.join(10.0)
     assert not listener.dedicated_listener_thread.is_alive()
+
+
+def test_a_listener_made_after_a_static_broadcaster_of_its_own_process_gets_its_frames(node: Node) -> None:
+    StaticTransformBroadcaster(node).sendTransform(stamped("base", "laser", 0.0, (0.2, 0.0, 0.1)))
+    buffer = Buffer()
+    TransformListener(buffer, node)  # after the one message was sent
+    executor = SingleThreadedExecutor(context=node._rcl_context)
+    executor.add_node(node)
+    spin_until(executor, lambda: buffer.can_transform("base", "laser", Time()))
+    assert xyz(buffer.lookup_transform("base", "laser", Time())) == (0.2, 0.0, 0.1)
