@@ -4,7 +4,7 @@
 ``REQUEST`` is JSON: ``{"args": {name: value}, "namespace": ns or null}``. What is printed on
 stdout is one JSON object: ``{"found": [...], "args": {...}, "files": [...], "messages": [...]}``
 (nodes and XML/YAML includes in launch order, the top file's declared arguments, the Python files
-read, LogInfo's lines and what was not run), or ``{"error": "FILE:LINE: problem"}``. What the
+read, LogInfo's lines and what was not run, every argument name the Python files declare), or ``{"error": "FILE:LINE: problem"}``. What the
 launch file prints goes to stderr.
 """
 
@@ -53,11 +53,15 @@ def evaluate(path: str, args: dict[str, str], namespace: str | None) -> dict[str
         raise
     except SyntaxError as exc:
         raise LaunchProblem((exc.filename or path, exc.lineno or 0), f"SyntaxError: {exc.msg}") from None
-    except (Exception, RecursionError) as exc:
+    except SystemExit as exc:
+        raise LaunchProblem(None, f"the launch file called sys.exit({exc.code!r})") from None
+    except Exception as exc:
         raise _located(exc, entity, context) from None
-    _check_args(args, context)
+    if not any(entry["kind"] == "include" for entry in context.found):
+        _check_args(args, context)  # else the launcher checks them, with the included files' own
+    declared = sorted({name for names in context.declared.values() for name in names})
     return {"found": context.found, "args": context.declared.get(path, {}), "files": context.files,
-            "messages": context.messages}  # fmt: skip
+            "messages": context.messages, "declared": declared}  # fmt: skip
 
 
 def _check_args(args: dict[str, str], context: LaunchContext) -> None:

@@ -38,7 +38,14 @@ def evaluate_python_file(
     session = Session(find_package_share, os.environ if environ is None else environ, roots,
                       include_python_with(run))  # fmt: skip
     session.note_file(file)
-    declared = _absorb(session, run(path, args, None), (path.resolve(),), run)
+    evaluation = run(path, args, None)
+    included_args: set[str] = set()
+    declared = _absorb(session, evaluation, (path.resolve(),), run, included_args)
+    known = {*_strings(evaluation.answer.get("declared")), *included_args}
+    for name in args:
+        if name not in known:
+            raise LaunchFileError(file, 0, f"argument '{name}' was given but the launch declares no such "
+                                           f"argument{did_you_mean(name, known)}")  # fmt: skip
     return session.description(declared)
 
 
@@ -54,8 +61,14 @@ def include_python_with(run: RunPython) -> IncludePython:
 
 
 def _absorb(
-    session: Session, evaluation: Evaluation, stack: tuple[Path, ...], run: RunPython
+    session: Session,
+    evaluation: Evaluation,
+    stack: tuple[Path, ...],
+    run: RunPython,
+    included_args: set[str] | None = None,
 ) -> dict[str, str]:
+    """The evaluation's nodes and includes into ``session``; the top file's arguments. The names the
+    XML and YAML files it includes declare are added to ``included_args``."""
     answer = evaluation.answer
     for file in _strings(answer.get("files")):
         session.note_file(file)
@@ -65,12 +78,14 @@ def _absorb(
         if entry.get("kind") == "node":
             session.nodes.append(_node(session, entry))
         elif entry.get("kind") == "include":
-            _include(session, entry, stack, run)
+            declared_there = _include(session, entry, stack, run)
+            if included_args is not None:
+                included_args |= declared_there
     declared = answer.get("args")
     return {str(k): str(v) for k, v in declared.items()} if isinstance(declared, dict) else {}
 
 
-def _include(session: Session, entry: Mapping[str, Any], stack: tuple[Path, ...], run: RunPython) -> None:
+def _include(session: Session, entry: Mapping[str, Any], stack: tuple[Path, ...], run: RunPython) -> set[str]:
     at_entry = entry.get("at")
     if not isinstance(at_entry, dict):
         at_entry = {}
@@ -89,9 +104,15 @@ def _include(session: Session, entry: Mapping[str, Any], stack: tuple[Path, ...]
                                        f"(it declares: {listed})")  # fmt: skip
     session.note_file(str(path))
     origin = f"the include at {at[0]}:{at[1]}"
+    inherited = entry.get("inherited")
+    if isinstance(inherited, dict):  # the includer's launch configurations, for the arguments declared
+        passed.update(
+            {name: str(inherited[name]) for name in declared if name in inherited and name not in passed}
+        )
     FileEvaluator(session, str(path), passed, (*stack, path.resolve()), origin).run(
         root, str(namespace) if namespace else None
     )
+    return declared
 
 
 def _node(session: Session, entry: Mapping[str, Any]) -> NodeAction:

@@ -216,7 +216,8 @@ def test_python_xml_and_yaml_include_each_other(package: Path) -> None:
     write(package, "middle_launch.yaml", """
         launch:
         - arg: {name: exe}
-        - node: {pkg: demo_launch, exec: "$(var exe)_in_yaml"}
+        - arg: {name: suffix, default: ""}
+        - node: {pkg: demo_launch, exec: "$(var exe)_in_yaml$(var suffix)"}
         """)  # fmt: skip
     top = write(package, "top.launch.py", """
         from launch import LaunchDescription
@@ -243,6 +244,14 @@ def test_python_xml_and_yaml_include_each_other(package: Path) -> None:
     assert [(n.exec, n.namespace) for n in description.nodes] == [("a_via_xml", "/ns"), ("b_in_yaml", None)]
     names = [Path(f).name for f in description.files]
     assert names == ["top.launch.py", "middle_launch.xml", "leaf.launch.py", "middle_launch.yaml"]
+    # As ros2 launch sets them, arguments given reach an included file that declares them.
+    assert [n.exec for n in launch(top, suffix="_given").nodes] == ["a_via_xml", "b_in_yaml_given"]
+    with pytest.raises(LaunchFileError) as caught:
+        launch(top, sufix="_given")
+    assert (
+        "argument 'sufix' was given but the launch declares no such argument; did you mean 'suffix'?"
+        in str(caught.value)
+    )
 
 
 BROKEN = {

@@ -14,7 +14,7 @@ if TYPE_CHECKING:
 
 MAX_INCLUDE_DEPTH = 32
 MAX_FILES_READ = 256
-FRONTEND_SUFFIXES = (".xml", ".yaml", ".yml", ".launch")
+ROS_SETTINGS = ("ros_namespace", "ros_remaps", "global_params")  # launch_ros's, not arguments
 
 
 class LaunchDescriptionSource:
@@ -76,8 +76,11 @@ def include_frontend(
     """An XML or YAML file: the launcher reads it, at this point of the launch, with the namespace
     pushed here."""
     where = action.written_at or (context.current_launch_file or "", 0)
+    # As in ROS 2, the included file's arguments also take the includer's launch configurations.
+    inherited = {k: v for k, v in context.launch_configurations.items()
+                 if isinstance(v, str) and k not in ROS_SETTINGS}  # fmt: skip
     context.found.append({
-        "kind": "include", "file": path, "args": passed,
+        "kind": "include", "file": path, "args": passed, "inherited": inherited,
         "namespace": context.launch_configurations.get("ros_namespace"),
         "at": {"file": where[0], "line": where[1]},
     })  # fmt: skip
