@@ -18,6 +18,7 @@ from __future__ import annotations
 import difflib
 import json
 import os
+import queue
 import re
 import subprocess
 import sys
@@ -35,7 +36,10 @@ PENDING = HERE / "pending"
 ORACLE_PATH = HERE / "oracle_path"
 RUN_BOUND_S = 40.0  # a program ends by itself within seconds; this only bounds a broken one
 TIMING_TOLERANCE = 0.2  # relative, on a loaded 2-core machine
-FIRST_DOMAIN = 40  # each program a ROS domain of its own, from here (DDS's usable ones end at 101)
+# Each program in flight runs in a ROS domain of its own, from this range. Fast DDS binds ports
+# 7400 + 250 * domain and a few after: up to domain 49 that stays below 20000, where the other
+# tests' free ports start (tests/support/app.py).
+DOMAINS = range(10, 50)
 
 _STAMP = re.compile(r"^\[(DEBUG|INFO|WARN|ERROR|FATAL)\] \[\d+(?:\.\d+)?\] ", re.MULTILINE)
 _MEASURED = re.compile(r"^measured (?P<label>[^:]+): (?P<value>-?\d+(?:\.\d+)?) (?P<unit>\S+)$")
@@ -184,9 +188,21 @@ def compare(oracle: Run, ours: Run, tolerance: float = TIMING_TOLERANCE) -> str 
     return "\n".join(problems) if problems else None
 
 
-def domain_of(program: Path, programs: list[Path]) -> int:
-    """The ROS domain ``program`` runs in: its place among ``programs``, after FIRST_DOMAIN."""
-    return FIRST_DOMAIN + sorted(programs).index(program)
+class Domains:
+    """DOMAINS handed out to the programs in flight, each back when its program ended."""
+
+    def __init__(self, domains: range = DOMAINS) -> None:
+        self._free: queue.SimpleQueue[int] = queue.SimpleQueue()
+        for domain in domains:
+            self._free.put(domain)
+
+    @contextmanager
+    def one(self) -> Iterator[int]:
+        domain = self._free.get(timeout=RUN_BOUND_S * 2)
+        try:
+            yield domain
+        finally:
+            self._free.put(domain)
 
 
 @contextmanager
@@ -220,7 +236,7 @@ def main(argv: list[str]) -> int:
     with zenoh_router(port) as router:
         for index, name in enumerate(argv):
             program = Path(name).resolve()
-            domain = FIRST_DOMAIN + index
+            domain = DOMAINS[index % len(DOMAINS)]
             oracle, ours = run_oracle(python, program, domain), run_lab(program, domain, router)
             problem = compare(oracle, ours)
             print(f"== {program.name}: {'the same' if problem is None else 'different'}")

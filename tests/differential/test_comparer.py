@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from .harness import FIRST_DOMAIN, MissingOracle, Run, compare, normalise, oracle_python, run_lab, run_oracle
+from .harness import DOMAINS, MissingOracle, Run, compare, normalise, oracle_python, run_lab, run_oracle
 
 LOGGED = '[INFO] [1795929059.433280785] [talker]: I heard: "Hello World: 1"\nheard 1\n'
 
@@ -80,7 +80,7 @@ def test_the_two_sides_run_two_different_rclpys(oracle: Path, router: str, tmp_p
         "    print('rclpy from', rclpy.__file__.split('/')[-3])\n    rclpy.shutdown()\n\n\n"
         "if __name__ == '__main__':\n    main()\n"
     )
-    domain = FIRST_DOMAIN - 1  # below the programs' own
+    domain = DOMAINS.start - 1  # below the programs' own
     theirs, ours = run_oracle(oracle, program, domain), run_lab(program, domain, router)
     assert normalise(theirs) == ["rclpy from site-packages", "(exit code 0)"]
     assert normalise(ours) == ["rclpy from client", "(exit code 0)"]

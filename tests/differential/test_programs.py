@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from .harness import PROGRAMS, Run, compare, domain_of, run_lab, run_oracle
+from .harness import PROGRAMS, Domains, Run, compare, run_lab, run_oracle
 
 ALL = sorted(PROGRAMS.glob("*.py"))
 if not ALL:  # an empty parametrisation would skip, and the suite must not pass by running nothing
@@ -29,9 +29,11 @@ def case(program: Path) -> object:
     return pytest.param(program, id=program.stem, marks=[pytest.mark.timing] if timed(program) else [])
 
 
+DOMAINS = Domains()
+
+
 def both(oracle: Path, router: str, program: Path) -> tuple[Run, Run]:
-    domain = domain_of(program, ALL)
-    with ThreadPoolExecutor(2) as pool:
+    with DOMAINS.one() as domain, ThreadPoolExecutor(2) as pool:
         theirs = pool.submit(run_oracle, oracle, program, domain)
         ours = pool.submit(run_lab, program, domain, router)
         return theirs.result(), ours.result()
@@ -78,9 +80,9 @@ def test_program_prints_what_ros2_rclpy_prints(
     program: Path, request: pytest.FixtureRequest, oracle: Path, router: str
 ) -> None:
     if timed(program):
-        domain = domain_of(program, ALL)
-        theirs = run_oracle(oracle, program, domain)
-        ours = run_lab(program, domain, router)  # after it, not beside it: each measures a rate
+        with DOMAINS.one() as domain:
+            theirs = run_oracle(oracle, program, domain)
+            ours = run_lab(program, domain, router)  # after it, not beside it: each measures a rate
     else:
         theirs, ours = request.getfixturevalue("batch").result(program)
     assert theirs.code == 0, f"{program.name} failed on ROS 2's own rclpy:\n{theirs.output}"
