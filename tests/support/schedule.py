@@ -41,6 +41,7 @@ LONGEST_FILES = (
     "tests/workspace/test_tf2_tutorials.py",
     "tests/checkpoints/test_class_restart.py",
     "tests/checkpoints/test_api.py",
+    "tests/differential/test_programs.py",
 )
 
 Test = TypeVar("Test", bound=pytest.Item)
