@@ -1,7 +1,7 @@
 """Our transcription of the files docs.ros.org's launch tutorials have a student write: "Using
-parameters in a class (Python)", "Integrating launch files into ROS 2 packages" (its Python, XML
-and YAML launch files) and "Using substitutions" (Python and YAML), and the edits those pages
-make to the setup.py ``ros2 pkg create`` wrote."""
+parameters in a class (Python)", "Creating a launch file" (its Python, XML and YAML files),
+"Integrating launch files into ROS 2 packages" (likewise) and "Using substitutions" (Python and
+YAML), and the edits those pages make to the setup.py ``ros2 pkg create`` wrote."""
 
 from __future__ import annotations
 
@@ -258,6 +258,76 @@ launch:
         - executable:
             cmd: 'ros2 param set $(var turtlesim_ns)/sim background_r $(var new_background_r)'
             if: '$(eval "$(var new_background_r) == 200 and $(var use_provided_red)")'
+""",
+}
+
+# "Creating a launch file": launch/turtlesim_mimic_launch.{py,xml,yaml}, run by its path.
+MIMIC = {
+    "py": """\
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+def generate_launch_description():
+    return LaunchDescription([
+        Node(
+            package='turtlesim',
+            namespace='turtlesim1',
+            executable='turtlesim_node',
+            name='sim'
+        ),
+        Node(
+            package='turtlesim',
+            namespace='turtlesim2',
+            executable='turtlesim_node',
+            name='sim'
+        ),
+        Node(
+            package='turtlesim',
+            executable='mimic',
+            name='mimic',
+            remappings=[
+                ('/input/pose', '/turtlesim1/turtle1/pose'),
+                ('/output/cmd_vel', '/turtlesim2/turtle1/cmd_vel'),
+            ]
+        )
+    ])
+""",
+    "xml": """\
+<launch>
+  <node pkg="turtlesim" exec="turtlesim_node" name="sim" namespace="turtlesim1"/>
+  <node pkg="turtlesim" exec="turtlesim_node" name="sim" namespace="turtlesim2"/>
+  <node pkg="turtlesim" exec="mimic" name="mimic">
+    <remap from="/input/pose" to="/turtlesim1/turtle1/pose"/>
+    <remap from="/output/cmd_vel" to="/turtlesim2/turtle1/cmd_vel"/>
+  </node>
+</launch>
+""",
+    "yaml": """\
+launch:
+
+- node:
+    pkg: "turtlesim"
+    exec: "turtlesim_node"
+    name: "sim"
+    namespace: "turtlesim1"
+
+- node:
+    pkg: "turtlesim"
+    exec: "turtlesim_node"
+    name: "sim"
+    namespace: "turtlesim2"
+
+- node:
+    pkg: "turtlesim"
+    exec: "mimic"
+    name: "mimic"
+    remap:
+    -
+        from: "/input/pose"
+        to: "/turtlesim1/turtle1/pose"
+    -
+        from: "/output/cmd_vel"
+        to: "/turtlesim2/turtle1/cmd_vel"
 """,
 }
 

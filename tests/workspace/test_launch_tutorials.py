@@ -20,6 +20,7 @@ from support.app import App
 from .launch_tutorials import (
     EXAMPLE_MAIN,
     EXAMPLE_SUBSTITUTIONS,
+    MIMIC,
     MY_SCRIPT,
     PARAM_LAUNCH,
     PARAM_NODE,
@@ -60,14 +61,21 @@ def tutorial_workspace(ws: Path) -> None:
     tutorial = create_package(src, "launch_tutorial")
     edit_setup_py(tutorial)
     write_files(tutorial, {f"launch/example_main_launch.{kind}": text for kind, text in EXAMPLE_MAIN.items()})
+    write_files(ws, {f"launch/turtlesim_mimic_launch.{kind}": text for kind, text in MIMIC.items()})
     write_files(tutorial, {f"launch/example_substitutions_launch.{kind}": text
                            for kind, text in EXAMPLE_SUBSTITUTIONS.items()})  # fmt: skip
 
 
 @pytest.fixture(scope="module")
-def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[App]:
-    root = tmp_path_factory.mktemp("launch_tutorials")
-    tutorial_workspace(root / "ros2_ws")
+def ws(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    ws = tmp_path_factory.mktemp("launch_tutorials") / "ros2_ws"
+    tutorial_workspace(ws)
+    return ws
+
+
+@pytest.fixture(scope="module")
+def lab(ws: Path) -> Iterator[App]:
+    root = ws.parent
     (root / "nothing.launch.xml").write_text("<launch/>\n")
     app = App(
         root, "--launch", str(root / "nothing.launch.xml"), "--workspace", str(root / "ros2_ws"), cwd=root
@@ -84,9 +92,10 @@ def launch(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
     started: list[NodeProcess] = []
 
     class Launched(NodeProcess):
-        def __init__(self, package: str, file: str, *arguments: str) -> None:
-            command = [sys.executable, "-m", "server", "--url", lab.url, "launch", package, file, *arguments]
-            super().__init__(lab, tmp_path / file, command=command)
+        def __init__(self, *arguments: str) -> None:
+            command = [sys.executable, "-m", "server", "--url", lab.url, "launch", *arguments]
+            super().__init__(lab, tmp_path / Path(arguments[1] if len(arguments) > 1 else arguments[0]).name,
+                             command=command)  # fmt: skip
             started.append(self)
 
         def stop(self) -> None:
@@ -102,6 +111,27 @@ def graph(lab: App, verb: str) -> set[str]:
     code, out, err = ros2lab("--url", lab.url, verb, "list")
     assert code == 0, err
     return set(out.splitlines())
+
+
+@pytest.mark.parametrize("kind", ["py", "yaml"])
+def test_creating_a_launch_file_turtle2_mimics_turtle1(
+    lab: App, ws: Path, launch: type[NodeProcess], tmp_path: Path, kind: str
+) -> None:
+    launched = launch(str(ws / "launch" / f"turtlesim_mimic_launch.{kind}"))
+    launched.wait_for(r"Starting turtlesim with node name /turtlesim2/sim$")
+    assert {"/turtlesim1/sim", "/turtlesim2/sim", "/mimic"} <= graph(lab, "node")
+    cli = [sys.executable, "-m", "server", "--url", lab.url]
+    echo = [*cli, "topic", "echo", "/turtlesim2/turtle1/pose", "--field", "linear_velocity"]
+    seen = NodeProcess(lab, tmp_path / "echo", command=echo)
+    twist = "{linear: {x: 2.0, y: 0.0, z: 0.0}, angular: {x: 0.0, y: 0.0, z: -1.8}}"  # the page's command
+    pub = [*cli, "topic", "pub", "-r", "1", "/turtlesim1/turtle1/cmd_vel", "geometry_msgs/msg/Twist", twist]
+    teleop = NodeProcess(lab, tmp_path / "pub", command=pub)
+    try:
+        seen.wait_for(r"^2\.0$")  # turtle2 goes at turtle1's speed, which only turtle1 was told
+    finally:
+        teleop.kill()
+        seen.kill()
+    launched.stop()
 
 
 @pytest.mark.parametrize("kind", ["xml", "py", "yaml"])
