@@ -79,6 +79,7 @@ class NodeAction:
     parameter_files: tuple[ParamsFile, ...] = ()
     arguments: tuple[str, ...] = ()  # a Python launch file's Node(arguments=...): before --ros-args
     ros_arguments: tuple[str, ...] = ()  # its Node(ros_arguments=...): after the lab's own ROS arguments
+    start_delay_s: float = 0.0  # a Python file's TimerAction(period=...) around it: started that much later
 
 
 @dataclass(frozen=True)

@@ -142,11 +142,24 @@ class Launcher:
             for action in description.nodes:
                 with contextlib.suppress(LookupError):
                     self.check_student_code(self.packages.resolve(action.pkg, action.exec))
-        started = [self.start(action) for action in description.nodes]
+        started = [self.start(a) if a.start_delay_s <= 0 else self._start_after(a) for a in description.nodes]
         self.launched.extend(started)
         for hook in self.on_launch:
             hook(description, started)
         return started
+
+    def _start_after(self, action: NodeAction) -> LaunchedNode:
+        """A node a TimerAction holds back: started ``start_delay_s`` later, unless its launch was
+        stopped first."""
+        entry = LaunchedNode(action)
+
+        def start() -> None:
+            timer.cancel()
+            if any(e is entry for e in self.launched):  # not stopped meanwhile
+                self.start(action, entry)
+
+        timer = self._timer_node().create_timer(action.start_delay_s, start)
+        return entry
 
     def runs_as_process(self, exe: Executable) -> bool:
         return exe.file is not None or (self.all_processes and (exe.pkg, exe.name) not in DEVICE_NODES)

@@ -140,7 +140,8 @@ def _node(session: Session, entry: Mapping[str, Any]) -> NodeAction:
     return NodeAction(
         pkg=pkg, exec=executable, name=_optional(entry.get("name")), namespace=_optional(entry.get("namespace")),
         output=cast("str | None", output), respawn=bool(entry.get("respawn")),
-        respawn_delay_s=max(0.0, float(entry.get("respawn_delay") or 0.0)), parameters=tuple(parameters),
+        respawn_delay_s=max(0.0, float(entry.get("respawn_delay") or 0.0)),
+        start_delay_s=_seconds(entry.get("start_delay")), parameters=tuple(parameters),
         remappings=_first_wins(remappings), location=location, parameter_files=tuple(files),
         arguments=tuple(_strings(entry.get("arguments"))), ros_arguments=tuple(_strings(entry.get("ros_arguments"))),
     )  # fmt: skip
@@ -169,6 +170,11 @@ def _param_value(value: Any) -> ParamValue:
     raise ValueError(
         f"{value!r} is not a ROS parameter value (a bool, int, float, str or a list of one of them)"
     )
+
+
+def _seconds(value: Any) -> float:
+    seconds = float(value) if isinstance(value, int | float) else 0.0
+    return seconds if 0.0 < seconds < float("inf") else 0.0
 
 
 def _optional(value: Any) -> str | None:

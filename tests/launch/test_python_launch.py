@@ -9,9 +9,12 @@ from pathlib import Path
 
 import pytest
 
+from server.bus import ManualClock
+from server.lab import Lab
 from server.launch.description import LaunchDescription, LaunchFileError
 from server.launch.launcher import parse_launch
 from server.packages import PackageIndex
+from server.settings import LabSettings, Settings
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="3">
@@ -143,7 +146,7 @@ def test_using_substitutions_include_arguments_conditions_and_namespaces(package
     assert (Path(sim.location.file).name, sim.location.line) == ("example_substitutions.launch.py", 18)
     assert any("ExecuteProcess not run" in m and "ros2 param set turtlesim2/sim background_r 200" in m
                for m in description.messages), description.messages  # fmt: skip
-    assert any("TimerAction(period=2.0)" in m for m in description.messages), description.messages
+    assert (sim.start_delay_s, listener.start_delay_s) == (0.0, 2.0)  # the TimerAction's period
     alone = launch(package / "example_substitutions.launch.py", new_background_r="100")
     assert [(n.name, n.namespace) for n in alone.nodes] == [("sim", "/turtlesim1")]  # the condition false
     assert dict(alone.args) == {
@@ -324,3 +327,34 @@ def test_arguments_given_must_be_declared_and_required_ones_given(package: Path)
         5,
         "required launch argument 'robot' (description: 'which robot') was not provided: give it as NAME:=VALUE",
     )
+
+
+def test_a_timer_actions_nodes_start_after_its_period_unless_stopped_first(tmp_path: Path) -> None:
+    path = tmp_path / "timed.launch.py"
+    write(tmp_path, "timed.launch.py", """
+        from launch import LaunchDescription
+        from launch.actions import TimerAction
+        from launch_ros.actions import Node
+
+        def generate_launch_description():
+            return LaunchDescription([
+                Node(package='rocketship', executable='countdown', name='at_once'),
+                TimerAction(period=2.0, actions=[Node(package='rocketship', executable='countdown', name='later')]),
+            ])
+        """)  # fmt: skip
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, workspace=None)), ManualClock(0.0))
+    lab.start_nodes()
+
+    lab.launch_groups.launch(path, {})
+    lab.executor.spin_until(1.9)
+    assert {"/at_once"} <= {n.fully_qualified_name for n in lab.bus.nodes}
+    assert "/later" not in {n.fully_qualified_name for n in lab.bus.nodes}
+    lab.executor.spin_until(2.1)
+    assert "/later" in {n.fully_qualified_name for n in lab.bus.nodes}
+
+    second = lab.launch_groups.launch(path, {})  # stopped before its timer fires: "later" never starts
+    lab.launch_groups.stop(second.id)
+    before = len(lab.bus.nodes)
+    lab.executor.spin_until(5.0)
+    assert len(lab.bus.nodes) == before
+    lab.launcher.shutdown()

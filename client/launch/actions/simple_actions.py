@@ -43,7 +43,8 @@ class SetEnvironmentVariable(Action):
 
 
 class TimerAction(Action):
-    """Its actions, after ``period`` seconds in ROS 2; the lab starts them with the others."""
+    """Its actions after ``period`` seconds: the nodes among them start that much later (the lab
+    evaluates the rest at once)."""
 
     def __init__(self, *, period: Any, actions: Iterable[Action], cancel_on_shutdown: bool = True,
                  **kwargs: Any) -> None:  # fmt: skip
@@ -55,12 +56,26 @@ class TimerAction(Action):
         return list(self.__actions)
 
     def execute(self, context: LaunchContext) -> Optional[list[LaunchDescriptionEntity]]:  # noqa: UP045
-        period = perform_typed(context, self.__period)
-        context.messages.append(
-            f"[WARNING] [launch]: {_where(self)}TimerAction(period={period}): its actions start with the "
-            "others, not after the period"
-        )
-        return list(self.__actions)
+        text = perform_typed(context, self.__period)
+        try:
+            period = float(text)
+        except ValueError:
+            raise RuntimeError(f"TimerAction's period '{text}' is not a number of seconds") from None
+        if not 0.0 <= period < float("inf"):
+            raise RuntimeError(f"TimerAction's period {period} is not a number of seconds >= 0")
+        return [_Delay(period), *self.__actions, _Delay(-period)]
+
+
+class _Delay(Action):
+    """What a TimerAction's nodes wait before they start, while its actions are evaluated."""
+
+    def __init__(self, seconds: float) -> None:
+        super().__init__()
+        self.seconds = seconds
+
+    def execute(self, context: LaunchContext) -> Optional[list[LaunchDescriptionEntity]]:  # noqa: UP045
+        context.locals["start_delay_s"] = max(0.0, context.locals.get("start_delay_s", 0.0) + self.seconds)
+        return None
 
 
 class OpaqueFunction(Action):

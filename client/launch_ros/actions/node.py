@@ -92,6 +92,6 @@ class Node(Action):
             "remappings": [list(r) for r in remaps],
             "arguments": [perform_typed(context, a) for a in self.__arguments],
             "ros_arguments": [perform_typed(context, a) for a in self.__ros_arguments],
-            "file": file, "line": line,
+            "file": file, "line": line, "start_delay": float(context.locals.get("start_delay_s", 0.0)),
         })  # fmt: skip
         return None
