@@ -182,12 +182,16 @@ def check_launch(settings: Settings) -> str | None:
     from server.launch.aliases import resolve_launch
     from server.launch.description import LaunchFileError
     from server.launch.launcher import parse_launch
+    from server.launch.python_process import OUTSIDE_SANDBOX, sandbox_sees
     from server.packages import PackageIndex
 
     lab = settings.lab
     packages = PackageIndex(workspace=lab.workspace)
+    path = resolve_launch(lab.launch, packages)
+    if settings.sandboxes_students and path.suffix == ".py" and not sandbox_sees(path, None):
+        return f"{path}:0: {OUTSIDE_SANDBOX}"  # a world's launch: its own workspace is not known yet
     try:
-        parse_launch(resolve_launch(lab.launch, packages), lab.launch_args, packages)
+        parse_launch(path, lab.launch_args, packages)
     except LaunchFileError as exc:
         return str(exc)
     return None

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import IO, Any
 
 from server.processes.command import PreparedStart, launch_command
-from server.processes.sandbox import Sandbox
+from server.processes.sandbox import CLIENT_CODE, PROJECT, Sandbox
 
 from .description import LaunchFileError
 
@@ -29,6 +29,10 @@ EVALUATION_TIMEOUT_S = 30.0
 MAX_ANSWER_BYTES = 8 * 1024 * 1024
 MAX_PRINTED_LINES = 100  # of what the file itself printed, shown with the launch
 _labels = itertools.count(1)
+OUTSIDE_SANDBOX = (
+    "a Python launch file runs in the students' sandbox on this server, which sees only the lab's "
+    "packages and the workspace: put it in a package there, or write it in XML or YAML"
+)
 
 
 @dataclass(frozen=True)
@@ -52,6 +56,8 @@ class PythonLaunchProcess:
     timeout_s: float = EVALUATION_TIMEOUT_S
 
     def __call__(self, path: Path, args: Mapping[str, str], namespace: str | None) -> Evaluation:
+        if self.sandbox is not None and not sandbox_sees(path, self.workspace):
+            raise LaunchFileError(str(path), 0, OUTSIDE_SANDBOX)
         request = json.dumps({"args": dict(args), "namespace": namespace})
         clean = self.sandbox is not None or self.confined
         command = launch_command(path, request, domain_id=self.domain_id, env={} if clean else None,
@@ -92,6 +98,16 @@ class PythonLaunchProcess:
         if memory is not None:
             raise LaunchFileError(str(path), 0, f"evaluating it ended: {memory}")
         return code
+
+
+def sandbox_sees(path: Path, workspace: Path | None) -> bool:
+    """Whether the sandbox shows ``path``: a file of the workspace or of the lab's own code."""
+    roots = [PROJECT / name for name in CLIENT_CODE] + ([workspace] if workspace is not None else [])
+    try:
+        resolved = path.resolve()
+        return any(resolved.is_relative_to(root.resolve()) for root in roots)
+    except (OSError, RuntimeError):
+        return False
 
 
 def _read(stream: IO[bytes]) -> bytes:

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from server.__main__ import build_parser, check_launch, settings_of, zenoh_settings
 from server.bus import ManualClock
 from server.lab import Lab
 from server.launch.description import LaunchDescription, LaunchFileError
@@ -358,3 +359,24 @@ def test_a_timer_actions_nodes_start_after_its_period_unless_stopped_first(tmp_p
     lab.executor.spin_until(5.0)
     assert len(lab.bus.nodes) == before
     lab.launcher.shutdown()
+
+
+def server_settings(*argv: str) -> Settings:
+    args = build_parser().parse_args(list(argv))
+    return settings_of(args, zenoh_settings(args))
+
+
+def test_a_class_servers_python_launch_outside_the_sandboxs_view_is_refused_at_start(tmp_path: Path) -> None:
+    """A class server evaluates a .launch.py in its worlds' sandbox, which sees the lab's packages
+    and the world's workspace only: the server's own --launch elsewhere is one line at start, and a
+    single lab (no sandbox) takes the same file."""
+    path = write(tmp_path, "world.launch.py", "from launch import LaunchDescription\n\n"
+                 "def generate_launch_description():\n    return LaunchDescription([])\n")  # fmt: skip
+    args = ["--launch", str(path), "--no-foxglove"]
+
+    problem = check_launch(server_settings("--classroom", "--class-code", "ABC123", *args))
+
+    assert problem is not None and problem.startswith(
+        f"{path}:0: a Python launch file runs in the students' sandbox"
+    )
+    assert check_launch(server_settings(*args)) is None
