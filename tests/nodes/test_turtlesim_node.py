@@ -75,7 +75,7 @@ def test_turtlesim_node_teleport_spawn_kill_and_their_errors(
 ) -> None:
     rec = record({"/turtle1/pose": Pose})
     with bus.activate():
-        TurtlesimNode()
+        node = TurtlesimNode()
     call(bus, executor, TeleportAbsolute, "/turtle1/teleport_absolute", x=1.0, y=2.0, theta=0.5)
     executor.spin_for(0.016)
     pose = rec.got["/turtle1/pose"][-1][1]
@@ -83,12 +83,16 @@ def test_turtlesim_node_teleport_spawn_kill_and_their_errors(
     assert call(bus, executor, Spawn, "/spawn", x=2.0, y=2.0, theta=0.2, name="").name == "turtle2"
     assert "/turtle2/pose" in bus.topics and "/turtle2/set_pen" in bus.services
     assert call(bus, executor, Spawn, "/spawn", x=2.0, y=2.0, name="turtle2").name == ""
+    assert call(bus, executor, Spawn, "/spawn", name="bad name").name == ""
     call(bus, executor, Kill, "/kill", name="turtle2")
     call(bus, executor, Kill, "/kill", name="turtle2")
     assert "/turtle2/pose" not in bus.topics and "/turtle2/set_pen" not in bus.services
+    assert sorted(node.world.turtles) == ["turtle1"]
     assert rec.logs("turtlesim")[2:] == [
         "Spawning turtle [turtle2] at x=[2.000000], y=[2.000000], theta=[0.200000]",
         "A turtle named [turtle2] already exists",
+        "A turtle cannot be named [bad name]: invalid topic name 'bad name/pose': token 'bad name' may contain "
+        "only letters, digits and underscores",
         "Tried to kill turtle [turtle2], which does not exist",
     ]
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from server.bus import Node, Publisher, ServiceServer, Subscription
+from server.bus import InvalidNameError, Node, Publisher, ServiceServer, Subscription
 from server.msgs import Twist
 from server.msgs.generated.rcl_interfaces import IntegerRange, ParameterDescriptor, ParameterEvent
 from server.msgs.generated.std_srvs import Empty, Empty_Response
@@ -140,6 +140,11 @@ class TurtlesimNode(Node):
         return real_name
 
     def on_spawn(self, request: Spawn_Request, response: Spawn_Response) -> Spawn_Response:
+        try:  # turtlesim would crash on a name its topics cannot take; this one says so and goes on
+            self.resolve_topic_name(f"{request.name or 'turtle'}/pose")
+        except InvalidNameError as exc:
+            self.get_logger().error(f"A turtle cannot be named [{request.name}]: {exc}")
+            return response
         name = self.spawn(request.name, request.x, request.y, request.theta)
         if name is None:
             self.get_logger().error(f"A turtle named [{request.name}] already exists")
