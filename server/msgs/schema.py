@@ -67,7 +67,7 @@ def type_schema(msg_type: type[Message]) -> dict[str, Any]:
 
 def interface_text(type_name: str, *, depth: int = 0) -> str:
     """The definition as ``ros2 interface show`` prints it: each nested type's definition follows
-    the field that uses it, indented one tab further."""
+    the field that uses it, indented one tab further, without its comments and blank lines."""
     definitions = catalog.definitions()
     if type_name in definitions.actions:
         action = definitions.actions[type_name]
@@ -86,6 +86,8 @@ def _expanded(type_name: str, depth: int) -> list[str]:
     by_name = {f.name: f for f in spec.fields}
     lines: list[str] = []
     for raw in spec.text.splitlines():
+        if depth and (not raw.strip() or raw.lstrip().startswith("#")):
+            continue  # a nested definition shows its fields only, as ros2 does without --all-comments
         lines.append("\t" * depth + raw if raw.strip() else raw)
         words = raw.split("#", 1)[0].split()
         field = by_name.get(words[1]) if len(words) >= 2 and "=" not in raw.split("#", 1)[0] else None
