@@ -9,8 +9,10 @@ import pytest
 
 from server.bus import Bus, Executor, ManualClock, Node, NodeOverrides, Parameter
 from server.msgs import Message, Twist
+from server.msgs.generated.action_msgs import GoalStatus
 from server.msgs.generated.std_srvs import Empty
-from server.msgs.generated.turtlesim import Color, Kill, Pose, SetPen, Spawn, TeleportAbsolute
+from server.msgs.generated.turtlesim import Color, Kill, Pose, RotateAbsolute, SetPen, Spawn, TeleportAbsolute
+from server.msgs.generated.unique_identifier_msgs import UUID
 from server.packages.turtlesim.mimic import MimicNode
 from server.packages.turtlesim.turtlesim_node import TurtlesimNode
 
@@ -150,3 +152,55 @@ def test_mimic_turns_a_pose_into_the_same_velocities(bus: Bus, executor: Executo
     executor.spin_some()
     twist = rec.got["/output/cmd_vel"][-1][1]
     assert (twist.linear.x, twist.angular.z, twist.linear.y) == (2.0, -1.5, 0.0)
+
+
+def send_goal(bus: Bus, executor: Executor, theta: float, goal_id: int) -> tuple[Any, Any]:
+    """A rotate_absolute goal to turtle1, as an ActionClient sends it; (its acceptance, its result's future)."""
+    impl = RotateAbsolute.Impl
+    uuid = UUID(uuid=[goal_id] * 16)
+    accepted = call(bus, executor, impl.SendGoalService, "/turtle1/rotate_absolute/_action/send_goal",
+                    goal_id=uuid, goal=RotateAbsolute.Goal(theta=theta))  # fmt: skip
+    caller = next(n for n in bus.nodes if n.get_name() == "caller")
+    result = caller.create_client(impl.GetResultService, "/turtle1/rotate_absolute/_action/get_result")
+    return accepted, result.call_async(impl.GetResultService.Request(goal_id=uuid))
+
+
+def test_turtlesim_node_rotate_absolute_turns_to_the_goal_with_feedback(
+    bus: Bus, executor: Executor, record: Record
+) -> None:
+    rec = record({"/turtle1/rotate_absolute/_action/feedback": RotateAbsolute.Impl.FeedbackMessage,
+                  "/turtle1/pose": Pose})  # fmt: skip
+    with bus.activate():
+        TurtlesimNode()
+    accepted, result = send_goal(bus, executor, 1.0, goal_id=7)
+    assert accepted.accepted
+    executor.spin_for(0.5)
+    assert not result.done()
+    executor.spin_for(1.0)
+    assert result.done()
+    answer = result.result()
+    assert answer.status == GoalStatus.STATUS_SUCCEEDED
+    assert answer.result.delta == pytest.approx(-1.0, abs=0.02)
+    remaining = [m.feedback.remaining for _, m in rec.got["/turtle1/rotate_absolute/_action/feedback"]]
+    assert remaining[0] == pytest.approx(1.0) and remaining == sorted(remaining, reverse=True)
+    assert rec.got["/turtle1/pose"][-1][1].theta == pytest.approx(1.0, abs=0.02)
+    assert rec.logs("turtlesim")[-1] == "Rotation goal completed successfully"
+
+
+def test_turtlesim_node_rotate_absolute_aborted_by_a_new_goal_and_a_velocity(
+    bus: Bus, executor: Executor, record: Record
+) -> None:
+    rec = record({})
+    with bus.activate():
+        TurtlesimNode()
+    _, first = send_goal(bus, executor, 3.0, goal_id=1)
+    _, second = send_goal(bus, executor, -3.0, goal_id=2)
+    executor.spin_for(0.1)
+    assert first.result().status == GoalStatus.STATUS_ABORTED and not second.done()
+    Node("teleop", context=bus).create_publisher(Twist, "/turtle1/cmd_vel", 10).publish(Twist())
+    executor.spin_for(0.1)
+    assert second.result().status == GoalStatus.STATUS_ABORTED
+    assert rec.logs("turtlesim")[-2:] == [
+        "Rotation goal received before a previous goal finished. Aborting previous goal",
+        "Velocity command received during rotation goal. Aborting goal",
+    ]

@@ -3,6 +3,7 @@ through the CLI as the tutorials show them: demo_nodes' talker and listener, tur
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -91,4 +92,15 @@ def test_turtlesim_teleport_then_pose_spawn_and_background(lab: App, run: type[N
     code, out, err = ros2lab(lab, "param", "set", "/turtlesim", "background_r", "300")
     assert "Parameter background_r out of range. Min: 0, Max: 255, value: 300" in err, out + err
     assert ros2lab(lab, "param", "get", "/turtlesim", "background_r")[1] == "Integer value is: 150\n"
+
+    code, out, err = ros2lab(lab, "action", "list", "-t")
+    assert "/turtle1/rotate_absolute [turtlesim/action/RotateAbsolute]" in out.splitlines(), out + err
+    code, out, err = ros2lab(lab, "action", "send_goal", "/turtle1/rotate_absolute", "turtlesim/action/RotateAbsolute",
+                             "{theta: -1.5}", "--feedback")  # fmt: skip
+    assert code == 0, out + err
+    assert "Feedback:\n    remaining: -3.0" in out and out.rstrip().endswith(
+        "Goal finished with status: SUCCEEDED"
+    )
+    assert re.search(r"Result:\n    delta: 2\.9\d+", out), out
+    sim.wait_for(r"\[turtlesim\]: Rotation goal completed successfully$")
     assert sim.interrupt() == 0, sim.text

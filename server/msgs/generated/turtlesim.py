@@ -4,7 +4,11 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from .._action import Action
 from .._base import Message, Service
+from .action_msgs import CancelGoal, GoalStatusArray
+from .builtin_interfaces import Time
+from .unique_identifier_msgs import UUID
 
 
 class Color(Message, type_name="turtlesim/msg/Color"):
@@ -56,6 +60,71 @@ class Pose(Message, type_name="turtlesim/msg/Pose"):
             theta: float = ...,
             linear_velocity: float = ...,
             angular_velocity: float = ...,
+        ) -> None: ...
+
+
+class RotateAbsolute_Goal(Message, type_name="turtlesim/action/RotateAbsolute_Goal"):
+    """turtlesim/action/RotateAbsolute_Goal: Turn the turtle in place to face theta (radians)."""
+
+    __slots__ = ("theta",)
+    theta: float
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            theta: float = ...,
+        ) -> None: ...
+
+
+class RotateAbsolute_Result(Message, type_name="turtlesim/action/RotateAbsolute_Result"):
+    """turtlesim/action/RotateAbsolute_Result: How far it turned from where it faced at the start (radians)."""
+
+    __slots__ = ("delta",)
+    delta: float
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            delta: float = ...,
+        ) -> None: ...
+
+
+class RotateAbsolute_Feedback(Message, type_name="turtlesim/action/RotateAbsolute_Feedback"):
+    """turtlesim/action/RotateAbsolute_Feedback: How far it still has to turn (radians)."""
+
+    __slots__ = ("remaining",)
+    remaining: float
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            remaining: float = ...,
+        ) -> None: ...
+
+
+class RotateAbsolute_FeedbackMessage(Message, type_name="turtlesim/action/RotateAbsolute_FeedbackMessage"):
+    """turtlesim/action/RotateAbsolute_FeedbackMessage"""
+
+    __slots__ = (
+        "goal_id",
+        "feedback",
+    )
+    goal_id: UUID
+    feedback: RotateAbsolute_Feedback
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            goal_id: UUID = ...,
+            feedback: RotateAbsolute_Feedback = ...,
         ) -> None: ...
 
 
@@ -211,6 +280,87 @@ class TeleportRelative_Response(Message, type_name="turtlesim/srv/TeleportRelati
     __slots__ = ()
 
 
+class RotateAbsolute_SendGoal_Request(Message, type_name="turtlesim/action/RotateAbsolute_SendGoal_Request"):
+    """turtlesim/action/RotateAbsolute_SendGoal_Request"""
+
+    __slots__ = (
+        "goal_id",
+        "goal",
+    )
+    goal_id: UUID
+    goal: RotateAbsolute_Goal
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            goal_id: UUID = ...,
+            goal: RotateAbsolute_Goal = ...,
+        ) -> None: ...
+
+
+class RotateAbsolute_SendGoal_Response(
+    Message, type_name="turtlesim/action/RotateAbsolute_SendGoal_Response"
+):
+    """turtlesim/action/RotateAbsolute_SendGoal_Response"""
+
+    __slots__ = (
+        "accepted",
+        "stamp",
+    )
+    accepted: bool
+    stamp: Time
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            accepted: bool = ...,
+            stamp: Time = ...,
+        ) -> None: ...
+
+
+class RotateAbsolute_GetResult_Request(
+    Message, type_name="turtlesim/action/RotateAbsolute_GetResult_Request"
+):
+    """turtlesim/action/RotateAbsolute_GetResult_Request"""
+
+    __slots__ = ("goal_id",)
+    goal_id: UUID
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            goal_id: UUID = ...,
+        ) -> None: ...
+
+
+class RotateAbsolute_GetResult_Response(
+    Message, type_name="turtlesim/action/RotateAbsolute_GetResult_Response"
+):
+    """turtlesim/action/RotateAbsolute_GetResult_Response"""
+
+    __slots__ = (
+        "status",
+        "result",
+    )
+    status: int
+    result: RotateAbsolute_Result
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            *,
+            status: int = ...,
+            result: RotateAbsolute_Result = ...,
+        ) -> None: ...
+
+
 class Kill(Service, type_name="turtlesim/srv/Kill"):
     """turtlesim/srv/Kill: call with a Kill.Request, answered with a Kill.Response."""
 
@@ -246,12 +396,52 @@ class TeleportRelative(Service, type_name="turtlesim/srv/TeleportRelative"):
     Response = TeleportRelative_Response
 
 
+class RotateAbsolute_SendGoal(Service, type_name="turtlesim/action/RotateAbsolute_SendGoal"):
+    """turtlesim/action/RotateAbsolute_SendGoal: call with a RotateAbsolute_SendGoal.Request, answered with a RotateAbsolute_SendGoal.Response."""
+
+    Request = RotateAbsolute_SendGoal_Request
+    Response = RotateAbsolute_SendGoal_Response
+
+
+class RotateAbsolute_GetResult(Service, type_name="turtlesim/action/RotateAbsolute_GetResult"):
+    """turtlesim/action/RotateAbsolute_GetResult: call with a RotateAbsolute_GetResult.Request, answered with a RotateAbsolute_GetResult.Response."""
+
+    Request = RotateAbsolute_GetResult_Request
+    Response = RotateAbsolute_GetResult_Response
+
+
+class RotateAbsolute(Action, type_name="turtlesim/action/RotateAbsolute"):
+    """turtlesim/action/RotateAbsolute: a RotateAbsolute.Goal, answered with a RotateAbsolute.Result, RotateAbsolute.Feedback meanwhile."""
+
+    Goal = RotateAbsolute_Goal
+    Result = RotateAbsolute_Result
+    Feedback = RotateAbsolute_Feedback
+
+    class Impl:
+        SendGoalService = RotateAbsolute_SendGoal
+        GetResultService = RotateAbsolute_GetResult
+        FeedbackMessage = RotateAbsolute_FeedbackMessage
+        CancelGoalService = CancelGoal
+        GoalStatusMessage = GoalStatusArray
+
+
 __all__ = [
     "Color",
     "Kill",
     "Kill_Request",
     "Kill_Response",
     "Pose",
+    "RotateAbsolute",
+    "RotateAbsolute_Feedback",
+    "RotateAbsolute_FeedbackMessage",
+    "RotateAbsolute_GetResult",
+    "RotateAbsolute_GetResult_Request",
+    "RotateAbsolute_GetResult_Response",
+    "RotateAbsolute_Goal",
+    "RotateAbsolute_Result",
+    "RotateAbsolute_SendGoal",
+    "RotateAbsolute_SendGoal_Request",
+    "RotateAbsolute_SendGoal_Response",
     "SetPen",
     "SetPen_Request",
     "SetPen_Response",

@@ -6,8 +6,8 @@ services ``NAME/set_pen``, ``NAME/teleport_absolute`` and ``NAME/teleport_relati
 relative to the node's namespace. Its parameters are turtlesim's: the background's
 ``background_r``/``_g``/``_b`` (0 to 255; the window would repaint when one is set, so the node
 follows its own parameter events as turtlesim does) and ``holonomic`` (``linear.y`` moves the
-turtle sideways too). It logs what turtlesim logs, in turtlesim's words. The rotate_absolute
-action is not served.
+turtle sideways too). It logs what turtlesim logs, in turtlesim's words. Each turtle serves
+turtlesim's ``NAME/rotate_absolute`` action too (rotate_absolute.py).
 """
 
 from __future__ import annotations
@@ -39,6 +39,8 @@ from server.msgs.generated.turtlesim import (
 )
 from sim.turtlesim import CENTER_M, UPDATE_PERIOD_S, Reading, Teleport, TurtleWorld
 
+from .rotate_absolute import RotateAbsoluteServer
+
 TOPIC_DEPTH = 7  # turtlesim's topics: reliable, keep last 7
 BACKGROUND = {"background_r": 0x45, "background_g": 0x56, "background_b": 0xFF}
 CHANNEL = {"background_r": "Red", "background_g": "Green", "background_b": "Blue"}
@@ -66,11 +68,13 @@ class TurtleEndpoints:
             node.create_service(TeleportRelative, f"{name}/teleport_relative", self.on_teleport_relative),
             node.create_service(TeleportAbsolute, f"{name}/teleport_absolute", self.on_teleport_absolute),
         ]
+        self.rotate = RotateAbsoluteServer(node, name, lambda: node.world.turtles[name])
 
     def on_cmd_vel(self, msg: Twist) -> None:
         turtle = self.node.world.turtles[self.name]
         sideways = msg.linear.y if self.node.get_parameter("holonomic").value else 0.0
         turtle.command(msg.linear.x, sideways, msg.angular.z, self.node.bus.clock.now())
+        self.rotate.abort()
 
     def on_set_pen(self, request: SetPen_Request, response: SetPen_Response) -> SetPen_Response:
         self.node.world.turtles[self.name].set_pen(
@@ -104,6 +108,7 @@ class TurtleEndpoints:
         self.node.destroy_subscription(self.cmd_sub)
         for server in self.services:
             self.node.destroy_service(server)
+        self.rotate.destroy()
 
 
 class TurtlesimNode(Node):
@@ -178,7 +183,10 @@ class TurtlesimNode(Node):
             self.background = self._background()
 
     def update(self) -> None:
+        for endpoints in self.endpoints.values():
+            endpoints.rotate.before_frame()
         for name, reading in self.world.step(self.bus.clock.now()).items():
+            self.endpoints[name].rotate.after_frame(reading.rotation)
             if reading.clamped_from is not None:
                 x_m, y_down_m = reading.clamped_from
                 self.get_logger().warning(
