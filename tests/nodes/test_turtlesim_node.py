@@ -9,7 +9,7 @@ import pytest
 
 from server.bus import Bus, Executor, ManualClock, Node, NodeOverrides, Parameter
 from server.msgs import Message, Twist
-from server.msgs.generated.action_msgs import GoalStatus
+from server.msgs.generated.action_msgs import CancelGoal, GoalInfo, GoalStatus
 from server.msgs.generated.std_srvs import Empty
 from server.msgs.generated.turtlesim import Color, Kill, Pose, RotateAbsolute, SetPen, Spawn, TeleportAbsolute
 from server.msgs.generated.unique_identifier_msgs import UUID
@@ -204,3 +204,23 @@ def test_turtlesim_node_rotate_absolute_aborted_by_a_new_goal_and_a_velocity(
         "Rotation goal received before a previous goal finished. Aborting previous goal",
         "Velocity command received during rotation goal. Aborting goal",
     ]
+
+
+def test_turtlesim_node_rotate_absolute_canceled_stops_the_turtle(
+    bus: Bus, executor: Executor, record: Record
+) -> None:
+    rec = record({"/turtle1/pose": Pose})
+    with bus.activate():
+        TurtlesimNode()
+    _, result = send_goal(bus, executor, 3.0, goal_id=3)
+    executor.spin_for(0.2)
+    unknown = call(bus, executor, CancelGoal, "/turtle1/rotate_absolute/_action/cancel_goal",
+                   goal_info=GoalInfo(goal_id=UUID(uuid=[9] * 16)))  # fmt: skip
+    assert (unknown.return_code, unknown.goals_canceling) == (2, [])
+    canceling = call(bus, executor, CancelGoal, "/turtle1/rotate_absolute/_action/cancel_goal",
+                     goal_info=GoalInfo(goal_id=UUID(uuid=[3] * 16)))  # fmt: skip
+    assert canceling.return_code == 0 and len(canceling.goals_canceling) == 1
+    executor.spin_for(0.1)
+    assert result.result().status == GoalStatus.STATUS_CANCELED
+    assert rec.got["/turtle1/pose"][-1][1].angular_velocity == 0.0
+    assert rec.logs("turtlesim")[-1] == "Rotation goal canceled"
