@@ -461,6 +461,7 @@ def test_sandbox_a_node_cannot_fill_or_nest_its_workspace_and_the_api_survives_a
 
 LAUNCH_PROBE = """import os
 
+from ament_index_python.packages import get_package_share_directory
 from launch import LaunchDescription
 from launch.actions import LogInfo
 
@@ -473,7 +474,8 @@ def generate_launch_description():
         wrote = 'ok'
     except OSError as exc:
         wrote = 'blocked ' + type(exc).__name__
-    return LaunchDescription([LogInfo(msg=f'PROBE launch uid {os.getuid()} write {wrote}')])
+    share = get_package_share_directory('probe')
+    return LaunchDescription([LogInfo(msg=f'PROBE launch uid {os.getuid()} write {wrote} share {share}')])
 """
 
 
@@ -489,7 +491,10 @@ def test_sandbox_a_python_launch_file_is_evaluated_in_the_sandbox(klass: Class) 
         started = world.post("/api/launch", {"package": "probe", "file": "probe.launch.py"})
         assert started.status_code == 201, started.text
         world.stop(started.json()["id"])
-        (probes[world.name],) = [m for m in started.json()["messages"] if "PROBE launch" in m]
+        (probe,) = [m for m in started.json()["messages"] if "PROBE launch" in m]
+        share = f" share {launch_dir.parent.resolve()}"  # its package found from inside, too
+        assert probe.endswith(share), probe
+        probes[world.name] = probe.removesuffix(share)
         assert (launch_dir / "written_by_launch.txt").exists() is (world is klass.cy)
     assert probes[klass.cy.name] == f"[INFO] [launch.user]: PROBE launch uid {os.getuid()} write ok"
     sandboxed = re.fullmatch(
