@@ -6,6 +6,7 @@ the result is plain data for the launcher.
 from __future__ import annotations
 
 import os
+import shlex
 from collections import ChainMap
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -223,8 +224,18 @@ class FileEvaluator:
                 location=SourceLocation(self.file, element.line),
                 shutdown_on_exit=on_exit == "shutdown",
                 parameter_files=tuple(files),
+                arguments=self._words(element, "args", frame),
+                ros_arguments=self._words(element, "ros_args", frame),
             )
         )
+
+    def _words(self, element: Element, attr: str, frame: _Frame) -> tuple[str, ...]:
+        """``args="a 'b c'"``: the node's command-line words, split as a shell would."""
+        text = self._optional(element, attr, frame)
+        try:
+            return tuple(shlex.split(text)) if text else ()
+        except ValueError as err:
+            raise self._error(element, f'{attr}="{text}": {err}') from None
 
     def _respawn(self, element: Element, frame: _Frame) -> bool:
         text = self._optional(element, "respawn", frame)

@@ -88,7 +88,8 @@ ACTIONS: Mapping[str, str] = MappingProxyType(
         "push_ros_namespace": "push-ros-namespace",
     }
 )
-_NODE_ATTRS = ("pkg", "exec", "type", "name", "namespace", "ns", "output", "respawn", "respawn_delay")
+_NODE_ATTRS = ("pkg", "exec", "type", "name", "namespace", "ns", "output", "respawn", "respawn_delay", "args",
+               "ros_args")  # fmt: skip
 _RULES: Mapping[str, _Rule] = MappingProxyType(
     {
         "launch": _Rule(frozenset({"version"}), children=ACTIONS),

@@ -7,7 +7,9 @@ from pathlib import Path
 import pytest
 from launchfiles import FindShare, Write, file_error_of
 
+from server.launch.launcher import with_ros_arguments
 from server.launch.xml_parser import parse_launch_file
+from server.processes.command import ros_args
 
 TUTORIAL_YAML = """\
 launch:
@@ -125,3 +127,20 @@ def test_yaml_errors_name_the_yaml_line(
 
     assert (error.file, error.line) == (str(path), line)
     assert problem in error.problem
+
+
+def test_node_args_and_ros_args_reach_the_command_line(write: Write, find_share: FindShare) -> None:
+    path = write(
+        "args_launch.yaml",
+        "launch:\n- node:\n    pkg: p\n    exec: x\n    name: n\n    args: \"--flag 'two words'\"\n"
+        '    ros_args: "--log-level debug"\n',
+    )
+
+    (node,) = parse_launch_file(path, find_package_share=find_share).nodes
+
+    assert (node.arguments, node.ros_arguments) == (("--flag", "two words"), ("--log-level", "debug"))
+    lab_args = ros_args(node.name, node.namespace, node.parameters, node.remappings)
+    assert [*node.arguments, *with_ros_arguments(lab_args, node.ros_arguments)] == [
+        "--flag", "two words", "--ros-args", "-r", "__node:=n", "--log-level", "debug",
+    ]  # fmt: skip
+    assert with_ros_arguments([], node.ros_arguments) == ["--ros-args", "--log-level", "debug"]
