@@ -40,7 +40,7 @@ def evaluate_python_file(
     session.note_file(file)
     evaluation = run(path, args, None)
     included_args: set[str] = set()
-    declared = _absorb(session, evaluation, (path.resolve(),), run, included_args)
+    declared = _absorb(session, path, evaluation, (path.resolve(),), run, included_args)
     known = {*_strings(evaluation.answer.get("declared")), *included_args}
     for name in args:
         if name not in known:
@@ -55,20 +55,35 @@ def include_python_with(run: RunPython) -> IncludePython:
     def include(
         session: Session, path: Path, args: Mapping[str, str], namespace: str | None, stack: tuple[Path, ...]
     ) -> None:
-        _absorb(session, run(path, args, namespace), stack, run)
+        _absorb(session, path, run(path, args, namespace), stack, run)
 
     return include
 
 
 def _absorb(
     session: Session,
+    path: Path,
     evaluation: Evaluation,
     stack: tuple[Path, ...],
     run: RunPython,
     included_args: set[str] | None = None,
 ) -> dict[str, str]:
-    """The evaluation's nodes and includes into ``session``; the top file's arguments. The names the
-    XML and YAML files it includes declare are added to ``included_args``."""
+    """The evaluation of ``path``: its nodes and includes into ``session``; its arguments. The names
+    the XML and YAML files it includes declare are added to ``included_args``. The answer came from
+    a student's code: one that is not what the evaluation writes is refused, not trusted."""
+    try:
+        return _absorb_answer(session, evaluation, stack, run, included_args)
+    except (ValueError, TypeError, AttributeError, OverflowError):
+        raise LaunchFileError(str(path), 0, "its evaluation did not answer a launch description") from None
+
+
+def _absorb_answer(
+    session: Session,
+    evaluation: Evaluation,
+    stack: tuple[Path, ...],
+    run: RunPython,
+    included_args: set[str] | None,
+) -> dict[str, str]:
     answer = evaluation.answer
     for file in _strings(answer.get("files")):
         session.note_file(file)
@@ -134,7 +149,8 @@ def _node(session: Session, entry: Mapping[str, Any]) -> NodeAction:
         except ValueError as err:
             raise fail(f"parameter '{name}': {err}") from None
     files: list[ParamsFile] = [
-        _param_file(session, text, location) for text in _strings(entry.get("parameter_files"))
+        read_param_file(session, text, location.file, location.line)
+        for text in _strings(entry.get("parameter_files"))
     ]
     remappings = tuple((str(a), str(b)) for a, b in _pairs(entry.get("remappings")))
     return NodeAction(
@@ -145,10 +161,6 @@ def _node(session: Session, entry: Mapping[str, Any]) -> NodeAction:
         remappings=_first_wins(remappings), location=location, parameter_files=tuple(files),
         arguments=tuple(_strings(entry.get("arguments"))), ros_arguments=tuple(_strings(entry.get("ros_arguments"))),
     )  # fmt: skip
-
-
-def _param_file(session: Session, text: str, location: SourceLocation) -> ParamsFile:
-    return read_param_file(session, text, location.file, location.line)
 
 
 def _first_wins(remappings: tuple[tuple[str, str], ...]) -> tuple[tuple[str, str], ...]:

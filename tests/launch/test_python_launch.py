@@ -259,6 +259,12 @@ def test_python_xml_and_yaml_include_each_other(package: Path) -> None:
 
 
 BROKEN = {
+    "forged.launch.py": (  # the answer is a student's code's: not trusted
+        "import os\n\ndef generate_launch_description():\n"
+        "    os.write(1, b'{\"found\": [{\"kind\": \"node\", \"pkg\": \"p\", \"exec\": \"x\", "
+        "\"line\": \"not a line\"}]}\\n')\n    os._exit(0)\n",
+        0, "its evaluation did not answer a launch description",
+    ),
     "raises.launch.py": (
         "from launch import LaunchDescription\n\ndef generate_launch_description():\n    return 1 / 0\n",
         4, "ZeroDivisionError: division by zero",
