@@ -38,6 +38,7 @@ LONGEST_FILES = (
     "tests/sandbox/test_sandbox.py",
     "tests/checkpoints/test_restart.py",
     "tests/workspace/test_action_tutorial.py",
+    "tests/workspace/test_launch_tutorials.py",
     "tests/workspace/test_tf2_tutorials.py",
     "tests/checkpoints/test_class_restart.py",
     "tests/checkpoints/test_api.py",
