@@ -19,6 +19,8 @@ from .python_process import Evaluation
 from .values import OUTPUTS
 from .xml_tree import declared_names, did_you_mean
 
+MAX_MESSAGES = 200  # lines shown with a launch (every GET /api/launches repeats them)
+MAX_MESSAGE_CHARS = 2000
 RunPython = Callable[[Path, Mapping[str, str], "str | None"], Evaluation]
 """Evaluates one Python launch file in its process: its path, the arguments, the namespace pushed."""
 
@@ -87,8 +89,9 @@ def _absorb_answer(
     answer = evaluation.answer
     for file in _strings(answer.get("files")):
         session.note_file(file)
-    session.messages.extend(_strings(answer.get("messages")))
-    session.messages.extend(evaluation.printed)
+    for line in [*_strings(answer.get("messages")), *evaluation.printed]:
+        if len(session.messages) < MAX_MESSAGES:
+            session.messages.append(line[:MAX_MESSAGE_CHARS])
     for entry in _entries(answer.get("found")):
         if entry.get("kind") == "node":
             session.nodes.append(_node(session, entry))

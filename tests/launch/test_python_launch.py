@@ -14,6 +14,7 @@ from server.bus import ManualClock
 from server.lab import Lab
 from server.launch.description import LaunchDescription, LaunchFileError
 from server.launch.launcher import parse_launch
+from server.launch.python_launch import MAX_MESSAGE_CHARS, MAX_MESSAGES
 from server.packages import PackageIndex
 from server.settings import LabSettings, Settings
 
@@ -386,3 +387,18 @@ def test_a_class_servers_python_launch_outside_the_sandboxs_view_is_refused_at_s
         f"{path}:0: a Python launch file runs in the students' sandbox"
     )
     assert check_launch(server_settings(*args)) is None
+
+
+def test_what_a_launch_file_says_is_kept_to_a_bounded_size(package: Path) -> None:
+    path = write(package, "chatty.launch.py", """
+        from launch import LaunchDescription
+        from launch.actions import LogInfo
+
+        def generate_launch_description():
+            return LaunchDescription([LogInfo(msg=f'line {i} ' + 'x' * 5000) for i in range(300)])
+        """)  # fmt: skip
+
+    messages = launch(path).messages
+
+    assert len(messages) == MAX_MESSAGES and messages[0].startswith("[INFO] [launch.user]: line 0 xxx")
+    assert {len(m) for m in messages} == {MAX_MESSAGE_CHARS}
