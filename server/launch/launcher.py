@@ -126,10 +126,12 @@ class Launcher:
 
     def python_launch(self) -> PythonLaunchProcess:
         """How this lab evaluates a Python launch file: where its students' nodes run (in the
-        sandbox on a server that serves others; refused where that server has none)."""
-        if isinstance(self.sandbox, StudentCodeRefusedError):
-            raise self.sandbox
+        sandbox on a server that serves others; refused, when one is read, where it has none)."""
         domain_id = self.transport.domain_id if self.transport is not None else 0
+        if isinstance(self.sandbox, StudentCodeRefusedError):
+            return PythonLaunchProcess(
+                self.packages.workspace, None, self.confined, domain_id, refused=self.sandbox
+            )
         return PythonLaunchProcess(self.packages.workspace, self.sandbox, self.confined, domain_id)
 
     def launch_file(self, path: str | Path, args: Mapping[str, str] | None = None) -> list[LaunchedNode]:

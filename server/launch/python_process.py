@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import IO, Any
 
 from server.processes.command import PreparedStart, launch_command
-from server.processes.sandbox import CLIENT_CODE, PROJECT, Sandbox
+from server.processes.sandbox import CLIENT_CODE, PROJECT, Sandbox, StudentCodeRefusedError
 
 from .description import LaunchFileError
 
@@ -54,8 +54,11 @@ class PythonLaunchProcess:
     confined: bool = False
     domain_id: int = 0
     timeout_s: float = EVALUATION_TIMEOUT_S
+    refused: StudentCodeRefusedError | None = None  # a server that serves others but cannot sandbox
 
     def __call__(self, path: Path, args: Mapping[str, str], namespace: str | None) -> Evaluation:
+        if self.refused is not None:
+            raise self.refused
         if self.sandbox is not None and not sandbox_sees(path, self.workspace):
             raise LaunchFileError(str(path), 0, OUTSIDE_SANDBOX)
         request = json.dumps({"args": dict(args), "namespace": namespace})

@@ -26,6 +26,13 @@ LAUNCH = """<launch>
   <node pkg="mine" exec="node.py" name="mine"/>
 </launch>
 """
+PYTHON_LAUNCH = """from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    return LaunchDescription([Node(package='sensor_simulation', executable='pressure.py', name='py_pressure')])
+"""
 WORLD_LAUNCH = """<launch>
   <node pkg="sensor_simulation" exec="pressure.py" name="pressure"/>
 </launch>
@@ -47,6 +54,7 @@ def refusing(tmp_path_factory: pytest.TempPathFactory) -> Iterator[World]:
         (package / "launch").mkdir(parents=True)
         (package / "node.py").write_text(NODE.lstrip())
         (package / "launch" / "mine.launch").write_text(LAUNCH)
+        (package / "launch" / "mine.launch.py").write_text(PYTHON_LAUNCH)
         yield ada
     finally:
         app.stop()
@@ -84,3 +92,12 @@ def test_no_sandbox_the_labs_own_nodes_still_run(refusing: World) -> None:
     assert "/p2" in {str(n["name"]) for n in refusing.get("/api/nodes").json()}
     assert HTTP.delete(f"{refusing.app.url}/api/launches/{reply.json()['id']}", headers=refusing.headers(),
                         timeout=30).status_code == 200  # fmt: skip
+
+
+def test_no_sandbox_a_python_launch_file_is_not_evaluated(refusing: World) -> None:
+    """Its generate_launch_description() is a student's code too: refused as their nodes are."""
+    reply = refusing.post("/api/launch", {"package": "mine", "file": "mine.launch.py"})
+    assert reply.status_code == 503, reply.text
+    assert "no bubblewrap (bwrap)" in reply.json()["detail"]
+    assert "/py_pressure" not in {str(n["name"]) for n in refusing.get("/api/nodes").json()}
+    assert refusing.get("/api/launches").json() == []
