@@ -4,11 +4,18 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 from support.app import REPO, App, JsonProcess
 
-INTERFACES = REPO / "server" / "msgs" / "interfaces"
+# The lab's own definitions, and ROS 2's as the set-up extracted them from its wheels.
+FOLDERS = (REPO / "server" / "msgs" / "interfaces", REPO / "server" / "msgs" / "ros_interfaces")
+
+
+def definition_file(pkg: str, kind: str, short: str) -> Path:
+    (found,) = [path for f in FOLDERS if (path := f / pkg / kind / f"{short}.{kind}").is_file()]
+    return found
 
 
 def definitions(*types: str) -> dict[str, str]:
@@ -19,7 +26,7 @@ def definitions(*types: str) -> dict[str, str]:
         if name in out:
             return
         pkg, kind, short = name.split("/")
-        text = (INTERFACES / pkg / kind / f"{short}.{kind}").read_text()
+        text = definition_file(pkg, kind, short).read_text()
         out[name] = text
         for line in text.splitlines():
             words = line.split("#", 1)[0].split()
@@ -36,7 +43,7 @@ def definitions(*types: str) -> dict[str, str]:
 
 def service_text(name: str) -> tuple[str, str]:
     pkg, kind, short = name.split("/")
-    request, _, response = (INTERFACES / pkg / kind / f"{short}.{kind}").read_text().partition("---")
+    request, _, response = definition_file(pkg, kind, short).read_text().partition("---")
     strip = "\n".join(line for line in request.splitlines() if not line.startswith("#"))
     return strip, response
 
