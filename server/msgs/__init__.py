@@ -1,6 +1,7 @@
 """Message and service types with their ROS 2 names (``std_msgs/msg/Bool`` ...), declared once in
-``.msg``/``.srv`` files (server/msgs/interfaces, and a workspace's interface packages added at run
-time through server.msgs.catalog) and looked up by name."""
+``.msg``/``.srv`` files (the lab's in server/msgs/interfaces, ROS 2's from its wheels in
+server/msgs/ros_interfaces, and a workspace's interface packages added at run time through
+server.msgs.catalog) and looked up by name."""
 
 from ._action import Action
 from ._base import Message, Service
