@@ -1,6 +1,8 @@
 """ros2/examples' custom executor whole: a PriorityExecutor whose spin_once hands each ready
 callback to a pool of threads, the high-priority node's to a pool of its own; talker, listener and
-an estop node spun by its spin() until the listener has heard enough and shuts the context down."""
+an estop node spun by its spin() until the listener has heard enough and shuts the context down.
+(How many messages the estop node got before that is not printed: on Fast DDS its subscription may
+miss the first ones while discovery goes on.)"""
 
 from concurrent.futures import ThreadPoolExecutor
 import os
@@ -96,7 +98,6 @@ def main(args=None):
     executor.lp_executor.shutdown()
     executor.hp_executor.shutdown()
     print('listener heard:', listener.heard[:3])
-    print('estop heard some:', estopper.heard >= 3)
 
 
 if __name__ == '__main__':
