@@ -14,7 +14,7 @@ def main():
     node.declare_parameter('names', ['a', 'b'])
     for name in ('rate', 'names'):
         param = node.get_parameter(name)
-        print(name, param.type_, int(param.type_), param.type_.name)
+        print(name, param.type_, param.type_ == int(param.type_.value), param.type_.name)
     result = node.set_parameters([Parameter('rate', value=2.5)])[0]
     print('set rate=2.5:', result.successful, repr(result.reason))
     print('every parameter:', sorted(node.list_parameters([], 1).names))
