@@ -36,6 +36,8 @@ def main():
     executor = SingleThreadedExecutor()
     executor.add_node(adder)
     executor.add_node(node)
+    while not client.wait_for_service(timeout_sec=1.0):
+        pass
 
     plain = executor.create_task(lambda a, b: a * b, 6, 7)
     print('plain done before spinning:', plain.done())
@@ -89,6 +91,8 @@ def main():
     # gets the response, which waits for the group the timer holds.
     stuck = []
     same_group_client = node.create_client(SetBool, 'negate')
+    while not same_group_client.wait_for_service(timeout_sec=1.0):
+        pass
 
     async def blocked():
         response = await same_group_client.call_async(SetBool.Request(data=True))
