@@ -146,12 +146,21 @@ def extract(wheels: list[Path], target: Path, stamp: str) -> int:
         text = json.dumps(dict(sorted(hashes.items())), indent=1) + "\n"
         (staging / HASHES_FILE).write_text(text, encoding="utf-8")
         (staging / STAMP_FILE).write_text(stamp + "\n", encoding="utf-8")
+        _readable_by_all(staging)
         if target.exists():
             shutil.rmtree(target)
         os.replace(staging, target)
     finally:
         shutil.rmtree(staging, ignore_errors=True)
     return count
+
+
+def _readable_by_all(folder: Path) -> None:
+    """Every node process reads these, sandboxed ones as another user: whatever the umask (and
+    mkdtemp's 0700), folders 0755 and files 0644."""
+    folder.chmod(0o755)
+    for path in folder.rglob("*"):
+        path.chmod(0o755 if path.is_dir() else 0o644)
 
 
 def lock_stamp(lock_text: str) -> str:

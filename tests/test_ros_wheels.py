@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import zipfile
 from pathlib import Path
 
@@ -44,12 +45,19 @@ def test_ros_wheels_extract_only_the_definitions_and_rosidls_hashes(tmp_path: Pa
     cache = tmp_path / "cache"
     lock = lock_for(tmp_path, make_wheel(cache))
     target = tmp_path / "ros_interfaces"
-    said = ensure(lock, target, cache)
+    previous = os.umask(0o077)  # a user's restrictive umask
+    try:
+        said = ensure(lock, target, cache)
+    finally:
+        os.umask(previous)
     assert "0 downloaded, 1 from" in said and "3 files" in said
     files = {p.relative_to(target).as_posix() for p in target.rglob("*") if p.is_file()}
     assert files == {"demo_msgs/msg/Ping.msg", "demo_msgs/srv/Echo.srv", "demo_msgs/action/Count.action",
                      ros_wheels.HASHES_FILE, ros_wheels.STAMP_FILE}  # fmt: skip
     assert (target / "demo_msgs/msg/Ping.msg").read_text() == "uint32 seq\n"
+    # Readable by every user (a sandboxed node runs as another), whatever the umask was.
+    assert {p.stat().st_mode & 0o777 for p in [target, *target.rglob("*")] if p.is_dir()} == {0o755}
+    assert {p.stat().st_mode & 0o777 for p in target.rglob("*") if p.is_file()} == {0o644}
     hashes = json.loads((target / ros_wheels.HASHES_FILE).read_text())
     assert hashes == {"demo_msgs/msg/Ping": "RIHS01_" + "ab" * 32}
 
