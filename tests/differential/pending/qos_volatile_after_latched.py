@@ -1,5 +1,5 @@
 """A volatile subscription made after a transient-local publisher's messages gets none of them,
-only what comes later (programs/qos_transient_local.py without it). QoS a tutorial meets: a transient-local publisher's last messages reach a subscription made
+only what comes later (qos_transient_local.py without it). QoS a tutorial meets: a transient-local publisher's last messages reach a subscription made
 after them (up to its depth), a volatile one gets only what comes later; best effort and
 reliable endpoints, and the profiles' fields."""
 
