@@ -68,7 +68,12 @@ def collect(project: Path = PROJECT) -> Distribution:
     for pattern in tool["data"]:
         found = next((sorted(r.glob(pattern)) for r in roots if any(r.glob(pattern))), [])
         if not found:
-            raise BuildError(f"no file matches {pattern}")
+            hint = (
+                " (ROS 2's definitions: run `python -m server.ros_wheels` first)"
+                if "ros_interfaces" in pattern
+                else ""
+            )
+            raise BuildError(f"no file matches {pattern}{hint}")
         root = next(r for r in roots if any(r.glob(pattern)))
         files.update({p.relative_to(root).as_posix(): p for p in found})
     lines = [
