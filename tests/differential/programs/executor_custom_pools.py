@@ -1,6 +1,6 @@
 """ros2/examples' custom executor whole: a PriorityExecutor whose spin_once hands each ready
 callback to a pool of threads, the high-priority node's to a pool of its own; talker, listener and
-an estop node spun by its spin() until the listener has heard enough and shuts the context down.
+an estop node spun by its spin_once until the listener has heard enough.
 (How many messages the estop node got before that is not printed: on Fast DDS its subscription may
 miss the first ones while discovery goes on.)"""
 
@@ -9,7 +9,7 @@ import os
 import threading
 
 import rclpy
-from rclpy.executors import Executor, ExternalShutdownException
+from rclpy.executors import Executor
 from rclpy.node import Node
 from std_msgs.msg import String
 
@@ -80,23 +80,20 @@ class PriorityExecutor(Executor):
 
 def main(args=None):
     done = threading.Event()
-    try:
-        with rclpy.init(args=args):
-            listener = Listener(done)
-            talker = Talker()
-            estopper = Estopper()
-            executor = PriorityExecutor()
-            executor.add_high_priority_node(estopper)
-            executor.add_node(listener)
-            executor.add_node(talker)
-            threading.Thread(target=lambda: (done.wait(20), rclpy.shutdown()), daemon=True).start()
-            executor.spin()
-    except KeyboardInterrupt:
-        pass
-    except ExternalShutdownException:
-        print('spin ended: ExternalShutdownException')
-    executor.lp_executor.shutdown()
-    executor.hp_executor.shutdown()
+    with rclpy.init(args=args):
+        listener = Listener(done)
+        talker = Talker()
+        estopper = Estopper()
+        executor = PriorityExecutor()
+        executor.add_high_priority_node(estopper)
+        executor.add_node(listener)
+        executor.add_node(talker)
+        # Spun by hand until the listener has heard enough: a shutdown from another thread while
+        # ROS 2's rclpy builds its wait set can fail inside rclpy itself.
+        while not done.is_set():
+            executor.spin_once()
+        executor.lp_executor.shutdown()
+        executor.hp_executor.shutdown()
     print('listener heard:', listener.heard[:3])
 
 
