@@ -89,15 +89,8 @@ def _ranking(nodes: list[Node]) -> Callable[[Ready], tuple[int, int, int, int]]:
     where = {id(node): i for i, node in enumerate(nodes)}
 
     def rank(ready: Ready) -> tuple[int, int, int, int]:
-        node, entity = ready.node, ready.entity
-        for kind, entities in enumerate(
-            (node.timers, node.subscriptions, getattr(node, "guards", ()), node.clients, node.services)
-        ):
-            if any(e is entity for e in entities):
-                index = next(i for i, e in enumerate(entities) if e is entity)
-                waitable = getattr(entity, "in_waitable", False)
-                return (0 if waitable else 1, where.get(id(node), len(where)), kind, index)
-        return (1, where.get(id(node), len(where)), 5, 0)
+        waitable, kind, index = ready.place()
+        return (waitable, where.get(id(ready.node), len(where)), kind, index)
 
     return rank
 

@@ -54,10 +54,31 @@ def group_of(node: Any, callback: Any) -> CallbackGroup:
 class Ready:
     """An entity with work for its callback: ``run()`` takes that work and runs it."""
 
-    __slots__ = ("entity", "group", "node", "once", "run")
+    __slots__ = ("_place", "entity", "group", "node", "once", "run")
 
     def __init__(self, node: Any, entity: Any, group: CallbackGroup, run: Run, *, once: bool) -> None:
         self.node, self.entity, self.group, self.run, self.once = node, entity, group, run, once
+        self._place: tuple[int, int, int] | None = None
+
+    def place(self) -> tuple[int, int, int]:
+        """Where rclpy's round looks at it in its node: (0 for an action's entity, else 1; its
+        kind: timer, subscription, guard condition, client, service; its index among them)."""
+        if self._place is None:
+            node, entity = self.node, self.entity
+            self._place = (1, 5, 0)
+            kinds = (
+                node.timers,
+                node.subscriptions,
+                getattr(node, "guards", ()),
+                node.clients,
+                node.services,
+            )
+            for kind, entities in enumerate(kinds):
+                index = next((i for i, e in enumerate(entities) if e is entity), None)
+                if index is not None:
+                    self._place = (0 if getattr(entity, "in_waitable", False) else 1, kind, index)
+                    break
+        return self._place
 
 
 class WaitSet(BlockingExecutor):
@@ -71,6 +92,7 @@ class WaitSet(BlockingExecutor):
         self._changed = threading.Condition(self._lock)
         self._generation = 0  # moves on each time the pool may have changed or a wake came
         self._collecting = threading.Lock()
+        self._waiters = 0  # threads waiting on _changed (the others wait on the bus)
         self._spinners: dict[int, int] = {}  # thread → how many spin loops it is inside
 
     # -- recording (on the thread that waits, inside the bus's pass) -------------------------
@@ -83,7 +105,8 @@ class WaitSet(BlockingExecutor):
                 self._once.add(key)
             self._items.append(ready)
             self._generation += 1
-            self._changed.notify_all()
+            if self._waiters:
+                self._changed.notify_all()
         self.wake_core()
 
     def _run(self, node: Node, fn: Callable[..., Any], *args: Any) -> None:  # a due timer
@@ -149,7 +172,8 @@ class WaitSet(BlockingExecutor):
         with self._lock:
             self._items.insert(0, ready)
             self._generation += 1
-            self._changed.notify_all()
+            if self._waiters:
+                self._changed.notify_all()
 
     def any(self, wanted: Callable[[Ready], bool]) -> bool:
         with self._lock:
@@ -172,7 +196,13 @@ class WaitSet(BlockingExecutor):
                 self._bump()
             return
         with self._changed:
-            self._changed.wait_for(lambda: self._generation != since, 1.0 if timeout_s is None else timeout_s)
+            self._waiters += 1
+            try:
+                self._changed.wait_for(
+                    lambda: self._generation != since, 1.0 if timeout_s is None else timeout_s
+                )
+            finally:
+                self._waiters -= 1
 
     @contextlib.contextmanager
     def spinning(self) -> Iterator[None]:
@@ -204,7 +234,8 @@ class WaitSet(BlockingExecutor):
     def _bump(self) -> None:
         with self._lock:
             self._generation += 1
-            self._changed.notify_all()
+            if self._waiters:
+                self._changed.notify_all()
 
     def stop(self) -> None:
         super().stop()
