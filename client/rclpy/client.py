@@ -89,11 +89,12 @@ class Client(ServiceClient):
 
     def call(self, request: Message, timeout_sec: float | None = None) -> Any:
         """The response; for a caller on another thread than the executor's, as in rclpy (on the
-        spinning thread itself it would wait for ever). None if ``timeout_sec`` passes."""
+        spinning thread itself it would wait for ever). TimeoutError if ``timeout_sec`` passes, as
+        rclpy 9 raises."""
         future = self.call_async(request)
         if not future.wait(timeout_sec):
             self.remove_pending_request(future)
-            return None
+            raise TimeoutError()
         return future.result()
 
     def remove_pending_request(self, future: Future[Any]) -> None:
