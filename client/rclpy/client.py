@@ -68,6 +68,8 @@ class Client(ServiceClient):
 
     def call_async(self, request: Message) -> Future[Message]:
         future = super().call_async(request)
+        # As rclpy's client: the request is forgotten when it is done (a task of the executor then).
+        future.add_done_callback(self.remove_pending_request)
         self._sequence += 1
         introspection = self._introspection
         if introspection.state is not ServiceIntrospectionState.OFF:
