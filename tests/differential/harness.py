@@ -228,7 +228,11 @@ def main(argv: list[str]) -> int:
     if not argv:
         print("usage: python tests/differential/harness.py PROGRAM...", file=sys.stderr)
         return 2
-    python = oracle_python(Path(sys.prefix))
+    try:
+        python = oracle_python(Path(sys.prefix))
+    except MissingOracle as exc:
+        print(exc, file=sys.stderr)
+        return 2
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))
         port = int(sock.getsockname()[1])
