@@ -18,7 +18,7 @@ from typing import Any, ClassVar
 from ._field import FLOAT32_MAX, MAX_ARRAY_ITEMS, MAX_STRING_CHARS, Field, MessageError
 from .compiled import compile_methods
 from .definitions import lab_definitions
-from .idl import MessageSpec, ServiceSpec
+from .idl import MessageSpec, ServiceSpec, parse_message
 
 __all__ = ["FLOAT32_MAX", "MAX_ARRAY_ITEMS", "MAX_STRING_CHARS", "Field", "Message", "MessageError",
            "Service", "define_message", "define_service", "load_generated", "message_class",
@@ -124,12 +124,32 @@ class Message:
         return f"{pkg}.{kind}.{name}({inner})"
 
 
+class _EventType:
+    """``<Srv>.Event``, as rosidl generates it beside Request and Response: the message a
+    service's introspection events travel in (the call's info, then at most one request and one
+    response). Made at its first use, once per service type."""
+
+    def __get__(self, _instance: object, owner: type[Service]) -> type[Message]:
+        made = owner.__dict__.get("_event")
+        if made is None:
+            text = (
+                "service_msgs/ServiceEventInfo info\n"
+                f"{owner.Request.TYPE}[<=1] request\n{owner.Response.TYPE}[<=1] response\n"
+            )
+            made = define_message(parse_message(f"{owner.TYPE}_Event", text), owner.__module__)
+            owner._event = made
+        return made  # type: ignore[no-any-return]
+
+
 class Service:
-    """Base of every service type: ``Request`` and ``Response`` message classes, as in rclpy."""
+    """Base of every service type: ``Request``, ``Response`` and ``Event`` message classes, as in
+    rclpy."""
 
     TYPE: ClassVar[str] = ""
     Request: ClassVar[type[Message]]
     Response: ClassVar[type[Message]]
+    Event: ClassVar[type[Message]] = _EventType()  # type: ignore[assignment]
+    _event: ClassVar[type[Message] | None] = None
 
     def __init_subclass__(
         cls, type_name: str | None = None, spec: ServiceSpec | None = None, **kwargs: Any

@@ -361,3 +361,22 @@ def test_numeric_arrays_are_numpy_and_checked() -> None:
     assert deserialize(imu.TYPE, serialize(imu)) == imu
     pose = PoseStamped()
     assert deserialize(pose.TYPE, serialize(pose)) == pose
+
+
+def test_every_service_type_has_rosidls_event_message_beside_request_and_response() -> None:
+    """``<Srv>.Event`` as rosidl generates it: the call's info, at most one request and one
+    response; its name is the one whose hash ROS 2's wheels carry, and a call's event round-trips."""
+    ros = json.loads((ROS_INTERFACES_DIR / "type_hashes.json").read_text(encoding="utf-8"))
+    events = [name.removesuffix("_Event") for name in ros if name.endswith("_Event") and "/srv/" in name]
+    assert "std_srvs/srv/SetBool" in events
+    for name in events:
+        srv = get_service_type(name)
+        event = srv.Event
+        assert event is srv.Event, name
+        assert event.TYPE.endswith("_Event") and event.TYPE.removesuffix("_Event") == name, name
+        assert [f.name for f in event.FIELDS] == ["info", "request", "response"], name
+        assert type_hash(event.TYPE) == ros[event.TYPE], name
+    set_bool = get_service_type("std_srvs/srv/SetBool")
+    call = set_bool.Event(request=[set_bool.Request(data=True)])  # type: ignore[call-arg]
+    back = deserialize(set_bool.Event.TYPE, serialize(call))
+    assert [r.data for r in back.request] == [True] and list(back.response) == []
