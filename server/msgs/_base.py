@@ -138,7 +138,7 @@ class _EventType:
             )
             made = define_message(parse_message(f"{owner.TYPE}_Event", text), owner.__module__)
             owner._event = made
-        return made  # type: ignore[no-any-return]
+        return made
 
 
 class Service:
