@@ -93,8 +93,7 @@ class NodeRcutilsLogger(NodeLogger):
     """``node.get_logger()``: named by the node, echoed on /rosout."""
 
     def __init__(self, node: Any) -> None:
-        super().__init__(node)
-        self.name = node.get_name()
+        super().__init__(node)  # named as rcl names a node's logger: ``ns.name``
         self._filters = _Filters()
 
     def _emit(self, level: str, severity: int, msg: Any, options: dict[str, Any]) -> bool:

@@ -28,20 +28,28 @@ def node_logger_name(world: str | None, fully_qualified_name: str) -> str:
     return f"{world_logger(world)}{dotted}" if world else f"node{dotted}"
 
 
+def ros_logger_name(fully_qualified_name: str) -> str:
+    """The name rcl gives a node's logger: its namespace and name joined by dots, with no
+    leading one (``/turtlesim2/sim`` logs as ``turtlesim2.sim``, ``/talker`` as ``talker``); the
+    name its lines print in brackets and carry on /rosout."""
+    return fully_qualified_name.lstrip("/").replace("/", ".")
+
+
 class NodeLogger:
     """``node.get_logger()``: Python logging under the node's name, echoed on /rosout."""
 
     def __init__(self, node: Node) -> None:
         self._node = node
+        self.name = ros_logger_name(node.fully_qualified_name)
         self._py = logging.getLogger(node_logger_name(node.bus.label, node.fully_qualified_name))
 
     def _log(self, level: str, msg: Any) -> None:
         text = str(msg)
         console = self._node.bus.console
         if console is not None:
-            console(_LEVELS[level], self._node.get_name(), text)
+            console(_LEVELS[level], self.name, text)
         else:
-            self._py.log(_LEVELS[level], "[%s] %s", self._node.get_name(), text)
+            self._py.log(_LEVELS[level], "[%s] %s", self.name, text)
         self._node._emit_log(_LEVELS[level], text)
 
     def debug(self, msg: Any) -> None:
@@ -292,7 +300,7 @@ class Node(NodeParameters):
             return
         now = self.bus.clock.now()
         sec = int(now)
-        msg = Log(level=level, name=self.fully_qualified_name.lstrip("/"), msg=text[:4096])
+        msg = Log(level=level, name=ros_logger_name(self.fully_qualified_name), msg=text[:4096])
         object.__setattr__(msg.stamp, "sec", sec)
         object.__setattr__(msg.stamp, "nanosec", min(int((now - sec) * 1e9), 999_999_999))
         self._rosout.publish(msg)

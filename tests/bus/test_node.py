@@ -73,13 +73,13 @@ def test_node_logger_info_goes_to_python_logging_and_rosout(
         node.get_logger().warning("low fuel")
     executor.spin_some()
     assert [(m.name, m.level, m.msg) for m in logs] == [
-        ("ns/talker", Log.INFO, "Rocket Ready for Countdown"),
-        ("ns/talker", Log.WARN, "low fuel"),
+        ("ns.talker", Log.INFO, "Rocket Ready for Countdown"),  # rcl's logger name: ns.name
+        ("ns.talker", Log.WARN, "low fuel"),
     ]
     assert (logs[0].stamp.sec, logs[0].stamp.nanosec) == (3, 500_000_000)
     messages = [r.getMessage() for r in caplog.records]
-    assert "[talker] Rocket Ready for Countdown" in messages
-    assert "[talker] low fuel" in messages
+    assert "[ns.talker] Rocket Ready for Countdown" in messages
+    assert "[ns.talker] low fuel" in messages
 
 
 def test_a_class_worlds_node_logs_under_its_worlds_logger_and_still_on_its_rosout(
@@ -95,9 +95,9 @@ def test_a_class_worlds_node_logs_under_its_worlds_logger_and_still_on_its_rosou
         node.get_logger().info("Countdown: 3s")
     executor.spin_some()
     assert [(r.name, r.getMessage()) for r in caplog.records] == [
-        ("world.ada.ns.talker", "[talker] Countdown: 3s")
+        ("world.ada.ns.talker", "[ns.talker] Countdown: 3s")
     ]
-    assert [(m.name, m.msg) for m in logs] == [("ns/talker", "Countdown: 3s")]
+    assert [(m.name, m.msg) for m in logs] == [("ns.talker", "Countdown: 3s")]
     assert node_logger_name(None, "/ns/talker") == "node.ns.talker"  # the lab alone, as before
 
 

@@ -1,5 +1,6 @@
 """Names as ROS 2 resolves them: a namespace and remappings from --ros-args, a parameter
-override, private (~) and absolute names, and the graph as a node lists it."""
+override, private (~) and absolute names, the graph as a node lists it, and the loggers' names
+a namespace gives."""
 
 import rclpy
 from rclpy.node import Node
@@ -19,6 +20,9 @@ def main():
     print('parameters:', node.get_parameter('speed').value, node.get_parameter('name').value)
     other = Node('helper', namespace='tools')
     print('other:', other.get_fully_qualified_name())
+    print('loggers:', node.get_logger().name, other.get_logger().name)
+    node.get_logger().info('from the namespace --ros-args gave')
+    other.get_logger().warning('from a namespace of its own')
     print('nodes:', sorted(n for n in node.get_node_names() if n in ('talker', 'helper')))
     topics = dict(node.get_topic_names_and_types())
     print('topics in graph:', sorted(t for t in topics if t.startswith('/robot') or t == '/absolute'))
