@@ -1,4 +1,4 @@
-"""What a launch file describes, as plain typed data: the nodes to start and the arguments used.
+"""What a launch file describes, as plain typed data: the nodes and commands to start, the arguments.
 
 The front-ends (XML and YAML in ``xml_parser``, Python in ``python_launch``) produce these
 values; the launcher executes them. Nothing here runs a node or touches the bus.
@@ -83,6 +83,26 @@ class NodeAction:
 
 
 @dataclass(frozen=True)
+class CommandAction:
+    """One command to run (a Python file's ``ExecuteProcess``, an XML or YAML ``executable``), every
+    substitution performed. Which commands run, and how, is the launcher's business
+    (server/launch/ros2_commands.py: ``ros2 ...`` only, as the lab's CLI).
+
+    - ``cmd``: the words as written; with ``shell`` they are joined by spaces and split as a shell would.
+    - ``name``: the label its output shows (``name-N``), or ``None`` for the program's name.
+    - ``output``: as a node's (``"log"``: not printed on the server's console; the launch shows it).
+    - ``start_delay_s``: a ``TimerAction`` / ``timer`` around it: started that much later.
+    """
+
+    cmd: tuple[str, ...]
+    shell: bool
+    name: str | None
+    output: str | None
+    location: SourceLocation
+    start_delay_s: float = 0.0
+
+
+@dataclass(frozen=True)
 class LaunchDescription:
     """A launch file with its includes flattened.
 
@@ -90,11 +110,12 @@ class LaunchDescription:
       included files expanded in place.
     - ``args``: the top-level file's declared arguments with their final values (read-only).
     - ``files``: every file read, the top-level one first, each once, in the order first read.
-    - ``messages``: lines to show with the launch: a Python file's ``LogInfo`` and what it printed,
-      and what the lab does not run (an ``ExecuteProcess``).
+    - ``messages``: lines to show with the launch: a Python file's ``LogInfo`` and what it printed.
+    - ``commands``: the commands to run (``ExecuteProcess``, ``executable``), in document order.
     """
 
     nodes: tuple[NodeAction, ...]
     args: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     files: tuple[str, ...] = ()
     messages: tuple[str, ...] = ()
+    commands: tuple[CommandAction, ...] = ()

@@ -15,7 +15,16 @@ from types import MappingProxyType
 
 from server.params_file import ParamsFile
 
-from .description import LaunchDescription, LaunchFileError, NodeAction, ParamValue, SourceLocation
+from .description import (
+    CommandAction,
+    LaunchDescription,
+    LaunchFileError,
+    NodeAction,
+    ParamValue,
+    SourceLocation,
+)
+from .executables import command, timer_frame
+from .expressions import evaluate_expression
 from .frontends import load_frontend_tree
 from .param_files import load_param_file
 from .substitutions import SubstitutionError, arity, package_not_found, substitute
@@ -43,6 +52,7 @@ class Session:
     nodes: list[NodeAction] = field(default_factory=list)
     files: list[str] = field(default_factory=list)
     messages: list[str] = field(default_factory=list)  # lines to show with the launch (LogInfo's)
+    commands: list[CommandAction] = field(default_factory=list)
     files_read: int = 1
 
     def may_read(self, path: Path) -> bool:
@@ -60,7 +70,7 @@ class Session:
 
     def description(self, args: Mapping[str, str]) -> LaunchDescription:
         return LaunchDescription(tuple(self.nodes), MappingProxyType(dict(args)), tuple(self.files),
-                                 tuple(self.messages))  # fmt: skip
+                                 tuple(self.messages), tuple(self.commands))  # fmt: skip
 
 
 @dataclass
@@ -69,6 +79,7 @@ class _Frame:
 
     variables: ChainMap[str, str]
     namespace: str | None
+    delay_s: float = 0.0  # inside a <timer>: what its nodes and commands wait before they start
 
 
 class FileEvaluator:
@@ -105,6 +116,8 @@ class FileEvaluator:
             "include": self._run_include,
             "group": self._run_group,
             "push-ros-namespace": self._run_push_namespace,
+            "executable": lambda element, frame: self.session.commands.append(command(self, element, frame)),
+            "timer": lambda element, frame: self._run_actions(element, timer_frame(self, element, frame)),
         }
         for element in parent.children:
             if self._active(element, frame):
@@ -145,6 +158,9 @@ class FileEvaluator:
             if value is None and len(args) == 1:
                 raise SubstitutionError(f"environment variable '{args[0]}' is not set (no default given)")
             return value if value is not None else args[1]
+        if name == "eval":  # its quoted argument's own substitutions first, as ROS 2 does
+            arity(name, args, 1, 1)
+            return evaluate_expression(substitute(args[0], lambda n, a: self._resolve(n, a, frame)))
         arity(name, args, 0, 0)  # dirname
         return str(Path(self.file).parent)
 
@@ -185,7 +201,7 @@ class FileEvaluator:
         frame.variables[element.attrs["name"]] = self._sub(element, "value", frame)
 
     def _run_group(self, element: Element, frame: _Frame) -> None:
-        self._run_actions(element, _Frame(frame.variables.new_child(), frame.namespace))
+        self._run_actions(element, _Frame(frame.variables.new_child(), frame.namespace, frame.delay_s))
 
     def _run_push_namespace(self, element: Element, frame: _Frame) -> None:
         frame.namespace = join_namespace(frame.namespace, self._sub(element, "namespace", frame))
@@ -226,6 +242,7 @@ class FileEvaluator:
                 parameter_files=tuple(files),
                 arguments=self._words(element, "args", frame),
                 ros_arguments=self._words(element, "ros_args", frame),
+                start_delay_s=frame.delay_s,
             )
         )
 

@@ -1,5 +1,5 @@
 """Python launch files (``.launch.py``) in the one launch model: what the file's process answered
-(server/launch/python_process.py) becomes the nodes XML would give, and the XML or YAML files it
+(server/launch/python_process.py) becomes the nodes and commands XML would give, and the XML or YAML files it
 includes are read by the same evaluator as a file launched alone, in the namespace pushed where
 they are included. Includes between Python files happen inside the process, as in ROS 2.
 """
@@ -13,7 +13,14 @@ from typing import Any, cast
 
 from server.params_file import ParamsFile
 
-from .description import LaunchDescription, LaunchFileError, NodeAction, ParamValue, SourceLocation
+from .description import (
+    CommandAction,
+    LaunchDescription,
+    LaunchFileError,
+    NodeAction,
+    ParamValue,
+    SourceLocation,
+)
 from .evaluation import FileEvaluator, FindPackageShare, IncludePython, Session, load_include, read_param_file
 from .python_process import Evaluation
 from .values import OUTPUTS
@@ -95,6 +102,8 @@ def _absorb_answer(
     for entry in _entries(answer.get("found")):
         if entry.get("kind") == "node":
             session.nodes.append(_node(session, entry))
+        elif entry.get("kind") == "command":
+            session.commands.append(_command(entry))
         elif entry.get("kind") == "include":
             declared_there = _include(session, entry, stack, run)
             if included_args is not None:
@@ -163,6 +172,18 @@ def _node(session: Session, entry: Mapping[str, Any]) -> NodeAction:
         start_delay_s=_seconds(entry.get("start_delay")), parameters=tuple(parameters),
         remappings=_first_wins(remappings), location=location, parameter_files=tuple(files),
         arguments=tuple(_strings(entry.get("arguments"))), ros_arguments=tuple(_strings(entry.get("ros_arguments"))),
+    )  # fmt: skip
+
+
+def _command(entry: Mapping[str, Any]) -> CommandAction:
+    location = SourceLocation(str(entry.get("file", "")), int(entry.get("line", 0)))
+    output = entry.get("output")
+    if output is not None and output not in OUTPUTS:
+        raise LaunchFileError(location.file, location.line,
+                              f"ExecuteProcess output='{output}' is not one of {', '.join(OUTPUTS)}")  # fmt: skip
+    return CommandAction(
+        cmd=tuple(_strings(entry.get("cmd"))), shell=bool(entry.get("shell")), name=_optional(entry.get("name")),
+        output=cast("str | None", output), location=location, start_delay_s=_seconds(entry.get("start_delay")),
     )  # fmt: skip
 
 

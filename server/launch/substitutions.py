@@ -16,10 +16,9 @@ class SubstitutionError(ValueError):
 
 
 _SUBSTITUTION_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_-]*")
-_SUPPORTED = ("var", "find-pkg-share", "env", "dirname")
+_SUPPORTED = ("var", "find-pkg-share", "env", "dirname", "eval")
 _UNSUPPORTED_HINTS: Mapping[str, str] = MappingProxyType(
     {
-        "eval": "$(eval ...) is not supported here; compute the value with an <arg> instead",
         "arg": "$(arg NAME) is ROS 1 syntax; ROS 2 writes $(var NAME)",
         "find": "$(find PKG) is ROS 1 syntax; ROS 2 writes $(find-pkg-share PKG)",
         "optenv": "$(optenv NAME DEFAULT) is ROS 1 syntax; ROS 2 writes $(env NAME DEFAULT)",

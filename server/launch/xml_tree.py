@@ -86,6 +86,8 @@ ACTIONS: Mapping[str, str] = MappingProxyType(
         "group": "group",
         "push-ros-namespace": "push-ros-namespace",
         "push_ros_namespace": "push-ros-namespace",
+        "executable": "executable",
+        "timer": "timer",
     }
 )
 _NODE_ATTRS = ("pkg", "exec", "type", "name", "namespace", "ns", "output", "respawn", "respawn_delay", "args",
@@ -106,6 +108,9 @@ _RULES: Mapping[str, _Rule] = MappingProxyType(
         ),
         "param": _Rule(frozenset({"name", "value", "from"}), (), {"param": "param"}),
         "remap": _Rule(frozenset({"from", "to"}), ("from", "to")),
+        # A command (only ``ros2 ...`` runs: server/launch/commands.py), and actions some seconds later.
+        "executable": _Rule(frozenset({"cmd", "name", "args", "shell", "output", "if", "unless"}), ("cmd",)),
+        "timer": _Rule(frozenset({"period", "if", "unless"}), ("period",), children=ACTIONS),
     }
 )
 
@@ -206,7 +211,7 @@ def declared_names(element: Element) -> set[str]:
     for child in element.children:
         if child.tag == "arg":
             names.add(child.attrs["name"])
-        elif child.tag == "group":
+        elif child.tag in ("group", "timer"):
             names |= declared_names(child)
     return names
 

@@ -146,11 +146,18 @@ def test_using_substitutions_include_arguments_conditions_and_namespaces(package
         "example_substitutions.launch.py",
     ]
     assert (Path(sim.location.file).name, sim.location.line) == ("example_substitutions.launch.py", 18)
-    assert any("ExecuteProcess not run" in m and "ros2 param set turtlesim2/sim background_r 200" in m
-               for m in description.messages), description.messages  # fmt: skip
+    (command,) = description.commands  # the ExecuteProcess, its condition true, in the TimerAction
+    assert (command.cmd, command.shell, command.name, command.output, command.start_delay_s) == (
+        ("ros2 param set turtlesim2/sim background_r 200",), True, None, "log", 2.0,
+    )  # fmt: skip
+    assert (Path(command.location.file).name, command.location.line) == (
+        "example_substitutions.launch.py",
+        24,
+    )
     assert (sim.start_delay_s, listener.start_delay_s) == (0.0, 2.0)  # the TimerAction's period
     alone = launch(package / "example_substitutions.launch.py", new_background_r="100")
     assert [(n.name, n.namespace) for n in alone.nodes] == [("sim", "/turtlesim1")]  # the condition false
+    assert alone.commands == ()
     assert dict(alone.args) == {
         "turtlesim_ns": "turtlesim1",
         "use_provided_red": "False",

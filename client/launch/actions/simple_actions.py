@@ -1,5 +1,5 @@
 """Actions that set the scene rather than start nodes: ``LogInfo``, ``SetEnvironmentVariable``,
-``TimerAction``, ``OpaqueFunction``, and ``ExecuteProcess``, which the lab does not run."""
+``TimerAction``, ``OpaqueFunction``, and ``ExecuteProcess`` (a command: the lab runs ``ros2 ...`` ones)."""
 
 from __future__ import annotations
 
@@ -43,8 +43,8 @@ class SetEnvironmentVariable(Action):
 
 
 class TimerAction(Action):
-    """Its actions after ``period`` seconds: the nodes among them start that much later (the lab
-    evaluates the rest at once)."""
+    """Its actions after ``period`` seconds: the nodes and commands among them start that much
+    later (the lab evaluates the rest at once)."""
 
     def __init__(self, *, period: Any, actions: Iterable[Action], cancel_on_shutdown: bool = True,
                  **kwargs: Any) -> None:  # fmt: skip
@@ -96,7 +96,8 @@ class OpaqueFunction(Action):
 
 
 class ExecuteProcess(Action):
-    """A command to run. The lab runs nodes only: it says which command it did not run."""
+    """A command to run. The lab runs ``ros2 ...`` commands (as its own CLI) and nothing else; the
+    launcher decides, this says what was asked."""
 
     def __init__(self, *, cmd: Iterable[Any], name: Any = None, cwd: Any = None,
                  env: dict[Any, Any] | None = None, additional_env: dict[Any, Any] | None = None,
@@ -111,9 +112,17 @@ class ExecuteProcess(Action):
     def cmd(self) -> list[Any]:
         return self.__cmd
 
+    @property
+    def name(self) -> Any:
+        return self.__name
+
     def execute(self, context: LaunchContext) -> Optional[list[LaunchDescriptionEntity]]:  # noqa: UP045
-        command = " ".join(perform_typed(context, part) for part in self.__cmd)
-        context.messages.append(
-            f"[WARNING] [launch]: {_where(self)}ExecuteProcess not run (the lab starts nodes only): {command}"
-        )
+        file, line = self.written_at or (context.current_launch_file or "", 0)
+        output = None if self.output is None else perform_typed(context, self.output)
+        context.found.append({
+            "kind": "command", "cmd": [perform_typed(context, part) for part in self.__cmd],
+            "shell": bool(self.shell), "name": None if self.__name is None else perform_typed(context, self.__name),
+            "output": output, "file": file, "line": line,
+            "start_delay": float(context.locals.get("start_delay_s", 0.0)),
+        })  # fmt: skip
         return None
