@@ -6,7 +6,7 @@ client of the group the awaiting callback holds."""
 import time
 
 import rclpy
-from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.task import Future
@@ -70,7 +70,11 @@ def main():
         ticks.append(response.success)
         node.get_logger().info('tick %s %s' % (response.success, response.message))
 
-    timer = node.create_timer(0.05, tick, callback_group=group)
+    # A group of its own for the timer: a tick holds it until its coroutine ends, so the next tick
+    # starts after the last one's response. (In the reentrant group, a tick could start while the
+    # last one still awaits, and which request each sends would depend on the timing: ROS 2's rclpy
+    # itself prints either.)
+    timer = node.create_timer(0.05, tick, callback_group=MutuallyExclusiveCallbackGroup())
     while len(ticks) < 3:
         executor.spin_once(timeout_sec=1.0)
     timer.cancel()
