@@ -29,6 +29,7 @@ from server.devices.deadman import KeyDeadMan
 from server.devices.keyboard import KeyboardDevice
 from server.introspection.merged import topic_views
 from server.launch.aliases import resolve_launch
+from server.launch.commands import LabCli
 from server.launch.groups import LaunchGroups, NodeBudget
 from server.launch.launcher import Launcher, ProcessTransport
 from server.limits import RateLimit, check_finite_json, check_topic_limits, per_second
@@ -73,6 +74,10 @@ class Lab:
         self.launcher = Launcher(self.bus, self.packages)
         self.launcher.all_processes = settings.lab.node_processes == "all"
         self.launcher.confined = settings.confines_paths
+        if not settings.confines_paths:  # a launch file's ros2 commands: this lab's CLI, as its user
+            host = settings.listen.host
+            url = f"http://{f'[{host}]' if ':' in host else host}:{settings.listen.port}"
+            self.launcher.commands.cli = LabCli(url, settings.listen.token)
         # Node processes starting at once on this server's cores: a class server's worlds share
         # one pacer. ``ros2lab run`` asks it before it starts (GET /api/zenoh/join?start=true);
         # where the server serves others, the page's runs of students' files wait for it too.

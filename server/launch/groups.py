@@ -16,6 +16,7 @@ from server.bus import validate_node_name
 from server.limits import LimitExceededError
 from server.packages import PackageIndex
 
+from .commands import LaunchedCommand
 from .description import LaunchDescription, NodeAction, SourceLocation
 from .launcher import LaunchedNode, Launcher
 
@@ -33,6 +34,7 @@ class LaunchGroup:
     source: str
     entries: list[LaunchedNode]
     messages: list[str] = field(default_factory=list)  # a Python launch file's LogInfo lines, its prints
+    commands: list[LaunchedCommand] = field(default_factory=list)  # its ros2 commands (ExecuteProcess)
 
     def describe(self) -> dict[str, Any]:
         return {
@@ -55,12 +57,12 @@ class LaunchGroup:
         }
 
     def output(self) -> dict[str, Any]:
-        """The group, and each node process's last lines with how many it printed in all."""
+        """The group, and each node or command process's last lines with how many it printed in all."""
         processes = []
-        for e in self.entries:
-            if e.process is not None:
-                lines, printed = e.process.output()
-                processes.append({"label": e.process.label, "lines": lines, "printed": printed})
+        for process in [*(e.process for e in self.entries), *(c.process for c in self.commands)]:
+            if process is not None:
+                lines, printed = process.output()
+                processes.append({"label": process.label, "lines": lines, "printed": printed})
         return {"group": self.describe(), "processes": processes}
 
     def running_processes(self) -> int:
@@ -126,11 +128,12 @@ class LaunchGroups:
         (``Launcher.parse``, which a caller may run off the loop: a Python file takes a process)."""
         self._check_room()
         description = description or self._launcher.parse(path, args)
-        if len(description.nodes) > self.max_nodes:
+        if len(description.nodes) + len(description.commands) > self.max_nodes:
             raise LimitExceededError("nodes in one launch", self.max_nodes)
         self._check_processes(self._processes_in(description))
-        group = self._add("launch", str(path), self._launcher.launch(description))
-        group.messages = list(description.messages)
+        nodes, commands, refused = self._launcher.launch_all(description)
+        group = self._add("launch", str(path), nodes)
+        group.messages, group.commands = [*description.messages, *refused], commands
         return group
 
     def run(
@@ -177,6 +180,7 @@ class LaunchGroups:
         if group is None:
             raise UnknownLaunchError(group_id)
         self._launcher.stop_all(group.entries)
+        self._launcher.commands.stop(group.commands)
         return group
 
     def _check_room(self) -> None:

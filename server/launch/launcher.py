@@ -1,4 +1,4 @@
-"""The launcher: starts the nodes a LaunchDescription names, restarts them, respawns crashed ones."""
+"""The launcher: starts the nodes (and commands) a LaunchDescription names, restarts them, respawns crashed ones."""
 
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ from server.processes.start_pacing import StartPacer
 from server.processes.supervisor import ProcessNode, Supervisor
 from server.transport.acl import Credentials
 
+from .commands import CommandRunner, LaunchedCommand
 from .description import LaunchDescription, NodeAction
 from .python_launch import RunPython
 from .python_process import PythonLaunchProcess
@@ -109,6 +110,7 @@ class Launcher:
         self.all_processes = False  # every lab node in its own process too (but the device nodes)
         self.confined = False  # includes and $(env) kept to the world's own packages (parse_launch)
         self.supervisor = Supervisor(bus, self._on_process_exit)
+        self.commands = CommandRunner(self.supervisor, self._timer_node)  # a launch file's ros2 commands
         # Students' files on a server that serves others: in this sandbox, or refused (why).
         self.sandbox: Sandbox | StudentCodeRefusedError | None = None
         self.on_process_start: list[Callable[[ProcessNode], None]] = []
@@ -138,17 +140,24 @@ class Launcher:
         return self.launch(self.parse(path, args))
 
     def launch(self, description: LaunchDescription) -> list[LaunchedNode]:
-        """Start every node; StudentCodeRefusedError before any starts if one is a student's file
-        this server does not run."""
+        """Start every node and command (``launch_all``); the nodes."""
+        return self.launch_all(description)[0]
+
+    def launch_all(
+        self, description: LaunchDescription
+    ) -> tuple[list[LaunchedNode], list[LaunchedCommand], list[str]]:
+        """Start every node, then every command; StudentCodeRefusedError before any starts if a node
+        is a student's file this server does not run. Also the lines saying which commands were refused."""
         if isinstance(self.sandbox, StudentCodeRefusedError):
             for action in description.nodes:
                 with contextlib.suppress(LookupError):
                     self.check_student_code(self.packages.resolve(action.pkg, action.exec))
         started = [self.start(a) if a.start_delay_s <= 0 else self._start_after(a) for a in description.nodes]
         self.launched.extend(started)
+        commands, refused = self.commands.start_all(description.commands)
         for hook in self.on_launch:
             hook(description, started)
-        return started
+        return started, commands, refused
 
     def _start_after(self, action: NodeAction) -> LaunchedNode:
         """A node a TimerAction holds back: started ``start_delay_s`` later, unless its launch was
@@ -315,7 +324,8 @@ class Launcher:
         return chosen
 
     def shutdown(self) -> None:
-        self.supervisor.stop_all()  # every node process at once, and wait for them
+        self.supervisor.stop_all()  # every node and command process at once, and wait for them
+        self.commands.running.clear()
         for entry in reversed(self.launched):
             self.stop(entry)
         self.launched.clear()

@@ -18,7 +18,7 @@ from pathlib import PurePath
 
 PROGRAM = "ros2"
 SHELL_PUNCTUATION = frozenset(";&|<>()")
-CLI = [sys.executable, "-m", "server"]
+CLI = [sys.executable, "-P", "-m", "server"]  # -P: a folder named server where it starts is not ours
 
 
 class CommandNotRunError(ValueError):

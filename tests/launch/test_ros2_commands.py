@@ -9,7 +9,7 @@ import pytest
 from server.launch.ros2_commands import CommandNotRunError, cli_argv, command_words
 
 URL = "http://127.0.0.1:8123"
-CLI = [sys.executable, "-m", "server", "--url", URL]
+CLI = [sys.executable, "-P", "-m", "server", "--url", URL]
 
 
 def test_a_shell_command_of_the_substitutions_tutorial_splits_as_the_shell_splits_it() -> None:

@@ -1,10 +1,9 @@
 """docs.ros.org's launch tutorials, whole: a workspace whose packages ``ros2lab pkg create`` made and
 the student then wrote as the pages say (tests/workspace/launch_tutorials.py), started with
 ``ros2lab launch PKG FILE`` on a live lab and checked as the pages check them: the nodes' lines,
-``ros2lab node list`` and ``ros2lab topic list``. "Using substitutions" runs in Python; its
-ExecuteProcess commands (``ros2 service call``, ``ros2 param set``) are not run by the lab, and its
-YAML files' ``executable`` and ``timer`` are not read, so the test checks the namespaced turtlesim
-those files start, not the spawned turtle or the background they set."""
+``ros2lab node list`` and ``ros2lab topic list``. "Using substitutions" runs in Python and YAML, its
+commands (``ros2 service call``, ``ros2 param set``, one after a 2 s timer) as the lab's CLI: the
+turtle they spawn and the background they set are checked too."""
 
 from __future__ import annotations
 
@@ -180,3 +179,77 @@ def test_substitutions_put_turtlesim_in_the_namespace_given(
     } <= topics
     assert f"{namespace}/sim" in graph(lab, "node")
     launched.stop()
+
+
+def param_events(lab: App, tmp_path: Path) -> NodeProcess:
+    """``ros2lab topic echo /parameter_events`` (every parameter a node declares or changes), once it
+    has shown an event of a node ``/marker`` this publishes until then."""
+    cli = [sys.executable, "-m", "server", "--url", lab.url]
+    events = NodeProcess(lab, tmp_path / "events", command=[*cli, "topic", "echo", "/parameter_events"])
+    marker = [*cli, "topic", "pub", "-r", "5", "/parameter_events", "rcl_interfaces/msg/ParameterEvent",
+              "{node: /marker}"]  # fmt: skip
+    pub = NodeProcess(lab, tmp_path / "marker", command=marker)
+    try:
+        events.wait_for(r"^node: /marker$")
+    finally:
+        pub.kill()
+    return events
+
+
+@pytest.mark.parametrize(("kind", "namespace"), [("py", "turtlesim5"), ("yaml", "turtlesim6")])
+def test_substitutions_commands_spawn_turtle2_and_set_the_background_to_120_then_200(
+    lab: App, launch: type[NodeProcess], tmp_path: Path, kind: str, namespace: str
+) -> None:
+    """In a namespace of its own: the lab's turtlesim keeps a namespace's turtles, and another test
+    spawns there."""
+    events = param_events(lab, tmp_path)
+    try:
+        launched = launch("launch_tutorial", f"example_substitutions_launch.{kind}", f"turtlesim_ns:={namespace}",
+                          "use_provided_red:=True", "new_background_r:=200")  # fmt: skip
+        # The page: turtle2 spawned by ``ros2 service call``, the background's red at 120 at once
+        # by ``ros2 param set``, then at 200 after the TimerAction's two seconds.
+        launched.wait_for(r"^\[ros2-\d+\] turtlesim\.srv\.Spawn_Response\(name='turtle2'\)$")
+        launched.wait_for(r"^\[ros2-\d+\] Set parameter successful$", count=2)
+        events.wait_for(r"name: background_r\n(.*\n){0,3}.*integer_value: 200$")
+        first, second = events.wait_for(r"^ *integer_value: (120|200)$", count=2)
+        assert (first.group(1), second.group(1)) == ("120", "200")
+    finally:
+        events.kill()
+    assert f"/{namespace}/turtle2/pose" in graph(lab, "topic")
+    code, out, err = ros2lab("--url", lab.url, "param", "get", f"/{namespace}/sim", "background_r")
+    assert (code, out.strip()) == (0, "Integer value is: 200"), err
+    launched.stop()
+
+
+def test_substitutions_without_use_provided_red_set_the_background_to_120(
+    lab: App, launch: type[NodeProcess]
+) -> None:
+    launched = launch("launch_tutorial", "example_substitutions_launch.py")
+    launched.wait_for(r"^\[ros2-\d+\] Set parameter successful$")
+    code, out, err = ros2lab("--url", lab.url, "param", "get", "/turtlesim1/sim", "background_r")
+    assert (code, out.strip()) == (0, "Integer value is: 120"), err
+    launched.stop()
+
+
+def test_a_launch_files_command_other_than_ros2_is_refused_in_one_line(
+    lab: App, ws: Path, launch: type[NodeProcess]
+) -> None:
+    path = ws / "launch" / "touch_launch.py"
+    path.write_text(TOUCH_LAUNCH.replace("TOUCHED", str(ws / "touched")))
+    launched = launch(str(path))
+    launched.wait_for(rf"^\[ERROR\] \[launch\]: {path}:6: not run: 'touch {ws}/touched': the lab runs only ros2 "
+                      r"commands from a launch file \(as its ros2lab CLI\)$")  # fmt: skip
+    launched.wait_for(r"process started: /talker")
+    assert not (ws / "touched").exists()
+    launched.stop()
+
+
+TOUCH_LAUNCH = """\
+from launch import LaunchDescription
+from launch.actions import ExecuteProcess
+from launch_ros.actions import Node
+
+def generate_launch_description():
+    return LaunchDescription([ExecuteProcess(cmd=['touch', 'TOUCHED']),
+                              Node(package='demo_nodes_cpp', executable='talker')])
+"""
