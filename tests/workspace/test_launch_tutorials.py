@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 from processes.node_process import NodeProcess
 from support.app import App
+from support.wait import wait_until
 
 from .launch_tutorials import (
     EXAMPLE_MAIN,
@@ -231,7 +232,7 @@ def test_substitutions_without_use_provided_red_set_the_background_to_120(
     launched.stop()
 
 
-def test_a_launch_files_command_other_than_ros2_is_refused_in_one_line(
+def test_a_launch_files_command_other_than_ros2_is_refused_and_a_ros2_one_ends_with_the_launch(
     lab: App, ws: Path, launch: type[NodeProcess]
 ) -> None:
     path = ws / "launch" / "touch_launch.py"
@@ -241,9 +242,25 @@ def test_a_launch_files_command_other_than_ros2_is_refused_in_one_line(
                       r"commands from a launch file \(as its ros2lab CLI\)$")  # fmt: skip
     launched.wait_for(r"process started: /talker")
     assert not (ws / "touched").exists()
+    wait_until(lambda: echoes(ECHOED), f"the launch's ros2 topic echo {ECHOED} to run")
     launched.stop()
+    wait_until(lambda: not echoes(ECHOED), f"the launch's ros2 topic echo {ECHOED} to end with it")
 
 
+def echoes(topic: str) -> list[int]:
+    """The processes of this machine whose command line ends with ``topic echo TOPIC``."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        try:
+            argv = (entry / "cmdline").read_bytes().split(b"\0")
+        except OSError:
+            continue  # not a process, or gone meanwhile
+        if argv[-3:] == [b"echo", topic.encode(), b""]:
+            found.append(int(entry.name))
+    return found
+
+
+ECHOED = "/touch_launch_echo"
 TOUCH_LAUNCH = """\
 from launch import LaunchDescription
 from launch.actions import ExecuteProcess
@@ -251,5 +268,6 @@ from launch_ros.actions import Node
 
 def generate_launch_description():
     return LaunchDescription([ExecuteProcess(cmd=['touch', 'TOUCHED']),
-                              Node(package='demo_nodes_cpp', executable='talker')])
+                              Node(package='demo_nodes_cpp', executable='talker'),
+                              ExecuteProcess(cmd=['ros2', 'topic', 'echo', '/touch_launch_echo'])])
 """
