@@ -21,6 +21,7 @@ from support.http import HTTP
 from support.sandbox import require_sandbox
 from support.wait import wait_until
 
+from server.launch.commands import NOT_HERE
 from server.settings import SandboxSettings
 
 
@@ -463,7 +464,7 @@ LAUNCH_PROBE = """import os
 
 from ament_index_python.packages import get_package_share_directory
 from launch import LaunchDescription
-from launch.actions import LogInfo
+from launch.actions import ExecuteProcess, LogInfo
 
 
 def generate_launch_description():
@@ -475,7 +476,8 @@ def generate_launch_description():
     except OSError as exc:
         wrote = 'blocked ' + type(exc).__name__
     share = get_package_share_directory('probe')
-    return LaunchDescription([LogInfo(msg=f'PROBE launch uid {os.getuid()} write {wrote} share {share}')])
+    return LaunchDescription([LogInfo(msg=f'PROBE launch uid {os.getuid()} write {wrote} share {share}'),
+                              ExecuteProcess(cmd=['ros2', 'param', 'set', '/sim', 'background_r', '120'])])
 """
 
 
@@ -496,6 +498,11 @@ def test_sandbox_a_python_launch_file_is_evaluated_in_the_sandbox(klass: Class) 
         assert probe.endswith(share), probe
         probes[world.name] = probe.removesuffix(share)
         assert (launch_dir / "written_by_launch.txt").exists() is (world is klass.cy)
+        # A class server runs no command of a launch file, sandboxed or not: one line says so.
+        assert started.json()["messages"][-1] == (
+            f"[ERROR] [launch]: {launch_dir / 'probe.launch.py'}:18: not run: 'ros2 param set /sim background_r "
+            f"120': {NOT_HERE}"
+        )
     assert probes[klass.cy.name] == f"[INFO] [launch.user]: PROBE launch uid {os.getuid()} write ok"
     sandboxed = re.fullmatch(
         r"\[INFO\] \[launch\.user\]: PROBE launch uid (\d+) write blocked (OSError|PermissionError)",
