@@ -36,6 +36,13 @@ class MinimalActionServer(Node):
         feedback_msg = Fibonacci.Feedback()
         feedback_msg.sequence = [0, 1]
         for i in range(1, goal_handle.request.order):
+            # A long goal waits after its first step for the client's cancel: else whether a second
+            # feedback beats the cancel is a race, which ROS 2's rclpy itself prints either way.
+            end = time.monotonic() + 10.0
+            while i > 1 and goal_handle.request.order > 10 and not goal_handle.is_cancel_requested:
+                if time.monotonic() > end:
+                    break
+                time.sleep(0.01)
             time.sleep(0.2)  # the work of a step; the client's lines come in between
             if goal_handle.is_cancel_requested:
                 goal_handle.canceled()
