@@ -37,8 +37,9 @@ def say(line: str) -> None:
 
 
 def _log_name(node: Mapping[str, Any]) -> str:
-    """A launched node's name as /rosout gives it: no leading slash."""
-    return str(node.get("name") or node.get("exec")).lstrip("/")
+    """A launched node's name as /rosout gives it, rcl's logger name: no leading slash, the namespace
+    and name dotted (``turtlesim2.sim``)."""
+    return str(node.get("name") or node.get("exec")).lstrip("/").replace("/", ".")
 
 
 def node_labels(group: Mapping[str, Any]) -> dict[str, str]:

@@ -167,7 +167,8 @@ def launched(
     ``topic list`` name it and its topic."""
     launching = start("launch", PACKAGE, *args)
     launching.read_until(lambda line: line == f"[INFO] [launch]: process started: /talker ({PACKAGE} talker)")
-    launching.read_until(lambda line: line.endswith("[talker]: talking"), timeout_s=30.0)
+    logger = node.lstrip("/").replace("/", ".")  # rcl's logger name: the namespace and name, dotted
+    launching.read_until(lambda line: line.endswith(f"[{logger}]: talking"), timeout_s=30.0)
     server.wait_until(lambda: node in node_names(server), f"{node} in the graph", 20.0)
     server.wait_until(
         lambda: topic in {t["name"] for t in server.get("/api/topics")}, f"{topic} listed", 20.0
