@@ -188,6 +188,23 @@ def compare(oracle: Run, ours: Run, tolerance: float = TIMING_TOLERANCE) -> str 
     return "\n".join(problems) if problems else None
 
 
+def worker_share(worker: str | None, workers: int) -> tuple[int, int]:
+    """This pytest-xdist worker's index and the number of workers (``PYTEST_XDIST_WORKER`` "gw3"
+    and ``PYTEST_XDIST_WORKER_COUNT``); (0, 1) without xdist."""
+    if not worker or not worker.startswith("gw") or not worker[2:].isdigit():
+        return 0, 1
+    return int(worker[2:]), max(1, workers)
+
+
+def worker_domains(index: int, workers: int, domains: range = DOMAINS) -> range:
+    """The DOMAINS of worker ``index`` of ``workers``: a slice of its own, so two workers never run
+    programs in one domain (two programs' nodes of one name would meet: an action client would
+    hear another program's server). More workers than domains share them round."""
+    size = max(1, len(domains) // workers)
+    start = domains.start + (index * size) % (len(domains) - size + 1)
+    return range(start, start + size)
+
+
 class Domains:
     """DOMAINS handed out to the programs in flight, each back when its program ended."""
 

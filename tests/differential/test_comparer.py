@@ -7,7 +7,18 @@ from pathlib import Path
 
 import pytest
 
-from .harness import DOMAINS, MissingOracle, Run, compare, normalise, oracle_python, run_lab, run_oracle
+from .harness import (
+    DOMAINS,
+    MissingOracle,
+    Run,
+    compare,
+    normalise,
+    oracle_python,
+    run_lab,
+    run_oracle,
+    worker_domains,
+    worker_share,
+)
 
 LOGGED = '[INFO] [1795929059.433280785] [talker]: I heard: "Hello World: 1"\nheard 1\n'
 
@@ -86,3 +97,11 @@ def test_the_two_sides_run_two_different_rclpys(oracle: Path, router: str, tmp_p
     assert normalise(ours) == ["rclpy from client", "(exit code 0)"]
     problem = compare(theirs, ours)
     assert problem is not None and "-rclpy from site-packages" in problem and "+rclpy from client" in problem
+
+
+def test_each_xdist_worker_gets_domains_no_other_worker_gets() -> None:
+    assert worker_share(None, 1) == (0, 1) and worker_share("gw3", 5) == (3, 5)
+    for workers in (1, 2, 5, 13):
+        slices = [set(worker_domains(i, workers)) for i in range(workers)]
+        assert all(len(s) >= 3 and s <= set(DOMAINS) for s in slices), workers
+        assert sum(len(s) for s in slices) == len(set().union(*slices)), workers  # none shared

@@ -7,13 +7,14 @@ rate and runs alone, under the timing mark."""
 
 from __future__ import annotations
 
+import os
 import threading
 from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
 
-from .harness import PROGRAMS, Domains, Run, compare, run_lab, run_oracle
+from .harness import PROGRAMS, Domains, Run, compare, run_lab, run_oracle, worker_domains, worker_share
 
 ALL = sorted(PROGRAMS.glob("*.py"))
 if not ALL:  # an empty parametrisation would skip, and the suite must not pass by running nothing
@@ -31,7 +32,10 @@ def case(program: Path) -> object:
     return pytest.param(program, id=program.stem, marks=[pytest.mark.timing] if timed(program) else [])
 
 
-DOMAINS = Domains()
+WORKER, WORKERS = worker_share(
+    os.environ.get("PYTEST_XDIST_WORKER"), int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
+)
+DOMAINS = Domains(worker_domains(WORKER, WORKERS))
 
 
 def both(oracle: Path, router: str, program: Path) -> tuple[Run, Run]:
@@ -42,7 +46,12 @@ def both(oracle: Path, router: str, program: Path) -> tuple[Run, Run]:
 
 
 class Batch:
-    """The collected programs' runs, started together on first use."""
+    """The collected programs' runs, started together on first use; a program not among them
+    runs when its test asks for it.
+
+    Under pytest-xdist every worker collects every test but runs a share of them that the
+    scheduler picks as it goes: a worker starts ahead only its likely share (every WORKERS-th
+    program), so the programs are not all run once per worker."""
 
     def __init__(self, oracle: Path, router: str, programs: list[Path]) -> None:
         self.oracle, self.router, self.programs = oracle, router, programs
@@ -56,7 +65,8 @@ class Batch:
                 self.pool = ThreadPoolExecutor(AT_ONCE)
                 for each in self.programs:
                     self.runs[each] = self.pool.submit(both, self.oracle, self.router, each)
-        return self.runs[program].result()
+            started = self.runs.get(program)
+        return both(self.oracle, self.router, program) if started is None else started.result()
 
     def close(self) -> None:
         if self.pool is not None:
@@ -72,7 +82,7 @@ def batch(request: pytest.FixtureRequest, oracle: Path, router: str) -> object:
         and hasattr(item, "callspec")
         and not timed(item.callspec.params["program"])
     ]
-    runs = Batch(oracle, router, collected)
+    runs = Batch(oracle, router, collected[WORKER::WORKERS])
     request.addfinalizer(runs.close)
     return runs
 
