@@ -79,13 +79,13 @@ def peers(endpoint: BusPublisher | BusSubscription) -> list[Offer]:
     local: list[Any] = (
         list(topic.subscriptions) if isinstance(endpoint, BusPublisher) else list(topic.publishers)
     )
-    found = [offer_of(e) for e in local if not e.destroyed and e.node.state == "active"]
+    found = [offer_of(e) for e in local if not e.destroyed and e.node._state == "active"]
     remote = _remote(node)
     if remote is not None:
         kind = EntityKind.SUBSCRIPTION if isinstance(endpoint, BusPublisher) else EntityKind.PUBLISHER
         # The executor's pass changes the remote graph under the bus's lock; a count asked from
         # another thread (a loop on get_subscription_count while spin runs) reads it under it too.
-        lock = node.bus.lock
+        lock = node._bus.lock
         with lock if lock is not None else contextlib.nullcontext():
             remote_endpoints = remote.endpoints((kind,))
         type_name = endpoint.msg_type.TYPE

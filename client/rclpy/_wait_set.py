@@ -115,14 +115,14 @@ class WaitSet(BlockingExecutor):
         self.callbacks_run += 1
 
     def _run_subscription(self, sub: Subscription) -> bool:
-        if sub.destroyed or sub.node.state != "active" or not sub.queue:
+        if sub.destroyed or sub.node._state != "active" or not sub.queue:
             return False
         self.add_subscription(sub)
         return True
 
     def add_subscription(self, sub: Subscription) -> None:
         def run() -> Any:
-            if sub.destroyed or sub.node.state != "active" or not sub.queue:
+            if sub.destroyed or sub.node._state != "active" or not sub.queue:
                 return None
             msg = sub.queue.popleft()
             if sub.queue:  # more came: the subscription is ready again, after what is ready now
@@ -283,7 +283,7 @@ class Response(Future[Any]):
         if self._done or context is None or not context.ok():
             Future.set_result(self, result)
             return
-        bus = node.bus
+        bus = node._bus
         call = PendingCall(cast(ServiceServer, _Delivery(self, result)), cast(Any, None), BusFuture())
         with bus.lock if bus.lock is not None else contextlib.nullcontext():
             bus.queue_call(call)
@@ -304,7 +304,7 @@ class _Delivery:
 
     @property
     def active(self) -> bool:
-        return not self.entity.destroyed and self.node.state == "active"
+        return not self.entity.destroyed and self.node._state == "active"
 
     def answer(self, _call: PendingCall) -> None:
         self.callback()

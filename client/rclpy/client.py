@@ -58,7 +58,7 @@ class Client(ServiceClient):
         core = getattr(getattr(self.node, "_rcl_context", None), "executor", None)
         if core is not None and core.spinning_threads:
             return  # the spinning thread keeps the graph current
-        bus = self.node.bus
+        bus = self.node._bus
         with bus.lock if bus.lock is not None else contextlib.nullcontext():
             for poll in list(bus.pollers):
                 poll()

@@ -142,7 +142,7 @@ class _GraphEvent(EventHandler):
 
     def __init__(self, **kwargs: Any) -> None:
         super().__init__(**kwargs)
-        self._bus = self.parent.node.bus
+        self._bus = self.parent.node._bus
         self._bus.graph_listeners.append(self.look)
         self.look()
 

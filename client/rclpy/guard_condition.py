@@ -27,7 +27,7 @@ class GuardCondition:
 
     @property
     def active(self) -> bool:
-        return not self.destroyed and self.node.state == "active"
+        return not self.destroyed and self.node._state == "active"
 
     def handle(self, _request: object) -> object:
         """Run the callback; what it returned (the coroutine of an ``async def`` one, to await)."""
@@ -41,7 +41,7 @@ class GuardCondition:
         if self.destroyed or self._pending:
             return
         self._pending = True
-        bus = self.node.bus
+        bus = self.node._bus
         call = PendingCall(cast(ServiceServer, self), cast(Any, None), Future())
         if bus.lock is None:
             bus.queue_call(call)

@@ -51,6 +51,20 @@ def _for_bus(qos: QoSProfile) -> WireQoS:
     return WireQoS(keep_depth(qos), int(qos.reliability), int(qos.durability))
 
 
+class _LeftToTheStudent:
+    """A name the lab's bus node reads from its own nodes (``node.state`` ...) that rclpy's Node
+    does not have: on an rclpy Node it is the student's to set (a non-data descriptor, so the
+    instance's own value wins), and until then reading it fails as on rclpy."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self._name = name
+
+    def __get__(self, node: object, owner: type | None = None) -> Any:
+        if node is None:
+            return self
+        raise AttributeError(f"'{type(node).__name__}' object has no attribute '{self._name}'")
+
+
 class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter API over the bus's
     """Subclass it as the handout does: ``super().__init__('KeyboardManagerNode')``."""
 
@@ -84,11 +98,13 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
             self._logger_service = LoggingService(self)
         self._warn_if_name_taken()
 
+    bus = state = origin = crash_reason = _LeftToTheStudent()
+
     # -- entities, with rclpy's keywords -----------------------------------------------------
-    publisher_type = Publisher
-    subscription_type = Subscription
-    timer_type = Timer
-    service_type = Service
+    _publisher_class = Publisher
+    _subscription_class = Subscription
+    _timer_class = Timer
+    _service_class = Service
 
     @property
     def context(self) -> Context:
@@ -214,14 +230,14 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
         callback_group: CallbackGroup | None = None,
     ) -> Client:
         self._check_alive()
-        channel = self.bus.service(self.resolve_topic_name(srv_name), srv_type)
+        channel = self._bus.service(self.resolve_topic_name(srv_name), srv_type)
         client = Client(self, channel)
         client.given_name = srv_name
         client.callback_group = callback_group or self.default_callback_group
         client.qos_profile = qos_profile
         channel.clients.append(client)
         self.clients.append(client)
-        self.bus.endpoint_added(client)
+        self._bus.endpoint_added(client)
         client.callback_group.add_entity(client)
         return client
 
@@ -269,14 +285,14 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
         return Rate(frequency, self._rcl_context)
 
     def get_node_names(self) -> list[str]:
-        names = [n.get_name() for n in self.bus.nodes]
+        names = [n.get_name() for n in self._bus.nodes]
         bridge = self._rcl_context.bridge
         if bridge is not None:
             names += [n.name.rsplit("/", 1)[1] for n in bridge.remote.nodes()]
         return sorted(set(names))
 
     def get_topic_names_and_types(self) -> list[tuple[str, list[str]]]:
-        found: dict[str, set[str]] = {t.name: {t.msg_type.TYPE} for t in self.bus.topics.values()}
+        found: dict[str, set[str]] = {t.name: {t.msg_type.TYPE} for t in self._bus.topics.values()}
         bridge = self._rcl_context.bridge
         if bridge is not None:
             for e in bridge.remote.endpoints():
@@ -292,7 +308,7 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
 
     def _count(self, topic_name: str, kind: str) -> int:
         name = self.resolve_topic_name(topic_name)
-        topic = self.bus.topics.get(name)
+        topic = self._bus.topics.get(name)
         local = 0 if topic is None else len(topic.publishers if kind == "MP" else topic.subscriptions)
         bridge = self._rcl_context.bridge
         remote = (

@@ -88,17 +88,17 @@ class Timer(BusTimer):
         self._start_s = self.next_deadline_s - self._n * period_s
 
     def is_ready(self) -> bool:
-        return not self.cancelled and self.node.bus.clock.now() >= self.next_deadline_s
+        return not self.cancelled and self.node._bus.clock.now() >= self.next_deadline_s
 
     def time_since_last_call(self) -> int:
         """Nanoseconds since it last ran (or started)."""
-        return _ns(self.node.bus.clock.now() - self._last_call_s)
+        return _ns(self.node._bus.clock.now() - self._last_call_s)
 
     def time_until_next_call(self) -> int | None:
         """Nanoseconds until it is due (negative once overdue); None while cancelled."""
         if self.cancelled:
             return None
-        return _ns(self.next_deadline_s - self.node.bus.clock.now())
+        return _ns(self.next_deadline_s - self.node._bus.clock.now())
 
     def __enter__(self) -> Timer:
         return self

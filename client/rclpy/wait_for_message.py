@@ -30,7 +30,7 @@ def wait_for_message(
     got: list[Any] = []
     sub = node.create_subscription(msg_type, topic, got.append, qos_profile=qos_profile)
     context = node.context
-    bus = node.bus
+    bus = node._bus
     end = None if time_to_wait < 0 else time.monotonic() + time_to_wait
     idle = threading.Event()
     try:

@@ -125,7 +125,7 @@ class Subscription:
 
     @property
     def active(self) -> bool:
-        return not self.destroyed and self.node.state == "active"
+        return not self.destroyed and self.node._state == "active"
 
     def destroy(self) -> None:
         self.node.destroy_subscription(self)
@@ -168,10 +168,10 @@ class Timer:
     def reset(self) -> None:
         """Restart the period from now, as rclpy's ``Timer.reset``."""
         self.cancelled = False
-        self._start_s = self.node.bus.clock.now()
+        self._start_s = self.node._bus.clock.now()
         self._n = 1
         self.next_deadline_s = self._start_s + self.period_s
-        self.node.bus.schedule(self)
+        self.node._bus.schedule(self)
 
     def destroy(self) -> None:
         self.node.destroy_timer(self)

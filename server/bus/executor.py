@@ -89,7 +89,7 @@ class Executor:
         self.callbacks_run += 1
 
     def _run_subscription(self, sub: Subscription) -> bool:
-        if sub.destroyed or sub.node.state != "active" or not sub.queue:  # not sub.active, inline
+        if sub.destroyed or sub.node._state != "active" or not sub.queue:  # not sub.active, inline
             return False
         self._run(sub.node, sub.callback, sub.queue.popleft())
         return True
@@ -101,7 +101,7 @@ class Executor:
             if ran and turn_over is not None and turn_over():
                 break  # the rest stay due: the group's next round runs them
             deadline, _, timer = heapq.heappop(heap)
-            if timer.cancelled or timer.node.state != "active" or deadline != timer.next_deadline_s:
+            if timer.cancelled or timer.node._state != "active" or deadline != timer.next_deadline_s:
                 continue  # stale entry (cancelled, reset, or a crashed node)
             timer.advance_past(now_s)
             # Bus.schedule without its wake-up: this executor is already running.
@@ -154,7 +154,7 @@ class Executor:
         heap = self.bus._timers
         while heap and (
             heap[0][2].cancelled
-            or heap[0][2].node.state != "active"
+            or heap[0][2].node._state != "active"
             or heap[0][0] != heap[0][2].next_deadline_s
         ):
             heapq.heappop(heap)

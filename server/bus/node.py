@@ -41,11 +41,11 @@ class NodeLogger:
     def __init__(self, node: Node) -> None:
         self._node = node
         self.name = ros_logger_name(node.fully_qualified_name)
-        self._py = logging.getLogger(node_logger_name(node.bus.label, node.fully_qualified_name))
+        self._py = logging.getLogger(node_logger_name(node._bus.label, node.fully_qualified_name))
 
     def _log(self, level: str, msg: Any) -> None:
         text = str(msg)
-        console = self._node.bus.console
+        console = self._node._bus.console
         if console is not None:
             console(_LEVELS[level], self.name, text)
         else:
@@ -74,10 +74,10 @@ class Node(NodeParameters):
     """A participant in the graph. Subclass it as in rclpy: ``super().__init__('MyNode')``."""
 
     # What the create_* calls make: rclpy's client library gives its own subclasses (rclpy.publisher ...).
-    publisher_type: type[Publisher] = Publisher
-    subscription_type: type[Subscription] = Subscription
-    timer_type: type[Timer] = Timer
-    service_type: type[ServiceServer] = ServiceServer
+    _publisher_class: type[Publisher] = Publisher
+    _subscription_class: type[Subscription] = Subscription
+    _timer_class: type[Timer] = Timer
+    _service_class: type[ServiceServer] = ServiceServer
 
     def __init__(
         self,
@@ -89,7 +89,7 @@ class Node(NodeParameters):
         **_ignored: Any,
     ) -> None:
         overrides = current_overrides()
-        self.bus = context if context is not None else current_bus()
+        self._bus = context if context is not None else current_bus()
         self._name = validate_node_name(overrides.name if overrides and overrides.name else node_name)
         ns = overrides.namespace if overrides and overrides.namespace else namespace
         self._namespace = validate_namespace(ns or "/")
@@ -102,20 +102,44 @@ class Node(NodeParameters):
         self._parameters: dict[str, Parameter] = {}
         self._param_callbacks: list[Callable[[list[Parameter]], Any]] = []
         self._descriptors = {}
-        self.origin: dict[str, str] = {}  # package, executable, launch file: set by the launcher
+        self._origin: dict[str, str] = {}  # package, executable, launch file: set by the launcher
         self.publishers: list[Publisher] = []
         self.subscriptions: list[Subscription] = []
         self.timers: list[Timer] = []
         self.services: list[ServiceServer] = []
         self.clients: list[ServiceClient] = []
-        self.state: NodeState = "active"
-        self.crash_reason: str | None = None
-        self._clock = NodeClock(self.bus.clock)
+        self._state: NodeState = "active"
+        self._crash_reason: str | None = None
+        self._clock = NodeClock(self._bus.clock)
         self._logger = NodeLogger(self)
         self._rosout: Publisher | None = None
-        self.bus.add_node(self)
+        self._bus.add_node(self)
         self._rosout = self.create_publisher(Log, "/rosout", 1000)
         self._start_parameters()
+
+    # -- what the lab's server reads of its own nodes ---------------------
+    # Kept under private names: rclpy's Node has no such attributes, so a student's subclass may
+    # use these names for its own (``self.state = False``); the lab's rclpy Node leaves them free.
+    @property
+    def bus(self) -> Bus:
+        return self._bus
+
+    @property
+    def state(self) -> NodeState:
+        return self._state
+
+    @property
+    def crash_reason(self) -> str | None:
+        return self._crash_reason
+
+    @property
+    def origin(self) -> dict[str, str]:
+        """The package, executable and launch file a launcher started it from."""
+        return self._origin
+
+    @origin.setter
+    def origin(self, origin: dict[str, str]) -> None:
+        self._origin = origin
 
     # -- identity --------------------------------------------------------
     def get_name(self) -> str:
@@ -142,7 +166,7 @@ class Node(NodeParameters):
 
     # -- endpoints -------------------------------------------------------
     def _check_alive(self) -> None:
-        if self.state == "destroyed":
+        if self._state == "destroyed":
             raise DestroyedError(f"node {self.fully_qualified_name} was destroyed")
 
     def create_publisher(
@@ -152,14 +176,14 @@ class Node(NodeParameters):
         built for that publish and never changed after it, so the bus shares it instead of copying."""
         self._check_alive()
         depth = qos_depth(qos_profile)
-        t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
-        pub = self.publisher_type(self, t, msg_type, depth, hand_over=hand_over)
+        t = self._bus.topic(self.resolve_topic_name(topic), msg_type)
+        pub = self._publisher_class(self, t, msg_type, depth, hand_over=hand_over)
         pub.qos = None if isinstance(qos_profile, int) else qos_profile
         if transient_local(pub.qos):
             pub.history = deque(maxlen=depth)
         t.publishers.append(pub)
         self.publishers.append(pub)
-        self.bus.endpoint_added(pub)
+        self._bus.endpoint_added(pub)
         return pub
 
     def create_subscription(
@@ -175,25 +199,25 @@ class Node(NodeParameters):
         gets, so it gets the one the topic shares (its latest) rather than a copy of its own."""
         self._check_alive()
         depth = qos_depth(qos_profile)
-        t = self.bus.topic(self.resolve_topic_name(topic), msg_type)
-        sub = self.subscription_type(self, t, msg_type, callback, depth, read_only=read_only)
+        t = self._bus.topic(self.resolve_topic_name(topic), msg_type)
+        sub = self._subscription_class(self, t, msg_type, callback, depth, read_only=read_only)
         sub.qos = None if isinstance(qos_profile, int) else qos_profile
         t.subscriptions.append(sub)
         self.subscriptions.append(sub)
-        self.bus.endpoint_added(sub)
+        self._bus.endpoint_added(sub)
         if transient_local(sub.qos):
-            if self.bus.lock is None:
+            if self._bus.lock is None:
                 t.hand_history(sub)
             else:
-                with self.bus.lock:
+                with self._bus.lock:
                     t.hand_history(sub)
         return sub
 
     def create_timer(self, timer_period_sec: float, callback: Callable[[], Any]) -> Timer:
         self._check_alive()
-        timer = self.timer_type(self, timer_period_sec, callback, self.bus.clock.now())
+        timer = self._timer_class(self, timer_period_sec, callback, self._bus.clock.now())
         self.timers.append(timer)
-        self.bus.schedule(timer)
+        self._bus.schedule(timer)
         return timer
 
     def create_service(
@@ -201,20 +225,20 @@ class Node(NodeParameters):
     ) -> ServiceServer:
         """Serve ``srv_name``: ``callback(request, response)`` fills and returns the response."""
         self._check_alive()
-        channel = self.bus.service(self.resolve_topic_name(srv_name), srv_type)
-        server = self.service_type(self, channel, callback)
+        channel = self._bus.service(self.resolve_topic_name(srv_name), srv_type)
+        server = self._service_class(self, channel, callback)
         channel.servers.append(server)
         self.services.append(server)
-        self.bus.endpoint_added(server)
+        self._bus.endpoint_added(server)
         return server
 
     def create_client(self, srv_type: type[Service], srv_name: str, **_qos: Any) -> ServiceClient:
         self._check_alive()
-        channel = self.bus.service(self.resolve_topic_name(srv_name), srv_type)
+        channel = self._bus.service(self.resolve_topic_name(srv_name), srv_type)
         client = ServiceClient(self, channel)
         channel.clients.append(client)
         self.clients.append(client)
-        self.bus.endpoint_added(client)
+        self._bus.endpoint_added(client)
         return client
 
     def destroy_service(self, server: ServiceServer) -> bool:
@@ -223,8 +247,8 @@ class Node(NodeParameters):
         server.destroyed = True
         server.channel.servers.remove(server)
         self.services.remove(server)
-        self.bus.drop_service_if_unused(server.channel)
-        self.bus.endpoint_removed(server)
+        self._bus.drop_service_if_unused(server.channel)
+        self._bus.endpoint_removed(server)
         return True
 
     def destroy_client(self, client: ServiceClient) -> bool:
@@ -233,8 +257,8 @@ class Node(NodeParameters):
         client.destroyed = True
         client.channel.clients.remove(client)
         self.clients.remove(client)
-        self.bus.drop_service_if_unused(client.channel)
-        self.bus.endpoint_removed(client)
+        self._bus.drop_service_if_unused(client.channel)
+        self._bus.endpoint_removed(client)
         return True
 
     def destroy_publisher(self, pub: Publisher) -> bool:
@@ -243,8 +267,8 @@ class Node(NodeParameters):
         pub.destroyed = True
         pub.topic.publishers.remove(pub)
         self.publishers.remove(pub)
-        self.bus.drop_topic_if_unused(pub.topic)
-        self.bus.endpoint_removed(pub)
+        self._bus.drop_topic_if_unused(pub.topic)
+        self._bus.endpoint_removed(pub)
         return True
 
     def destroy_subscription(self, sub: Subscription) -> bool:
@@ -254,8 +278,8 @@ class Node(NodeParameters):
         sub.queue.clear()
         sub.topic.subscriptions.remove(sub)
         self.subscriptions.remove(sub)
-        self.bus.drop_topic_if_unused(sub.topic)
-        self.bus.endpoint_removed(sub)
+        self._bus.drop_topic_if_unused(sub.topic)
+        self._bus.endpoint_removed(sub)
         return True
 
     def destroy_timer(self, timer: Timer) -> bool:
@@ -266,7 +290,7 @@ class Node(NodeParameters):
         return False
 
     def destroy_node(self) -> bool:
-        if self.state == "destroyed":
+        if self._state == "destroyed":
             return False
         for timer in list(self.timers):
             self.destroy_timer(timer)
@@ -278,27 +302,27 @@ class Node(NodeParameters):
             self.destroy_service(server)
         for client in list(self.clients):
             self.destroy_client(client)
-        self.state = "destroyed"
-        self.bus.remove_node(self)
+        self._state = "destroyed"
+        self._bus.remove_node(self)
         return True
 
     # -- faults ----------------------------------------------------------
     def mark_crashed(self, exc: BaseException) -> None:
         """Stop this node's callbacks (its process died) but keep it visible, as crashed."""
-        if self.state != "active":
+        if self._state != "active":
             return
-        self.state = "crashed"
-        self.crash_reason = f"{type(exc).__name__}: {exc}"
+        self._state = "crashed"
+        self._crash_reason = f"{type(exc).__name__}: {exc}"
         for timer in self.timers:
             timer.cancel()
         for sub in self.subscriptions:
             sub.queue.clear()
-        self.bus.node_crashed(self, exc)
+        self._bus.node_crashed(self, exc)
 
     def _emit_log(self, level: int, text: str) -> None:
         if self._rosout is None or self._rosout.destroyed:
             return
-        now = self.bus.clock.now()
+        now = self._bus.clock.now()
         sec = int(now)
         msg = Log(level=level, name=ros_logger_name(self.fully_qualified_name), msg=text[:4096])
         object.__setattr__(msg.stamp, "sec", sec)

@@ -121,7 +121,7 @@ class ServiceServer:
 
     @property
     def active(self) -> bool:
-        return not self.destroyed and self.node.state == "active"
+        return not self.destroyed and self.node._state == "active"
 
     def handle(self, request: Message) -> Message:
         """Run the callback for one request; the response it returns must be of the service's type."""
@@ -156,7 +156,7 @@ class ServiceClient:
         return self.channel.name
 
     def service_is_ready(self) -> bool:
-        bus = self.node.bus
+        bus = self.node._bus
         if any(s.active for s in self.channel.servers):
             return True
         remote = bus.remote_services
@@ -177,7 +177,7 @@ class ServiceClient:
         request = request.copy()
         self.channel.calls += 1
         server = next((s for s in self.channel.servers if s.active), None)
-        bus = self.node.bus
+        bus = self.node._bus
         if server is not None:
             bus.queue_call(PendingCall(server, request, future))
         elif bus.remote_services is not None:

@@ -68,7 +68,7 @@ class Topic:
         delivered = 0
         ready = self.bus._ready
         for sub in self.subscriptions:
-            if sub.destroyed or sub.node.state != "active":  # Subscription.active, inline: the hot path
+            if sub.destroyed or sub.node._state != "active":  # Subscription.active, inline: the hot path
                 continue
             queue = sub.queue
             if len(queue) == sub.depth:

@@ -51,7 +51,8 @@ def spun(ctx: rclpy.Context, node: Node, future: Any) -> Any:
     """Spin every node of the process (the server is one too: as in rclpy, a node no executor
     has runs nothing) until ``future`` is done."""
     executor = rclpy.executors.SingleThreadedExecutor(context=ctx)
-    for each in node.bus.nodes:
+    assert ctx.bus is not None
+    for each in ctx.bus.nodes:
         executor.add_node(each)
     executor.spin_until_future_complete(future, timeout_sec=5.0)
     assert future.done(), "the service did not answer"

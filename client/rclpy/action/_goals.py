@@ -83,10 +83,10 @@ def serve_later(
 ) -> LaterServer:
     """``node.create_service`` for a :class:`LaterServer`."""
     node._check_alive()
-    channel = node.bus.service(node.resolve_topic_name(name), srv_type)
+    channel = node._bus.service(node.resolve_topic_name(name), srv_type)
     server = LaterServer(node, channel, handler)
     server.callback = node._grouped(handler, group, server)
     channel.servers.append(server)
     node.services.append(server)
-    node.bus.endpoint_added(server)
+    node._bus.endpoint_added(server)
     return server

@@ -19,7 +19,7 @@ def _action(service_name: str, type_name: str) -> tuple[str, str] | None:
 def _entries(node: Any, kind: str, node_fqn: str | None) -> list[tuple[str, list[str]]]:
     """``kind`` is "SS" (servers) or "SC" (clients); ``node_fqn`` limits them to one node's."""
     found: dict[str, set[str]] = {}
-    for channel in node.bus.services.values():
+    for channel in node._bus.services.values():
         entities = channel.servers if kind == "SS" else channel.clients
         for entity in entities:
             if node_fqn is None or entity.node.fully_qualified_name == node_fqn:
