@@ -81,6 +81,10 @@ class ZenohBridge:
         self._topic_subscribers: dict[str, Any] = {}
         self._history_topics: set[str] = set()  # those whose subscriber asks publishers for history
         self._keep: dict[str, int] = {}  # samples an inbox queue keeps per topic: its deepest subscription
+        # This process's publishers: their samples reach its subscriptions on the bus already, so
+        # one that comes back over Zenoh (a late subscription's history query, which a publisher's
+        # cache in this very session answers) is dropped, not delivered twice.
+        self._own_gids: set[bytes] = set()
         self._closed = False
         self.services = ServiceLink(bus, session, self.inbox, self.remote, self.stats)
         bus.observers.append(self)
@@ -151,6 +155,9 @@ class ZenohBridge:
     def endpoint_removed(self, endpoint: object) -> None:
         if isinstance(endpoint, Publisher):
             endpoint.remote = None
+            entity = self._entities.get(id(endpoint))
+            if entity is not None:
+                self._own_gids.discard(entity.token.gid)
         elif isinstance(endpoint, ServiceClient):
             self.services.forget(endpoint)
         self._undeclare(id(endpoint))
@@ -188,6 +195,7 @@ class ZenohBridge:
         assert token.qos is not None
         remote = declare_remote_publisher(self.session, key, token.qos, pub.depth, token.gid, self.stats)
         pub.remote = remote
+        self._own_gids.add(token.gid)
         self._declare(pub, token, remote)
 
     def _add_subscription(self, sub: Subscription) -> None:
@@ -242,6 +250,9 @@ class ZenohBridge:
         att = Attachment.unpack(raw)
         if att is None:
             self.stats.no_attachment += 1
+            return
+        if att.gid in self._own_gids:  # a set read from Zenoh's thread: one membership test
+            self.stats.echoes += 1
             return
         self.inbox.put_sample(
             topic, (sample.payload.to_bytes(), att.source_timestamp_ns, att.gid), self._keep.get(topic, 1)

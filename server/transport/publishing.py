@@ -28,6 +28,7 @@ class Stats:
     sent: int = 0
     received: int = 0
     no_attachment: int = 0  # dropped, as rmw_zenoh drops them
+    echoes: int = 0  # dropped: this process's own samples, come back (the bus delivered them already)
     over_rate: int = 0  # dropped: more samples a second than the bridge takes (a class world's flood)
     undecodable: int = 0
     queries: int = 0

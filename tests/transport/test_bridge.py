@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
 from typing import Any
 
 from server.bus import ManualClock, Node
 from server.msgs import Int64, String, get_service_type
 from server.msgs.wire import dds_type_name, serialize, type_hash
 from server.transport.attachment import Attachment
-from server.transport.keys import EntityKind, data_key
+from server.transport.keys import RELIABLE, TRANSIENT_LOCAL, EntityKind, data_key
 
 from .conftest import Pair, joined
 
@@ -195,3 +196,23 @@ def test_service_call_from_the_app_to_the_node_process(pair: Pair) -> None:
     pair.pump(future.done, "the reply")
     assert future.result() == Trigger.Response(success=True, message="done there")
     assert not Node("other", context=pair.app.bus).create_client(AddTwoInts, "/go2").service_is_ready()
+
+
+def test_a_late_transient_local_subscription_gets_its_own_process_history_once(pair: Pair) -> None:
+    latched = SimpleNamespace(depth=3, durability=TRANSIENT_LOCAL, reliability=RELIABLE)
+    node = Node("latched", context=pair.app.bus)
+    pub = node.create_publisher(Int64, "/map", latched)
+    for i in range(5):
+        pub.publish(Int64(data=i))
+    late: list[int] = []
+    volatile: list[int] = []
+    node.create_subscription(Int64, "/map", lambda m: late.append(m.data), latched)
+    node.create_subscription(Int64, "/map", lambda m: volatile.append(m.data), 10)
+    # The late subscription's history query is answered by the publisher's cache in this very
+    # session too: those three come back over Zenoh, and are dropped as the echoes they are.
+    pair.pump(lambda: pair.app.bridge.stats.echoes == 3, "the kept messages to come back over Zenoh")
+    pub.publish(Int64(data=5))
+    pair.pump(lambda: 5 in volatile, "the message published after the subscriptions")
+    assert late == [2, 3, 4, 5]
+    assert volatile == [5]
+    assert pair.app.bridge.stats.received == 0

@@ -1,7 +1,6 @@
 """A volatile subscription made after a transient-local publisher's messages gets none of them,
-only what comes later (qos_transient_local.py without it). QoS a tutorial meets: a transient-local publisher's last messages reach a subscription made
-after them (up to its depth), a volatile one gets only what comes later; best effort and
-reliable endpoints, and the profiles' fields."""
+only what comes later, beside a transient-local one that gets them (qos_transient_local.py
+without it)."""
 
 import rclpy
 from rclpy.node import Node

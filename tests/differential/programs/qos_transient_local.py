@@ -1,7 +1,6 @@
 """QoS a tutorial meets: a transient-local publisher's last messages reach a subscription made
 after them (up to its depth), then what comes later; best effort and reliable endpoints, and the
-profiles' fields. (On the lab's rclpy the late subscription now and then gets a kept message twice:
-[2, 3, 4, 2].)"""
+profiles' fields."""
 
 import rclpy
 from rclpy.node import Node
