@@ -70,6 +70,14 @@ class ParameterAPI:
             )
         if not self.has_parameter("use_sim_time"):
             self.declare_parameter("use_sim_time", False)
+        if not self.has_parameter("start_type_description_service"):  # rclpy's, for its service
+            self.declare_parameter(
+                "start_type_description_service",
+                True,
+                ParameterDescriptor(
+                    description="If enabled, start the ~/get_type_description service.", read_only=True
+                ),
+            )
 
     # -- declaring -----------------------------------------------------------------------------
     def declare_parameter(

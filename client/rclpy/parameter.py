@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from enum import Enum
+from enum import IntEnum
 from typing import Any
 
 from rcl_interfaces.msg import Parameter as ParameterMsg
@@ -26,7 +26,7 @@ _FIELDS = {
 
 
 class Parameter:
-    class Type(Enum):
+    class Type(IntEnum):  # rclpy's: str() of one is its number
         NOT_SET = ParameterType.PARAMETER_NOT_SET
         BOOL = ParameterType.PARAMETER_BOOL
         INTEGER = ParameterType.PARAMETER_INTEGER

@@ -15,10 +15,18 @@ from .duration import NS_PER_S, Duration
 
 
 class ClockType(IntEnum):
+    """Printed by name (``ClockType.ROS_TIME``), as rclpy's, which is not a Python IntEnum."""
+
     UNINITIALIZED = 0
     ROS_TIME = 1
     SYSTEM_TIME = 2
     STEADY_TIME = 3
+
+    def __str__(self) -> str:
+        return f"ClockType.{self.name}"
+
+    def __format__(self, spec: str) -> str:
+        return format(str(self), spec)
 
 
 @functools.total_ordering

@@ -11,7 +11,7 @@ import math
 from typing import Any
 
 from ..msgs.generated.rcl_interfaces import FloatingPointRange, IntegerRange, ParameterDescriptor
-from .parameter_values import DOUBLE, DOUBLE_ARRAY, FIELDS, INTEGER, NOT_SET, type_of
+from .parameter_values import DOUBLE, DOUBLE_ARRAY, INTEGER, NOT_SET, type_of
 
 PARAM_REL_TOL = 1e-6  # rclpy's Node.PARAM_REL_TOL: how close a double must be to an edge or a step
 
@@ -64,9 +64,9 @@ def override_as_declared(value: Any, descriptor: ParameterDescriptor) -> Any:
 
 
 def type_name(kind: int) -> str:
-    """A ParameterType as rclpy's ``Parameter.Type`` prints itself: ``Type.DOUBLE``."""
-    field = FIELDS[kind] if 0 <= kind < len(FIELDS) else None
-    return f"Type.{(field or 'not_set').removesuffix('_value').upper()}"
+    """A ParameterType as rclpy's ``Parameter.Type`` prints itself: an IntEnum, so its number
+    (``3`` for DOUBLE)."""
+    return str(int(kind))
 
 
 def _integer_refusal(name: str, value: int, bounds: IntegerRange) -> str | None:

@@ -114,7 +114,7 @@ def test_a_set_in_range_takes_effect_and_one_out_of_range_is_refused_with_the_re
         ("label", 3, "Wrong parameter type"),
         # ``ros2 param set /lab/tuned gain 5`` sends what YAML reads in "5": an integer, which
         # rclpy refuses for a double parameter (an integer is no double there).
-        ("gain", value_from_text("5"), "Wrong parameter type, expected 'Type.DOUBLE' got 'Type.INTEGER'"),
+        ("gain", value_from_text("5"), "Wrong parameter type, expected '3' got '2'"),
         ("nope", 1, "'nope' of /lab/tuned was not declared"),
     ],
 )
@@ -141,7 +141,7 @@ def test_an_atomic_set_with_one_refusal_changes_none(bus: Bus, executor: Executo
         parameters=[_param("label", "x"), _param("gain", 2)],  # an integer is no double, as in rclpy
     ).result  # fmt: skip
     assert not wrong_type.successful
-    assert wrong_type.reason == "Wrong parameter type, expected 'Type.DOUBLE' got 'Type.INTEGER'"
+    assert wrong_type.reason == "Wrong parameter type, expected '3' got '2'"
     unchanged = {"use_sim_time": False, "seed": 7, "gain": 1.5, "label": "drone", "limits.low": [1, 2]}
     assert tuned.get_parameters_dict() == unchanged
     accepted = _call(

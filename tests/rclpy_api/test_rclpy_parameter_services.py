@@ -37,6 +37,9 @@ other:
 """
 
 
+RCLPY_OWN = "start_type_description_service"  # every rclpy node declares it (read-only, true)
+
+
 @pytest.fixture
 def ctx(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Iterator[rclpy.Context]:
     monkeypatch.setenv("ROS2LAB_NO_ZENOH", "1")
@@ -75,9 +78,9 @@ def test_overrides_are_declared_automatically_when_asked(ctx: rclpy.Context) -> 
         parameter_overrides=[Parameter("extra", value="x")],
     )  # fmt: skip
     names = node.list_parameters([], 0).names
-    assert {"speed", "gains.p", "gains.d", "shared", "extra", "use_sim_time"} == set(names)
+    assert {"speed", "gains.p", "gains.d", "shared", "extra", "use_sim_time", RCLPY_OWN} == set(names)
     assert node.list_parameters(["gains"], 0).names == ["gains.p", "gains.d"]
-    assert set(node.list_parameters([], 1).names) == {"speed", "shared", "extra", "use_sim_time"}
+    assert set(node.list_parameters([], 1).names) == {"speed", "shared", "extra", "use_sim_time", RCLPY_OWN}
 
 
 def test_undeclared_parameters_are_refused_unless_the_node_allows_them(ctx: rclpy.Context) -> None:
@@ -155,7 +158,7 @@ def test_another_node_sets_lists_gets_and_describes_through_the_services(ctx: rc
     assert results[4][0] is False and "undeclared" in results[4][1]
     assert heard == ["mode=manual"] and node.get_parameter("mode").value == "manual"
     listed = spun(ctx, caller, client.list_parameters())
-    assert sorted(listed.result.names) == ["limit", "mode", "name", "use_sim_time"]
+    assert sorted(listed.result.names) == ["limit", "mode", "name", RCLPY_OWN, "use_sim_time"]
     got = spun(ctx, caller, client.get_parameters(["limit", "mode"]))
     assert [v.double_value for v in got.values[:1]] + [got.values[1].string_value] == [1.0, "manual"]
     assert spun(ctx, caller, client.get_parameters(["limit", "missing"])).values == []
