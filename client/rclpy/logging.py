@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import sys
 import time
+import warnings
 from enum import IntEnum
 from typing import Any
 
@@ -26,7 +27,7 @@ class _Filters:
     """rclpy's per-call-site options: ``once``, ``skip_first``, ``throttle_duration_sec``."""
 
     def __init__(self) -> None:
-        self._seen: dict[tuple[str, int], float] = {}
+        self._seen: dict[tuple[str, int, int], float] = {}
 
     def allow(
         self, *, once: bool = False, skip_first: bool = False, throttle_duration_sec: float = 0.0
@@ -34,7 +35,8 @@ class _Filters:
         if not (once or skip_first or throttle_duration_sec):
             return True
         frame = sys._getframe(3)  # the caller of info()/warn()/...
-        site = (frame.f_code.co_filename, frame.f_lineno)
+        # rclpy's call site: a file's line and the instruction in it (two calls on one line are two)
+        site = (frame.f_code.co_filename, frame.f_lineno, frame.f_lasti)
         now = time.monotonic()
         last = self._seen.get(site)
         self._seen[site] = now if last is None or not once else last
@@ -48,15 +50,25 @@ class _Filters:
         return True
 
 
+def _warn_deprecated() -> None:
+    """rclpy's warn(): it still logs, and warns (as Python shows a DeprecationWarning, at the
+    student's line) that warning() is its name now."""
+    warnings.warn(
+        "Deprecated in favor of :py:classmethod:RcutilsLogger.warning:.", DeprecationWarning, stacklevel=3
+    )
+
+
 class RcutilsLogger:
     def __init__(self, name: str = "") -> None:
         self.name = name
         self._filters = _Filters()
 
     def _log(self, level: int, msg: Any, options: dict[str, Any]) -> bool:
-        if self._filters.allow(**options):
+        """Whether it logged (rclpy's result): False when the level or a filter held it back."""
+        if level >= effective_level(self.name) and self._filters.allow(**options):
             console_line(level, self.name, str(msg))
-        return True
+            return True
+        return False
 
     def debug(self, msg: Any, **options: Any) -> bool:
         return self._log(10, msg, options)
@@ -67,7 +79,9 @@ class RcutilsLogger:
     def warning(self, msg: Any, **options: Any) -> bool:
         return self._log(30, msg, options)
 
-    warn = warning
+    def warn(self, msg: Any, **options: Any) -> bool:
+        _warn_deprecated()
+        return self._log(30, msg, options)
 
     def error(self, msg: Any, **options: Any) -> bool:
         return self._log(40, msg, options)
@@ -99,7 +113,8 @@ class NodeRcutilsLogger(NodeLogger):
     def _emit(self, level: str, severity: int, msg: Any, options: dict[str, Any]) -> bool:
         if severity >= effective_level(self.name) and self._filters.allow(**options):
             self._log(level, msg)
-        return True
+            return True
+        return False
 
     def debug(self, msg: Any, **options: Any) -> bool:  # type: ignore[override]
         return self._emit("debug", 10, msg, options)
@@ -110,7 +125,9 @@ class NodeRcutilsLogger(NodeLogger):
     def warning(self, msg: Any, **options: Any) -> bool:  # type: ignore[override]
         return self._emit("warn", 30, msg, options)
 
-    warn = warning  # type: ignore[assignment]
+    def warn(self, msg: Any, **options: Any) -> bool:  # type: ignore[override]
+        _warn_deprecated()
+        return self._emit("warn", 30, msg, options)
 
     def error(self, msg: Any, **options: Any) -> bool:  # type: ignore[override]
         return self._emit("error", 40, msg, options)
@@ -124,6 +141,9 @@ class NodeRcutilsLogger(NodeLogger):
 
     def get_effective_level(self) -> LoggingSeverity:
         return LoggingSeverity(effective_level(self.name))
+
+    def is_enabled_for(self, severity: int) -> bool:
+        return int(severity) >= effective_level(self.name)
 
     def get_child(self, name: str) -> RcutilsLogger:
         return RcutilsLogger(f"{self.name}.{name}")

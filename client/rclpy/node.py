@@ -284,6 +284,12 @@ class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter AP
     def create_rate(self, frequency: float, clock: Any = None) -> Rate:
         return Rate(frequency, self._rcl_context)
 
+    def destroy_rate(self, rate: Rate) -> bool:
+        """rclpy's: the rate's sleep() fails after it; True unless it was destroyed already."""
+        alive = not rate.destroyed
+        rate.destroy()
+        return alive
+
     def get_node_names(self) -> list[str]:
         names = [n.get_name() for n in self._bus.nodes]
         bridge = self._rcl_context.bridge

@@ -48,6 +48,10 @@ class Rate:
     def destroy(self) -> None:
         self._destroyed = True
 
+    @property
+    def destroyed(self) -> bool:
+        return self._destroyed
+
 
 class _EveryNode(SingleThreadedExecutor):
     """Runs the callbacks of every node of the process (no one spins them while a rate sleeps)."""
