@@ -12,6 +12,7 @@ from server.msgs import Message
 from server.msgs import Service as ServiceType
 
 from ._context import Context, default_context
+from ._graph_queries import GraphQueries
 from ._parameters import ParameterAPI
 from .callback_groups import CallbackGroup, GroupedCallback, MutuallyExclusiveCallbackGroup
 from .client import Client
@@ -65,7 +66,7 @@ class _LeftToTheStudent:
         raise AttributeError(f"'{type(node).__name__}' object has no attribute '{self._name}'")
 
 
-class Node(ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter API over the bus's
+class Node(GraphQueries, ParameterAPI, BusNode):  # type: ignore[misc]  # rclpy's parameter API over the bus's
     """Subclass it as the handout does: ``super().__init__('KeyboardManagerNode')``."""
 
     def __init__(
