@@ -13,11 +13,12 @@ that type and what it nests alone.
 from __future__ import annotations
 
 import re
+import threading
 from functools import cache
 from typing import TYPE_CHECKING, Any
 
 from . import catalog
-from ._base import message_classes
+from ._base import message_class
 from .action_spec import action_description_text
 from .definitions import Definitions, lab_definitions
 from .generated.type_hashes import TYPE_HASHES
@@ -122,30 +123,44 @@ def _lab_store(for_hashing: bool) -> Typestore:
 EMPTY_STRUCT_MEMBER = "structure_needs_at_least_one_member"
 
 
-# The typestores of the catalog's current generation: (generation, for CDR, for hashing).
-_stores: tuple[int, Typestore, Typestore] | None = None
+# The CDR typestore of the catalog's current generation, holding the types used so far.
+_cdr: tuple[int, Typestore] | None = None
+_cdr_lock = threading.Lock()
 
 
-def _current_stores() -> tuple[Typestore, Typestore]:
-    """The typestores for what the catalog holds now, built again when it changes."""
-    global _stores
-    generation = catalog.generation()
-    stores = _stores
-    if stores is None or stores[0] != generation:
-        for cls in message_classes().values():
-            if not cls.FIELDS:
-                setattr(cls, EMPTY_STRUCT_MEMBER, 0)
-        definitions = catalog.definitions()
-        stores = _stores = (
-            generation,
-            build_typestore(definitions, base=_lab_store(False)),
-            build_typestore(definitions, for_hashing=True, base=_lab_store(True)),
-        )
-    return stores[1], stores[2]
+def typestore(type_name: str | None = None) -> Typestore:
+    """rosbags' typestore for CDR, laid out for what the catalog holds now (a new one when it
+    changes). It holds the types asked for so far: ``type_name`` and what it nests are registered
+    at their first use, since rosbags parses, writes and runs code for each type it registers, and
+    a process uses a few of the hundreds ROS 2's packages define. With no name, every type."""
+    global _cdr
+    with _cdr_lock:
+        generation = catalog.generation()
+        if _cdr is None or _cdr[0] != generation:
+            from rosbags.typesys import Stores, get_typestore
+
+            _cdr = (generation, get_typestore(Stores.EMPTY))
+        store = _cdr[1]
+        if type_name is None or type_name not in store.fielddefs:
+            definitions = catalog.definitions()
+            picked = definitions if type_name is None else _closure(definitions, type_name)
+            types = {n: t for n, t in _types(picked, for_hashing=False).items() if n not in store.fielddefs}
+            if types:
+                _mark_empty_structs(types)
+                store.register(types)
+        return store
 
 
-def typestore() -> Typestore:
-    return _current_stores()[0]
+def _mark_empty_structs(types: dict[str, Any]) -> None:
+    """rosbags gives a message without fields one member, as IDL structs need one: its class
+    answers for it."""
+    for name in types:
+        try:
+            cls = message_class(name)
+        except KeyError:  # a service's whole or an event rosbags makes: no class of the lab's
+            continue
+        if not cls.FIELDS:
+            setattr(cls, EMPTY_STRUCT_MEMBER, 0)
 
 
 def _closure(definitions: Definitions, type_name: str) -> Definitions:

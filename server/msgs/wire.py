@@ -83,7 +83,7 @@ def prepare(type_name: str) -> None:
     message. rosbags generates that code with ``exec`` of a string, and a Ctrl-C landing inside
     such an ``exec`` marks the interpreter as ended by Ctrl-C (exit status -SIGINT) even when the
     node's own ``except KeyboardInterrupt`` catches it; endpoints call this when they are made."""
-    store = typestore()
+    store = typestore(type_name)
     pending, seen = [type_name], set()
     while pending:
         name = pending.pop()
@@ -150,7 +150,7 @@ def _numpy_view(value: Any) -> Any:
 
 def serialize(msg: Message) -> bytes:
     """Little-endian CDR with its 4-byte header and no trailing padding, as rmw_zenoh sends it."""
-    return bytes(typestore().serialize_cdr(_numpy_view(msg), msg.TYPE))
+    return bytes(typestore(msg.TYPE).serialize_cdr(_numpy_view(msg), msg.TYPE))
 
 
 def _nested(path: str, exc: MessageError) -> MessageError:
@@ -225,7 +225,7 @@ def deserialize(
     if raw_bytes[:2] != CDR_LE_HEADER[:2]:
         raise WireError(f"{type_name}: not little-endian CDR (header {raw_bytes[:4].hex() or 'missing'})")
     try:
-        raw = (store or typestore()).deserialize_cdr(raw_bytes, type_name)
+        raw = (store or typestore(type_name)).deserialize_cdr(raw_bytes, type_name)
         converted: Message = _converter_for(cls)(raw)
         return converted
     except MessageError as exc:
