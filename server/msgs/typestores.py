@@ -134,6 +134,9 @@ def typestore(type_name: str | None = None) -> Typestore:
     at their first use, since rosbags parses, writes and runs code for each type it registers, and
     a process uses a few of the hundreds ROS 2's packages define. With no name, every type."""
     global _cdr
+    current = _cdr  # every message after its type's first: no lock
+    if current is not None and current[0] == catalog.generation() and type_name in current[1].fielddefs:
+        return current[1]
     with _cdr_lock:
         generation = catalog.generation()
         if _cdr is None or _cdr[0] != generation:
