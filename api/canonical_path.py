@@ -16,9 +16,8 @@ import logging
 
 from starlette.types import ASGIApp, Receive, Scope, Send
 
-from server.access import path_problem
-
-from .errors import CloseCode, close_reason
+from api.errors import CloseCode, close_reason
+from server.base.access import path_problem
 
 log = logging.getLogger("api.paths")
 BAD_REQUEST = 400

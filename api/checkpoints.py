@@ -11,19 +11,18 @@ from fastapi import APIRouter, Depends, Path, Query, Request, Response
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 from starlette.requests import HTTPConnection
 
-from server.checkpoints.catalog import load
-from server.checkpoints.class_table import Row, reports_zip, table, table_csv
-from server.checkpoints.handover import tag, to_wire
-from server.checkpoints.report import build, signed_files
-from server.checkpoints.saved import Snapshot
-from server.checkpoints.signing import ReportSigner
-from server.checkpoints.view import world_view
+from api.classroom import ClassroomDep, InstructorDep
+from api.deps import LabDep, classroom_of, grant_of, lab_of
+from api.responses import NOT_FOUND, TYPE_CONFLICT, UNAUTHORIZED, UNPROCESSABLE, responses
 from server.classroom import ClassroomError, ClassServer
-from server.lab import Lab
-
-from .classroom import ClassroomDep, InstructorDep
-from .deps import LabDep, classroom_of, grant_of, lab_of
-from .responses import NOT_FOUND, TYPE_CONFLICT, UNAUTHORIZED, UNPROCESSABLE, responses
+from server.world.checkpoints.catalog import load
+from server.world.checkpoints.class_table import Row, reports_zip, table, table_csv
+from server.world.checkpoints.handover import tag, to_wire
+from server.world.checkpoints.report import build, signed_files
+from server.world.checkpoints.saved import Snapshot
+from server.world.checkpoints.signing import ReportSigner
+from server.world.checkpoints.view import world_view
+from server.world.lab import Lab
 
 router = APIRouter(prefix="/api/checkpoints", tags=["checkpoints"], responses=responses())
 class_router = APIRouter(prefix="/api/classroom/checkpoints", tags=["classroom"])

@@ -14,16 +14,9 @@ from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field, model_validator, with_config
 from typing_extensions import TypedDict
 
-from server.checkpoints.catalog import load as load_checkpoints
-from server.checkpoints.handover import from_wire
-from server.checkpoints.saved import SavedProgressError
-from server.classroom import Classroom, ClassroomError, ClassServer, Grant, WorldWorker
-from server.classroom.join_queue import JoinWaits
-from server.transport.acl import Credentials
-
-from .deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie, token_of
-from .errors import status_for
-from .responses import (
+from api.deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie, token_of
+from api.errors import status_for
+from api.responses import (
     BAD_GATEWAY,
     FORBIDDEN,
     NO_ROOM,
@@ -34,6 +27,12 @@ from .responses import (
     UNPROCESSABLE,
     responses,
 )
+from node_runtime.transport.acl import Credentials
+from server.classroom import Classroom, ClassroomError, ClassServer, Grant, WorldWorker
+from server.classroom.join_queue import JoinWaits
+from server.world.checkpoints.catalog import load as load_checkpoints
+from server.world.checkpoints.handover import from_wire
+from server.world.checkpoints.saved import SavedProgressError
 
 router = APIRouter(prefix="/api/classroom", tags=["classroom"])
 OPEN: dict[str, Any] = {
@@ -70,7 +69,7 @@ class HostRequest(BaseModel):
     # in a sandbox that reaches the router there.
     router_socket: str | None = Field(None, min_length=2, max_length=256, pattern=r"^/[A-Za-z0-9_./-]+$")
     # The class server's copy of the world's progress, for a worker whose own folder lacks it
-    # (server/checkpoints/handover.py's form).
+    # (server/world/checkpoints/handover.py's form).
     progress: dict[str, Any] | None = None
 
     @model_validator(mode="after")

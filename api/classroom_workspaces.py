@@ -14,13 +14,12 @@ from typing import Any
 from fastapi import APIRouter, Response
 from fastapi.responses import JSONResponse
 
+from api.classroom import ClassroomDep, InstructorDep
+from api.responses import FORBIDDEN, NOT_FOUND, UNAUTHORIZED, UNPROCESSABLE, responses
+from api.workspace import ZIP, WorkspaceTree, files_of, tree_body, zip_response
 from server.classroom import Classroom, World
-from server.workspace.files import WorkspaceFiles
-from server.workspace.location import world_workspace
-
-from .classroom import ClassroomDep, InstructorDep
-from .responses import FORBIDDEN, NOT_FOUND, UNAUTHORIZED, UNPROCESSABLE, responses
-from .workspace import ZIP, WorkspaceTree, files_of, tree_body, zip_response
+from server.services.workspace.files import WorkspaceFiles
+from server.services.workspace.location import world_workspace
 
 router = APIRouter(prefix="/api/classroom", tags=["classroom"])
 REFUSED = responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND)

@@ -13,11 +13,10 @@ from fastapi import Depends, Request, Response, WebSocket, WebSocketException, s
 from fastapi.responses import RedirectResponse
 from starlette.requests import HTTPConnection
 
-from server.access import bearer_token, token_matches
+from api.errors import CloseCode, close_reason
+from server.base.access import bearer_token, token_matches
 from server.classroom import Classroom, ClassroomError, ClassServer, Grant
-from server.lab import Lab
-
-from .errors import CloseCode, close_reason
+from server.world.lab import Lab
 
 TOKEN_COOKIE = "lab_token"
 COOKIE_MAX_AGE_S = 12 * 3600  # a school day

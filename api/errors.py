@@ -20,8 +20,10 @@ from starlette.responses import Response
 from starlette.routing import Match
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from server.bag.errors import BagBusyError, BagError, BagExistsError, BagLimitError, BagNotFoundError
-from server.bus import (
+from api.security import BodyTooLarge
+from api.strict_json import SafeJSONResponse
+from node_runtime.ament.index import ExecutableNotFoundError, PackageNotFoundError, WorkspaceError
+from node_runtime.bus import (
     DestroyedError,
     InvalidNameError,
     InvalidQoSError,
@@ -31,24 +33,24 @@ from server.bus import (
     UnknownServiceError,
     UnknownTopicError,
 )  # fmt: skip
-from server.checkpoints.progress import (
-    NotPngError,
-    UnknownCheckpointError,
-    UnknownQuestionError,
-)
-from server.checkpoints.progress import TooLargeError as AnswerTooLargeError
+from node_runtime.limits import LimitExceededError, ValueLimitError
+from node_runtime.msgs import MessageError, UnknownTypeError
+from server.base.close_codes import CloseCode as CloseCode  # where the routes import it from
 from server.classroom import ClassroomError
 from server.classroom.errors import StudentCodeElsewhereError
-from server.close_codes import CloseCode as CloseCode  # where the routes import it from
-from server.launch.description import LaunchFileError
-from server.launch.groups import UnknownLaunchError
-from server.limits import LimitExceededError, ValueLimitError
-from server.msgs import MessageError, UnknownTypeError
-from server.packages import ExecutableNotFoundError, PackageNotFoundError, WorkspaceError
+from server.host.processes.sandbox import StudentCodeRefusedError
 from server.packages.launch_files import LaunchFileNotFoundError
-from server.processes.sandbox import StudentCodeRefusedError
-from server.publishers import PublisherError, UnknownPublisherError
-from server.workspace.errors import (
+from server.peripherals.bag.errors import (
+    BagBusyError,
+    BagError,
+    BagExistsError,
+    BagLimitError,
+    BagNotFoundError,
+)
+from server.services.api_node.publishers import PublisherError, UnknownPublisherError
+from server.services.launch.description import LaunchFileError
+from server.services.launch.groups import UnknownLaunchError
+from server.services.workspace.errors import (
     BadArchiveError,
     BadPackageError,
     BadPathError,
@@ -59,9 +61,12 @@ from server.workspace.errors import (
     TakenError,
     TooLargeError,
 )
-
-from .security import BodyTooLarge
-from .strict_json import SafeJSONResponse
+from server.world.checkpoints.progress import (
+    NotPngError,
+    UnknownCheckpointError,
+    UnknownQuestionError,
+)
+from server.world.checkpoints.progress import TooLargeError as AnswerTooLargeError
 
 log = logging.getLogger("api.errors")
 

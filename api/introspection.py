@@ -9,17 +9,16 @@ from typing import Any, Literal
 from fastapi import APIRouter, HTTPException, Query, status
 from pydantic import BaseModel, ConfigDict, Field
 
-from server.bus import Node, UnknownNodeError, is_hidden, validate_topic_name
-from server.bus.topic import HZ_WINDOW_MAX
-from server.introspection import graph_snapshot, node_info, rate_stats, type_schema
-from server.introspection.merged import remote_node_endpoints
-from server.lab import Lab
-from server.msgs import Message, UnknownTypeError, get_type, type_names
-from server.topic_watch import WatchState
-
-from .deps import LabDep
-from .responses import NOT_FOUND, responses
-from .schemas import WATCH
+from api.deps import LabDep
+from api.responses import NOT_FOUND, responses
+from api.schemas import WATCH
+from node_runtime.bus import Node, UnknownNodeError, is_hidden, validate_topic_name
+from node_runtime.bus.topic import HZ_WINDOW_MAX
+from node_runtime.msgs import Message, UnknownTypeError, get_type, type_names
+from server.host.introspection import graph_snapshot, node_info, rate_stats, type_schema
+from server.host.introspection.merged import remote_node_endpoints
+from server.services.api_node.topic_watch import WatchState
+from server.world.lab import Lab
 
 # Handlers are ``async def`` so that they read the bus on the event loop that owns it, never
 # from a worker thread while the executor changes it.

@@ -8,15 +8,14 @@ from typing import Any
 
 from fastapi import APIRouter, HTTPException, Request, status
 
+from api.deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_request, token_of
+from api.responses import responses
+from api.schemas import Health, WorkspaceInfo, ZenohJoin
+from node_runtime.transport.acl import Credentials
 from server.classroom import Classroom, ClassServer
-from server.processes.command import graph_overrides
-from server.processes.start_pacing import StartPacer
-from server.settings import Settings
-from server.transport.acl import Credentials
-
-from .deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_request, token_of
-from .responses import responses
-from .schemas import Health, WorkspaceInfo, ZenohJoin
+from server.host.processes.command import graph_overrides
+from server.host.processes.start_pacing import StartPacer
+from server.host.settings import Settings
 
 # Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
 # handler would run in a worker thread and race the executor (timer heap, wake-up future).
@@ -61,7 +60,7 @@ async def zenoh_join(request: Request, start: bool = False) -> dict[str, Any]:
     world's domain only). ``env`` is ready to export, for ``ros2lab run`` or a ROS 2 node on rmw_zenoh.
     The instructor naming no world gets the class's own graph, where every world's topics show
     under its name (``/ada/uav/sensors/gps``). ``start=true`` (as ``ros2lab run`` asks) is a node
-    process about to start: such joins are paced (server/processes/start_pacing.py), with too
+    process about to start: such joins are paced (server/host/processes/start_pacing.py), with too
     many starting at once 429 and ``Retry-After``, after the request's own checks."""
     classroom = classroom_of(request)
     named = request.headers.get(WORLD_HEADER) or request.query_params.get("world")
@@ -83,7 +82,7 @@ async def zenoh_join(request: Request, start: bool = False) -> dict[str, Any]:
 
 def _nice(settings: Settings) -> int | None:
     """Where the server serves others (a class, a lab beyond loopback), students' node processes
-    run below its worlds: the niceness its sandbox gives them (server/processes/priority.py). A
+    run below its worlds: the niceness its sandbox gives them (node_runtime/process/priority.py). A
     lab on loopback serves its user alone, whose nodes run as they were started."""
     return settings.sandbox.nice if settings.confines_paths else None
 
@@ -95,7 +94,7 @@ def retry_after(wait_s: float) -> str:
 
 def _paced(pacer: StartPacer | None, start: bool, join: dict[str, Any]) -> dict[str, Any]:
     """The join, or 429 with the time of its turn (``Retry-After``) when it is a start the server's
-    pacer defers (server/processes/start_pacing.py)."""
+    pacer defers (server/host/processes/start_pacing.py)."""
     wait_s = pacer.admit() if start and pacer is not None else None
     if wait_s is not None:
         raise HTTPException(

@@ -13,10 +13,9 @@ from typing import Annotated, Any
 from fastapi import APIRouter, status
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
+from api.deps import LabDep
+from api.responses import NOT_FOUND, TOO_MANY, responses
 from server.packages.launch_files import launch_file
-
-from .deps import LabDep
-from .responses import NOT_FOUND, TOO_MANY, responses
 
 router = APIRouter(prefix="/api", tags=["launch"], responses=responses())
 MAX_ARGS = 64  # launch arguments, parameters or remappings in one request

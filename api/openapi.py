@@ -15,8 +15,8 @@ from typing import Any
 
 from fastapi import FastAPI
 
-from .deps import SAFE_METHODS, TOKEN_COOKIE
-from .responses import BAD_GATEWAY, FORBIDDEN, NO_ROOM, NOT_FOUND, TOO_MANY, UNAUTHORIZED, responses
+from api.deps import SAFE_METHODS, TOKEN_COOKIE
+from api.responses import BAD_GATEWAY, FORBIDDEN, NO_ROOM, NOT_FOUND, TOO_MANY, UNAUTHORIZED, responses
 
 SCHEMES = {
     "bearer": {

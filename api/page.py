@@ -16,11 +16,11 @@ from starlette.requests import HTTPConnection
 
 from api.deps import classroom_of, keep_token_and_go, lab_of, token_of
 from api.ws_relay import relay
-from server.access import token_matches
+from server.base.access import token_matches
+from server.base.close_codes import CloseCode
 from server.classroom import ClassroomError, ClassServer
-from server.close_codes import CloseCode
-from server.viewer.views import PageViews, ViewRegistry
-from server.viewer.viser_guard import PROXY_TOKEN_HEADER
+from server.peripherals.viewer.views import PageViews, ViewRegistry
+from server.peripherals.viewer.viser_guard import PROXY_TOKEN_HEADER
 
 log = logging.getLogger(__name__)
 router = APIRouter(include_in_schema=False)

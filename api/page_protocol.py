@@ -14,19 +14,18 @@ from typing import Any, Literal
 
 from pydantic import TypeAdapter
 
-from server.msgs import get_type
-from server.msgs.schema import type_schema
-from server.viewer.views import PageViews
-
-from .classroom import BroadcastRequest, ClassWorlds, Joined, JoinRequest, QueuedJoin
-from .classroom_load import ClassLoadOut
-from .introspection import GraphOut, NodeDetailOut, NodeSummaryOut, RateOut
-from .responses import ErrorBody
-from .schemas import TopicDetail, TopicSummary
-from .ts_types import declaration
-from .workspace import WorkspaceTree
-from .ws_keys import ControlFrame, KeyChannelError, KeyFrame
-from .ws_topics import EchoFrame
+from api.classroom import BroadcastRequest, ClassWorlds, Joined, JoinRequest, QueuedJoin
+from api.classroom_load import ClassLoadOut
+from api.introspection import GraphOut, NodeDetailOut, NodeSummaryOut, RateOut
+from api.responses import ErrorBody
+from api.schemas import TopicDetail, TopicSummary
+from api.ts_types import declaration
+from api.workspace import WorkspaceTree
+from api.ws_keys import ControlFrame, KeyChannelError, KeyFrame
+from api.ws_topics import EchoFrame
+from node_runtime.msgs import get_type
+from node_runtime.msgs.schema import type_schema
+from server.peripherals.viewer.views import PageViews
 
 Mode = Literal["validation", "serialization"]
 OUTPUT = Path(__file__).resolve().parents[1] / "web" / "src" / "protocol.gen.ts"

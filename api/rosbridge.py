@@ -4,7 +4,7 @@ On a class server ``/rosbridge`` is a world's (the student's own; the instructor
 ``?world=``), and ``/class/rosbridge`` is the instructor's: the class's own domain, every world's
 topics under its name (server/classroom/class_bridges.py), as the class's ``--rosbridge-port``.
 
-The protocol is server/bridges/rosbridge.py; here are its transport and its limits. Frames are
+The protocol is server/services/bridges/rosbridge.py; here are its transport and its limits. Frames are
 JSON text; a binary frame, a frame that is not a JSON object, or one over the size limit closes
 the connection with a close code that says which. A task of its own sends, so a client that
 reads slowly only loses the oldest messages of its subscriptions.
@@ -19,16 +19,15 @@ from dataclasses import dataclass
 
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect, WebSocketException
 
-from server.bridges.rosbridge import RosbridgeSession
+from api.deps import WsLabDep, classroom_of, token_of
+from api.errors import CloseCode, close_reason
+from api.ws_budget import spend
+from api.ws_life import closed_when, closed_when_lab_stops
+from node_runtime.limits import RateLimit
+from server.base.tasks import cancel_and_wait
 from server.classroom import ClassServer
 from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH, world_topic
-from server.limits import RateLimit
-from server.tasks import cancel_and_wait
-
-from .deps import WsLabDep, classroom_of, token_of
-from .errors import CloseCode, close_reason
-from .ws_budget import spend
-from .ws_life import closed_when, closed_when_lab_stops
+from server.services.bridges.rosbridge import RosbridgeSession
 
 router = APIRouter(tags=["websockets"])
 CLASS_STOPS = "the class server stops"

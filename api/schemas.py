@@ -6,8 +6,8 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from server.publishers import MAX_RATE_HZ, MIN_RATE_HZ
-from server.topic_watch import WatchState
+from server.services.api_node.publishers import MAX_RATE_HZ, MIN_RATE_HZ
+from server.services.api_node.topic_watch import WatchState
 
 MAX_NAME_CHARS = 256  # topic and type names
 WATCH = Field(

@@ -2,7 +2,7 @@
 
 A page on another site must never be able to fly the drone: WebSockets and state-changing
 requests carrying another site's Origin are refused, and a Host header that is not a name of
-this machine (DNS rebinding) is refused outright. The rules themselves are server/access.py's,
+this machine (DNS rebinding) is refused outright. The rules themselves are server/base/access.py's,
 which the bridges' guarded fronts apply too.
 """
 
@@ -15,8 +15,8 @@ from collections.abc import Iterable
 from starlette.exceptions import HTTPException
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from server.access import host_allowed, origin_allowed
-from server.close_codes import REFUSAL_FOR_STATUS
+from server.base.access import host_allowed, origin_allowed
+from server.base.close_codes import REFUSAL_FOR_STATUS
 
 SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
 

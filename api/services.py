@@ -7,10 +7,9 @@ from typing import Any
 from fastapi import APIRouter
 from pydantic import BaseModel, ConfigDict, Field
 
-from server.transport.keys import EntityKind
-
-from .deps import LabDep
-from .responses import NO_ANSWER, NOT_FOUND, TYPE_CONFLICT, responses
+from api.deps import LabDep
+from api.responses import NO_ANSWER, NOT_FOUND, TYPE_CONFLICT, responses
+from node_runtime.transport.keys import EntityKind
 
 # Handlers are ``async def``: the bus belongs to the event loop (see api/topics.py).
 router = APIRouter(prefix="/api", tags=["services"], responses=responses())

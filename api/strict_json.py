@@ -20,7 +20,7 @@ from typing import Any, NoReturn
 from starlette.responses import JSONResponse
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from .security import BodyTooLarge
+from api.security import BodyTooLarge
 
 MAX_DEPTH = 32  # the deepest lab message (PoseStamped) nests 4 objects
 MAX_INT = 2**64  # |n| must be below this: int64 and uint64 are the widest ROS integers

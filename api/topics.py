@@ -6,16 +6,15 @@ from typing import Any
 
 from fastapi import APIRouter
 
-from server.bus import UnknownTopicError, validate_topic_name
-from server.introspection.merged import LOCAL, EndpointView, TopicView, topic_views
-from server.lab import Lab
-from server.msgs import UnknownTypeError, get_type
-from server.topic_watch import NODE_NAME as WATCH_NODE
-from server.topic_watch import WatchState
-
-from .deps import LabDep
-from .responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, responses
-from .schemas import PublishRequest, PublishResult, TopicDetail, TopicSummary
+from api.deps import LabDep
+from api.responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, responses
+from api.schemas import PublishRequest, PublishResult, TopicDetail, TopicSummary
+from node_runtime.bus import UnknownTopicError, validate_topic_name
+from node_runtime.msgs import UnknownTypeError, get_type
+from server.host.introspection.merged import LOCAL, EndpointView, TopicView, topic_views
+from server.services.api_node.topic_watch import NODE_NAME as WATCH_NODE
+from server.services.api_node.topic_watch import WatchState
+from server.world.lab import Lab
 
 # Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
 # handler would run in a worker thread and race the executor (timer heap, wake-up future).

@@ -4,8 +4,8 @@ and the whole workspace as a zip, down and up.
 
 The workspace is the lab's folder (``settings.lab.workspace``: ``./workspace`` on a single lab,
 the world's own folder on a class server), reached with the caller's token as every route is.
-Paths are confined to it (server/workspace/paths.py), and opened one folder at a time, never
-through a symbolic link (server/workspace/handles.py); errors map in api/errors.py. The disk is
+Paths are confined to it (server/services/workspace/paths.py), and opened one folder at a time, never
+through a symbolic link (server/services/workspace/handles.py); errors map in api/errors.py. The disk is
 read and written in a worker thread (a tree is a walk of up to thousands of ``stat`` calls), never
 on the loop that runs the labs. A zip is built in a temporary file and sent from there in chunks:
 a workspace a node filled may hold far more than the API would ever write.
@@ -24,17 +24,16 @@ from fastapi import APIRouter, Header, Query, Request, Response, status
 from fastapi.responses import StreamingResponse
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
-from server.lab import Lab
+from api.deps import LabDep
+from api.responses import NOT_FOUND, TYPE_CONFLICT, UNPROCESSABLE, responses
 from server.packages.templates import PackageSpec
-from server.workspace.archive import packed, replace, unpack
-from server.workspace.errors import NoWorkspaceError
-from server.workspace.files import WorkspaceFiles
-from server.workspace.package_create import create_package
-from server.workspace.templates import TEMPLATES
-from server.workspace.tree import Tree
-
-from .deps import LabDep
-from .responses import NOT_FOUND, TYPE_CONFLICT, UNPROCESSABLE, responses
+from server.services.workspace.archive import packed, replace, unpack
+from server.services.workspace.errors import NoWorkspaceError
+from server.services.workspace.files import WorkspaceFiles
+from server.services.workspace.package_create import create_package
+from server.services.workspace.templates import TEMPLATES
+from server.services.workspace.tree import Tree
+from server.world.lab import Lab
 
 PREFIX = "/api/workspace/"
 router = APIRouter(prefix="/api/workspace", tags=["workspace"])

@@ -24,14 +24,13 @@ from fastapi import WebSocket, status
 from starlette.requests import HTTPConnection
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from api.deps import SAFE_METHODS, WORLD_HEADER, token_of
+from api.errors import CloseCode, close_reason
+from api.strict_json import SafeJSONResponse
+from api.ws_relay import relay
 from server.classroom import Classroom, ClassroomError, ClassServer, Grant, World
 from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH
 from server.classroom.workers import WorkerDirectory, WorkerRef, world_call_token
-
-from .deps import SAFE_METHODS, WORLD_HEADER, token_of
-from .errors import CloseCode, close_reason
-from .strict_json import SafeJSONResponse
-from .ws_relay import relay
 
 # Hop-by-hop headers, and what the class server answers for itself (who the caller is, where from).
 DROP_REQUEST = frozenset({

@@ -1,4 +1,4 @@
-"""A lab's budget of WebSocket frames (server/limits.py ``RateLimit``), spent frame by frame.
+"""A lab's budget of WebSocket frames (node_runtime/limits.py ``RateLimit``), spent frame by frame.
 
 A socket over its lab's budget waits for its turn instead of sending (or reading) more, so
 however many sockets a class world opens, together they cost the shared event loop no more than
@@ -12,7 +12,7 @@ from __future__ import annotations
 import asyncio
 import weakref
 
-from server.limits import RateLimit
+from node_runtime.limits import RateLimit
 
 MIN_WAIT_S = 0.001
 _turns: weakref.WeakKeyDictionary[RateLimit, asyncio.Lock] = weakref.WeakKeyDictionary()

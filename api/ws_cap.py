@@ -10,10 +10,9 @@ from __future__ import annotations
 from starlette.requests import HTTPConnection
 from starlette.types import ASGIApp, Receive, Scope, Send
 
+from api.deps import WORLD_HEADER, token_of
+from api.errors import CloseCode, close_reason
 from server.classroom import Classroom, ClassroomError, World
-
-from .deps import WORLD_HEADER, token_of
-from .errors import CloseCode, close_reason
 
 
 def charged_world(classroom: Classroom, scope: Scope) -> World | None:

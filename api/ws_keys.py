@@ -5,7 +5,7 @@ Frames: ``{"type": "keydown"|"keyup", "key": <KeyboardEvent.key>}`` with optiona
 ``alt``, ``meta``, or sided: ``lshift``, ``rshift`` ...). ``{"type": "release_all"}`` releases
 every key this connection holds (the page sends it on blur); ``{"type": "heartbeat"}`` keeps the
 channel alive: if it is silent for ``deadman_s`` (500 ms) while keys are held, the server
-releases them itself (server/devices/deadman.py, on the bus's clock). Garbage, including JSON
+releases them itself (server/peripherals/devices/deadman.py, on the bus's clock). Garbage, including JSON
 nested deeper than a frame needs, closes the channel with a named code; an unknown key only
 gets an error frame. When the channel closes, its held keys are released.
 """
@@ -19,17 +19,16 @@ from typing import Any, Literal, NotRequired
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect
 from typing_extensions import TypedDict
 
-from server.devices.keymap import MODIFIER_FLAG_NAMES, UnknownKeyError, modifier_bits, sdl_code
-
-from .deps import WsLabDep
-from .errors import CloseCode, close_reason
-from .strict_json import JsonRejected, loads
-from .ws_life import closed_when_lab_stops
+from api.deps import WsLabDep
+from api.errors import CloseCode, close_reason
+from api.strict_json import JsonRejected, loads
+from api.ws_life import closed_when_lab_stops
+from server.peripherals.devices.keymap import MODIFIER_FLAG_NAMES, UnknownKeyError, modifier_bits, sdl_code
 
 
 class KeyFrame(TypedDict):
     """A key going down or up, as the page sends it; the flags are the modifiers held then
-    (server/devices/keymap.py's names: sided, or unsided when the side is unknown)."""
+    (server/peripherals/devices/keymap.py's names: sided, or unsided when the side is unknown)."""
 
     type: Literal["keydown", "keyup"]
     key: str  # KeyboardEvent.key

@@ -10,10 +10,9 @@ from collections.abc import AsyncIterator
 
 from fastapi import WebSocket, WebSocketDisconnect
 
-from server.lab import Lab
-from server.tasks import cancel_and_wait
-
-from .errors import CloseCode
+from api.errors import CloseCode
+from server.base.tasks import cancel_and_wait
+from server.world.lab import Lab
 
 STOPPED_REASON = "the lab restarted: reconnect (a class server reset or removed this world)"
 

@@ -16,16 +16,15 @@ import asyncio
 
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect
 
-from server.lab import Lab
-from server.launch.groups import UnknownLaunchError
-from server.launch.output import GroupOutput
-
-from .deps import WsLabDep
-from .errors import CloseCode, close_reason
-from .strict_json import dumps
-from .ws_budget import spend
-from .ws_life import closed_when_lab_stops
-from .ws_send_only import refuse_client_frames
+from api.deps import WsLabDep
+from api.errors import CloseCode, close_reason
+from api.strict_json import dumps
+from api.ws_budget import spend
+from api.ws_life import closed_when_lab_stops
+from api.ws_send_only import refuse_client_frames
+from server.services.launch.groups import UnknownLaunchError
+from server.services.launch.output import GroupOutput
+from server.world.lab import Lab
 
 router = APIRouter(tags=["websockets"])
 POLL_S = 0.05

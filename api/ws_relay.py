@@ -11,7 +11,7 @@ import websockets
 from fastapi import WebSocket, WebSocketDisconnect, status
 from websockets.asyncio.client import ClientConnection
 
-from server.tasks import cancel_and_wait
+from server.base.tasks import cancel_and_wait
 
 
 async def relay(websocket: WebSocket, upstream: ClientConnection, max_frame_bytes: int | None = None) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from fastapi import WebSocket, WebSocketDisconnect
 
-from .errors import CloseCode
+from api.errors import CloseCode
 
 
 async def refuse_client_frames(websocket: WebSocket, max_frame_bytes: int, channel: str) -> None:

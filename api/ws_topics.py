@@ -17,18 +17,17 @@ from typing import Any, NotRequired
 from fastapi import APIRouter, Query, WebSocket, WebSocketDisconnect
 from typing_extensions import TypedDict
 
-from server.bus import Bus, Node, UnknownTopicError, validate_topic_name
-from server.lab import Lab
-from server.limits import LimitExceededError, RateLimit
-from server.msgs import Message
-from server.transport.keys import TRANSIENT_LOCAL, VOLATILE, EntityKind, QoS
-
-from .deps import WsLabDep
-from .errors import CloseCode, close_code, close_reason
-from .strict_json import dumps
-from .ws_budget import spend
-from .ws_life import closed_when_lab_stops
-from .ws_send_only import refuse_client_frames
+from api.deps import WsLabDep
+from api.errors import CloseCode, close_code, close_reason
+from api.strict_json import dumps
+from api.ws_budget import spend
+from api.ws_life import closed_when_lab_stops
+from api.ws_send_only import refuse_client_frames
+from node_runtime.bus import Bus, Node, UnknownTopicError, validate_topic_name
+from node_runtime.limits import LimitExceededError, RateLimit
+from node_runtime.msgs import Message
+from node_runtime.transport.keys import TRANSIENT_LOCAL, VOLATILE, EntityKind, QoS
+from server.world.lab import Lab
 
 router = APIRouter(tags=["websockets"])
 MAX_QUEUE = 1000

@@ -25,9 +25,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from machine import machine_info, save_results
 
-from server.bus import ManualClock
-from server.lab import Lab
-from server.settings import LabSettings, Settings
+from node_runtime.bus import ManualClock
+from server.host.settings import LabSettings, Settings
+from server.world.lab import Lab
 
 WARM_S = 3.0
 ARROW_UP, ARROW_RIGHT = 273, 275  # SDL codes

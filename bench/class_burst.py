@@ -100,7 +100,7 @@ def is_runner(pid: int) -> bool:
     """Whether ``pid`` is a node process (the lab's runner, whatever started it)."""
     try:  # bubblewrap's own process carries the same command line: not a node
         proc = Path(f"/proc/{pid}")
-        return (proc / "comm").read_text().strip() != "bwrap" and b"server.processes.runner" in (
+        return (proc / "comm").read_text().strip() != "bwrap" and b"node_runtime.process.runner" in (
             proc / "cmdline"
         ).read_bytes()
     except FileNotFoundError:

@@ -1,4 +1,4 @@
-"""Bench: what the class's own graph costs (server/transport/domain_bridge.py): every world's GPS
+"""Bench: what the class's own graph costs (node_runtime/transport/domain_bridge.py): every world's GPS
 watched under its name in the class domain, against the same GPS watched in each world's own domain.
 
     .venv/bin/python bench/class_graph.py [--worlds 10] [--window 20] [--rounds 3]
@@ -39,12 +39,12 @@ from classroom_worlds import cpu_s
 from live_server import LiveServer
 from machine import machine_info, save_results
 
-from server.msgs.wire import dds_type_name, type_hash
-from server.transport.acl import Credentials
-from server.transport.attachment import Attachment
-from server.transport.config import ZenohSettings
-from server.transport.keys import data_key
-from server.transport.session import build_config
+from node_runtime.msgs.wire import dds_type_name, type_hash
+from node_runtime.transport.acl import Credentials
+from node_runtime.transport.attachment import Attachment
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.keys import data_key
+from node_runtime.transport.session import build_config
 
 CODE = "GRAPH1"
 DYNAMICS = "flightgoggles_uav_dynamics"

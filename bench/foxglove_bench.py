@@ -47,8 +47,8 @@ READY_S = 60.0
 
 
 def pose_cdr(stamp_s: float) -> bytes:
-    from server.msgs import PoseStamped
-    from server.msgs.wire import serialize
+    from node_runtime.msgs import PoseStamped
+    from node_runtime.msgs.wire import serialize
 
     msg = PoseStamped()
     sec = int(stamp_s)
@@ -63,7 +63,7 @@ def serve_sdk(mode: str, port_file: Path) -> None:
     import foxglove
     from foxglove import Channel, Schema
 
-    from server.msgs.wire import definition_closure_text
+    from node_runtime.msgs.wire import definition_closure_text
 
     ctx = foxglove.Context()
     server = foxglove.start_server(host="127.0.0.1", port=0, context=ctx)
@@ -87,11 +87,11 @@ def serve_sdk(mode: str, port_file: Path) -> None:
 
 def serve_lab(mode: str, port_file: Path) -> None:
     import api  # noqa: F401  # first: the bridges use api's guard, and api's package imports the bridges
-    from server.bridges.runner import run_bridges
-    from server.bus import Node
-    from server.lab import Lab
-    from server.msgs import PoseStamped
-    from server.settings import LabSettings, Settings
+    from node_runtime.bus import Node
+    from node_runtime.msgs import PoseStamped
+    from server.host.settings import LabSettings, Settings
+    from server.services.bridges.runner import run_bridges
+    from server.world.lab import Lab
 
     async def main() -> None:
         lab = Lab(

@@ -8,7 +8,7 @@ as the router for every process below; each process is a Zenoh peer connecting t
 on 127.0.0.1 only, multicast scouting off; every child is ended by its own pid. What is measured:
 
 * start → listed, and RSS: the handout's keyboard manager (examples/workspace, rocketship) run as
-  the lab's launcher runs a node file, ``python -m server.processes.runner FILE`` with the lab's
+  the lab's launcher runs a node file, ``python -m node_runtime.process.runner FILE`` with the lab's
   ``ZENOH_CONFIG_OVERRIDE``: from just before ``Popen`` until ``/KeyboardManagerNode`` is in ``GET
   /api/nodes`` (polled every 20 ms); then, one second later, its VmRSS (/proc/PID/status); then
   Ctrl-C. Median and max over ``--tries``.
@@ -129,7 +129,7 @@ def start_to_listed(server: LiveServer, tries: int) -> dict[str, Any]:
     for _ in range(tries):
         t0 = time.monotonic()
         proc = subprocess.Popen(
-            [sys.executable, "-m", "server.processes.runner", str(KEYBOARD_MANAGER)],
+            [sys.executable, "-m", "node_runtime.process.runner", str(KEYBOARD_MANAGER)],
             cwd=REPO, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
         )  # fmt: skip
         try:

@@ -41,9 +41,9 @@ from machine import (
 )
 from machine import CHROMIUM_ARGS as CHROMIUM_FLAGS
 
-from server.bus import ManualClock, SystemClock
-from server.lab import Lab
-from server.settings import LabSettings, Settings
+from node_runtime.bus import ManualClock, SystemClock
+from server.host.settings import LabSettings, Settings
+from server.world.lab import Lab
 
 CLK_TCK = os.sysconf("SC_CLK_TCK")
 SETTLE_S = 3.0  # after start-up (or page load) before measuring

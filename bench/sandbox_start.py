@@ -3,17 +3,17 @@
     .venv/bin/python bench/sandbox_start.py [--tries 5]
 
 This process opens a Zenoh router (multicast scouting off) on a free loopback TCP port and on a
-Unix socket (server/transport/router_socket.py), as a class server's router does. Each try starts
+Unix socket (node_runtime/transport/router_socket.py), as a class server's router does. Each try starts
 the handout's keyboard manager (examples/workspace, rocketship) twice, alternating which goes
-first: once as the lab's launcher runs a node file (``python -m server.processes.runner FILE``,
-connecting over TCP) and once wrapped by server/processes/sandbox.py (bubblewrap, the default
+first: once as the lab's launcher runs a node file (``python -m node_runtime.process.runner FILE``,
+connecting over TCP) and once wrapped by server/host/processes/sandbox.py (bubblewrap, the default
 limits, connecting over the Unix socket). What is measured, each from just before ``Popen``:
 
 * start → joined: until the node's liveliness token is on the router (a Zenoh liveliness query
   for ``@ros2_lv/0/**`` every 20 ms, matching the node's name);
 * memory one second later: the node process's VmRSS (/proc/PID/status), and the PSS of every
   process it takes (/proc/PID/smaps_rollup: shared pages counted once across them): the node alone
-  as today; in the sandbox bwrap, the sandbox's pid 1 (server/processes/node_init.py, which
+  as today; in the sandbox bwrap, the sandbox's pid 1 (node_runtime/process/node_init.py, which
   stays as the node's parent) and the node.
 
 Then Ctrl-C (as the supervisor sends it) and the process is ended by its id. Median and max over
@@ -43,10 +43,10 @@ import zenoh
 from live_server import end, rss_mib
 from machine import machine_info, save_results
 
-from server.processes.command import NodeCommand, node_command
-from server.processes.confinement import Confinement
-from server.processes.sandbox import INSIDE_ROUTER, Sandbox, probe
-from server.transport.router_socket import new_socket_path, open_to_nodes, remove, socket_endpoint
+from node_runtime.process.confinement import Confinement
+from node_runtime.transport.router_socket import new_socket_path, open_to_nodes, remove, socket_endpoint
+from server.host.processes.command import NodeCommand, node_command
+from server.host.processes.sandbox import INSIDE_ROUTER, Sandbox, probe
 
 KEYBOARD_MANAGER = REPO / "examples" / "workspace" / "src" / "rocketship" / "src" / "keyboard_manager.py"
 NODE_NAME = "KeyboardManagerNode"

@@ -175,10 +175,10 @@ def bench_keys(presses: int, warmup: int) -> dict[str, Any]:
     import uvicorn
     from websockets.sync.client import connect
 
+    from node_runtime.bus import Node
+    from node_runtime.msgs import Key
     from server.app import create_app
-    from server.bus import Node
-    from server.msgs import Key
-    from server.settings import LabSettings, Listening, Settings
+    from server.host.settings import LabSettings, Listening, Settings
 
     settings = Settings(lab=LabSettings(viewer=False, launch="rocket"), listen=Listening(port=free_port()))
     app = create_app(settings)

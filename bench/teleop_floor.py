@@ -41,10 +41,10 @@ def tilt_toward_x(q: Any) -> float:
 
 
 def bench_in_process(mode: str, trials: int, seed: int = 1) -> dict[str, Any]:
-    from server.bus import ManualClock
-    from server.lab import Lab
-    from server.msgs import Key
-    from server.settings import LabSettings, Settings
+    from node_runtime.bus import ManualClock
+    from node_runtime.msgs import Key
+    from server.host.settings import LabSettings, Settings
+    from server.world.lab import Lab
 
     rng = np.random.default_rng(seed)
     lab = Lab(

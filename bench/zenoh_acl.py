@@ -4,7 +4,7 @@
 
 Two routers, each in a child process of its own on a free loopback port with multicast scouting
 off: one plain (no login, no access control, as one lab without --token), one as a class server
-opens it (server/transport/acl.py: a login file and the access-control list of every world domain,
+opens it (node_runtime/transport/acl.py: a login file and the access-control list of every world domain,
 default deny). In each round, for each router in turn, a publisher and a subscriber (Zenoh
 clients in this process; on the class router both log in as world 1, as a student's node
 processes do) exchange ``--messages`` samples of ``--size`` bytes on ``1/bench/chatter``,
@@ -32,9 +32,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from live_server import end, free_port
 from machine import machine_info, save_results
 
-from server.transport.acl import FIRST_WORLD_DOMAIN, LAST_DOMAIN, ClassAuth, Credentials, RouterAccess
-from server.transport.config import ZenohSettings
-from server.transport.session import build_config, open_session
+from node_runtime.transport.acl import FIRST_WORLD_DOMAIN, LAST_DOMAIN, ClassAuth, Credentials, RouterAccess
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.session import build_config, open_session
 
 SECRET = "bench-instructor-token"
 # A class server draws its worlds' logins at random; the bench's two processes need to agree on

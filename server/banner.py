@@ -4,9 +4,9 @@ nodes run."""
 
 from __future__ import annotations
 
+from node_runtime.transport.config import is_loopback
 from server import cli
-from server.settings import ANY_ADDRESS, Settings
-from server.transport.config import is_loopback
+from server.host.settings import ANY_ADDRESS, Settings
 
 
 def shown_host(host: str) -> str:
@@ -91,12 +91,12 @@ def student_code_line(settings: Settings) -> str | None:
     if not settings.sandboxes_students:
         return ("warning: --student-code unsandboxed: students' nodes run as this server's user, with "
                 "everything it can read and reach (tokens, other workspaces, the network)")  # fmt: skip
-    from server.processes.sandbox import StudentCodeRefusedError, probe
+    from server.host.processes.sandbox import StudentCodeRefusedError, probe
 
     why = probe()
     if why is not None:
         return f"error: {StudentCodeRefusedError(why)}"
-    from server.processes.sandbox import memory_layer
+    from server.host.processes.sandbox import memory_layer
 
     limits = settings.sandbox
     return (f"Students' nodes run sandboxed (bubblewrap, seccomp, no capability, the workspace read-only, "

@@ -8,10 +8,10 @@ from collections.abc import Callable
 
 from fastapi import FastAPI
 
+from node_runtime.console import access_log, quiet_uvicorn
 from server.app import create_app
-from server.collections_policy import keep_full_collections_short
-from server.console import access_log, quiet_uvicorn
-from server.settings import Settings
+from server.base.collections_policy import keep_full_collections_short
+from server.host.settings import Settings
 
 
 def serve(

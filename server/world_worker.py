@@ -24,15 +24,15 @@ from typing import Any
 
 from pydantic import ValidationError
 
+from node_runtime.console import LEVELS, setup_logging
+from node_runtime.transport.config import ZenohSettings
 from server.classroom.worker_control import TOKEN_ENV
-from server.console import LEVELS, setup_logging
-from server.settings import (
+from server.host.settings import (
     LOOPBACK_HOSTS,
     ORPHAN_TIMEOUT_S,
     Settings,
     explain,
 )
-from server.transport.config import ZenohSettings
 
 log = logging.getLogger("classroom.worker")
 PARENT_CHECK_S = 0.5
@@ -112,8 +112,8 @@ def _worker_id(asked: str | None) -> str:
 
 def _router_refuses(endpoint: str, class_token: str) -> str | None:
     """Why the class's router would not let this worker in (None: it does), before anything starts."""
-    from server.transport.acl import ClassAuth
-    from server.transport.session import TransportError, open_session
+    from node_runtime.transport.acl import ClassAuth
+    from node_runtime.transport.session import TransportError, open_session
 
     settings = ZenohSettings(
         mode="client", listen=(), connect=(endpoint,), login=ClassAuth(class_token).class_credentials()

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 from support.schedule import BROWSER_FOLDER, browser_tests_astray, longest_files_first
 
-from server.bus import Bus, Executor, ManualClock
+from node_runtime.bus import Bus, Executor, ManualClock
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:

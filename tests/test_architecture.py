@@ -9,7 +9,7 @@ import pytest
 from support.layers import Layer, check, loaded_by, parse_layers, read_tree
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("server", "api", "sim", "client")
+PACKAGES = ("node_runtime", "server", "api", "sim", "client")
 WEB = {"fastapi", "starlette", "uvicorn", "viser", "websockets"}
 
 
@@ -36,20 +36,33 @@ def test_architecture_sim_loads_only_numpy_and_the_standard_library() -> None:
     assert outside <= {"numpy"}, outside
 
 
-@pytest.mark.parametrize("module", ["server.bus", "server.msgs", "server.transport", "client"])
+@pytest.mark.parametrize(
+    "module", ["node_runtime.bus", "node_runtime.msgs", "node_runtime.transport", "client"]
+)
 def test_architecture_the_graph_below_the_web_loads_no_web_package(module: str) -> None:
     _, outside = loaded_by(ROOT, PACKAGES, module)
     assert not WEB & outside, f"importing {module} loads {sorted(WEB & outside)}"
 
 
+@pytest.mark.parametrize("module", ["node_runtime.process.runner", "client.rclpy", "client.launch_ros"])
+def test_architecture_a_node_process_loads_the_runtime_and_the_client_only(module: str) -> None:
+    """What a student's node process runs is the runtime and client/ (one wheel), never the app."""
+    loaded, _ = loaded_by(ROOT, PACKAGES, module)
+    assert {m.split(".")[0] for m in loaded} <= {"node_runtime", "client"}, sorted(loaded)
+
+
 def test_architecture_bus_and_messages_load_no_sim_viewer_or_api() -> None:
-    for module in ("server.bus", "server.msgs"):
+    for module in ("node_runtime.bus", "node_runtime.msgs"):
         loaded, _ = loaded_by(ROOT, PACKAGES, module)
-        assert not {m for m in loaded if m.split(".")[0] in ("api", "sim") or m.startswith("server.viewer")}
+        assert not {
+            m
+            for m in loaded
+            if m.split(".")[0] in ("api", "sim") or m.startswith("server.peripherals.viewer")
+        }
 
 
 def test_architecture_packages_import_no_web_or_api_themselves() -> None:
-    """Nodes talk to the bus, not to the web (the visualizer draws through server/viewer)."""
+    """Nodes talk to the bus, not to the web (the visualizer draws through server/peripherals/viewer)."""
     _, edges, external = read_tree(ROOT, PACKAGES)
     for module in external:
         if module.startswith("server.packages"):
@@ -138,9 +151,24 @@ def test_checker_a_package_that_runs_a_higher_layer_is_reported_for_its_importer
                      "a lower layer imports a higher one"]  # fmt: skip
 
 
-def test_checker_peers_of_one_layer_may_not_import_each_other(tmp_path: Path) -> None:
-    found = fake_check(tmp_path, {**CLEAN, "top/store/__init__.py": "from top.logic import run\n"})
-    assert found and all("top.store and top.logic are peers" in f for f in found)
+def test_checker_peers_of_one_layer_may_import_one_another_one_way(tmp_path: Path) -> None:
+    assert fake_check(tmp_path, {**CLEAN, "top/store/__init__.py": "from top.logic import run\n"}) == []
+
+
+def test_checker_an_import_cycle_between_peers_of_one_layer_is_reported(tmp_path: Path) -> None:
+    found = fake_check(tmp_path, {**CLEAN, "top/store/__init__.py": "from top.logic import run\n",
+                                  "top/logic/core.py": "import top.store\n\ndef run() -> None: ...\n"})  # fmt: skip
+    assert len(found) == 1
+    assert "an import cycle between parts of one layer: top.logic ↔ top.store" in found[0]
+
+
+def test_checker_the_parts_of_a_one_folder_layer_may_not_import_in_a_circle(tmp_path: Path) -> None:
+    """A layer that is one folder (web) has parts one level down: routes may use helpers, but a
+    helper that imports routes back closes a circle, even under TYPE_CHECKING."""
+    helpers = "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from top.web.routes import x\n"
+    found = fake_check(tmp_path, {**CLEAN, "top/web/helpers.py": helpers})
+    assert len(found) == 1
+    assert "top.web.helpers ↔ top.web.routes" in found[0]
 
 
 def test_checker_a_module_in_no_layer_is_reported(tmp_path: Path) -> None:

@@ -1,4 +1,4 @@
-"""server/collections_policy.py: what survives a full collection is frozen, so later ones skip it;
+"""server/base/collections_policy.py: what survives a full collection is frozen, so later ones skip it;
 what dies while frozen is collected once the frozen objects are given back."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from collections.abc import Iterator
 
 import pytest
 
-from server.collections_policy import FreezeAfterFullCollections, keep_full_collections_short
+from server.base.collections_policy import FreezeAfterFullCollections, keep_full_collections_short
 
 
 class Clock:

@@ -1,4 +1,4 @@
-"""What a process prints (server/console.py): each check runs in a fresh interpreter, since
+"""What a process prints (node_runtime/console.py): each check runs in a fresh interpreter, since
 logging's set-up is once per process."""
 
 from __future__ import annotations
@@ -7,14 +7,14 @@ import subprocess
 import sys
 import textwrap
 
-from server.console import access_log
+from node_runtime.console import access_log
 
 
 def console_of(setup: str) -> list[str]:
     """The lines a fresh process prints after ``setup`` and the same five log calls."""
     script = textwrap.dedent(f"""
         import logging
-        from server.console import setup_logging
+        from node_runtime.console import setup_logging
         {setup}
         logging.getLogger("world.ada.MainControllerNode").info("[MainControllerNode] Countdown: 3s")
         logging.getLogger("world.bob.PositionController").warning("[PositionController] setpoint clamped")
@@ -56,7 +56,7 @@ def test_debug_shows_everything_and_one_lab_logs_every_request() -> None:
 def test_a_message_with_line_breaks_or_escapes_stays_on_its_one_line() -> None:
     script = textwrap.dedent("""
         import logging
-        from server.console import setup_logging
+        from node_runtime.console import setup_logging
         setup_logging('info', classroom=True, world_level='info')
         logging.getLogger("classroom").info("%s joined", "Eve\\r\\n12:00:00 INFO classroom: Mallory joined")
         logging.getLogger("world.ada.talker").warning("[talker] a\\nb\\x1b[2J\\u2028c\\u202ed\\tе")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from server.params_file import (
+from node_runtime.params_file import (
     ParamsFileError,
     node_matches,
     parse_params_text,

@@ -1,4 +1,4 @@
-"""ROS 2's definitions from its wheels (server/ros_wheels.py): only the definitions and their hashes
+"""ROS 2's definitions from its wheels (node_runtime/ros_wheels.py): only the definitions and their hashes
 come out of a wheel, a current folder is left alone, the cache is used only for the pinned hash,
 and a download that fails says so. Wheels here are made in the test; pip is kept off the network
 (no index, an empty folder of links)."""
@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from server import ros_wheels
-from server.ros_wheels import SetUpError, ensure, read_lock
+from node_runtime import ros_wheels
+from node_runtime.ros_wheels import SetUpError, ensure, read_lock
 
 DATA = "ros_demo_msgs-1.2.3.data/data"
 

@@ -8,7 +8,8 @@ from typing import Any
 import pytest
 from pydantic import ValidationError
 
-from server.settings import (
+from node_runtime.transport.config import ZenohSettings
+from server.host.settings import (
     LOCAL_WORLDS_RULE,
     MAX_LOCAL_WORKERS,
     WORKERS_RULE,
@@ -21,7 +22,6 @@ from server.settings import (
     explain,
     is_refusal,
 )
-from server.transport.config import ZenohSettings
 
 ROUTER = ZenohSettings()  # tcp/127.0.0.1:7447, this machine only
 CLIENT = ZenohSettings(mode="client", listen=(), connect=("tcp/127.0.0.1:7447",))

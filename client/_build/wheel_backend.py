@@ -69,7 +69,7 @@ def collect(project: Path = PROJECT) -> Distribution:
         found = next((sorted(r.glob(pattern)) for r in roots if any(r.glob(pattern))), [])
         if not found:
             hint = (
-                " (ROS 2's definitions: run `python -m server.ros_wheels` first)"
+                " (ROS 2's definitions: run `python -m node_runtime.ros_wheels` first)"
                 if "ros_interfaces" in pattern
                 else ""
             )

@@ -1,7 +1,7 @@
 """ROS 2's ``ament_index_python`` for a lab: where a package's files are, among the lab's packages
 and the workspace's (as ``$(find-pkg-share PKG)`` and ``ros2lab pkg prefix`` find them)."""
 
-from .packages import (
+from ament_index_python.packages import (
     PackageNotFoundError,
     get_package_prefix,
     get_package_share_directory,

@@ -9,9 +9,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from server.packages import PackageIndex
+    from node_runtime.ament.index import PackageIndex
 
-WORKSPACE_ENV = "ROS2LAB_WORKSPACE"  # the node runner's (server/processes/interface_modules.py)
+WORKSPACE_ENV = "ROS2LAB_WORKSPACE"  # the node runner's (node_runtime/process/interface_modules.py)
 
 
 class PackageNotFoundError(KeyError):
@@ -19,7 +19,7 @@ class PackageNotFoundError(KeyError):
 
 
 def _index() -> PackageIndex:
-    from server.packages import PackageIndex  # the lab's packages and the workspace's, found afresh
+    from node_runtime.ament.index import PackageIndex  # the lab's packages and the workspace's, found afresh
 
     workspace = os.environ.get(WORKSPACE_ENV)
     return PackageIndex(workspace=Path(workspace) if workspace else None)

@@ -6,15 +6,15 @@ the nodes to start and the XML or YAML files to include; its launcher then start
 an XML launch file's.
 """
 
-from . import actions, conditions, launch_description_sources, substitutions
-from .action import Action
-from .condition import Condition
-from .launch_context import LaunchContext
-from .launch_description import LaunchDescription
-from .launch_description_entity import LaunchDescriptionEntity
-from .launch_description_sources import LaunchDescriptionSource
-from .some_substitutions_type import SomeSubstitutionsType, SomeSubstitutionsType_types_tuple
-from .substitution import Substitution
+from launch import actions, conditions, launch_description_sources, substitutions
+from launch.action import Action
+from launch.condition import Condition
+from launch.launch_context import LaunchContext
+from launch.launch_description import LaunchDescription
+from launch.launch_description_entity import LaunchDescriptionEntity
+from launch.launch_description_sources import LaunchDescriptionSource
+from launch.some_substitutions_type import SomeSubstitutionsType, SomeSubstitutionsType_types_tuple
+from launch.substitution import Substitution
 
 __all__ = [
     "Action",

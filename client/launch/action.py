@@ -8,11 +8,11 @@ from pathlib import Path
 from types import FrameType
 from typing import TYPE_CHECKING, Optional
 
-from .launch_description_entity import LaunchDescriptionEntity
+from launch.launch_description_entity import LaunchDescriptionEntity
 
 if TYPE_CHECKING:
-    from .condition import Condition
-    from .launch_context import LaunchContext
+    from launch.condition import Condition
+    from launch.launch_context import LaunchContext
 
 # The folders of the launch packages themselves: a frame in them is never "where it was written".
 _OURS = tuple(str(Path(__file__).resolve().parents[1] / name) for name in

@@ -6,7 +6,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from .launch_context import LaunchContext
+    from launch.launch_context import LaunchContext
 
 
 class Condition:

@@ -17,10 +17,10 @@ import sys
 import traceback
 from typing import Any
 
-from .action import Action
-from .launch_context import LaunchContext
-from .launch_description_entity import LaunchDescriptionEntity
-from .launch_description_sources.launch_description_source import include_python
+from launch.action import Action
+from launch.launch_context import LaunchContext
+from launch.launch_description_entity import LaunchDescriptionEntity
+from launch.launch_description_sources.launch_description_source import include_python
 
 MAX_ENTITIES = 100_000  # a generator of actions that never ends stops here
 
@@ -89,9 +89,9 @@ def _located(exc: Exception, entity: LaunchDescriptionEntity | None, context: La
 
 def _ours(exc: Exception) -> bool:
     """An exception whose message says it all (the launch packages' own), not a bug's."""
-    from .conditions import InvalidConditionExpressionError
-    from .launch_description_sources import InvalidPythonLaunchFileError
-    from .substitutions import SubstitutionFailure
+    from launch.conditions import InvalidConditionExpressionError
+    from launch.launch_description_sources import InvalidPythonLaunchFileError
+    from launch.substitutions import SubstitutionFailure
 
     ours = (InvalidConditionExpressionError, InvalidPythonLaunchFileError, SubstitutionFailure)
     return isinstance(exc, ours) or type(exc) is RuntimeError

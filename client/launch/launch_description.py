@@ -5,11 +5,11 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Optional
 
-from .launch_description_entity import LaunchDescriptionEntity
+from launch.launch_description_entity import LaunchDescriptionEntity
 
 if TYPE_CHECKING:
-    from .actions.declare_launch_argument import DeclareLaunchArgument
-    from .launch_context import LaunchContext
+    from launch.actions.declare_launch_argument import DeclareLaunchArgument
+    from launch.launch_context import LaunchContext
 
 
 class LaunchDescription(LaunchDescriptionEntity):
@@ -43,7 +43,7 @@ class LaunchDescription(LaunchDescriptionEntity):
 
     def get_launch_arguments(self, conditional_inclusion: bool = False) -> list[DeclareLaunchArgument]:
         """The arguments this description declares, in groups too (not in included files)."""
-        from .actions.declare_launch_argument import DeclareLaunchArgument
+        from launch.actions.declare_launch_argument import DeclareLaunchArgument
 
         found: list[DeclareLaunchArgument] = []
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Optional
 
 if TYPE_CHECKING:
-    from .launch_context import LaunchContext
+    from launch.launch_context import LaunchContext
 
 
 class LaunchDescriptionEntity:

@@ -12,7 +12,7 @@ import yaml
 from launch import LaunchContext, Substitution
 from launch.utilities import perform_typed
 
-from .parameter_descriptions import ParameterFile, ParameterValue
+from launch_ros.parameter_descriptions import ParameterFile, ParameterValue
 
 Scalar = bool | int | float | str
 

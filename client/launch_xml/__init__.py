@@ -1,5 +1,5 @@
 """launch_xml: ROS 2's XML frontend for launch files, as a Python launch file includes one."""
 
-from . import launch_description_sources
+from launch_xml import launch_description_sources
 
 __all__ = ["launch_description_sources"]

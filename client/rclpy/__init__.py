@@ -10,11 +10,11 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from ._context import Context, RCLError, default_context
-from .executors import Executor, ExternalShutdownException, SingleThreadedExecutor
-from .parameter import Parameter
-from .task import Future
-from .utilities import get_default_context, get_rmw_implementation_identifier, ok
+from rclpy._context import Context, RCLError, default_context
+from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedExecutor
+from rclpy.parameter import Parameter
+from rclpy.task import Future
+from rclpy.utilities import get_default_context, get_rmw_implementation_identifier, ok
 
 _global_executor: Executor | None = None
 
@@ -107,7 +107,7 @@ def spin_until_future_complete(
 
 def create_node(node_name: str, *, context: Context | None = None, **kwargs: Any) -> Any:
     """``rclpy.create_node('name')``: a plain Node, for code that composes instead of subclassing."""
-    from .node import Node
+    from rclpy.node import Node
 
     return Node(node_name, context=context, **kwargs)
 

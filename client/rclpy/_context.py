@@ -17,15 +17,14 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from server.bus import Bus, NodeOverrides, SystemClock
-from server.bus.blocking import BlockingExecutor
-from server.bus.graph import set_process_bus
-from server.transport.bridge import ZenohBridge
-from server.transport.config import DEFAULT_ROUTER_ENDPOINT, domain_id_from_env
-
-from ._console import console_line, set_threshold
-from ._ros_args import RosArgs, parse_ros_args
-from ._wait_set import WaitSet
+from node_runtime.bus import Bus, NodeOverrides, SystemClock
+from node_runtime.bus.blocking import BlockingExecutor
+from node_runtime.bus.graph import set_process_bus
+from node_runtime.transport.bridge import ZenohBridge
+from node_runtime.transport.config import DEFAULT_ROUTER_ENDPOINT, domain_id_from_env
+from rclpy._console import console_line, set_threshold
+from rclpy._ros_args import RosArgs, parse_ros_args
+from rclpy._wait_set import WaitSet
 
 ROUTER_WAIT_NOTE_S = 1.0  # say once that the lab's router is not there yet, then keep waiting
 

@@ -14,11 +14,10 @@ import time
 from collections.abc import Callable, Generator
 from typing import Any, cast
 
-from server.bus import Node
-
-from ._context import Context, default_context
-from ._wait_set import Ready, WaitSet, is_async
-from .task import Future, Task
+from node_runtime.bus import Node
+from rclpy._context import Context, default_context
+from rclpy._wait_set import Ready, WaitSet, is_async
+from rclpy.task import Future, Task
 
 Handler = Task  # what wait_for_ready_callbacks hands out: call it to run (or resume) the callback
 Yielded = tuple[Task[Any], Any, Any]

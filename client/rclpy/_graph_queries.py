@@ -6,7 +6,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from ._context import Context
+    from rclpy._context import Context
 
 
 def _split(fully_qualified: str) -> tuple[str, str]:

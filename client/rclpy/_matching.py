@@ -13,11 +13,10 @@ import contextlib
 from dataclasses import dataclass
 from typing import Any
 
-from server.bus import Publisher as BusPublisher
-from server.bus import Subscription as BusSubscription
-from server.transport.keys import EntityKind
-
-from .qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
+from node_runtime.bus import Publisher as BusPublisher
+from node_runtime.bus import Subscription as BusSubscription
+from node_runtime.transport.keys import EntityKind
+from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
 
 _INFINITE = 0  # ns: rmw's "no deadline"
 

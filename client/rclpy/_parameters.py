@@ -20,10 +20,9 @@ from rcl_interfaces.msg import (
 )
 from rcl_interfaces.srv import ListParameters
 
-from server.bus.parameter_checks import override_as_declared, refusal
-from server.bus.parameter_values import parameter_event
-
-from .exceptions import (
+from node_runtime.bus.parameter_checks import override_as_declared, refusal
+from node_runtime.bus.parameter_values import parameter_event
+from rclpy.exceptions import (
     InvalidParameterException,
     InvalidParameterTypeException,
     InvalidParameterValueException,
@@ -32,8 +31,8 @@ from .exceptions import (
     ParameterNotDeclaredException,
     ParameterUninitializedException,
 )
-from .parameter import PARAMETER_SEPARATOR_STRING, Parameter, parameter_value_to_python
-from .qos import qos_profile_parameter_events
+from rclpy.parameter import PARAMETER_SEPARATOR_STRING, Parameter, parameter_value_to_python
+from rclpy.qos import qos_profile_parameter_events
 
 OnSet = Callable[[list[Parameter]], SetParametersResult]
 PreSet = Callable[[list[Parameter]], list[Parameter]]

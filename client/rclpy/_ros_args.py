@@ -9,7 +9,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from server.params_file import ParamsFile, ParamsFileError, read_params_file
+from node_runtime.params_file import ParamsFile, ParamsFileError, read_params_file
 
 LOG_LEVELS = {"debug": 10, "info": 20, "warn": 30, "warning": 30, "error": 40, "fatal": 50}
 

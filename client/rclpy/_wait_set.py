@@ -21,14 +21,13 @@ import threading
 from collections.abc import Callable, Iterator
 from typing import Any, cast
 
-from server.bus import Future as BusFuture
-from server.bus import Node, Subscription
-from server.bus.blocking import BlockingExecutor
-from server.bus.graph import Bus
-from server.bus.services import PendingCall, ServiceServer
-
-from .callback_groups import CallbackGroup, GroupedCallback, MutuallyExclusiveCallbackGroup
-from .task import Future
+from node_runtime.bus import Future as BusFuture
+from node_runtime.bus import Node, Subscription
+from node_runtime.bus.blocking import BlockingExecutor
+from node_runtime.bus.graph import Bus
+from node_runtime.bus.services import PendingCall, ServiceServer
+from rclpy.callback_groups import CallbackGroup, GroupedCallback, MutuallyExclusiveCallbackGroup
+from rclpy.task import Future
 
 Run = Callable[[], Any]  # takes the entity's data and runs its callback; an awaitable if it is async
 _FALLBACK = MutuallyExclusiveCallbackGroup()  # a lab's built-in node (the bus's) has no group

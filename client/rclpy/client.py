@@ -7,15 +7,14 @@ import contextlib
 import time
 from typing import TYPE_CHECKING, Any
 
-from server.bus import Future, ServiceClient
-from server.msgs import Message
-
-from ._wait_set import Response
-from .qos import QoSProfile, qos_profile_services_default
-from .service_introspection import Introspection, ServiceIntrospectionState
+from node_runtime.bus import Future, ServiceClient
+from node_runtime.msgs import Message
+from rclpy._wait_set import Response
+from rclpy.qos import QoSProfile, qos_profile_services_default
+from rclpy.service_introspection import Introspection, ServiceIntrospectionState
 
 if TYPE_CHECKING:
-    from .callback_groups import CallbackGroup
+    from rclpy.callback_groups import CallbackGroup
 
 WAIT_POLL_S = 0.02  # how often wait_for_service looks at the graph
 REQUEST_SENT, RESPONSE_RECEIVED = 0, 3  # service_msgs/ServiceEventInfo's event types

@@ -5,11 +5,10 @@ from __future__ import annotations
 
 import math
 
-from server.bus import Clock as TimeSource
-from server.bus import SystemClock
-
-from .duration import NS_PER_S
-from .time import ClockType, Time
+from node_runtime.bus import Clock as TimeSource
+from node_runtime.bus import SystemClock
+from rclpy.duration import NS_PER_S
+from rclpy.time import ClockType, Time
 
 
 class Clock:

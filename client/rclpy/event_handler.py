@@ -15,15 +15,14 @@ from dataclasses import dataclass
 from enum import IntEnum
 from typing import TYPE_CHECKING, Any
 
-from server.bus import Publisher as BusPublisher
-
-from ._matching import incompatible_peers, peers
-from .guard_condition import GuardCondition
-from .logging import get_logger
-from .qos import QoSPolicyKind, qos_policy_name_from_kind
+from node_runtime.bus import Publisher as BusPublisher
+from rclpy._matching import incompatible_peers, peers
+from rclpy.guard_condition import GuardCondition
+from rclpy.logging import get_logger
+from rclpy.qos import QoSPolicyKind, qos_policy_name_from_kind
 
 if TYPE_CHECKING:
-    from .callback_groups import CallbackGroup
+    from rclpy.callback_groups import CallbackGroup
 
 
 class QoSPublisherEventType(IntEnum):

@@ -16,8 +16,8 @@ from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-from ._context import Context
-from ._executor import (
+from rclpy._context import Context
+from rclpy._executor import (
     ConditionReachedException,
     Executor,
     ExternalShutdownException,
@@ -28,7 +28,7 @@ from ._executor import (
     _never,
     await_or_execute,
 )
-from .task import Future, Task
+from rclpy.task import Future, Task
 
 # Named as rclpy names them (a traceback says rclpy.executors.ExternalShutdownException).
 for _public in (ConditionReachedException, Executor, ExternalShutdownException, ShutdownException,

@@ -5,13 +5,12 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, cast
 
-from server.bus import Future
-from server.bus.services import PendingCall, ServiceServer
-
-from .callback_groups import CallbackGroup, GroupedCallback
+from node_runtime.bus import Future
+from node_runtime.bus.services import PendingCall, ServiceServer
+from rclpy.callback_groups import CallbackGroup, GroupedCallback
 
 if TYPE_CHECKING:
-    from server.bus import Node
+    from node_runtime.bus import Node
 
 
 class GuardCondition:

@@ -9,9 +9,8 @@ import warnings
 from enum import IntEnum
 from typing import Any
 
-from server.bus.node import NodeLogger
-
-from ._console import console_line, effective_level, own_level, set_level
+from node_runtime.bus.node import NodeLogger
+from rclpy._console import console_line, effective_level, own_level, set_level
 
 
 class LoggingSeverity(IntEnum):

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .logging import LoggingSeverity, get_logger_level, set_logger_level
-from .qos import qos_profile_services_default
+from rclpy.logging import LoggingSeverity, get_logger_level, set_logger_level
+from rclpy.qos import qos_profile_services_default
 
 
 class LoggingService:

@@ -6,33 +6,32 @@ import weakref
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from server.bus import INTERNAL_TOPICS
-from server.bus import Node as BusNode
-from server.msgs import Message
-from server.msgs import Service as ServiceType
-
-from ._context import Context, default_context
-from ._graph_queries import GraphQueries
-from ._parameters import ParameterAPI
-from .callback_groups import CallbackGroup, GroupedCallback, MutuallyExclusiveCallbackGroup
-from .client import Client
-from .clock import ROSClock
-from .event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
-from .guard_condition import GuardCondition
-from .logging import NodeRcutilsLogger
-from .logging_service import LoggingService
-from .parameter import Parameter
-from .parameter_service import ParameterService
-from .publisher import Publisher
-from .qos import QoSProfile, WireQoS, keep_depth, qos_profile_services_default
-from .qos_overriding_options import QoSOverridingOptions, declare_qos_parameters
-from .rate import Rate
-from .service import Service
-from .subscription import Subscription
-from .timer import Timer
+from node_runtime.bus import INTERNAL_TOPICS
+from node_runtime.bus import Node as BusNode
+from node_runtime.msgs import Message
+from node_runtime.msgs import Service as ServiceType
+from rclpy._context import Context, default_context
+from rclpy._graph_queries import GraphQueries
+from rclpy._parameters import ParameterAPI
+from rclpy.callback_groups import CallbackGroup, GroupedCallback, MutuallyExclusiveCallbackGroup
+from rclpy.client import Client
+from rclpy.clock import ROSClock
+from rclpy.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
+from rclpy.guard_condition import GuardCondition
+from rclpy.logging import NodeRcutilsLogger
+from rclpy.logging_service import LoggingService
+from rclpy.parameter import Parameter
+from rclpy.parameter_service import ParameterService
+from rclpy.publisher import Publisher
+from rclpy.qos import QoSProfile, WireQoS, keep_depth, qos_profile_services_default
+from rclpy.qos_overriding_options import QoSOverridingOptions, declare_qos_parameters
+from rclpy.rate import Rate
+from rclpy.service import Service
+from rclpy.subscription import Subscription
+from rclpy.timer import Timer
 
 if TYPE_CHECKING:
-    from .executors import Executor
+    from rclpy.executors import Executor
 
 
 def _profile(qos_or_depth: Any) -> QoSProfile:

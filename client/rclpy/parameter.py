@@ -8,7 +8,7 @@ from typing import Any
 from rcl_interfaces.msg import Parameter as ParameterMsg
 from rcl_interfaces.msg import ParameterType, ParameterValue
 
-from server.params_file import SEPARATOR, read_params_file, value_from_text
+from node_runtime.params_file import SEPARATOR, read_params_file, value_from_text
 
 PARAMETER_SEPARATOR_STRING = SEPARATOR
 

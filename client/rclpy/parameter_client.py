@@ -18,11 +18,10 @@ from rcl_interfaces.srv import (
     SetParametersAtomically,
 )
 
-from server.bus import Future
-
-from .callback_groups import CallbackGroup
-from .parameter import Parameter, parameter_dict_from_yaml_file
-from .qos import QoSProfile, qos_profile_parameter_events, qos_profile_services_default
+from node_runtime.bus import Future
+from rclpy.callback_groups import CallbackGroup
+from rclpy.parameter import Parameter, parameter_dict_from_yaml_file
+from rclpy.qos import QoSProfile, qos_profile_parameter_events, qos_profile_services_default
 
 WAIT_POLL_S = 0.02  # how often wait_for_services looks at the graph (rclpy sleeps 0.25 s)
 

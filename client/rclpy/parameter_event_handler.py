@@ -9,7 +9,7 @@ from typing import Any
 from rcl_interfaces.msg import Parameter as ParameterMsg
 from rcl_interfaces.msg import ParameterEvent
 
-from .qos import QoSProfile, qos_profile_parameter_events
+from rclpy.qos import QoSProfile, qos_profile_parameter_events
 
 
 class ParameterCallbackHandle:

@@ -17,9 +17,9 @@ from rcl_interfaces.srv import (
     SetParametersAtomically,
 )
 
-from .exceptions import ParameterNotDeclaredException, ParameterUninitializedException
-from .parameter import Parameter
-from .qos import qos_profile_parameters
+from rclpy.exceptions import ParameterNotDeclaredException, ParameterUninitializedException
+from rclpy.parameter import Parameter
+from rclpy.qos import qos_profile_parameters
 
 
 class ParameterService:

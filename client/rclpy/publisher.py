@@ -5,15 +5,14 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
-from server.bus import Publisher as BusPublisher
-
-from ._matching import peers
-from .duration import Duration
-from .qos import QoSProfile
+from node_runtime.bus import Publisher as BusPublisher
+from rclpy._matching import peers
+from rclpy.duration import Duration
+from rclpy.qos import QoSProfile
 
 if TYPE_CHECKING:
-    from .callback_groups import CallbackGroup
-    from .event_handler import EventHandler
+    from rclpy.callback_groups import CallbackGroup
+    from rclpy.event_handler import EventHandler
 
 MsgT = TypeVar("MsgT")
 
@@ -34,7 +33,7 @@ class Publisher(BusPublisher, Generic[MsgT]):
     def publish(self, msg: Any) -> None:  # type: ignore[override]  # rclpy's returns nothing
         """Send ``msg``; bytes are taken as the message in CDR (``raw`` subscriptions' form)."""
         if isinstance(msg, (bytes, bytearray, memoryview)):
-            from .serialization import deserialize_message
+            from rclpy.serialization import deserialize_message
 
             msg = deserialize_message(bytes(msg), self.msg_type)
         elif not isinstance(msg, self.msg_type):

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from enum import Enum, IntEnum
 from typing import Any
 
-from .duration import Duration
+from rclpy.duration import Duration
 
 DEPTH_SYSTEM_DEFAULT = 0
 RMW_ZENOH_DEFAULT_DEPTH = 42  # what rmw_zenoh keeps when a profile leaves the depth to the system

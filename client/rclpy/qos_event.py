@@ -3,7 +3,7 @@ a warning."""
 
 import warnings
 
-from .event_handler import *  # noqa: F403
-from .event_handler import __all__ as __all__
+from rclpy.event_handler import *  # noqa: F403
+from rclpy.event_handler import __all__ as __all__
 
 warnings.warn("importing 'qos_event' is deprecated; import 'event_handler' instead", stacklevel=2)

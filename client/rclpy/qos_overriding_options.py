@@ -10,13 +10,13 @@ from typing import TYPE_CHECKING, Any
 
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 
-from . import qos as qos_module
-from .duration import Duration
-from .exceptions import ParameterAlreadyDeclaredException
-from .qos import QoSPolicyKind, QoSProfile
+from rclpy import qos as qos_module
+from rclpy.duration import Duration
+from rclpy.exceptions import ParameterAlreadyDeclaredException
+from rclpy.qos import QoSPolicyKind, QoSProfile
 
 if TYPE_CHECKING:
-    from .node import Node
+    from rclpy.node import Node
 
 QosCallbackResult = SetParametersResult
 QosCallbackType = Callable[[QoSProfile], Any]

@@ -6,9 +6,9 @@ import time
 import weakref
 from typing import Any, cast
 
-from ._context import Context
-from ._wait_set import WaitSet
-from .executors import SingleThreadedExecutor
+from rclpy._context import Context
+from rclpy._wait_set import WaitSet
+from rclpy.executors import SingleThreadedExecutor
 
 
 class Rate:

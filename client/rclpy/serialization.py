@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from server.msgs import Message
-from server.transport.cdr import decode, encode
+from node_runtime.msgs import Message
+from node_runtime.transport.cdr import decode, encode
 
 
 def serialize_message(message: Any) -> bytes:

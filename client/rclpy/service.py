@@ -5,14 +5,13 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from server.bus import ServiceServer
-from server.msgs import Message
-
-from .qos import QoSProfile, qos_profile_services_default
-from .service_introspection import Introspection, ServiceIntrospectionState
+from node_runtime.bus import ServiceServer
+from node_runtime.msgs import Message
+from rclpy.qos import QoSProfile, qos_profile_services_default
+from rclpy.service_introspection import Introspection, ServiceIntrospectionState
 
 if TYPE_CHECKING:
-    from .callback_groups import CallbackGroup
+    from rclpy.callback_groups import CallbackGroup
 
 # service_msgs/ServiceEventInfo's event types
 REQUEST_RECEIVED, RESPONSE_SENT = 1, 2

@@ -11,9 +11,8 @@ from __future__ import annotations
 from enum import IntEnum
 from typing import Any
 
-from server.msgs import Message, get_type
-
-from .qos import QoSProfile
+from node_runtime.msgs import Message, get_type
+from rclpy.qos import QoSProfile
 
 EVENT_SUFFIX = "/_service_event"
 GID_BYTES = 16
@@ -87,8 +86,8 @@ def event_message(srv_type: Any) -> type[Message]:
         return declared  # type: ignore[no-any-return]
     name = f"{srv_type.TYPE}_Event"
     if name not in _EVENTS:
-        from server.msgs._base import define_message
-        from server.msgs.idl import parse_message
+        from node_runtime.msgs._base import define_message
+        from node_runtime.msgs.idl import parse_message
 
         text = (
             f"service_msgs/ServiceEventInfo info\n{srv_type.Request.TYPE}[<=1] request\n"
@@ -100,7 +99,7 @@ def event_message(srv_type: Any) -> type[Message]:
 
 
 def _no_events() -> Any:
-    from .event_handler import PublisherEventCallbacks
+    from rclpy.event_handler import PublisherEventCallbacks
 
     return PublisherEventCallbacks(use_default_callbacks=False)
 

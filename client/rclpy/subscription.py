@@ -11,14 +11,13 @@ from collections.abc import Callable
 from enum import Enum
 from typing import TYPE_CHECKING, Any, Generic, TypedDict, TypeVar
 
-from server.bus import Subscription as BusSubscription
-
-from ._matching import peers
-from .qos import QoSProfile
+from node_runtime.bus import Subscription as BusSubscription
+from rclpy._matching import peers
+from rclpy.qos import QoSProfile
 
 if TYPE_CHECKING:
-    from .callback_groups import CallbackGroup
-    from .event_handler import EventHandler
+    from rclpy.callback_groups import CallbackGroup
+    from rclpy.event_handler import EventHandler
 
 MsgT = TypeVar("MsgT")
 
@@ -79,7 +78,7 @@ class Subscription(BusSubscription, Generic[MsgT]):
 
         def deliver(msg: Any) -> Any:
             if raw:
-                from .serialization import serialize_message
+                from rclpy.serialization import serialize_message
 
                 msg = serialize_message(msg)
             if kind is Subscription.CallbackType.MessageOnly:

@@ -18,10 +18,10 @@ from collections.abc import Callable, Coroutine, Generator
 from enum import Enum
 from typing import TYPE_CHECKING, Any, TypeVar
 
-from server.bus import Future as BusFuture
+from node_runtime.bus import Future as BusFuture
 
 if TYPE_CHECKING:
-    from .executors import Executor
+    from rclpy.executors import Executor
 
 T = TypeVar("T")
 

@@ -11,7 +11,7 @@ from enum import IntEnum
 
 from builtin_interfaces.msg import Time as TimeMsg
 
-from .duration import NS_PER_S, Duration
+from rclpy.duration import NS_PER_S, Duration
 
 
 class ClockType(IntEnum):

@@ -8,14 +8,13 @@ import math
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from server.bus import Timer as BusTimer
-
-from .rate import Rate
-from .time import ClockType, Time
+from node_runtime.bus import Timer as BusTimer
+from rclpy.rate import Rate
+from rclpy.time import ClockType, Time
 
 if TYPE_CHECKING:
-    from .callback_groups import CallbackGroup
-    from .clock import Clock
+    from rclpy.callback_groups import CallbackGroup
+    from rclpy.clock import Clock
 
 NS_PER_S = 1_000_000_000
 

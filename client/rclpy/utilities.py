@@ -6,8 +6,8 @@ from __future__ import annotations
 import sys
 from collections.abc import Sequence
 
-from ._context import Context, default_context
-from ._ros_args import parse_ros_args
+from rclpy._context import Context, default_context
+from rclpy._ros_args import parse_ros_args
 
 RMW_IMPLEMENTATION = "rmw_zenoh_cpp"  # the lab speaks rmw_zenoh's wire format
 S_TO_NS = 1_000_000_000

@@ -12,7 +12,7 @@ import threading
 import time
 from typing import Any
 
-from .qos import QoSProfile
+from rclpy.qos import QoSProfile
 
 POLL_S = 0.005  # how often it looks again while nothing has come
 

@@ -7,7 +7,7 @@ modules are tf2_ros' own names (``tf2_ros.buffer``, ``tf2_ros.transform_listener
 tutorials import them as they do on ROS 2.
 """
 
-from ._exceptions import (
+from tf2_ros._exceptions import (
     ConnectivityException,
     ExtrapolationException,
     InvalidArgumentException,
@@ -15,11 +15,16 @@ from ._exceptions import (
     TimeoutException,
     TransformException,
 )
-from .buffer import Buffer
-from .buffer_interface import BufferInterface, NotImplementedException, TransformRegistration, TypeException
-from .static_transform_broadcaster import StaticTransformBroadcaster
-from .transform_broadcaster import TransformBroadcaster
-from .transform_listener import TransformListener
+from tf2_ros.buffer import Buffer
+from tf2_ros.buffer_interface import (
+    BufferInterface,
+    NotImplementedException,
+    TransformRegistration,
+    TypeException,
+)
+from tf2_ros.static_transform_broadcaster import StaticTransformBroadcaster
+from tf2_ros.transform_broadcaster import TransformBroadcaster
+from tf2_ros.transform_listener import TransformListener
 
 __all__ = [
     "Buffer",

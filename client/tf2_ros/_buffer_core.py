@@ -17,14 +17,14 @@ import numpy as np
 from builtin_interfaces.msg import Time as TimeMsg
 from geometry_msgs.msg import TransformStamped
 
-from ._exceptions import (
+from tf2_ros._exceptions import (
     ConnectivityException,
     ExtrapolationException,
     InvalidArgumentException,
     LookupException,
     TransformException,
 )
-from ._time_cache import (
+from tf2_ros._time_cache import (
     DEFAULT_CACHE_TIME_NS,
     NS_PER_S,
     FrameCache,
@@ -33,7 +33,7 @@ from ._time_cache import (
     TimeCache,
     seconds_text,
 )
-from ._transform_math import RigidTransform
+from tf2_ros._transform_math import RigidTransform
 
 MAX_GRAPH_DEPTH = 1000  # tf2's: a longer chain of parents must be a loop
 NORMALIZATION_TOLERANCE = 10e-3  # tf2's: |q|^2 this far from 1 is refused

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._exceptions import ExtrapolationException
-from ._transform_math import RigidTransform, interpolate
+from tf2_ros._exceptions import ExtrapolationException
+from tf2_ros._transform_math import RigidTransform, interpolate
 
 NS_PER_S = 1_000_000_000
 DEFAULT_CACHE_TIME_NS = 10 * NS_PER_S  # tf2's BUFFER_CORE_DEFAULT_CACHE_TIME

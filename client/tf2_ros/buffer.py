@@ -18,9 +18,9 @@ from rclpy.duration import Duration
 from rclpy.task import Future
 from tf2_msgs.srv import FrameGraph
 
-from ._buffer_core import BufferCore
-from ._time_cache import NS_PER_S
-from .buffer_interface import NO_WAIT, BufferInterface
+from tf2_ros._buffer_core import BufferCore
+from tf2_ros._time_cache import NS_PER_S
+from tf2_ros.buffer_interface import NO_WAIT, BufferInterface
 
 
 def _timeout_s(timeout: Any) -> float:

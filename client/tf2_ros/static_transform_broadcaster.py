@@ -15,7 +15,7 @@ from geometry_msgs.msg import TransformStamped
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 from tf2_msgs.msg import TFMessage
 
-from .transform_broadcaster import as_list
+from tf2_ros.transform_broadcaster import as_list
 
 
 class StaticTransformBroadcaster:

@@ -1,11 +1,11 @@
 """A class on one server: a world per student, signed tokens that scope every call, and the
 instructor's controls; on a world worker, the worlds a class server placed there."""
 
-from .class_server import ClassServer
-from .errors import ClassroomError
-from .tokens import Grant, TokenSigner
-from .worker_worlds import WorldWorker
-from .world import World
+from server.classroom.class_server import ClassServer
+from server.classroom.errors import ClassroomError
+from server.classroom.tokens import Grant, TokenSigner
+from server.classroom.worker_worlds import WorldWorker
+from server.classroom.world import World
 
 Classroom = ClassServer | WorldWorker  # the app's classroom, in either role
 

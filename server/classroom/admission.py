@@ -13,11 +13,10 @@ import secrets
 import unicodedata
 from collections import Counter
 
-from server.bus import Clock
-from server.limits import KeyedRateLimit, RateLimit
-from server.settings import JoinLimits
-
-from .errors import ClassroomError
+from node_runtime.bus import Clock
+from node_runtime.limits import KeyedRateLimit, RateLimit
+from server.classroom.errors import ClassroomError
+from server.host.settings import JoinLimits
 
 CODE_ALPHABET = "ABCDEFGHJKLMNPQRSTUVWXYZ23456789"  # no 0/O, 1/I: read aloud or off a projector
 CODE_CHARS = 6

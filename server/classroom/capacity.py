@@ -20,7 +20,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from .load import CpuLoad
+from server.classroom.load import CpuLoad
 
 Verdict = Literal["ok", "near", "full"]
 NEAR_CORES = 0.6  # a process's loop thread past 60 % of a core: the next worlds will crowd it

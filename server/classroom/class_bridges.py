@@ -2,7 +2,7 @@
 
 A class server opens no Foxglove server or rosbridge port per world. It opens them once for the
 instructor: a bus of its own joins the class's router in the class's domain, where the domain
-bridge (server/transport/domain_bridge.py) declares each world's topics as ``/<world>/<topic>``.
+bridge (node_runtime/transport/domain_bridge.py) declares each world's topics as ``/<world>/<topic>``.
 On ``--foxglove-port`` a Foxglove bridge on that bus advertises them (``Bus.known_topics``); on
 ``--rosbridge-port`` (and at ``/class/rosbridge`` on the app's port, api/rosbridge.py) rosbridge
 clients subscribe, publish and ask rosapi-style questions of the same bus. A topic a client
@@ -21,17 +21,17 @@ import logging
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from server.bridges.front import GuardedFront
-from server.bridges.rosapi import RosapiNode
-from server.bridges.runner import start_foxglove, start_rosbridge_front
-from server.bus import Bus, Clock, Executor, ExecutorGroup
-from server.settings import Settings
-from server.transport.acl import Credentials
-from server.transport.config import ZenohSettings
-from server.transport.link import ZenohLink
+from node_runtime.bus import Bus, Clock, Executor, ExecutorGroup
+from node_runtime.transport.acl import Credentials
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.link import ZenohLink
+from server.host.settings import Settings
+from server.services.bridges.front import GuardedFront
+from server.services.bridges.rosapi import RosapiNode
+from server.services.bridges.runner import start_foxglove, start_rosbridge_front
 
 if TYPE_CHECKING:
-    from server.bridges.foxglove import FoxgloveBridge
+    from server.services.bridges.foxglove import FoxgloveBridge
 
 log = logging.getLogger("classroom.bridges")
 CLASS_ROSBRIDGE_PATH = "/class/rosbridge"
@@ -39,7 +39,7 @@ CLASS_ROSBRIDGE_PATH = "/class/rosbridge"
 
 def world_topic(name: str) -> str:
     """``/ada/uav/input/position`` → ``/uav/input/position``: the name in the world, whose limits
-    (server/limits.py: a setpoint inside the arena) a message for it must keep."""
+    (node_runtime/limits.py: a setpoint inside the arena) a message for it must keep."""
     parts = name.split("/", 2)
     return "/" + parts[2] if len(parts) == 3 and parts[2] else name
 

@@ -18,21 +18,19 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from server.bus import Clock, ExecutorGroup
-from server.settings import Settings
-from server.transport.acl import ClassAuth, Credentials
-from server.transport.config import endpoint_host
-
-from .router_gate import RouterGate
-from .workers import WorkerDirectory
-from .world import World
+from node_runtime.bus import Clock, ExecutorGroup
+from node_runtime.transport.acl import ClassAuth, Credentials
+from node_runtime.transport.config import endpoint_host
+from server.classroom.router_gate import RouterGate
+from server.classroom.workers import WorkerDirectory
+from server.classroom.world import World
+from server.host.settings import Settings
 
 if TYPE_CHECKING:
-    from server.transport.domain_bridge import DomainBridge
-    from server.transport.domain_routes import BridgeStats
-
-    from .class_bridges import ClassBridges
-    from .class_router import ClassRouter
+    from node_runtime.transport.domain_bridge import DomainBridge
+    from node_runtime.transport.domain_routes import BridgeStats
+    from server.classroom.class_bridges import ClassBridges
+    from server.classroom.class_router import ClassRouter
 
 log = logging.getLogger("classroom")
 WORKERS_BACK_S = 10.0  # how long a reopened router waits for its world workers to answer again
@@ -61,12 +59,11 @@ class ClassGraph:
         zenoh = self.settings.lab.zenoh
         if zenoh is None or zenoh.mode != "router":
             return False
-        from server.transport.session import TransportError
-
-        from .class_router import ClassRouter
+        from node_runtime.transport.session import TransportError
+        from server.classroom.class_router import ClassRouter
 
         if self.settings.sandboxes_students:  # students' sandboxed nodes reach it on a Unix socket
-            from server.transport.router_socket import new_socket_path, socket_endpoint
+            from node_runtime.transport.router_socket import new_socket_path, socket_endpoint
 
             path = new_socket_path()
             zenoh = dataclasses.replace(
@@ -84,7 +81,7 @@ class ClassGraph:
         self._open_bridge(session)
         endpoint = self.endpoint()
         if endpoint is not None:  # the instructor's bridges: /class/rosbridge, and their ports if asked
-            from .class_bridges import ClassBridges
+            from server.classroom.class_bridges import ClassBridges
 
             try:
                 self.bridges = await ClassBridges.open(
@@ -142,7 +139,7 @@ class ClassGraph:
             self.revoking.discard(domain_id)
 
     async def _reopen_router(self, domains: set[int]) -> None:
-        from server.transport.session import TransportError
+        from node_runtime.transport.session import TransportError
 
         assert self.router is not None
         if self.workers is not None:
@@ -186,7 +183,7 @@ class ClassGraph:
                         ", ".join(sorted(expected - self.workers.last_found)), WORKERS_BACK_S)  # fmt: skip
 
     def _open_bridge(self, session: Any) -> None:
-        from server.transport.domain_bridge import DomainBridge
+        from node_runtime.transport.domain_bridge import DomainBridge
 
         assert self.settings.lab.zenoh is not None
         self.bridge = DomainBridge(session, self.settings.lab.zenoh.domain_id, self._stats)
@@ -213,6 +210,6 @@ class ClassGraph:
                 self.router.close()
             socket, self.router = self.router.settings.process_socket, None
             if socket is not None:
-                from server.transport.router_socket import remove
+                from node_runtime.transport.router_socket import remove
 
                 remove(socket)

@@ -7,13 +7,13 @@ from __future__ import annotations
 import asyncio
 from collections.abc import Awaitable, Callable
 
-from .capacity import Capacity, PlaceLoad, judge
-from .class_graph import ClassGraph
-from .lateness import late_worlds
-from .load import CpuMeter
-from .placement import Placement
-from .workers import WATCH_PERIOD_S, WorkerRef
-from .worlds import WorldLabs
+from server.classroom.capacity import Capacity, PlaceLoad, judge
+from server.classroom.class_graph import ClassGraph
+from server.classroom.lateness import late_worlds
+from server.classroom.load import CpuMeter
+from server.classroom.placement import Placement
+from server.classroom.workers import WATCH_PERIOD_S, WorkerRef
+from server.classroom.worlds import WorldLabs
 
 SERVER_PLACE = "server"  # the class server itself, among the places worlds run
 FRESH_S = 3 * WATCH_PERIOD_S  # a watch round's answers younger than this stand for the workers now

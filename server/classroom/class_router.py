@@ -23,15 +23,15 @@ import dataclasses
 from collections.abc import Iterable
 from typing import Any
 
-from server.transport.acl import (
+from node_runtime.transport.acl import (
     FIRST_WORLD_DOMAIN,
     LAST_DOMAIN,
     Credentials,
     RouterAccess,
     new_world_login,
 )
-from server.transport.config import ZenohSettings
-from server.transport.session import TransportError, open_session
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.session import TransportError, open_session
 
 REOPEN_ATTEMPTS = 5
 REOPEN_WAIT_S = 0.2  # between attempts: the port is ours, a moment frees it

@@ -3,7 +3,7 @@ worker, shown to the instructor in one 3D view and in the class's own ROS domain
 
 It is the one place the class's parts meet: who may do what (grants.py), the worlds' labs
 (worlds.py), the class's Zenoh graph (class_graph.py), where worlds run (placement.py), what its
-workers' worlds report (remote_worlds.py) and the instructor's view (server/viewer/class_view.py).
+workers' worlds report (remote_worlds.py) and the instructor's view (server/peripherals/viewer/class_view.py).
 """
 
 from __future__ import annotations
@@ -14,38 +14,36 @@ import logging
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
-from server.bus import Clock, ExecutorGroup, SystemClock
-from server.checkpoints.catalog import load as load_checkpoints
-from server.limits import RateLimit
-from server.settings import Settings, class_section
-from server.tasks import cancel_and_wait
-from server.transport.acl import ClassAuth
-from server.workspace.location import remove_world_workspace, world_has_files
-
-from . import remote_checkpoints, remote_worlds
-from .admission import Admission, check_student_name, new_code
-from .class_graph import ClassGraph
-from .class_load import ClassLoad
-from .errors import ClassroomError
-from .grants import Grants, world_for
-from .join_queue import JoinQueue, JoinWaits
-from .load import CpuMeter, machine_id
-from .local_workers import LocalWorkers, local_workers_for
-from .placement import Placement
-from .progress_copies import ProgressCopies
-from .saved_students import SavedStudents
-from .tokens import Grant, TokenSigner
-from .workspace_copies import WorkspaceCopies
-from .world import World, world_name
-from .world import drones as world_drones
-from .worlds import WorldLabs
+from node_runtime.bus import Clock, ExecutorGroup, SystemClock
+from node_runtime.limits import RateLimit
+from node_runtime.transport.acl import ClassAuth
+from server.base.tasks import cancel_and_wait
+from server.classroom import remote_checkpoints, remote_worlds
+from server.classroom.admission import Admission, check_student_name, new_code
+from server.classroom.class_graph import ClassGraph
+from server.classroom.class_load import ClassLoad
+from server.classroom.errors import ClassroomError
+from server.classroom.grants import Grants, world_for
+from server.classroom.join_queue import JoinQueue, JoinWaits
+from server.classroom.load import CpuMeter, machine_id
+from server.classroom.local_workers import LocalWorkers, local_workers_for
+from server.classroom.placement import Placement
+from server.classroom.progress_copies import ProgressCopies
+from server.classroom.saved_students import SavedStudents
+from server.classroom.tokens import Grant, TokenSigner
+from server.classroom.workspace_copies import WorkspaceCopies
+from server.classroom.world import World, world_name
+from server.classroom.world import drones as world_drones
+from server.classroom.worlds import WorldLabs
+from server.host.settings import Settings, class_section
+from server.services.workspace.location import remove_world_workspace, world_has_files
+from server.world.checkpoints.catalog import load as load_checkpoints
 
 if TYPE_CHECKING:
-    from server.transport.domain_bridge import DomainBridge
-    from server.viewer.class_view import ClassView
-
-    from .class_bridges import ClassBridges
-    from .workers import WorkerDirectory
+    from node_runtime.transport.domain_bridge import DomainBridge
+    from server.classroom.class_bridges import ClassBridges
+    from server.classroom.workers import WorkerDirectory
+    from server.peripherals.viewer.class_view import ClassView
 
 log = logging.getLogger("classroom")
 
@@ -165,7 +163,7 @@ class ClassServer:
         except OSError as exc:  # then every worker's worlds' progress is copied here
             log.warning("no mark left in the progress folder %s: %s", self.labs.progress.folder, exc)
         if self.settings.lab.viewer:
-            from server.viewer.class_view import ClassView, run_class_view
+            from server.peripherals.viewer.class_view import ClassView, run_class_view
 
             self.view = ClassView(asyncio.get_running_loop())
             self._tasks.append(asyncio.create_task(run_class_view(self.view, self.clock, self)))

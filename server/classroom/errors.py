@@ -3,7 +3,7 @@ nodes refused on a world worker that cannot reach the class's router from a sand
 
 from __future__ import annotations
 
-from server.processes.sandbox import StudentCodeRefusedError
+from server.host.processes.sandbox import StudentCodeRefusedError
 
 
 class ClassroomError(Exception):
@@ -19,7 +19,7 @@ class ClassroomError(Exception):
 class StudentCodeElsewhereError(StudentCodeRefusedError):
     """A world worker with no way for a sandboxed node to reach the class's router: not on the class
     server's machine, and joined to the router over something other than plain TCP, which its relay
-    cannot carry (server/transport/socket_relay.py). None of its worlds' students' nodes start."""
+    cannot carry (node_runtime/transport/socket_relay.py). None of its worlds' students' nodes start."""
 
     def __init__(self, world: str) -> None:
         RuntimeError.__init__(

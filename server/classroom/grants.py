@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from .errors import ClassroomError
-from .tokens import Grant, TokenSigner
-from .world import World
+from server.classroom.errors import ClassroomError
+from server.classroom.tokens import Grant, TokenSigner
+from server.classroom.world import World
 
 
 class Grants:

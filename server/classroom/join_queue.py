@@ -14,10 +14,9 @@ import secrets
 from dataclasses import dataclass
 from typing import Any
 
-from server.bus import Clock
-from server.settings import JoinQueueSettings
-
-from .errors import ClassroomError
+from node_runtime.bus import Clock
+from server.classroom.errors import ClassroomError
+from server.host.settings import JoinQueueSettings
 
 
 @dataclass

@@ -17,8 +17,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 from statistics import median
 
-from server.bus import Timer
-from server.lab import Lab
+from node_runtime.bus import Timer
+from server.world.lab import Lab
 
 LATE_TICK_S = 0.05  # a 20 Hz timer (the slowest tick of the handout's nodes) skips a call past this
 RECENT_TICKS = 20

@@ -24,10 +24,9 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any, Generic, TypeVar
 
-if TYPE_CHECKING:
-    from .workers import WorkerRef
+Ref = TypeVar("Ref")  # who a place is (placement's WorkerRef); this module needs only its identity
 
 PROCESS_FULL_CORES = 0.85  # a process's worlds share one loop thread: near one core it is full
 HOST_FULL = 0.90  # the machine's share of CPU time busy (steal included)
@@ -171,16 +170,16 @@ class CpuMeter:
 
 
 @dataclass(frozen=True)
-class Choice:
+class Choice(Generic[Ref]):
     """A place a new world could go: its worlds over its capacity, who (None: the class server
     itself) and its CPU, if known."""
 
     share: float
-    ref: WorkerRef | None  # None: the class server itself
+    ref: Ref | None  # None: the class server itself
     load: CpuLoad | None
 
 
-def choose(choices: list[Choice]) -> tuple[Choice, bool]:
+def choose(choices: list[Choice[Ref]]) -> tuple[Choice[Ref], bool]:
     """The place with the lowest share among those not full (all of them if every one is), and
     whether it is full; on a tie a worker before the class server, then the order given. A place
     is full when its process is; its machine being busy counts only when another machine is in
@@ -189,7 +188,7 @@ def choose(choices: list[Choice]) -> tuple[Choice, bool]:
         raise ValueError("no place to choose from")
     machines = {c.load.machine for c in choices if c.load is not None}
 
-    def full(c: Choice) -> bool:
+    def full(c: Choice[Ref]) -> bool:
         if c.load is None:
             return False
         return c.load.process_full or (c.load.host_full and len(machines) > 1)

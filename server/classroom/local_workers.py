@@ -29,10 +29,9 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from server.processes.start_pacing import machine_slots_file
-from server.settings import Settings, class_section
-
-from .worker_control import TOKEN_ENV
+from server.classroom.worker_control import TOKEN_ENV
+from server.host.processes.start_pacing import machine_slots_file
+from server.host.settings import Settings, class_section
 
 log = logging.getLogger("classroom.local_workers")
 

@@ -17,19 +17,18 @@ import logging
 from collections.abc import Awaitable, Callable
 from typing import Any
 
-from server.lab import Lab
-from server.settings import Settings, class_section
-from server.transport.acl import Credentials
-
-from .class_graph import ClassGraph
-from .errors import ClassroomError
-from .load import Choice, CpuMeter, choose
-from .progress_copies import ProgressCopies
-from .remote_worlds import on_workers
-from .workers import WATCH_PERIOD_S, Silence, WorkerRef
-from .workspace_copies import WorkspaceCopies
-from .world import World
-from .worlds import WorldLabs
+from node_runtime.transport.acl import Credentials
+from server.classroom.class_graph import ClassGraph
+from server.classroom.errors import ClassroomError
+from server.classroom.load import Choice, CpuMeter, choose
+from server.classroom.progress_copies import ProgressCopies
+from server.classroom.remote_worlds import on_workers
+from server.classroom.workers import WATCH_PERIOD_S, Silence, WorkerRef
+from server.classroom.workspace_copies import WorkspaceCopies
+from server.classroom.world import World
+from server.classroom.worlds import WorldLabs
+from server.host.settings import Settings, class_section
+from server.world.lab import Lab
 
 log = logging.getLogger("classroom")
 
@@ -88,7 +87,7 @@ class Placement:
         ``exclude``."""
         capacity = self.labs.local_capacity
         local = self.labs.hosted_here + self._local_starting
-        choices: list[Choice] = []
+        choices: list[Choice[WorkerRef]] = []
         if local < capacity:
             choices.append(Choice(local / max(capacity, 1), None, self.cpu.read()))
         workers = self.graph.workers

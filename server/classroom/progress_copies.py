@@ -1,11 +1,11 @@
 """The class server's copy of the progress of worlds its world workers keep in folders of their own.
 
 A worker that shares the class server's state folder (one on this machine, or a shared mount; it
-reads the same mark there, server/workspace/class_mark.py) keeps each world's progress where the
+reads the same mark there, server/services/workspace/class_mark.py) keeps each world's progress where the
 class server and every other such worker read it. A worker with a folder of its own would take a
 world's ticks and answers with it when it goes, so at every round of hellos the class server asks
 each such worker, in one call, for the progress of its worlds that changed since the copy it has
-(server/checkpoints/handover.py) and writes it to its own folder; when a world then starts on such
+(server/world/checkpoints/handover.py) and writes it to its own folder; when a world then starts on such
 a worker (a move, a returning student), the worker is handed that copy with the world. A world
 that moves here, or to a worker that shares the folder, reads the copy there. What a world changed
 after the last round before its worker went is lost (at most one round, WATCH_PERIOD_S).
@@ -18,16 +18,15 @@ import logging
 from collections.abc import Mapping
 from typing import Any
 
-from server.checkpoints.declared import Checkpoint
-from server.checkpoints.handover import from_wire, to_wire
-from server.checkpoints.saved import SavedProgressError
-from server.checkpoints.store import ProgressStore
-from server.workspace.class_mark import leave_mark
-
-from .errors import ClassroomError
-from .remote_worlds import on_workers
-from .workers import WorkerDirectory, WorkerRef
-from .world import World
+from server.classroom.errors import ClassroomError
+from server.classroom.remote_worlds import on_workers
+from server.classroom.workers import WorkerDirectory, WorkerRef
+from server.classroom.world import World
+from server.services.workspace.class_mark import leave_mark
+from server.world.checkpoints.declared import Checkpoint
+from server.world.checkpoints.handover import from_wire, to_wire
+from server.world.checkpoints.saved import SavedProgressError
+from server.world.checkpoints.store import ProgressStore
 
 log = logging.getLogger("classroom")
 ASK_TIMEOUT_S = 10.0  # a round's ask: the worlds' changed progress, captures included

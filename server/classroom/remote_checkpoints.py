@@ -11,10 +11,10 @@ import zipfile
 from collections.abc import Awaitable, Mapping, Sequence
 from typing import Any, TypeVar
 
-from .errors import ClassroomError
-from .remote_worlds import on_workers
-from .workers import WorkerDirectory, WorkerRef
-from .world import World
+from server.classroom.errors import ClassroomError
+from server.classroom.remote_worlds import on_workers
+from server.classroom.workers import WorkerDirectory, WorkerRef
+from server.classroom.world import World
 
 ASK_TIMEOUT_S = 5.0  # a worker answers in milliseconds; one that does not is shown as unreachable
 MAX_ZIP_ENTRIES = 4 * 256  # two files per world, a worker's worlds at most (settings' max_worlds)

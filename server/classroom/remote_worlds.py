@@ -7,9 +7,9 @@ import logging
 from collections.abc import Mapping
 from typing import Any
 
-from .errors import ClassroomError
-from .workers import WorkerDirectory, WorkerRef
-from .world import World
+from server.classroom.errors import ClassroomError
+from server.classroom.workers import WorkerDirectory, WorkerRef
+from server.classroom.world import World
 
 log = logging.getLogger("classroom")
 OnWorkers = dict[str, tuple[WorkerRef, list[str]]]  # worker id → that worker, the worlds it hosts

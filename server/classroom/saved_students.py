@@ -7,7 +7,7 @@ workspace (the class's workspaces folder, the student's code). A join under a na
 either takes them when they are nobody's yet (no owner record: released by the instructor, or kept
 before owners were recorded) or when the join presents the token its student was given last (the
 join page's cookie, which outlives a restart of the class server though the token no longer grants
-anything): server/checkpoints/owner.py. Any other join under that name is refused with 409, and
+anything): server/world/checkpoints/owner.py. Any other join under that name is refused with 409, and
 nothing changes. A join that starts a world records its student as the owner at once, so code
 written before any progress is theirs too. The instructor releases a student's progress and code
 (their owner record is set aside, never removed) for a student who lost their cookie: the next join
@@ -21,13 +21,12 @@ import logging
 import time
 from collections.abc import Callable, Container
 
-from server.checkpoints.declared import Checkpoint
-from server.checkpoints.owner import Owner, OwnerFileError
-from server.checkpoints.progress import Progress
-from server.checkpoints.saved_worlds import read_captures, read_saved
-from server.checkpoints.store import ProgressStore
-
-from .errors import ClassroomError
+from server.classroom.errors import ClassroomError
+from server.world.checkpoints.declared import Checkpoint
+from server.world.checkpoints.owner import Owner, OwnerFileError
+from server.world.checkpoints.progress import Progress
+from server.world.checkpoints.saved_worlds import read_captures, read_saved
+from server.world.checkpoints.store import ProgressStore
 
 log = logging.getLogger("classroom")
 

@@ -6,9 +6,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from server.settings import WorkerSettings
-
-from .workers import control_key, genuine_hello, seal
+from server.classroom.workers import control_key, genuine_hello, seal
+from server.host.settings import WorkerSettings
 
 TOKEN_ENV = "ROS2LAB_TOKEN"  # where a world worker finds the instructor's token (never on its command line)
 

@@ -18,24 +18,23 @@ import logging
 from pathlib import Path
 from typing import Any
 
-from server.bus import Clock, ExecutorGroup, SystemClock
-from server.checkpoints.saved import Snapshot
-from server.settings import Settings, class_section
-from server.tasks import cancel_and_wait
-from server.transport.acl import ClassAuth, Credentials
-from server.transport.socket_relay import SocketRelay, tcp_target
-from server.workspace.class_mark import read_mark
-from server.workspace.location import remove_world_workspace
-
-from .admission import new_code
-from .errors import ClassroomError
-from .grants import Grants, world_for
-from .lateness import late_worlds
-from .load import CpuMeter, machine_id
-from .tokens import Grant, TokenSigner
-from .workers import WATCH_PERIOD_S, worker_api_token, world_of_call_token
-from .world import World
-from .worlds import WorldLabs
+from node_runtime.bus import Clock, ExecutorGroup, SystemClock
+from node_runtime.transport.acl import ClassAuth, Credentials
+from node_runtime.transport.socket_relay import SocketRelay, tcp_target
+from server.base.tasks import cancel_and_wait
+from server.classroom.admission import new_code
+from server.classroom.errors import ClassroomError
+from server.classroom.grants import Grants, world_for
+from server.classroom.lateness import late_worlds
+from server.classroom.load import CpuMeter, machine_id
+from server.classroom.tokens import Grant, TokenSigner
+from server.classroom.workers import WATCH_PERIOD_S, worker_api_token, world_of_call_token
+from server.classroom.world import World
+from server.classroom.worlds import WorldLabs
+from server.host.settings import Settings, class_section
+from server.services.workspace.class_mark import read_mark
+from server.services.workspace.location import remove_world_workspace
+from server.world.checkpoints.saved import Snapshot
 
 log = logging.getLogger("classroom")
 
@@ -145,9 +144,8 @@ class WorldWorker:
         zenoh = self.settings.lab.zenoh
         if zenoh is None:
             return
-        from server.transport.session import open_session
-
-        from .worker_control import WorkerControl
+        from node_runtime.transport.session import open_session
+        from server.classroom.worker_control import WorkerControl
 
         zenoh = dataclasses.replace(zenoh, login=self.zenoh_auth.class_credentials())
         self._control_session = await asyncio.to_thread(open_session, zenoh)

@@ -30,10 +30,9 @@ from typing import Any
 
 import httpx
 
-from server.workspace.class_mark import MAX_MARK_CHARS
-
-from .errors import ClassroomError
-from .load import CpuLoad
+from server.classroom.errors import ClassroomError
+from server.classroom.load import CpuLoad
+from server.services.workspace.class_mark import MAX_MARK_CHARS
 
 CONTROL_PREFIX = "ros2lab/classroom/worker"
 MAX_REPLY_BYTES = 16 * 1024
@@ -140,7 +139,7 @@ class WorkerRef:
     hosted: frozenset[str] | None = None  # the worlds it said it hosts (None: it did not say)
     load: CpuLoad | None = None  # its CPU over its last window (None: it did not say)
     late: int | None = None  # its worlds that are late (lateness.py; None: it did not say)
-    # The mark in its workspaces folder (server/workspace/class_mark.py; None: it has none).
+    # The mark in its workspaces folder (server/services/workspace/class_mark.py; None: it has none).
     workspaces_mark: str | None = None
     progress_mark: str | None = None  # and in its progress folder (progress_copies.py)
 

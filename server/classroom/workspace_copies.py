@@ -1,7 +1,7 @@
 """The class server's copy of the workspaces of worlds on world workers that keep them in folders
 of their own.
 
-A worker that shares the class's workspaces folder (the same mark, server/workspace/class_mark.py)
+A worker that shares the class's workspaces folder (the same mark, server/services/workspace/class_mark.py)
 works in the class's own copy of each world's files. One with a folder of its own (another
 machine, no shared mount) serves and runs its worlds' files from there, so the class server keeps
 them in step both ways, as it does the worlds' progress (progress_copies.py):
@@ -26,16 +26,15 @@ import logging
 from collections.abc import Mapping
 from pathlib import Path
 
-from server.settings import WorkspaceLimits
-from server.workspace.archive import pack, replace
-from server.workspace.class_mark import leave_mark
-from server.workspace.errors import WorkspaceFileError
-from server.workspace.files import WorkspaceFiles
-from server.workspace.location import world_workspace
-
-from .errors import ClassroomError
-from .workers import WorkerDirectory, WorkerRef
-from .world import World
+from server.classroom.errors import ClassroomError
+from server.classroom.workers import WorkerDirectory, WorkerRef
+from server.classroom.world import World
+from server.host.settings import WorkspaceLimits
+from server.services.workspace.archive import pack, replace
+from server.services.workspace.class_mark import leave_mark
+from server.services.workspace.errors import WorkspaceFileError
+from server.services.workspace.files import WorkspaceFiles
+from server.services.workspace.location import world_workspace
 
 log = logging.getLogger("classroom")
 TREE_PATH = "/api/workspace/files"
@@ -55,7 +54,7 @@ class WorkspaceCopies:
 
     def leave_mark(self) -> None:
         """Mark the workspaces folder (blocking): a worker that reads this mark shares it
-        (server/workspace/class_mark.py)."""
+        (server/services/workspace/class_mark.py)."""
         self.mark = leave_mark(self.folder)
 
     def shares(self, ref: WorkerRef) -> bool:

@@ -15,11 +15,10 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from server.lab import Lab
-from server.limits import RateLimit
-from server.transport.acl import Credentials
-
-from .workers import WorkerRef
+from node_runtime.limits import RateLimit
+from node_runtime.transport.acl import Credentials
+from server.classroom.workers import WorkerRef
+from server.world.lab import Lab
 
 MAX_NAME_CHARS = 32
 # A world's name is a ROS namespace token: letters, digits and underscores, not starting with a digit.

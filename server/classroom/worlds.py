@@ -2,7 +2,7 @@
 worker share.
 
 Every world's lab runs on the one clock, in one executor group (one task runs every world's
-callbacks) and with the drones of all stepped in one batch (server/devices/shared_physics.py). A
+callbacks) and with the drones of all stepped in one batch (server/peripherals/devices/shared_physics.py). A
 world's graph joins the class's router in a ROS domain of its own; its other ports (Foxglove,
 rosbridge) are not opened per world; its bags go in a folder of its own.
 """
@@ -13,22 +13,26 @@ import asyncio
 from collections.abc import Callable
 from pathlib import Path
 
-from server.bus import Clock, ExecutorGroup
-from server.checkpoints.catalog import load as load_checkpoints
-from server.checkpoints.progress import Progress
-from server.checkpoints.store import ProgressStore
-from server.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
-from server.lab import Lab
-from server.launch.groups import NodeBudget
-from server.limits import RateLimit
-from server.processes.sandbox import StudentCodeRefusedError, probe
-from server.processes.start_pacing import MachineStartPacer, StartPacer, default_slots, machine_slots_file
-from server.settings import Settings, class_section
-from server.transport.acl import Credentials
-from server.transport.config import ZenohSettings
-
-from .errors import ClassroomError, StudentCodeElsewhereError
-from .world import World
+from node_runtime.bus import Clock, ExecutorGroup
+from node_runtime.limits import RateLimit
+from node_runtime.transport.acl import Credentials
+from node_runtime.transport.config import ZenohSettings
+from server.classroom.errors import ClassroomError, StudentCodeElsewhereError
+from server.classroom.world import World
+from server.host.processes.sandbox import StudentCodeRefusedError, probe
+from server.host.processes.start_pacing import (
+    MachineStartPacer,
+    StartPacer,
+    default_slots,
+    machine_slots_file,
+)
+from server.host.settings import Settings, class_section
+from server.peripherals.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
+from server.services.launch.groups import NodeBudget
+from server.world.checkpoints.catalog import load as load_checkpoints
+from server.world.checkpoints.progress import Progress
+from server.world.checkpoints.store import ProgressStore
+from server.world.lab import Lab
 
 MAX_DOMAIN_ID = 232  # ROS 2's highest ROS_DOMAIN_ID
 Launch = tuple[str, dict[str, str]]  # a launch file and its arguments
@@ -131,7 +135,7 @@ class WorldLabs:
             node_budget=self.node_budget,
             start_pacer=self.start_pacer,
         )
-        lab.bus.label = name  # its nodes' console lines carry its name (server/console.py)
+        lab.bus.label = name  # its nodes' console lines carry its name (node_runtime/console.py)
         lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
         lab.bus.devices["simple_sim_physics"] = self.simple_physics
         await lab.start()

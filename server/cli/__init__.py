@@ -14,8 +14,8 @@ import signal
 import sys
 from types import FrameType
 
-from .environment import DEFAULT_URL, TOKEN_ENV, URL_ENV
-from .priority import start_below_the_worlds
+from server.cli.environment import DEFAULT_URL, TOKEN_ENV, URL_ENV
+from server.cli.priority import start_below_the_worlds
 
 VERBS = (
     "topic",
@@ -92,7 +92,7 @@ def main(argv: list[str] | None = None) -> int:
     """Run one command; 0 on success or Ctrl-C, 1 when it failed, 2 on bad usage or no server."""
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == WORKER_VERB:  # not a client verb: this process hosts worlds itself
-        from .world_worker import main as worker_main
+        from server.cli.world_worker import main as worker_main
 
         return worker_main(argv[1:])
     if argv and argv[0] == COLCON_VERB:
@@ -103,7 +103,7 @@ def main(argv: list[str] | None = None) -> int:
         start_below_the_worlds()  # before its imports: see server/cli/priority.py
     args = build_parser(verb).parse_args(argv)
     url = args.url or os.environ.get(URL_ENV) or DEFAULT_URL
-    from .client import CliError, LabClient  # its HTTP client, once the command has its priority
+    from server.cli.client import CliError, LabClient  # its HTTP client, once the command has its priority
 
     # SIGTERM cleans up as Ctrl-C does: a launch's nodes and a periodic publisher are stopped.
     signal.signal(signal.SIGTERM, _interrupt)

@@ -15,9 +15,9 @@ import time
 import uuid
 from typing import Any
 
-from .client import ApiError, LabClient
-from .format import message_to_yaml
-from .message import filled_message, parse_message
+from server.cli.client import ApiError, LabClient
+from server.cli.format import message_to_yaml
+from server.cli.message import filled_message, parse_message
 
 SEND_GOAL = "/_action/send_goal"
 STATUS_NAMES = {1: "ACCEPTED", 2: "EXECUTING", 3: "CANCELING", 4: "SUCCEEDED", 5: "CANCELED", 6: "ABORTED"}

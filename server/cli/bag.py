@@ -17,7 +17,7 @@ from typing import Any
 
 from mcap.reader import make_reader
 
-from .client import CliError, LabClient
+from server.cli.client import CliError, LabClient
 
 POLL_S = 0.2
 MCAP_MAGIC = b"\x89MCAP0\r\n"

@@ -15,7 +15,7 @@ import httpx
 from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus
 from websockets.sync.client import connect
 
-from .environment import TOKEN_ENV
+from server.cli.environment import TOKEN_ENV
 
 TIMEOUT_S = 10.0
 # The app's close code for "not found", here an unknown topic (api.errors.CloseCode.NOT_FOUND; a test keeps them equal).

@@ -13,8 +13,8 @@ import argparse
 import shlex
 from typing import Any
 
-from .client import LabClient
-from .join import join_graph
+from server.cli.client import LabClient
+from server.cli.join import join_graph
 
 RMW = "rmw_zenoh_cpp"
 

@@ -12,7 +12,7 @@ from typing import Any
 
 import yaml
 
-from .client import CliError
+from server.cli.client import CliError
 
 DEFAULT_TRUNCATE_LENGTH = 128  # ros2 topic echo's default for strings and arrays
 

@@ -14,13 +14,12 @@ import argparse
 import sys
 from typing import Any
 
-from server.msgs import catalog
-from server.msgs.registry import normalize_type_name
-from server.msgs.schema import interface_text
-from server.packages import PackageIndex, WorkspaceInterfaces
-
-from .client import LabClient
-from .workspace import add_workspace_option, workspace_of
+from node_runtime.ament.index import PackageIndex, WorkspaceInterfaces
+from node_runtime.msgs import catalog
+from node_runtime.msgs.registry import normalize_type_name
+from node_runtime.msgs.schema import interface_text
+from server.cli.client import LabClient
+from server.cli.workspace import add_workspace_option, workspace_of
 
 KIND_TITLES = {"msg": "Messages", "srv": "Services", "action": "Actions"}
 

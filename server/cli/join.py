@@ -7,7 +7,7 @@ all that is left: a saturated lab answers slowly, and that answer is good); then
 so and the command ends non-zero. Nothing falls back to another router or domain: a node started
 anyway would join a graph nobody watches. A lab that answers "not yet" (429 with
 ``Retry-After``: too many node processes starting at once on it, see
-server/processes/start_pacing.py) is asked again after the time it gives, for at most ``queue_s`` seconds; that wait is the lab's own pacing
+server/host/processes/start_pacing.py) is asked again after the time it gives, for at most ``queue_s`` seconds; that wait is the lab's own pacing
 and does not count as not answering. Any other error (no Zenoh graph, a bad token) ends at once.
 """
 
@@ -20,7 +20,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from .client import ApiError, CliError, LabClient, NoServerError
+from server.cli.client import ApiError, CliError, LabClient, NoServerError
 
 JOIN_PATH = "/api/zenoh/join"
 WAIT_S = 20.0  # for a lab that does not answer

@@ -18,7 +18,7 @@ from collections import deque
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
-from .client import ApiError, CliError, LabClient
+from server.cli.client import ApiError, CliError, LabClient
 
 Sleep = Callable[[float], None]
 CHECK_PERIOD_S = 1.0  # how often to ask for the launch's output (and whether it still exists)

@@ -7,7 +7,7 @@ from typing import Any
 
 import yaml
 
-from .client import CliError
+from server.cli.client import CliError
 
 
 class MessageTextError(CliError):

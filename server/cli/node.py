@@ -7,7 +7,7 @@ import sys
 from collections.abc import Mapping
 from typing import Any
 
-from .client import ApiError, LabClient
+from server.cli.client import ApiError, LabClient
 
 
 def node_list(args: argparse.Namespace, client: LabClient) -> int:

@@ -4,7 +4,7 @@ Each verb calls the node's own parameter services (``<node>/list_parameters`` ..
 lab's service calls (``POST /api/services/...``), as ``ros2lab service call`` does: every node
 process serves them, and so does each of the lab's own nodes (``/simulator`` ...), so the answers
 and refusals are the node's own. A value and a parameters file are read as a node reads them,
-with the reader node processes use (``server.params_file``), imported only by the verbs that read one.
+with the reader node processes use (``node_runtime.params_file``), imported only by the verbs that read one.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from typing import Any
 
 import yaml
 
-from .client import LabClient
+from server.cli.client import LabClient
 
 CALL_TIMEOUT_S = 5.0
 SERVICE_WAIT_S = 5.0  # ros2param's wait for a node's parameter services
@@ -159,7 +159,7 @@ def param_set(args: argparse.Namespace, client: LabClient) -> int:
     node = _absolute(args.node_name)
     if not _ready(client, node, args.timeout):
         return 1
-    from server.params_file import value_from_text
+    from node_runtime.params_file import value_from_text
 
     param = {"name": args.parameter_name, "value": parameter_value(value_from_text(args.value))}
     (result,) = _call(client, node, "set_parameters", "SetParameters", {"parameters": [param]})["results"]
@@ -216,7 +216,7 @@ def param_dump(args: argparse.Namespace, client: LabClient) -> int:
 
 def param_load(args: argparse.Namespace, client: LabClient) -> int:
     node = _absolute(args.node_name)
-    from server.params_file import ParamsFileError, read_params_file
+    from node_runtime.params_file import ParamsFileError, read_params_file
 
     try:  # read before anything is sent: a file that does not parse sets nothing
         values = read_params_file(args.parameter_file).every_section(not args.no_use_wildcard)

@@ -15,11 +15,10 @@ import argparse
 import sys
 from typing import Any
 
-from server.packages import PackageIndex, PackageNotFoundError, WorkspaceError
-
-from . import pkg_create
-from .client import LabClient
-from .workspace import add_workspace_option, workspace_of
+from node_runtime.ament.index import PackageIndex, PackageNotFoundError, WorkspaceError
+from server.cli import pkg_create
+from server.cli.client import LabClient
+from server.cli.workspace import add_workspace_option, workspace_of
 
 PACKAGE_NOT_FOUND = "Package not found"
 

@@ -1,6 +1,6 @@
 """``pkg create``: a new package with ``ros2 pkg create``'s options, files and messages.
 
-The files are server.packages.templates', written by server.workspace.package_create; ``ros2lab run PKG NODE`` runs the new node at once
+The files are server.packages.templates', written by server.services.workspace.package_create; ``ros2lab run PKG NODE`` runs the new node at once
 (no ``colcon build`` here). The license text itself is not written (ros2 copies it from
 ament_copyright): the package.xml names the license, as ros2 does for one it does not know.
 """
@@ -15,10 +15,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from server.cli.client import LabClient
 from server.packages.templates import PackageSpec
-from server.workspace.package_create import package_refusal, write_package
-
-from .client import LabClient
+from server.services.workspace.package_create import package_refusal, write_package
 
 GIT_TIMEOUT_S = 5.0
 

@@ -1,6 +1,6 @@
 """``ros2lab run`` against a lab that serves others (with a token: a class's world, or a lab beyond
 loopback) runs its node below that lab's worlds, at the niceness the lab's join names (its
-sandbox's, 19 unless set; server/processes/priority.py gives the node's session group the same).
+sandbox's, 19 unless set; node_runtime/process/priority.py gives the node's session group the same).
 
 A class told "run it now" starts twenty commands at once, and on the server's own machine (students
 in terminals there) each imports its HTTP client and the verb's modules, about half a second of
@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import os
 
-START_NICE = 19  # the sandbox's default (server/settings/): the lowest
+START_NICE = 19  # the sandbox's default (server/host/settings/): the lowest
 _started_at: int | None = None  # the command's own niceness before START_NICE (None: not taken)
 
 

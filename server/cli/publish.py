@@ -13,8 +13,8 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from .client import ApiError, LabClient
-from .message import filled_message, message_repr, parse_message
+from server.cli.client import ApiError, LabClient
+from server.cli.message import filled_message, message_repr, parse_message
 
 Sleep = Callable[[float], None]
 Clock = Callable[[], float]

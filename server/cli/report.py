@@ -10,7 +10,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from .client import LabClient
+from server.cli.client import LabClient
 
 MAX_FILE_BYTES = 8 * 1024 * 1024  # the server's limit for a report to verify
 

@@ -4,7 +4,7 @@ Its output streams to this terminal as it comes, Ctrl-C is passed on to it (once
 session of its own, so the terminal's Ctrl-C reaches only this command), and its exit code is this
 command's. A class server asks for its node processes to run below its worlds (``nice`` in the
 join's answer): the child then takes that niceness, and so does its session's scheduling group
-(server/processes/priority.py), wherever the command runs. It joins the graph of the lab the command talks to (``--url``): the lab tells
+(node_runtime/process/priority.py), wherever the command runs. It joins the graph of the lab the command talks to (``--url``): the lab tells
 where its Zenoh router listens, its ROS domain and its login (server/cli/join.py: asked again
 with a bounded backoff while the lab does not answer, and after the time it gives while it paces
 a class's node starts). A lab that does not answer within ``--join-timeout`` is one line and a
@@ -20,16 +20,20 @@ import subprocess
 import sys
 from typing import Any
 
-from server.packages import ExecutableNotFoundError, PackageIndex, PackageNotFoundError, WorkspaceError
-from server.processes.command import node_command
-from server.processes.priority import set_session_group_nice
-from server.transport.acl import Credentials
-from server.transport.config import domain_id_from_env
-
-from .client import CliError, LabClient
-from .join import WAIT_S, Pacing, join_graph
-from .priority import take_the_labs_nice
-from .workspace import WORKSPACE_ENV, add_workspace_option, workspace_of
+from node_runtime.ament.index import (
+    ExecutableNotFoundError,
+    PackageIndex,
+    PackageNotFoundError,
+    WorkspaceError,
+)
+from node_runtime.process.priority import set_session_group_nice
+from node_runtime.transport.acl import Credentials
+from node_runtime.transport.config import domain_id_from_env
+from server.cli.client import CliError, LabClient
+from server.cli.join import WAIT_S, Pacing, join_graph
+from server.cli.priority import take_the_labs_nice
+from server.cli.workspace import WORKSPACE_ENV, add_workspace_option, workspace_of
+from server.host.processes.command import node_command
 
 STOP_GRACE_S = 10.0
 

@@ -6,8 +6,8 @@ import argparse
 import sys
 from typing import Any
 
-from .client import ApiError, LabClient
-from .message import message_repr, parse_message
+from server.cli.client import ApiError, LabClient
+from server.cli.message import message_repr, parse_message
 
 
 def service_list(args: argparse.Namespace, client: LabClient) -> int:

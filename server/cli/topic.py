@@ -8,9 +8,9 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from . import publish
-from .client import ApiError, LabClient, UnknownTopicError
-from .format import DEFAULT_TRUNCATE_LENGTH, echo_text, hz_report, parse_field
+from server.cli import publish
+from server.cli.client import ApiError, LabClient, UnknownTopicError
+from server.cli.format import DEFAULT_TRUNCATE_LENGTH, echo_text, hz_report, parse_field
 
 Sleep = Callable[[float], None]
 HZ_REPORT_PERIOD_S = 1.0

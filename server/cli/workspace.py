@@ -10,7 +10,7 @@ import argparse
 import os
 from pathlib import Path
 
-from .client import CliError, LabClient
+from server.cli.client import CliError, LabClient
 
 WORKSPACE_ENV = "ROS2LAB_WORKSPACE"
 FALLBACK = Path("workspace")

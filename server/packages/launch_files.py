@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path, PurePath
 
-from . import PackageIndex
+from node_runtime.ament.index import PackageIndex
 
 
 class LaunchFileNotFoundError(LookupError):

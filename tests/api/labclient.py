@@ -17,7 +17,7 @@ from starlette.websockets import WebSocketDisconnect
 from support.wait import wait_until
 from support.ws import receive_within, refusal
 
-from server.settings import LabLimits, LabSettings, Listening, Settings
+from server.host.settings import LabLimits, LabSettings, Listening, Settings
 
 WAIT_S = 10.0  # generous: a loaded 2-core CI machine; a passing test returns as soon as it can
 QUIET_START_DELAY = "3600"  # the countdown never starts while the test runs

@@ -9,7 +9,7 @@ from labclient import LabClient
 from starlette.testclient import WebSocketDenialResponse
 
 from api.world_proxy import PathChanged, target
-from server.access import path_problem
+from server.base.access import path_problem
 from server.classroom.workers import WorkerRef
 
 REFUSED = {

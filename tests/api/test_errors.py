@@ -11,7 +11,7 @@ import pytest
 from labclient import LabClient, close_within
 
 from api.errors import ERROR_STATUS, CloseCode, close_code, status_for
-from server.msgs import Float64
+from node_runtime.msgs import Float64
 
 
 def _lab(client: LabClient) -> Any:

@@ -11,7 +11,7 @@ import asyncio
 
 import pytest
 
-from server.bridges.front import GuardedFront
+from server.services.bridges.front import GuardedFront
 
 TOKEN = "front-token"
 WAIT_S = 10.0

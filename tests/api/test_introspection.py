@@ -13,10 +13,10 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 
+from node_runtime.bus import ManualClock, Node
 from server.app import create_app
-from server.bus import ManualClock, Node
-from server.lab import Lab
-from server.settings import LabSettings, Listening, Settings
+from server.host.settings import LabSettings, Listening, Settings
+from server.world.lab import Lab
 
 LAB_NODES = {"/CountDownNode", "/MainControllerNode", "/RocketEngineNode", "/KeyboardManager", "/keyboard"}
 LAB_TOPICS = {"/countdown", "/cmd_vel", "/sensor_vel", "/abort_takeoff", "/keydown", "/keyup"}

@@ -14,7 +14,7 @@ from starlette.testclient import WebSocketTestSession
 from support.http import HTTP
 
 from api.page import PROXY_MAX_FRAME_BYTES
-from server.viewer.viser_guard import PROXY_TOKEN_HEADER
+from server.peripherals.viewer.viser_guard import PROXY_TOKEN_HEADER
 
 
 def test_index_serves_viser_page_with_key_script_injected(make_lab: Callable[..., LabClient]) -> None:

@@ -14,8 +14,8 @@ from api.page_protocol import OUTPUT, generated_text
 from api.ts_types import UnsupportedSchema, declaration, ts_type
 from api.ws_keys import FRAME_FIELDS, KeyFrame, parse_frame
 from api.ws_topics import EchoFrame
-from server.devices.keymap import MODIFIER_FLAG_NAMES
-from server.viewer.views import FollowJson, PageViews, ViewJson
+from server.peripherals.devices.keymap import MODIFIER_FLAG_NAMES
+from server.peripherals.viewer.views import FollowJson, PageViews, ViewJson
 
 
 def test_generated_page_types_match_the_declarations() -> None:

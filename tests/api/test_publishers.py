@@ -19,10 +19,10 @@ from fastapi.testclient import TestClient
 from support.app_pool import lab_client
 from support.wait import wait_until
 
-from server.bus import ManualClock, Node
-from server.lab import Lab
-from server.msgs import Vector3
-from server.settings import LabSettings, Listening, Settings
+from node_runtime.bus import ManualClock, Node
+from node_runtime.msgs import Vector3
+from server.host.settings import LabSettings, Listening, Settings
+from server.world.lab import Lab
 
 POSITION = "/uav/input/position"
 TARGET = {"x": 5.0, "y": 5.0, "z": 10.0}

@@ -7,8 +7,8 @@ from typing import Any
 
 from labclient import LabClient
 
-from server.bus import Node
-from server.msgs import get_service_type
+from node_runtime.bus import Node
+from node_runtime.msgs import get_service_type
 
 
 def lab_of(client: LabClient) -> Any:

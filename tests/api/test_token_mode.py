@@ -13,8 +13,8 @@ from support.ws import refusal
 from api.errors import CloseCode
 from server.__main__ import main
 from server.app import create_app
-from server.bridges.front import HandshakeRefused, check_handshake
-from server.settings import LabSettings, Listening, Settings
+from server.host.settings import LabSettings, Listening, Settings
+from server.services.bridges.front import HandshakeRefused, check_handshake
 
 TOKEN = "s3cret-token"
 BEARER = {"Authorization": f"Bearer {TOKEN}"}

@@ -10,8 +10,8 @@ from typing import Any
 from fastapi.testclient import TestClient
 from labclient import rocket_settings, wait_until
 
+from node_runtime.msgs import Key
 from server.app import create_app
-from server.msgs import Key
 
 SETTINGS = rocket_settings(deadman_s=0.3)
 

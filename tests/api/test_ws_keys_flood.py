@@ -7,8 +7,8 @@ from __future__ import annotations
 from fastapi.testclient import TestClient
 from labclient import receive_json_within, rocket_settings, wait_until
 
+from node_runtime.bus import ManualClock
 from server.app import create_app
-from server.bus import ManualClock
 
 BURST = 3
 LETTERS = "bcdefg"  # keys no lab node reacts to

@@ -18,11 +18,11 @@ import yaml
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 
-from server.bag.player import BagError
-from server.bus import ManualClock, Node
-from server.lab import Lab
-from server.msgs import Bool, Message, get_type
-from server.settings import LabSettings, Settings
+from node_runtime.bus import ManualClock, Node
+from node_runtime.msgs import Bool, Message, get_type
+from server.host.settings import LabSettings, Settings
+from server.peripherals.bag.player import BagError
+from server.world.lab import Lab
 
 FLIGHT_S = 15.0
 RECORD_MARGIN_S = 1e-3

@@ -172,7 +172,7 @@ EVIDENCE = {
 def test_instructor_evidence_shows_the_flights_picture_and_its_timeline_in_local_time(
     chromium: Browser, class_server: LabServer, class_with_two: tuple[Auth, Auth, Auth]
 ) -> None:
-    from server.checkpoints.plot import svg_data_url, track_svg
+    from server.world.checkpoints.plot import svg_data_url, track_svg
 
     instructor, _ada, _bob = class_with_two
     token = instructor["Authorization"].removeprefix("Bearer ")

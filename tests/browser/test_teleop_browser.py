@@ -44,7 +44,7 @@ from playwright.sync_api import Error as PlaywrightError
 from shots import CanvasShot, assert_drone_seen, assert_rocket_on_pad, find_drone
 from support.http import HTTP
 
-from server.settings import LabLimits
+from server.host.settings import LabLimits
 
 pytestmark = pytest.mark.browser
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from server.bus import ManualClock, RosTime, SystemClock
+from node_runtime.bus import ManualClock, RosTime, SystemClock
 
 
 def test_manual_clock_set_and_advance_move_time() -> None:

@@ -6,8 +6,8 @@ from types import SimpleNamespace
 
 import pytest
 
-from server.bus import Bus, Executor, InvalidQoSError, ManualClock, Node
-from server.msgs import Int64
+from node_runtime.bus import Bus, Executor, InvalidQoSError, ManualClock, Node
+from node_runtime.msgs import Int64
 
 
 # -- queue depth ------------------------------------------------------------------------------

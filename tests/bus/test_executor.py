@@ -7,8 +7,8 @@ import logging
 
 import pytest
 
-from server.bus import Bus, Executor, ManualClock, Node, SystemClock
-from server.msgs import Int64, Log
+from node_runtime.bus import Bus, Executor, ManualClock, Node, SystemClock
+from node_runtime.msgs import Int64, Log
 
 
 class _Faulty(Node):

@@ -13,8 +13,8 @@ import threading
 
 import pytest
 
-from server.bus import Bus, Executor, ExecutorGroup, ManualClock, Node
-from server.msgs import Int64
+from node_runtime.bus import Bus, Executor, ExecutorGroup, ManualClock, Node
+from node_runtime.msgs import Int64
 
 
 class World:

@@ -11,8 +11,8 @@ import asyncio
 
 import pytest
 
-from server.bus import Bus, Executor, ExecutorGroup, ManualClock, Node
-from server.msgs import Int64
+from node_runtime.bus import Bus, Executor, ExecutorGroup, ManualClock, Node
+from node_runtime.msgs import Int64
 
 TURN_S = 0.002
 MESSAGE_COST_S = 0.001  # each of the busy world's messages takes 1 ms of the loop

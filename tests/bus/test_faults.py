@@ -9,8 +9,8 @@ from collections.abc import Iterator
 
 import pytest
 
-from server.bus import Bus, Executor, Node
-from server.bus.faults import is_node_fault
+from node_runtime.bus import Bus, Executor, Node
+from node_runtime.bus.faults import is_node_fault
 
 
 @pytest.fixture

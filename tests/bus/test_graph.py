@@ -6,7 +6,7 @@ from typing import Any
 
 import pytest
 
-from server.bus import (
+from node_runtime.bus import (
     Bus,
     DestroyedError,
     Executor,
@@ -17,7 +17,7 @@ from server.bus import (
     UnknownNodeError,
     UnknownTopicError,
 )  # fmt: skip
-from server.msgs import Float64, Int64, PoseStamped
+from node_runtime.msgs import Float64, Int64, PoseStamped
 
 
 def _collect(node: Node, msg_type: Any, topic: str, depth: int = 10) -> tuple[list[Any], Any]:

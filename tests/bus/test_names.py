@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from server.bus import (
+from node_runtime.bus import (
     InvalidNameError,
     is_hidden,
     resolve_topic_name,

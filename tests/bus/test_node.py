@@ -6,9 +6,9 @@ import logging
 
 import pytest
 
-from server.bus import Bus, Executor, InvalidNameError, ManualClock, Node
-from server.bus.node import node_logger_name
-from server.msgs import Log, Time
+from node_runtime.bus import Bus, Executor, InvalidNameError, ManualClock, Node
+from node_runtime.bus.node import node_logger_name
+from node_runtime.msgs import Log, Time
 
 
 @pytest.mark.parametrize("name", ["", "1node", "my-node", "a b", "ns/node"])

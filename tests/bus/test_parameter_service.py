@@ -7,11 +7,11 @@ from typing import Any
 
 import pytest
 
-from server.bus import Bus, Executor, ManualClock, Node, NodeOverrides
-from server.bus.parameter_service import serve_parameters
-from server.bus.parameter_values import double_range, from_value_msg, read_only, to_value_msg
-from server.msgs import Message, PoseStamped, Vector3
-from server.msgs.generated.rcl_interfaces import (
+from node_runtime.bus import Bus, Executor, ManualClock, Node, NodeOverrides
+from node_runtime.bus.parameter_service import serve_parameters
+from node_runtime.bus.parameter_values import double_range, from_value_msg, read_only, to_value_msg
+from node_runtime.msgs import Message, PoseStamped, Vector3
+from node_runtime.msgs.generated.rcl_interfaces import (
     DescribeParameters,
     GetParameters,
     GetParameterTypes,
@@ -21,9 +21,9 @@ from server.msgs.generated.rcl_interfaces import (
     SetParameters,
     SetParametersAtomically,
 )
+from node_runtime.params_file import value_from_text
 from server.packages.flightcontroller.position_controller import PositionControllerNode
 from server.packages.simple_control.keyboard_manager import KeyboardManager
-from server.params_file import value_from_text
 
 
 class _Tuned(Node):

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from server.bus import Bus, Executor, Node, TopicTypeError
-from server.msgs import Bool, get_service_type
+from node_runtime.bus import Bus, Executor, Node, TopicTypeError
+from node_runtime.msgs import Bool, get_service_type
 
 AddTwoInts = get_service_type("example_interfaces/srv/AddTwoInts")
 Trigger = get_service_type("std_srvs/srv/Trigger")

@@ -16,7 +16,7 @@ from fastapi.testclient import TestClient
 from support.app_pool import lab_client
 from support.wait import wait_until
 
-from server.checkpoints.signing import ReportSigner
+from server.world.checkpoints.signing import ReportSigner
 
 from .conftest import lab_settings
 

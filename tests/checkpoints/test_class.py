@@ -15,10 +15,10 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 
+from node_runtime.bus import ManualClock
 from server.app import create_app
-from server.bus import ManualClock
 from server.classroom import ClassServer
-from server.settings import ClassroomSettings, LabSettings, Listening, Settings
+from server.host.settings import ClassroomSettings, LabSettings, Listening, Settings
 
 CODE = "CHECK7"
 FILE = {"content-type": "application/octet-stream"}
@@ -171,11 +171,11 @@ class FakeWorkers:
 
 
 def test_worker_rows_are_those_of_the_worlds_each_worker_hosts_for_this_class_else_unreachable() -> None:
+    from node_runtime.limits import RateLimit
     from server.classroom.errors import ClassroomError
     from server.classroom.remote_checkpoints import checkpoint_rows
     from server.classroom.workers import WorkerRef
     from server.classroom.world import World
-    from server.limits import RateLimit
 
     def world(name: str, worker: str | None) -> World:
         ref = WorkerRef(worker, f"http://127.0.0.1:1/{worker}", 1, 4, "t") if worker else None

@@ -25,8 +25,8 @@ import httpx
 from support.app import App, instructor_token
 from support.http import HTTP
 
-from server.checkpoints.owner import OWNER_FILE
-from server.checkpoints.store import PROGRESS_DIR
+from server.world.checkpoints.owner import OWNER_FILE
+from server.world.checkpoints.store import PROGRESS_DIR
 
 from .test_restart import FLY_SIMPLE, NOTHING, meet_fly_to_point
 

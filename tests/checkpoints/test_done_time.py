@@ -4,15 +4,15 @@ answers) show that one time, and further publishing moves neither. Bus and wall 
 
 from __future__ import annotations
 
-from server.bus import Bus, Executor, ManualClock, Node
-from server.checkpoints.catalog import LAB_CHECKPOINTS
-from server.checkpoints.class_table import table
-from server.checkpoints.progress import Progress
-from server.checkpoints.view import world_view
-from server.checkpoints.watcher import CheckpointWatch
-from server.launch.launcher import Launcher
-from server.msgs import get_type
-from server.packages import PackageIndex
+from node_runtime.ament.index import PackageIndex
+from node_runtime.bus import Bus, Executor, ManualClock, Node
+from node_runtime.msgs import get_type
+from server.services.launch.launcher import Launcher
+from server.world.checkpoints.catalog import LAB_CHECKPOINTS
+from server.world.checkpoints.class_table import table
+from server.world.checkpoints.progress import Progress
+from server.world.checkpoints.view import world_view
+from server.world.checkpoints.watcher import CheckpointWatch
 
 Vector3 = get_type("geometry_msgs/msg/Vector3")
 PoseStamped = get_type("geometry_msgs/msg/PoseStamped")

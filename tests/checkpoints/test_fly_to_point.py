@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from server.checkpoints.events import Gps, Setpoint, Source
-from server.checkpoints.fly_to_point import FlyToPointCheck
+from server.world.checkpoints.events import Gps, Setpoint, Source
+from server.world.checkpoints.fly_to_point import FlyToPointCheck
 
 PANEL = Source("/_page_tools")
 TARGET = (5.0, 5.0, 10.0)

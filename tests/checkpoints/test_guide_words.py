@@ -18,8 +18,8 @@ from support.app import REPO
 from support.app_pool import lab_client
 from support.wait import wait_until
 
-from server.checkpoints import page_names
-from server.settings import LabSettings, Listening, Settings
+from server.host.settings import LabSettings, Listening, Settings
+from server.world.checkpoints import page_names
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="3"><name>drone_keys</name><version>0.0.0</version>
@@ -80,8 +80,8 @@ def test_guide_the_page_controls_it_names_are_the_pages_own() -> None:
     assert {page_names.RUN, page_names.NEW_FILE, page_names.NEW_PACKAGE} <= strings
     assert page_names.CODE in _js_strings(REPO / "web/src/lab/codeview.ts")
     assert page_names.GRAPH in _js_strings(REPO / "web/src/lab/nav.ts")
-    assert f'"{page_names.RESET_ROCKET}"' in (REPO / "server/viewer/rocket_view.py").read_text()
-    panel = (REPO / "server/viewer/publisher_panel.py").read_text()
+    assert f'"{page_names.RESET_ROCKET}"' in (REPO / "server/peripherals/viewer/rocket_view.py").read_text()
+    panel = (REPO / "server/peripherals/viewer/publisher_panel.py").read_text()
     assert all(f'"{n}"' in panel for n in (page_names.PUBLISHER, page_names.RATE, page_names.ENABLED))
 
 

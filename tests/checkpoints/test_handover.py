@@ -1,4 +1,4 @@
-"""A world's progress handed from one place to the next (server/checkpoints/handover.py) and the class
+"""A world's progress handed from one place to the next (server/world/checkpoints/handover.py) and the class
 server's copies of the progress its world workers keep in folders of their own
 (server/classroom/progress_copies.py), against a worker directory that answers as a worker's
 route does: the copy is asked for what changed only, written whole, handed to a worker that keeps
@@ -14,15 +14,15 @@ from typing import Any
 
 import pytest
 
-from server.checkpoints.catalog import load
-from server.checkpoints.handover import from_wire, tag, to_wire
-from server.checkpoints.progress import Progress
-from server.checkpoints.saved import SavedProgressError, Snapshot
-from server.checkpoints.store import ProgressStore
 from server.classroom.errors import ClassroomError
 from server.classroom.progress_copies import PROGRESS_PATH, ProgressCopies
 from server.classroom.workers import WorkerRef
 from server.classroom.world import World
+from server.world.checkpoints.catalog import load
+from server.world.checkpoints.handover import from_wire, tag, to_wire
+from server.world.checkpoints.progress import Progress
+from server.world.checkpoints.saved import SavedProgressError, Snapshot
+from server.world.checkpoints.store import ProgressStore
 
 from .test_api import tiny_png
 

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from server.checkpoints.events import Abort, CmdVel, Countdown, KeyDown, Source
-from server.checkpoints.keyboard_abort import KEY_A, KeyboardAbortCheck
+from server.world.checkpoints.events import Abort, CmdVel, Countdown, KeyDown, Source
+from server.world.checkpoints.keyboard_abort import KEY_A, KeyboardAbortCheck
 
 KEYBOARD = Source("/keyboard")
 STUDENT = Source("/KeyboardManager", "process 4242", student=True)

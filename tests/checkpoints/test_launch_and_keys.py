@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from server.checkpoints.events import Gps, KeyDown, Launch, LaunchedNode, Setpoint, Source
-from server.checkpoints.launch_and_keys import LaunchAndKeysCheck
+from server.world.checkpoints.events import Gps, KeyDown, Launch, LaunchedNode, Setpoint, Source
+from server.world.checkpoints.launch_and_keys import LaunchAndKeysCheck
 
 KEYBOARD = Source("/keyboard")
 STUDENT = Source("/KeyboardManagerNode", "process 77", student=True)

@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from server.checkpoints.catalog import LAB_CHECKPOINTS, CheckpointLoadError, load
-from server.checkpoints.progress import Progress
-from server.checkpoints.report import build, signed_files
-from server.checkpoints.signing import ReportSigner, canonical
+from server.world.checkpoints.catalog import LAB_CHECKPOINTS, CheckpointLoadError, load
+from server.world.checkpoints.progress import Progress
+from server.world.checkpoints.report import build, signed_files
+from server.world.checkpoints.signing import ReportSigner, canonical
 
 SIGNER = ReportSigner(b"\x07" * 32)
 TRACK = [[float(t), t * 0.5, t * 0.5, 3 + t * 0.7] for t in range(10)]
@@ -77,8 +77,8 @@ def test_key_is_made_once_in_the_state_folder_and_kept(tmp_path: Path) -> None:
 
 
 CLIMB = """
-from server.checkpoints.declared import Checkpoint, Step
-from server.checkpoints.events import Gps
+from server.world.checkpoints.declared import Checkpoint, Step
+from server.world.checkpoints.events import Gps
 
 
 class ClimbCheck:

@@ -13,7 +13,7 @@ from support.app import App
 from support.http import HTTP
 from support.wait import wait_until
 
-from server.checkpoints.store import PROGRESS_DIR, PROGRESS_FILE, SINGLE_LAB
+from server.world.checkpoints.store import PROGRESS_DIR, PROGRESS_FILE, SINGLE_LAB
 
 from .test_api import tiny_png
 

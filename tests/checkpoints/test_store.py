@@ -1,4 +1,4 @@
-"""A world's progress on disk (server/checkpoints/store.py): written by the store's thread, read back
+"""A world's progress on disk (server/world/checkpoints/store.py): written by the store's thread, read back
 whole, limited on the way in as on the way out; a bad file is logged and read as no progress."""
 
 from __future__ import annotations
@@ -10,9 +10,9 @@ from pathlib import Path
 
 import pytest
 
-from server.checkpoints.catalog import load
-from server.checkpoints.progress import MAX_ANSWER_BYTES, MAX_CAPTURE_BYTES, PNG_MAGIC
-from server.checkpoints.store import PROGRESS_FILE, ProgressStore
+from server.world.checkpoints.catalog import load
+from server.world.checkpoints.progress import MAX_ANSWER_BYTES, MAX_CAPTURE_BYTES, PNG_MAGIC
+from server.world.checkpoints.store import PROGRESS_FILE, ProgressStore
 
 from .test_api import tiny_png
 
@@ -148,8 +148,8 @@ def test_a_class_folder_is_read_bounded_with_owners_names_and_nothing_moved(tmp_
     """saved_worlds.py: the class worlds with a progress file, by name, at most ``limit`` folders;
     a spoilt file is left where it is (the world's own start sets it aside), the lab's own is not
     a class world's, and a released owner record is kept beside under a name of its own."""
-    from server.checkpoints.owner import OWNER_FILE, Owner
-    from server.checkpoints.saved_worlds import read_saved
+    from server.world.checkpoints.owner import OWNER_FILE, Owner
+    from server.world.checkpoints.saved_worlds import read_saved
 
     store = ProgressStore.in_state_dir(tmp_path)
     try:
@@ -181,7 +181,7 @@ def test_a_class_folder_is_read_bounded_with_owners_names_and_nothing_moved(tmp_
 
 def test_a_join_writes_its_owner_at_once_and_progress_keeps_it(tmp_path: Path) -> None:
     """Code a student writes before any progress is theirs too: the owner is on disk from the join."""
-    from server.checkpoints.owner import OWNER_FILE, Owner
+    from server.world.checkpoints.owner import OWNER_FILE, Owner
 
     store = ProgressStore.in_state_dir(tmp_path)
     try:

@@ -3,18 +3,18 @@ met checkpoints land in the world's progress, the queue stays bounded, and stop 
 
 from __future__ import annotations
 
-from server.bus import Bus, Executor, ManualClock, Node
-from server.checkpoints.catalog import LAB_CHECKPOINTS
-from server.checkpoints.events import Source
-from server.checkpoints.progress import Progress
-from server.checkpoints.sources import Sources
-from server.checkpoints.watcher import MAX_QUEUED, CheckpointWatch
-from server.launch.launcher import Launcher
-from server.msgs import get_type
-from server.msgs.wire import dds_type_name, type_hash
-from server.packages import PackageIndex
-from server.transport.keys import EntityKind, EntityToken, keep_last
-from server.transport.remote_graph import RemoteGraph
+from node_runtime.ament.index import PackageIndex
+from node_runtime.bus import Bus, Executor, ManualClock, Node
+from node_runtime.msgs import get_type
+from node_runtime.msgs.wire import dds_type_name, type_hash
+from node_runtime.transport.keys import EntityKind, EntityToken, keep_last
+from node_runtime.transport.remote_graph import RemoteGraph
+from server.services.launch.launcher import Launcher
+from server.world.checkpoints.catalog import LAB_CHECKPOINTS
+from server.world.checkpoints.events import Source
+from server.world.checkpoints.progress import Progress
+from server.world.checkpoints.sources import Sources
+from server.world.checkpoints.watcher import MAX_QUEUED, CheckpointWatch
 
 Vector3 = get_type("geometry_msgs/msg/Vector3")
 PoseStamped = get_type("geometry_msgs/msg/PoseStamped")

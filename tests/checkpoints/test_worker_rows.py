@@ -21,8 +21,8 @@ import pytest
 from support.app import App, instructor_token, wait_for_workers
 from support.http import HTTP
 
-from server.checkpoints.store import PROGRESS_DIR, PROGRESS_FILE
 from server.classroom.remote_checkpoints import ASK_TIMEOUT_S
+from server.world.checkpoints.store import PROGRESS_DIR, PROGRESS_FILE
 
 CODE = "KEEP42"
 BOUND_S = 3 * ASK_TIMEOUT_S  # well past one bounded ask; a hang would run into it

@@ -6,13 +6,13 @@ from __future__ import annotations
 
 import pytest
 
-from server.bus import Bus, ManualClock, Node
+from node_runtime.bus import Bus, ManualClock, Node
 from server.classroom import ClassroomError
 from server.classroom.capacity import NEAR_CORES, PlaceLoad, judge
 from server.classroom.join_queue import JoinQueue
 from server.classroom.lateness import LATE_TICK_S, RECENT_TICKS, STALLED_S, timer_late
 from server.classroom.load import PROCESS_FULL_CORES, CpuLoad, CpuMeter, resident_mb
-from server.settings import JoinQueueSettings
+from server.host.settings import JoinQueueSettings
 
 
 def place(worlds: int, cores: float, late: int = 0, most: int = 60, name: str = "server") -> PlaceLoad:

@@ -31,9 +31,9 @@ from support.http import HTTP
 from websockets.sync.client import connect
 
 from api.errors import CloseCode
-from server.transport.acl import Credentials
-from server.transport.config import ZenohSettings
-from server.transport.session import build_config
+from node_runtime.transport.acl import Credentials
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.session import build_config
 
 CODE = "GRAPH7"
 POSE, VECTOR = "geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/Vector3"

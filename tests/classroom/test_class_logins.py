@@ -20,13 +20,13 @@ from support.app import App, instructor_token
 from support.http import HTTP
 from support.wait import wait_until
 
-from server.msgs import PoseStamped, Vector3
-from server.msgs.wire import dds_type_name, serialize, type_hash
-from server.transport.acl import ClassAuth, Credentials
-from server.transport.attachment import Attachment
-from server.transport.config import ZenohSettings
-from server.transport.keys import EntityKind, EntityToken, data_key, keep_last
-from server.transport.session import build_config
+from node_runtime.msgs import PoseStamped, Vector3
+from node_runtime.msgs.wire import dds_type_name, serialize, type_hash
+from node_runtime.transport.acl import ClassAuth, Credentials
+from node_runtime.transport.attachment import Attachment
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.keys import EntityKind, EntityToken, data_key, keep_last
+from node_runtime.transport.session import build_config
 
 CODE = "LOGIN7"
 POSE = (dds_type_name(PoseStamped.TYPE), type_hash(PoseStamped.TYPE))

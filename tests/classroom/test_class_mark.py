@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from server.workspace.class_mark import MARK_FILE, leave_mark, read_mark
+from server.services.workspace.class_mark import MARK_FILE, leave_mark, read_mark
 
 
 def test_a_mark_is_left_once_and_read_through_any_path_to_the_folder(tmp_path: Path) -> None:

@@ -13,14 +13,14 @@ from fastapi.testclient import TestClient
 from support.app import free_port
 from support.wait import wait_until
 
+from node_runtime.transport.acl import ClassAuth, Credentials, new_world_login
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.session import build_config
 from server.app import create_app
 from server.classroom import ClassServer
 from server.classroom.class_router import ClassRouter
 from server.classroom.workers import worker_api_token
-from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorkerSettings
-from server.transport.acl import ClassAuth, Credentials, new_world_login
-from server.transport.config import ZenohSettings
-from server.transport.session import build_config
+from server.host.settings import ClassroomSettings, LabSettings, Listening, Settings, WorkerSettings
 
 
 def client(endpoint: str, login: Credentials) -> Any:

@@ -13,9 +13,9 @@ from fastapi.testclient import TestClient
 from support.ws import refusal
 
 from api.errors import CloseCode
+from node_runtime.bus import ManualClock
 from server.app import create_app
-from server.bus import ManualClock
-from server.viewer.class_view import COLUMNS, GONE_COLOR, TILE_M, ClassView, tile_origin
+from server.peripherals.viewer.class_view import COLUMNS, GONE_COLOR, TILE_M, ClassView, tile_origin
 
 from .test_classroom_api import advance, auth, class_settings, classroom, join
 

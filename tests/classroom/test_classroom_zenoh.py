@@ -20,15 +20,15 @@ import zenoh
 from support.app import App, end, instructor_token
 from support.http import HTTP
 
-from server.msgs import Key
-from server.msgs.wire import dds_type_name, serialize, type_hash
-from server.processes.priority import session_group_nice
-from server.settings import SandboxSettings
-from server.transport.acl import ClassAuth, Credentials
-from server.transport.attachment import Attachment
-from server.transport.config import ZenohSettings
-from server.transport.keys import data_key
-from server.transport.session import build_config
+from node_runtime.msgs import Key
+from node_runtime.msgs.wire import dds_type_name, serialize, type_hash
+from node_runtime.process.priority import session_group_nice
+from node_runtime.transport.acl import ClassAuth, Credentials
+from node_runtime.transport.attachment import Attachment
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.keys import data_key
+from node_runtime.transport.session import build_config
+from server.host.settings import SandboxSettings
 
 CODE = "ZEN042"
 FLOOD = 20_000  # samples, ten seconds' worth of what a world takes from other processes
@@ -158,7 +158,7 @@ def children_of(pid: int) -> list[int]:
 def test_a_students_node_process_runs_below_the_worlds(classroom: tuple[App, Path, dict[str, str]]) -> None:
     """The class server's join asks for its sandbox's niceness; ``ros2lab run`` gives it to the
     node and, the node leading a session of its own, to its session's scheduling group: a niceness
-    alone counts only within a session (server/processes/priority.py)."""
+    alone counts only within a session (node_runtime/process/priority.py)."""
     app, root, tokens = classroom
     nice = SandboxSettings().nice
     assert get(app, tokens["ada"], "/api/zenoh/join").json()["nice"] == nice

@@ -11,10 +11,10 @@ import pytest
 from fastapi.testclient import TestClient
 
 from classroom.test_classroom_api import auth, class_settings, join
+from node_runtime.ament.index import HERE as BUILTIN_PACKAGES
+from node_runtime.bus import ManualClock
 from server.app import create_app
-from server.bus import ManualClock
-from server.packages import HERE as BUILTIN_PACKAGES
-from server.settings import ClassroomSettings, LabSettings, Listening, Settings
+from server.host.settings import ClassroomSettings, LabSettings, Listening, Settings
 
 MY_LAUNCH = """<launch>
   <node pkg="sensor_simulation" exec="pressure.py" name="my_pressure"/>

@@ -15,10 +15,10 @@ from fastapi.testclient import TestClient
 from support.ws import receive_within
 
 from api.errors import CloseCode
+from node_runtime.bus import ManualClock
 from server.app import create_app
-from server.bus import ManualClock
 from server.classroom import ClassServer
-from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorldLimits
+from server.host.settings import ClassroomSettings, LabSettings, Listening, Settings, WorldLimits
 
 CODE = "FAIR42"
 SOCKETS = 3

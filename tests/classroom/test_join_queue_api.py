@@ -11,12 +11,12 @@ from collections.abc import Iterator
 import pytest
 from fastapi.testclient import TestClient
 
+from node_runtime.bus import ManualClock
 from server.app import create_app
-from server.bus import ManualClock
 from server.classroom import ClassServer
 from server.classroom.capacity import PlaceLoad
 from server.classroom.load import CpuLoad
-from server.settings import ClassroomSettings, JoinQueueSettings, LabSettings, Listening, Settings
+from server.host.settings import ClassroomSettings, JoinQueueSettings, LabSettings, Listening, Settings
 
 CODE = "QUEUE7"
 

@@ -19,11 +19,11 @@ from fastapi.testclient import TestClient
 from starlette.types import ASGIApp, Receive, Scope, Send
 from support.app import App
 
+from node_runtime.bus import ManualClock
+from node_runtime.limits import KeyedRateLimit
 from server.app import create_app
-from server.bus import ManualClock
 from server.classroom import ClassServer
-from server.limits import KeyedRateLimit
-from server.settings import ClassroomSettings, JoinLimits, LabSettings, Listening, Settings
+from server.host.settings import ClassroomSettings, JoinLimits, LabSettings, Listening, Settings
 
 CODE = "JOIN42"
 ADDRESS_HEADER = b"x-test-client-address"

@@ -1,8 +1,8 @@
 """A class told "run it now": 20 ``ros2lab run`` started at once against a class server with 10
 worlds of the fly launch, two per student with the student's token. Every node joins its own
 world (each world's node list holds its two and no one else's) and every ``ros2lab run`` ends
-cleanly; the lab paces the starts (server/processes/start_pacing.py), and the commands and their nodes run
-below the worlds (server/cli/priority.py, server/processes/priority.py). No world's dynamics
+cleanly; the lab paces the starts (server/host/processes/start_pacing.py), and the commands and their nodes run
+below the worlds (server/cli/priority.py, node_runtime/process/priority.py). No world's dynamics
 drops below 95 % of its 100 Hz during the burst (less the share of CPU time the hypervisor stole,
 as in test_thirty_worlds.py); the rates are written to artifacts/node_burst.json beside the time
 it took (98.8 to 99.4 Hz in the fresh-clone runs of 2026-11-28, run alone as the gate runs

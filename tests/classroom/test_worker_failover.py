@@ -25,8 +25,8 @@ from support.app import App, WorldWorker, instructor_token, wait_for_workers
 from support.http import HTTP
 from support.wait import wait_until as support_wait_until
 
+from node_runtime.bus import ManualClock
 from server.app import create_app
-from server.bus import ManualClock
 from server.classroom import WorldWorker as WorkerWorlds
 from server.classroom.workers import (
     MAX_REPLY_BYTES,
@@ -36,7 +36,7 @@ from server.classroom.workers import (
     seal,
     worker_api_token,
 )
-from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorkerSettings
+from server.host.settings import ClassroomSettings, LabSettings, Listening, Settings, WorkerSettings
 
 CLASS_TOKEN = "the-instructors-token"
 ORPHAN_S = 5.0

@@ -22,11 +22,11 @@ from support.sandbox import require_sandbox
 from support.wait import wait_until
 
 from classroom.test_classroom_api import class_settings
+from node_runtime.transport.config import ZenohSettings
 from server.app import create_app
 from server.classroom import ClassServer
 from server.classroom.workers import worker_api_token, world_call_token
-from server.settings import ClassroomSettings, LabSettings, Listening, Settings, WorkerSettings
-from server.transport.config import ZenohSettings
+from server.host.settings import ClassroomSettings, LabSettings, Listening, Settings, WorkerSettings
 
 WORKER = "wt"
 NODE = "def main():\n    print('hello from a worker', flush=True)\n"

@@ -24,7 +24,7 @@ from support.app import App, WorldWorker, instructor_token, wait_for_workers
 from support.http import HTTP
 from support.wait import wait_until
 
-from server.processes.sandbox import probe
+from server.host.processes.sandbox import probe
 
 CODE = "WSW042"
 WORKER_TIMEOUT_S = 8.0  # a few hello periods, so a loaded machine never takes a live worker for gone

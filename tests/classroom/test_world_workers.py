@@ -29,13 +29,13 @@ from support.app import App, WorldWorker, instructor_token, wait_for_workers
 from support.http import HTTP
 
 from api.errors import CloseCode
+from node_runtime.msgs.wire import dds_type_name, deserialize, type_hash
+from node_runtime.transport.acl import ClassAuth, Credentials
+from node_runtime.transport.attachment import Attachment
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.keys import data_key
+from node_runtime.transport.session import build_config
 from server.classroom.workers import CONTROL_PREFIX, hello_request, worker_api_token
-from server.msgs.wire import dds_type_name, deserialize, type_hash
-from server.transport.acl import ClassAuth, Credentials
-from server.transport.attachment import Attachment
-from server.transport.config import ZenohSettings
-from server.transport.keys import data_key
-from server.transport.session import build_config
 
 CODE = "WRK042"
 STUDENTS = ("Ada", "Bob", "Cy", "Dee")

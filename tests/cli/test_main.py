@@ -89,7 +89,7 @@ LOCAL_VERBS = {"run.py", "pkg.py", "pkg_create.py", "interface.py", "world_worke
 
 # A reader of local files the CLI shares with node processes, importing nothing of the server:
 # ``param set`` types a value and ``param load`` reads a parameters file as a node reads them.
-SHARED_READERS = {"server.params_file"}
+SHARED_READERS = {"node_runtime.params_file"}
 
 
 def test_cli_imports_nothing_of_the_server_it_talks_to() -> None:

@@ -9,8 +9,8 @@ from typing import Any
 
 import pytest
 
+from node_runtime.params_file import ParamsFileError, read_params_file, value_from_text
 from server.cli.param import parameter_value, python_value
-from server.params_file import ParamsFileError, read_params_file, value_from_text
 
 
 @pytest.mark.parametrize(

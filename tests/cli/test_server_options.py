@@ -10,7 +10,7 @@ import pytest
 from server import world_worker
 from server.__main__ import build_parser, main, settings_of, zenoh_settings
 from server.classroom.worker_control import TOKEN_ENV
-from server.settings import Settings
+from server.host.settings import Settings
 
 
 def server_settings(*argv: str) -> Settings:

@@ -90,16 +90,25 @@ def test_wheel_holds_the_client_and_nothing_of_the_web_server(wheel: Path) -> No
     # Every module of the client's own folder, and every interface definition the lab knows.
     client_modules = {p.relative_to(REPO / "client").as_posix() for p in (REPO / "client").glob("*/**/*.py")}
     assert not {m for m in client_modules if not m.startswith("_build/")} - names
-    definitions = {p.relative_to(REPO).as_posix() for p in (REPO / "server/msgs/interfaces").glob("*/*/*")}
-    ros = {p.relative_to(REPO).as_posix() for p in (REPO / "server/msgs/ros_interfaces").glob("*/*/*")}
+    definitions = {
+        p.relative_to(REPO).as_posix() for p in (REPO / "node_runtime/msgs/interfaces").glob("*/*/*")
+    }
+    ros = {p.relative_to(REPO).as_posix() for p in (REPO / "node_runtime/msgs/ros_interfaces").glob("*/*/*")}
     assert not definitions - names and not ros - names and len(ros) > 150  # ROS 2's, as the set-up took them
-    assert {"server/processes/runner.py", "server/transport/bridge.py", "rclpy/node.py"} <= names
-    assert "server/msgs/interfaces/keyboard_msgs/msg/Key.msg" in names
-    for app_side in ("server/app.py", "server/lab.py", "server/settings/__init__.py", "server/processes/supervisor.py",
+    assert {"node_runtime/process/runner.py", "node_runtime/transport/bridge.py", "rclpy/node.py"} <= names
+    assert "node_runtime/msgs/interfaces/keyboard_msgs/msg/Key.msg" in names
+    for app_side in ("server/app.py", "server/world/lab.py", "server/host/settings/__init__.py", "server/host/processes/supervisor.py",
                      "server/packages/rocketship/keyboard_manager.py"):  # fmt: skip
         assert app_side not in names
     assert not any(
-        n.startswith(("server/viewer/", "server/bridges/", "server/classroom/", "server/settings/"))
+        n.startswith(
+            (
+                "server/peripherals/viewer/",
+                "server/services/bridges/",
+                "server/classroom/",
+                "server/host/settings/",
+            )
+        )
         for n in names
     )
     metadata = zipfile.ZipFile(wheel).read("teleop_lab_client-0.1.0.dist-info/METADATA").decode()
@@ -123,7 +132,7 @@ def test_importing_the_client_loads_nothing_of_the_web_server(laptop: Path, tmp_
         from sensor_msgs_py import point_cloud2
         assert point_cloud2.read_points_list(point_cloud2.create_cloud_xyz32(Odometry().header, [(1, 2, 3)])) == [(1, 2, 3)]
         from tf2_ros import Buffer, StaticTransformBroadcaster, TransformListener
-        import server.processes.runner
+        import node_runtime.process.runner
         print(json.dumps({"modules": sorted(sys.modules), "rclpy": rclpy.__file__}))
     """)
     out = json.loads(run([str(laptop), "-c", probe], tmp_path, 60.0))

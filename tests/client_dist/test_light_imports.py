@@ -15,16 +15,16 @@ import json
 import subprocess
 import sys
 
-from server.msgs.wire import computed_type_hash, type_hash
+from node_runtime.msgs.wire import computed_type_hash, type_hash
 
 HEAVY = ("numpy", "asyncio", "rosbags", "yaml")
 
 PROBE = """
 import json, sys
-import rclpy, server.processes.runner
+import rclpy, node_runtime.process.runner
 from std_msgs.msg import String, Int32
 from keyboard_msgs.msg import Key
-from server.transport.cdr import encode
+from node_runtime.transport.cdr import encode
 light = [m for m in ("numpy", "asyncio") if m in sys.modules]
 sent = [encode(String(data="hi")), encode(Int32(data=3)), encode(Key(code=97))]
 after_light = [m for m in ("numpy", "asyncio") if m in sys.modules]
@@ -48,7 +48,7 @@ config.insert_json5("scouting/multicast/enabled", "false")
 config.insert_json5("listen/endpoints", json.dumps([f"tcp/127.0.0.1:{port}"]))
 router = zenoh.open(config)
 os.environ["ZENOH_CONFIG_OVERRIDE"] = f'connect/endpoints=["tcp/127.0.0.1:{port}"]'
-import rclpy, server.processes.runner
+import rclpy, node_runtime.process.runner
 from rclpy.node import Node
 from std_msgs.msg import Bool
 from keyboard_msgs.msg import Key

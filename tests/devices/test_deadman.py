@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import pytest
 
-from server.bus import Bus, Executor, ManualClock
-from server.devices.deadman import NODE_NAME, KeyDeadMan
-from server.devices.keyboard import KeyboardDevice, KeyEvent
-from server.msgs import Key
+from node_runtime.bus import Bus, Executor, ManualClock
+from node_runtime.msgs import Key
+from server.peripherals.devices.deadman import NODE_NAME, KeyDeadMan
+from server.peripherals.devices.keyboard import KeyboardDevice, KeyEvent
 
 TIMEOUT_S = 0.5
 KEY_RIGHT, KEY_A = Key.KEY_RIGHT, Key.KEY_A

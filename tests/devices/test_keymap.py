@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from server.devices.keymap import MODIFIER_FLAG_NAMES, UnknownKeyError, modifier_bits, sdl_code
-from server.msgs import Key
+from node_runtime.msgs import Key
+from server.peripherals.devices.keymap import MODIFIER_FLAG_NAMES, UnknownKeyError, modifier_bits, sdl_code
 
 
 @pytest.mark.parametrize(("key", "code"), [("a", 97), ("b", 98), ("z", 122), ("m", 109)])

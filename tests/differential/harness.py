@@ -1,5 +1,5 @@
 """One program run on ROS 2's own rclpy (the oracle: Kilted's wheels on Fast DDS, in the venv
-scripts/_oracle.sh makes) and on the lab's (a student's node: ``python -m server.processes.runner
+scripts/_oracle.sh makes) and on the lab's (a student's node: ``python -m node_runtime.process.runner
 FILE`` on a Zenoh router of its own), and what each printed, compared.
 
 What a user sees is compared: everything the program prints and logs, in order (stdout and stderr
@@ -127,7 +127,7 @@ def run_oracle(python: Path, program: Path, domain: int) -> Run:
 
 
 def run_lab(program: Path, domain: int, router: str) -> Run:
-    return run([sys.executable, "-m", "server.processes.runner", str(program)], lab_env(domain, router))
+    return run([sys.executable, "-m", "node_runtime.process.runner", str(program)], lab_env(domain, router))
 
 
 def _without_frames(lines: list[str]) -> list[str]:

@@ -26,7 +26,7 @@ from websockets.exceptions import ConnectionClosed
 
 from api.errors import CloseCode
 from server.app import create_app
-from server.settings import LabSettings, Listening, Settings
+from server.host.settings import LabSettings, Listening, Settings
 
 SUBPROTOCOL = "foxglove.sdk.v1"
 READ_S = 10.0
@@ -259,9 +259,9 @@ def test_the_pages_own_origin_and_a_client_without_origin_connect(lab: TestClien
 
 
 def test_tf_of_the_drone_follows_its_gps_pose(tmp_path: Path) -> None:
-    from server.bus import ManualClock, Node
-    from server.lab import Lab
-    from server.msgs import PoseStamped, TFMessage
+    from node_runtime.bus import ManualClock, Node
+    from node_runtime.msgs import PoseStamped, TFMessage
+    from server.world.lab import Lab
 
     drone = Lab(Settings(lab=LabSettings(launch="fly", viewer=False, bag_dir=tmp_path)), ManualClock(0.0))
     got: dict[str, Any] = {}

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from server.bus import Bus, Executor, Node
-from server.introspection import node_info
-from server.msgs import Int64
+from node_runtime.bus import Bus, Executor, Node
+from node_runtime.msgs import Int64
+from server.host.introspection import node_info
 
 
 def _talker(bus: Bus) -> Node:

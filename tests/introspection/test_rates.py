@@ -6,9 +6,9 @@ import math
 
 import pytest
 
-from server.bus import Bus, Executor, Node
-from server.introspection import RateStats, percentile, rate_stats
-from server.msgs import Int64
+from node_runtime.bus import Bus, Executor, Node
+from node_runtime.msgs import Int64
+from server.host.introspection import RateStats, percentile, rate_stats
 
 
 def test_rate_stats_uneven_periods_match_hand_computed_values() -> None:

@@ -8,8 +8,8 @@ from typing import Any
 
 import pytest
 
-from server.launch.description import LaunchDescription
-from server.launch.xml_parser import parse_launch_string
+from server.services.launch.description import LaunchDescription
+from server.services.launch.xml_parser import parse_launch_string
 
 SHARE = Path(__file__).resolve().parent / "data" / "share"
 EMPTY_PACKAGES = frozenset({"simple_sim", "simple_control", "keyboard", "demo"})

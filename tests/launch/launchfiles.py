@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from server.launch.description import LaunchDescription, LaunchFileError, NodeAction
-from server.launch.xml_parser import parse_launch_file
+from server.services.launch.description import LaunchDescription, LaunchFileError, NodeAction
+from server.services.launch.xml_parser import parse_launch_file
 
 Write = Callable[[str, str], Path]
 Parse = Callable[..., LaunchDescription]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from launchfiles import FindShare, Parse, Write, error_of, file_error_of
 
-from server.launch.xml_parser import parse_launch_file
+from server.services.launch.xml_parser import parse_launch_file
 
 # --- conditions, groups and arguments -----------------------------------------------------
 

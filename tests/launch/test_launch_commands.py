@@ -6,14 +6,14 @@ from __future__ import annotations
 import pytest
 from launchfiles import FindShare, Parse, Write, error_of
 
-from server.bus import Bus
-from server.bus.clock import ManualClock
-from server.launch.commands import NOT_HERE, CommandRunner, LabCli
-from server.launch.description import CommandAction, SourceLocation
-from server.launch.expressions import evaluate_expression
-from server.launch.substitutions import SubstitutionError
-from server.launch.xml_parser import parse_launch_file
-from server.processes.supervisor import Supervisor
+from node_runtime.bus import Bus
+from node_runtime.bus.clock import ManualClock
+from server.host.processes.supervisor import Supervisor
+from server.services.launch.commands import NOT_HERE, CommandRunner, LabCli
+from server.services.launch.description import CommandAction, SourceLocation
+from server.services.launch.expressions import evaluate_expression
+from server.services.launch.substitutions import SubstitutionError
+from server.services.launch.xml_parser import parse_launch_file
 
 # docs.ros.org's "Using substitutions", its YAML launch file as the page writes it.
 SUBSTITUTIONS_YAML = """\

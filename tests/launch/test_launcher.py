@@ -6,11 +6,11 @@ from pathlib import Path
 
 import pytest
 
-from server.bus import ManualClock, Node
-from server.lab import Lab
-from server.launch.description import LaunchFileError
-from server.msgs import get_service_type
-from server.settings import LabSettings, Settings
+from node_runtime.bus import ManualClock, Node
+from node_runtime.msgs import get_service_type
+from server.host.settings import LabSettings, Settings
+from server.services.launch.description import LaunchFileError
+from server.world.lab import Lab
 
 HANDOUT_FLY = """<?xml version="1.0"?>
 <launch>

@@ -9,12 +9,12 @@ from pathlib import Path
 import pytest
 from launchfiles import FindShare, Write, file_error_of, only_node
 
-from server.bus import ManualClock
-from server.lab import Lab
-from server.launch.description import LaunchFileError
-from server.launch.evaluation import MAX_FILES_READ
-from server.launch.xml_parser import parse_launch_file
-from server.settings import LabSettings, Settings
+from node_runtime.bus import ManualClock
+from server.host.settings import LabSettings, Settings
+from server.services.launch.description import LaunchFileError
+from server.services.launch.evaluation import MAX_FILES_READ
+from server.services.launch.xml_parser import parse_launch_file
+from server.world.lab import Lab
 
 PARAMS = """\
 /**:

@@ -9,14 +9,14 @@ from pathlib import Path
 
 import pytest
 
+from node_runtime.ament.index import PackageIndex
+from node_runtime.bus import ManualClock
 from server.__main__ import build_parser, check_launch, settings_of, zenoh_settings
-from server.bus import ManualClock
-from server.lab import Lab
-from server.launch.description import LaunchDescription, LaunchFileError
-from server.launch.launcher import parse_launch
-from server.launch.python_launch import MAX_MESSAGE_CHARS, MAX_MESSAGES
-from server.packages import PackageIndex
-from server.settings import LabSettings, Settings
+from server.host.settings import LabSettings, Settings
+from server.services.launch.description import LaunchDescription, LaunchFileError
+from server.services.launch.launcher import parse_launch
+from server.services.launch.python_launch import MAX_MESSAGE_CHARS, MAX_MESSAGES
+from server.world.lab import Lab
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="3">

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from server.bus import ManualClock, Node
-from server.lab import Lab
-from server.launch.respawn import RespawnBackoff, RespawnPolicy
-from server.settings import LabSettings, Settings
+from node_runtime.bus import ManualClock, Node
+from server.host.settings import LabSettings, Settings
+from server.services.launch.respawn import RespawnBackoff, RespawnPolicy
+from server.world.lab import Lab
 
 POLICY = RespawnPolicy(base_delay_s=0.5, max_delay_s=4.0, healthy_after_s=10.0, max_fast_failures=5)
 

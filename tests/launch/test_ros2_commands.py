@@ -6,7 +6,7 @@ import sys
 
 import pytest
 
-from server.launch.ros2_commands import CommandNotRunError, cli_argv, command_words
+from server.services.launch.ros2_commands import CommandNotRunError, cli_argv, command_words
 
 URL = "http://127.0.0.1:8123"
 CLI = [sys.executable, "-P", "-m", "server", "--url", URL]

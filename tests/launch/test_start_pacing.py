@@ -1,4 +1,4 @@
-"""Students' node processes started at their turn (server/processes/start_pacing.py), as the
+"""Students' node processes started at their turn (server/host/processes/start_pacing.py), as the
 page's Run and Launch start them where the server serves others, on a ManualClock: a start the
 pacer defers is a process waiting with no pid, which starts when its turn comes; one stopped
 while it waits never starts; the run's output says it waited; waiting starts count against the
@@ -13,13 +13,13 @@ from pathlib import Path
 import pytest
 from support.wait import wait_until
 
-from server.bus import ManualClock
-from server.lab import Lab
-from server.launch.launcher import ProcessTransport
-from server.launch.output import GroupOutput
-from server.limits import LimitExceededError
-from server.processes.start_pacing import StartPacer
-from server.settings import LabLimits, LabSettings, Settings
+from node_runtime.bus import ManualClock
+from node_runtime.limits import LimitExceededError
+from server.host.processes.start_pacing import StartPacer
+from server.host.settings import LabLimits, LabSettings, Settings
+from server.services.launch.launcher import ProcessTransport
+from server.services.launch.output import GroupOutput
+from server.world.lab import Lab
 
 SLEEPER = """import time
 

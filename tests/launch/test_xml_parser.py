@@ -7,8 +7,8 @@ from pathlib import Path
 import pytest
 from launchfiles import FindShare, file_error_of
 
-from server.launch.description import LaunchFileError, SourceLocation
-from server.launch.xml_parser import parse_launch_file
+from server.services.launch.description import LaunchFileError, SourceLocation
+from server.services.launch.xml_parser import parse_launch_file
 
 
 @pytest.fixture

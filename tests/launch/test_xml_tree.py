@@ -5,8 +5,8 @@ from __future__ import annotations
 import pytest
 from launchfiles import TEST_FILE, FindShare, Parse, Write, error_of, file_error_of
 
-from server.launch.description import LaunchFileError
-from server.launch.xml_parser import MAX_FILE_BYTES, parse_launch_string
+from server.services.launch.description import LaunchFileError
+from server.services.launch.xml_parser import MAX_FILE_BYTES, parse_launch_string
 
 # --- XML level ------------------------------------------------------------------------------
 

@@ -7,9 +7,9 @@ from pathlib import Path
 import pytest
 from launchfiles import FindShare, Write, file_error_of
 
-from server.launch.launcher import with_ros_arguments
-from server.launch.xml_parser import parse_launch_file
-from server.processes.command import ros_args
+from server.host.processes.command import ros_args
+from server.services.launch.launcher import with_ros_arguments
+from server.services.launch.xml_parser import parse_launch_file
 
 TUTORIAL_YAML = """\
 launch:

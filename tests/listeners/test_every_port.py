@@ -28,7 +28,7 @@ from support.http import HTTP
 
 from api.errors import CloseCode
 from server.app import create_app
-from server.settings import ClassroomSettings, LabSettings, Settings
+from server.host.settings import ClassroomSettings, LabSettings, Settings
 
 TOKEN = "a-lab-token-for-this-test"
 FOREIGN = "http://evil.example"

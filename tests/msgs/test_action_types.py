@@ -9,12 +9,12 @@ import numpy as np
 import pytest
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
-from server.msgs import get_action_type, type_names
-from server.msgs._action import action_type_from_text
-from server.msgs.action_spec import parse_action
-from server.msgs.definitions import Definitions
-from server.msgs.idl import DefinitionError
-from server.msgs.wire import build_typestore, dds_type_name, deserialize, ros_type_name, serialize
+from node_runtime.msgs import get_action_type, type_names
+from node_runtime.msgs._action import action_type_from_text
+from node_runtime.msgs.action_spec import parse_action
+from node_runtime.msgs.definitions import Definitions
+from node_runtime.msgs.idl import DefinitionError
+from node_runtime.msgs.wire import build_typestore, dds_type_name, deserialize, ros_type_name, serialize
 
 
 def test_fibonacci_has_rclpy_shape_and_rosidl_wire_types() -> None:

@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from server.msgs import (
+from node_runtime.msgs import (
     Bool,
     Float64,
     Header,

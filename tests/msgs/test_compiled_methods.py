@@ -8,9 +8,9 @@ from typing import Any
 import numpy as np
 import pytest
 
-from server.msgs import Message, PoseStamped, Vector3
-from server.msgs._base import message_classes
-from server.msgs._field import MessageError
+from node_runtime.msgs import Message, PoseStamped, Vector3
+from node_runtime.msgs._base import message_classes
+from node_runtime.msgs._field import MessageError
 
 CLASSES = sorted(message_classes().items())
 

@@ -9,8 +9,8 @@ import numpy
 import numpy.typing
 import pytest
 
-from server.msgs import Message, get_type, type_names
-from server.msgs.generate import generated_files
+from node_runtime.msgs import Message, get_type, type_names
+from node_runtime.msgs.generate import generated_files
 
 FILES = generated_files()  # the message modules and the client's packages, written once here
 ROOT = Path(__file__).resolve().parents[2]
@@ -19,8 +19,8 @@ ROOT = Path(__file__).resolve().parents[2]
 @pytest.mark.parametrize("path", sorted(FILES), ids=lambda p: p.relative_to(ROOT).as_posix())
 def test_generated_module_matches_the_definitions(path: Path) -> None:
     assert path.is_file() and path.read_text(encoding="utf-8") == FILES[path], (
-        f"{path.relative_to(ROOT)} is stale: run `python -m server.msgs.generate` after editing "
-        "server/msgs/interfaces or server/msgs/ros_packages.txt"
+        f"{path.relative_to(ROOT)} is stale: run `python -m node_runtime.msgs.generate` after editing "
+        "node_runtime/msgs/interfaces or node_runtime/msgs/ros_packages.txt"
     )
 
 

@@ -6,8 +6,8 @@ import pytest
 from rosbags.interfaces import Nodetype
 from rosbags.typesys import get_types_from_msg
 
-from server.msgs.definitions import lab_definitions, load_definitions
-from server.msgs.idl import DefinitionError, parse_message, parse_service
+from node_runtime.msgs.definitions import lab_definitions, load_definitions
+from node_runtime.msgs.idl import DefinitionError, parse_message, parse_service
 
 
 def test_parse_message_primitives_nested_and_defaults() -> None:

@@ -9,7 +9,15 @@ from pathlib import Path
 
 import pytest
 
-from server.msgs import Bool, Key, UnknownTypeError, definitions, get_type, normalize_type_name, type_names
+from node_runtime.msgs import (
+    Bool,
+    Key,
+    UnknownTypeError,
+    definitions,
+    get_type,
+    normalize_type_name,
+    type_names,
+)
 
 
 @pytest.mark.parametrize("name", ["std_msgs/Bool", "std_msgs/msg/Bool", " std_msgs/Bool "])
@@ -45,12 +53,12 @@ def test_type_names_sorted_full_names() -> None:
 LAZY_PROBE = """
 import json, sys
 from std_msgs.msg import String
-before = "server.msgs.generated.visualization_msgs" in sys.modules
-from server.msgs import get_service_type, get_type
+before = "node_runtime.msgs.generated.visualization_msgs" in sys.modules
+from node_runtime.msgs import get_service_type, get_type
 marker = get_type("visualization_msgs/msg/Marker")
 lifecycle = get_service_type("lifecycle_msgs/srv/ChangeState")
 print(json.dumps({"before": before, "marker": marker.__module__, "srv": lifecycle.TYPE,
-                  "after": "server.msgs.generated.visualization_msgs" in sys.modules}))
+                  "after": "node_runtime.msgs.generated.visualization_msgs" in sys.modules}))
 """
 
 
@@ -59,7 +67,7 @@ def test_a_package_s_classes_are_declared_when_one_of_its_types_is_first_asked_f
         [sys.executable, "-c", LAZY_PROBE], capture_output=True, text=True, timeout=60, check=True
     )
     seen = json.loads(done.stdout)
-    assert seen == {"before": False, "marker": "server.msgs.generated.visualization_msgs",
+    assert seen == {"before": False, "marker": "node_runtime.msgs.generated.visualization_msgs",
                     "srv": "lifecycle_msgs/srv/ChangeState", "after": True}  # fmt: skip
 
 
@@ -84,5 +92,5 @@ def test_without_ros_2_s_definitions_the_messages_say_what_to_run(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.setattr(definitions, "ROS_INTERFACES_DIR", tmp_path / "ros_interfaces")
-    with pytest.raises(definitions.MissingDefinitionsError, match=r"run `python -m server.ros_wheels`"):
+    with pytest.raises(definitions.MissingDefinitionsError, match=r"run `python -m node_runtime.ros_wheels`"):
         definitions.lab_definitions.__wrapped__()

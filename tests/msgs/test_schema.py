@@ -6,10 +6,10 @@ from typing import Any
 
 import pytest
 
-from server.msgs import Imu, Key, Vector3, get_type, type_names
-from server.msgs._base import define_message
-from server.msgs.idl import parse_message
-from server.msgs.schema import JSON_SCHEMA_DIALECT, interface_text, type_schema
+from node_runtime.msgs import Imu, Key, Vector3, get_type, type_names
+from node_runtime.msgs._base import define_message
+from node_runtime.msgs.idl import parse_message
+from node_runtime.msgs.schema import JSON_SCHEMA_DIALECT, interface_text, type_schema
 
 _JSON_TYPES: dict[str, Any] = {
     "object": (dict,), "integer": (int,), "number": (int, float), "boolean": (bool,), "string": (str,),

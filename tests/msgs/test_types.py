@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from server.msgs import (
+from node_runtime.msgs import (
     KEY_CONSTANTS,
     Bool,
     Float64,
@@ -26,7 +26,7 @@ from server.msgs import (
     Vector3,
     get_type,
 )  # fmt: skip
-from server.msgs.types import ALL_TYPES
+from node_runtime.msgs.types import ALL_TYPES
 
 ROS_NAMES = [
     (Time, "builtin_interfaces/msg/Time"),

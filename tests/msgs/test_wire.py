@@ -26,7 +26,7 @@ from ros_reference import ROS_REFERENCE_HASHES
 from rosbags.interfaces import Nodetype
 from rosbags.typesys import get_types_from_msg
 
-from server.msgs import (
+from node_runtime.msgs import (
     Bool,
     Empty,
     Key,
@@ -38,9 +38,9 @@ from server.msgs import (
     get_type,
     type_names,
 )
-from server.msgs._base import define_message
-from server.msgs.definitions import ROS_INTERFACES_DIR, lab_definitions, load_definitions
-from server.msgs.wire import (
+from node_runtime.msgs._base import define_message
+from node_runtime.msgs.definitions import ROS_INTERFACES_DIR, lab_definitions, load_definitions
+from node_runtime.msgs.wire import (
     WireError,
     build_typestore,
     dds_type_name,
@@ -50,7 +50,7 @@ from server.msgs.wire import (
     type_hash,
 )  # fmt: skip
 
-# -- REP-2016, written apart from server.msgs --------------------------------------------------
+# -- REP-2016, written apart from node_runtime.msgs --------------------------------------------------
 _TYPE_IDS = {
     "nested": 1, "int8": 2, "uint8": 3, "char": 3, "int16": 4, "uint16": 5, "int32": 6, "uint32": 7,
     "int64": 8, "uint64": 9, "float32": 10, "float64": 11, "bool": 15, "byte": 16, "string": 17,
@@ -92,7 +92,7 @@ def _all_descriptions() -> dict[str, list[tuple[str, Any]]]:
 
 def _action_fields(name: str, text: str) -> dict[str, list[tuple[str, Any]]]:
     """An action's types expanded here from its ``.action`` text, as rosidl expands one (apart
-    from server.msgs.action_spec): its parts, two services, feedback message and the action."""
+    from node_runtime.msgs.action_spec): its parts, two services, feedback message and the action."""
     goal, result, feedback = re.split(r"^---[ \t]*$", text, flags=re.MULTILINE)
     uuid = "unique_identifier_msgs/UUID goal_id"
     out: dict[str, list[tuple[str, Any]]] = {}

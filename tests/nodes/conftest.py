@@ -7,8 +7,8 @@ from typing import Any
 
 import pytest
 
-from server.bus import Bus, Node
-from server.msgs import Log, Message
+from node_runtime.bus import Bus, Node
+from node_runtime.msgs import Log, Message
 
 
 class Recorder:

@@ -6,8 +6,8 @@ from collections.abc import Callable
 
 import pytest
 
-from server.bus import Bus, Executor
-from server.msgs import Message, String
+from node_runtime.bus import Bus, Executor
+from node_runtime.msgs import Message, String
 from server.packages.demo_nodes_cpp.talker import Talker as CppTalker
 from server.packages.demo_nodes_py.listener import Listener
 from server.packages.demo_nodes_py.talker import Talker

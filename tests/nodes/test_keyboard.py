@@ -6,10 +6,10 @@ from collections.abc import Callable
 
 import pytest
 
-from server.bus import Bus, Executor, ManualClock, NodeOverrides
-from server.devices.keyboard import KeyboardDevice
-from server.msgs import Key, Message
+from node_runtime.bus import Bus, Executor, ManualClock, NodeOverrides
+from node_runtime.msgs import Key, Message
 from server.packages.keyboard.keyboard import KeyboardNode
+from server.peripherals.devices.keyboard import KeyboardDevice
 
 from .conftest import Recorder
 

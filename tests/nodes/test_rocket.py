@@ -8,14 +8,14 @@ from typing import Any
 import numpy as np
 import pytest
 
-from server.bus import Bus, Executor, ManualClock, Node, NodeOverrides, Publisher
-from server.devices.keyboard import KeyboardDevice
-from server.msgs import Bool, Float64, Int64, Key, Message
+from node_runtime.bus import Bus, Executor, ManualClock, Node, NodeOverrides, Publisher
+from node_runtime.msgs import Bool, Float64, Int64, Key, Message
 from server.packages.keyboard.keyboard import KeyboardNode
 from server.packages.rocketship.countdown import CountDownNode
 from server.packages.rocketship.keyboard_manager import KeyboardManager
 from server.packages.rocketship.main_controller import MainControllerNode
 from server.packages.rocketship.rocket_engine import RocketEngineNode
+from server.peripherals.devices.keyboard import KeyboardDevice
 
 from .conftest import Recorder
 

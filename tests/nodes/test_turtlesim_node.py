@@ -7,12 +7,20 @@ from typing import Any
 
 import pytest
 
-from server.bus import Bus, Executor, ManualClock, Node, NodeOverrides, Parameter
-from server.msgs import Message, Twist
-from server.msgs.generated.action_msgs import CancelGoal, GoalInfo, GoalStatus
-from server.msgs.generated.std_srvs import Empty
-from server.msgs.generated.turtlesim import Color, Kill, Pose, RotateAbsolute, SetPen, Spawn, TeleportAbsolute
-from server.msgs.generated.unique_identifier_msgs import UUID
+from node_runtime.bus import Bus, Executor, ManualClock, Node, NodeOverrides, Parameter
+from node_runtime.msgs import Message, Twist
+from node_runtime.msgs.generated.action_msgs import CancelGoal, GoalInfo, GoalStatus
+from node_runtime.msgs.generated.std_srvs import Empty
+from node_runtime.msgs.generated.turtlesim import (
+    Color,
+    Kill,
+    Pose,
+    RotateAbsolute,
+    SetPen,
+    Spawn,
+    TeleportAbsolute,
+)
+from node_runtime.msgs.generated.unique_identifier_msgs import UUID
 from server.packages.turtlesim.mimic import MimicNode
 from server.packages.turtlesim.turtlesim_node import TurtlesimNode
 

@@ -1,4 +1,4 @@
-"""A node's control group (server/processes/cgroups.py): where it is found from the process's
+"""A node's control group (server/host/processes/cgroups.py): where it is found from the process's
 own groups and the mounts, what a new group is given, and how an OOM kill is read. The kernel's
 side (a node over its limit ended) is tests/sandbox/test_sandbox.py's, on a live class server."""
 
@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from server.processes.cgroups import JOIN_SCRIPT, CgroupParent, NodeCgroup, _folder
+from server.host.processes.cgroups import JOIN_SCRIPT, CgroupParent, NodeCgroup, _folder
 
 
 def test_cgroups_folder_is_the_group_below_its_mounts_root() -> None:

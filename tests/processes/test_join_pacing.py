@@ -1,4 +1,4 @@
-"""Node starts paced on the server (server/processes/start_pacing.py) and ``ros2lab``'s join asked with a bounded
+"""Node starts paced on the server (server/host/processes/start_pacing.py) and ``ros2lab``'s join asked with a bounded
 wait (server/cli/join.py), on a manual clock: a lab that never answers is given up after the
 bound, one that answers late is joined, a lab's "not yet" is waited out for as long as it says,
 and an error that retrying cannot mend (no Zenoh graph) ends at once."""
@@ -13,7 +13,7 @@ import pytest
 from api.lab_routes import retry_after
 from server.cli.client import ApiError, LabClient
 from server.cli.join import JoinError, Pacing, join_graph
-from server.processes.start_pacing import StartPacer
+from server.host.processes.start_pacing import StartPacer
 
 URL = "http://lab.test"
 JOIN = {"router": "tcp/127.0.0.1:7447", "domain_id": 3, "user": None, "password": None, "env": {}}

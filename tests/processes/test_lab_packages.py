@@ -1,4 +1,4 @@
-"""The lab's own packages come first in a node process (server/processes/lab_packages.py): the
+"""The lab's own packages come first in a node process (node_runtime/process/lab_packages.py): the
 names it pins are the client's packages, and a folder of the student's named like one of them,
 first on ``sys.path``, does not replace it (the live sandbox test runs this through a class
 server; this one runs a plain node process)."""
@@ -11,7 +11,7 @@ from pathlib import Path
 
 from support.app import REPO
 
-from server.processes.lab_packages import CLIENT_PACKAGES
+from node_runtime.process.lab_packages import CLIENT_PACKAGES
 
 
 def test_lab_packages_are_the_clients_packages() -> None:
@@ -29,7 +29,7 @@ def test_lab_packages_a_students_rclpy_beside_the_node_does_not_replace_the_labs
         "print(rclpy.__file__, std_msgs.msg.__file__, server.__file__)\n"
         "if __name__ == '__main__':\n    pass\n"
     )
-    done = subprocess.run([sys.executable, "-P", "-m", "server.processes.runner", str(node)],
+    done = subprocess.run([sys.executable, "-P", "-m", "node_runtime.process.runner", str(node)],
                           cwd=tmp_path, capture_output=True, text=True, timeout=60, check=False)  # fmt: skip
     assert done.returncode == 0, done.stderr
     assert all(Path(f).is_relative_to(REPO) for f in done.stdout.split()), done.stdout

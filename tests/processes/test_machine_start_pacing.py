@@ -1,4 +1,4 @@
-"""A class's node starts take turns at the machine's slots (server/processes/start_pacing.py,
+"""A class's node starts take turns at the machine's slots (server/host/processes/start_pacing.py,
 ``MachineStartPacer``): the class server and the world workers it starts on its own machine keep
 the slots in one file they lock, so a start admitted in one process holds a slot the others see.
 Two pacers on one file stand for two processes on a manual clock; one test admits in a process of
@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from server.processes.start_pacing import BUSY_WAIT_S, MachineStartPacer, StartPacer
+from server.host.processes.start_pacing import BUSY_WAIT_S, MachineStartPacer, StartPacer
 
 
 class Clock:
@@ -51,7 +51,7 @@ def test_each_process_alone_would_have_let_both_start(tmp_path: Path) -> None:
 def test_a_start_admitted_in_another_process_holds_the_slot_here(tmp_path: Path) -> None:
     slots = tmp_path / "start-slots"
     code = (
-        "import sys; from pathlib import Path; from server.processes.start_pacing import MachineStartPacer;"
+        "import sys; from pathlib import Path; from server.host.processes.start_pacing import MachineStartPacer;"
         "print(MachineStartPacer(Path(sys.argv[1]), 1, hold_s=60.0).admit())"
     )
     other = subprocess.run(
@@ -82,7 +82,7 @@ def test_a_lock_held_elsewhere_defers_the_start_briefly_and_never_blocks(tmp_pat
      '{"boot": "%s", "held": [NaN], "last_turn": null}', '{"boot": "%s", "held": ["x"], "last_turn": null}'],
 )  # fmt: skip
 def test_a_slots_file_from_another_boot_or_spoilt_is_a_fresh_start(tmp_path: Path, text: str) -> None:
-    from server.processes.start_pacing import BOOT_ID
+    from server.host.processes.start_pacing import BOOT_ID
 
     slots = tmp_path / "start-slots"
     slots.write_text(text.replace("%s", BOOT_ID))
@@ -94,7 +94,7 @@ def test_a_slots_file_from_another_boot_or_spoilt_is_a_fresh_start(tmp_path: Pat
 
 def test_a_slots_file_from_this_boot_is_kept(tmp_path: Path) -> None:
     """The fresh start above is not the pacer ignoring its file: this boot's held slot defers."""
-    from server.processes.start_pacing import BOOT_ID
+    from server.host.processes.start_pacing import BOOT_ID
 
     slots = tmp_path / "start-slots"
     slots.write_text(json.dumps({"boot": BOOT_ID, "held": [150.0], "last_turn": None}))
@@ -107,7 +107,7 @@ def test_a_slots_file_that_cannot_be_opened_paces_this_process_alone(
     blocker = tmp_path / "a file"
     blocker.write_text("")
     pacer = MachineStartPacer(blocker / "start-slots", 1, hold_s=1.0, clock=Clock())  # under a file
-    with caplog.at_level(logging.WARNING, logger="server.processes.start_pacing"):
+    with caplog.at_level(logging.WARNING, logger="server.host.processes.start_pacing"):
         assert pacer.admit() is None
         assert pacer.admit() == pytest.approx(1.0)  # still paced, by this process
     assert [r.getMessage() for r in caplog.records if "paced by this process alone" in r.getMessage()]

@@ -1,4 +1,4 @@
-"""The sandbox's pid 1 (server/processes/node_init.py), run here as a plain process: it forwards
+"""The sandbox's pid 1 (node_runtime/process/node_init.py), run here as a plain process: it forwards
 Ctrl-C to the node it split off, ends with the node's exit code as a shell reports it, and ends
 at once when the server's end of the lifeline closes, whatever the node does. Each process is
 ended by its id."""
@@ -15,11 +15,11 @@ from collections.abc import Iterator
 import pytest
 from support.app import REPO
 
-from server.processes.lifeline import LIFELINE_ENV
+from node_runtime.process.lifeline import LIFELINE_ENV
 
 NODE = """
 import os, sys, time
-from server.processes import node_init
+from node_runtime.process import node_init
 node_init.split()
 if sys.argv[1] == 'stubborn':  # its handlers before it says it is there
     import signal

@@ -1,4 +1,4 @@
-"""A node process lowered below the sims' loop (server/processes/priority.py): its niceness, and its
+"""A node process lowered below the sims' loop (node_runtime/process/priority.py): its niceness, and its
 session's scheduling group only when it leads that session, so a node started in a terminal's
 session never lowers the terminal's other processes. Each case runs in a child process of its own."""
 
@@ -12,12 +12,12 @@ from pathlib import Path
 import pytest
 from support.app import REPO
 
-from server.processes.priority import group_nice, session_group_nice
+from node_runtime.process.priority import group_nice, session_group_nice
 
 GROUP = Path("/proc/self/autogroup")
 PROBE = (
     "import os\n"
-    "from server.processes.priority import run_below_sims, session_group_nice\n"
+    "from node_runtime.process.priority import run_below_sims, session_group_nice\n"
     "run_below_sims(5)\n"
     "print(os.getpriority(os.PRIO_PROCESS, 0), session_group_nice(os.getpid()))\n"
 )

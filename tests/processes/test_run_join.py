@@ -216,7 +216,7 @@ def test_a_node_process_without_its_router_says_so_within_seconds(workspace: Pat
         "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["tcp/127.0.0.1:{free_port()}"]',
     }  # fmt: skip
     node = subprocess.Popen(
-        [sys.executable, "-m", "server.processes.runner", str(workspace / "src/demo/late_joiner.py")],
+        [sys.executable, "-m", "node_runtime.process.runner", str(workspace / "src/demo/late_joiner.py")],
         env=env, text=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
     )  # fmt: skip
     try:

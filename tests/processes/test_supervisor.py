@@ -15,10 +15,10 @@ from collections.abc import Iterator
 import pytest
 from support.wait import wait_until
 
-from server.bus import Bus, Executor
-from server.processes.command import NodeCommand
-from server.processes.output_lines import MAX_LINE_CHARS, LineSplitter, read_lines
-from server.processes.supervisor import ProcessNode, Supervisor
+from node_runtime.bus import Bus, Executor
+from server.host.processes.command import NodeCommand
+from server.host.processes.output_lines import MAX_LINE_CHARS, LineSplitter, read_lines
+from server.host.processes.supervisor import ProcessNode, Supervisor
 
 MARK = f" … [cut: line longer than {MAX_LINE_CHARS} characters]"
 MIB = 1 << 20

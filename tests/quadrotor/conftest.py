@@ -12,10 +12,10 @@ from typing import Any
 import numpy as np
 import pytest
 
-from server.bus import ManualClock, Node
-from server.lab import Lab
-from server.msgs import Float64, Message, PoseStamped, TwistStamped, Vector3
-from server.settings import LabSettings, Settings
+from node_runtime.bus import ManualClock, Node
+from node_runtime.msgs import Float64, Message, PoseStamped, TwistStamped, Vector3
+from server.host.settings import LabSettings, Settings
+from server.world.lab import Lab
 
 DATA = Path(__file__).resolve().parent / "data"
 FLY_NO_NOISE = str(DATA / "fly_no_noise.launch")

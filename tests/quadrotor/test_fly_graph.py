@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from server.lab import Lab
-from server.msgs import PoseStamped
+from node_runtime.msgs import PoseStamped
+from server.world.lab import Lab
 
 from .conftest import make_lab, node
 

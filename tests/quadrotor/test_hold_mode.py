@@ -6,10 +6,10 @@ import math
 
 import pytest
 
-from server.bus import ManualClock, Parameter
-from server.lab import Lab
-from server.msgs import Key
-from server.settings import LabSettings, Settings
+from node_runtime.bus import ManualClock, Parameter
+from node_runtime.msgs import Key
+from server.host.settings import LabSettings, Settings
+from server.world.lab import Lab
 
 
 def fly(mode: str) -> Lab:

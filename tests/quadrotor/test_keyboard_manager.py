@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from server.lab import Lab
-from server.msgs import Key, PoseStamped, Vector3
+from node_runtime.msgs import Key, PoseStamped, Vector3
+from server.world.lab import Lab
 
 from .conftest import Probe, make_lab, node, start
 

@@ -13,10 +13,10 @@ from collections.abc import Iterator
 import numpy as np
 import pytest
 
-from server.bus import ManualClock
-from server.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
-from server.lab import Lab
+from node_runtime.bus import ManualClock
 from server.packages.flightcontroller.angle_controller import RATE_HZ
+from server.peripherals.devices.shared_physics import SharedQuadrotorPhysics, SharedSimpleSim
+from server.world.lab import Lab
 
 from .conftest import Probe, make_lab, node, start
 

@@ -9,9 +9,9 @@ from collections.abc import Iterator
 import numpy as np
 import pytest
 
-from server.bus import Node
-from server.lab import Lab
-from server.msgs import Vector3
+from node_runtime.bus import Node
+from node_runtime.msgs import Vector3
+from server.world.lab import Lab
 
 from .conftest import FLY_NO_NOISE, Probe, make_lab, node, start
 

@@ -13,7 +13,7 @@ from collections.abc import Iterator
 import numpy as np
 import pytest
 
-from server.msgs import PoseStamped
+from node_runtime.msgs import PoseStamped
 
 from .conftest import Probe, make_lab, node, start
 

@@ -79,7 +79,7 @@ def test_view_node_pose_is_the_latest_gps(fly_flight: Flight) -> None:
 def test_view_node_sends_the_3d_view_only_while_a_page_shows_it() -> None:
     """With no page connected the view node keeps its state (frames, trail, plot samples) but sends
     nothing to viser; the next ticks after a page connects send the latest frame, plots and text."""
-    from server.viewer.display import Display
+    from server.peripherals.viewer.display import Display
 
     lab = make_lab()
     display = Display()

@@ -12,7 +12,7 @@ from sensor_msgs.msg import PointCloud2, PointField
 from sensor_msgs_py import point_cloud2
 from std_msgs.msg import Header
 
-from server.transport.cdr import decode, encode
+from node_runtime.transport.cdr import decode, encode
 
 NAN = float("nan")
 

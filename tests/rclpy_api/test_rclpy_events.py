@@ -24,9 +24,9 @@ from rclpy.qos import QoSProfile, ReliabilityPolicy
 from std_msgs.msg import String
 from support.app import free_port
 
-from server.bus import ManualClock
-from server.transport.config import ZenohSettings
-from server.transport.session import open_session
+from node_runtime.bus import ManualClock
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.session import open_session
 
 WAIT_S = 5.0
 

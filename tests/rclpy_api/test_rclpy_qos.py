@@ -18,8 +18,8 @@ from rclpy.qos import (
     qos_profile_system_default,
 )
 
-from server.transport.keys import qos_text
-from server.transport.publishing import wire_qos
+from node_runtime.transport.keys import qos_text
+from node_runtime.transport.publishing import wire_qos
 
 
 def test_a_profile_takes_rclpy_keywords_and_compares_by_value() -> None:

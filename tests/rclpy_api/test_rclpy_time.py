@@ -8,7 +8,7 @@ from rclpy.clock import Clock, ROSClock
 from rclpy.duration import Duration
 from rclpy.time import ClockType, Time
 
-from server.bus import ManualClock
+from node_runtime.bus import ManualClock
 
 
 def test_time_plus_and_minus_a_duration_is_a_time_and_time_minus_time_a_duration() -> None:

@@ -17,7 +17,7 @@ from websockets.exceptions import ConnectionClosed
 from api.errors import CloseCode
 from api.rosbridge import MAX_FRAME_BYTES
 from server.app import create_app
-from server.settings import LabSettings, Listening, Settings
+from server.host.settings import LabSettings, Listening, Settings
 
 from .conftest import RosbridgeServer
 

@@ -10,9 +10,9 @@ from typing import Any
 
 import pytest
 
-from server.bridges.rosbridge import DEFAULT_QUEUE, MAX_TOPICS, RosbridgeSession
-from server.bus import Bus, Executor, Node
-from server.msgs import Bool, Int64, Vector3, get_service_type
+from node_runtime.bus import Bus, Executor, Node
+from node_runtime.msgs import Bool, Int64, Vector3, get_service_type
+from server.services.bridges.rosbridge import DEFAULT_QUEUE, MAX_TOPICS, RosbridgeSession
 
 
 @pytest.fixture

@@ -9,11 +9,11 @@ import sys
 import time
 from pathlib import Path
 
-from server.bus import Bus, SystemClock
-from server.processes.command import node_command
-from server.processes.confinement import Confinement
-from server.processes.sandbox import INSIDE_ROUTER, Sandbox
-from server.processes.supervisor import Supervisor
+from node_runtime.bus import Bus, SystemClock
+from node_runtime.process.confinement import Confinement
+from server.host.processes.command import node_command
+from server.host.processes.sandbox import INSIDE_ROUTER, Sandbox
+from server.host.processes.supervisor import Supervisor
 
 
 def main() -> None:

@@ -1,6 +1,6 @@
 """A student's node that prints one endless line, with no newline, on a live class server that
 sandboxes students' nodes: the server reads a node's output a chunk at a time and keeps a line cut
-at MAX_LINE_CHARS (server/processes/output_lines.py), so while the line pours in its memory stays
+at MAX_LINE_CHARS (server/host/processes/output_lines.py), so while the line pours in its memory stays
 where it was, another student's world on the same server keeps its dynamics rate, and the page
 sees the cut line (marked so) as soon as its limit is reached, then the node's next line. The
 control: an ordinary node's lines print whole.
@@ -26,7 +26,7 @@ from support.http import HTTP
 from support.sandbox import require_sandbox
 from support.wait import wait_until
 
-from server.processes.output_lines import MAX_LINE_CHARS
+from server.host.processes.output_lines import MAX_LINE_CHARS
 
 pytestmark = pytest.mark.timing  # a world's rate across real seconds: measured with nothing else running
 

@@ -21,8 +21,8 @@ from support.http import HTTP
 from support.sandbox import require_sandbox
 from support.wait import wait_until
 
-from server.launch.commands import NOT_HERE
-from server.settings import SandboxSettings
+from server.host.settings import SandboxSettings
+from server.services.launch.commands import NOT_HERE
 
 
 @pytest.fixture(autouse=True, scope="module")
@@ -240,7 +240,7 @@ def node_names(world: World) -> set[str]:
 
 def test_sandbox_node_runs_below_the_worlds_with_its_sessions_group(klass: Class) -> None:
     """bubblewrap gives the node a session of its own, where a niceness alone would count only
-    against the session's own processes (server/processes/priority.py): its session's scheduling
+    against the session's own processes (node_runtime/process/priority.py): its session's scheduling
     group is lowered with it. An unsandboxed node runs as it was started."""
     nice = SandboxSettings().nice
     group = str(nice) if Path("/proc/self/autogroup").exists() else "none"
@@ -308,13 +308,13 @@ SHADOW = "print('SHADOW RAN as', __import__('os').getuid(), flush=True)\n"
 
 
 def test_sandbox_a_shadow_runner_in_the_workspace_never_runs(klass: Class) -> None:
-    """``server/processes/runner.py`` (and ``rclpy``, ``std_msgs``) saved at the workspace's root
+    """``node_runtime/process/runner.py`` (and ``rclpy``, ``std_msgs``) saved at the workspace's root
     and beside the node: the lab's runner and packages run, never these, on both servers."""
-    shadows = ["server/__init__.py", "server/processes/__init__.py", "server/processes/runner.py",
+    shadows = ["server/__init__.py", "server/host/processes/__init__.py", "node_runtime/process/runner.py",
                "rclpy/__init__.py", "std_msgs/__init__.py", "src/probe/rclpy/__init__.py",
                "src/probe/std_msgs/__init__.py", "src/probe/server/__init__.py"]  # fmt: skip
     node = (
-        "import rclpy\nimport std_msgs.msg\nimport server.processes.runner as runner\n"
+        "import rclpy\nimport std_msgs.msg\nimport node_runtime.process.runner as runner\n"
         "print('FILES', rclpy.__file__, std_msgs.msg.__file__, runner.__file__, flush=True)\n"
         "if __name__ == '__main__':\n    pass\n"
     )

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from server.processes.command import RUNNER_MODULE, node_command
-from server.processes.confinement import LIMITS_ENV, Confinement
-from server.processes.sandbox import INSIDE_ROUTER, PROJECT, SECCOMP_FD, SETPRIV, SOCKET_DIR, Sandbox
-from server.transport.acl import Credentials
+from node_runtime.process.confinement import LIMITS_ENV, Confinement
+from node_runtime.transport.acl import Credentials
+from server.host.processes.command import RUNNER_MODULE, node_command
+from server.host.processes.sandbox import INSIDE_ROUTER, PROJECT, SECCOMP_FD, SETPRIV, SOCKET_DIR, Sandbox
 
 
 def binds(argv: list[str], kind: str) -> dict[str, str]:
@@ -22,8 +22,8 @@ def binds(argv: list[str], kind: str) -> dict[str, str]:
 @pytest.fixture
 def wrapped(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> tuple[list[str], dict[str, str], Path]:
     monkeypatch.setenv("ROS2LAB_SERVER_SECRET", "not for students")
-    monkeypatch.setattr("server.processes.sandbox.shutil.which", lambda _name: "/usr/bin/bwrap")
-    monkeypatch.setattr("server.processes.sandbox.os.geteuid", lambda: 1000)  # as a non-root server
+    monkeypatch.setattr("server.host.processes.sandbox.shutil.which", lambda _name: "/usr/bin/bwrap")
+    monkeypatch.setattr("server.host.processes.sandbox.os.geteuid", lambda: 1000)  # as a non-root server
     workspace = tmp_path / "workspace"
     (workspace / "src" / "mine").mkdir(parents=True)
     node = workspace / "src" / "mine" / "node.py"
@@ -56,8 +56,8 @@ def test_sandbox_command_binds_the_workspace_and_the_code_read_only(wrapped: tup
 def test_sandbox_command_as_root_drops_every_capability_and_becomes_the_worlds_uid(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr("server.processes.sandbox.shutil.which", lambda _name: "/usr/bin/bwrap")
-    monkeypatch.setattr("server.processes.sandbox.os.geteuid", lambda: 0)
+    monkeypatch.setattr("server.host.processes.sandbox.shutil.which", lambda _name: "/usr/bin/bwrap")
+    monkeypatch.setattr("server.host.processes.sandbox.os.geteuid", lambda: 0)
     (tmp_path / "ws").mkdir()
     command = node_command(tmp_path / "ws" / "n.py", [], router=INSIDE_ROUTER, env={}, domain_id=4,
                            workspace=tmp_path / "ws")  # fmt: skip

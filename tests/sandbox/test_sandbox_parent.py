@@ -1,6 +1,6 @@
 """A sandboxed node never outlives its server: it is pid 1 of its own pid namespace under bwrap,
 where the kernel's parent-death signal does not reach it and the server's pid cannot be watched,
-so it holds a lifeline (server/processes/lifeline.py) and ends when the server has ended, however
+so it holds a lifeline (node_runtime/process/lifeline.py) and ends when the server has ended, however
 it ended; and the server's Stop ends it even when it ignores Ctrl-C. The server here is a
 stand-in process that starts the node through the real Supervisor (tests/sandbox/
 standin_server.py). Every process is ended by its id."""

@@ -17,7 +17,7 @@ from fastapi import FastAPI
 from fastapi.testclient import TestClient
 
 from server.app import create_app
-from server.settings import Settings
+from server.host.settings import Settings
 
 _idle: dict[str, list[FastAPI]] = {}  # by repr(settings): Settings holds a dict, so is unhashable
 

@@ -39,8 +39,8 @@ SERVER_MAIN = REPO / "server" / "__main__.py"
 # What a server has imported by the time it answers /api/health (its entry point, the app, uvicorn's
 # loop and protocols); a module missing here is imported by the child itself, as it would be anyway.
 PRELOAD = (
-    "server.__main__", "server.serve", "server.app", "server.lab", "server.classroom",
-    "server.bridges", "server.processes", "uvicorn", "uvicorn.loops.auto", "uvicorn.protocols.http.auto",
+    "server.__main__", "server.serve", "server.app", "server.world.lab", "server.classroom",
+    "server.services.bridges", "server.host.processes", "uvicorn", "uvicorn.loops.auto", "uvicorn.protocols.http.auto",
     "uvicorn.protocols.websockets.auto", "uvicorn.lifespan.on", "viser", "zenoh", "numpy", "rich",
 )  # fmt: skip
 START_S = 60.0  # the starter's imports: about 1 s on a quiet 2-core machine

@@ -1,8 +1,10 @@
 """The layer check: every import of every module, against the order docs/architecture.md writes down.
 
-A module belongs to the unit with the longest dotted prefix of its name (``server.bus``,
-``api``, ``server.lab``). An import stays inside its unit, or goes to a unit of a lower layer;
-anything else is a violation: up a layer, or sideways to another unit of the same layer. Every
+A module belongs to the unit with the longest dotted prefix of its name (``node_runtime.bus``,
+``api``, ``server.world``). An import stays inside its layer or goes to a lower one; one that goes up a
+layer is a violation. Inside a layer, the parts (each unit's packages and modules one level down:
+``server.world.lab``, ``server.world.checkpoints``) may import one another, but never in a circle:
+an import cycle between two parts of a layer is a violation too. Every
 import counts, wherever it is written (at the top, inside a function, under ``TYPE_CHECKING``,
 relative or absolute), and so does what Python runs for it: ``import a.b.c`` runs ``a`` and
 ``a.b`` too, and a module's own packages run before it.
@@ -111,6 +113,8 @@ def module_imports(modules: dict[str, tuple[Path, bool]]) -> tuple[list[Import],
     names: ``numpy``, ``fastapi``)."""
     edges: list[Import] = []
     external: dict[str, set[str]] = {}
+    tops = {m.split(".")[0] for m in modules}
+    client_tops = {m.split(".")[1] for m in modules if m.startswith("client.") and m.count(".") >= 1}
     for name, (path, is_package) in modules.items():
         package = name if is_package else name.rpartition(".")[0]
         external[name] = set()
@@ -119,6 +123,8 @@ def module_imports(modules: dict[str, tuple[Path, bool]]) -> tuple[list[Import],
                 edges.append(Import(name, parent, path, 0))
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
             for module, names in _imported(node, package):
+                if module.split(".")[0] not in tops and f"client.{module}".split(".")[1] in client_tops:
+                    module = f"client.{module}"  # client/ is a path root: client/rclpy is rclpy
                 targets = [m for m in _with_parents(module) if m in modules]
                 targets += [f"{module}.{n}" for n in names if f"{module}.{n}" in modules]
                 if not targets and module.split(".")[0] not in {m.split(".")[0] for m in modules}:
@@ -140,7 +146,7 @@ def read_tree(
 
 def unit_of(module: str, units: Iterable[str]) -> str | None:
     """The unit ``module`` belongs to: the longest unit that is it or a package above it. A unit
-    with units inside it (``server``, beside ``server.bus``) holds only its own ``__init__``, so a
+    with units inside it (``server``, beside ``node_runtime.bus``) holds only its own ``__init__``, so a
     new module there belongs to no unit until the layers say where it goes."""
     units = list(units)
     owners = [u for u in units if module == u or module.startswith(u + ".")]
@@ -152,25 +158,84 @@ def unit_of(module: str, units: Iterable[str]) -> str | None:
     return owner
 
 
+def part_of(module: str, unit: str, layer: Layer) -> str:
+    """The part of its layer that ``module`` (of ``unit``) is in: its unit, when the layer lists
+    several; in a layer of one folder, that folder's package or module one level down
+    (``server.world.checkpoints`` for ``server.world.checkpoints.watcher``)."""
+    if module == unit or len(layer.units) > 1:
+        return unit
+    return unit + "." + module[len(unit) + 1 :].split(".")[0]
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected parts of ``graph`` with more than one node (Tarjan's algorithm)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found: list[list[str]] = []
+
+    def visit(node: str) -> None:
+        index[node] = low[node] = len(index)
+        stack.append(node)
+        on_stack.add(node)
+        for nxt in sorted(graph.get(node, ())):
+            if nxt not in index:
+                visit(nxt)
+                low[node] = min(low[node], low[nxt])
+            elif nxt in on_stack:
+                low[node] = min(low[node], index[nxt])
+        if low[node] == index[node]:
+            component = []
+            while True:
+                top = stack.pop()
+                on_stack.discard(top)
+                component.append(top)
+                if top == node:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for node in sorted(graph):
+        if node not in index:
+            visit(node)
+    return found
+
+
 def check(root: Path, layers: list[Layer], packages: Iterable[str]) -> list[Violation]:
-    """Every import of ``packages`` (under ``root``) against ``layers`` (highest first), and every
-    module no unit holds."""
+    """Every import of ``packages`` (under ``root``) against ``layers`` (highest first): every module
+    no unit holds, every import up a layer, and every import cycle between the parts of a layer."""
     rank = {unit: (i, layer.name) for i, layer in enumerate(layers) for unit in layer.units}
+    layer_of = {unit: layer for layer in layers for unit in layer.units}
     _, edges, _ = read_tree(root, tuple(packages))
     violations = []
+    inside: dict[str, dict[str, set[str]]] = {}  # layer → part → parts it imports
+    first_edge: dict[tuple[str, str], Import] = {}
     for edge in edges:
         source, target = unit_of(edge.source, rank), unit_of(edge.target, rank)
         if source is None or target is None:
             missing = edge.source if source is None else edge.target
             violations.append(Violation(edge, "?", "?", f"{missing} is in no layer"))
             continue
-        if source == target:
-            continue
         (s_rank, s_name), (t_rank, t_name) = rank[source], rank[target]
         if t_rank < s_rank:
             violations.append(Violation(edge, s_name, t_name, "a lower layer imports a higher one"))
         elif t_rank == s_rank:
-            violations.append(Violation(edge, s_name, t_name, f"{source} and {target} are peers"))
+            a, b = (
+                part_of(edge.source, source, layer_of[source]),
+                part_of(edge.target, target, layer_of[target]),
+            )
+            # a one-folder layer's own __init__ is where its parts meet (it may gather them), not a part
+            if a != b and (len(layer_of[source].units) > 1 or (a != source and b != target)):
+                inside.setdefault(s_name, {}).setdefault(a, set()).add(b)
+                first_edge.setdefault((a, b), edge)
+    for name, graph in inside.items():
+        for cycle in _cycles(graph):
+            members = set(cycle)
+            edge = next(e for (a, b), e in sorted(first_edge.items(), key=lambda item: item[0])
+                        if a in members and b in members)  # fmt: skip
+            why = "an import cycle between parts of one layer: " + " ↔ ".join(cycle)
+            violations.append(Violation(edge, name, name, why))
     return violations
 
 

@@ -6,7 +6,7 @@ import os
 
 import pytest
 
-from server.processes.sandbox import probe
+from server.host.processes.sandbox import probe
 
 
 def require_sandbox() -> None:

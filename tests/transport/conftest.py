@@ -14,10 +14,10 @@ from typing import Any
 import pytest
 from support.app import free_port
 
-from server.bus import Bus, Executor
-from server.transport.bridge import ZenohBridge
-from server.transport.config import ZenohSettings
-from server.transport.session import open_session
+from node_runtime.bus import Bus, Executor
+from node_runtime.transport.bridge import ZenohBridge
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.session import open_session
 
 WAIT_S = 5.0
 

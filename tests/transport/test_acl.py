@@ -9,7 +9,7 @@ import stat
 
 import pytest
 
-from server.transport.acl import (
+from node_runtime.transport.acl import (
     CLASS_USER,
     ClassAuth,
     RouterAccess,

@@ -5,11 +5,11 @@ from __future__ import annotations
 from types import SimpleNamespace
 from typing import Any
 
-from server.bus import ManualClock, Node
-from server.msgs import Int64, String, get_service_type
-from server.msgs.wire import dds_type_name, serialize, type_hash
-from server.transport.attachment import Attachment
-from server.transport.keys import RELIABLE, TRANSIENT_LOCAL, EntityKind, data_key
+from node_runtime.bus import ManualClock, Node
+from node_runtime.msgs import Int64, String, get_service_type
+from node_runtime.msgs.wire import dds_type_name, serialize, type_hash
+from node_runtime.transport.attachment import Attachment
+from node_runtime.transport.keys import RELIABLE, TRANSIENT_LOCAL, EntityKind, data_key
 
 from .conftest import Pair, joined
 

@@ -1,4 +1,4 @@
-"""server/transport/cdr.py writes the bytes rosbags writes (an independent CDR encoder, which the
+"""node_runtime/transport/cdr.py writes the bytes rosbags writes (an independent CDR encoder, which the
 app's bags and Foxglove use) for every type the lab knows, reads them back to an equal message,
 and refuses bytes that are not a message with WireError."""
 
@@ -9,11 +9,11 @@ from typing import Any
 
 import pytest
 
-from server.msgs import Message, get_service_type, get_type, service_names, type_names
-from server.msgs._base import Field
-from server.msgs.idl import FLOAT_TYPES, INT_RANGES
-from server.msgs.wire import WireError, serialize
-from server.transport.cdr import decode, encode
+from node_runtime.msgs import Message, get_service_type, get_type, service_names, type_names
+from node_runtime.msgs._base import Field
+from node_runtime.msgs.idl import FLOAT_TYPES, INT_RANGES
+from node_runtime.msgs.wire import WireError, serialize
+from node_runtime.transport.cdr import decode, encode
 
 ALL = [get_type(n) for n in type_names()] + [
     part for s in service_names() for part in (get_service_type(s).Request, get_service_type(s).Response)

@@ -13,12 +13,12 @@ import zenoh
 from support.app import free_port
 from support.wait import wait_until
 
-from server.transport import domain_crossing, domain_routes
-from server.transport.attachment import Attachment
-from server.transport.config import ZenohSettings
-from server.transport.domain_bridge import DomainBridge
-from server.transport.keys import EntityKind, EntityToken, data_key, keep_last
-from server.transport.session import open_session
+from node_runtime.transport import domain_crossing, domain_routes
+from node_runtime.transport.attachment import Attachment
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.domain_bridge import DomainBridge
+from node_runtime.transport.keys import EntityKind, EntityToken, data_key, keep_last
+from node_runtime.transport.session import open_session
 
 WAIT_S = 5.0
 TYPE, HASH = "std_msgs::msg::dds_::Int64_", "RIHS01_" + "ab" * 32

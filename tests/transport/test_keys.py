@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from server.msgs.wire import dds_type_name, type_hash
-from server.transport.attachment import ATTACHMENT_BYTES, Attachment
-from server.transport.keys import (
+from node_runtime.msgs.wire import dds_type_name, type_hash
+from node_runtime.transport.attachment import ATTACHMENT_BYTES, Attachment
+from node_runtime.transport.keys import (
     EntityKind,
     EntityToken,
     QoS,

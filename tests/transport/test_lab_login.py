@@ -11,11 +11,11 @@ import zenoh
 from fastapi.testclient import TestClient
 from support.app import free_port
 
+from node_runtime.transport.acl import Credentials
+from node_runtime.transport.config import ZenohSettings
+from node_runtime.transport.session import build_config
 from server.app import create_app
-from server.settings import LabSettings, Listening, Settings
-from server.transport.acl import Credentials
-from server.transport.config import ZenohSettings
-from server.transport.session import build_config
+from server.host.settings import LabSettings, Listening, Settings
 
 TOKEN = "s3cret-token"
 BEARER = {"Authorization": f"Bearer {TOKEN}"}

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import pytest
 
+from node_runtime.transport.config import ZenohSettings, is_loopback
 from server.__main__ import build_parser, zenoh_settings
-from server.transport.config import ZenohSettings, is_loopback
 
 
 def settings_for(*argv: str) -> ZenohSettings | None:

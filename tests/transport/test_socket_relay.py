@@ -15,8 +15,8 @@ import threading
 
 import pytest
 
-from server.transport import socket_relay
-from server.transport.socket_relay import SocketRelay, tcp_target
+from node_runtime.transport import socket_relay
+from node_runtime.transport.socket_relay import SocketRelay, tcp_target
 
 WAIT_S = 10.0
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import yaml
 
-from server.msgs import Key, PoseStamped, Vector3
-from server.viewer.publisher_panel import flow_yaml, leaf_fields, nest
+from node_runtime.msgs import Key, PoseStamped, Vector3
+from server.peripherals.viewer.publisher_panel import flow_yaml, leaf_fields, nest
 
 
 def test_leaf_fields_of_vector3_are_x_y_z() -> None:

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from server.packages.visualizer.gui_controller import DroneScene
-from server.viewer.display import Display
-from server.viewer.views import CameraView, Follow, ViewRegistry
+from server.peripherals.viewer.display import Display
+from server.peripherals.viewer.views import CameraView, Follow, ViewRegistry
 
 ROCKET = CameraView("Rocket", (71.0, -11.0, 9.0), (60.0, 0.0, 7.5))
 DRONE = CameraView("Quadrotor", (0.0, -10.0, 6.0), (0.0, 0.0, 4.0), Follow("/lab/drone", (0.0, -5.0, 2.2)))

@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from server.packages import ExecutableNotFoundError, PackageIndex, WorkspaceError
-from server.packages.entry_points import EntryPoint
-from server.packages.workspace import find_packages
-from server.processes.command import node_command
+from node_runtime.ament.entry_points import EntryPoint
+from node_runtime.ament.index import ExecutableNotFoundError, PackageIndex, WorkspaceError
+from node_runtime.ament.workspace import find_packages
+from server.host.processes.command import node_command
 
 from .tutorial_packages import examples_clone, manifest, python_package, write
 
@@ -143,4 +143,4 @@ def test_a_console_script_runs_through_the_runners_entry_point_mode(tmp_path: Pa
     root = tmp_path / "src/examples/rclpy/executors"
     assert argv[-8:] == ["--entry-point", str(root), "examples_rclpy_executors.composed:main", "composed",
                          f"{root / 'setup.py'}:11", "--ros-args", "-r", "__node:=n"]  # fmt: skip
-    assert argv[argv.index("-m") + 1] == "server.processes.runner"
+    assert argv[argv.index("-m") + 1] == "node_runtime.process.runner"

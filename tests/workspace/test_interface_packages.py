@@ -15,10 +15,10 @@ import pytest
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from support.app import REPO
 
-from server.msgs import MessageError, UnknownTypeError, get_action_type, get_service_type, get_type
-from server.msgs.schema import interface_text
-from server.msgs.wire import deserialize, serialize, type_hash
-from server.packages.interfaces import workspace_interfaces
+from node_runtime.ament.interfaces import workspace_interfaces
+from node_runtime.msgs import MessageError, UnknownTypeError, get_action_type, get_service_type, get_type
+from node_runtime.msgs.schema import interface_text
+from node_runtime.msgs.wire import deserialize, serialize, type_hash
 
 from .interface_packages import (
     ACTION_CMAKE,
@@ -221,7 +221,7 @@ def test_changed_definition_and_new_package_are_read_on_next_lookup(ws: Path) ->
 
 
 def test_copy_of_a_labs_own_type_is_the_labs_and_a_different_one_is_refused(tmp_path: Path) -> None:
-    key = (REPO / "server/msgs/interfaces/keyboard_msgs/msg/Key.msg").read_text()
+    key = (REPO / "node_runtime/msgs/interfaces/keyboard_msgs/msg/Key.msg").read_text()
     group = "<member_of_group>rosidl_interface_packages</member_of_group>\n  <export>"
     write(tmp_path / "src", {
         "keyboard_msgs/package.xml": manifest("keyboard_msgs", "ament_cmake").replace("<export>", group),
@@ -262,7 +262,7 @@ def run_node_file(ws: Path, source: str) -> subprocess.CompletedProcess[str]:
     node = ws / "node.py"
     node.write_text(textwrap.dedent(source))
     env = {**os.environ, "ROS2LAB_WORKSPACE": str(ws)}
-    return subprocess.run([sys.executable, "-m", "server.processes.runner", str(node)], env=env, cwd=REPO,
+    return subprocess.run([sys.executable, "-m", "node_runtime.process.runner", str(node)], env=env, cwd=REPO,
                           capture_output=True, text=True, timeout=60, check=False)  # fmt: skip
 
 

@@ -12,10 +12,10 @@ from pathlib import Path
 
 import pytest
 
-from server.bus import ManualClock
-from server.lab import Lab
-from server.packages import ExecutableNotFoundError, NotInProcessError, PackageIndex
-from server.settings import LabSettings, Settings
+from node_runtime.ament.index import ExecutableNotFoundError, NotInProcessError, PackageIndex
+from node_runtime.bus import ManualClock
+from server.host.settings import LabSettings, Settings
+from server.world.lab import Lab
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "workspace"
 

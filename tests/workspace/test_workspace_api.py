@@ -10,7 +10,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from server.app import create_app
-from server.settings import LabSettings, Listening, Settings
+from server.host.settings import LabSettings, Listening, Settings
 
 from .tutorial_packages import manifest, write
 

@@ -13,7 +13,7 @@ from typing import Any
 from fastapi.testclient import TestClient
 
 from server.app import create_app
-from server.settings import LabLimits, LabSettings, Listening, Settings, WorkspaceLimits
+from server.host.settings import LabLimits, LabSettings, Listening, Settings, WorkspaceLimits
 
 FILES = "/api/workspace/files"
 

@@ -19,11 +19,11 @@ from support.wait import wait_until
 from support.ws import receive_within
 
 from api.errors import CloseCode
+from node_runtime.bus import ManualClock
+from node_runtime.transport.config import ZenohSettings
 from server.app import create_app
-from server.bus import ManualClock
-from server.processes.start_pacing import MachineStartPacer, machine_slots_file
-from server.settings import Settings
-from server.transport.config import ZenohSettings
+from server.host.processes.start_pacing import MachineStartPacer, machine_slots_file
+from server.host.settings import Settings
 
 from .helpers import FILES, names_in
 
@@ -219,7 +219,7 @@ def test_class_a_students_run_and_its_output_are_theirs_alone(tmp_path: Path) ->
 
 
 def test_class_students_runs_at_once_start_at_their_turns_and_the_page_is_told(tmp_path: Path) -> None:
-    """The class's node starts share one pacer (server/processes/start_pacing.py), set here to one
+    """The class's node starts share one pacer (server/host/processes/start_pacing.py), set here to one
     start a second as on a 2-core server: of two students' Runs at once, the second, in another
     world, waits with no pid (its output says so) and then starts and prints; meanwhile a
     ``ros2lab run`` asking to start is told to come back (429), as the pacer is the same."""

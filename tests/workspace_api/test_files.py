@@ -14,7 +14,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from server.packages.templates import PackageSpec, package_files
-from server.workspace.templates import TEMPLATES
+from server.services.workspace.templates import TEMPLATES
 
 from .helpers import FILES, lab_client, lab_settings, names_in, save, tree, upload, zip_of
 

@@ -21,8 +21,8 @@ import pytest
 from classroom.test_classroom_api import auth, class_settings, join
 from fastapi.testclient import TestClient
 
+from node_runtime.bus import ManualClock
 from server.app import create_app
-from server.bus import ManualClock
 
 from .helpers import FILES, lab_client, lab_settings, names_in, save, tree, upload, zip_of
 

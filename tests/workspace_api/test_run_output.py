@@ -19,7 +19,7 @@ from support.wait import wait_until
 from support.ws import receive_within
 
 from api.errors import CloseCode
-from server.transport.config import ZenohSettings
+from node_runtime.transport.config import ZenohSettings
 
 from .helpers import lab_client, lab_settings, save
 

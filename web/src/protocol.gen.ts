@@ -151,7 +151,7 @@ export interface KeyChannelError {
   error: string;
 }
 
-/** A key going down or up, as the page sends it; the flags are the modifiers held then (server/devices/keymap.py's names: sided, or unsided when the side is unknown). */
+/** A key going down or up, as the page sends it; the flags are the modifiers held then (server/peripherals/devices/keymap.py's names: sided, or unsided when the side is unknown). */
 export interface KeyFrame {
   type: "keydown" | "keyup";
   key: string;

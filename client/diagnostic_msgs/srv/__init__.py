@@ -1,2 +1,2 @@
-from server.msgs.generated.diagnostic_msgs import *  # noqa: F403
-from server.msgs.generated.diagnostic_msgs import __all__ as __all__
+from node_runtime.msgs.generated.diagnostic_msgs import *  # noqa: F403
+from node_runtime.msgs.generated.diagnostic_msgs import __all__ as __all__

@@ -1,2 +1,2 @@
-from server.msgs.generated.example_interfaces import *  # noqa: F403
-from server.msgs.generated.example_interfaces import __all__ as __all__
+from node_runtime.msgs.generated.example_interfaces import *  # noqa: F403
+from node_runtime.msgs.generated.example_interfaces import __all__ as __all__

@@ -6,13 +6,13 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any, Optional
 
-from ..action import Action
-from ..launch_description_sources.launch_description_source import LaunchDescriptionSource
-from ..utilities import perform_typed
+from launch.action import Action
+from launch.launch_description_sources.launch_description_source import LaunchDescriptionSource
+from launch.utilities import perform_typed
 
 if TYPE_CHECKING:
-    from ..launch_context import LaunchContext
-    from ..launch_description_entity import LaunchDescriptionEntity
+    from launch.launch_context import LaunchContext
+    from launch.launch_description_entity import LaunchDescriptionEntity
 
 
 class IncludeLaunchDescription(Action):
@@ -25,7 +25,7 @@ class IncludeLaunchDescription(Action):
     ) -> None:
         super().__init__(**kwargs)
         if not isinstance(launch_description_source, LaunchDescriptionSource):
-            from ..launch_description_sources import AnyLaunchDescriptionSource
+            from launch.launch_description_sources import AnyLaunchDescriptionSource
 
             launch_description_source = AnyLaunchDescriptionSource(launch_description_source)
         self.__source: LaunchDescriptionSource = launch_description_source

@@ -4,12 +4,12 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, Optional
 
-from ..action import Action
-from ..utilities import perform_typed
+from launch.action import Action
+from launch.utilities import perform_typed
 
 if TYPE_CHECKING:
-    from ..launch_context import LaunchContext
-    from ..launch_description_entity import LaunchDescriptionEntity
+    from launch.launch_context import LaunchContext
+    from launch.launch_description_entity import LaunchDescriptionEntity
 
 
 class SetLaunchConfiguration(Action):

@@ -6,12 +6,12 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING, Any, Optional
 
-from ..action import Action
-from ..utilities import normalize_to_list_of_substitutions, perform_typed
+from launch.action import Action
+from launch.utilities import normalize_to_list_of_substitutions, perform_typed
 
 if TYPE_CHECKING:
-    from ..launch_context import LaunchContext
-    from ..launch_description_entity import LaunchDescriptionEntity
+    from launch.launch_context import LaunchContext
+    from launch.launch_description_entity import LaunchDescriptionEntity
 
 
 def _where(action: Action) -> str:

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from ..condition import Condition
-from ..utilities import perform_typed
+from launch.condition import Condition
+from launch.utilities import perform_typed
 
 if TYPE_CHECKING:
-    from ..launch_context import LaunchContext
+    from launch.launch_context import LaunchContext
 
 
 class InvalidConditionExpressionError(ValueError):

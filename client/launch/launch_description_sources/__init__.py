@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .launch_description_source import LaunchDescriptionSource
-from .python_launch_file_utilities import (
+from launch.launch_description_sources.launch_description_source import LaunchDescriptionSource
+from launch.launch_description_sources.python_launch_file_utilities import (
     InvalidPythonLaunchFileError,
     get_launch_description_from_python_launch_file,
     load_python_launch_file_as_module,
@@ -19,7 +19,7 @@ class PythonLaunchDescriptionSource(LaunchDescriptionSource):
         super().__init__(launch_file_path, "interpreted python launch file")
 
     def include(self, context: Any, passed: dict[str, str], action: Any) -> list[Any]:
-        from .launch_description_source import include_python
+        from launch.launch_description_sources.launch_description_source import include_python
 
         return include_python(context, self.resolve(context))
 
@@ -31,7 +31,7 @@ class FrontendLaunchDescriptionSource(LaunchDescriptionSource):
         super().__init__(launch_file_path, "interpreted frontend launch file")
 
     def include(self, context: Any, passed: dict[str, str], action: Any) -> list[Any]:
-        from .launch_description_source import include_frontend
+        from launch.launch_description_sources.launch_description_source import include_frontend
 
         return include_frontend(context, self.resolve(context), passed, action)
 

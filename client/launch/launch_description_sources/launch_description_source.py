@@ -5,12 +5,12 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from ..action import Action
-from ..utilities import perform_typed
+from launch.action import Action
+from launch.utilities import perform_typed
 
 if TYPE_CHECKING:
-    from ..launch_context import LaunchContext
-    from ..launch_description_entity import LaunchDescriptionEntity
+    from launch.launch_context import LaunchContext
+    from launch.launch_description_entity import LaunchDescriptionEntity
 
 MAX_INCLUDE_DEPTH = 32
 MAX_FILES_READ = 256
@@ -47,7 +47,7 @@ class LaunchDescriptionSource:
 def include_python(context: LaunchContext, path: str) -> list[LaunchDescriptionEntity]:
     """The file's description, visited with ``ThisLaunchFile`` naming it; a cycle, too deep a
     chain or too many files is refused."""
-    from .python_launch_file_utilities import (
+    from launch.launch_description_sources.python_launch_file_utilities import (
         InvalidPythonLaunchFileError,
         get_launch_description_from_python_launch_file,
     )

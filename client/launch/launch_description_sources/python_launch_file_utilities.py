@@ -29,7 +29,7 @@ def load_python_launch_file_as_module(python_launch_file_path: str) -> ModuleTyp
 
 
 def get_launch_description_from_python_launch_file(python_launch_file_path: str) -> Any:
-    from ..launch_description import LaunchDescription
+    from launch.launch_description import LaunchDescription
 
     module = load_python_launch_file_as_module(python_launch_file_path)
     generate = getattr(module, "generate_launch_description", None)

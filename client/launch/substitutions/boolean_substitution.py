@@ -4,12 +4,12 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from ..substitution import Substitution
-from ..utilities import perform_typed
-from .substitution_failure import SubstitutionFailure
+from launch.substitution import Substitution
+from launch.substitutions.substitution_failure import SubstitutionFailure
+from launch.utilities import perform_typed
 
 if TYPE_CHECKING:
-    from ..launch_context import LaunchContext
+    from launch.launch_context import LaunchContext
 
 
 def truth(text: str) -> bool:

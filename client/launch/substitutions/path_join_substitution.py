@@ -6,11 +6,11 @@ import os
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
-from ..substitution import Substitution
-from ..utilities import perform_typed
+from launch.substitution import Substitution
+from launch.utilities import perform_typed
 
 if TYPE_CHECKING:
-    from ..launch_context import LaunchContext
+    from launch.launch_context import LaunchContext
 
 
 class PathJoinSubstitution(Substitution):

@@ -5,11 +5,11 @@ from __future__ import annotations
 import os
 from typing import TYPE_CHECKING
 
-from ..substitution import Substitution
-from .substitution_failure import SubstitutionFailure
+from launch.substitution import Substitution
+from launch.substitutions.substitution_failure import SubstitutionFailure
 
 if TYPE_CHECKING:
-    from ..launch_context import LaunchContext
+    from launch.launch_context import LaunchContext
 
 
 class ThisLaunchFile(Substitution):

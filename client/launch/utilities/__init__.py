@@ -6,15 +6,15 @@ import os
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
-from ..substitution import Substitution
+from launch.substitution import Substitution
 
 if TYPE_CHECKING:
-    from ..launch_context import LaunchContext
+    from launch.launch_context import LaunchContext
 
 
 def normalize_to_list_of_substitutions(subs: Any) -> list[Substitution]:
     """A string, a substitution or a (nested) sequence of them as a flat list of substitutions."""
-    from ..substitutions.text_substitution import TextSubstitution
+    from launch.substitutions.text_substitution import TextSubstitution
 
     def one(item: Any) -> Substitution:
         if isinstance(item, Substitution):

@@ -9,8 +9,8 @@ from typing import Any, Optional
 from launch import Action, LaunchContext, LaunchDescriptionEntity
 from launch.utilities import perform_typed
 
-from ..namespaces import make_namespace_absolute, prefix_namespace
-from ..parameters import evaluate_parameters, performed_value
+from launch_ros.namespaces import make_namespace_absolute, prefix_namespace
+from launch_ros.parameters import evaluate_parameters, performed_value
 
 OUTPUTS = ("screen", "log", "both", "own_log", "full")
 

@@ -8,8 +8,8 @@ from typing import Any, Optional
 from launch import Action, LaunchContext, LaunchDescriptionEntity
 from launch.utilities import perform_typed
 
-from ..namespaces import make_namespace_absolute, prefix_namespace
-from ..parameters import performed_value
+from launch_ros.namespaces import make_namespace_absolute, prefix_namespace
+from launch_ros.parameters import performed_value
 
 
 class PushRosNamespace(Action):

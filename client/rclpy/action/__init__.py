@@ -3,13 +3,13 @@ carries an action (the services and topics under ``<action>/_action/``)."""
 
 from __future__ import annotations
 
-from .client import ActionClient, ClientGoalHandle
-from .graph import (
+from rclpy.action.client import ActionClient, ClientGoalHandle
+from rclpy.action.graph import (
     get_action_client_names_and_types_by_node,
     get_action_names_and_types,
     get_action_server_names_and_types_by_node,
 )  # fmt: skip
-from .server import ActionServer, CancelResponse, GoalResponse, ServerGoalHandle
+from rclpy.action.server import ActionServer, CancelResponse, GoalResponse, ServerGoalHandle
 
 __all__ = [
     "ActionClient", "ActionServer", "CancelResponse", "ClientGoalHandle", "GoalResponse",

@@ -7,12 +7,11 @@ import uuid
 from collections.abc import Callable
 from typing import Any
 
-from server.bus import Future
-from server.bus.services import PendingCall, ServiceServer
-from server.msgs import Message
-from server.msgs.generated.action_msgs import GoalStatus
-
-from .._context import RCLError
+from node_runtime.bus import Future
+from node_runtime.bus.services import PendingCall, ServiceServer
+from node_runtime.msgs import Message
+from node_runtime.msgs.generated.action_msgs import GoalStatus
+from rclpy._context import RCLError
 
 ACCEPTED, EXECUTING, CANCELING = (
     GoalStatus.STATUS_ACCEPTED,

@@ -11,9 +11,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from server.msgs.generated.action_msgs import CancelGoal_Response
-
-from ._goals import ACCEPTED, EXECUTING
+from node_runtime.msgs.generated.action_msgs import CancelGoal_Response
+from rclpy.action._goals import ACCEPTED, EXECUTING
 
 
 def _nanoseconds(stamp: Any) -> int:

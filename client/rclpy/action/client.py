@@ -8,14 +8,13 @@ import time
 from collections.abc import Callable
 from typing import Any, cast
 
-from server.msgs import Message
-from server.msgs.generated.action_msgs import CancelGoal, GoalStatus, GoalStatusArray
-from server.msgs.generated.unique_identifier_msgs import UUID
-
-from ..executors import await_or_execute
-from ..qos import QoSProfile, qos_profile_action_status_default
-from ..task import Future
-from ._goals import ACTIVE, action_names, new_goal_id
+from node_runtime.msgs import Message
+from node_runtime.msgs.generated.action_msgs import CancelGoal, GoalStatus, GoalStatusArray
+from node_runtime.msgs.generated.unique_identifier_msgs import UUID
+from rclpy.action._goals import ACTIVE, action_names, new_goal_id
+from rclpy.executors import await_or_execute
+from rclpy.qos import QoSProfile, qos_profile_action_status_default
+from rclpy.task import Future
 
 WAIT_POLL_S = 0.02  # how often wait_for_server looks at the graph
 MAX_FINISHED_TRACKED = 1000  # goals with a result whose final status has not come (yet)

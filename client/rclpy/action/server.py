@@ -11,15 +11,14 @@ from collections.abc import Callable
 from enum import Enum
 from typing import Any, cast
 
-from server.bus import Future
-from server.msgs import Message
-from server.msgs.generated.action_msgs import GoalInfo, GoalStatus, GoalStatusArray
-
-from .._context import RCLError
-from ..executors import await_or_execute
-from ..qos import QoSProfile, qos_profile_action_status_default
-from ._goals import ACTIVE, CANCELING, action_names, next_status, serve_later
-from .cancel import goals_to_cancel
+from node_runtime.bus import Future
+from node_runtime.msgs import Message
+from node_runtime.msgs.generated.action_msgs import GoalInfo, GoalStatus, GoalStatusArray
+from rclpy._context import RCLError
+from rclpy.action._goals import ACTIVE, CANCELING, action_names, next_status, serve_later
+from rclpy.action.cancel import goals_to_cancel
+from rclpy.executors import await_or_execute
+from rclpy.qos import QoSProfile, qos_profile_action_status_default
 
 
 class GoalResponse(Enum):

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from server.bus import Node
-from server.msgs import String
+from node_runtime.bus import Node
+from node_runtime.msgs import String
 
 PERIOD_S = 1.0
 

@@ -6,8 +6,8 @@ rateThrust is a TwistStamped as in the ROS 2 port: ``angular`` = body rates (rad
 
 from __future__ import annotations
 
-from server.bus import Node
-from server.msgs import Float64, TwistStamped, Vector3
+from node_runtime.bus import Node
+from node_runtime.msgs import Float64, TwistStamped, Vector3
 from sim.control import AngleController, AttitudeThrustSetpoint
 
 RATE_HZ = 50.0

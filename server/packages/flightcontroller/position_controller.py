@@ -10,12 +10,11 @@ arena are clamped to it with a warning.
 
 from __future__ import annotations
 
-from server.bus import Node, Parameter, Timer
-from server.bus.parameter_values import double_range, read_only
-from server.msgs import PoseStamped, Vector3
+from node_runtime.bus import Node, Parameter, Timer
+from node_runtime.bus.parameter_values import double_range, read_only
+from node_runtime.msgs import PoseStamped, Vector3
+from server.packages.flightcontroller.setpoints import SetpointError, check_finite, clamp_to_arena
 from sim.control import LAB_PID_DT_S, LabPositionController, PositionController
-
-from .setpoints import SetpointError, check_finite, clamp_to_arena
 
 DEFAULT_SETPOINT_M = (0.0, 0.0, 3.0)
 CASCADE_RATE_HZ = 50.0

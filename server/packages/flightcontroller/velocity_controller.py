@@ -7,12 +7,11 @@ or straight from a student: non-finite or absurd ones are dropped with a warning
 
 from __future__ import annotations
 
-from server.bus import Node
-from server.msgs import Float64, TwistStamped, Vector3
+from node_runtime.bus import Node
+from node_runtime.msgs import Float64, TwistStamped, Vector3
+from server.packages.flightcontroller.setpoints import MAX_SPEED_SETPOINT_M_S, SetpointError, check_finite
 from sim.control import VelocityController
 from sim.quadrotor import QuadrotorParams
-
-from .setpoints import MAX_SPEED_SETPOINT_M_S, SetpointError, check_finite
 
 RATE_HZ = 50.0
 

@@ -14,10 +14,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from server.bus import Node
-from server.bus.parameter_values import double_range, read_only
-from server.devices.shared_physics import QUADROTOR_MAX_CATCH_UP_S, SharedQuadrotorPhysics
-from server.msgs import (
+from node_runtime.bus import Node
+from node_runtime.bus.parameter_values import double_range, read_only
+from node_runtime.msgs import (
     Header,
     Point,
     Pose,
@@ -30,6 +29,7 @@ from server.msgs import (
     TwistStamped,
     Vector3,
 )
+from server.peripherals.devices.shared_physics import QUADROTOR_MAX_CATCH_UP_S, SharedQuadrotorPhysics
 from sim.quadrotor import Drone, QuadrotorSim, RateThrustCommand
 from sim.quadrotor.rotation import quat_to_euler_sxyz
 from sim.quadrotor.state import Kinematics
@@ -56,7 +56,7 @@ class UavDynamicsNode(Node):
         seed = int(self.declare_parameter("seed", 0, read_only("the sim's random seed")).value)
         if not 10.0 <= rate_hz <= 1000.0:
             raise ValueError(f"publish_rate_hz must be in 10..1000, got {rate_hz}")
-        # On a class server every world's drone steps in one shared batch (server/devices/
+        # On a class server every world's drone steps in one shared batch (server/peripherals/devices/
         # shared_physics.py); alone, the drone has a QuadrotorSim of its own. Same model either way.
         self.shared: SharedQuadrotorPhysics | None = self.bus.devices.get("quadrotor_physics")
         # A late tick flies at most this long on the last command (a slower publish rate ticks

@@ -6,9 +6,9 @@ Auto-repeat is off unless ``allow_repeat`` is set, as in the original.
 
 from __future__ import annotations
 
-from server.bus import Node
-from server.devices.keyboard import KeyboardDevice, KeyEvent
-from server.msgs import Key
+from node_runtime.bus import Node
+from node_runtime.msgs import Key
+from server.peripherals.devices.keyboard import KeyboardDevice, KeyEvent
 
 DEVICE = "keyboard"
 

@@ -9,12 +9,12 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
-from server.bus import Bus, Node
-from server.msgs import get_service_type
+from node_runtime.bus import Bus, Node
+from node_runtime.msgs import get_service_type
 
 if TYPE_CHECKING:
-    from server.viewer.display import Display
-    from server.viewer.rocket_view import RocketViewNode
+    from server.peripherals.viewer.display import Display
+    from server.peripherals.viewer.rocket_view import RocketViewNode
 
 log = logging.getLogger("lab")
 Trigger = get_service_type("std_srvs/srv/Trigger")
@@ -29,7 +29,7 @@ class _Action(Protocol):
 
 
 class LaunchEntry(Protocol):
-    """A node a launch started (server/launch/launcher.py's ``LaunchedNode``): its action and file."""
+    """A node a launch started (server/services/launch/launcher.py's ``LaunchedNode``): its action and file."""
 
     @property
     def action(self) -> _Action: ...
@@ -39,7 +39,7 @@ class LaunchEntry(Protocol):
 
 
 class Restarter(Protocol):
-    """What restarts launched nodes (server/launch/launcher.py's ``Launcher``)."""
+    """What restarts launched nodes (server/services/launch/launcher.py's ``Launcher``)."""
 
     def restart(self, predicate: Callable[[Any], bool]) -> Sequence[object]: ...
 
@@ -60,7 +60,7 @@ class RocketControls:
         """The rocket's view (a hidden node, drawing in ``display`` if there is one) if any of
         ``launched`` is a node of the rocket's package."""
         if any(entry.action.pkg == PACKAGE for entry in launched):
-            from server.viewer.rocket_view import RocketViewNode  # viser loads only when it draws
+            from server.peripherals.viewer.rocket_view import RocketViewNode  # viser loads only when it draws
 
             with bus.activate():
                 self.view = RocketViewNode(display, self.reset)

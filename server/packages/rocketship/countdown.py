@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from server.bus import Node, Timer
-from server.bus.parameter_values import read_only
-from server.msgs import Int64
+from node_runtime.bus import Node, Timer
+from node_runtime.bus.parameter_values import read_only
+from node_runtime.msgs import Int64
 
 MAX_START_DELAY_S = 3600.0
 

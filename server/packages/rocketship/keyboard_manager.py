@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from server.bus import Node
-from server.msgs import Bool, Key
+from node_runtime.bus import Node
+from node_runtime.msgs import Bool, Key
 
 
 class KeyboardManager(Node):

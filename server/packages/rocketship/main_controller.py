@@ -10,8 +10,8 @@ import math
 
 import numpy as np
 
-from server.bus import Node
-from server.msgs import Bool, Float64, Int64
+from node_runtime.bus import Node
+from node_runtime.msgs import Bool, Float64, Int64
 
 HALF_TOP_SPEED_M_S = 842.0  # v = 842 (tanh(c) + 1): 0 → 1684 m/s, about a Falcon 9's top speed
 C_START = np.float32(-5.0)  # a float in the original, so it is stepped in float32 here too

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from server.bus import Node
-from server.bus.parameter_values import read_only
-from server.msgs import Float64
+from node_runtime.bus import Node
+from node_runtime.bus.parameter_values import read_only
+from node_runtime.msgs import Float64
 
 SENSOR_NOISE_STD_M_S = 10.0
 

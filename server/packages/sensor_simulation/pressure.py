@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from server.bus import Node
-from server.bus.parameter_values import read_only
-from server.msgs import Float64, PoseStamped
+from node_runtime.bus import Node
+from node_runtime.bus.parameter_values import read_only
+from node_runtime.msgs import Float64, PoseStamped
 
 _POLY = (-3.86423e-22, 8.56075e-17, -7.58614e-12, 3.36124e-7, -0.00744645, 65.987)  # h^5 .. h^0
 

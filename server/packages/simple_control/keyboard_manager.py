@@ -20,10 +20,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from server.bus import Node, Parameter, Timer
-from server.bus.parameter_values import double_range, read_only
-from server.msgs import Key, PoseStamped, TwistStamped, Vector3
-from server.msgs.generated.rcl_interfaces import ParameterDescriptor
+from node_runtime.bus import Node, Parameter, Timer
+from node_runtime.bus.parameter_values import double_range, read_only
+from node_runtime.msgs import Key, PoseStamped, TwistStamped, Vector3
+from node_runtime.msgs.generated.rcl_interfaces import ParameterDescriptor
 from server.packages.flightcontroller.setpoints import clamp_to_arena
 
 START_M = (0.0, 0.0, 3.0)

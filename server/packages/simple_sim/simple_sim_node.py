@@ -1,6 +1,6 @@
 """SimpleSimNode: the lab's kinematic sim at 20 Hz: /uav/input/velocity in, /uav/sensors/gps out.
 
-On a class server every world's drone ticks in one shared batch (server/devices/shared_physics.py,
+On a class server every world's drone ticks in one shared batch (server/peripherals/devices/shared_physics.py,
 SharedSimpleSim); alone, the drone has a SimpleSim of its own and ticks on this node's timer.
 """
 
@@ -10,10 +10,10 @@ from typing import Literal, cast
 
 import numpy as np
 
-from server.bus import Node
-from server.bus.parameter_values import read_only
-from server.devices.shared_physics import SharedSimpleSim
-from server.msgs import PoseStamped, Vector3
+from node_runtime.bus import Node
+from node_runtime.bus.parameter_values import read_only
+from node_runtime.msgs import PoseStamped, Vector3
+from server.peripherals.devices.shared_physics import SharedSimpleSim
 from sim.quadrotor import GpsReading, SimpleDrone, SimpleSim, SimpleSimParams
 
 

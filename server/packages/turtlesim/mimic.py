@@ -6,11 +6,10 @@ angular velocity; a launch remaps the two onto two turtles.
 
 from __future__ import annotations
 
-from server.bus import Node
-from server.msgs import Twist
-from server.msgs.generated.turtlesim import Pose
-
-from .turtlesim_node import TOPIC_DEPTH
+from node_runtime.bus import Node
+from node_runtime.msgs import Twist
+from node_runtime.msgs.generated.turtlesim import Pose
+from server.packages.turtlesim.turtlesim_node import TOPIC_DEPTH
 
 
 class MimicNode(Node):

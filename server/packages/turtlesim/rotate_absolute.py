@@ -14,10 +14,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from server.bus import Future, ServiceServer
-from server.bus.endpoints import TRANSIENT_LOCAL
-from server.msgs import Message
-from server.msgs.generated.action_msgs import (
+from node_runtime.bus import Future, ServiceServer
+from node_runtime.bus.endpoints import TRANSIENT_LOCAL
+from node_runtime.msgs import Message
+from node_runtime.msgs.generated.action_msgs import (
     CancelGoal,
     CancelGoal_Request,
     CancelGoal_Response,
@@ -25,12 +25,16 @@ from server.msgs.generated.action_msgs import (
     GoalStatus,
     GoalStatusArray,
 )
-from server.msgs.generated.turtlesim import RotateAbsolute, RotateAbsolute_Feedback, RotateAbsolute_Result
+from node_runtime.msgs.generated.turtlesim import (
+    RotateAbsolute,
+    RotateAbsolute_Feedback,
+    RotateAbsolute_Result,
+)
 from sim.turtlesim import Rotation, Turtle
 
 if TYPE_CHECKING:
-    from server.bus import Node
-    from server.bus.services import PendingCall
+    from node_runtime.bus import Node
+    from node_runtime.bus.services import PendingCall
 
 KEPT_GOALS = 16  # ended goals whose result can still be asked for
 ERROR_NONE, ERROR_UNKNOWN_GOAL_ID = 0, 2  # CancelGoal's return codes

@@ -14,11 +14,11 @@ from __future__ import annotations
 
 from typing import Any
 
-from server.bus import InvalidNameError, Node, Publisher, ServiceServer, Subscription
-from server.msgs import Twist
-from server.msgs.generated.rcl_interfaces import IntegerRange, ParameterDescriptor, ParameterEvent
-from server.msgs.generated.std_srvs import Empty, Empty_Response
-from server.msgs.generated.turtlesim import (
+from node_runtime.bus import InvalidNameError, Node, Publisher, ServiceServer, Subscription
+from node_runtime.msgs import Twist
+from node_runtime.msgs.generated.rcl_interfaces import IntegerRange, ParameterDescriptor, ParameterEvent
+from node_runtime.msgs.generated.std_srvs import Empty, Empty_Response
+from node_runtime.msgs.generated.turtlesim import (
     Color,
     Kill,
     Kill_Request,
@@ -37,9 +37,8 @@ from server.msgs.generated.turtlesim import (
     TeleportRelative_Request,
     TeleportRelative_Response,
 )
+from server.packages.turtlesim.rotate_absolute import RotateAbsoluteServer
 from sim.turtlesim import CENTER_M, UPDATE_PERIOD_S, Reading, Teleport, TurtleWorld
-
-from .rotate_absolute import RotateAbsoluteServer
 
 TOPIC_DEPTH = 7  # turtlesim's topics: reliable, keep last 7
 BACKGROUND = {"background_r": 0x45, "background_g": 0x56, "background_b": 0xFF}

@@ -14,12 +14,12 @@ from typing import Any
 
 import numpy as np
 
-from server.bus import Node
-from server.bus.parameter_values import double_range
-from server.msgs import PoseStamped, TwistStamped, Vector3
+from node_runtime.bus import Node
+from node_runtime.bus.parameter_values import double_range
+from node_runtime.msgs import PoseStamped, TwistStamped, Vector3
 from server.packages.flightcontroller.setpoints import ARENA_MAX_M, ARENA_MIN_M
-from server.viewer.plots import TimePlot
-from server.viewer.views import Follow
+from server.peripherals.viewer.plots import TimePlot
+from server.peripherals.viewer.views import Follow
 
 ARM_M = 1.0  # the lab draws each arm 1 m from the hub
 TRAIL_POINTS = 150

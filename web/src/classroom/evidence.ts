@@ -21,7 +21,7 @@ const node = <K extends keyof HTMLElementTagNameMap>(tag: K, text = "", cls = ""
   return e;
 };
 const cut = (text: string): string => (text.length > MAX_CHARS ? `${text.slice(0, MAX_CHARS)}\n… (${text.length - MAX_CHARS} more characters)` : text);
-// The lab's clock reads as Unix time (server/bus/clock.py): shown in the instructor's own time zone.
+// The lab's clock reads as Unix time (node_runtime/bus/clock.py): shown in the instructor's own time zone.
 const localTime = (t_s: number): string => new Date(t_s * 1000).toLocaleTimeString();
 const isPicture = (v: unknown): v is string => typeof v === "string" && /^data:image\/(png|svg\+xml|jpeg);/.test(v);
 const isTimeline = (v: unknown): v is Entry[] => Array.isArray(v) && v.length > 0 && v.every(

@@ -10,7 +10,7 @@ const CONSOLE_SCRIPT = /["']\s*([\w.-]+)\s*=\s*([\w.]+)\s*:\s*\w+\s*["']/g;
 const PACKAGE_NAME = /<name>\s*([^<\s]+)\s*<\/name>/;
 const RECONNECT_MS = 1000;
 const NORMAL_CLOSE = 1000;  // the server's close after the group's end
-const UNKNOWN_RUN = 4404;  // server/close_codes.py's NOT_FOUND: no such launch group
+const UNKNOWN_RUN = 4404;  // server/base/close_codes.py's NOT_FOUND: no such launch group
 
 export type RunState = "idle" | "starting" | "running" | "stopping" | "ended";
 

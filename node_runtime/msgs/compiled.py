@@ -1,0 +1,76 @@
+"""A message class's ``__init__`` and ``copy`` written out for its fields, as dataclasses writes its
+methods (messages are built and copied on every publish)."""
+
+from __future__ import annotations
+
+import array
+import keyword
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from node_runtime.msgs._field import Field
+
+if TYPE_CHECKING:
+    from node_runtime.msgs._base import Message
+
+
+def _copy_expression(field: Field, value: str) -> str:
+    """Python source for what ``field.copy_value(value)`` returns."""
+    if not field.array:
+        return value if isinstance(field.kind, str) else f"{value}.copy()"
+    if field.typecode is not None:
+        return f"_array({field.typecode!r}, {value})"
+    if field.numeric_array:
+        return f"{value}.copy()"
+    return f"list({value})" if isinstance(field.kind, str) else f"[v.copy() for v in {value}]"
+
+
+def compile_methods(cls: type[Message]) -> None:
+    """``__init__`` and ``copy`` written out for this class's fields, as dataclasses writes its
+    methods: the same results as Message's loops over FIELDS, without their per-field overhead
+    (messages are built and copied on every publish). Slots are set through their descriptors,
+    past the checking ``__setattr__``; values given to ``__init__`` still go through Field.check."""
+    names = [f.name for f in cls.FIELDS]
+    if any(keyword.iskeyword(n) or n in ("self", "new") or n.startswith("_") for n in names):
+        return  # a name Python would not take as a parameter: the generic methods serve
+    env: dict[str, Any] = {
+        "_new": object.__new__, "_array": array.array, "_missing": _MISSING, "_type": cls.TYPE, "_sorted": sorted, "_type_of": type,
+    }  # fmt: skip
+    params, init_lines, copy_lines = [], [], []
+    for i, f in enumerate(cls.FIELDS):
+        env[f"_set{i}"] = cls.__dict__[f.name].__set__  # the slot's own setter
+        env[f"_check{i}"] = f.check
+        if not f.array and isinstance(f.kind, str):
+            env[f"_default{i}"] = f.default  # immutable: shared by every message
+            initial = f"_default{i}"
+        elif not f.array:
+            env[f"_kind{i}"] = f.kind
+            initial = f"_kind{i}()"
+        else:
+            env[f"_initial{i}"] = f.initial
+            initial = f"_initial{i}()"
+        params.append(f"{f.name}=_missing")
+        value = f"{initial} if {f.name} is _missing else _check{i}({f.name}, {f.name!r})"
+        if f.exact is not None:  # Field.check's first test, inline: a float, a bool, a nested message
+            env[f"_exact{i}"] = f.exact
+            value = f"{f.name} if _type_of({f.name}) is _exact{i} else {value}"  # a field may be named type
+        init_lines.append(f"    _set{i}(self, {value})")
+        copy_lines.append(f"    _set{i}(new, {_copy_expression(f, 'self.' + f.name)})")
+    source = "\n".join([
+        f"def __init__(self, {', '.join(['*', *params, '**unknown'] if params else ['**unknown'])}):",
+        *init_lines,
+        "    if unknown:",
+        "        raise TypeError(f\"{_type} has no field(s) {', '.join(_sorted(unknown))}\")",
+        "def copy(self):",
+        "    new = _new(type(self))",
+        *copy_lines,
+        "    return new",
+    ])  # fmt: skip
+    exec(compile(source, f"<{cls.TYPE} methods>", "exec"), env)
+    for name in ("__init__", "copy"):
+        method: Callable[..., Any] = env[name]
+        method.__qualname__ = f"{cls.__qualname__}.{name}"
+        setattr(cls, name, method)
+
+
+_MISSING: Any = object()

@@ -1,0 +1,111 @@
+"""What one reader has seen of a launch group's output, and the frames that bring it up to date.
+
+Each node process keeps its last lines (a bounded buffer, server/host/processes/supervisor.py) and
+how many it printed in all, so a reader that fell behind learns how many lines it lost (a
+``dropped`` frame) instead of holding up the process; then come its lines, each with its number
+in the process's output (``seq``), and once the process has ended and every line is read, its
+exit. A process that waits for its turn to start (server/host/processes/start_pacing.py) is first a
+``waiting`` frame; one stopped before it started ends with an exit frame of no code and no
+signal. A group has ended when each of its processes has and no node of it runs any more (a node
+with ``respawn`` keeps it open while the group is not stopped).
+
+The supervisor merges a process's stderr into its stdout (as a terminal shows them), so every
+line's ``stream`` is ``stdout``.
+"""
+
+from __future__ import annotations
+
+import signal
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from server.host.processes.supervisor import ProcessNode
+from server.services.launch.groups import LaunchGroup
+
+Frame = dict[str, Any]
+
+
+@dataclass
+class _Seen:
+    process: ProcessNode
+    node: str
+    sent: int = 0  # lines of its output sent (or counted as dropped)
+    exited: bool = False  # its exit frame sent
+    waiting: bool = False  # its waiting frame sent
+
+
+def exit_frame(process: ProcessNode, node: str) -> Frame:
+    code = process.exit_code
+    if code is not None and code < 0:
+        try:
+            name: str | None = signal.Signals(-code).name
+        except ValueError:
+            name = f"signal {-code}"
+        return {"type": "exit", "node": node, "code": None, "signal": name}
+    return {"type": "exit", "node": node, "code": code, "signal": None}
+
+
+class GroupOutput:
+    """One reader's place in a group's output. ``running`` says whether the group is still in its
+    lab (not stopped)."""
+
+    def __init__(self, group: LaunchGroup, running: Callable[[], bool]) -> None:
+        self.group = group
+        self.running = running
+        self._seen: list[_Seen] = []
+        self.ended = False
+
+    def _track(self) -> None:
+        for entry in self.group.entries:
+            process = entry.process
+            if process is not None and all(s.process is not process for s in self._seen):
+                self._seen.append(_Seen(process, process.label))
+
+    def poll(self) -> list[Frame]:
+        """The frames since the last poll (``ended`` turns true with the last of them)."""
+        if self.ended:
+            return []
+        self._track()
+        frames: list[Frame] = []
+        for seen in self._seen:
+            if seen.exited:
+                continue
+            if seen.process.proc is None:  # not started: waiting for its turn, or stopped first
+                if seen.process.state == "waiting" and not seen.waiting:
+                    frames.append({"type": "waiting", "node": seen.node})
+                    seen.waiting = True
+                elif seen.process.state in ("stopped", "died"):
+                    frames.append({"type": "exit", "node": seen.node, "code": None, "signal": None})
+                    seen.exited = True
+                continue
+            ended = seen.process.exit_code is not None  # read first: once set, every line is kept
+            lines, printed = seen.process.output()
+            first = printed - len(lines)
+            if seen.sent < first:
+                frames.append({"type": "dropped", "count": first - seen.sent})
+                seen.sent = first
+            for index in range(seen.sent - first, len(lines)):
+                frames.append({"type": "line", "seq": first + index, "node": seen.node, "stream": "stdout",
+                               "text": lines[index]})  # fmt: skip
+            seen.sent = printed
+            if ended:
+                frames.append(exit_frame(seen.process, seen.node))
+                seen.exited = True
+        if self._finished():
+            frames.append({"type": "end"})
+            self.ended = True
+        return frames
+
+    def _finished(self) -> bool:
+        if not all(s.exited for s in self._seen):
+            return False
+        running = self.running()
+        for entry in self.group.entries:
+            if entry.node is not None:
+                return False  # a node inside the lab's process, until the group is stopped
+            if entry.process is not None and entry.process.exit_code is None:
+                return False
+            if running and entry.action.respawn:
+                return False  # its node starts again after a crash, until the group is stopped
+        return True
