@@ -1,2 +1,2 @@
-"""The HTTP and WebSocket API, one router per resource (each in its own module; api/routes.py
+"""The HTTP and WebSocket API, one router per resource (each in its own module; api/router.py
 gathers them for the app). Importing one module of it loads that module alone."""

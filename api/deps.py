@@ -62,7 +62,7 @@ def lab_of(conn: HTTPConnection) -> Lab:
     grant = grant_of(conn, classroom)
     asked = conn.headers.get(WORLD_HEADER) or conn.query_params.get("world")
     world = classroom.world_for(grant, asked)
-    if world.lab is None:  # api/world_proxy.py passes on what acts on a worker's world
+    if world.lab is None:  # api/middleware/world_proxy.py passes on what acts on a worker's world
         where = world.worker.id if world.worker is not None else "another process"
         raise ClassroomError(404, f"world {world.name!r} runs on world worker {where!r}: nothing here for it")
     writing = conn.scope["type"] == "http" and conn.scope["method"] not in SAFE_METHODS

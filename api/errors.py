@@ -20,8 +20,7 @@ from starlette.responses import Response
 from starlette.routing import Match
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from api.security import BodyTooLarge
-from api.strict_json import SafeJSONResponse
+from api.protocol.json_codec import SafeJSONResponse
 from node_runtime.ament.index import ExecutableNotFoundError, PackageNotFoundError, WorkspaceError
 from node_runtime.bus import (
     DestroyedError,
@@ -71,6 +70,18 @@ from server.world.checkpoints.progress import TooLargeError as AnswerTooLargeErr
 log = logging.getLogger("api.errors")
 
 
+class BodyTooLarge(StarletteHTTPException):
+    """Raised while a body without Content-Length is read; an HTTPException so that FastAPI's
+    body parser re-raises it (any other exception there becomes a 400 "error parsing the body")."""
+
+    def __init__(self, limit: int) -> None:
+        self.limit = limit
+        super().__init__(413, f"body larger than {limit} bytes")
+
+    def __str__(self) -> str:
+        return str(self.detail)
+
+
 # Checked in order, so a subclass must come before its base. Nothing broader than these.
 ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (UnknownTopicError, status.HTTP_404_NOT_FOUND),
@@ -118,6 +129,8 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (TooLargeError, status.HTTP_413_CONTENT_TOO_LARGE),
     (NotTextError, status.HTTP_415_UNSUPPORTED_MEDIA_TYPE),
 )
+
+
 _CLOSE_FOR_STATUS = {
     status.HTTP_404_NOT_FOUND: CloseCode.NOT_FOUND,
     status.HTTP_409_CONFLICT: CloseCode.TYPE_CONFLICT,

@@ -16,7 +16,15 @@ from typing import Any
 from fastapi import FastAPI
 
 from api.deps import SAFE_METHODS, TOKEN_COOKIE
-from api.responses import BAD_GATEWAY, FORBIDDEN, NO_ROOM, NOT_FOUND, TOO_MANY, UNAUTHORIZED, responses
+from api.protocol.responses import (
+    BAD_GATEWAY,
+    FORBIDDEN,
+    NO_ROOM,
+    NOT_FOUND,
+    TOO_MANY,
+    UNAUTHORIZED,
+    responses,
+)
 
 SCHEMES = {
     "bearer": {

@@ -6,7 +6,7 @@ its channels carries a second.
 The channels, as the page opens them (web/src/lab):
 
 * ``viser``: viser's own WebSocket at ``/`` (subprotocol ``viser-v<version>``, carried by
-  api/page.py to the lab's viser server). Each frame is viser's batch: a 16-byte header (the
+  api/routes/page.py to the lab's viser server). Each frame is viser's batch: a 16-byte header (the
   msgpack's size, then the zstd payload's size, little-endian), the zstd-compressed msgpack
   ``{"messages": [...], ...}``, then binary buffers. Counted per message, split into
   ``viser_scene`` (scene nodes and their transforms), ``viser_gui`` (GUI widgets) and

@@ -11,19 +11,20 @@ from pathlib import Path
 from fastapi import FastAPI
 from fastapi.staticfiles import StaticFiles
 
-from api.canonical_path import CanonicalPathMiddleware
-from api.checkpoints import LARGE_BODIES
 from api.errors import ErrorMiddleware, register_error_handlers
+from api.middleware.canonical_path import CanonicalPathMiddleware
+from api.middleware.guard import GuardMiddleware
+from api.middleware.socket_cap import SocketCapMiddleware
+from api.middleware.socket_refusal import WebSocketRefusalMiddleware
+from api.middleware.strict_json import StrictJsonMiddleware
+from api.middleware.world_proxy import WorldProxyMiddleware
 from api.openapi import use_token_security
-from api.page import router as page_router
-from api.routes import build_router
-from api.security import GuardMiddleware
-from api.strict_json import SafeJSONResponse, StrictJsonMiddleware
-from api.tools_page import router as tools_router
-from api.workspace import PREFIX as WORKSPACE_PREFIX
-from api.world_proxy import WorldProxyMiddleware
-from api.ws_cap import SocketCapMiddleware
-from api.ws_refusal import WebSocketRefusalMiddleware
+from api.protocol.json_codec import SafeJSONResponse
+from api.router import build_router
+from api.routes.checkpoints import LARGE_BODIES
+from api.routes.page import router as page_router
+from api.routes.tools_page import router as tools_router
+from api.routes.workspace import PREFIX as WORKSPACE_PREFIX
 from node_runtime.bus import Clock
 from server.classroom import Classroom, ClassServer, WorldWorker
 from server.host.settings import Settings

@@ -22,6 +22,26 @@ def test_architecture_every_import_follows_the_written_layers() -> None:
     assert not violations, "\n".join(map(str, violations))
 
 
+def test_architecture_the_house_has_at_most_ten_layers_of_folders() -> None:
+    layers = written_layers()
+    assert len(layers) <= 10, [layer.name for layer in layers]
+    for layer in layers:
+        for unit in layer.units:
+            path = ROOT.joinpath(*unit.split("."))
+            module = unit.count(".") == 1 and path.with_suffix(".py").is_file()
+            # a module stands as a unit only as an entry point or as one of the runtime's parts
+            entry = module and (layer.name == "entry" or unit.startswith("node_runtime."))
+            assert path.is_dir() or entry or unit in {"server", "node_runtime"}, unit
+
+
+def test_architecture_a_package_root_holds_only_its_entry_points_and_layer_folders() -> None:
+    """server/'s root: the modules of the entry layer and the layer folders, nothing else."""
+    entry = {u for layer in written_layers() for u in layer.units if layer.name == "entry"}
+    for path in (ROOT / "server").glob("*.py"):
+        if path.name != "__init__.py":
+            assert f"server.{path.stem}" in entry, path.name
+
+
 def test_architecture_every_unit_written_down_exists_once() -> None:
     units = [unit for layer in written_layers() for unit in layer.units]
     assert len(units) == len(set(units))

@@ -1,7 +1,7 @@
 """Who may connect: a Host header that names this machine, no Origin of another site, a bearer
 token compared in constant time, a path as sent that no normaliser would change.
 
-The rules of the app's guard (api/security.py), of its routes' token checks (api/deps.py) and of
+The rules of the app's guard (api/middleware/guard.py), of its routes' token checks (api/deps.py) and of
 the bridges' guarded fronts (server/services/bridges/front.py) alike, so every door of the lab answers the
 same request the same way. Standard library only: both the web layer and the bridges import it.
 """

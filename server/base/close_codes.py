@@ -28,5 +28,5 @@ class CloseCode(IntEnum):
     MISDIRECTED = 4421  # a Host that is not a name of this server (DNS rebinding)
 
 
-# A refused handshake's close code (api/ws_refusal.py, the bridges' fronts), by the status a request would get.
+# A refused handshake's close code (api/middleware/socket_refusal.py, the bridges' fronts), by the status a request would get.
 REFUSAL_FOR_STATUS = {401: CloseCode.UNAUTHORIZED, 403: CloseCode.FORBIDDEN, 421: CloseCode.MISDIRECTED}

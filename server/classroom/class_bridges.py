@@ -4,7 +4,7 @@ A class server opens no Foxglove server or rosbridge port per world. It opens th
 instructor: a bus of its own joins the class's router in the class's domain, where the domain
 bridge (node_runtime/transport/domain_bridge.py) declares each world's topics as ``/<world>/<topic>``.
 On ``--foxglove-port`` a Foxglove bridge on that bus advertises them (``Bus.known_topics``); on
-``--rosbridge-port`` (and at ``/class/rosbridge`` on the app's port, api/rosbridge.py) rosbridge
+``--rosbridge-port`` (and at ``/class/rosbridge`` on the app's port, api/websockets/rosbridge.py) rosbridge
 clients subscribe, publish and ask rosapi-style questions of the same bus. A topic a client
 watches becomes a subscription in the class domain, so the domain bridge carries that world's
 samples only while someone watches them; what a client publishes on ``/ada/uav/input/position``

@@ -5,7 +5,7 @@ that hosts worlds it is asked to host and lets no student join it directly. It a
 on the class's router (``ros2lab/classroom/worker/<id>``) with where its HTTP API listens and how
 full it is and how busy its CPU is (``load.py``). The class server asks before placing a new
 world, puts it where the load is lowest, and then serves the student's page itself while every
-call for that world goes to the worker (``api/world_proxy.py``).
+call for that world goes to the worker (``api/middleware/world_proxy.py``).
 
 The class server also says hello every ``WATCH_PERIOD_S``: a worker silent for its
 ``--worker-timeout`` is taken as gone, and its worlds start again elsewhere; a worker that hears

@@ -50,7 +50,7 @@ class World:
     login: Credentials | None = field(default=None, repr=False)  # its Zenoh login (class_router.py)
     address: str | None = None  # the client address it was joined from (a class server's)
     reset_limit: RateLimit | None = None  # a student's resets, besides their writes
-    sockets: int = 0  # a student's WebSockets open on it now (api/ws_cap.py)
+    sockets: int = 0  # a student's WebSockets open on it now (api/middleware/socket_cap.py)
 
     def __post_init__(self) -> None:
         if self.lab is not None:  # its checkpoint report names the student

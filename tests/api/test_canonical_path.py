@@ -8,7 +8,7 @@ import pytest
 from labclient import LabClient
 from starlette.testclient import WebSocketDenialResponse
 
-from api.world_proxy import PathChanged, target
+from api.middleware.world_proxy import PathChanged, target
 from server.base.access import path_problem
 from server.classroom.workers import WorkerRef
 

@@ -44,7 +44,7 @@ def test_errors_bug_in_a_websocket_closes_1011_with_request_id(
     def broken(*_args: Any) -> None:
         raise ZeroDivisionError("secret")
 
-    monkeypatch.setattr("api.ws_topics.open_echo", broken)
+    monkeypatch.setattr("api.websockets.echo.open_echo", broken)
     with rocket_lab.http.websocket_connect("/ws/topics/countdown") as ws:
         code, reason = close_within(ws)
     assert code == CloseCode.INTERNAL_ERROR

@@ -13,7 +13,7 @@ from labclient import LabClient, receive_within, refused, wait_until
 from starlette.testclient import WebSocketTestSession
 from support.http import HTTP
 
-from api.page import PROXY_MAX_FRAME_BYTES
+from api.routes.page import PROXY_MAX_FRAME_BYTES
 from server.peripherals.viewer.viser_guard import PROXY_TOKEN_HEADER
 
 
@@ -53,7 +53,7 @@ def test_pose_worker_not_built_is_404_naming_the_set_up(
 ) -> None:
     lab = make_lab(viewer=True)
     assert lab.http.get("/page/poses.worker.js").status_code == 200  # built at set-up
-    monkeypatch.setattr("api.page.POSES_WORKER", tmp_path / "poses.worker.js")
+    monkeypatch.setattr("api.routes.page.POSES_WORKER", tmp_path / "poses.worker.js")
 
     response = lab.http.get("/page/poses.worker.js")
 

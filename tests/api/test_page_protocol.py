@@ -10,17 +10,17 @@ import pytest
 from labclient import LabClient, receive_json_within
 from pydantic import TypeAdapter
 
-from api.page_protocol import OUTPUT, generated_text
-from api.ts_types import UnsupportedSchema, declaration, ts_type
-from api.ws_keys import FRAME_FIELDS, KeyFrame, parse_frame
-from api.ws_topics import EchoFrame
+from api.protocol.ts_types import UnsupportedSchema, declaration, ts_type
+from api.typescript import OUTPUT, generated_text
+from api.websockets.echo import EchoFrame
+from api.websockets.keys import FRAME_FIELDS, KeyFrame, parse_frame
 from server.peripherals.devices.keymap import MODIFIER_FLAG_NAMES
 from server.peripherals.viewer.views import FollowJson, PageViews, ViewJson
 
 
 def test_generated_page_types_match_the_declarations() -> None:
     assert OUTPUT.read_text(encoding="utf-8") == generated_text(), (
-        f"{OUTPUT.name} is stale: run `python -m api.page_protocol` after changing a declaration it lists"
+        f"{OUTPUT.name} is stale: run `python -m api.typescript` after changing a declaration it lists"
     )
 
 

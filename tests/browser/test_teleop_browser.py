@@ -66,7 +66,7 @@ PAGE_WAIT_MS = 30_000
 MOVED_PX = 20
 # the server's dead-man: a channel silent this long with keys held has them released
 DEADMAN_S = LabLimits().deadman_s
-DEADMAN_LOG = "silent for over"  # api/ws_keys.py logs this when its timer releases keys
+DEADMAN_LOG = "silent for over"  # api/websockets/keys.py logs this when its timer releases keys
 
 
 @pytest.fixture

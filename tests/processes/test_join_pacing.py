@@ -10,7 +10,7 @@ from collections.abc import Callable
 import httpx
 import pytest
 
-from api.lab_routes import retry_after
+from api.routes.lab import retry_after
 from server.cli.client import ApiError, LabClient
 from server.cli.join import JoinError, Pacing, join_graph
 from server.host.processes.start_pacing import StartPacer

@@ -15,7 +15,7 @@ from support.ws import refusal
 from websockets.exceptions import ConnectionClosed
 
 from api.errors import CloseCode
-from api.rosbridge import MAX_FRAME_BYTES
+from api.websockets.rosbridge import MAX_FRAME_BYTES
 from server.app import create_app
 from server.host.settings import LabSettings, Listening, Settings
 

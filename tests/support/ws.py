@@ -40,7 +40,7 @@ def receive_within(ws: WebSocketTestSession, timeout_s: float = WAIT_S) -> Messa
 
 def refusal(client: TestClient, url: str, **kwargs: Any) -> WebSocketDisconnect:
     """Open ``url`` expecting the app to refuse it: accepted, then closed at once with a code
-    (api/ws_refusal.py), nothing sent before the close. Returns the close as an exception."""
+    (api/middleware/socket_refusal.py), nothing sent before the close. Returns the close as an exception."""
     with client.websocket_connect(url, **kwargs) as ws:
         message = receive_within(ws)
         if message["type"] != "websocket.close":

@@ -18,7 +18,7 @@ from node_runtime.process.runner import LAUNCH_MODE, PARENT_ENV
 from node_runtime.transport.acl import Credentials, process_config
 from node_runtime.transport.config import DEFAULT_ROUTER_ENDPOINT
 
-CLIENT_DIR = Path(__file__).resolve().parents[2] / "client"
+CLIENT_DIR = Path(__file__).resolve().parents[3] / "client"
 RUNNER_MODULE = "node_runtime.process.runner"
 
 

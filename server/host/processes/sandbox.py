@@ -43,8 +43,8 @@ from server.host.processes.command import RUNNER_MODULE, NodeCommand, PreparedSt
 SOCKET_DIR = "/run/ros2lab"  # where the router's Unix socket's folder is bound inside
 PROBE_TIMEOUT_S = 10.0
 INSIDE_UID = 1000  # the node's uid inside its user namespace (not root)
-PROJECT = Path(__file__).resolve().parents[2]
-CLIENT_CODE = ("server", "sim", "client")  # the lab's code a node process imports
+PROJECT = Path(__file__).resolve().parents[3]
+CLIENT_CODE = ("node_runtime", "server", "sim", "client")  # the lab's code a node process imports
 # Only what a node process needs; the server's own environment never reaches it.
 KEPT_ENV = (
     "PYTHONUNBUFFERED",

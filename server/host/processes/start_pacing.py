@@ -2,7 +2,7 @@
 few slots, each held for about as long as a node process takes to import its libraries and join;
 a start that finds every slot held is told the time of its turn, after the starts told to come
 back before it. Two kinds of start ask: ``GET /api/zenoh/join?start=true`` (a node process about
-to start, as ``ros2lab run`` asks; api/lab_routes.py answers a deferred one 429 with
+to start, as ``ros2lab run`` asks; api/routes/lab.py answers a deferred one 429 with
 ``Retry-After``, and ``ros2lab run`` waits that long and asks again), and, where the server
 serves others, a student's node the page's Run or Launch starts (server/services/launch/launcher.py
 keeps it waiting, then starts it at its turn). A join without ``start`` (``ros2lab env``, a tool

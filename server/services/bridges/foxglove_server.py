@@ -6,7 +6,7 @@ protocol itself (server/services/bridges/foxglove_protocol.py) on the ``websocke
 and applies the app's rules (server/services/bridges/front.py ``check_handshake``: a Host that names this
 machine, no Origin of another site, the lab's or the instructor's token) to every handshake
 before a byte of the protocol is sent. A refused one is closed at once with the close code that
-names why (api/ws_refusal.py's rule). No other port serves Foxglove.
+names why (api/middleware/socket_refusal.py's rule). No other port serves Foxglove.
 
 Everything runs on the app's loop. Each client has one bounded queue of frames: a message it is
 too slow for is dropped (and counted); a client too slow even for the server's announcements is
@@ -51,7 +51,7 @@ class ChannelSource(Protocol):
 
 @dataclass(frozen=True)
 class Guard:
-    """The app's rules for a handshake (api/security.py), and the token it needs, if any."""
+    """The app's rules for a handshake (api/middleware/guard.py), and the token it needs, if any."""
 
     accepted_hosts: frozenset[str]
     allowed_origins: frozenset[str]

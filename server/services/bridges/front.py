@@ -5,7 +5,7 @@ app's own rules (server/base/access.py: a Host that names this machine, no Origi
 token, a path as sent) and only then joins the client to the app's port,
 byte for byte in both directions.
 A refused WebSocket handshake completes and is closed at once with the close code that names why
-(4401, 4403, 4421: api/ws_refusal.py's rule for every route), and never reaches upstream; a
+(4401, 4403, 4421: api/middleware/socket_refusal.py's rule for every route), and never reaches upstream; a
 request that is no WebSocket handshake gets an HTTP 400 or 426. Nothing here parses the frames
 that follow, so the protocol stays upstream's. ``check_handshake`` is also the Foxglove server's.
 

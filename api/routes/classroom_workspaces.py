@@ -3,7 +3,7 @@ files, read-only (the shapes of ``/api/workspace/files``), and every workspace i
 folder per world, built in a temporary file and sent from there as the student's own zip is.
 
 Every world's workspace is the folder of its name in the class's ``workspaces_dir``, wherever the
-world runs: a world worker serves a workspace only when it shares that folder (api/world_proxy.py),
+world runs: a world worker serves a workspace only when it shares that folder (api/middleware/world_proxy.py),
 so the class server reads each one from its own disk, also while the world's worker is gone."""
 
 from __future__ import annotations
@@ -14,9 +14,9 @@ from typing import Any
 from fastapi import APIRouter, Response
 from fastapi.responses import JSONResponse
 
-from api.classroom import ClassroomDep, InstructorDep
-from api.responses import FORBIDDEN, NOT_FOUND, UNAUTHORIZED, UNPROCESSABLE, responses
-from api.workspace import ZIP, WorkspaceTree, files_of, tree_body, zip_response
+from api.protocol.responses import FORBIDDEN, NOT_FOUND, UNAUTHORIZED, UNPROCESSABLE, responses
+from api.routes.classroom import ClassroomDep, InstructorDep
+from api.routes.workspace import ZIP, WorkspaceTree, files_of, tree_body, zip_response
 from server.classroom import Classroom, World
 from server.services.workspace.files import WorkspaceFiles
 from server.services.workspace.location import world_workspace

@@ -15,11 +15,11 @@ from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field
 
 from api.deps import LabDep
-from api.responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, UNPROCESSABLE, responses
+from api.protocol.responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, UNPROCESSABLE, responses
 from server.peripherals.bag.manager import NAME as BAG_NAME
 from server.peripherals.bag.player import MAX_RATE, MIN_RATE
 
-# Handlers are ``async def``: the bus belongs to the event loop (see api/publishers.py).
+# Handlers are ``async def``: the bus belongs to the event loop (see api/routes/publishers.py).
 # Errors (server/peripherals/bag/errors.py) are mapped to statuses once, in api/errors.py.
 router = APIRouter(prefix="/api/bag", tags=["bag"], responses=responses())
 

@@ -10,8 +10,8 @@ from fastapi import APIRouter, HTTPException, Query, status
 from pydantic import BaseModel, ConfigDict, Field
 
 from api.deps import LabDep
-from api.responses import NOT_FOUND, responses
-from api.schemas import WATCH
+from api.protocol.responses import NOT_FOUND, responses
+from api.protocol.schemas import WATCH
 from node_runtime.bus import Node, UnknownNodeError, is_hidden, validate_topic_name
 from node_runtime.bus.topic import HZ_WINDOW_MAX
 from node_runtime.msgs import Message, UnknownTypeError, get_type, type_names

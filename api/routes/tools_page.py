@@ -8,7 +8,7 @@ from fastapi import APIRouter
 from fastapi.responses import FileResponse
 
 router = APIRouter(include_in_schema=False)
-TOOLS_HTML = Path(__file__).resolve().parents[1] / "static" / "tools.html"
+TOOLS_HTML = Path(__file__).resolve().parents[2] / "static" / "tools.html"
 # Everything the page needs comes from this server: no CDN, so it works offline, and nothing else
 # may be loaded, framed or connected to.
 CONTENT_SECURITY_POLICY = (

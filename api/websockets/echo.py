@@ -19,10 +19,10 @@ from typing_extensions import TypedDict
 
 from api.deps import WsLabDep
 from api.errors import CloseCode, close_code, close_reason
-from api.strict_json import dumps
-from api.ws_budget import spend
-from api.ws_life import closed_when_lab_stops
-from api.ws_send_only import refuse_client_frames
+from api.protocol.json_codec import dumps
+from api.websockets.budget import spend
+from api.websockets.life import closed_when_lab_stops
+from api.websockets.send_only import refuse_client_frames
 from node_runtime.bus import Bus, Node, UnknownTopicError, validate_topic_name
 from node_runtime.limits import LimitExceededError, RateLimit
 from node_runtime.msgs import Message

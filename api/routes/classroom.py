@@ -16,7 +16,7 @@ from typing_extensions import TypedDict
 
 from api.deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie, token_of
 from api.errors import status_for
-from api.responses import (
+from api.protocol.responses import (
     BAD_GATEWAY,
     FORBIDDEN,
     NO_ROOM,

@@ -15,7 +15,7 @@ from fastapi.responses import FileResponse, HTMLResponse, RedirectResponse, Resp
 from starlette.requests import HTTPConnection
 
 from api.deps import classroom_of, keep_token_and_go, lab_of, token_of
-from api.ws_relay import relay
+from api.websockets.relay import relay
 from server.base.access import token_matches
 from server.base.close_codes import CloseCode
 from server.classroom import ClassroomError, ClassServer
@@ -38,7 +38,7 @@ PROXY_MAX_FRAME_BYTES = 1 << 20  # browser → viser: camera moves and GUI click
 # Cross-origin isolation, so the page may share memory with its pose worker (web/src/lab/poses.ts):
 # everything the page loads comes from this origin, and it opens other pages only as new tabs.
 ISOLATED = {"Cross-Origin-Opener-Policy": "same-origin", "Cross-Origin-Embedder-Policy": "require-corp"}
-STATIC = Path(__file__).resolve().parents[1] / "static"
+STATIC = Path(__file__).resolve().parents[2] / "static"
 POSES_WORKER = STATIC / "build" / "poses.worker.js"
 
 

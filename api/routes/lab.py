@@ -9,8 +9,8 @@ from typing import Any
 from fastapi import APIRouter, HTTPException, Request, status
 
 from api.deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_request, token_of
-from api.responses import responses
-from api.schemas import Health, WorkspaceInfo, ZenohJoin
+from api.protocol.responses import responses
+from api.protocol.schemas import Health, WorkspaceInfo, ZenohJoin
 from node_runtime.transport.acl import Credentials
 from server.classroom import Classroom, ClassServer
 from server.host.processes.command import graph_overrides

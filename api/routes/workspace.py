@@ -25,7 +25,7 @@ from fastapi.responses import StreamingResponse
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from api.deps import LabDep
-from api.responses import NOT_FOUND, TYPE_CONFLICT, UNPROCESSABLE, responses
+from api.protocol.responses import NOT_FOUND, TYPE_CONFLICT, UNPROCESSABLE, responses
 from server.packages.templates import PackageSpec
 from server.services.workspace.archive import packed, replace, unpack
 from server.services.workspace.errors import NoWorkspaceError

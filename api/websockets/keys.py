@@ -21,8 +21,8 @@ from typing_extensions import TypedDict
 
 from api.deps import WsLabDep
 from api.errors import CloseCode, close_reason
-from api.strict_json import JsonRejected, loads
-from api.ws_life import closed_when_lab_stops
+from api.protocol.json_codec import JsonRejected, loads
+from api.websockets.life import closed_when_lab_stops
 from server.peripherals.devices.keymap import MODIFIER_FLAG_NAMES, UnknownKeyError, modifier_bits, sdl_code
 
 

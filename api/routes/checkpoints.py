@@ -11,9 +11,9 @@ from fastapi import APIRouter, Depends, Path, Query, Request, Response
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 from starlette.requests import HTTPConnection
 
-from api.classroom import ClassroomDep, InstructorDep
 from api.deps import LabDep, classroom_of, grant_of, lab_of
-from api.responses import NOT_FOUND, TYPE_CONFLICT, UNAUTHORIZED, UNPROCESSABLE, responses
+from api.protocol.responses import NOT_FOUND, TYPE_CONFLICT, UNAUTHORIZED, UNPROCESSABLE, responses
+from api.routes.classroom import ClassroomDep, InstructorDep
 from server.classroom import ClassroomError, ClassServer
 from server.world.checkpoints.catalog import load
 from server.world.checkpoints.class_table import Row, reports_zip, table, table_csv

@@ -12,9 +12,9 @@ import json
 import re
 from collections.abc import Iterable
 
-from starlette.exceptions import HTTPException
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from api.errors import BodyTooLarge
 from server.base.access import host_allowed, origin_allowed
 from server.base.close_codes import REFUSAL_FOR_STATUS
 
@@ -80,7 +80,9 @@ class GuardMiddleware:
         return bounded
 
     async def _refuse(self, scope: Scope, send: Send, status: int, detail: str) -> None:
-        if scope["type"] == "websocket":  # api/ws_refusal.py: the close code arrives, not a bare 403
+        if (
+            scope["type"] == "websocket"
+        ):  # api/middleware/socket_refusal.py: the close code arrives, not a bare 403
             await send({"type": "websocket.close", "code": REFUSAL_FOR_STATUS[status], "reason": detail})
             return
         body = json.dumps({"detail": detail}).encode()
@@ -95,15 +97,3 @@ class GuardMiddleware:
             }
         )
         await send({"type": "http.response.body", "body": body})
-
-
-class BodyTooLarge(HTTPException):
-    """Raised while a body without Content-Length is read; an HTTPException so that FastAPI's
-    body parser re-raises it (any other exception there becomes a 400 "error parsing the body")."""
-
-    def __init__(self, limit: int) -> None:
-        self.limit = limit
-        super().__init__(413, f"body larger than {limit} bytes")
-
-    def __str__(self) -> str:
-        return str(self.detail)

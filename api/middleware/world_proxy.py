@@ -7,7 +7,7 @@ worker that hosts it, naming the world. The student's cookie and token never lea
 server: a student's call goes on with a credential for their world alone
 (``world_call_token``), which the worker answers as that world's student; only the instructor's
 own calls go on as the instructor. The path goes on exactly as it was checked: one a normaliser
-would change never gets here (api/canonical_path.py), and the URL sent must carry the same path.
+would change never gets here (api/middleware/canonical_path.py), and the URL sent must carry the same path.
 A worker that does not answer is a 502 (HTTP) or close 1011 (WebSocket) that says so; a closed
 world's socket keeps its worker's close code (1012 on a reset). A world's workspace routes go on
 like the rest: a worker that keeps the files in a folder of its own is kept in step with the
@@ -26,8 +26,8 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from api.deps import SAFE_METHODS, WORLD_HEADER, token_of
 from api.errors import CloseCode, close_reason
-from api.strict_json import SafeJSONResponse
-from api.ws_relay import relay
+from api.protocol.json_codec import SafeJSONResponse
+from api.websockets.relay import relay
 from server.classroom import Classroom, ClassroomError, ClassServer, Grant, World
 from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH
 from server.classroom.workers import WorkerDirectory, WorkerRef, world_call_token

@@ -14,7 +14,7 @@ from fastapi import APIRouter, status
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from api.deps import LabDep
-from api.responses import NOT_FOUND, TOO_MANY, responses
+from api.protocol.responses import NOT_FOUND, TOO_MANY, responses
 from server.packages.launch_files import launch_file
 
 router = APIRouter(prefix="/api", tags=["launch"], responses=responses())

@@ -2,44 +2,41 @@
 
 from fastapi import APIRouter
 
-from api import (
+from api.routes import (
     bag,
     checkpoints,
     classroom_load,
     classroom_workspaces,
     introspection,
-    lab_routes,
-    launch_routes,
+    lab,
+    launches,
     publishers,
-    rosbridge,
     services,
     topics,
     workspace,
-    ws_keys,
-    ws_output,
-    ws_topics,
 )
-from api import classroom as classroom_routes
+from api.routes import classroom as classroom_routes
+from api.websockets import echo, keys, output, rosbridge
 
 
 def build_router(*, classroom: bool = False) -> APIRouter:
-    """Every route; the class server's own (api/classroom.py) are in the OpenAPI document only on a
+    """Every route; the class server's own (api/routes/classroom.py) are in the OpenAPI document only on a
     class server, and answer 404 elsewhere."""
     router = APIRouter()
     for module in (
-        lab_routes,
+        lab,
         topics,
         services,
         publishers,
-        launch_routes,
+        launches,
         introspection,
-        ws_topics,
-        ws_keys,
+        echo,
+        keys,
         bag,
         rosbridge,
         checkpoints,
         workspace,
-        ws_output,
+        output,
     ):
         router.include_router(module.router)
     router.include_router(classroom_routes.router, include_in_schema=classroom)

@@ -1,7 +1,7 @@
 """TypeScript declarations from JSON Schema: the subset pydantic and the message schemas write
 (objects, arrays, tuples, unions, nullables, literals, ``$ref`` to ``$defs``, maps).
 
-The page's types are generated from the Python declarations through this (api/page_protocol.py),
+The page's types are generated from the Python declarations through this (api/typescript.py),
 so the shapes the server sends are written once.
 """
 

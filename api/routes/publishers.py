@@ -7,8 +7,8 @@ from typing import Any
 from fastapi import APIRouter, status
 
 from api.deps import LabDep
-from api.responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, responses
-from api.schemas import RatePublisherInfo, RatePublisherRequest, RatePublisherUpdate
+from api.protocol.responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, responses
+from api.protocol.schemas import RatePublisherInfo, RatePublisherRequest, RatePublisherUpdate
 
 # Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
 # handler would run in a worker thread and race the executor (timer heap, wake-up future).

@@ -7,8 +7,8 @@ from typing import Any
 from fastapi import APIRouter
 
 from api.deps import LabDep
-from api.responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, responses
-from api.schemas import PublishRequest, PublishResult, TopicDetail, TopicSummary
+from api.protocol.responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, responses
+from api.protocol.schemas import PublishRequest, PublishResult, TopicDetail, TopicSummary
 from node_runtime.bus import UnknownTopicError, validate_topic_name
 from node_runtime.msgs import UnknownTypeError, get_type
 from server.host.introspection.merged import LOCAL, EndpointView, TopicView, topic_views

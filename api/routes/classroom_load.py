@@ -12,9 +12,17 @@ from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
 from typing_extensions import TypedDict
 
-from api.classroom import OPEN, ClassroomDep, InstructorDep, Joined, QueuedJoin, queued
 from api.deps import set_token_cookie
-from api.responses import BAD_GATEWAY, FORBIDDEN, NO_ROOM, NOT_FOUND, TOO_MANY, UNAUTHORIZED, responses
+from api.protocol.responses import (
+    BAD_GATEWAY,
+    FORBIDDEN,
+    NO_ROOM,
+    NOT_FOUND,
+    TOO_MANY,
+    UNAUTHORIZED,
+    responses,
+)
+from api.routes.classroom import OPEN, ClassroomDep, InstructorDep, Joined, QueuedJoin, queued
 from server.classroom import ClassroomError, ClassServer
 from server.classroom.join_queue import JoinWaits
 

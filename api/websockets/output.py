@@ -18,10 +18,10 @@ from fastapi import APIRouter, WebSocket, WebSocketDisconnect
 
 from api.deps import WsLabDep
 from api.errors import CloseCode, close_reason
-from api.strict_json import dumps
-from api.ws_budget import spend
-from api.ws_life import closed_when_lab_stops
-from api.ws_send_only import refuse_client_frames
+from api.protocol.json_codec import dumps
+from api.websockets.budget import spend
+from api.websockets.life import closed_when_lab_stops
+from api.websockets.send_only import refuse_client_frames
 from server.services.launch.groups import UnknownLaunchError
 from server.services.launch.output import GroupOutput
 from server.world.lab import Lab

@@ -21,8 +21,8 @@ from fastapi import APIRouter, WebSocket, WebSocketDisconnect, WebSocketExceptio
 
 from api.deps import WsLabDep, classroom_of, token_of
 from api.errors import CloseCode, close_reason
-from api.ws_budget import spend
-from api.ws_life import closed_when, closed_when_lab_stops
+from api.websockets.budget import spend
+from api.websockets.life import closed_when, closed_when_lab_stops
 from node_runtime.limits import RateLimit
 from server.base.tasks import cancel_and_wait
 from server.classroom import ClassServer

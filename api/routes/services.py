@@ -8,10 +8,10 @@ from fastapi import APIRouter
 from pydantic import BaseModel, ConfigDict, Field
 
 from api.deps import LabDep
-from api.responses import NO_ANSWER, NOT_FOUND, TYPE_CONFLICT, responses
+from api.protocol.responses import NO_ANSWER, NOT_FOUND, TYPE_CONFLICT, responses
 from node_runtime.transport.keys import EntityKind
 
-# Handlers are ``async def``: the bus belongs to the event loop (see api/topics.py).
+# Handlers are ``async def``: the bus belongs to the event loop (see api/routes/topics.py).
 router = APIRouter(prefix="/api", tags=["services"], responses=responses())
 MAX_TIMEOUT_S = 60.0
 
