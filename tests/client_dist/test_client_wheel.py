@@ -20,7 +20,7 @@ from support.app import REPO, App, end
 from websockets.sync.client import connect
 
 INSTALL_S = 600.0  # pip from its cache and the machine's wheel folders; bounded all the same
-WEB_SIDE = ("fastapi", "starlette", "uvicorn", "viser", "pydantic", "sim", "api", "httpx", "mcap")
+WEB_SIDE = ("fastapi", "starlette", "uvicorn", "viser", "pydantic", "server", "sim", "api", "httpx", "mcap")
 
 RELAY = """
 import rclpy
@@ -82,21 +82,47 @@ def laptop(wheel: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     return python
 
 
+def _shipped_files(folder: Path) -> set[str]:
+    """Every file under ``folder`` a wheel built from the tree ships, relative to ``folder``'s
+    parent: all but bytecode and the machine's own dot-files (the set-up's stamp, the parse cache)."""
+    return {
+        p.relative_to(folder.parent).as_posix()
+        for p in folder.rglob("*")
+        if p.is_file()
+        and "__pycache__" not in p.parts
+        and p.suffix != ".pyc"
+        and not any(part.startswith(".") for part in p.relative_to(folder).parts)
+    }
+
+
 def test_wheel_holds_the_client_and_nothing_of_the_web_server(wheel: Path) -> None:
     names = set(zipfile.ZipFile(wheel).namelist())
     tops = {n.split("/")[0] for n in names if not n.startswith("teleop_lab_client-")}
     client_packages = {p.parent.name for p in (REPO / "client").glob("*/__init__.py")}
-    assert tops == client_packages | {"server"}
-    # Every module of the client's own folder, and every interface definition the lab knows.
-    client_modules = {p.relative_to(REPO / "client").as_posix() for p in (REPO / "client").glob("*/**/*.py")}
-    assert not {m for m in client_modules if not m.startswith("_build/")} - names
+    assert len(client_packages) > 30 and "rclpy" in client_packages
+    assert tops == client_packages | {"node_runtime"}
+    # Every file of the client's package folders, at the top of the wheel.
+    client_files = {name for package in client_packages for name in _shipped_files(REPO / "client" / package)}
+    assert not client_files - names
+    # The whole node runtime, its interface definitions with it: the lab's own, and ROS 2's, which
+    # the set-up extracts into a folder git ignores.
+    runtime = _shipped_files(REPO / "node_runtime")
+    assert not runtime - names
     definitions = {
         p.relative_to(REPO).as_posix() for p in (REPO / "node_runtime/msgs/interfaces").glob("*/*/*")
     }
     ros = {p.relative_to(REPO).as_posix() for p in (REPO / "node_runtime/msgs/ros_interfaces").glob("*/*/*")}
     assert not definitions - names and not ros - names and len(ros) > 150  # ROS 2's, as the set-up took them
     assert {"node_runtime/process/runner.py", "node_runtime/transport/bridge.py", "rclpy/node.py"} <= names
+    assert {"node_runtime/msgs/generated/std_msgs.py", "node_runtime/msgs/ros_packages.txt"} <= names
     assert "node_runtime/msgs/interfaces/keyboard_msgs/msg/Key.msg" in names
+    assert "node_runtime/msgs/ros_interfaces/std_msgs/msg/String.msg" in names
+    # What it ships is the tree's: no bytecode, and every runtime file is one of the checkout's.
+    assert not [n for n in names if "__pycache__" in n.split("/") or n.endswith(".pyc")]
+    assert all((REPO / n).is_file() for n in names if n.startswith("node_runtime/"))
+    assert not {"pyproject.toml", "README.md"} & names  # the client folder's own files stay behind
+    # Nothing of the web server, the API or the sims.
+    assert not [n for n in names if n.split("/")[0] in ("server", "api", "sim")]
     for app_side in ("server/app.py", "server/world/lab.py", "server/host/settings/__init__.py", "server/host/processes/supervisor.py",
                      "server/packages/rocketship/keyboard_manager.py"):  # fmt: skip
         assert app_side not in names
@@ -141,9 +167,11 @@ def test_importing_the_client_loads_nothing_of_the_web_server(laptop: Path, tmp_
     assert "zenoh" in tops and "rclpy" in tops  # what it does load: the client itself
     assert str(laptop.parents[1]) in out["rclpy"]  # from the fresh venv, not the repository
     # Nothing of the web side is even installed there.
-    missing = run([str(laptop), "-c", "import importlib.util as u; print([m for m in ('fastapi', 'uvicorn', "
-                   "'viser', 'starlette', 'sim', 'api') if u.find_spec(m) is None])"], tmp_path, 60.0)  # fmt: skip
-    assert json.loads(missing.replace("'", '"')) == ["fastapi", "uvicorn", "viser", "starlette", "sim", "api"]
+    absent = ["fastapi", "uvicorn", "viser", "starlette", "server", "sim", "api"]
+    missing = run([str(laptop), "-c", "import importlib.util as u, json, sys; "
+                   "print(json.dumps([m for m in sys.argv[1:] if u.find_spec(m) is None]))", *absent],
+                  tmp_path, 60.0)  # fmt: skip
+    assert json.loads(missing) == absent
 
 
 @pytest.fixture(scope="module")
