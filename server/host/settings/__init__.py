@@ -3,7 +3,10 @@
 class server or a world worker, the class (``classroom``) and the worker (``worker``).
 
 Every rule across fields lives here, so ``python -m server``, ``ros2lab world-worker`` and a test
-that builds settings by hand meet the same ones. Their messages name the command-line options,
+that builds settings by hand meet the same ones; so does every default: the two command lines
+read their options' defaults from the fields (:func:`default_of`), and the few where a command
+line differs from a model built by hand are constants here (``FOXGLOVE_PORT``,
+``WORKER_MAX_WORLDS``, ``WORKER_PORT``). The rules' messages name the command-line options,
 where people meet them; :func:`explain` turns a ``ValidationError`` into those lines, and
 :func:`is_refusal` tells an unsafe combination (no login beyond loopback) from a usage mistake.
 """
@@ -25,20 +28,33 @@ from server.host.settings.base import (
     WORKER_TIMEOUT_S,
     WORKERS_RULE,
     Section,
+    choices_of,
+    default_of,
     is_loopback_host,
     log_level,
+    shown,
 )
 from server.host.settings.classroom import (
+    WORKER_MAX_WORLDS,
+    WORKER_PORT,
     ClassroomSettings,
     JoinLimits,
     JoinQueueSettings,
     WorkerSettings,
     WorldLimits,
 )
-from server.host.settings.lab import LabLimits, LabSettings, Listening, SandboxSettings, WorkspaceLimits
+from server.host.settings.lab import (
+    FOXGLOVE_PORT,
+    LabLimits,
+    LabSettings,
+    Listening,
+    SandboxSettings,
+    WorkspaceLimits,
+)
 
 __all__ = [
     "ANY_ADDRESS",
+    "FOXGLOVE_PORT",
     "LOCAL_WORLDS_RULE",
     "LOOPBACK_HOSTS",
     "MAX_LOCAL_WORKERS",
@@ -46,6 +62,8 @@ __all__ = [
     "REFUSAL",
     "SPREAD_AT_WORLDS",
     "WORKERS_RULE",
+    "WORKER_MAX_WORLDS",
+    "WORKER_PORT",
     "WORKER_TIMEOUT_S",
     "ClassroomSettings",
     "JoinLimits",
@@ -59,10 +77,13 @@ __all__ = [
     "WorkerSettings",
     "WorkspaceLimits",
     "WorldLimits",
+    "choices_of",
     "class_section",
+    "default_of",
     "explain",
     "is_loopback_host",
     "is_refusal",
+    "shown",
 ]
 
 

@@ -1,7 +1,12 @@
 """What every section of the settings shares: a frozen model that refuses unknown names, the
-loopback names, the class's timing constants and the rules' messages."""
+loopback names, the class's timing constants, the rules' messages, and the fields' defaults and
+choices as the command lines read them."""
 
 from __future__ import annotations
+
+import typing
+from pathlib import PurePath
+from typing import Any
 
 from pydantic import BaseModel, ConfigDict
 
@@ -38,3 +43,25 @@ def log_level(value: str) -> str:
     if value not in LEVELS:
         raise ValueError(f"a log level is one of {', '.join(LEVELS)}, got {value!r}")
     return value
+
+
+def default_of(section: type[BaseModel], name: str) -> Any:
+    """The default of the field ``name`` of ``section``. ``python -m server`` and ``ros2lab
+    world-worker`` take their options' defaults from here, so each default is written once: in
+    the model."""
+    return section.model_fields[name].get_default(call_default_factory=True)
+
+
+def choices_of(section: type[BaseModel], name: str) -> tuple[str, ...]:
+    """The values a ``Literal`` field takes, for an option's ``choices``."""
+    return typing.get_args(section.model_fields[name].annotation)
+
+
+def shown(value: object) -> str:
+    """A default as a command line's help shows it: ``./bags`` for a folder under the current one,
+    ``20`` for 20.0 seconds."""
+    if isinstance(value, PurePath) and not value.is_absolute():
+        return f"./{value}"
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)

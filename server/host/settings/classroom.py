@@ -19,6 +19,12 @@ from server.host.settings.base import (
     log_level,
 )
 
+# ``ros2lab world-worker``'s own defaults, where a worker differs from a class server: the worlds
+# it hosts at most (--max-worlds; a class server's is ``ClassroomSettings.max_worlds``), and its
+# HTTP API's port (--port; 0: a free one, which it tells the class server in its hello).
+WORKER_MAX_WORLDS = 30
+WORKER_PORT = 0
+
 
 class WorldLimits(Section):
     """What one student's world may hold on a class server, so its load stays its own."""

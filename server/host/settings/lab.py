@@ -13,6 +13,9 @@ from node_runtime.transport.config import ZenohSettings
 from server.host.settings.base import ANY_ADDRESS, LOOPBACK_HOSTS, Section, is_loopback_host
 
 WORKSPACE_DEPTH = 16  # the default depth of a workspace path (server/services/workspace/paths.py)
+# The Foxglove WebSocket server's port of ``python -m server`` (--foxglove-port); a lab built by
+# hand (a test's) starts none: ``LabSettings.foxglove_port`` is None.
+FOXGLOVE_PORT = 8765
 
 
 class Listening(Section):
@@ -60,7 +63,8 @@ class LabSettings(Section):
     state_dir: Path = Path("state")
     # Checkpoints a lab adds to the three of this one, as ``package.module:NAME`` (docs/checkpoints.md).
     checkpoints: tuple[str, ...] = ()
-    # The Foxglove WebSocket server's port on the listening host; None: off (``python -m server`` uses 8765).
+    # The Foxglove WebSocket server's port on the listening host; None: off (``python -m server``
+    # uses FOXGLOVE_PORT).
     foxglove_port: int | None = Field(default=None, ge=0, le=65535)
     # rosbridge on a port of its own too, as rosbridge_server's 9090; None: only at /rosbridge.
     rosbridge_port: int | None = Field(default=None, ge=0, le=65535)
