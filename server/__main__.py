@@ -16,11 +16,19 @@ from node_runtime.transport.config import DEFAULT_ROUTER_ENDPOINT, ZenohSettings
 from server import cli
 from server.banner import classroom_banner, print_lab_lines, student_code_line
 from server.host.settings import (
-    SPREAD_AT_WORLDS,
-    WORKER_TIMEOUT_S,
+    FOXGLOVE_PORT,
+    ClassroomSettings,
+    JoinLimits,
+    LabSettings,
+    Listening,
+    SandboxSettings,
     Settings,
+    choices_of,
+    default_of,
     explain,
+    is_loopback_host,
     is_refusal,
+    shown,
 )
 
 
@@ -32,17 +40,26 @@ def parse_launch_arg(text: str) -> tuple[str, str]:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The command line. Each option that maps onto a settings field takes its default from the
+    model (``default_of``), and a help that names the default shows that value."""
     parser = argparse.ArgumentParser(
         prog="python -m server",
         description="Run the teleop lab app.",
         epilog=f"With a first argument of {', '.join(cli.VERBS)}: ros2's command-line tools against a "
         "running app (python -m server topic --help; also installed as ros2lab).",
     )
+    host = default_of(Listening, "host")
     parser.add_argument(
-        "--host", default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)"
+        "--host",
+        default=host,
+        help=f"address to bind (default {host}{': this machine only' if is_loopback_host(host) else ''})",
     )
-    parser.add_argument("--port", type=int, default=8000, help="port (default 8000)")
-    parser.add_argument("--launch", default="all", help="rocket, fly, all (default) or a launch file's path")
+    port = default_of(Listening, "port")
+    parser.add_argument("--port", type=int, default=port, help=f"port (default {port})")
+    launch = default_of(LabSettings, "launch")
+    parser.add_argument(
+        "--launch", default=launch, help=f"rocket, fly, all or a launch file's path (default {launch})"
+    )
     parser.add_argument(
         "launch_args",
         nargs="*",
@@ -50,14 +67,26 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="NAME:=VALUE",
         help="launch arguments, as ros2 launch takes them (e.g. start_delay:=2.0)",
     )
+    workspace = default_of(LabSettings, "workspace")
     parser.add_argument(
         "--workspace",
-        default="workspace",
-        help="folder of your own packages (src/<pkg>/...), default ./workspace",
+        type=Path,
+        default=workspace,
+        help=f"folder of your own packages (src/<pkg>/...), default {shown(workspace)}",
     )
-    parser.add_argument("--allow-host", action="append", default=[], help="another Host name to accept")
-    parser.add_argument("--allow-origin", action="append", default=[], help="another page origin to accept")
-    parser.add_argument("--log-level", default="info", choices=list(LEVELS))
+    parser.add_argument(
+        "--allow-host",
+        action="append",
+        default=list(default_of(Listening, "allowed_hosts")),
+        help="another Host name to accept",
+    )
+    parser.add_argument(
+        "--allow-origin",
+        action="append",
+        default=list(default_of(Listening, "allowed_origins")),
+        help="another page origin to accept",
+    )
+    parser.add_argument("--log-level", default=default_of(Settings, "log_level"), choices=list(LEVELS))
     zenoh = parser.add_argument_group(
         "the graph on Zenoh (rmw_zenoh's wire format; ROS_DOMAIN_ID is read from the environment)"
     )
@@ -77,31 +106,40 @@ def build_parser() -> argparse.ArgumentParser:
         "--zenoh-config", type=Path, metavar="FILE", help="a Zenoh JSON5 config (TLS, user/password)"
     )
     zenoh.add_argument("--no-zenoh", action="store_true", help="keep every node in this process (no Zenoh)")
+    node_processes = default_of(LabSettings, "node_processes")
     parser.add_argument(
-        "--node-processes", choices=["student", "all"], default="student",
-        help="which nodes run as their own processes: your own files (default), or every node but the two "
-             "that drive the page (keyboard, view), so the lesson shows in ps",
+        "--node-processes", choices=choices_of(LabSettings, "node_processes"), default=node_processes,
+        help="which nodes run as their own processes: student, your own files; or all, every node but the "
+             f"two that drive the page (keyboard, view), so the lesson shows in ps (default {node_processes})",
     )  # fmt: skip
     # -- tools robotics people use --
     parser.add_argument(
         "--foxglove-port",
         type=int,
-        default=8765,
-        help="Foxglove WebSocket server's port on --host (default 8765)",
+        default=FOXGLOVE_PORT,
+        help=f"Foxglove WebSocket server's port on --host (default {FOXGLOVE_PORT})",
     )
     parser.add_argument(
         "--no-foxglove", action="store_true", help="do not start the Foxglove WebSocket server"
     )
     parser.add_argument(
-        "--rosbridge-port", type=int, default=None,
+        "--rosbridge-port", type=int, default=default_of(LabSettings, "rosbridge_port"),
         help="serve rosbridge on this port too, as rosbridge_server does on 9090 (always at /rosbridge)",
     )  # fmt: skip
-    parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
+    bag_dir = default_of(LabSettings, "bag_dir")
+    parser.add_argument(
+        "--bag-dir",
+        type=Path,
+        default=bag_dir,
+        help=f"where recordings are written (default {shown(bag_dir)})",
+    )
+    state_dir = default_of(LabSettings, "state_dir")
     parser.add_argument(
         "--state-dir",
-        default="state",
+        type=Path,
+        default=state_dir,
         help="what the server keeps across restarts: its report-signing key and each world's checkpoint "
-        "progress (default ./state)",
+        f"progress (default {shown(state_dir)})",
     )
     # -- a class on one server --
     classroom = parser.add_argument_group("a class on one server")
@@ -110,51 +148,65 @@ def build_parser() -> argparse.ArgumentParser:
         help="a world per student (their own rocket, drone, graph and 3D view) behind signed tokens; "
              "prints the class code and the instructor's link once. Add --host for a LAN.",
     )  # fmt: skip
-    classroom.add_argument("--class-code", help="the code students type to join (default: a new random one)")
-    classroom.add_argument("--max-worlds", type=int, default=60, help="worlds at most (default 60)")
+    classroom.add_argument(
+        "--class-code",
+        default=default_of(ClassroomSettings, "code"),
+        help="the code students type to join (default: a new random one)",
+    )
+    max_worlds = default_of(ClassroomSettings, "max_worlds")
+    classroom.add_argument(
+        "--max-worlds", type=int, default=max_worlds, help=f"worlds at most (default {max_worlds})"
+    )
     classroom.add_argument(
         "--max-worlds-per-address", type=int, metavar="N",
+        default=default_of(JoinLimits, "max_worlds_per_address"),
         help="worlds at most joined from one client address (default: any; a class behind one NAT "
              "address shares one)",
     )  # fmt: skip
     classroom.add_argument(
-        "--local-worlds", type=int, metavar="N",
+        "--local-worlds", type=int, metavar="N", default=default_of(ClassroomSettings, "local_worlds"),
         help="worlds this server hosts itself (default: all); the rest go to world workers "
              f"(ros2lab {cli.WORKER_VERB} --connect tcp/HOST:7447, which join this server's Zenoh router)",
     )  # fmt: skip
+    workers = default_of(ClassroomSettings, "local_workers")
     classroom.add_argument(
-        "--workers", type=workers_arg, default="auto", metavar="N|auto",
+        "--workers", type=workers_arg, default=workers, metavar="N|auto",
         help="world workers on this machine (processes of their own on this server's router, so a class "
-             "uses more cores; they stop with it): N at the start, or auto (default): one each --spread-at "
-             "worlds as the class grows, at most one per spare core; 0: none",
+             "uses more cores; they stop with it): N at the start, or auto: one each --spread-at worlds as "
+             f"the class grows, at most one per spare core; 0: none (default {workers})",
     )  # fmt: skip
+    spread_at = default_of(ClassroomSettings, "spread_at")
     classroom.add_argument(
-        "--spread-at", type=int, default=SPREAD_AT_WORLDS, metavar="N",
-        help=f"with --workers auto: another world worker each N worlds (default {SPREAD_AT_WORLDS})",
+        "--spread-at", type=int, default=spread_at, metavar="N",
+        help=f"with --workers auto: another world worker each N worlds (default {spread_at})",
     )  # fmt: skip
+    world_level = default_of(ClassroomSettings, "world_log_level")
     classroom.add_argument(
-        "--world-log-level", default="warning", choices=list(LEVELS),
-        help="the lowest level of the worlds' node log lines this console shows (default warning: a class "
-             "of 30 rockets at info is 300 lines a second); every line still goes to its world's /rosout",
+        "--world-log-level", default=world_level, choices=list(LEVELS),
+        help=f"the lowest level of the worlds' node log lines this console shows (default {world_level}: a "
+             "class of 30 rockets at info is 300 lines a second); every line still goes to its world's /rosout",
     )  # fmt: skip
+    workspaces_dir = default_of(ClassroomSettings, "workspaces_dir")
     classroom.add_argument(
-        "--workspaces-dir", default="workspaces", metavar="DIR",
-        help="the students' workspaces, a folder per world (default ./workspaces); world workers on other "
-             "machines need it mounted as their --workspaces-dir for the code view",
+        "--workspaces-dir", type=Path, default=workspaces_dir, metavar="DIR",
+        help=f"the students' workspaces, a folder per world (default {shown(workspaces_dir)}); world workers "
+             "on other machines need it mounted as their --workspaces-dir for the code view",
     )  # fmt: skip
+    worker_timeout = default_of(ClassroomSettings, "worker_timeout_s")
     classroom.add_argument(
-        "--worker-timeout", type=float, default=WORKER_TIMEOUT_S, metavar="S",
+        "--worker-timeout", type=float, default=worker_timeout, metavar="S",
         help="a world worker that answers no hello for S seconds is gone: its worlds start again here "
-             f"or on another worker, under the same names and tokens (default {WORKER_TIMEOUT_S:g})",
+             f"or on another worker, under the same names and tokens (default {shown(worker_timeout)})",
     )  # fmt: skip
+    student_code = default_of(SandboxSettings, "student_code")
     classroom.add_argument(
-        "--student-code", choices=["sandboxed", "unsandboxed"], default="sandboxed",
+        "--student-code", choices=choices_of(SandboxSettings, "student_code"), default=student_code,
         help="how students' node processes run when this server serves others (--classroom, or --token "
-             "beyond loopback): in a bubblewrap sandbox (default; refused if none can be built) or, at "
-             "your own risk, as your user with everything it can reach",
+             "beyond loopback): sandboxed, in a bubblewrap sandbox (refused if none can be built), or, at "
+             f"your own risk, unsandboxed, as your user with everything it can reach (default {student_code})",
     )  # fmt: skip
     classroom.add_argument(
-        "--token", metavar="TOKEN|auto",
+        "--token", metavar="TOKEN|auto", default=default_of(Listening, "token"),
         help="one lab behind a token: every page, call and bridge port needs it (auto: a new random one, "
              "printed once in the page's link). Needed to listen beyond loopback without --classroom.",
     )  # fmt: skip
@@ -226,7 +278,7 @@ def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settin
         classroom = {
             "code": args.class_code, "max_worlds": args.max_worlds, "local_worlds": args.local_worlds,
             "local_workers": args.workers, "spread_at": args.spread_at, "worker_timeout_s": args.worker_timeout,
-            "world_log_level": args.world_log_level, "workspaces_dir": Path(args.workspaces_dir),
+            "world_log_level": args.world_log_level, "workspaces_dir": args.workspaces_dir,
             "joins": {"max_worlds_per_address": args.max_worlds_per_address},
         }  # fmt: skip
     listen = {
@@ -234,9 +286,9 @@ def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settin
         "allowed_hosts": args.allow_host, "allowed_origins": args.allow_origin,
     }  # fmt: skip
     lab = {
-        "launch": args.launch, "launch_args": dict(args.launch_args), "workspace": Path(args.workspace),
-        "zenoh": zenoh, "node_processes": args.node_processes, "bag_dir": Path(args.bag_dir),
-        "state_dir": Path(args.state_dir),
+        "launch": args.launch, "launch_args": dict(args.launch_args), "workspace": args.workspace,
+        "zenoh": zenoh, "node_processes": args.node_processes, "bag_dir": args.bag_dir,
+        "state_dir": args.state_dir,
         "foxglove_port": None if args.no_foxglove else args.foxglove_port, "rosbridge_port": args.rosbridge_port,
     }  # fmt: skip
     return Settings.model_validate({
