@@ -29,9 +29,16 @@ from node_runtime.transport.config import ZenohSettings
 from server.classroom.worker_control import TOKEN_ENV
 from server.host.settings import (
     LOOPBACK_HOSTS,
-    ORPHAN_TIMEOUT_S,
+    WORKER_MAX_WORLDS,
+    WORKER_PORT,
+    ClassroomSettings,
+    LabSettings,
+    Listening,
     Settings,
+    WorkerSettings,
+    default_of,
     explain,
+    shown,
 )
 
 log = logging.getLogger("classroom.worker")
@@ -39,6 +46,9 @@ PARENT_CHECK_S = 0.5
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The command line. Each option that maps onto a settings field takes its default from the
+    model (``default_of``, or a worker's own: ``WORKER_PORT``, ``WORKER_MAX_WORLDS``), and a help
+    that names the default shows that value."""
     parser = argparse.ArgumentParser(
         prog="ros2lab world-worker",
         description="Host worlds for a class server: join its Zenoh router and serve the worlds it places "
@@ -50,45 +60,66 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="ENDPOINT",
         help="the class's Zenoh router, e.g. tcp/127.0.0.1:7447",
     )
-    parser.add_argument(
-        "--host", default="127.0.0.1", help="address of this worker's HTTP API (default 127.0.0.1)"
-    )
-    parser.add_argument("--port", type=int, default=0, help="its port (default: a free one)")
+    host = default_of(Listening, "host")
+    parser.add_argument("--host", default=host, help=f"address of this worker's HTTP API (default {host})")
+    port = "a free one" if WORKER_PORT == 0 else WORKER_PORT
+    parser.add_argument("--port", type=int, default=WORKER_PORT, help=f"its port (default: {port})")
     parser.add_argument(
         "--advertise", metavar="HOST",
         help="the address the class server reaches this worker on (default: --host; needed with 0.0.0.0)",
     )  # fmt: skip
     parser.add_argument("--id", dest="worker_id", help="this worker's name (default: HOSTNAME-PID)")
-    parser.add_argument("--max-worlds", type=int, default=30, help="worlds at most (default 30)")
     parser.add_argument(
-        "--orphan-timeout", type=float, default=ORPHAN_TIMEOUT_S, metavar="S",
-        help="free this worker's worlds when the class server has said no hello for S seconds "
-        f"(default {ORPHAN_TIMEOUT_S:g}; keep it below the class server's --worker-timeout)",
-    )  # fmt: skip
-    parser.add_argument(
-        "--workspace", default="workspace", help="folder of students' packages (default ./workspace)"
+        "--max-worlds",
+        type=int,
+        default=WORKER_MAX_WORLDS,
+        help=f"worlds at most (default {WORKER_MAX_WORLDS})",
     )
+    orphan_timeout = default_of(WorkerSettings, "orphan_timeout_s")
     parser.add_argument(
-        "--workspaces-dir", default="workspaces", metavar="DIR",
-        help="the class's students' workspaces, a folder per world (default ./workspaces): the class "
-             "server's own folder (the same path on its machine, or a mount of it); a folder of its own "
-             "works too: the class server then hands each world's files over and copies them back",
+        "--orphan-timeout", type=float, default=orphan_timeout, metavar="S",
+        help="free this worker's worlds when the class server has said no hello for S seconds "
+        f"(default {shown(orphan_timeout)}; keep it below the class server's --worker-timeout)",
     )  # fmt: skip
-    parser.add_argument("--bag-dir", default="bags", help="where recordings are written (default ./bags)")
+    workspace = default_of(LabSettings, "workspace")
     parser.add_argument(
-        "--state-dir", default="state",
-        help="where its worlds' checkpoint progress and the report key are kept (default ./state)",
+        "--workspace",
+        type=Path,
+        default=workspace,
+        help=f"folder of students' packages (default {shown(workspace)})",
+    )
+    workspaces_dir = default_of(ClassroomSettings, "workspaces_dir")
+    parser.add_argument(
+        "--workspaces-dir", type=Path, default=workspaces_dir, metavar="DIR",
+        help=f"the class's students' workspaces, a folder per world (default {shown(workspaces_dir)}): the "
+             "class server's own folder (the same path on its machine, or a mount of it); a folder of its "
+             "own works too: the class server then hands each world's files over and copies them back",
     )  # fmt: skip
-    parser.add_argument("--log-level", default="info", choices=list(LEVELS))
+    bag_dir = default_of(LabSettings, "bag_dir")
     parser.add_argument(
-        "--world-log-level", default="warning", choices=list(LEVELS),
-        help="the lowest level of its worlds' node log lines it prints (default warning); every line "
+        "--bag-dir",
+        type=Path,
+        default=bag_dir,
+        help=f"where recordings are written (default {shown(bag_dir)})",
+    )
+    state_dir = default_of(LabSettings, "state_dir")
+    parser.add_argument(
+        "--state-dir", type=Path, default=state_dir,
+        help=f"where its worlds' checkpoint progress and the report key are kept (default {shown(state_dir)})",
+    )  # fmt: skip
+    parser.add_argument("--log-level", default=default_of(Settings, "log_level"), choices=list(LEVELS))
+    world_level = default_of(ClassroomSettings, "world_log_level")
+    parser.add_argument(
+        "--world-log-level", default=world_level, choices=list(LEVELS),
+        help=f"the lowest level of its worlds' node log lines it prints (default {world_level}); every line "
              "still goes to its world's /rosout",
     )  # fmt: skip
     # Set by a class server that started this worker itself (--workers): end when that process is gone.
     parser.add_argument("--parent-pid", type=int, help=argparse.SUPPRESS)
     # A worker its class server started here: the machine's node-start slots, shared with it.
-    parser.add_argument("--start-slots", type=Path, help=argparse.SUPPRESS)
+    parser.add_argument(
+        "--start-slots", type=Path, default=default_of(WorkerSettings, "start_slots"), help=argparse.SUPPRESS
+    )
     return parser
 
 
@@ -144,11 +175,11 @@ def worker_settings(args: argparse.Namespace, class_token: str, port: int) -> Se
         "allowed_hosts": () if args.host in LOOPBACK_HOSTS else (advertise,),
     }
     lab = {
-        "workspace": Path(args.workspace), "bag_dir": Path(args.bag_dir), "state_dir": Path(args.state_dir),
+        "workspace": args.workspace, "bag_dir": args.bag_dir, "state_dir": args.state_dir,
         "zenoh": ZenohSettings(mode="client", listen=(), connect=(args.connect,)),
     }  # fmt: skip
     classroom = {"max_worlds": args.max_worlds, "world_log_level": args.world_log_level,
-                 "workspaces_dir": Path(args.workspaces_dir)}  # fmt: skip
+                 "workspaces_dir": args.workspaces_dir}  # fmt: skip
     return Settings.model_validate(
         {"listen": listen, "lab": lab, "classroom": classroom, "worker": worker, "log_level": args.log_level}
     )
