@@ -3,6 +3,7 @@ and takes the good one; the sections are frozen and refuse names they do not kno
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -17,10 +18,14 @@ from server.host.settings import (
     JoinLimits,
     LabSettings,
     Listening,
+    SandboxSettings,
     Settings,
     WorkerSettings,
+    choices_of,
+    default_of,
     explain,
     is_refusal,
+    shown,
 )
 
 ROUTER = ZenohSettings()  # tcp/127.0.0.1:7447, this machine only
@@ -203,3 +208,17 @@ def test_a_worlds_lab_takes_the_smaller_of_each_limit_and_no_bridge_port() -> No
     assert world.classroom == klass.classroom and klass.lab.launch == "all"  # the class's own are untouched
     with pytest.raises(ValueError, match="only a class server or a world worker has worlds"):
         Settings().for_world("ada", None, "fly", {})
+
+
+def test_a_fields_default_and_choices_are_read_from_the_model_as_the_command_lines_show_them() -> None:
+    assert default_of(Listening, "port") == Listening().port
+    assert default_of(ClassroomSettings, "workspaces_dir") == ClassroomSettings().workspaces_dir
+    assert default_of(LabSettings, "launch_args") == {}  # a default factory's value
+    assert choices_of(SandboxSettings, "student_code") == ("sandboxed", "unsandboxed")
+    assert (shown(Path("bags")), shown(Path("/srv/bags")), shown(20.0), shown(7.5), shown("auto")) == (
+        "./bags",
+        "/srv/bags",
+        "20",
+        "7.5",
+        "auto",
+    )
