@@ -34,7 +34,9 @@ from node_runtime.bus import (
 )  # fmt: skip
 from node_runtime.limits import LimitExceededError, ValueLimitError
 from node_runtime.msgs import MessageError, UnknownTypeError
+from server.base.close_codes import CLOSE_FOR_STATUS, refuse_socket
 from server.base.close_codes import CloseCode as CloseCode  # where the routes import it from
+from server.base.close_codes import close_reason as close_reason  # likewise
 from server.classroom import ClassroomError
 from server.classroom.errors import StudentCodeElsewhereError
 from server.host.processes.sandbox import StudentCodeRefusedError
@@ -131,20 +133,6 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
 )
 
 
-_CLOSE_FOR_STATUS = {
-    status.HTTP_404_NOT_FOUND: CloseCode.NOT_FOUND,
-    status.HTTP_409_CONFLICT: CloseCode.TYPE_CONFLICT,
-    status.HTTP_429_TOO_MANY_REQUESTS: CloseCode.TRY_AGAIN_LATER,
-    status.HTTP_504_GATEWAY_TIMEOUT: CloseCode.TRY_AGAIN_LATER,
-    status.HTTP_503_SERVICE_UNAVAILABLE: CloseCode.TRY_AGAIN_LATER,
-    status.HTTP_413_CONTENT_TOO_LARGE: CloseCode.MESSAGE_TOO_BIG,
-    status.HTTP_412_PRECONDITION_FAILED: CloseCode.BAD_REQUEST,
-    status.HTTP_415_UNSUPPORTED_MEDIA_TYPE: CloseCode.UNSUPPORTED_DATA,
-    status.HTTP_422_UNPROCESSABLE_CONTENT: CloseCode.BAD_REQUEST,
-}
-MAX_REASON_CHARS = 120  # a close frame's reason must fit in 123 bytes
-
-
 def status_for(exc: BaseException) -> int | None:
     """The HTTP status of a known error type, or None for a bug."""
     return next((code for kind, code in ERROR_STATUS if isinstance(exc, kind)), None)
@@ -153,12 +141,7 @@ def status_for(exc: BaseException) -> int | None:
 def close_code(exc: BaseException) -> CloseCode | None:
     """The WebSocket close code of a known error type, or None for a bug."""
     code = status_for(exc)
-    return None if code is None else _CLOSE_FOR_STATUS[code]
-
-
-def close_reason(text: str) -> str:
-    """A close reason that fits a close frame (123 bytes of UTF-8)."""
-    return text.encode("utf-8")[:MAX_REASON_CHARS].decode("utf-8", "ignore")
+    return None if code is None else CLOSE_FOR_STATUS[code]
 
 
 def _handler(code: int) -> Callable[[Request, Exception], Awaitable[SafeJSONResponse]]:
@@ -257,7 +240,7 @@ async def _answer_bug(scope: Scope, send: Send, request_id: str, started: bool) 
     if scope["type"] == "websocket":
         # Before the handshake this refuses it; after, it closes with 1011. Either way, a code.
         try:
-            await send({"type": "websocket.close", "code": CloseCode.INTERNAL_ERROR, "reason": detail})
+            await refuse_socket(send, CloseCode.INTERNAL_ERROR, detail)
         except (RuntimeError, OSError):  # the socket is already gone
             return
         return

@@ -16,8 +16,9 @@ import logging
 
 from starlette.types import ASGIApp, Receive, Scope, Send
 
-from api.errors import CloseCode, close_reason
+from api.errors import CloseCode
 from server.base.access import path_problem
+from server.base.close_codes import refuse_socket
 
 log = logging.getLogger("api.paths")
 BAD_REQUEST = 400
@@ -67,4 +68,4 @@ async def _refuse(scope: Scope, send: Send, detail: str) -> None:
         await send({"type": "websocket.http.response.start", "status": BAD_REQUEST, "headers": headers})
         await send({"type": "websocket.http.response.body", "body": body})
     else:  # a server without that extension answers a close before accept with its own 403
-        await send({"type": "websocket.close", "code": CloseCode.BAD_REQUEST, "reason": close_reason(detail)})
+        await refuse_socket(send, CloseCode.BAD_REQUEST, detail)

@@ -16,7 +16,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from api.errors import BodyTooLarge
 from server.base.access import host_allowed, origin_allowed
-from server.base.close_codes import REFUSAL_FOR_STATUS
+from server.base.close_codes import CLOSE_FOR_STATUS, refuse_socket
 
 SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
 
@@ -80,10 +80,8 @@ class GuardMiddleware:
         return bounded
 
     async def _refuse(self, scope: Scope, send: Send, status: int, detail: str) -> None:
-        if (
-            scope["type"] == "websocket"
-        ):  # api/middleware/socket_refusal.py: the close code arrives, not a bare 403
-            await send({"type": "websocket.close", "code": REFUSAL_FOR_STATUS[status], "reason": detail})
+        if scope["type"] == "websocket":  # api/middleware/socket_refusal.py: the code arrives, not a bare 403
+            await refuse_socket(send, CLOSE_FOR_STATUS[status], detail)
             return
         body = json.dumps({"detail": detail}).encode()
         await send(

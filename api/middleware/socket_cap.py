@@ -11,7 +11,8 @@ from starlette.requests import HTTPConnection
 from starlette.types import ASGIApp, Receive, Scope, Send
 
 from api.deps import WORLD_HEADER, token_of
-from api.errors import CloseCode, close_reason
+from api.errors import CloseCode
+from server.base.close_codes import refuse_socket
 from server.classroom import Classroom, ClassroomError, World
 
 
@@ -43,9 +44,7 @@ class SocketCapMiddleware:
         assert classroom is not None
         cap = classroom.class_settings.world.sockets
         if world.sockets >= cap:
-            await _refuse(
-                receive, send, f"at most {cap} WebSockets open for world {world.name!r}; close one first"
-            )
+            await _refuse(send, f"at most {cap} WebSockets open for world {world.name!r}; close one first")
             return
         world.sockets += 1
         try:
@@ -54,11 +53,7 @@ class SocketCapMiddleware:
             world.sockets -= 1
 
 
-async def _refuse(receive: Receive, send: Send, reason: str) -> None:
-    """Accept, then close with the code: a browser sees the code and reason (a refused handshake
-    would only show it an HTTP error)."""
-    message = await receive()
-    if message["type"] != "websocket.connect":
-        return
-    await send({"type": "websocket.accept"})
-    await send({"type": "websocket.close", "code": CloseCode.TRY_AGAIN_LATER, "reason": close_reason(reason)})
+async def _refuse(send: Send, reason: str) -> None:
+    """Close with 1013: the app's outermost middleware accepts first, so a browser sees the code
+    and reason (a refused handshake would only show it an HTTP error)."""
+    await refuse_socket(send, CloseCode.TRY_AGAIN_LATER, reason)

@@ -74,3 +74,17 @@ def test_errors_nan_published_by_a_node_goes_out_as_null(rocket_lab: LabClient) 
     response = rocket_lab.http.get("/api/topics/odd")
     assert response.status_code == 200
     assert response.json()["latest"] == {"data": None}
+
+
+def test_errors_every_known_error_has_one_close_code_from_the_one_table() -> None:
+    """A WebSocket refused for a reason gets the close code of the status a request gets for it:
+    every status the error mapping gives has its code in the one table, and the app's own codes
+    are 4000 plus that status (4400, a bad request, for the client errors without one of their own)."""
+    from server.base.close_codes import CLOSE_FOR_STATUS
+
+    for kind, status in ERROR_STATUS:
+        assert status in CLOSE_FOR_STATUS, (kind.__name__, status)
+    for status, code in CLOSE_FOR_STATUS.items():
+        own = code == 4000 + status or (code == CloseCode.BAD_REQUEST and 400 <= status < 500)
+        assert code < 4000 or own, (status, code)
+    assert close_code(KeyError("x")) is None  # a bug has no code: the error net closes with 1011

@@ -28,7 +28,7 @@ from websockets.asyncio.server import Server, ServerConnection, serve
 from websockets.exceptions import ConnectionClosed
 from websockets.typing import Subprotocol
 
-from server.base.close_codes import REFUSAL_FOR_STATUS, CloseCode
+from server.base.close_codes import CLOSE_FOR_STATUS, CloseCode
 from server.base.tasks import cancel_and_wait
 from server.services.bridges import foxglove_protocol as proto
 from server.services.bridges.front import HandshakeRefused, check_handshake, single_headers
@@ -166,7 +166,7 @@ class FoxgloveServer:
             check_handshake(f"GET {request.path} HTTP/1.1", headers, self.guard.accepted_hosts,
                             self.guard.allowed_origins, self.guard.token)  # fmt: skip
         except HandshakeRefused as exc:
-            return REFUSAL_FOR_STATUS.get(exc.status, CloseCode.BAD_REQUEST), exc.reason
+            return CLOSE_FOR_STATUS.get(exc.status, CloseCode.BAD_REQUEST), exc.reason
         if len(self.sessions) >= MAX_CLIENTS:
             return CloseCode.TRY_AGAIN_LATER, f"already {MAX_CLIENTS} Foxglove clients here"
         return None

@@ -25,7 +25,7 @@ from collections.abc import Iterable
 from urllib.parse import parse_qs, urlsplit
 
 from server.base.access import bearer_token, host_allowed, origin_allowed, path_problem, token_matches
-from server.base.close_codes import REFUSAL_FOR_STATUS, CloseCode
+from server.base.close_codes import CLOSE_FOR_STATUS, HANDSHAKE_REFUSALS
 from server.base.tasks import cancel_and_wait
 
 log = logging.getLogger("bridges.front")
@@ -207,7 +207,8 @@ async def _refuse(
     """A WebSocket handshake: completed, then closed with the refusal's close code. Anything
     else: an HTTP error status."""
     key = headers.get("sec-websocket-key", "")
-    code = REFUSAL_FOR_STATUS.get(exc.status, CloseCode.TRY_AGAIN_LATER if exc.status == 502 else None)
+    # a door's refusal, or an upstream that cannot be reached, closes the socket with its code
+    code = CLOSE_FOR_STATUS[exc.status] if exc.status in HANDSHAKE_REFUSALS | {502} else None
     if code is None or headers.get("upgrade", "").lower() != "websocket" or len(key) != 24:
         await _refuse_http(writer, exc)
         return
