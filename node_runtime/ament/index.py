@@ -8,7 +8,6 @@ Each lab package is a folder of ``server/packages``; its ``launch/`` folder is w
 from __future__ import annotations
 
 import importlib
-import importlib.util
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,11 +20,10 @@ from node_runtime.bus import Node
 
 
 def _lab_packages() -> Path:
-    """Where the lab's own packages lie (server/packages), found without importing the app."""
-    spec = importlib.util.find_spec("server.packages") if importlib.util.find_spec("server") else None
-    if spec is None or not spec.submodule_search_locations:
-        return Path(__file__).resolve().parent / "no-lab-packages"
-    return Path(next(iter(spec.submodule_search_locations))).resolve()
+    """Where the lab's own packages lie: ``server/packages`` beside this runtime, in the repository
+    and in the app's install alike. Found by path, importing nothing (a student's folder named
+    ``server`` on the path is never looked at); a client-only install has none."""
+    return Path(__file__).resolve().parents[2] / "server" / "packages"
 
 
 HERE = _lab_packages()
@@ -67,8 +65,16 @@ BUILTIN: dict[str, dict[str, str]] = {
 }
 
 
-__all__ = ["BUILTIN", "Executable", "ExecutableNotFoundError", "NotInProcessError", "PackageIndex",
-           "PackageNotFoundError", "WorkspaceError", "WorkspaceInterfaces"]  # fmt: skip
+__all__ = [
+    "BUILTIN",
+    "Executable",
+    "ExecutableNotFoundError",
+    "NotInProcessError",
+    "PackageIndex",
+    "PackageNotFoundError",
+    "WorkspaceError",
+    "WorkspaceInterfaces",
+]
 
 
 class PackageNotFoundError(LookupError):
@@ -146,12 +152,16 @@ class PackageIndex:
 
     def executables_of(self, pkg: str) -> dict[str, Executable]:
         """A package's executables by name; a student's files win over the lab's of the same name."""
-        exes = {name: Executable(pkg, name, builtin=t) if isinstance(t, str) else Executable(pkg, name)
-                for name, t in self.executables.get(pkg, {}).items()}  # fmt: skip
+        exes = {
+            name: Executable(pkg, name, builtin=t) if isinstance(t, str) else Executable(pkg, name)
+            for name, t in self.executables.get(pkg, {}).items()
+        }
         student = self._student(pkg)
         if student is not None:
-            exes.update({name: Executable(pkg, name, file=exe.file, entry_point=exe.entry_point)
-                         for name, exe in student.executables().items()})  # fmt: skip
+            exes |= {
+                name: Executable(pkg, name, file=exe.file, entry_point=exe.entry_point)
+                for name, exe in student.executables().items()
+            }
         elif pkg not in self.executables:
             raise PackageNotFoundError(pkg, self.names())
         return exes

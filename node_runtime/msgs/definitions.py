@@ -124,8 +124,9 @@ def lab_definitions() -> Definitions:
 # Every process that imports the messages reads the lab's definitions: parsed, some 60 ms of CPU
 # for ~250 files; unpickled, ~3 ms. The parsed set is kept beside ROS 2's definitions (a folder
 # of the checkout's, which only the set-up and the developer write), under a key of every file it
-# came from and of the parser's own modules, so an edit to either parses again.
-_PARSED = ROS_INTERFACES_DIR / ".parsed.pickle"
+# came from and of the parser's own modules, so an edit to either parses again. It sits in a
+# __pycache__ folder, as Python's own compiled files do, so no packaging ships it.
+_PARSED = ROS_INTERFACES_DIR / "__pycache__" / "parsed.pickle"
 _PARSER = ("idl.py", "action_spec.py", "definitions.py")
 
 
@@ -148,6 +149,7 @@ def _cached(*roots: Path) -> Definitions:
         pass  # none yet, or of another version: parsed again below
     definitions = load_definitions(*roots)
     try:  # written whole or not at all (a process reading it meanwhile sees the old one)
+        _PARSED.parent.mkdir(mode=0o755, exist_ok=True)
         with tempfile.NamedTemporaryFile("wb", dir=_PARSED.parent, delete=False) as new:
             pickle.dump(key, new)
             pickle.dump(definitions, new)
