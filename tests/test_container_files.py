@@ -1,11 +1,13 @@
-"""docker-compose.yml and the Dockerfile, checked without a container engine: Debian's
-docker-compose (scripts/test.sh installs it) resolves the compose file as ``docker-compose config``
-does, and the server's own option parser takes the command each file starts it with, so a renamed
-option or a volume mounted where the server does not keep its state fails here.
+"""docker-compose.yml (the single lab), compose.class.yml (a class: the class server and world
+workers) and the Dockerfile, checked without a container engine: Debian's docker-compose
+(scripts/test.sh installs it) resolves each compose file as ``docker-compose config`` does, and the
+server's and the world worker's own option parsers take the command each service starts with, so a
+renamed option or a volume mounted where the server does not keep its state fails here.
 """
 
 from __future__ import annotations
 
+import functools
 import os
 import re
 import shutil
@@ -17,11 +19,31 @@ from typing import Any
 import pytest
 import yaml
 from support.app import REPO
+from support.deployment import (
+    COMPOSE_CLASS,
+    image_workdir,
+    option,
+    server_args,
+    server_settings,
+    swapped,
+    worker_argv,
+    worker_settings,
+)
 
-from server.__main__ import build_parser, check_launch, settings_of, zenoh_settings
+from server.classroom.worker_control import TOKEN_ENV
 
 COMPOSE = REPO / "docker-compose.yml"
 DOCKERFILE = REPO / "Dockerfile"
+# The variables the compose files read: unset, so each resolves with the file's own defaults.
+COMPOSE_VARIABLES = (
+    "LAUNCH",
+    "LAB_TOKEN",
+    "CLASS_BIND",
+    "CLASS_HOST",
+    "MAX_WORLDS",
+    "WORKER_MAX_WORLDS",
+    TOKEN_ENV,
+)
 
 
 def compose_config(path: Path) -> subprocess.CompletedProcess[str]:
@@ -31,7 +53,7 @@ def compose_config(path: Path) -> subprocess.CompletedProcess[str]:
         if os.environ.get("CI") == "true":
             pytest.fail(f"{message}; in CI the compose file's check must run")
         pytest.skip(message)
-    env = {k: v for k, v in os.environ.items() if k not in ("LAUNCH", "LAB_TOKEN")}  # the file's defaults
+    env = {k: v for k, v in os.environ.items() if k not in COMPOSE_VARIABLES}  # the file's defaults
     return subprocess.run(
         [tool, "--project-directory", str(path.parent), "-f", str(path), "config"],
         capture_output=True, text=True, timeout=60, env=env, check=False,
@@ -61,15 +83,6 @@ def volume_of(volume: str | dict[str, Any]) -> tuple[str, str]:
         return volume["target"], volume["source"]
     source, target = volume.split(":")[:2]
     return target, source
-
-
-def server_settings(command: list[str]) -> Any:
-    """The settings ``python -m server ARGS`` would start with: the server's parser and checks."""
-    assert command[:3] == ["python", "-m", "server"], command
-    args = build_parser().parse_args(command[3:])
-    settings = settings_of(args, zenoh_settings(args))
-    assert check_launch(settings) is None
-    return settings
 
 
 def dockerfile_lines() -> list[str]:
@@ -119,3 +132,91 @@ def test_the_dockerfile_copies_every_package_the_app_installs_and_starts_the_ser
     (cmd,) = [line for line in lines if line.startswith("CMD")]
     settings = server_settings(yaml.safe_load(cmd.removeprefix("CMD").strip()))
     assert settings.listen.port == 8000
+
+
+# -- compose.class.yml: a class ---------------------------------------------------------------------
+@functools.cache
+def resolved_class() -> dict[str, Any]:
+    """compose.class.yml as docker-compose resolves it (once: each test reads, none changes it)."""
+    done = compose_config(COMPOSE_CLASS)
+    assert done.returncode == 0, done.stderr
+    config: dict[str, Any] = yaml.safe_load(done.stdout)
+    return config
+
+
+def test_the_class_compose_file_resolves_and_publishes_only_the_class_server_on_this_machine() -> None:
+    config = resolved_class()
+    assert set(config["services"]) == {"classroom", "worker"}
+    classroom, worker = config["services"]["classroom"], config["services"]["worker"]
+    published = [port_of(p) for p in classroom["ports"]]
+    settings = server_settings(classroom["command"])
+    router = settings.lab.zenoh_router
+    assert router is not None
+    router_port = int(router.listen[0].rsplit(":", 1)[1])
+    assert {target for _, _, target in published} == {
+        settings.listen.port,
+        router_port,
+        settings.lab.foxglove_port,
+    }
+    assert all(host == "127.0.0.1" for host, _, _ in published), published  # CLASS_BIND widens it
+    assert "ports" not in worker  # scaled: reached on the compose network alone
+
+
+def test_the_class_server_listens_in_its_container_as_a_class_with_its_state_on_named_volumes() -> None:
+    config = resolved_class()
+    classroom = config["services"]["classroom"]
+    settings = server_settings(classroom["command"])
+    klass = settings.classroom
+    assert klass is not None  # --classroom: what lets it listen beyond loopback
+    assert settings.listen.host == "0.0.0.0" and settings.lab.zenoh_router is not None
+    assert settings.lab.zenoh_router.listen == ("tcp/0.0.0.0:7447",)
+    assert klass.local_worlds == 0 and klass.workers_at_start == 0 and not klass.auto_workers
+    assert settings.sandboxes_students  # the app's own default, untouched
+    workdir = image_workdir()
+    mounted = dict(volume_of(v) for v in classroom["volumes"])
+    named = set(config.get("volumes") or {})
+    for folder in (settings.lab.state_dir, klass.workspaces_dir):
+        assert mounted.get(str(workdir / folder)) in named, (folder, mounted)
+    assert classroom["restart"] == "unless-stopped"
+
+
+def test_a_class_worker_joins_the_class_router_with_the_token_from_the_environment() -> None:
+    config = resolved_class()
+    classroom, worker = config["services"]["classroom"], config["services"]["worker"]
+    argv = worker_argv(worker["command"])
+    # Its own address, which the shell wrapper reads (hostname -i), names it to the class server.
+    assert option(argv, "--advertise") == "$1"
+    settings = worker_settings(swapped(argv, {"--advertise": "172.18.0.5"}))
+    router = server_settings(classroom["command"]).lab.zenoh_router
+    assert settings.lab.zenoh.connect == (router.listen[0].replace("0.0.0.0", "classroom"),)
+    assert (
+        settings.listen.host == "0.0.0.0"
+        and settings.worker.url == f"http://172.18.0.5:{settings.listen.port}"
+    )
+    assert worker["environment"] == {TOKEN_ENV: None}  # by name: the value is where compose runs, not here
+    assert TOKEN_ENV not in " ".join(worker["command"])
+    assert worker["depends_on"] == {"classroom": {"condition": "service_healthy"}}
+    assert worker["restart"] == "unless-stopped"
+
+
+def test_each_class_services_health_check_asks_its_own_port() -> None:
+    services = resolved_class()["services"]
+    ports = {
+        "classroom": server_settings(services["classroom"]["command"]).listen.port,
+        "worker": int(option(server_args(worker_argv(services["worker"]["command"])), "--port")),
+    }
+    for name, port in ports.items():
+        check = services[name]["healthcheck"]
+        assert check["test"][:2] == ["CMD", "python"], check
+        assert f"http://127.0.0.1:{port}/api/health" in check["test"][-1], (name, check)
+
+
+def test_a_class_compose_file_with_a_wrong_key_is_refused_naming_it(tmp_path: Path) -> None:
+    """The control: the same check fails on a class file docker-compose cannot use."""
+    broken = tmp_path / "compose.class.yml"
+    text = COMPOSE_CLASS.read_text()
+    assert "    depends_on:" in text
+    broken.write_text(text.replace("    depends_on:", "    depends_onn:", 1))
+    done = compose_config(broken)
+    assert done.returncode != 0
+    assert "depends_onn" in done.stderr
