@@ -189,19 +189,23 @@ def package_module(package: str, definitions: Definitions) -> str:
     if numpy:  # for the annotations only: numpy loads at the first fixed-size numeric array
         imports += ["if TYPE_CHECKING:", *numpy, ""]
     if actions:
-        imports.append("from .._action import Action")
+        imports.append("from node_runtime.msgs._action import Action")
     bases = ["Message"] + (["Service"] if services else [])
-    imports.append(f"from .._base import {', '.join(bases)}")
+    imports.append(f"from node_runtime.msgs._base import {', '.join(bases)}")
     arrays = [a for a in ("FloatArray", "IntArray") if f": {a}" in text]
     if arrays:
-        imports.append(f"from .._field import {', '.join(arrays)}")
+        imports.append(f"from node_runtime.msgs._field import {', '.join(arrays)}")
     by_package: dict[str, list[str]] = {}
     for dep in sorted(foreign):
         by_package.setdefault(dep.split("/")[0], []).append(_class_name(dep))
     for pkg, names in sorted(by_package.items()):
-        line = f"from .{pkg} import {', '.join(sorted(set(names)))}"
+        line = f"from node_runtime.msgs.generated.{pkg} import {', '.join(sorted(set(names)))}"
         if len(line) > LINE_LENGTH:  # as ruff's isort wraps it
-            line = f"from .{pkg} import (\n" + "".join(f"    {n},\n" for n in sorted(set(names))) + ")"
+            line = (
+                f"from node_runtime.msgs.generated.{pkg} import (\n"
+                + "".join(f"    {n},\n" for n in sorted(set(names)))
+                + ")"
+            )
         imports.append(line)
     names = [
         _class_name(n)
