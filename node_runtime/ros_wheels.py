@@ -33,8 +33,16 @@ TARGET = HERE / "msgs" / "ros_interfaces"
 HASHES_FILE = "type_hashes.json"  # in TARGET: ROS 2's RIHS01 hash of every type, by name
 STAMP_FILE = ".lock-sha256"  # in TARGET: the lock it was extracted from
 # The wheels' platform: any one holds the same definitions, so the same file is fetched anywhere.
-PLATFORM = ("--platform", "manylinux_2_28_x86_64", "--python-version", "3.11",
-            "--implementation", "cp", "--abi", "cp311")  # fmt: skip
+PLATFORM = (
+    "--platform",
+    "manylinux_2_28_x86_64",
+    "--python-version",
+    "3.11",
+    "--implementation",
+    "cp",
+    "--abi",
+    "cp311",
+)
 _PIN = re.compile(r"^(?P<name>[a-z0-9-]+)==(?P<version>\S+)\s+--hash=sha256:(?P<sha256>[0-9a-f]{64})$")
 _DEFINITION = re.compile(
     r"/data/share/(?P<pkg>\w+)/(?P<kind>msg|srv|action)/(?P<file>\w+\.(?:msg|srv|action|json))$"
@@ -105,9 +113,22 @@ def download(pins: list[Pin], cache: Path) -> None:
     with tempfile.TemporaryDirectory(dir=cache, prefix=".download-") as tmp:
         requirements = Path(tmp) / "requirements.txt"
         requirements.write_text("".join(p.requirement + "\n" for p in pins), encoding="utf-8")
-        command = [sys.executable, "-m", "pip", "download", "--disable-pip-version-check", "--quiet",
-                   "--no-deps", "--only-binary=:all:", *PLATFORM, "--require-hashes",
-                   "-r", str(requirements), "-d", str(Path(tmp) / "wheels")]  # fmt: skip
+        command = [
+            sys.executable,
+            "-m",
+            "pip",
+            "download",
+            "--disable-pip-version-check",
+            "--quiet",
+            "--no-deps",
+            "--only-binary=:all:",
+            *PLATFORM,
+            "--require-hashes",
+            "-r",
+            str(requirements),
+            "-d",
+            str(Path(tmp) / "wheels"),
+        ]
         try:
             done = subprocess.run(command, capture_output=True, text=True, timeout=600, check=False)
         except (OSError, subprocess.TimeoutExpired) as error:

@@ -19,8 +19,16 @@ from node_runtime.ament.manifest import WorkspaceError
 
 SCRIPT = re.compile(r"^\s*([^=\s]+)\s*=\s*([\w.]+)\s*:\s*([\w.]+)\s*(\[[^\]]*\])?\s*$")
 INSTALL = re.compile(r"\binstall\s*\(([^)]*)\)", re.IGNORECASE)
-PROGRAM_END = {"DESTINATION", "PERMISSIONS", "CONFIGURATIONS", "COMPONENT", "RENAME", "OPTIONAL",
-               "EXCLUDE_FROM_ALL", "TYPE"}  # fmt: skip
+PROGRAM_END = {
+    "DESTINATION",
+    "PERMISSIONS",
+    "CONFIGURATIONS",
+    "COMPONENT",
+    "RENAME",
+    "OPTIONAL",
+    "EXCLUDE_FROM_ALL",
+    "TYPE",
+}
 
 
 @dataclass(frozen=True)
@@ -74,8 +82,11 @@ def _string(node: ast.expr, constants: dict[str, str]) -> str | None:
 
 
 def _module_values(tree: ast.Module) -> dict[str, ast.expr]:
-    return {node.targets[0].id: node.value for node in tree.body
-            if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)}  # fmt: skip
+    return {
+        node.targets[0].id: node.value
+        for node in tree.body
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
+    }
 
 
 def _setup_call(tree: ast.Module) -> ast.Call | None:
@@ -113,10 +124,18 @@ def setup_py_scripts(path: Path) -> list[ConsoleScript]:
         values.get(keyword.value.id, keyword.value) if isinstance(keyword.value, ast.Name) else keyword.value
     )
     if not isinstance(points, ast.Dict):
-        raise WorkspaceError(f"{path}:{keyword.value.lineno}",
-                             "entry_points is not a literal dict (the lab reads setup.py without running it)")  # fmt: skip
-    scripts = next((v for k, v in zip(points.keys, points.values, strict=True)
-                    if k is not None and _string(k, constants) == "console_scripts"), None)  # fmt: skip
+        raise WorkspaceError(
+            f"{path}:{keyword.value.lineno}",
+            "entry_points is not a literal dict (the lab reads setup.py without running it)",
+        )
+    scripts = next(
+        (
+            v
+            for k, v in zip(points.keys, points.values, strict=True)
+            if k is not None and _string(k, constants) == "console_scripts"
+        ),
+        None,
+    )
     if scripts is None:
         return []
     if isinstance(scripts, ast.Name):

@@ -93,8 +93,11 @@ def package_interfaces(name: str, folder: Path, member: bool) -> InterfacePackag
     package = InterfacePackage(name, folder)
     declared, called = _declared_files(name, folder)
     if not called and member:
-        declared = [(str(p.relative_to(folder)), str(folder / MANIFEST))
-                    for kind in KINDS.values() for p in sorted((folder / kind).glob(f"*.{kind}"))]  # fmt: skip
+        declared = [
+            (str(p.relative_to(folder)), str(folder / MANIFEST))
+            for kind in KINDS.values()
+            for p in sorted((folder / kind).glob(f"*.{kind}"))
+        ]
     for rel, where in declared:
         path = folder / rel
         kind = KINDS[path.suffix]

@@ -50,8 +50,10 @@ class WorkspacePackage:
         if self.build_type is None or not (setup_py.is_file() or setup_cfg.is_file() or cmake.is_file()):
             return {name: StudentExecutable(path) for name, path in files_in(self.path).items()}
         if self.build_type == "ament_python" or not cmake.is_file():
-            scripts = [*(setup_cfg_scripts(setup_cfg) if setup_cfg.is_file() else []),
-                       *(setup_py_scripts(setup_py) if setup_py.is_file() else [])]  # fmt: skip
+            scripts = [
+                *(setup_cfg_scripts(setup_cfg) if setup_cfg.is_file() else []),
+                *(setup_py_scripts(setup_py) if setup_py.is_file() else []),
+            ]
             return {
                 s.name: StudentExecutable(
                     module_file(self.path, s.module),

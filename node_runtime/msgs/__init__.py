@@ -15,7 +15,7 @@ from node_runtime.msgs.registry import (
     normalize_type_name,
     service_names,
     type_names,
-)  # fmt: skip
+)
 from node_runtime.msgs.types import (
     ALL_TYPES,
     KEY_CONSTANTS,
@@ -45,7 +45,7 @@ from node_runtime.msgs.types import (
     TwistStamped,
     Vector3,
     Vector3Stamped,
-)  # fmt: skip
+)
 
 __all__ = [
     "ALL_TYPES",
@@ -89,4 +89,4 @@ __all__ = [
     "normalize_type_name",
     "service_names",
     "type_names",
-]  # fmt: skip
+]

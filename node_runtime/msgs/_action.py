@@ -112,5 +112,10 @@ def defined_service(type_name: str) -> type[Service] | None:
 
 
 __all__ = [
-    "Action", "action_class", "action_classes", "action_type_from_text", "define_action", "defined_service",
-]  # fmt: skip
+    "Action",
+    "action_class",
+    "action_classes",
+    "action_type_from_text",
+    "define_action",
+    "defined_service",
+]

@@ -20,9 +20,22 @@ from node_runtime.msgs.compiled import compile_methods
 from node_runtime.msgs.definitions import lab_definitions
 from node_runtime.msgs.idl import MessageSpec, ServiceSpec, parse_message
 
-__all__ = ["FLOAT32_MAX", "MAX_ARRAY_ITEMS", "MAX_STRING_CHARS", "Field", "Message", "MessageError",
-           "Service", "define_message", "define_service", "load_generated", "message_class",
-           "message_classes", "service_class", "service_classes"]  # fmt: skip
+__all__ = [
+    "FLOAT32_MAX",
+    "MAX_ARRAY_ITEMS",
+    "MAX_STRING_CHARS",
+    "Field",
+    "Message",
+    "MessageError",
+    "Service",
+    "define_message",
+    "define_service",
+    "load_generated",
+    "message_class",
+    "message_classes",
+    "service_class",
+    "service_classes",
+]
 
 _CLASSES: dict[str, type[Message]] = {}
 _SERVICES: dict[str, type[Service]] = {}

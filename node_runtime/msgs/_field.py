@@ -22,10 +22,20 @@ FLOAT32_MAX = 3.4028234663852886e38
 # process whose messages have none never loads it; until something imports it, no value can be a
 # numpy one.
 NUMPY_DTYPES: dict[str, str] = {
-    "bool": "bool", "byte": "uint8", "char": "uint8", "int8": "int8", "uint8": "uint8",
-    "int16": "int16", "uint16": "uint16", "int32": "int32", "uint32": "uint32", "int64": "int64",
-    "uint64": "uint64", "float32": "float32", "float64": "float64",
-}  # fmt: skip
+    "bool": "bool",
+    "byte": "uint8",
+    "char": "uint8",
+    "int8": "int8",
+    "uint8": "uint8",
+    "int16": "int16",
+    "uint16": "uint16",
+    "int32": "int32",
+    "uint32": "uint32",
+    "int64": "int64",
+    "uint64": "uint64",
+    "float32": "float32",
+    "float64": "float64",
+}
 # Any, so that isinstance keeps a checked value's type open (it may be numpy's)
 _PLAIN_SCALARS: tuple[tuple[Any, ...], ...] = ((bool,), (int,), (int, float))
 _numpy_scalars: tuple[tuple[Any, ...], ...] | None = None
@@ -60,9 +70,19 @@ def _is_ndarray(value: Any) -> bool:
 # needs numpy, so a message with such sequences (rcl_interfaces' ParameterValue, which every
 # node's /parameter_events carries) does not load it.
 ARRAY_TYPECODES = {
-    "byte": "B", "char": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i",
-    "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d",
-}  # fmt: skip
+    "byte": "B",
+    "char": "B",
+    "int8": "b",
+    "uint8": "B",
+    "int16": "h",
+    "uint16": "H",
+    "int32": "i",
+    "uint32": "I",
+    "int64": "q",
+    "uint64": "Q",
+    "float32": "f",
+    "float64": "d",
+}
 if TYPE_CHECKING:  # what the generated classes annotate a sequence field with
     IntArray: TypeAlias = array.array[int]
     FloatArray: TypeAlias = array.array[float]
@@ -118,9 +138,18 @@ class Field:
     of one value (of one element, for an array)."""
 
     __slots__ = (
-        "array", "bound", "default", "exact", "kind", "name", "numeric", "size", "spec", "string_bound",
+        "array",
+        "bound",
+        "default",
+        "exact",
+        "kind",
+        "name",
+        "numeric",
+        "size",
+        "spec",
+        "string_bound",
         "typecode",
-    )  # fmt: skip
+    )
 
     def __init__(self, spec: FieldSpec, kind: str | type[Message]) -> None:
         self.spec = spec

@@ -91,8 +91,11 @@ def _resolve(
                     f"{service.source}: {service.name} differs from the lab's own; the lab's is used"
                 )
             continue
-        missing = [_missing(p, available, declared) for p in (service.request, service.response)
-                   if not all(dep in available for dep in p.dependencies())]  # fmt: skip
+        missing = [
+            _missing(p, available, declared)
+            for p in (service.request, service.response)
+            if not all(dep in available for dep in p.dependencies())
+        ]
         if missing:
             problems.append(missing[0])
         else:

@@ -34,8 +34,13 @@ def compile_methods(cls: type[Message]) -> None:
     if any(keyword.iskeyword(n) or n in ("self", "new") or n.startswith("_") for n in names):
         return  # a name Python would not take as a parameter: the generic methods serve
     env: dict[str, Any] = {
-        "_new": object.__new__, "_array": array.array, "_missing": _MISSING, "_type": cls.TYPE, "_sorted": sorted, "_type_of": type,
-    }  # fmt: skip
+        "_new": object.__new__,
+        "_array": array.array,
+        "_missing": _MISSING,
+        "_type": cls.TYPE,
+        "_sorted": sorted,
+        "_type_of": type,
+    }
     params, init_lines, copy_lines = [], [], []
     for i, f in enumerate(cls.FIELDS):
         env[f"_set{i}"] = cls.__dict__[f.name].__set__  # the slot's own setter
@@ -56,7 +61,7 @@ def compile_methods(cls: type[Message]) -> None:
             value = f"{f.name} if _type_of({f.name}) is _exact{i} else {value}"  # a field may be named type
         init_lines.append(f"    _set{i}(self, {value})")
         copy_lines.append(f"    _set{i}(new, {_copy_expression(f, 'self.' + f.name)})")
-    source = "\n".join([
+    lines = [
         f"def __init__(self, {', '.join(['*', *params, '**unknown'] if params else ['**unknown'])}):",
         *init_lines,
         "    if unknown:",
@@ -65,7 +70,8 @@ def compile_methods(cls: type[Message]) -> None:
         "    new = _new(type(self))",
         *copy_lines,
         "    return new",
-    ])  # fmt: skip
+    ]
+    source = "\n".join(lines)
     exec(compile(source, f"<{cls.TYPE} methods>", "exec"), env)
     for name in ("__init__", "copy"):
         method: Callable[..., Any] = env[name]

@@ -141,10 +141,11 @@ def _numpy_view(value: Any) -> Any:
     if isinstance(value, Message):
         if not _holds_sequences(type(value)):
             return value
-        return SimpleNamespace(**{
-            f.name: _bools_view(getattr(value, f.name)) if _bool_sequence(f) else _numpy_view(getattr(value, f.name))
-            for f in value.FIELDS
-        })  # fmt: skip
+        views: dict[str, Any] = {}
+        for f in value.FIELDS:
+            item = getattr(value, f.name)
+            views[f.name] = _bools_view(item) if _bool_sequence(f) else _numpy_view(item)
+        return SimpleNamespace(**views)
     return value
 
 

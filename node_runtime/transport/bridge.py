@@ -119,9 +119,15 @@ class ZenohBridge:
     # -- graph observer (executor's thread) ----------------------------------------------------
     def _node_token(self, node: Node, node_id: int) -> EntityToken:
         return EntityToken(
-            self.domain_id, self.zid, node_id, node_id, EntityKind.NODE, node.get_namespace(), node.get_name(),
+            self.domain_id,
+            self.zid,
+            node_id,
+            node_id,
+            EntityKind.NODE,
+            node.get_namespace(),
+            node.get_name(),
             enclave=self.enclave,
-        )  # fmt: skip
+        )
 
     def node_added(self, node: Node) -> None:
         if self._closed or id(node) in self._node_ids:
@@ -140,10 +146,19 @@ class ZenohBridge:
     ) -> EntityToken:
         node_token = self._entities[id(node)].token
         return EntityToken(
-            self.domain_id, self.zid, node_token.node_id, next(self._ids), kind, node_token.namespace,
-            node_token.node_name, enclave=self.enclave, topic=name, dds_type=dds_type_name(type_name),
-            type_hash=type_hash(type_name), qos=wire_qos(depth, qos),
-        )  # fmt: skip
+            self.domain_id,
+            self.zid,
+            node_token.node_id,
+            next(self._ids),
+            kind,
+            node_token.namespace,
+            node_token.node_name,
+            enclave=self.enclave,
+            topic=name,
+            dds_type=dds_type_name(type_name),
+            type_hash=type_hash(type_name),
+            qos=wire_qos(depth, qos),
+        )
 
     def endpoint_added(self, endpoint: object) -> None:
         if self._closed:
@@ -225,11 +240,13 @@ class ZenohBridge:
                 self._on_sample(name, sample)
 
             self._topic_subscribers[name] = zenoh.ext.declare_advanced_subscriber(
-                self.session, key, on_sample,
+                self.session,
+                key,
+                on_sample,
                 allowed_origin=zenoh.Locality.REMOTE,
                 history=zenoh.ext.HistoryConfig(detect_late_publishers=True, max_samples=sub.depth),
                 subscriber_detection=True,
-            )  # fmt: skip
+            )
             self._history_topics.add(name)
             if old is not None:
                 old.undeclare()

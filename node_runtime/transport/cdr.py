@@ -22,9 +22,20 @@ from node_runtime.msgs.wire import WireError
 
 HEADER = b"\x00\x01\x00\x00"
 _FORMATS = {
-    "bool": "?", "byte": "B", "char": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H",
-    "int32": "i", "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d",
-}  # fmt: skip
+    "bool": "?",
+    "byte": "B",
+    "char": "B",
+    "int8": "b",
+    "uint8": "B",
+    "int16": "h",
+    "uint16": "H",
+    "int32": "i",
+    "uint32": "I",
+    "int64": "q",
+    "uint64": "Q",
+    "float32": "f",
+    "float64": "d",
+}
 _STRUCTS = {kind: struct.Struct("<" + fmt) for kind, fmt in _FORMATS.items()}
 _COUNT = _STRUCTS["uint32"]
 

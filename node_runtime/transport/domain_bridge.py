@@ -153,11 +153,15 @@ class DomainBridge:
                 continue
             if mirror.matching and mirror.world_side is None:
                 mirror.world_side = self.session.declare_subscriber(
-                    data_key(mirror.route.domain_id, mirror.route.topic, mirror.route.dds_type,
-                             mirror.route.type_hash),
+                    data_key(
+                        mirror.route.domain_id,
+                        mirror.route.topic,
+                        mirror.route.dds_type,
+                        mirror.route.type_hash,
+                    ),
                     lambda sample, m=mirror: self._crossing.forward(m, sample),
                     allowed_origin=zenoh.Locality.REMOTE,
-                )  # fmt: skip
+                )
             elif not mirror.matching and mirror.world_side is not None:
                 mirror.world_side.undeclare()
                 mirror.world_side = None
@@ -178,17 +182,27 @@ class DomainBridge:
     def _declare(self, route: Route, namespace: str, qos: QoS) -> Mirror:
         node_id = self._node(route.domain_id, namespace)
         token = EntityToken(
-            self.class_domain, self.zid, node_id, next(self._ids), route.kind, namespace, NODE_NAME,
-            topic=namespace + route.topic, dds_type=route.dds_type, type_hash=route.type_hash, qos=qos,
-        )  # fmt: skip
+            self.class_domain,
+            self.zid,
+            node_id,
+            next(self._ids),
+            route.kind,
+            namespace,
+            NODE_NAME,
+            topic=namespace + route.topic,
+            dds_type=route.dds_type,
+            type_hash=route.type_hash,
+            qos=qos,
+        )
         class_key = data_key(self.class_domain, namespace + route.topic, route.dds_type, route.type_hash)
         world_key = data_key(route.domain_id, route.topic, route.dds_type, route.type_hash)
         if route.kind is EntityKind.PUBLISHER:
             # REMOTE: only a subscriber outside this session counts as a watcher.
             zpub = self.session.declare_publisher(
-                class_key, congestion_control=zenoh.CongestionControl.DROP,
+                class_key,
+                congestion_control=zenoh.CongestionControl.DROP,
                 allowed_destination=zenoh.Locality.REMOTE,
-            )  # fmt: skip
+            )
             mirror = Mirror(route, namespace, token, None, zpub)
             mirror.listener = zpub.declare_matching_listener(
                 lambda status, m=mirror: self._on_matching(m, status)
@@ -204,9 +218,10 @@ class DomainBridge:
             )
         else:
             zpub = self.session.declare_publisher(
-                world_key, congestion_control=zenoh.CongestionControl.DROP,
+                world_key,
+                congestion_control=zenoh.CongestionControl.DROP,
                 allowed_destination=zenoh.Locality.REMOTE,
-            )  # fmt: skip
+            )
             mirror = Mirror(route, namespace, token, None, None, world_side=zpub)
             mirror.class_side = self.session.declare_subscriber(
                 class_key,

@@ -120,11 +120,15 @@ class Crossing:
         world_key = data_key(domain_id, mirror.route.topic, mirror.route.dds_type, mirror.route.type_hash)
         try:
             self.session.get(
-                world_key, zenoh.handlers.Callback(on_reply, finished),
-                target=zenoh.QueryTarget.ALL_COMPLETE, consolidation=zenoh.ConsolidationMode.NONE,
-                payload=query.payload, attachment=mirror.stamp(source), timeout=CALL_TIMEOUT_S,
+                world_key,
+                zenoh.handlers.Callback(on_reply, finished),
+                target=zenoh.QueryTarget.ALL_COMPLETE,
+                consolidation=zenoh.ConsolidationMode.NONE,
+                payload=query.payload,
+                attachment=mirror.stamp(source),
+                timeout=CALL_TIMEOUT_S,
                 allowed_destination=zenoh.Locality.REMOTE,
-            )  # fmt: skip
+            )
         except (zenoh.ZError, RuntimeError):  # the session is closing
             self.stats.refused += 1
             finished()

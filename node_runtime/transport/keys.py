@@ -146,9 +146,16 @@ class EntityToken:
     @property
     def key(self) -> str:
         parts = [
-            ADMIN_SPACE, str(self.domain_id), self.zid, str(self.node_id), str(self.entity_id),
-            self.kind.value, mangle(self.enclave), mangle(self.namespace), mangle(self.node_name),
-        ]  # fmt: skip
+            ADMIN_SPACE,
+            str(self.domain_id),
+            self.zid,
+            str(self.node_id),
+            str(self.entity_id),
+            self.kind.value,
+            mangle(self.enclave),
+            mangle(self.namespace),
+            mangle(self.node_name),
+        ]
         if self.kind is not EntityKind.NODE:
             if self.topic is None or self.dds_type is None or self.type_hash is None or self.qos is None:
                 raise ValueError(f"a {self.kind.name.lower()} token needs a topic, type, hash and QoS")
@@ -175,10 +182,15 @@ class EntityToken:
         except ValueError:
             return None
         base = {
-            "domain_id": domain, "zid": parts[2], "node_id": node_id, "entity_id": entity_id,
-            "kind": kind, "enclave": demangle(parts[6]), "namespace": demangle(parts[7]),
+            "domain_id": domain,
+            "zid": parts[2],
+            "node_id": node_id,
+            "entity_id": entity_id,
+            "kind": kind,
+            "enclave": demangle(parts[6]),
+            "namespace": demangle(parts[7]),
             "node_name": demangle(parts[8]),
-        }  # fmt: skip
+        }
         if kind is EntityKind.NODE:
             return cls(**base) if len(parts) == 9 else None  # type: ignore[arg-type]
         if len(parts) != 13:

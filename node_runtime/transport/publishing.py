@@ -87,10 +87,14 @@ def declare_remote_publisher(
     zpub: zenoh.Publisher | zenoh.ext.AdvancedPublisher
     if qos.durability == TRANSIENT_LOCAL:
         zpub = zenoh.ext.declare_advanced_publisher(
-            session, key, congestion_control=zenoh.CongestionControl.DROP, reliability=reliability,
-            allowed_destination=zenoh.Locality.REMOTE, cache=zenoh.ext.CacheConfig(max_samples=depth),
+            session,
+            key,
+            congestion_control=zenoh.CongestionControl.DROP,
+            reliability=reliability,
+            allowed_destination=zenoh.Locality.REMOTE,
+            cache=zenoh.ext.CacheConfig(max_samples=depth),
             publisher_detection=True,
-        )  # fmt: skip
+        )
     else:
         # REMOTE: this process's own subscriptions get the message from the bus, and only other
         # processes count as matching (so a topic nobody else wants is never serialized).
