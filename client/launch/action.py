@@ -15,8 +15,10 @@ if TYPE_CHECKING:
     from launch.launch_context import LaunchContext
 
 # The folders of the launch packages themselves: a frame in them is never "where it was written".
-_OURS = tuple(str(Path(__file__).resolve().parents[1] / name) for name in
-              ("launch", "launch_ros", "launch_xml", "launch_yaml"))  # fmt: skip
+_OURS = tuple(
+    str(Path(__file__).resolve().parents[1] / name)
+    for name in ("launch", "launch_ros", "launch_xml", "launch_yaml")
+)
 
 
 def written_at() -> tuple[str, int] | None:

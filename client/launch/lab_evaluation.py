@@ -60,8 +60,13 @@ def evaluate(path: str, args: dict[str, str], namespace: str | None) -> dict[str
     if not any(entry["kind"] == "include" for entry in context.found):
         _check_args(args, context)  # else the launcher checks them, with the included files' own
     declared = sorted({name for names in context.declared.values() for name in names})
-    return {"found": context.found, "args": context.declared.get(path, {}), "files": context.files,
-            "messages": context.messages, "declared": declared}  # fmt: skip
+    return {
+        "found": context.found,
+        "args": context.declared.get(path, {}),
+        "files": context.files,
+        "messages": context.messages,
+        "declared": declared,
+    }
 
 
 def _check_args(args: dict[str, str], context: LaunchContext) -> None:

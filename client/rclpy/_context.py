@@ -124,10 +124,12 @@ class Context:
                 self.bridge = ZenohBridge(bus, self.session, domain)
                 self.bridge.settle_graph()
             overrides = NodeOverrides(
-                name=self.args.node_name, namespace=self.args.namespace,
-                parameters=dict(self.args.parameters), remappings=dict(self.args.remappings),
+                name=self.args.node_name,
+                namespace=self.args.namespace,
+                parameters=dict(self.args.parameters),
+                remappings=dict(self.args.remappings),
                 files=tuple(self.args.params_files),
-            )  # fmt: skip
+            )
             set_process_bus(bus, overrides)
             self.bus = bus
             self._ok = True

@@ -80,9 +80,12 @@ class ParameterAPI:
 
     # -- declaring -----------------------------------------------------------------------------
     def declare_parameter(
-        self, name: str, value: Any = None, descriptor: ParameterDescriptor | None = None,
+        self,
+        name: str,
+        value: Any = None,
+        descriptor: ParameterDescriptor | None = None,
         ignore_override: bool = False,
-    ) -> Parameter:  # fmt: skip
+    ) -> Parameter:
         if value is None and descriptor is None:
             return self.declare_parameters("", [(name,)], ignore_override)[0]
         return self.declare_parameters(
@@ -289,9 +292,13 @@ class ParameterAPI:
             descriptor = (descriptors or self._descriptors).get(param.name)
             if descriptor is not None:
                 reason = refusal(
-                    param.name, param.value, descriptor, kind=param.type_.value,
-                    check_read_only=descriptors is None, declared=self.has_parameter(param.name),
-                )  # fmt: skip
+                    param.name,
+                    param.value,
+                    descriptor,
+                    kind=param.type_.value,
+                    check_read_only=descriptors is None,
+                    declared=self.has_parameter(param.name),
+                )
                 if reason is not None:
                     return SetParametersResult(successful=False, reason=reason)
                 if descriptor.dynamic_typing:  # rclpy's descriptor takes the type it was given

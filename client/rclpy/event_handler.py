@@ -177,9 +177,11 @@ class MatchedEvent(_GraphEvent):
         if self._current == self._told_current and self._total == self._told_total:
             return None
         info = QoSSubscriptionMatchedInfo(
-            total_count=self._total, total_count_change=self._total - self._told_total,
-            current_count=self._current, current_count_change=self._current - self._told_current,
-        )  # fmt: skip
+            total_count=self._total,
+            total_count_change=self._total - self._told_total,
+            current_count=self._current,
+            current_count_change=self._current - self._told_current,
+        )
         self._told_total, self._told_current = self._total, self._current
         return info
 

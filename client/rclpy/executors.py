@@ -31,8 +31,14 @@ from rclpy._executor import (
 from rclpy.task import Future, Task
 
 # Named as rclpy names them (a traceback says rclpy.executors.ExternalShutdownException).
-for _public in (ConditionReachedException, Executor, ExternalShutdownException, ShutdownException,
-                TimeoutException, TimeoutObject):  # fmt: skip
+for _public in (
+    ConditionReachedException,
+    Executor,
+    ExternalShutdownException,
+    ShutdownException,
+    TimeoutException,
+    TimeoutObject,
+):
     _public.__module__ = __name__
 
 

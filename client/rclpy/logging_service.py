@@ -22,13 +22,17 @@ class LoggingService:
         self._level_type, self._result_type = LoggerLevel, SetLoggerLevelsResult
         name = node.get_name()
         node.create_service(
-            GetLoggerLevels, f"{name}/get_logger_levels", self._get_logger_levels,
+            GetLoggerLevels,
+            f"{name}/get_logger_levels",
+            self._get_logger_levels,
             qos_profile=qos_profile_services_default,
-        )  # fmt: skip
+        )
         node.create_service(
-            SetLoggerLevels, f"{name}/set_logger_levels", self._set_logger_levels,
+            SetLoggerLevels,
+            f"{name}/set_logger_levels",
+            self._set_logger_levels,
             qos_profile=qos_profile_services_default,
-        )  # fmt: skip
+        )
 
     def _get_logger_levels(self, request: Any, response: Any) -> Any:
         response.levels = [

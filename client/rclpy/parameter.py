@@ -20,9 +20,16 @@ _ARRAYS = {
     "STRING_ARRAY": str,
 }
 _FIELDS = {
-    1: "bool_value", 2: "integer_value", 3: "double_value", 4: "string_value", 5: "byte_array_value",
-    6: "bool_array_value", 7: "integer_array_value", 8: "double_array_value", 9: "string_array_value",
-}  # fmt: skip
+    1: "bool_value",
+    2: "integer_value",
+    3: "double_value",
+    4: "string_value",
+    5: "byte_array_value",
+    6: "bool_array_value",
+    7: "integer_array_value",
+    8: "double_array_value",
+    9: "string_array_value",
+}
 
 
 class Parameter:
@@ -134,9 +141,11 @@ def get_parameter_value(string_value: str) -> ParameterValue:
 
 
 def parameter_dict_from_yaml_file(
-    parameter_file: str, use_wildcard: bool = False, target_nodes: list[str] | None = None,
+    parameter_file: str,
+    use_wildcard: bool = False,
+    target_nodes: list[str] | None = None,
     namespace: str = "",
-) -> dict[str, ParameterMsg]:  # fmt: skip
+) -> dict[str, ParameterMsg]:
     """A parameters file's parameters as messages by name: every node's (``/**`` first when
     ``use_wildcard``), or only ``target_nodes``' sections; ``namespace`` prefixes each name."""
     parsed = read_params_file(parameter_file)

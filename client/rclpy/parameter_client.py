@@ -56,10 +56,13 @@ class AsyncParameterClient:
         self._describe_parameters_client = client(DescribeParameters, "describe_parameters")
         self._set_parameters_atomically_client = client(SetParametersAtomically, "set_parameters_atomically")
         self._clients = (
-            self._get_parameter_client, self._list_parameter_client, self._set_parameter_client,
-            self._get_parameter_types_client, self._describe_parameters_client,
+            self._get_parameter_client,
+            self._list_parameter_client,
+            self._set_parameter_client,
+            self._get_parameter_types_client,
+            self._describe_parameters_client,
             self._set_parameters_atomically_client,
-        )  # fmt: skip
+        )
 
     def services_are_ready(self) -> bool:
         return all(c.service_is_ready() for c in self._clients)
@@ -81,9 +84,11 @@ class AsyncParameterClient:
         return future
 
     def list_parameters(
-        self, prefixes: list[str] | None = None, depth: int | None = None,
+        self,
+        prefixes: list[str] | None = None,
+        depth: int | None = None,
         callback: Callable[[Any], None] | None = None,
-    ) -> Future[Any]:  # fmt: skip
+    ) -> Future[Any]:
         request = ListParameters.Request()
         if prefixes:
             request.prefixes = list(prefixes)
@@ -137,9 +142,13 @@ class AsyncParameterClient:
         return self.set_parameters_atomically(list(params.values()), callback)
 
     def on_parameter_event(
-        self, callback: Callable[[ParameterEvent], None], qos_profile: QoSProfile = qos_profile_parameter_events,
-        *, callback_group: CallbackGroup | None = None, **_: Any,
-    ) -> Any:  # fmt: skip
+        self,
+        callback: Callable[[ParameterEvent], None],
+        qos_profile: QoSProfile = qos_profile_parameter_events,
+        *,
+        callback_group: CallbackGroup | None = None,
+        **_: Any,
+    ) -> Any:
         return self.node.create_subscription(
             ParameterEvent, "/parameter_events", callback, qos_profile, callback_group=callback_group
         )

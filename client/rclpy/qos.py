@@ -107,9 +107,15 @@ class QoSProfile:
 
     def _fields(self) -> tuple[object, ...]:
         return (
-            self.history, self.depth, self.reliability, self.durability, self.liveliness,
-            self.deadline, self.lifespan, self.liveliness_lease_duration,
-        )  # fmt: skip
+            self.history,
+            self.depth,
+            self.reliability,
+            self.durability,
+            self.liveliness,
+            self.deadline,
+            self.lifespan,
+            self.liveliness_lease_duration,
+        )
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, QoSProfile) and self._fields() == other._fields()

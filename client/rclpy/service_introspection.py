@@ -62,9 +62,11 @@ class Introspection:
         if publisher is None or publisher.destroyed:
             return
         info = get_type("service_msgs/msg/ServiceEventInfo")(
-            event_type=kind, stamp=self._clock.now().to_msg(), client_gid=list(client_gid[:GID_BYTES]),
+            event_type=kind,
+            stamp=self._clock.now().to_msg(),
+            client_gid=list(client_gid[:GID_BYTES]),
             sequence_number=sequence_number,
-        )  # fmt: skip
+        )
         contents = self.state is ServiceIntrospectionState.CONTENTS
         event = publisher.msg_type(
             info=info,

@@ -86,10 +86,12 @@ class Subscription(BusSubscription, Generic[MsgT]):
             self._received += 1
             now = time.time_ns()
             info: MessageInfo = {
-                "source_timestamp": now, "received_timestamp": now,
-                "publication_sequence_number": self._received, "reception_sequence_number": None,
+                "source_timestamp": now,
+                "received_timestamp": now,
+                "publication_sequence_number": self._received,
+                "reception_sequence_number": None,
                 "publisher_gid": dict(_NO_GID),
-            }  # fmt: skip
+            }
             return callback(msg, info)
 
         deliver.__qualname__ = getattr(callback, "__qualname__", "callback")

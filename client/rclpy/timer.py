@@ -121,9 +121,10 @@ class Timer(BusTimer):
         def call() -> Any:
             clock_type = self.clock_source.clock_type if self.clock_source is not None else ClockType.ROS_TIME
             info = TimerInfo(
-                expected_call_time=_ns(self._expected_s), actual_call_time=_ns(self._last_call_s),
+                expected_call_time=_ns(self._expected_s),
+                actual_call_time=_ns(self._last_call_s),
                 clock_type=clock_type,
-            )  # fmt: skip
+            )
             return callback(**{name: info})
 
         call.__qualname__ = getattr(callback, "__qualname__", "callback")

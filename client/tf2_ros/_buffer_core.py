@@ -313,14 +313,15 @@ class BufferCore:
         return True, ""
 
     def _check_argument(self, where: str, frame: str) -> None:
-        rationale = (
-            "in tf2 frame_ids cannot be empty" if not frame
-            else "in tf2 frame_ids cannot start with a '/'" if frame.startswith("/")
-            else "frame does not exist" if frame not in self._known
-            else None
-        )  # fmt: skip
-        if rationale is not None:
-            raise LookupException(f'Invalid frame ID "{frame}" passed to {where} - {rationale}')
+        if not frame:
+            rationale = "in tf2 frame_ids cannot be empty"
+        elif frame.startswith("/"):
+            rationale = "in tf2 frame_ids cannot start with a '/'"
+        elif frame not in self._known:
+            rationale = "frame does not exist"
+        else:
+            return
+        raise LookupException(f'Invalid frame ID "{frame}" passed to {where} - {rationale}')
 
     def get_latest_common_time(self, target_frame: str, source_frame: str) -> Any:
         """The newest time both frames are known at, as an rclpy Time."""

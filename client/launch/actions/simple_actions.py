@@ -46,8 +46,9 @@ class TimerAction(Action):
     """Its actions after ``period`` seconds: the nodes and commands among them start that much
     later (the lab evaluates the rest at once)."""
 
-    def __init__(self, *, period: Any, actions: Iterable[Action], cancel_on_shutdown: bool = True,
-                 **kwargs: Any) -> None:  # fmt: skip
+    def __init__(
+        self, *, period: Any, actions: Iterable[Action], cancel_on_shutdown: bool = True, **kwargs: Any
+    ) -> None:
         super().__init__(**kwargs)
         self.__period = period
         self.__actions = list(actions)
@@ -81,8 +82,14 @@ class _Delay(Action):
 class OpaqueFunction(Action):
     """Calls ``function(context, *args, **kwargs)``; the actions it returns run next."""
 
-    def __init__(self, *, function: Callable[..., Any], args: Iterable[Any] | None = None,
-                 kwargs: dict[str, Any] | None = None, **more: Any) -> None:  # fmt: skip
+    def __init__(
+        self,
+        *,
+        function: Callable[..., Any],
+        args: Iterable[Any] | None = None,
+        kwargs: dict[str, Any] | None = None,
+        **more: Any,
+    ) -> None:
         super().__init__(**more)
         if not callable(function):
             raise TypeError(f"OpaqueFunction's function is not callable: {function!r}")
@@ -99,9 +106,18 @@ class ExecuteProcess(Action):
     """A command to run. The lab runs ``ros2 ...`` commands (as its own CLI) and nothing else; the
     launcher decides, this says what was asked."""
 
-    def __init__(self, *, cmd: Iterable[Any], name: Any = None, cwd: Any = None,
-                 env: dict[Any, Any] | None = None, additional_env: dict[Any, Any] | None = None,
-                 shell: bool = False, output: Any = "log", **kwargs: Any) -> None:  # fmt: skip
+    def __init__(
+        self,
+        *,
+        cmd: Iterable[Any],
+        name: Any = None,
+        cwd: Any = None,
+        env: dict[Any, Any] | None = None,
+        additional_env: dict[Any, Any] | None = None,
+        shell: bool = False,
+        output: Any = "log",
+        **kwargs: Any,
+    ) -> None:
         super().__init__(**kwargs)
         self.__cmd = [normalize_to_list_of_substitutions(part) for part in cmd]
         self.__name = name
@@ -119,10 +135,15 @@ class ExecuteProcess(Action):
     def execute(self, context: LaunchContext) -> Optional[list[LaunchDescriptionEntity]]:  # noqa: UP045
         file, line = self.written_at or (context.current_launch_file or "", 0)
         output = None if self.output is None else perform_typed(context, self.output)
-        context.found.append({
-            "kind": "command", "cmd": [perform_typed(context, part) for part in self.__cmd],
-            "shell": bool(self.shell), "name": None if self.__name is None else perform_typed(context, self.__name),
-            "output": output, "file": file, "line": line,
+        entry: dict[str, Any] = {
+            "kind": "command",
+            "cmd": [perform_typed(context, part) for part in self.__cmd],
+            "shell": bool(self.shell),
+            "name": None if self.__name is None else perform_typed(context, self.__name),
+            "output": output,
+            "file": file,
+            "line": line,
             "start_delay": float(context.locals.get("start_delay_s", 0.0)),
-        })  # fmt: skip
+        }
+        context.found.append(entry)
         return None

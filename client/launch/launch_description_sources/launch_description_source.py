@@ -77,13 +77,18 @@ def include_frontend(
     pushed here."""
     where = action.written_at or (context.current_launch_file or "", 0)
     # As in ROS 2, the included file's arguments also take the includer's launch configurations.
-    inherited = {k: v for k, v in context.launch_configurations.items()
-                 if isinstance(v, str) and k not in ROS_SETTINGS}  # fmt: skip
-    context.found.append({
-        "kind": "include", "file": path, "args": passed, "inherited": inherited,
+    inherited = {
+        k: v for k, v in context.launch_configurations.items() if isinstance(v, str) and k not in ROS_SETTINGS
+    }
+    entry: dict[str, Any] = {
+        "kind": "include",
+        "file": path,
+        "args": passed,
+        "inherited": inherited,
         "namespace": context.launch_configurations.get("ros_namespace"),
         "at": {"file": where[0], "line": where[1]},
-    })  # fmt: skip
+    }
+    context.found.append(entry)
     return []
 
 

@@ -33,8 +33,18 @@ class Node(Action):
         respawn_delay: float | None = None,
         **kwargs: Any,
     ) -> None:
-        for dropped in ("cwd", "env", "additional_env", "emulate_tty", "prefix", "sigterm_timeout",
-                        "sigkill_timeout", "on_exit", "log_cmd", "cached_output"):  # fmt: skip
+        for dropped in (
+            "cwd",
+            "env",
+            "additional_env",
+            "emulate_tty",
+            "prefix",
+            "sigterm_timeout",
+            "sigkill_timeout",
+            "on_exit",
+            "log_cmd",
+            "cached_output",
+        ):
             kwargs.pop(dropped, None)  # how ROS 2 runs the process; the lab runs it its own way
         super().__init__(**kwargs)
         if package is None:
@@ -84,14 +94,23 @@ class Node(Action):
         remaps: list[tuple[str, str]] = list(context.launch_configurations.get("ros_remaps", []))
         remaps += [(perform_typed(context, a), perform_typed(context, b)) for a, b in self.__remappings]
         file, line = self.written_at or (context.current_launch_file or "", 0)
-        context.found.append({
-            "kind": "node", "pkg": perform_typed(context, self.__package),
-            "exec": perform_typed(context, self.__executable), "name": name, "namespace": namespace,
-            "output": output, "respawn": bool(respawn), "respawn_delay": float(self.__respawn_delay or 0.0),
-            "parameters": [list(p) for p in (*values, *own_values)], "parameter_files": files,
+        entry: dict[str, Any] = {
+            "kind": "node",
+            "pkg": perform_typed(context, self.__package),
+            "exec": perform_typed(context, self.__executable),
+            "name": name,
+            "namespace": namespace,
+            "output": output,
+            "respawn": bool(respawn),
+            "respawn_delay": float(self.__respawn_delay or 0.0),
+            "parameters": [list(p) for p in (*values, *own_values)],
+            "parameter_files": files,
             "remappings": [list(r) for r in remaps],
             "arguments": [perform_typed(context, a) for a in self.__arguments],
             "ros_arguments": [perform_typed(context, a) for a in self.__ros_arguments],
-            "file": file, "line": line, "start_delay": float(context.locals.get("start_delay_s", 0.0)),
-        })  # fmt: skip
+            "file": file,
+            "line": line,
+            "start_delay": float(context.locals.get("start_delay_s", 0.0)),
+        }
+        context.found.append(entry)
         return None

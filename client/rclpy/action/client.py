@@ -107,13 +107,19 @@ class ActionClient:
             impl.GetResultService, names["get_result"], callback_group=group
         )
         self._feedback_sub = node.create_subscription(
-            impl.FeedbackMessage, names["feedback"], self._on_feedback,
-            feedback_sub_qos_profile or QoSProfile(depth=10), callback_group=group,
-        )  # fmt: skip
+            impl.FeedbackMessage,
+            names["feedback"],
+            self._on_feedback,
+            feedback_sub_qos_profile or QoSProfile(depth=10),
+            callback_group=group,
+        )
         self._status_sub = node.create_subscription(
-            GoalStatusArray, names["status"], self._on_status,
-            status_sub_qos_profile or qos_profile_action_status_default, callback_group=group,
-        )  # fmt: skip
+            GoalStatusArray,
+            names["status"],
+            self._on_status,
+            status_sub_qos_profile or qos_profile_action_status_default,
+            callback_group=group,
+        )
         for entity in (self._goal_client, self._cancel_client, self._result_client):
             entity.in_waitable = True  # an action's, which rclpy's executor looks at first
         for entity in (self._feedback_sub, self._status_sub):
