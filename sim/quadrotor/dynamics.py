@@ -206,8 +206,10 @@ def _sums_of_products(m: RigidBodyModel) -> tuple[list[int], list[int], list[flo
         [(qx, qz, 2.0), (qw, qy, 2.0), pad],  # dx qz + dw qy
         [(qy, qz, 2.0), (qw, qx, -2.0), pad],  # dy qz - dw qx
         [(one, one, 1.0), (qx, qx, -2.0), (qy, qy, -2.0)],  # 1 - dx qx - dy qy
-        speed_sq, speed_sq, speed_sq,
-    ]  # fmt: skip
+        speed_sq,
+        speed_sq,
+        speed_sq,
+    ]
     terms = [group[t] for t in range(3) for group in sums]
     terms += [(wy, wz, m.gyro_x), (wz, wx, m.gyro_y), (wx, wy, m.gyro_z)]
     return [t[0] for t in terms], [t[1] for t in terms], [t[2] for t in terms]

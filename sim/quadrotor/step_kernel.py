@@ -59,9 +59,16 @@ class StepKernel:
         out[ONES_ROW] = 1.0
         rotor_cmd = np.empty((4, n))
         rate_loop = bind_rate_loop(
-            RateGains(p, dt_s), dt_s, state[RATES], floats[FILTERED], floats[FILTERED_DOT],
-            floats[INTEGRAL], floats[RATES_CMD], floats[SHARES_AND_BASE], rotor_cmd,
-        )  # fmt: skip
+            RateGains(p, dt_s),
+            dt_s,
+            state[RATES],
+            floats[FILTERED],
+            floats[FILTERED_DOT],
+            floats[INTEGRAL],
+            floats[RATES_CMD],
+            floats[SHARES_AND_BASE],
+            rotor_cmd,
+        )
         rk4 = bind_rk4(RigidBodyModel(p), dt_s, state, out)
         ground = GroundContact(p, dt_s)
         out_quat, out_rates, out_z = out[QUAT], out[RATES], out[_PZ]

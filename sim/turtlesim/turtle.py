@@ -140,9 +140,15 @@ class Turtle:
             clamped_from = (self.x_m, SIZE_M - self.y_m)
             self.x_m, self.y_m = min(max(self.x_m, 0.0), SIZE_M), min(max(self.y_m, 0.0), SIZE_M)
         reading = Reading(
-            self.x_m, self.y_m, self.theta_rad, math.hypot(self.linear_x_mps, self.linear_y_mps),
-            self.angular_radps, canvas.color_at(self._pixel()), clamped_from, rotation,
-        )  # fmt: skip
+            self.x_m,
+            self.y_m,
+            self.theta_rad,
+            math.hypot(self.linear_x_mps, self.linear_y_mps),
+            self.angular_radps,
+            canvas.color_at(self._pixel()),
+            clamped_from,
+            rotation,
+        )
         self._draw(canvas, before)
         return reading
 
