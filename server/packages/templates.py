@@ -26,7 +26,9 @@ APACHE_HEADER = """\
 """
 
 LINTER_TESTS = {
-    "test_copyright.py": (2015, """
+    "test_copyright.py": (
+        2015,
+        """
 from ament_copyright.main import main
 import pytest
 
@@ -38,8 +40,11 @@ import pytest
 def test_copyright():
     rc = main(argv=['.', 'test'])
     assert rc == 0, 'Found errors'
-"""),
-    "test_flake8.py": (2017, """
+""",
+    ),
+    "test_flake8.py": (
+        2017,
+        """
 from ament_flake8.main import main_with_errors
 import pytest
 
@@ -51,8 +56,11 @@ def test_flake8():
     assert rc == 0, \\
         'Found %d code style errors / warnings:\\n' % len(errors) + \\
         '\\n'.join(errors)
-"""),
-    "test_pep257.py": (2015, """
+""",
+    ),
+    "test_pep257.py": (
+        2015,
+        """
 from ament_pep257.main import main
 import pytest
 
@@ -62,8 +70,9 @@ import pytest
 def test_pep257():
     rc = main(argv=['.', 'test'])
     assert rc == 0, 'Found code style errors / warnings'
-"""),
-}  # fmt: skip
+""",
+    ),
+}
 
 TEST_DEPENDS = {
     "ament_python": ["ament_copyright", "ament_flake8", "ament_pep257", "python3-pytest"],
@@ -196,8 +205,12 @@ def package_files(spec: PackageSpec) -> dict[str, str]:
     """Path inside the package folder → text, in the order ``ros2 pkg create`` writes them."""
     files = {"package.xml": package_xml(spec)}
     if spec.build_type == "ament_python":
-        files |= {"setup.py": setup_py(spec), "setup.cfg": setup_cfg(spec), f"resource/{spec.name}": "",
-                  f"{spec.name}/__init__.py": ""}  # fmt: skip
+        files |= {
+            "setup.py": setup_py(spec),
+            "setup.cfg": setup_cfg(spec),
+            f"resource/{spec.name}": "",
+            f"{spec.name}/__init__.py": "",
+        }
         files |= {
             f"test/{name}": APACHE_HEADER.format(year=year) + body
             for name, (year, body) in LINTER_TESTS.items()

@@ -96,9 +96,15 @@ class TurtleEndpoints:
         return response
 
     def publish(self, reading: Reading) -> None:
-        self.pose_pub.publish(Pose(x=reading.x_m, y=reading.y_m, theta=reading.theta_rad,
-                                   linear_velocity=reading.linear_velocity_mps,
-                                   angular_velocity=reading.angular_velocity_radps))  # fmt: skip
+        self.pose_pub.publish(
+            Pose(
+                x=reading.x_m,
+                y=reading.y_m,
+                theta=reading.theta_rad,
+                linear_velocity=reading.linear_velocity_mps,
+                angular_velocity=reading.angular_velocity_radps,
+            )
+        )
         self.color_pub.publish(Color(r=reading.color.r, g=reading.color.g, b=reading.color.b))
 
     def destroy(self) -> None:
@@ -139,8 +145,10 @@ class TurtlesimNode(Node):
         if real_name is not None:
             self.endpoints[real_name] = TurtleEndpoints(self, real_name)
             turtle = self.world.turtles[real_name]
-            self.get_logger().info(f"Spawning turtle [{real_name}] at x=[{turtle.x_m:f}], "
-                                   f"y=[{turtle.y_m:f}], theta=[{turtle.theta_rad:f}]")  # fmt: skip
+            self.get_logger().info(
+                f"Spawning turtle [{real_name}] at x=[{turtle.x_m:f}], "
+                f"y=[{turtle.y_m:f}], theta=[{turtle.theta_rad:f}]"
+            )
         return real_name
 
     def on_spawn(self, request: Spawn_Request, response: Spawn_Response) -> Spawn_Response:
