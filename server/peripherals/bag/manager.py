@@ -105,9 +105,12 @@ class BagManager:
         try:
             with self.bus.activate():
                 node = RecorderNode(
-                    writer, topics, all_topics=all_topics, max_bytes=self.max_bag_bytes,
+                    writer,
+                    topics,
+                    all_topics=all_topics,
+                    max_bytes=self.max_bag_bytes,
                     node_name=self._node_name("rosbag2_recorder"),
-                )  # fmt: skip
+                )
         except Exception:
             writer.close()
             raise

@@ -43,9 +43,12 @@ class Display:
         # hemisphere light (white sky, grey ground) lights the sides the HDRI lit, at no cost.
         self.server.scene.configure_environment_map(None)
         self.server.scene.add_light_hemisphere(
-            "/lights/sky", sky_color=(255, 255, 255), ground_color=SKY_GROUND, intensity=SKY_INTENSITY,
+            "/lights/sky",
+            sky_color=(255, 255, 255),
+            ground_color=SKY_GROUND,
+            intensity=SKY_INTENSITY,
             position=(0.0, 0.0, 1.0),
-        )  # fmt: skip
+        )
 
     def add_view(
         self,
