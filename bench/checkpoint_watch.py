@@ -68,8 +68,14 @@ def one_round(watch: bool, sim_s: float, state_dir: Path) -> dict[str, Any]:
     lab.launcher.shutdown()
     for node in list(lab.bus.nodes):
         node.destroy_node()
-    return {"watch": watch, "cpu_s": cpu, "sim_s": steps * 2.0, "drain_s": drain_s[0], "met": done,
-            "dropped": lab.checkpoints.dropped}  # fmt: skip
+    return {
+        "watch": watch,
+        "cpu_s": cpu,
+        "sim_s": steps * 2.0,
+        "drain_s": drain_s[0],
+        "met": done,
+        "dropped": lab.checkpoints.dropped,
+    }
 
 
 def main() -> None:
@@ -83,8 +89,11 @@ def main() -> None:
             for watch in (i % 2 == 0, i % 2 == 1):  # alternate which goes first
                 run = one_round(watch, args.sim_s, Path(state))
                 runs.append(run)
-                print(f"round {i + 1} watch={watch!s:5}: {100 * run['cpu_s'] / run['sim_s']:6.2f} % of a core"
-                      f"  (drain {100 * run['drain_s'] / run['sim_s']:.3f} %)  met={run['met']}", flush=True)  # fmt: skip
+                print(
+                    f"round {i + 1} watch={watch!s:5}: {100 * run['cpu_s'] / run['sim_s']:6.2f} % of a core"
+                    f"  (drain {100 * run['drain_s'] / run['sim_s']:.3f} %)  met={run['met']}",
+                    flush=True,
+                )
     share = {w: [r["cpu_s"] / r["sim_s"] for r in runs if r["watch"] is w] for w in (True, False)}
     drain = [r["drain_s"] / r["sim_s"] for r in runs if r["watch"]]
     summary = {
@@ -93,8 +102,10 @@ def main() -> None:
         "difference_pct": 100 * (statistics.median(share[True]) - statistics.median(share[False])),
         "drain_pct": 100 * statistics.median(drain),
     }
-    print(f"median: with {summary['with_watch_pct']:.2f} %, without {summary['without_watch_pct']:.2f} %, "
-          f"difference {summary['difference_pct']:.2f} % of a core; the watch's drain {summary['drain_pct']:.3f} %")  # fmt: skip
+    print(
+        f"median: with {summary['with_watch_pct']:.2f} %, without {summary['without_watch_pct']:.2f} %, "
+        f"difference {summary['difference_pct']:.2f} % of a core; the watch's drain {summary['drain_pct']:.3f} %"
+    )
     save_results(
         "checkpoint_watch", {"machine": machine_info(), "args": vars(args), "runs": runs, "summary": summary}
     )

@@ -1,15 +1,26 @@
 """Bench: a class told "run it now", measured from outside.
 
     .venv/bin/python bench/class_burst.py [--worlds 30] [--per-world 2] [--joined-timeout-s 300]
-        [--steady-s 30] [--via cli|page] [--page-clients [--clients-nice N]]
+        [--steady-s 30] [--via cli|page] [--starts all-at-once|paced [--starts-over-s 60]]
+        [--probers 10] [--page-clients [--clients-nice N]]
 
 A class server (``--classroom --launch fly``, its Zenoh router on a free loopback port) with
 ``--worlds`` students joined, one world each. Then ``--worlds`` × ``--per-world`` ``ros2lab run``
 of the handout's keyboard manager (examples/workspace, rocketship), each with its student's token
-and a node name of its own, all started at once, as a class does. What is measured:
+and a node name of its own, all started in the same instant (one barrier releases a thread per
+start), as a class told "run it now" does; ``--starts paced`` spreads them evenly over
+``--starts-over-s`` instead. What is measured:
 
-* the time from the first ``Popen`` until every node is in its own world's ``GET /api/nodes``
+* the time from the first start until every node is in its own world's ``GET /api/nodes``
   (each world polled in turn, every 0.5 s);
+* how long the class server took to answer a student's ordinary calls meanwhile (``answers``):
+  ``--probers`` students (an even sample) each call, one after the other 0.5 s apart as a page
+  polls, ``GET /api/nodes`` (``nodes``), ``GET /api/topics`` (``topics``), ``GET
+  /api/workspace/files`` (``workspace_tree``) and the keyboard manager's file
+  (``workspace_file``), from a second before the starts until every node is listed; with ``--via
+  page`` the starts' own ``POST /api/run`` too (``run``). Per kind: the slowest answer, the p99,
+  the median, how many calls, how many took over a second, and errors (a call unanswered in 30 s
+  counts as one, at 30 s);
 * every world's dynamics timer rate over that time (``flightgoggles_uav_dynamics``' timer calls,
   read with the world's token before the starts and once all are joined): median and lowest;
 * the class server's CPU (cores) over that time, the share of the machine's CPU time the
@@ -29,9 +40,11 @@ bench's process, on the same cores as the class (``steady.bench_cpu_cores``), wh
 pages would run on the students' machines; ``--clients-nice 10`` runs their thread below the
 class's processes, so they take the cores only when the class leaves them free.
 
-``--via page`` starts the nodes as the page's Run does instead: the keyboard manager saved into
-each student's workspace through the workspace API, then ``POST /api/run`` with the student's
-token, so the class server starts each node process (in its sandbox, where bubblewrap is installed).
+The keyboard manager is saved into each student's workspace through the workspace API before the
+starts (the file the probers read). ``--via page`` starts the nodes as the page's Run does
+instead of ``ros2lab run``: ``POST /api/run`` with the student's token, so the class server starts
+each node process (in its sandbox, where bubblewrap is installed) at the turn its start pacer
+gives it.
 
 Every child is ended by its own id (Ctrl-C to each ``ros2lab run``, which passes it on). Prints
 the machine (bench/machine.py) and one JSON object, also written to bench/results/class_burst.json.
@@ -41,6 +54,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import functools
 import json
 import os
 import shutil
@@ -48,7 +62,9 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -66,6 +82,10 @@ WORKSPACE = REPO / "examples" / "workspace"
 ROS2LAB = str(Path(sys.executable).parent / "ros2lab")
 POLL_S = 0.5
 JOIN_WAIT_S = 120.0  # a join the class queues at its capacity
+MANAGER = "src/rocketship/src/keyboard_manager.py"
+PROBE_GAP_S = 0.5  # a prober's pause between calls: about a page's polls (tools 1 s, editor 1.5 s)
+PROBE_TIMEOUT_S = 30.0  # a call unanswered so long counts as answered then (and as an error)
+ANSWER_AIM_S = 1.0
 
 
 def cpu_jiffies() -> tuple[int, int]:
@@ -136,8 +156,10 @@ def start(server: LiveServer, token: str, node: str, env: dict[str, str]) -> sub
     ]
     return subprocess.Popen(
         [*argv, "--ros-args", "-r", f"__node:={node}"],
-        env={**env, "ROS2LAB_TOKEN": token}, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-    )  # fmt: skip
+        env={**env, "ROS2LAB_TOKEN": token},
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
 
 
 def join(server: LiveServer, name: str) -> tuple[str, str]:
@@ -150,20 +172,132 @@ def join(server: LiveServer, name: str) -> tuple[str, str]:
 
 def save_manager(server: LiveServer, token: str) -> None:
     """The handout's keyboard manager in the student's workspace, as the page's editor saves it."""
-    path = "src/rocketship/src/keyboard_manager.py"
-    reply = READER.put(f"{server.url}/api/workspace/files/{path}", headers={"Authorization": f"Bearer {token}"},
-                       json={"text": (WORKSPACE / path).read_text()})  # fmt: skip
+    reply = READER.put(
+        f"{server.url}/api/workspace/files/{MANAGER}",
+        headers={"Authorization": f"Bearer {token}"},
+        json={"text": (WORKSPACE / MANAGER).read_text()},
+    )
     if reply.status_code not in (200, 201):
         raise RuntimeError(f"saving the keyboard manager: {reply.status_code} {reply.text}")
 
 
-def start_in_page(server: LiveServer, token: str, node: str) -> str:
-    """The page's Run of the student's keyboard manager as ``node``: the launch's id."""
-    reply = READER.post(f"{server.url}/api/run", headers={"Authorization": f"Bearer {token}"},
-                        json={"package": "rocketship", "executable": "keyboard_manager.py", "name": node})  # fmt: skip
-    if reply.status_code != 201:
-        raise RuntimeError(f"POST /api/run: {reply.status_code} {reply.text}")
-    return str(reply.json()["id"])
+class Answers:
+    """How long the class server took to answer each kind of call, from any thread."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._seconds: dict[str, list[float]] = {}
+        self._errors: dict[str, list[str]] = {}
+
+    def record(self, kind: str, seconds: float, error: str | None = None) -> None:
+        with self._lock:
+            self._seconds.setdefault(kind, []).append(seconds)
+            if error is not None:
+                self._errors.setdefault(kind, []).append(error)
+
+    def timed(
+        self, kind: str, call: Callable[[], httpx.Response], ok: tuple[int, ...] = (200,)
+    ) -> httpx.Response | None:
+        """``call``'s answer, recorded under ``kind`` (None, and recorded as its timeout, if none came)."""
+        t0 = time.perf_counter()
+        try:
+            reply = call()
+        except httpx.HTTPError as exc:
+            self.record(kind, time.perf_counter() - t0, f"{type(exc).__name__}: {exc}"[:200])
+            return None
+        error = None if reply.status_code in ok else f"{reply.status_code}: {reply.text[:160]}"
+        self.record(kind, time.perf_counter() - t0, error)
+        return reply
+
+    def summary(self) -> dict[str, dict[str, Any]]:
+        """Per kind: the slowest answer, the p99 (nearest rank), the median, how many calls, how
+        many took over ``ANSWER_AIM_S`` and the first few errors."""
+        with self._lock:
+            out: dict[str, dict[str, Any]] = {}
+            for kind, seconds in sorted(self._seconds.items()):
+                ordered = sorted(seconds)
+                errors = self._errors.get(kind, [])
+                out[kind] = {
+                    "max_s": round(ordered[-1], 3),
+                    "p99_s": round(ordered[max(0, -(-len(ordered) * 99 // 100) - 1)], 3),
+                    "median_s": round(statistics.median(ordered), 3),
+                    "calls": len(ordered),
+                    "over_aim": sum(1 for s in ordered if s > ANSWER_AIM_S),
+                    "errors": len(errors),
+                    "first_errors": errors[:3],
+                }
+            return out
+
+
+class Prober:
+    """One student's page while the class starts, on a thread of its own: the ordinary calls in
+    turn (the node list, the topic list, the workspace's tree and a file in it), ``PROBE_GAP_S``
+    apart, each timed into ``answers``, until ``stop``."""
+
+    CALLS = (
+        ("nodes", "/api/nodes"),
+        ("topics", "/api/topics"),
+        ("workspace_tree", "/api/workspace/files"),
+        ("workspace_file", f"/api/workspace/files/{MANAGER}"),
+    )
+
+    def __init__(self, url: str, token: str, answers: Answers, stop: threading.Event) -> None:
+        self.client = httpx.Client(
+            base_url=url, headers={"Authorization": f"Bearer {token}"}, timeout=PROBE_TIMEOUT_S
+        )
+        self.answers, self.stop = answers, stop
+        self.thread = threading.Thread(target=self._run, daemon=True)
+
+    def _run(self) -> None:
+        while not self.stop.is_set():
+            for kind, path in self.CALLS:
+                self.answers.timed(kind, lambda path=path: self.client.get(path))
+                if self.stop.wait(PROBE_GAP_S):
+                    break
+        self.client.close()
+
+
+def start_in_page(server: LiveServer, token: str, node: str, answers: Answers) -> None:
+    """The page's Run of the student's keyboard manager as ``node``, timed as ``run``."""
+    answers.timed(
+        "run",
+        lambda: READER.post(
+            f"{server.url}/api/run",
+            headers={"Authorization": f"Bearer {token}"},
+            json={"package": "rocketship", "executable": "keyboard_manager.py", "name": node},
+        ),
+        ok=(201,),
+    )
+
+
+def at_times(starts: list[Callable[[], Any]], offsets: list[float]) -> list[threading.Thread]:
+    """Each of ``starts`` on a thread of its own, at its offset in seconds from the moment every
+    thread is ready (one barrier releases them: with every offset 0, the whole class presses Run
+    in the same instant)."""
+    released: list[float] = []
+    barrier = threading.Barrier(len(starts), action=lambda: released.append(time.monotonic()))
+
+    def go(call: Callable[[], Any], offset: float) -> None:
+        barrier.wait()
+        delay = released[0] + offset - time.monotonic()
+        if delay > 0:
+            time.sleep(delay)
+        call()
+
+    threads = [
+        threading.Thread(target=go, args=(c, o), daemon=True) for c, o in zip(starts, offsets, strict=True)
+    ]
+    for thread in threads:
+        thread.start()
+    return threads
+
+
+def start_offsets(count: int, starts: str, over_s: float) -> list[float]:
+    """When each of ``count`` starts goes, in seconds from the first: all at once, or ``paced``
+    evenly over ``over_s``."""
+    if starts == "all-at-once" or count < 2:
+        return [0.0] * count
+    return [i * over_s / (count - 1) for i in range(count)]
 
 
 def descendants(pid: int) -> list[int]:
@@ -250,27 +384,37 @@ def burst(
     via: str,
     steady_s: float,
     pages: OpenPages | None = None,
+    starts: str = "all-at-once",
+    starts_over_s: float = 60.0,
+    probers: int = 10,
 ) -> dict[str, Any]:
     wanted = {w: {f"/{w}_node{i}" for i in range(per_world)} for w in tokens}
-    if via == "page":
-        for token in tokens.values():
-            save_manager(server, token)
+    for token in tokens.values():  # the Run's file, and the file the probers read
+        save_manager(server, token)
+    answers, probing = Answers(), threading.Event()
+    step = max(1, len(tokens) // max(1, probers)) if probers > 0 else 0
+    probed = list(tokens.values())[::step][:probers] if probers > 0 else []
+    probes = [Prober(server.url, t, answers, probing) for t in probed]
+    for probe in probes:
+        probe.thread.start()
+    time.sleep(1.0)  # each prober's first calls answered before the starts
     steal0, total0 = cpu_jiffies()
     cpu0 = process_cpu_s(server.proc.pid)
     before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE")}
-    t0 = time.monotonic()
     runs: list[subprocess.Popen[bytes]] = []
-    if via == "page":
-        for w, names in wanted.items():
-            for name in sorted(names):
-                start_in_page(server, tokens[w], name.lstrip("/"))
-    else:
-        runs = [
-            start(server, tokens[w], name.lstrip("/"), env)
-            for w, names in wanted.items()
-            for name in sorted(names)
-        ]
+    calls: list[Callable[[], Any]] = []
+    for w, names in wanted.items():
+        for name in sorted(names):
+            node = name.lstrip("/")
+            if via == "page":
+                calls.append(functools.partial(start_in_page, server, tokens[w], node, answers))
+            else:
+                calls.append(
+                    functools.partial(lambda t, n: runs.append(start(server, t, n, env)), tokens[w], node)
+                )
+    t0 = time.monotonic()
+    starters = at_times(calls, start_offsets(len(calls), starts, starts_over_s))
     try:
         pending = dict(wanted)
         joined_at: list[float] = []
@@ -287,6 +431,11 @@ def burst(
                     joined_at.append(time.monotonic() - t0)
             time.sleep(POLL_S)
         all_joined_s = time.monotonic() - t0 if not pending else None
+        probing.set()
+        for thread in starters:
+            thread.join(timeout=PROBE_TIMEOUT_S)
+        for probe in probes:
+            probe.thread.join(timeout=PROBE_TIMEOUT_S)
         after = {w: dynamics_calls(server, t) for w, t in tokens.items()}
         cpu1 = process_cpu_s(server.proc.pid)
         steal1, total1 = cpu_jiffies()
@@ -297,12 +446,26 @@ def burst(
         exited = sum(1 for run in runs if run.poll() is not None)
         running = steady(server, tokens, roots, steady_s, pages) if steady_s > 0 and not pending else None
     finally:
-        for run in runs:
+        probing.set()
+        for thread in starters:
+            thread.join(timeout=PROBE_TIMEOUT_S)
+        for run in list(runs):
             end(run)
     rates = sorted((after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens)
+    rss_summary: dict[str, float] | None = None
+    if node_rss:
+        rss_summary = {
+            "median": round(statistics.median(node_rss), 1),
+            "max": round(max(node_rss), 1),
+            "sum": round(sum(node_rss), 1),
+            "count": len(node_rss),
+        }
     return {
         "nodes": sum(len(names) for names in wanted.values()),
         "via": via,
+        "starts": starts,
+        "answers": answers.summary(),
+        "probed_students": len(probes),
         "all_joined_s": round(all_joined_s, 1) if all_joined_s is not None else None,
         "not_joined_worlds": sorted(pending),
         "node_lists_unanswered_in_60_s": unanswered,
@@ -312,12 +475,9 @@ def burst(
         "server_cpu_cores": round((cpu1 - cpu0) / window_s, 2),
         "stolen": round((steal1 - steal0) / max(1, total1 - total0), 4),
         "load_average_after": list(os.getloadavg()),
-        "node_rss_mib": {
-            "median": round(statistics.median(node_rss), 1), "max": round(max(node_rss), 1),
-            "sum": round(sum(node_rss), 1), "count": len(node_rss),
-        } if node_rss else None,
+        "node_rss_mib": rss_summary,
         "steady": running,
-    }  # fmt: skip
+    }
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -348,6 +508,19 @@ def main(argv: list[str] | None = None) -> int:
         default=0,
         help="added to the page clients' thread's niceness: they stand for pages on the students' machines",
     )
+    parser.add_argument(
+        "--starts",
+        choices=["all-at-once", "paced"],
+        default="all-at-once",
+        help="every start in the same instant (a class told 'run it now'), or spread evenly over --starts-over-s",
+    )
+    parser.add_argument("--starts-over-s", type=float, default=60.0, help="with --starts paced")
+    parser.add_argument(
+        "--probers",
+        type=int,
+        default=10,
+        help="students (an even sample) whose ordinary calls are timed while the class starts",
+    )
     args = parser.parse_args(argv)
     print(json.dumps(machine_info()), flush=True)
     root = Path(tempfile.mkdtemp(prefix="class_burst_"))
@@ -366,7 +539,18 @@ def main(argv: list[str] | None = None) -> int:
         time.sleep(3.0)  # every world flying (and every page open) before the starts
         results = {
             "args": vars(args),
-            **burst(server, tokens, args.per_world, args.joined_timeout_s, args.via, args.steady_s, pages),
+            **burst(
+                server,
+                tokens,
+                args.per_world,
+                args.joined_timeout_s,
+                args.via,
+                args.steady_s,
+                pages,
+                starts=args.starts,
+                starts_over_s=args.starts_over_s,
+                probers=args.probers,
+            ),
         }
     finally:
         if pages is not None:

@@ -181,19 +181,37 @@ def attack(url: str, token: str, seconds: float, sockets: int, attacks: list[str
 def run(quiet: int, window_s: float, ramp_s: float, sockets: int, attacks: list[str]) -> dict[str, Any]:
     with tempfile.TemporaryDirectory() as tmp:
         server = LiveServer(
-            Path(tmp), "fly", "--classroom", "--class-code", CODE, "--max-worlds", str(quiet + 1),
-            "--workers", "0",  # every world in the one process whose fairness this measures
-        )  # fmt: skip
+            Path(tmp),
+            "fly",
+            "--classroom",
+            "--class-code",
+            CODE,
+            "--max-worlds",
+            str(quiet + 1),
+            "--workers",
+            "0",  # every world in the one process whose fairness this measures
+        )
         try:
             tokens = [join(server, f"quiet {i}") for i in range(quiet)]
             worst_token = join(server, "worst")
             time.sleep(WARM_S)
             calm = window(server, tokens, window_s)
             attacker = subprocess.Popen(
-                [sys.executable, __file__, "--attack", server.url, worst_token, str(ramp_s + window_s + 2),
-                 "--sockets", str(sockets), "--only", *attacks],
-                stdout=subprocess.PIPE, text=True,
-            )  # fmt: skip
+                [
+                    sys.executable,
+                    __file__,
+                    "--attack",
+                    server.url,
+                    worst_token,
+                    str(ramp_s + window_s + 2),
+                    "--sockets",
+                    str(sockets),
+                    "--only",
+                    *attacks,
+                ],
+                stdout=subprocess.PIPE,
+                text=True,
+            )
             try:
                 time.sleep(ramp_s)
                 loaded = window(server, tokens, window_s)
@@ -205,9 +223,12 @@ def run(quiet: int, window_s: float, ramp_s: float, sockets: int, attacks: list[
         finally:
             server.stop()
     return {
-        "quiet": calm, "worst_student": loaded, "quiet_again": calm_again, "attempts": json.loads(out),
+        "quiet": calm,
+        "worst_student": loaded,
+        "quiet_again": calm_again,
+        "attempts": json.loads(out),
         "log_problems": problems[:5],
-    }  # fmt: skip
+    }
 
 
 def main() -> None:
@@ -239,9 +260,11 @@ def main() -> None:
     result = run(args.quiet, args.window, args.ramp, args.sockets, args.only)
     calm, loaded, again = result["quiet"], result["worst_student"], result["quiet_again"]
     for label, row in (("quiet class", calm), ("worst student", loaded), ("quiet again", again)):
-        print(f"{label:>14}: dynamics Hz min/median {row['dynamics_hz_min']}/{row['dynamics_hz_median']}, "
-              f"tick lateness p99 ms max/median {row['lateness_p99_ms_max']}/{row['lateness_p99_ms_median']}, "
-              f"server {row['server_cores']} core, load average {row['load_average_1min']}")  # fmt: skip
+        print(
+            f"{label:>14}: dynamics Hz min/median {row['dynamics_hz_min']}/{row['dynamics_hz_median']}, "
+            f"tick lateness p99 ms max/median {row['lateness_p99_ms_max']}/{row['lateness_p99_ms_median']}, "
+            f"server {row['server_cores']} core, load average {row['load_average_1min']}"
+        )
     ratio = loaded["dynamics_hz_min"] / max(calm["dynamics_hz_min"], again["dynamics_hz_min"])
     p99 = loaded["lateness_p99_ms_max"]
     print(f"the worst student's attempts: {result['attempts']}")
@@ -259,9 +282,19 @@ def main() -> None:
     if result["log_problems"]:
         print("   server log:", result["log_problems"], flush=True)
     name = "class_fairness" + ("" if len(args.only) == len(ATTACKS) else "_" + "_".join(args.only))
-    save_results(name, {"machine": info, "window_s": args.window, "ramp_s": args.ramp, "attacks": args.only,
-                                    "ratio": round(ratio, 3), "rate_aim_met": ratio >= RATE_AIM,
-                                    "p99_aim_met": p99 < P99_AIM_MS, **result})  # fmt: skip
+    save_results(
+        name,
+        {
+            "machine": info,
+            "window_s": args.window,
+            "ramp_s": args.ramp,
+            "attacks": args.only,
+            "ratio": round(ratio, 3),
+            "rate_aim_met": ratio >= RATE_AIM,
+            "p99_aim_met": p99 < P99_AIM_MS,
+            **result,
+        },
+    )
 
 
 if __name__ == "__main__":

@@ -192,10 +192,13 @@ def main() -> None:
                     for name in ("idle", "direct", "bridged"):
                         row = phase(server, watcher, keys[name], args.window, instructor, names)
                         rows[name].append(row)
-                        print(f"round {r + 1} {name:>8}: {row['cpu_core_share']:.3f} core, tick p99 "
-                              f"{row['tick_lateness_p99_ms']:.1f} ms, "
-                              f"{row['samples_per_s']:.0f} samples/s, latency p50/p99 "
-                              f"{row['latency_p50_ms']} / {row['latency_p99_ms']} ms", flush=True)  # fmt: skip
+                        print(
+                            f"round {r + 1} {name:>8}: {row['cpu_core_share']:.3f} core, tick p99 "
+                            f"{row['tick_lateness_p99_ms']:.1f} ms, "
+                            f"{row['samples_per_s']:.0f} samples/s, latency p50/p99 "
+                            f"{row['latency_p50_ms']} / {row['latency_p99_ms']} ms",
+                            flush=True,
+                        )
             problems = server.log_problems()
         finally:
             server.stop()
@@ -214,18 +217,29 @@ def main() -> None:
         f"{'watching':>9} {'CPU (core)':>10} {'tick p99 ms':>11} {'samples/s':>10} {'p50 ms':>8} {'p99 ms':>8}"
     )
     for name, row in summary.items():
-        print(f"{name:>9} {row['cpu_core_share']:>10.3f} {row['tick_lateness_p99_ms']:>11.2f} {row['samples_per_s']:>10.0f} "
-              f"{row['latency_p50_ms'] or 0:>8.2f} {row['latency_p99_ms'] or 0:>8.2f}")  # fmt: skip
+        print(
+            f"{name:>9} {row['cpu_core_share']:>10.3f} {row['tick_lateness_p99_ms']:>11.2f} {row['samples_per_s']:>10.0f} "
+            f"{row['latency_p50_ms'] or 0:>8.2f} {row['latency_p99_ms'] or 0:>8.2f}"
+        )
     if extra["direct"] > 0:
-        print(f"server CPU for watching, bridged over direct: {extra['bridged'] / extra['direct']:.2f}x "
-              f"(+{extra['bridged']:.3f} against +{extra['direct']:.3f} core)")  # fmt: skip
+        print(
+            f"server CPU for watching, bridged over direct: {extra['bridged'] / extra['direct']:.2f}x "
+            f"(+{extra['bridged']:.3f} against +{extra['direct']:.3f} core)"
+        )
     if problems:
         print("server log problems:", *problems[:5], sep="\n  ")
     save_results(
         "class_graph",
-        {"machine": info, "worlds": args.worlds, "window_s": args.window, "rounds": rows, "summary": summary,
-         "extra_cpu_over_idle": extra, "log_problems": problems[:5]},
-    )  # fmt: skip
+        {
+            "machine": info,
+            "worlds": args.worlds,
+            "window_s": args.window,
+            "rounds": rows,
+            "summary": summary,
+            "extra_cpu_over_idle": extra,
+            "log_problems": problems[:5],
+        },
+    )
 
 
 if __name__ == "__main__":

@@ -148,8 +148,11 @@ def measure(
             for i in range(size):
                 token = join(server.url, f"student {i}")
                 if token is None:
-                    print(f"  join {i + 1} of {size} was not admitted within {ADMIT_WAIT_S:.0f} s "
-                          "(the class server's capacity): measured with the worlds admitted", flush=True)  # fmt: skip
+                    print(
+                        f"  join {i + 1} of {size} was not admitted within {ADMIT_WAIT_S:.0f} s "
+                        "(the class server's capacity): measured with the worlds admitted",
+                        flush=True,
+                    )
                     break
                 tokens.append(token)
             pages = PageClients([PageClient(server.url, t) for t in tokens], window_s, WARM_S)
@@ -215,18 +218,25 @@ def main() -> None:
     parser.add_argument("--no-zenoh", action="store_true", help="worlds in-process only (no Zenoh sessions)")
     parser.add_argument("--no-clients", action="store_true", help="no pose stream: the worlds alone")
     parser.add_argument(
-        "--page-clients", action="store_true",
+        "--page-clients",
+        action="store_true",
         help="a page-like client per student (bench/page_client.py) instead of a lone pose stream",
-    )  # fmt: skip
+    )
     parser.add_argument(
-        "--workers", type=int, default=0,
-        help="worlds on this many world workers (ros2lab world-worker) instead of the class server; "
-             "CPU and RSS are then the sum over the server and its workers",
-    )  # fmt: skip
+        "--workers",
+        type=int,
+        default=0,
+        help=(
+            "worlds on this many world workers (ros2lab world-worker) instead of the class server; "
+            "CPU and RSS are then the sum over the server and its workers"
+        ),
+    )
     parser.add_argument(
-        "--local-worlds", type=int, default=0,
+        "--local-worlds",
+        type=int,
+        default=0,
         help="with --workers: this many worlds stay on the class server, the rest go to the workers",
-    )  # fmt: skip
+    )
     args = parser.parse_args()
     info = machine_info()
     print(f"machine: {info['cpu_model']}, {info['nproc']} CPUs, Python {info['python']}", flush=True)
@@ -246,10 +256,13 @@ def main() -> None:
             page_clients=args.page_clients,
         )
         rows.append(row)
-        print(f"{row['worlds']:>6} {row['cpu_core_share']:>10.2f} {row['rss_mib']:>8.0f} "
-              f"{row['pose_hz_median']!s:>8}/{row['pose_hz_min']!s:<7} "
-              f"{row['tick_lateness_p99_ms_median']!s:>9}/{row['tick_lateness_p99_ms_max']!s:<9} "
-              f"{row['dynamics_hz_median']!s:>9}/{row['dynamics_hz_min']!s:<9}", flush=True)  # fmt: skip
+        print(
+            f"{row['worlds']:>6} {row['cpu_core_share']:>10.2f} {row['rss_mib']:>8.0f} "
+            f"{row['pose_hz_median']!s:>8}/{row['pose_hz_min']!s:<7} "
+            f"{row['tick_lateness_p99_ms_median']!s:>9}/{row['tick_lateness_p99_ms_max']!s:<9} "
+            f"{row['dynamics_hz_median']!s:>9}/{row['dynamics_hz_min']!s:<9}",
+            flush=True,
+        )
         if row["page_hz"] is not None:
             print(
                 "   page clients, median Hz per channel:",
@@ -266,10 +279,19 @@ def main() -> None:
     name += f"_{args.local_worlds}_local" if args.workers and args.local_worlds else ""
     name += "_no_clients" if args.no_clients else ""
     name += "_page_clients" if args.page_clients else ""
-    save_results(name, {"machine": info, "window_s": args.window, "zenoh": not args.no_zenoh,
-                        "workers": args.workers, "local_worlds": args.local_worlds,
-                        "pose_clients": not args.no_clients, "page_clients": args.page_clients,
-                        "rows": rows})  # fmt: skip
+    save_results(
+        name,
+        {
+            "machine": info,
+            "window_s": args.window,
+            "zenoh": not args.no_zenoh,
+            "workers": args.workers,
+            "local_worlds": args.local_worlds,
+            "pose_clients": not args.no_clients,
+            "page_clients": args.page_clients,
+            "rows": rows,
+        },
+    )
 
 
 if __name__ == "__main__":

@@ -97,15 +97,21 @@ def main() -> int:
     samples = result["samples"]
     first, last = samples[0], samples[-1]
     summary = {
-        "rss_first_mib": first["rss_mib"], "rss_last_mib": last["rss_mib"],
+        "rss_first_mib": first["rss_mib"],
+        "rss_last_mib": last["rss_mib"],
         "rss_drift_mib": last["rss_mib"] - first["rss_mib"],
-        "nodes_first": first["nodes"], "nodes_max": max(s["nodes"] for s in samples), "nodes_last": last["nodes"],
-        "cycles_per_s": result["cycles_per_s"], "close_codes": result["close_codes"],
+        "nodes_first": first["nodes"],
+        "nodes_max": max(s["nodes"] for s in samples),
+        "nodes_last": last["nodes"],
+        "cycles_per_s": result["cycles_per_s"],
+        "close_codes": result["close_codes"],
         "log_problems": len(result["log_problems"]),
-    }  # fmt: skip
+    }
     machine = machine_info()
-    print(f"machine: {machine['cpu_model']} x{machine['nproc']}, Python {machine['python']}, "
-          f"load at start {machine['load_average_at_start']}")  # fmt: skip
+    print(
+        f"machine: {machine['cpu_model']} x{machine['nproc']}, Python {machine['python']}, "
+        f"load at start {machine['load_average_at_start']}"
+    )
     print(
         f"{args.cycles} connect/refuse cycles (+{args.warmup} warm-up), 1 in {args.closed_every} accepted then closed"
     )

@@ -102,11 +102,23 @@ class LiveServer:
         self.log_path = workdir / "server.log"
         self._log: IO[bytes] = self.log_path.open("wb")
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "--port", str(self.port),
-             "--zenoh-listen", f"tcp/127.0.0.1:{self.zenoh_port}", "--launch", launch, *launch_args],
-            cwd=workdir, stdout=self._log, stderr=subprocess.STDOUT,
+            [
+                sys.executable,
+                "-m",
+                "server",
+                "--port",
+                str(self.port),
+                "--zenoh-listen",
+                f"tcp/127.0.0.1:{self.zenoh_port}",
+                "--launch",
+                launch,
+                *launch_args,
+            ],
+            cwd=workdir,
+            stdout=self._log,
+            stderr=subprocess.STDOUT,
             env={"PYTHONPATH": str(Path(__file__).resolve().parent.parent), "PATH": "/usr/bin:/bin"},
-        )  # fmt: skip
+        )
         deadline = time.monotonic() + READY_TIMEOUT_S
         while not self._healthy():
             if self.proc.poll() is not None or time.monotonic() > deadline:

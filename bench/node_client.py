@@ -130,8 +130,11 @@ def start_to_listed(server: LiveServer, tries: int) -> dict[str, Any]:
         t0 = time.monotonic()
         proc = subprocess.Popen(
             [sys.executable, "-m", "node_runtime.process.runner", str(KEYBOARD_MANAGER)],
-            cwd=REPO, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-        )  # fmt: skip
+            cwd=REPO,
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
         try:
             while not any(n["name"] == NODE_NAME for n in _nodes(server)):
                 if time.monotonic() - t0 > LISTED_TIMEOUT_S or proc.poll() is not None:
@@ -162,16 +165,36 @@ def exchange(kind: str, router: str, args: argparse.Namespace) -> dict[str, Any]
     """One publisher and one subscriber process of ``kind`` (``rclpy`` or ``bare``)."""
     common = ["--connect", router, "--max-s", str(args.warmup_s + args.duration_s + CHILD_GRACE_S)]
     env = child_env(router)
-    sub = subprocess.Popen([sys.executable, __file__, "--role", f"{kind}-sub", *common], cwd=REPO, env=env,
-                           stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)  # fmt: skip
+    sub = subprocess.Popen(
+        [sys.executable, __file__, "--role", f"{kind}-sub", *common],
+        cwd=REPO,
+        env=env,
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
     pub: subprocess.Popen[str] | None = None
     try:
         read_json_line(sub, CHILD_GRACE_S)  # ready
         pub = subprocess.Popen(
-            [sys.executable, str(REPO / "bench" / "zenoh_graph.py"), "--role", f"{kind}-pub", *common[:2],
-             "--rate", str(args.rate), "--duration", str(args.duration_s), "--warmup", str(args.warmup_s)],
-            cwd=REPO, env=env, stdout=subprocess.PIPE, text=True,
-        )  # fmt: skip
+            [
+                sys.executable,
+                str(REPO / "bench" / "zenoh_graph.py"),
+                "--role",
+                f"{kind}-pub",
+                *common[:2],
+                "--rate",
+                str(args.rate),
+                "--duration",
+                str(args.duration_s),
+                "--warmup",
+                str(args.warmup_s),
+            ],
+            cwd=REPO,
+            env=env,
+            stdout=subprocess.PIPE,
+            text=True,
+        )
         sent = read_json_line(pub, args.warmup_s + args.duration_s + CHILD_GRACE_S)
         time.sleep(0.5)  # the last samples in flight
         assert sub.stdin is not None

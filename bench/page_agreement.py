@@ -35,14 +35,22 @@ from page_client import POSE_TOPICS, Counts, PageClient
 AGREE = 0.10
 MAX_S = 120.0
 CHROMIUM_ARGS = [
-    "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-    "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic",
-    "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+    "--headless=new",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+    "--disable-quic",
+    "--use-angle=swiftshader",
+    "--enable-unsafe-swiftshader",
     # A headless page counts as in the background, where Chromium slows its timers (the key
     # channel's heartbeat among them); a student's page is in front.
-    "--disable-background-timer-throttling", "--disable-renderer-backgrounding",
+    "--disable-background-timer-throttling",
+    "--disable-renderer-backgrounding",
     "--disable-backgrounding-occluded-windows",
-]  # fmt: skip
+]
 
 
 class PageCounts:

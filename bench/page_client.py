@@ -108,9 +108,12 @@ class PageClient:
 
     async def _viser(self) -> None:
         async with websockets.connect(
-            self.ws + "/", subprotocols=[websockets.Subprotocol(f"viser-v{viser.__version__}")],
-            additional_headers=self.headers, max_size=MAX_FRAME_BYTES, compression=None,
-        ) as ws:  # fmt: skip
+            self.ws + "/",
+            subprotocols=[websockets.Subprotocol(f"viser-v{viser.__version__}")],
+            additional_headers=self.headers,
+            max_size=MAX_FRAME_BYTES,
+            compression=None,
+        ) as ws:
             async for frame in ws:
                 if isinstance(frame, bytes):
                     self.counts.add_viser(frame)

@@ -88,8 +88,11 @@ def main(argv: list[str] | None = None) -> int:
                     for i in range(args.loads):
                         load = one_load(browser, server.url, args.watch_s)
                         results["loads"].append(load)
-                        print(f"load {i + 1}: steady at {load['phases_s']['steady']:.1f} s, "
-                              f"longest stall {load['longest_gap_ms']:.0f} ms", flush=True)  # fmt: skip
+                        print(
+                            f"load {i + 1}: steady at {load['phases_s']['steady']:.1f} s, "
+                            f"longest stall {load['longest_gap_ms']:.0f} ms",
+                            flush=True,
+                        )
                 finally:
                     browser.close()
         finally:

@@ -168,9 +168,12 @@ def stats_ms(values: list[float]) -> dict[str, Any]:
     if not ordered:
         return {"n": 0}
     return {
-        "n": len(ordered), "p50_ms": round(percentile(ordered, 0.5), 2), "p99_ms": round(percentile(ordered, 0.99), 2),
-        "min_ms": round(ordered[0], 2), "max_ms": round(ordered[-1], 2),
-    }  # fmt: skip
+        "n": len(ordered),
+        "p50_ms": round(percentile(ordered, 0.5), 2),
+        "p99_ms": round(percentile(ordered, 0.99), 2),
+        "min_ms": round(ordered[0], 2),
+        "max_ms": round(ordered[-1], 2),
+    }
 
 
 def make_workspace(root: Path) -> Path:
@@ -199,8 +202,11 @@ def ros2lab_run(server: LiveServer, root: Path, tries: int) -> dict[str, Any]:
         t0 = time.monotonic()
         proc = subprocess.Popen(
             [sys.executable, "-m", "server", "--url", server.url, "run", "rocketship", "keyboard_manager.py"],
-            cwd=root, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
-        )  # fmt: skip
+            cwd=root,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         try:
             if not wait_until(lambda: listed(server, name), APPEAR_TIMEOUT_S):
                 raise RuntimeError(f"{name} did not appear within {APPEAR_TIMEOUT_S} s")
@@ -217,12 +223,14 @@ def ros2lab_run(server: LiveServer, root: Path, tries: int) -> dict[str, Any]:
             end(proc)
         time.sleep(0.2)
     return {
-        "tries": tries, "poll_s": POLL_S,
-        "listed_s_median": round(statistics.median(listed_s), 3), "listed_s_max": round(max(listed_s), 3),
+        "tries": tries,
+        "poll_s": POLL_S,
+        "listed_s_median": round(statistics.median(listed_s), 3),
+        "listed_s_max": round(max(listed_s), 3),
         "listed_s": [round(v, 3) for v in listed_s],
         "ctrl_c_to_unlisted_s_median": round(statistics.median(unlisted_s), 3) if unlisted_s else None,
         "exit_codes": exit_codes,
-    }  # fmt: skip
+    }
 
 
 # -- b: keydown → abort ------------------------------------------------------------------------
@@ -387,10 +395,12 @@ def reflex(server: LiveServer, samples: int, gap_s: float) -> dict[str, Any]:
         answer.close()
         httpx.delete(f"{server.url}/api/launches/{group}", timeout=30.0)
     return {
-        "samples": samples, "gap_s": gap_s, "misses": misses,
+        "samples": samples,
+        "gap_s": gap_s,
+        "misses": misses,
         "keydown_to_answer_in_app": stats_ms(round_trip),
         "key_frame_to_keydown_in_app": stats_ms(key_in),
-    }  # fmt: skip
+    }
 
 
 # -- c: RSS and CPU ----------------------------------------------------------------------------
@@ -406,8 +416,15 @@ def rss_of(pids: dict[str, int]) -> dict[str, float]:
 
 def rss_all_processes(root: Path) -> dict[str, Any]:
     """An app with ``--node-processes all`` (the lab's own nodes): each process node's VmRSS."""
-    server = start_app(root, "all_processes", "--node-processes", "all", "--workspace", str(root / "no_workspace"),
-                       "start_delay:=3600")  # fmt: skip
+    server = start_app(
+        root,
+        "all_processes",
+        "--node-processes",
+        "all",
+        "--workspace",
+        str(root / "no_workspace"),
+        "start_delay:=3600",
+    )
     try:
         seen: dict[str, int] = {}
         stable_since = time.monotonic()
@@ -422,9 +439,10 @@ def rss_all_processes(root: Path) -> dict[str, Any]:
         time.sleep(2.0)  # past their start-up
         rss = rss_of(process_pids(server))
         return {
-            "rss_mib": rss, "median_mib": round(statistics.median(rss.values()), 1) if rss else None,
+            "rss_mib": rss,
+            "median_mib": round(statistics.median(rss.values()), 1) if rss else None,
             "app_rss_mib": round(server.rss_mib(), 1),
-        }  # fmt: skip
+        }
     finally:
         server.stop()
 

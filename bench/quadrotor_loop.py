@@ -47,8 +47,13 @@ from server.world.lab import Lab
 
 CLK_TCK = os.sysconf("SC_CLK_TCK")
 SETTLE_S = 3.0  # after start-up (or page load) before measuring
-TIMED_NODES = ("flightgoggles_uav_dynamics", "position_controller_node", "velocity_controller_node",
-               "angle_controller_node", "GUI_Controller_Node")  # fmt: skip
+TIMED_NODES = (
+    "flightgoggles_uav_dynamics",
+    "position_controller_node",
+    "velocity_controller_node",
+    "angle_controller_node",
+    "GUI_Controller_Node",
+)
 
 
 # -- machine -------------------------------------------------------------------------------------

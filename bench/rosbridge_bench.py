@@ -50,10 +50,23 @@ class Server:
         self.port = free_port()
         self.url = f"http://127.0.0.1:{self.port}"
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "--launch", "fly", "--port", str(self.port), "--no-foxglove",
-             "--no-zenoh", "--log-level", "warning", "--bag-dir", str(workdir / "bags")],
+            [
+                sys.executable,
+                "-m",
+                "server",
+                "--launch",
+                "fly",
+                "--port",
+                str(self.port),
+                "--no-foxglove",
+                "--no-zenoh",
+                "--log-level",
+                "warning",
+                "--bag-dir",
+                str(workdir / "bags"),
+            ],
             cwd=REPO,
-        )  # fmt: skip
+        )
         deadline = time.monotonic() + 60
         while True:
             try:

@@ -87,16 +87,25 @@ def open_router(tcp: str, unix: Path) -> Any:
 
 
 def joined(session: Any) -> bool:
-    return any(NODE_NAME in str(reply.ok.key_expr) for reply in session.liveliness().get("@ros2_lv/0/**")
-               if reply.ok is not None)  # fmt: skip
+    return any(
+        NODE_NAME in str(reply.ok.key_expr)
+        for reply in session.liveliness().get("@ros2_lv/0/**")
+        if reply.ok is not None
+    )
 
 
 def one_start(session: Any, command: NodeCommand) -> dict[str, float]:
     prepared = command.prepare(command.argv, "bench") if command.prepare is not None else None
     argv, fds = (prepared.argv, prepared.pass_fds) if prepared is not None else (command.argv, ())
     started = time.perf_counter()
-    proc = subprocess.Popen(argv, env=command.env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL, pass_fds=fds)  # fmt: skip
+    proc = subprocess.Popen(
+        argv,
+        env=command.env,
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        pass_fds=fds,
+    )
     for fd in fds:
         os.close(fd)
     sandboxed = command.sandboxed

@@ -40,8 +40,19 @@ def cpu_s(pid: int) -> float:
 def one_start(way: str, starter: Starter, launch: str, workdir: Path) -> tuple[float, float]:
     """(seconds to /api/health, the server's CPU seconds by then)."""
     port, zenoh_port = free_ports(2)
-    args = ["--host", "127.0.0.1", "--port", str(port), "--zenoh-listen", f"tcp/127.0.0.1:{zenoh_port}",
-            "--state-dir", str(workdir / "state"), "--launch", launch, "--no-foxglove"]  # fmt: skip
+    args = [
+        "--host",
+        "127.0.0.1",
+        "--port",
+        str(port),
+        "--zenoh-listen",
+        f"tcp/127.0.0.1:{zenoh_port}",
+        "--state-dir",
+        str(workdir / "state"),
+        "--launch",
+        launch,
+        "--no-foxglove",
+    ]
     log = workdir / f"{way}-{port}.log"
     began = time.monotonic()
     if way == "forked":
@@ -86,12 +97,23 @@ def main() -> None:
     }
     print(f"the starter's imports: {starter_s:.2f} s, once per test process")
     for way, figures in summary.items():
-        print(f"{way:7} to /api/health {figures['health_s']:.2f} s, CPU {figures['cpu_s']:.2f} s "
-              f"(median of {options.starts})")  # fmt: skip
+        print(
+            f"{way:7} to /api/health {figures['health_s']:.2f} s, CPU {figures['cpu_s']:.2f} s "
+            f"(median of {options.starts})"
+        )
     ratio = summary["exec"]["cpu_s"] / max(summary["forked"]["cpu_s"], 1e-9)
     print(f"CPU per start, exec / forked: {ratio:.1f}x")
-    save_results("server_start", {"machine": info, "launch": options.launch, "starts": options.starts,
-                                  "starter_s": starter_s, "summary": summary, "runs": results})  # fmt: skip
+    save_results(
+        "server_start",
+        {
+            "machine": info,
+            "launch": options.launch,
+            "starts": options.starts,
+            "starter_s": starter_s,
+            "summary": summary,
+            "runs": results,
+        },
+    )
 
 
 if __name__ == "__main__":

@@ -129,12 +129,14 @@ def windows(samples: list[dict[str, Any]], window_s: float) -> list[dict[str, An
         inside = [s for s in samples if w * window_s <= s["t_s"] < (w + 1) * window_s]
         p99s = [s["sim_p99_ms"] for s in inside if s["sim_p99_ms"] is not None]
         if inside:
-            out.append({
-                "window": f"{w * window_s / 60:g}-{(w + 1) * window_s / 60:g} min",
-                "sim_p99_ms_median": statistics.median(p99s) if p99s else None,
-                "sim_p99_ms_max": max(p99s) if p99s else None,
-                "rss_mib_end": inside[-1]["rss_mib"],
-            })  # fmt: skip
+            out.append(
+                {
+                    "window": f"{w * window_s / 60:g}-{(w + 1) * window_s / 60:g} min",
+                    "sim_p99_ms_median": statistics.median(p99s) if p99s else None,
+                    "sim_p99_ms_max": max(p99s) if p99s else None,
+                    "rss_mib_end": inside[-1]["rss_mib"],
+                }
+            )
     return out
 
 
@@ -169,16 +171,23 @@ def main() -> int:
         "log_problems": len(problems),
         "windows": windows(soak.samples, args.window_s),
     }
-    print(f"machine: {machine['cpu_model']} x{machine['nproc']}, Python {machine['python']}, "
-          f"load at start {machine['load_average_at_start']} (shared machine: figures are noisy)")  # fmt: skip
+    print(
+        f"machine: {machine['cpu_model']} x{machine['nproc']}, Python {machine['python']}, "
+        f"load at start {machine['load_average_at_start']} (shared machine: figures are noisy)"
+    )
     print(json.dumps(summary, indent=2))
     for line in (problems + soak.failures)[:20]:
         print("problem:", line)
     RESULTS.mkdir(exist_ok=True)
     out = {
-        "when": datetime.now(UTC).isoformat(), "machine": machine, "args": vars(args), "summary": summary,
-        "samples": soak.samples, "log_problems": problems[:100], "failures": soak.failures[:100],
-    }  # fmt: skip
+        "when": datetime.now(UTC).isoformat(),
+        "machine": machine,
+        "args": vars(args),
+        "summary": summary,
+        "samples": soak.samples,
+        "log_problems": problems[:100],
+        "failures": soak.failures[:100],
+    }
     (RESULTS / "soak.json").write_text(json.dumps(out, indent=2))
     return 0
 

@@ -85,10 +85,24 @@ class ServerProcess:
         self.url = f"http://127.0.0.1:{self.port}"
         self.spawned_at = time.perf_counter()
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "--launch", "rocket", "--host", "127.0.0.1", "--port", str(self.port),
-             "--log-level", "warning"],
-            cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
-        )  # fmt: skip
+            [
+                sys.executable,
+                "-m",
+                "server",
+                "--launch",
+                "rocket",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                str(self.port),
+                "--log-level",
+                "warning",
+            ],
+            cwd=REPO,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
 
     def wait_ready(self) -> float:
         """Seconds from spawn to the first /api/health 200."""
@@ -184,8 +198,16 @@ def bench_keys(presses: int, warmup: int) -> dict[str, Any]:
     app = create_app(settings)
     frames: list[float] = []
     clock = FrameClock(app, frames)
-    server = uvicorn.Server(uvicorn.Config(clock, host="127.0.0.1", port=settings.listen.port,
-                                           log_level="warning", lifespan="on", ws_max_size=1 << 20))  # fmt: skip
+    server = uvicorn.Server(
+        uvicorn.Config(
+            clock,
+            host="127.0.0.1",
+            port=settings.listen.port,
+            log_level="warning",
+            lifespan="on",
+            ws_max_size=1 << 20,
+        )
+    )
     thread = threading.Thread(target=server.run, name="uvicorn", daemon=True)
     thread.start()
     deadline = time.monotonic() + READY_TIMEOUT_S
@@ -232,8 +254,10 @@ def bench_keys(presses: int, warmup: int) -> dict[str, Any]:
     keydown_frames = frames[0::2]  # keydown, keyup, keydown, ...: the client waits after each keydown
     n = warmup + presses
     if len(keydown_frames) < n or len(parsed) != n or len(delivered) != n:
-        raise RuntimeError(f"stamps do not line up: {len(keydown_frames)} frames, {len(parsed)} parsed, "
-                           f"{len(delivered)} delivered for {n} presses")  # fmt: skip
+        raise RuntimeError(
+            f"stamps do not line up: {len(keydown_frames)} frames, {len(parsed)} parsed, "
+            f"{len(delivered)} delivered for {n} presses"
+        )
     frame_ms = [(d - f) * 1000 for f, d in zip(keydown_frames[warmup:n], delivered[warmup:], strict=True)]
     parsed_ms = [(d - p) * 1000 for p, d in zip(parsed[warmup:], delivered[warmup:], strict=True)]
     return {
@@ -258,20 +282,32 @@ def report(results: dict[str, Any]) -> str:
     s, i, k = results["startup"], results["idle"], results["keys"]
     rss = max(i["rss_after_start_mb"], i["rss_after_idle_mb"])
     rows = [
-        (f"start-up to ready (median of {len(s['startup_s'])})", f"{s['startup_median_s']:.2f} s",
-         "  ".join(f"{t:.2f}" for t in s["startup_s"])),
-        (f"idle CPU over {i['idle_window_s']:.0f} s, no browser", f"{i['idle_cpu_pct']:.2f} % of a core",
-         f"aim < {AIMS['idle_cpu_pct']:.0f} %: {'met' if i['idle_cpu_pct'] < AIMS['idle_cpu_pct'] else 'MISSED'}"),
+        (
+            f"start-up to ready (median of {len(s['startup_s'])})",
+            f"{s['startup_median_s']:.2f} s",
+            "  ".join(f"{t:.2f}" for t in s["startup_s"]),
+        ),
+        (
+            f"idle CPU over {i['idle_window_s']:.0f} s, no browser",
+            f"{i['idle_cpu_pct']:.2f} % of a core",
+            f"aim < {AIMS['idle_cpu_pct']:.0f} %: {'met' if i['idle_cpu_pct'] < AIMS['idle_cpu_pct'] else 'MISSED'}",
+        ),
         ("RSS after start", f"{i['rss_after_start_mb']:.1f} MiB", ""),
-        ("RSS after idle", f"{i['rss_after_idle_mb']:.1f} MiB",
-         f"aim < {AIMS['rss_mb']:.0f} MB: {'met' if rss < AIMS['rss_mb'] else 'MISSED'}"),
+        (
+            "RSS after idle",
+            f"{i['rss_after_idle_mb']:.1f} MiB",
+            f"aim < {AIMS['rss_mb']:.0f} MB: {'met' if rss < AIMS['rss_mb'] else 'MISSED'}",
+        ),
         ("key frame → /keydown delivered p50", f"{k['key_frame_to_delivered_ms']['p50']:.3f} ms", ""),
-        ("key frame → /keydown delivered p99", f"{k['key_frame_to_delivered_ms']['p99']:.3f} ms",
-         f"aim < {AIMS['key_p99_ms']:.0f} ms: "
-         f"{'met' if k['key_frame_to_delivered_ms']['p99'] < AIMS['key_p99_ms'] else 'MISSED'}"),
+        (
+            "key frame → /keydown delivered p99",
+            f"{k['key_frame_to_delivered_ms']['p99']:.3f} ms",
+            f"aim < {AIMS['key_p99_ms']:.0f} ms: "
+            f"{'met' if k['key_frame_to_delivered_ms']['p99'] < AIMS['key_p99_ms'] else 'MISSED'}",
+        ),
         ("key_down() → /keydown delivered p50", f"{k['key_parsed_to_delivered_ms']['p50']:.3f} ms", ""),
         ("key_down() → /keydown delivered p99", f"{k['key_parsed_to_delivered_ms']['p99']:.3f} ms", ""),
-    ]  # fmt: skip
+    ]
     width = max(len(r[0]) for r in rows)
     m = results["machine"]
     lines = [f"machine: {m['nproc']} CPU(s), {m['cpu_model']}; Python {m['python']}; {m['platform']}", ""]
@@ -287,8 +323,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--warmup", type=int, default=50)
     args = parser.parse_args(argv)
 
-    results: dict[str, Any] = {"when": datetime.now(UTC).isoformat(timespec="seconds"),
-                               "machine": machine_info()}  # fmt: skip
+    results: dict[str, Any] = {
+        "when": datetime.now(UTC).isoformat(timespec="seconds"),
+        "machine": machine_info(),
+    }
     results["startup"] = bench_startup(args.starts)
     results["idle"] = bench_idle(args.idle_s)
     results["keys"] = bench_keys(args.presses, args.warmup)

@@ -31,8 +31,13 @@ def percentiles(values: list[float]) -> dict[str, float | None]:
     if not values:
         return {"p50": None, "p95": None, "min": None, "max": None, "n": 0}
     a = np.asarray(values)
-    return {"p50": float(np.percentile(a, 50)), "p95": float(np.percentile(a, 95)), "min": float(a.min()),
-            "max": float(a.max()), "n": len(values)}  # fmt: skip
+    return {
+        "p50": float(np.percentile(a, 50)),
+        "p95": float(np.percentile(a, 95)),
+        "min": float(a.min()),
+        "max": float(a.max()),
+        "n": len(values),
+    }
 
 
 def tilt_toward_x(q: Any) -> float:
@@ -90,5 +95,9 @@ def bench_in_process(mode: str, trials: int, seed: int = 1) -> dict[str, Any]:
             lab.keyboard.key_up(code, 0, "bench")
         t += SETTLE_S
         executor.spin_until(t)
-    return {"trials": trials, "latency_ms": percentiles(latencies), "timed_out": timed_out,
-            "step_ms": STEP_S * 1000}  # fmt: skip
+    return {
+        "trials": trials,
+        "latency_ms": percentiles(latencies),
+        "timed_out": timed_out,
+        "step_ms": STEP_S * 1000,
+    }

@@ -118,10 +118,27 @@ class FlyServer(ServerProcess):
         self.url = f"http://127.0.0.1:{self.port}"
         self.spawned_at = time.perf_counter()
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "server", "--launch", "fly", f"keyboard_mode:={mode}", "--host", "127.0.0.1",
-             "--port", str(self.port), "--zenoh-listen", f"tcp/127.0.0.1:{free_port()}", "--log-level", "warning"],
-            cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
-        )  # fmt: skip
+            [
+                sys.executable,
+                "-m",
+                "server",
+                "--launch",
+                "fly",
+                f"keyboard_mode:={mode}",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                str(self.port),
+                "--zenoh-listen",
+                f"tcp/127.0.0.1:{free_port()}",
+                "--log-level",
+                "warning",
+            ],
+            cwd=REPO,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
 
 
 def chromium_cpu_s() -> dict[int, float]:
@@ -281,11 +298,16 @@ def pair(p: dict[str, Any]) -> str:
 
 def report(results: dict[str, Any]) -> str:
     m = results["machine"]
-    lines = [f"machine: {m['nproc']} CPU(s), {m['cpu_model']}; Python {m['python']}; {m['platform']}", "",
-             "latencies in ms, p50 / p95"]  # fmt: skip
-    header = (f"{'mode':<5} {'window':>9} {'answer drawn: dom':>18} {'scene':>10} {'frames dom/scene p95':>21} "
-              f"{'drone moving':>13} {'floor':>10} {'fps':>5} {'frame ms':>8} {'pixel ratio':>12} {'poses/s':>7} "
-              f"{'server CPU':>10} {'Chromium CPU':>12}")  # fmt: skip
+    lines = [
+        f"machine: {m['nproc']} CPU(s), {m['cpu_model']}; Python {m['python']}; {m['platform']}",
+        "",
+        "latencies in ms, p50 / p95",
+    ]
+    header = (
+        f"{'mode':<5} {'window':>9} {'answer drawn: dom':>18} {'scene':>10} {'frames dom/scene p95':>21} "
+        f"{'drone moving':>13} {'floor':>10} {'fps':>5} {'frame ms':>8} {'pixel ratio':>12} {'poses/s':>7} "
+        f"{'server CPU':>10} {'Chromium CPU':>12}"
+    )
     lines += [header, "-" * len(header)]
     for mode, per in results["modes"].items():
         floor = per["in_process"]["latency_ms"]
@@ -296,19 +318,29 @@ def report(results: dict[str, Any]) -> str:
                 f"{frames:>21} {pair(b['drone_moving_ms']):>13} {pair(floor):>10} {fmt(b['fps_mean']):>5} "
                 f"{fmt(b['frame_ms_median']):>8} {','.join(map(str, b['dpr_seen'])):>12} {fmt(b['pose_rate_hz_mean']):>7} "
                 f"{fmt(b['server_cpu_pct']):>8} % {fmt(b['chromium_cpu_pct']):>10} %"
-            )  # fmt: skip
-    lines += ["", "legs of key → drone moving (p50 / p95, ms; host wall clock): keydown → /keydown published (input) → "
-              "answering pose published (server) → in the pose worker (network) → in the main thread"]  # fmt: skip
+            )
+    lines += [
+        "",
+        "legs of key → drone moving (p50 / p95, ms; host wall clock): keydown → /keydown published (input) → "
+        "answering pose published (server) → in the pose worker (network) → in the main thread",
+    ]
     for mode, per in results["modes"].items():
         for size, b in per["browser"].items():
             legs = b["legs_ms"]
-            lines.append(f"{mode:<5} {size:>9}  " + "   ".join(
-                f"{name} {pair(legs[name])} (n {legs[name]['n']})" for name in legs))  # fmt: skip
-            lines.append(f"{'':<5} {'':>9}  presses without an answer drawn {b['no_answer_drawn']}, without drone "
-                         f"motion {b['no_drone_motion']}; waits that ended unsettled {b['not_settled_before_next']}; "
-                         f"drone moving below the floor's minimum {len(b['below_in_process_min'])}")  # fmt: skip
-    lines += ["", "floor: key → drone moving in process on a ManualClock (physics and control only).",
-              "frame ms: median main-thread cost of a drawn frame; CPU: % of one core over the press loop."]  # fmt: skip
+            lines.append(
+                f"{mode:<5} {size:>9}  "
+                + "   ".join(f"{name} {pair(legs[name])} (n {legs[name]['n']})" for name in legs)
+            )
+            lines.append(
+                f"{'':<5} {'':>9}  presses without an answer drawn {b['no_answer_drawn']}, without drone "
+                f"motion {b['no_drone_motion']}; waits that ended unsettled {b['not_settled_before_next']}; "
+                f"drone moving below the floor's minimum {len(b['below_in_process_min'])}"
+            )
+    lines += [
+        "",
+        "floor: key → drone moving in process on a ManualClock (physics and control only).",
+        "frame ms: median main-thread cost of a drawn frame; CPU: % of one core over the press loop.",
+    ]
     return "\n".join(lines)
 
 
@@ -324,8 +356,12 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     viewports = [tuple(int(v) for v in size.split("x")) for size in args.viewports]
 
-    results: dict[str, Any] = {"when": datetime.now().astimezone().isoformat(timespec="seconds"),
-                               "machine": machine_info(), "load_avg_start": os.getloadavg(), "modes": {}}  # fmt: skip
+    results: dict[str, Any] = {
+        "when": datetime.now().astimezone().isoformat(timespec="seconds"),
+        "machine": machine_info(),
+        "load_avg_start": os.getloadavg(),
+        "modes": {},
+    }
     for mode in args.modes:
         print(f"{mode}: in process ({args.trials} presses on a ManualClock) ...", flush=True)
         per: dict[str, Any] = {"in_process": bench_in_process(mode, args.trials), "browser": {}}

@@ -303,9 +303,11 @@ def idle_cost(root: Path, warmup_s: float, idle_s: float, rounds: int) -> tuple[
         result: dict[str, Any] = {"window_s": idle_s, "rounds": rounds, "warmup_s": warmup_s}
         for k in servers:
             result[k] = {
-                "cpu_pct_median": median(cpu[k]), "cpu_pct_rounds": [round(v, 2) for v in cpu[k]],
-                "rss_mib_median": median(rss[k]), "rss_mib_rounds": [round(v, 1) for v in rss[k]],
-            }  # fmt: skip
+                "cpu_pct_median": median(cpu[k]),
+                "cpu_pct_rounds": [round(v, 2) for v in cpu[k]],
+                "rss_mib_median": median(rss[k]),
+                "rss_mib_rounds": [round(v, 1) for v in rss[k]],
+            }
         result["cpu_pct_zenoh_minus_no_zenoh"] = round(
             result["zenoh"]["cpu_pct_median"] - result["no_zenoh"]["cpu_pct_median"], 2
         )
@@ -338,10 +340,23 @@ def exchange_app(server: LiveServer, rate_hz: float, duration_s: float, warmup_s
     received_before = health(server)["zenoh"]["received"]
     router = f"tcp/127.0.0.1:{server.zenoh_port}"
     child = subprocess.Popen(
-        [sys.executable, __file__, "--role", "rclpy-pub", "--rate", str(rate_hz), "--duration", str(duration_s),
-         "--warmup", str(warmup_s)],
-        env=child_env(router), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-    )  # fmt: skip
+        [
+            sys.executable,
+            __file__,
+            "--role",
+            "rclpy-pub",
+            "--rate",
+            str(rate_hz),
+            "--duration",
+            str(duration_s),
+            "--warmup",
+            str(warmup_s),
+        ],
+        env=child_env(router),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     try:
         out, err = child.communicate(timeout=duration_s + warmup_s + CHILD_GRACE_S)
     except subprocess.TimeoutExpired:
@@ -380,17 +395,41 @@ def exchange_bare(rate_hz: float, duration_s: float, warmup_s: float) -> dict[st
     endpoint = f"tcp/127.0.0.1:{free_port()}"
     script = [sys.executable, __file__]
     sub = subprocess.Popen(
-        [*script, "--role", "bare-sub", "--listen", endpoint, "--max-s", str(duration_s + warmup_s + CHILD_GRACE_S)],
-        stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-    )  # fmt: skip
+        [
+            *script,
+            "--role",
+            "bare-sub",
+            "--listen",
+            endpoint,
+            "--max-s",
+            str(duration_s + warmup_s + CHILD_GRACE_S),
+        ],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     pub: subprocess.Popen[str] | None = None
     try:
         read_json_line(sub, 30.0)  # ready
         pub = subprocess.Popen(
-            [*script, "--role", "bare-pub", "--connect", endpoint, "--rate", str(rate_hz),
-             "--duration", str(duration_s), "--warmup", str(warmup_s)],
-            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-        )  # fmt: skip
+            [
+                *script,
+                "--role",
+                "bare-pub",
+                "--connect",
+                endpoint,
+                "--rate",
+                str(rate_hz),
+                "--duration",
+                str(duration_s),
+                "--warmup",
+                str(warmup_s),
+            ],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         out, err = pub.communicate(timeout=duration_s + warmup_s + CHILD_GRACE_S)
         if pub.returncode != 0:
             raise RuntimeError(f"the bare publisher failed ({pub.returncode}):\n{err[-2000:]}")
@@ -499,18 +538,23 @@ def discovery(server: LiveServer, root: Path, tries: int) -> dict[str, Any]:
             gone = time.time()
         finally:
             end(proc)
-        samples.append({
-            "listed_s": seen - t0, "file_runs_s": stamps["file_start"] - t0,
-            "init_done_s": stamps["init_done"] - t0, "node_made_s": stamps["node_made"] - t0,
-            "ctrl_c_to_unlisted_s": (gone - t_int) if left else float("nan"),
-        })  # fmt: skip
+        samples.append(
+            {
+                "listed_s": seen - t0,
+                "file_runs_s": stamps["file_start"] - t0,
+                "init_done_s": stamps["init_done"] - t0,
+                "node_made_s": stamps["node_made"] - t0,
+                "ctrl_c_to_unlisted_s": (gone - t_int) if left else float("nan"),
+            }
+        )
         time.sleep(0.2)
     keys = list(samples[0])
     return {
-        "tries": tries, "poll_s": POLL_S,
+        "tries": tries,
+        "poll_s": POLL_S,
         "median": {k: median([s[k] for s in samples]) for k in keys},
         "max": {k: round(max(s[k] for s in samples), 3) for k in keys},
-    }  # fmt: skip
+    }
 
 
 # -- main --------------------------------------------------------------------------------------
