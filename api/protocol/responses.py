@@ -15,10 +15,19 @@ class ErrorBody(BaseModel):
     request_id: str | None = Field(default=None, description="only on a 500: find it in the server log")
 
 
+class StaleSave(BaseModel):
+    """A save over a version that is not the file's now (412): what happened, and the file's version
+    now, so the page can offer the choice."""
+
+    detail: str
+    etag: str | None = Field(description="the file's version now; null: it is gone")
+
+
 UNAUTHORIZED = 401
 FORBIDDEN = 403
 NOT_FOUND = 404
 TYPE_CONFLICT = 409
+PRECONDITION = 412
 UNPROCESSABLE = 422
 TOO_MANY = 429
 NO_ANSWER = 504
@@ -58,4 +67,7 @@ _WRITES = (400, 403, 413, 422)  # any route with a JSON body: the Origin guard, 
 def responses(*codes: int, body: bool = False) -> dict[int | str, dict[str, Any]]:
     """OpenAPI ``responses`` for these statuses, plus those every route (and every write) can give."""
     chosen = {*codes, *_ALWAYS, *(_WRITES if body else ())}
-    return {code: {"model": ErrorBody, "description": _DESCRIPTIONS[code]} for code in sorted(chosen)}
+    return {
+        code: {"model": StaleSave if code == PRECONDITION else ErrorBody, "description": _DESCRIPTIONS[code]}
+        for code in sorted(chosen)
+    }

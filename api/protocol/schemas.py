@@ -113,6 +113,12 @@ class ZenohJoin(BaseModel):
     )
 
 
+class Status(BaseModel):
+    """What a control that only acts answers: what it did."""
+
+    status: str = Field(examples=["reset"])
+
+
 class Health(BaseModel):
     status: str
     launch: str

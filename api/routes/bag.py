@@ -8,45 +8,19 @@ from __future__ import annotations
 
 import asyncio
 import shutil
-from typing import Any
 
 from fastapi import APIRouter, HTTPException, status
 from fastapi.responses import FileResponse
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import TypeAdapter
 
 from api.deps import LabDep
+from api.protocol.bag import BagDeleted, PlayerOut, PlayRequest, RecordingOut, RecordRequest, StoredBag
 from api.protocol.responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, UNPROCESSABLE, responses
-from server.peripherals.bag.manager import NAME as BAG_NAME
-from server.peripherals.bag.player import MAX_RATE, MIN_RATE
 
 # Handlers are ``async def``: the bus belongs to the event loop (see api/routes/publishers.py).
 # Errors (server/peripherals/bag/errors.py) are mapped to statuses once, in api/errors.py.
 router = APIRouter(prefix="/api/bag", tags=["bag"], responses=responses())
-
-
-class RecordRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True)
-    topics: list[str] = Field(default_factory=list, max_length=256, examples=[["/uav/sensors/gps"]])
-    all: bool = Field(
-        default=False, description="every topic but hidden ones, new ones too (ros2 bag record -a)"
-    )
-    name: str | None = Field(
-        default=None,
-        pattern=BAG_NAME.pattern,
-        description="the bag's folder name; default rosbag2_YYYY_MM_DD-HH_MM_SS",
-    )
-
-
-class PlayRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True)
-    bag: str = Field(
-        min_length=1,
-        max_length=4096,
-        description="a bag's name in the bag folder; a single lab on loopback also takes a path "
-        "to a bag folder or .mcap file",
-    )
-    rate: float = Field(default=1.0, ge=MIN_RATE, le=MAX_RATE)
-    loop: bool = False
+BAGS = TypeAdapter(list[RecordingOut | StoredBag])
 
 
 @router.post(
@@ -54,34 +28,36 @@ class PlayRequest(BaseModel):
     status_code=status.HTTP_201_CREATED,
     responses=responses(TYPE_CONFLICT, TOO_MANY, body=True),
 )
-async def record(body: RecordRequest, lab: LabDep) -> dict[str, Any]:
+async def record(body: RecordRequest, lab: LabDep) -> RecordingOut:
     """Start recording the named topics (or all of them) into a new bag (ros2 bag record)."""
-    return lab.bags.record(body.topics, all_topics=body.all, name=body.name).describe()
+    return RecordingOut.model_validate(
+        lab.bags.record(body.topics, all_topics=body.all, name=body.name).describe()
+    )
 
 
 @router.get("/recordings")
-async def list_recordings(lab: LabDep) -> list[dict[str, Any]]:
+async def list_recordings(lab: LabDep) -> list[RecordingOut | StoredBag]:
     """This run's recordings (with counts) and the older bags in the bag folder."""
-    return lab.bags.list_bags()
+    return BAGS.validate_python(lab.bags.list_bags())
 
 
 @router.post("/recordings/{name}/stop", responses=responses(NOT_FOUND, UNPROCESSABLE))
-async def stop_recording(name: str, lab: LabDep) -> dict[str, Any]:
+async def stop_recording(name: str, lab: LabDep) -> RecordingOut:
     """Stop a recording (Ctrl-C on ros2 bag record); the bag is complete (MCAP summary,
     metadata.yaml) when this returns, and stays in the bag folder. Stopping a stopped one is a no-op."""
     recording = lab.bags.detach_recording(name)
     await asyncio.to_thread(recording.writer.close)  # the disk, not the loop, waits
-    return recording.describe()
+    return RecordingOut.model_validate(recording.describe())
 
 
 @router.delete("/recordings/{name}", responses=responses(NOT_FOUND, UNPROCESSABLE))
-async def delete_bag(name: str, lab: LabDep) -> dict[str, Any]:
+async def delete_bag(name: str, lab: LabDep) -> BagDeleted:
     """Delete a bag from the bag folder (a recording is stopped first)."""
     folder, recording = lab.bags.detach_bag(name)
     if recording is not None:
         await asyncio.to_thread(recording.writer.close)
     await asyncio.to_thread(shutil.rmtree, folder, True)
-    return {"name": name, "deleted": True}
+    return BagDeleted(name=name, deleted=True)
 
 
 @router.get(
@@ -111,18 +87,18 @@ async def metadata(name: str, lab: LabDep) -> FileResponse:
 @router.post(
     "/players", status_code=status.HTTP_201_CREATED, responses=responses(NOT_FOUND, TOO_MANY, body=True)
 )
-async def play(body: PlayRequest, lab: LabDep) -> dict[str, Any]:
+async def play(body: PlayRequest, lab: LabDep) -> PlayerOut:
     """Publish a bag's messages back onto the bus with their timing (ros2 bag play)."""
     path = lab.bags.bag_to_play(body.bag, confined=lab.settings.confines_paths)
     player_id, node = lab.bags.play(path, rate=body.rate, loop=body.loop)
-    return {"id": player_id, **node.describe()}
+    return PlayerOut.model_validate({"id": player_id, **node.describe()})
 
 
 @router.get("/players/{player_id}", responses=responses(NOT_FOUND))
-async def get_player(player_id: str, lab: LabDep) -> dict[str, Any]:
-    return {"id": player_id, **lab.bags.player(player_id).describe()}
+async def get_player(player_id: str, lab: LabDep) -> PlayerOut:
+    return PlayerOut.model_validate({"id": player_id, **lab.bags.player(player_id).describe()})
 
 
 @router.delete("/players/{player_id}", responses=responses(NOT_FOUND))
-async def stop_player(player_id: str, lab: LabDep) -> dict[str, Any]:
-    return {"id": player_id, **lab.bags.stop_player(player_id).describe()}
+async def stop_player(player_id: str, lab: LabDep) -> PlayerOut:
+    return PlayerOut.model_validate({"id": player_id, **lab.bags.stop_player(player_id).describe()})

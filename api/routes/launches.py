@@ -8,79 +8,50 @@ Errors are mapped in api/errors.py; handlers do not catch.
 from __future__ import annotations
 
 import asyncio
-from typing import Annotated, Any
 
 from fastapi import APIRouter, status
-from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from api.deps import LabDep
+from api.protocol.launches import LaunchGroupOut, LaunchOutputOut, LaunchRequest, RunRequest
 from api.protocol.responses import NOT_FOUND, TOO_MANY, responses
 from server.packages.launch_files import launch_file
 
 router = APIRouter(prefix="/api", tags=["launch"], responses=responses())
-MAX_ARGS = 64  # launch arguments, parameters or remappings in one request
-Short = Annotated[str, StringConstraints(max_length=256)]
-Value = Annotated[str, StringConstraints(max_length=4096)]
-Scalar = bool | int | float | Value
-ParamValue = Scalar | Annotated[list[Scalar], Field(max_length=256)]
-
-
-class LaunchRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True)
-    file: Value = Field(
-        description="a launch file's name inside `package`, or a path: inside the workspace where the "
-        "lab serves others (a class's worlds), any path on a single lab on loopback",
-        examples=["rocket.launch"],
-    )
-    package: Short | None = Field(default=None, examples=["rocketship"])
-    args: dict[Short, Value] = Field(
-        default_factory=dict, max_length=MAX_ARGS, examples=[{"start_delay": "2.0"}]
-    )
-
-
-class RunRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True)
-    package: Short = Field(examples=["rocketship"])
-    executable: Short = Field(examples=["keyboard_manager.py"])
-    name: Short | None = None
-    parameters: dict[Short, ParamValue] = Field(default_factory=dict, max_length=MAX_ARGS)
-    remappings: dict[Short, Short] = Field(default_factory=dict, max_length=MAX_ARGS)
 
 
 @router.post(
     "/launch", status_code=status.HTTP_201_CREATED, responses=responses(NOT_FOUND, TOO_MANY, body=True)
 )
-async def launch(body: LaunchRequest, lab: LabDep) -> dict[str, Any]:
+async def launch(body: LaunchRequest, lab: LabDep) -> LaunchGroupOut:
     """Start a launch file's nodes; a node that fails to start is reported, the others run."""
     path = launch_file(lab.packages, body.package, body.file, confined=lab.settings.confines_paths)
     # Read off the loop: a Python launch file is evaluated in a process of its own. Reading
     # touches no node; the nodes start on the loop.
     description = await asyncio.to_thread(lab.launcher.parse, path, body.args)
-    return lab.launch_groups.launch(path, body.args, description).describe()
+    return LaunchGroupOut.model_validate(lab.launch_groups.launch(path, body.args, description).describe())
 
 
 @router.post("/run", status_code=status.HTTP_201_CREATED, responses=responses(NOT_FOUND, TOO_MANY, body=True))
-async def run(body: RunRequest, lab: LabDep) -> dict[str, Any]:
+async def run(body: RunRequest, lab: LabDep) -> LaunchGroupOut:
     """Start one node from a package, as ``ros2 run`` (``--ros-args -p`` / ``-r`` as fields)."""
-    return lab.launch_groups.run(
-        body.package, body.executable, body.name, body.parameters, body.remappings
-    ).describe()
+    group = lab.launch_groups.run(body.package, body.executable, body.name, body.parameters, body.remappings)
+    return LaunchGroupOut.model_validate(group.describe())
 
 
 @router.get("/launches")
-async def launches(lab: LabDep) -> list[dict[str, Any]]:
-    return [g.describe() for g in lab.launch_groups.values()]
+async def launches(lab: LabDep) -> list[LaunchGroupOut]:
+    return [LaunchGroupOut.model_validate(g.describe()) for g in lab.launch_groups.values()]
 
 
 @router.get("/launches/{group_id}/output", responses=responses(NOT_FOUND))
-async def output(group_id: str, lab: LabDep) -> dict[str, Any]:
+async def output(group_id: str, lab: LabDep) -> LaunchOutputOut:
     """One launch or run as ``GET /launches`` gives it, and what each of its node processes
     printed: the last 200 lines (each cut at 4096 characters) and how many in all, so a reader
     that asks again knows which lines are new."""
-    return lab.launch_groups.get(group_id).output()
+    return LaunchOutputOut.model_validate(lab.launch_groups.get(group_id).output())
 
 
 @router.delete("/launches/{group_id}", responses=responses(NOT_FOUND, 403))
-async def stop(group_id: str, lab: LabDep) -> dict[str, Any]:
+async def stop(group_id: str, lab: LabDep) -> LaunchGroupOut:
     """Stop the nodes of one launch or run, as Ctrl-C on ``ros2 launch`` does."""
-    return lab.launch_groups.stop(group_id).describe()
+    return LaunchGroupOut.model_validate(lab.launch_groups.stop(group_id).describe())

@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from fastapi import APIRouter
 
 from api.deps import LabDep
 from api.protocol.responses import NOT_FOUND, TOO_MANY, TYPE_CONFLICT, responses
-from api.protocol.schemas import PublishRequest, PublishResult, TopicDetail, TopicSummary
+from api.protocol.schemas import EndpointDetail, PublishRequest, PublishResult, TopicDetail, TopicSummary
 from node_runtime.bus import UnknownTopicError, validate_topic_name
 from node_runtime.msgs import UnknownTypeError, get_type
 from server.host.introspection.merged import LOCAL, EndpointView, TopicView, topic_views
@@ -22,14 +20,14 @@ from server.world.lab import Lab
 router = APIRouter(prefix="/api", tags=["topics"], responses=responses())
 
 
-def summary(view: TopicView) -> dict[str, Any]:
-    return {
-        "name": view.name,
-        "type": view.type,
-        "publishers": [p.node for p in view.publishers],
-        "subscribers": [s.node for s in _subscribers(view)],
-        "type_conflict": view.type_conflict,
-    }
+def summary(view: TopicView) -> TopicSummary:
+    return TopicSummary(
+        name=view.name,
+        type=view.type,
+        publishers=[p.node for p in view.publishers],
+        subscribers=[s.node for s in _subscribers(view)],
+        type_conflict=view.type_conflict,
+    )
 
 
 def _views(lab: Lab) -> list[TopicView]:
@@ -43,15 +41,15 @@ def _subscribers(view: TopicView) -> list[EndpointView]:
     return [s for s in view.subscribers if not (s.location == LOCAL and s.node == "/" + WATCH_NODE)]
 
 
-@router.get("/topics", response_model=list[TopicSummary])
-async def list_topics(lab: LabDep, hidden: bool = False) -> list[dict[str, Any]]:
+@router.get("/topics")
+async def list_topics(lab: LabDep, hidden: bool = False) -> list[TopicSummary]:
     """Every topic in the graph, this process's and other processes', with its type, publishers and
     subscribers (``hidden=true`` adds /rosout and the like)."""
     return [summary(v) for v in _views(lab) if hidden or not v.hidden]
 
 
-@router.get("/topics/{name:path}", response_model=TopicDetail, responses=responses(NOT_FOUND, 422))
-async def topic_info(name: str, lab: LabDep) -> dict[str, Any]:
+@router.get("/topics/{name:path}", responses=responses(NOT_FOUND, 422))
+async def topic_info(name: str, lab: LabDep) -> TopicDetail:
     """One topic (its name without the leading slash), with its latest message and every endpoint
     with where it runs. For a topic only other processes use, the first request starts listening,
     as ``ros2 topic echo`` does (``watch`` says so; ``latest`` is null until a message comes)."""
@@ -63,20 +61,20 @@ async def topic_info(name: str, lab: LabDep) -> dict[str, Any]:
     watch = _watch(lab, full, view.type) if len(views) == 1 else None
     topic = lab.bus.topics.get(full)
     endpoints = [
-        {"node": e.node, "kind": kind, "depth": e.depth, "location": e.location}
+        EndpointDetail(node=e.node, kind=kind, depth=e.depth, location=e.location)
         for kind, side in (("publisher", view.publishers), ("subscriber", _subscribers(view)))
         for e in side
     ]
-    return {
-        **summary(view),
-        "endpoints": endpoints,
-        "latest": topic.latest.to_dict() if topic is not None and topic.latest is not None else None,
-        "latest_time": topic.latest_time_s if topic is not None else None,
-        "publish_count": topic.publish_count if topic is not None else 0,
-        "watch": watch,
-        "publisher_depths": [p.depth for p in view.publishers],
-        "subscriber_depths": [s.depth for s in _subscribers(view)],
-    }
+    return TopicDetail(
+        **summary(view).model_dump(),
+        endpoints=endpoints,
+        latest=topic.latest.to_dict() if topic is not None and topic.latest is not None else None,
+        latest_time=topic.latest_time_s if topic is not None else None,
+        publish_count=topic.publish_count if topic is not None else 0,
+        watch=watch,
+        publisher_depths=[p.depth for p in view.publishers],
+        subscriber_depths=[s.depth for s in _subscribers(view)],
+    )
 
 
 def _watch(lab: Lab, name: str, type_name: str) -> WatchState | None:
@@ -92,12 +90,8 @@ def _watch(lab: Lab, name: str, type_name: str) -> WatchState | None:
     return watch.watch(name, msg_type)
 
 
-@router.post(
-    "/publish",
-    response_model=PublishResult,
-    responses=responses(NOT_FOUND, TYPE_CONFLICT, TOO_MANY, body=True),
-)
-async def publish(body: PublishRequest, lab: LabDep) -> dict[str, Any]:
+@router.post("/publish", responses=responses(NOT_FOUND, TYPE_CONFLICT, TOO_MANY, body=True))
+async def publish(body: PublishRequest, lab: LabDep) -> PublishResult:
     """Publish one message, as ``ros2 topic pub --once``; give ``type`` to create a new topic."""
     name, type_name, count = lab.publish(body.topic, body.msg, body.type)
-    return {"topic": name, "type": type_name, "subscribers": count}
+    return PublishResult(topic=name, type=type_name, subscribers=count)

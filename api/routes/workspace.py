@@ -18,14 +18,27 @@ import functools
 import os
 import weakref
 from collections.abc import AsyncIterator, Mapping
-from typing import IO, Annotated, Any, Literal
+from typing import IO, Annotated, Any
 
 from fastapi import APIRouter, Header, Query, Request, Response, status
 from fastapi.responses import StreamingResponse
-from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
 from api.deps import LabDep
 from api.protocol.responses import NOT_FOUND, TYPE_CONFLICT, UNPROCESSABLE, responses
+from api.protocol.workspace import (
+    Deleted,
+    FileText,
+    PackageCreated,
+    PackageRequest,
+    Renamed,
+    RenameRequest,
+    Saved,
+    SaveRequest,
+    Template,
+    WorkspaceEntry,
+    WorkspaceTree,
+    Written,
+)
 from server.packages.templates import PackageSpec
 from server.services.workspace.archive import packed, replace, unpack
 from server.services.workspace.errors import NoWorkspaceError
@@ -41,8 +54,6 @@ _files: weakref.WeakKeyDictionary[Lab, WorkspaceFiles] = weakref.WeakKeyDictiona
 PRECONDITION = 412
 TOO_LARGE = 413
 NOT_TEXT = 415
-Name = Annotated[str, StringConstraints(max_length=256)]
-Text = Annotated[str, StringConstraints(max_length=1024)]
 ZIP = "application/zip"
 ZIP_CHUNK = 256 * 1024  # bytes read from the zip's temporary file per send
 
@@ -56,27 +67,6 @@ def files_of(lab: Lab) -> WorkspaceFiles:
     if files is None or files.root != root:
         files = _files[lab] = WorkspaceFiles(root, lab.settings.workspace)
     return files
-
-
-class WorkspaceEntry(BaseModel):
-    """A file or folder of the workspace."""
-
-    path: str = Field(description="POSIX, relative to the workspace")
-    kind: Literal["file", "dir"]
-    size: int = Field(description="bytes (0 for a folder)")
-    etag: str | None = Field(description="the file's version; null for a folder")
-
-
-class WorkspaceTree(BaseModel):
-    """The workspace's files and folders, sorted by path, down to the depth a path may have."""
-
-    version: str = Field(description="changes with any change in the tree ('empty' for none)")
-    entries: list[WorkspaceEntry]
-    too_deep: int = Field(
-        description="entries just past the depth limit (WorkspaceLimits.max_depth, 16 folders): "
-        "neither they nor what they hold are listed, zipped or served"
-    )
-    too_deep_example: str | None = Field(description="the path of one of them, or null")
 
 
 def tree_body(tree: Tree) -> WorkspaceTree:
@@ -109,27 +99,6 @@ def etag_value(header: str | None) -> str | None:
     return header.strip().removeprefix("W/").strip('"')
 
 
-class SaveRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True)
-    text: str
-
-
-class RenameRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True)
-    source: Text
-    target: Text
-
-
-class PackageRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True)
-    name: Name = Field(examples=["simple_control"])
-    build_type: Literal["ament_python", "ament_cmake"] = "ament_python"
-    node_name: Name | None = Field(default=None, examples=["keyboard_manager"])
-    dependencies: list[Name] = Field(default_factory=list, max_length=64)
-    description: Text | None = None
-    license: Name | None = None
-
-
 FILE_ERRORS = responses(NOT_FOUND, UNPROCESSABLE, NOT_TEXT, TOO_LARGE)
 WRITE_ERRORS = responses(NOT_FOUND, TYPE_CONFLICT, PRECONDITION, NOT_TEXT, TOO_LARGE, body=True)
 CREATED: dict[int | str, dict[str, Any]] = {201: {"description": "a new file was created"}}
@@ -143,11 +112,11 @@ async def tree(lab: LabDep) -> WorkspaceTree:
 
 
 @router.get("/files/{path:path}", responses=FILE_ERRORS)
-async def read(path: str, lab: LabDep, response: Response) -> dict[str, Any]:
+async def read(path: str, lab: LabDep, response: Response) -> FileText:
     """A file's text and version (also in the ``ETag`` header)."""
     found = await asyncio.to_thread(files_of(lab).read, path)
     response.headers["ETag"] = f'"{found.etag}"'
-    return {"path": found.path, "text": found.text, "etag": found.etag}
+    return FileText(path=found.path, text=found.text, etag=found.etag)
 
 
 @router.put("/files/{path:path}", responses={**CREATED, **WRITE_ERRORS})
@@ -158,7 +127,7 @@ async def save(
     response: Response,
     if_match: Annotated[str | None, Header()] = None,
     if_none_match: Annotated[str | None, Header()] = None,
-) -> dict[str, Any]:
+) -> Saved:
     """Save a file: over the version ``If-Match`` names, or with ``If-None-Match: *`` only a new
     one (412 otherwise, with the current etag); missing folders are made. 201 when created."""
     create_only = (if_none_match or "").strip() == "*"
@@ -167,20 +136,20 @@ async def save(
     if saved.created:
         response.status_code = status.HTTP_201_CREATED
     response.headers["ETag"] = f'"{saved.etag}"'
-    return {"path": saved.path, "etag": saved.etag, "size": saved.size}
+    return Saved(path=saved.path, etag=saved.etag, size=saved.size)
 
 
 @router.delete("/files/{path:path}", responses=responses(NOT_FOUND, UNPROCESSABLE, PRECONDITION))
-async def delete(path: str, lab: LabDep, if_match: Annotated[str | None, Header()] = None) -> dict[str, Any]:
+async def delete(path: str, lab: LabDep, if_match: Annotated[str | None, Header()] = None) -> Deleted:
     """Remove a file, or a folder with everything in it; how many files went."""
     delete = functools.partial(files_of(lab).delete, if_match=etag_value(if_match))
-    return {"path": path, "deleted": await asyncio.to_thread(delete, path)}
+    return Deleted(path=path, deleted=await asyncio.to_thread(delete, path))
 
 
 @router.post("/rename", responses=responses(NOT_FOUND, TYPE_CONFLICT, body=True))
-async def rename(body: RenameRequest, lab: LabDep) -> dict[str, str]:
+async def rename(body: RenameRequest, lab: LabDep) -> Renamed:
     """Move a file or folder to a free path (409 when the target exists)."""
-    return {"path": await asyncio.to_thread(files_of(lab).rename, body.source, body.target)}
+    return Renamed(path=await asyncio.to_thread(files_of(lab).rename, body.source, body.target))
 
 
 @router.post(
@@ -188,7 +157,7 @@ async def rename(body: RenameRequest, lab: LabDep) -> dict[str, str]:
     status_code=status.HTTP_201_CREATED,
     responses=responses(NOT_FOUND, TYPE_CONFLICT, TOO_LARGE, body=True),
 )
-async def new_package(body: PackageRequest, lab: LabDep) -> dict[str, Any]:
+async def new_package(body: PackageRequest, lab: LabDep) -> PackageCreated:
     """A package in ``src/<name>`` with the files ``ros2 pkg create`` writes (409 if taken)."""
     spec = PackageSpec(
         name=body.name, build_type=body.build_type, node_name=body.node_name, dependencies=list(body.dependencies),
@@ -196,13 +165,13 @@ async def new_package(body: PackageRequest, lab: LabDep) -> dict[str, Any]:
         maintainer_name="student", maintainer_email="student@todo.todo",
     )  # fmt: skip
     created = await asyncio.to_thread(create_package, files_of(lab), spec)
-    return {"name": created.name, "path": created.path, "files": created.files}
+    return PackageCreated(name=created.name, path=created.path, files=created.files)
 
 
 @router.get("/templates")
-async def templates(_lab: LabDep) -> list[dict[str, Any]]:
+async def templates(_lab: LabDep) -> list[Template]:
     """The lab's starting files, with ``# TODO`` where the student's code goes."""
-    return [t.describe() for t in TEMPLATES]
+    return [Template.model_validate(t.describe()) for t in TEMPLATES]
 
 
 @router.get(
@@ -229,9 +198,9 @@ async def download(lab: LabDep) -> Response:
 )
 async def upload(
     request: Request, lab: LabDep, replace_all: Annotated[bool, Query(alias="replace")] = False
-) -> dict[str, list[str]]:
+) -> Written:
     """Write a zip's files into the workspace: all of them, or (one entry refused) none. With
     ``replace=true`` the workspace then holds the zip's files only: every other file goes."""
     files = files_of(lab)
     data = await request.body()
-    return {"written": await asyncio.to_thread(replace if replace_all else unpack, files, data)}
+    return Written(written=await asyncio.to_thread(replace if replace_all else unpack, files, data))

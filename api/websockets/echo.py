@@ -12,13 +12,12 @@ from __future__ import annotations
 
 import asyncio
 from collections import deque
-from typing import Any, NotRequired
 
 from fastapi import APIRouter, Query, WebSocket, WebSocketDisconnect
-from typing_extensions import TypedDict
 
 from api.deps import WsLabDep
 from api.errors import CloseCode, close_code, close_reason
+from api.protocol.frames import EchoFrame
 from api.protocol.json_codec import dumps
 from api.websockets.budget import spend
 from api.websockets.life import closed_when_lab_stops
@@ -32,16 +31,6 @@ from server.world.lab import Lab
 router = APIRouter(tags=["websockets"])
 MAX_QUEUE = 1000
 NODE_PREFIX = "_ws_echo_"
-
-
-class EchoFrame(TypedDict):
-    """One message on ``/ws/topics/{topic}``, as the page reads it."""
-
-    topic: str
-    type: str  # the message type, e.g. geometry_msgs/msg/PoseStamped
-    msg: dict[str, Any]  # the message's JSON form
-    received: float  # when the bus delivered it here (s, Unix epoch)
-    dropped: NotRequired[int]  # messages this channel dropped so far (a slow client), when any
 
 
 class EchoRequestError(ValueError):

@@ -14,57 +14,16 @@ from __future__ import annotations
 
 import itertools
 import math
-from typing import Any, Literal, NotRequired
+from typing import Any
 
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect
-from typing_extensions import TypedDict
 
 from api.deps import WsLabDep
 from api.errors import CloseCode, close_reason
+from api.protocol.frames import KeyChannelError, KeyFrame
 from api.protocol.json_codec import JsonRejected, loads
 from api.websockets.life import closed_when_lab_stops
 from server.peripherals.devices.keymap import MODIFIER_FLAG_NAMES, UnknownKeyError, modifier_bits, sdl_code
-
-
-class KeyFrame(TypedDict):
-    """A key going down or up, as the page sends it; the flags are the modifiers held then
-    (server/peripherals/devices/keymap.py's names: sided, or unsided when the side is unknown)."""
-
-    type: Literal["keydown", "keyup"]
-    key: str  # KeyboardEvent.key
-    code: NotRequired[str]  # KeyboardEvent.code
-    location: NotRequired[int]  # KeyboardEvent.location: 0 standard, 1 left, 2 right, 3 keypad
-    repeat: NotRequired[bool]
-    t: NotRequired[float]  # the page's performance.now() (ms), for its own timing
-    lshift: NotRequired[bool]
-    rshift: NotRequired[bool]
-    lctrl: NotRequired[bool]
-    rctrl: NotRequired[bool]
-    lalt: NotRequired[bool]
-    ralt: NotRequired[bool]
-    lmeta: NotRequired[bool]
-    rmeta: NotRequired[bool]
-    num: NotRequired[bool]
-    caps: NotRequired[bool]
-    mode: NotRequired[bool]
-    shift: NotRequired[bool]
-    ctrl: NotRequired[bool]
-    alt: NotRequired[bool]
-    meta: NotRequired[bool]
-
-
-class ControlFrame(TypedDict):
-    """``release_all``: release every key this channel holds; ``heartbeat``: the page is there."""
-
-    type: Literal["release_all", "heartbeat"]
-
-
-class KeyChannelError(TypedDict):
-    """The server's only frame on this channel: why a frame did nothing."""
-
-    type: Literal["error"]
-    error: str
-
 
 router = APIRouter(tags=["websockets"])
 FRAME_MAX_DEPTH = 2  # a frame is one flat object

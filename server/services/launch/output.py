@@ -18,12 +18,55 @@ from __future__ import annotations
 import signal
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Literal
+
+from typing_extensions import TypedDict
 
 from server.host.processes.supervisor import ProcessNode
 from server.services.launch.groups import LaunchGroup
 
-Frame = dict[str, Any]
+
+class LineFrame(TypedDict):
+    """A line a node process printed; ``seq``: its number in the process's output."""
+
+    type: Literal["line"]
+    seq: int
+    node: str
+    stream: Literal["stdout", "stderr"]
+    text: str
+
+
+class DroppedFrame(TypedDict):
+    """Lines a fast printer lost (its bounded buffer) before this reader read them."""
+
+    type: Literal["dropped"]
+    count: int
+
+
+class WaitingFrame(TypedDict):
+    """A node process that waits for its turn to start."""
+
+    type: Literal["waiting"]
+    node: str
+
+
+class ExitFrame(TypedDict):
+    """A node process ended: its exit code, or the signal that ended it; neither for one stopped
+    before it started."""
+
+    type: Literal["exit"]
+    node: str
+    code: int | None
+    signal: str | None
+
+
+class EndFrame(TypedDict):
+    """Every node of the group has ended: the last frame."""
+
+    type: Literal["end"]
+
+
+Frame = LineFrame | DroppedFrame | WaitingFrame | ExitFrame | EndFrame
 
 
 @dataclass
@@ -35,7 +78,7 @@ class _Seen:
     waiting: bool = False  # its waiting frame sent
 
 
-def exit_frame(process: ProcessNode, node: str) -> Frame:
+def exit_frame(process: ProcessNode, node: str) -> ExitFrame:
     code = process.exit_code
     if code is not None and code < 0:
         try:
