@@ -3,25 +3,84 @@ the server exchange, and are current with them; the server's answers keep to tho
 
 from __future__ import annotations
 
+import ast
 import json
+import re
+from pathlib import Path
 from typing import Any
 
 import pytest
 from labclient import LabClient, receive_json_within
 from pydantic import TypeAdapter
 
+import api.typescript
+from api.protocol.frames import EchoFrame, KeyFrame
+from api.protocol.page import FollowJson, PageViews, ViewJson
 from api.protocol.ts_types import UnsupportedSchema, declaration, ts_type
 from api.typescript import OUTPUT, generated_text
-from api.websockets.echo import EchoFrame
-from api.websockets.keys import FRAME_FIELDS, KeyFrame, parse_frame
+from api.websockets.keys import FRAME_FIELDS, parse_frame
 from server.peripherals.devices.keymap import MODIFIER_FLAG_NAMES
-from server.peripherals.viewer.views import FollowJson, PageViews, ViewJson
+
+# ``interface X``, ``type X =`` or ``type X<T> =``, exported or not, at a line's start or after a
+# ``declare`` / ``export``: every way a TypeScript file names a shape of its own.
+TS_DECLARATION = re.compile(
+    r"^[ \t]*(?:export[ \t]+)?(?:declare[ \t]+)?(?:interface[ \t]+([A-Za-z_$][\w$]*)"
+    r"|type[ \t]+([A-Za-z_$][\w$]*)[ \t]*(?:<[^=\n]*>)?[ \t]*=)",
+    re.MULTILINE,
+)
+PAGE_SOURCES = OUTPUT.parent
+
+
+def ts_declarations(text: str) -> set[str]:
+    """The names a TypeScript source declares as an interface or a type alias."""
+    return {interface or alias for interface, alias in TS_DECLARATION.findall(text)}
 
 
 def test_generated_page_types_match_the_declarations() -> None:
     assert OUTPUT.read_text(encoding="utf-8") == generated_text(), (
         f"{OUTPUT.name} is stale: run `python -m api.typescript` after changing a declaration it lists"
     )
+
+
+def test_the_page_declares_no_shape_the_protocol_declares() -> None:
+    """Every shape the page and the server exchange is written once, in Python: a page module
+    that declared one of the generated names would be a second copy, free to drift."""
+    generated = ts_declarations(OUTPUT.read_text(encoding="utf-8"))
+    assert {"OutputFrame", "WorkspaceTree", "Checkpoints"} <= generated
+    twice = {
+        str(path.relative_to(PAGE_SOURCES)): sorted(
+            ts_declarations(path.read_text(encoding="utf-8")) & generated
+        )
+        for path in sorted(PAGE_SOURCES.rglob("*.ts"))
+        if path != OUTPUT
+    }
+
+    assert {path: names for path, names in twice.items() if names} == {}
+
+
+def test_ts_declarations_finds_interfaces_and_aliases_however_written() -> None:
+    source = (
+        "interface A { x: number }\n"
+        "export interface B<T> extends A { y: T }\n"
+        "  export type C = A | B<string>;\n"
+        "type D<T extends A> = T[];\n"
+        "export declare interface E {}\n"
+        "import type { F } from './f';\n"
+        "export type { G } from './g';\n"
+        "const typeH = 1; // type H = 2 is a comment's\n"
+    )
+
+    assert ts_declarations(source) == {"A", "B", "C", "D", "E"}
+
+
+def test_the_typescript_writer_reads_the_protocol_only() -> None:
+    """The page's types come from api/protocol/, never from a route module: a route's shapes live
+    in the protocol, where the OpenAPI document and the page both take them."""
+    tree = ast.parse(Path(api.typescript.__file__).read_text(encoding="utf-8"))
+    modules = {node.module or "" for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
+    modules |= {alias.name for node in ast.walk(tree) if isinstance(node, ast.Import) for alias in node.names}
+
+    assert sorted(m for m in modules if m.startswith("api") and not m.startswith("api.protocol")) == []
 
 
 def test_ts_types_object_with_nullable_tuple_map_literal_and_reference() -> None:

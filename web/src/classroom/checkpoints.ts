@@ -3,14 +3,14 @@
 // student's evidence (evidence.ts); the class's answers to one chosen question side by side; and
 // the links to the CSV export and to every student's report in one zip; and a report file
 // checked against this server's signature (verify.ts).
-import type { CheckState, ClassCheckpoints, ClassStudent, Checkpoints } from "../guide/contract";
+import type { Checkpoint, Checkpoints, ClassCheckpoints, ClassStudent } from "../protocol.gen";
 import { CHECKPOINTS_URL, errorOf } from "../guide/contract";
 import { openEvidence } from "./evidence";
 import { startVerify } from "./verify";
 
 const REFRESH_MS = 2000;
 const TABLE_URL = "/api/classroom/checkpoints";
-const MARK: Record<CheckState, string> = { done: "\u2713", in_progress: "\u2026", not_started: "\u2013" };
+const MARK: Record<Checkpoint["state"], string> = { done: "\u2713", in_progress: "\u2026", not_started: "\u2013" };
 
 const $ = <E extends HTMLElement = HTMLElement>(id: string): E => document.getElementById(id) as E;
 const state = { table: null as ClassCheckpoints | null, questions: new Map<string, string>(), chosen: "" };

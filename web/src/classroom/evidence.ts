@@ -5,14 +5,11 @@
 // of its 3D view, else the drone's track drawn by the server: the report's JSON carries it),
 // then its facts, then each timeline as a table in local time; the raw JSON is folded below,
 // cut at MAX_CHARS so a long track cannot swamp the page.
-import type { Checkpoint, Checkpoints } from "../guide/contract";
+import type { Checkpoint, Checkpoints, Report, TimelineEntry } from "../protocol.gen";
 import { CHECKPOINTS_URL, errorOf, reportUrl } from "../guide/contract";
 
 const MAX_CHARS = 6000;
 const MAX_ROWS = 40;  // a timeline's last rows, as the report shows them
-
-interface Entry { t_s: number; what: string; value: unknown; by?: string }
-interface ReportCheckpoint { name: string; picture: string | null }
 
 const node = <K extends keyof HTMLElementTagNameMap>(tag: K, text = "", cls = ""): HTMLElementTagNameMap[K] => {
   const e = document.createElement(tag);
@@ -24,8 +21,8 @@ const cut = (text: string): string => (text.length > MAX_CHARS ? `${text.slice(0
 // The lab's clock reads as Unix time (node_runtime/bus/clock.py): shown in the instructor's own time zone.
 const localTime = (t_s: number): string => new Date(t_s * 1000).toLocaleTimeString();
 const isPicture = (v: unknown): v is string => typeof v === "string" && /^data:image\/(png|svg\+xml|jpeg);/.test(v);
-const isTimeline = (v: unknown): v is Entry[] => Array.isArray(v) && v.length > 0 && v.every(
-  (e) => typeof e === "object" && e !== null && typeof (e as Entry).t_s === "number" && "what" in e);
+const isTimeline = (v: unknown): v is TimelineEntry[] => Array.isArray(v) && v.length > 0 && v.every(
+  (e) => typeof e === "object" && e !== null && typeof (e as TimelineEntry).t_s === "number" && "what" in e);
 const isFact = (v: unknown): boolean => v === null || ["string", "number", "boolean"].includes(typeof v)
   || (Array.isArray(v) && v.length <= 4 && v.every((x) => typeof x === "number"));
 const shown = (v: unknown): string => (typeof v === "string" ? v : JSON.stringify(v));
@@ -48,7 +45,7 @@ function facts(evidence: Record<string, unknown>): HTMLElement | null {
   return table;
 }
 
-function timeline(name: string, entries: Entry[]): HTMLElement {
+function timeline(name: string, entries: TimelineEntry[]): HTMLElement {
   const box = node("section", "", "timeline");
   const last = entries.slice(-MAX_ROWS);
   const more = entries.length > last.length ? ` (the last ${last.length} of ${entries.length})` : "";
@@ -99,7 +96,7 @@ function render(box: HTMLElement, student: string, world: string, c: Checkpoint,
 async function drawnPicture(world: string, checkpoint: string): Promise<string | null> {
   const reply = await fetch(`${reportUrl("json")}&world=${encodeURIComponent(world)}`, { cache: "no-store" });
   if (!reply.ok) return null;
-  const report = await reply.json() as { checkpoints?: ReportCheckpoint[] };
+  const report = await reply.json() as Partial<Report>;
   return report.checkpoints?.find((x) => x.name === checkpoint)?.picture ?? null;
 }
 

@@ -2,7 +2,7 @@
 // /api/classroom/load): the capacity verdict, each place's worlds, CPU and memory, the late
 // worlds and the join queue, with a warning line when the class is near or at its capacity and a
 // button that lets the oldest waiting join in.
-import type { ClassLoadOut, ErrorBody, PlaceOut } from "../protocol.gen";
+import type { ClassLoadOut, ErrorBody, LetThrough, PlaceOut } from "../protocol.gen";
 
 const REFRESH_MS = 3000;
 const LOAD_URL = "/api/classroom/load";
@@ -67,7 +67,7 @@ async function admitOne(): Promise<void> {
   await fetch(ADMIT_URL, {
     method: "POST",
     headers: { "Content-Type": "application/json" },
-    body: JSON.stringify({ count: 1 }),
+    body: JSON.stringify({ count: 1 } satisfies LetThrough),
   });
   await refresh();
 }

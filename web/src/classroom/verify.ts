@@ -1,7 +1,8 @@
 // A report handed in, checked on the instructor's page: the file chosen goes as it is to
 // POST /api/checkpoints/verify, and the verdict is shown (valid, edited, signed by another
 // server, not a report) with the student it names.
-import { CHECKPOINTS_URL, errorOf, type Verdict } from "../guide/contract";
+import type { VerifyResult } from "../protocol.gen";
+import { CHECKPOINTS_URL, errorOf } from "../guide/contract";
 
 async function check(file: File, out: HTMLElement): Promise<void> {
   out.textContent = `checking ${file.name}…`;
@@ -10,7 +11,7 @@ async function check(file: File, out: HTMLElement): Promise<void> {
     method: "POST", headers: { "Content-Type": "application/octet-stream" }, body: await file.arrayBuffer(),
   });
   if (!reply.ok) { out.textContent = `${file.name}: ${await errorOf(reply)}`; out.className = "bad"; return; }
-  const v = await reply.json() as Verdict;
+  const v = await reply.json() as VerifyResult;
   out.textContent = `${file.name}: ${v.reason}${v.student ? ` (student: ${v.student})` : ""}`;
   out.className = v.valid ? "good" : "bad";
 }

@@ -2,9 +2,7 @@
 // /api/classroom/worlds/{world}/workspace/files) and one file's text at a time, read-only: the
 // instructor reads a student's code here and never edits it. Every workspace in one zip is the
 // header's link (GET /api/classroom/workspaces/archive).
-import type { ErrorBody, WorkspaceEntry, WorkspaceTree } from "../protocol.gen";
-
-interface FileText { path: string; text: string }
+import type { ErrorBody, FileText, WorkspaceEntry, WorkspaceTree } from "../protocol.gen";
 
 const $ = <E extends HTMLElement = HTMLElement>(id: string): E => document.getElementById(id) as E;
 

@@ -2,7 +2,8 @@
 // `ros2lab pkg create`), a new file (empty or from one of the lab's templates), rename, delete
 // (after a confirmation naming how much goes), and upload (a zip, or text files into the selected
 // folder). Each answers with what to open next, or throws an ApiError the toolbar shows.
-import { workspace, type Entry, type Template } from "./api";
+import type { Template, WorkspaceEntry } from "../protocol.gen";
+import { workspace } from "./api";
 import { ask, confirmed } from "./dialogs";
 
 const LICENSES: [string, string][] = [
@@ -10,7 +11,7 @@ const LICENSES: [string, string][] = [
   ["BSD-3-Clause", "BSD-3-Clause"], ["GPL-3.0-only", "GPL-3.0-only"],
 ];
 
-const folderOf = (selected: string | null, entries: Entry[]): string => {
+const folderOf = (selected: string | null, entries: WorkspaceEntry[]): string => {
   if (selected === null) return "";
   const entry = entries.find((e) => e.path === selected);
   return entry?.kind === "dir" ? selected : selected.slice(0, Math.max(0, selected.lastIndexOf("/")));
@@ -44,7 +45,7 @@ export async function newPackage(host: HTMLElement): Promise<string | null> {
   return node ?? created.files.find((f) => f.endsWith("package.xml")) ?? null;
 }
 
-export async function newFile(host: HTMLElement, selected: string | null, entries: Entry[]): Promise<string | null> {
+export async function newFile(host: HTMLElement, selected: string | null, entries: WorkspaceEntry[]): Promise<string | null> {
   const folder = folderOf(selected, entries);
   let templates: Template[] = [];
   try { templates = await workspace.templates(); } catch { /* an empty file is still offered */ }
@@ -72,7 +73,7 @@ export async function rename(host: HTMLElement, path: string): Promise<string | 
   return (await workspace.rename(path, a.target)).path;
 }
 
-export async function remove(host: HTMLElement, path: string, entries: Entry[]): Promise<boolean> {
+export async function remove(host: HTMLElement, path: string, entries: WorkspaceEntry[]): Promise<boolean> {
   const files = entries.filter((e) => e.kind === "file" && (e.path === path || e.path.startsWith(`${path}/`))).length;
   const what = entries.find((e) => e.path === path)?.kind === "dir" ? `the folder ${path} and its ${files} file${files === 1 ? "" : "s"}` : path;
   if (!(await confirmed(host, "Delete", `Delete ${what}? This cannot be undone (download the workspace first to keep a copy).`, "Delete"))) return false;
@@ -81,7 +82,7 @@ export async function remove(host: HTMLElement, path: string, entries: Entry[]):
 }
 
 /** Upload the chosen files: a zip into the workspace, other files as text into ``folder``. */
-export async function upload(files: FileList, selected: string | null, entries: Entry[]): Promise<string[]> {
+export async function upload(files: FileList, selected: string | null, entries: WorkspaceEntry[]): Promise<string[]> {
   const folder = folderOf(selected, entries);
   const written: string[] = [];
   for (const file of Array.from(files)) {

@@ -2,23 +2,10 @@
 // token, when there is one, travels in its cookie). Every answer that is not a success becomes an
 // ApiError carrying the status and the server's own words.
 
-import type { WorkspaceEntry, WorkspaceTree } from "../protocol.gen";
-
-export type Entry = WorkspaceEntry;
-export type Tree = WorkspaceTree;
-export interface FileText { path: string; text: string; etag: string }
-export interface Saved { path: string; etag: string; size: number }
-export interface Template { name: string; title: string; description: string; path: string; text: string }
-export interface PackageRequest {
-  name: string;
-  build_type: "ament_python" | "ament_cmake";
-  node_name: string | null;
-  dependencies: string[];
-  description: string | null;
-  license: string | null;
-}
-export interface PackageCreated { name: string; path: string; files: string[] }
-export interface LaunchGroup { id: string; [field: string]: unknown }
+import type {
+  Deleted, FileText, LaunchGroupOut, LaunchRequest, PackageCreated, PackageRequest, Renamed, RenameRequest,
+  RunRequest, Saved, SaveRequest, Template, WorkspaceTree, Written,
+} from "../protocol.gen";
 
 /** A refused or failed request: its HTTP status (0: no answer at all) and what the server said. */
 export class ApiError extends Error {
@@ -53,7 +40,7 @@ async function call<T>(method: string, url: string, init: RequestInit = {}): Pro
   return body as T;
 }
 
-const json = (body: unknown, headers: Record<string, string> = {}): RequestInit => ({
+const json = <T>(body: T, headers: Record<string, string> = {}): RequestInit => ({
   body: JSON.stringify(body), headers: { "content-type": "application/json", ...headers },
 });
 
@@ -62,28 +49,28 @@ export const fileUrl = (path: string): string =>
   "/api/workspace/files/" + path.split("/").map(encodeURIComponent).join("/");
 
 export const workspace = {
-  tree: (): Promise<Tree> => call("GET", "/api/workspace/files"),
+  tree: (): Promise<WorkspaceTree> => call("GET", "/api/workspace/files"),
   read: (path: string): Promise<FileText> => call("GET", fileUrl(path)),
   /** Save over ``etag`` (the version this page last saw); null: create, refused if it exists. */
   write: (path: string, text: string, etag: string | null): Promise<Saved> =>
-    call("PUT", fileUrl(path), json({ text }, etag === null ? { "If-None-Match": "*" } : { "If-Match": etag })),
-  remove: (path: string): Promise<{ path: string; deleted: number }> => call("DELETE", fileUrl(path)),
-  rename: (source: string, target: string): Promise<{ path: string }> =>
-    call("POST", "/api/workspace/rename", json({ source, target })),
+    call("PUT", fileUrl(path), json<SaveRequest>({ text }, etag === null ? { "If-None-Match": "*" } : { "If-Match": etag })),
+  remove: (path: string): Promise<Deleted> => call("DELETE", fileUrl(path)),
+  rename: (source: string, target: string): Promise<Renamed> =>
+    call("POST", "/api/workspace/rename", json<RenameRequest>({ source, target })),
   createPackage: (request: PackageRequest): Promise<PackageCreated> =>
     call("POST", "/api/workspace/packages", json(request)),
   templates: (): Promise<Template[]> => call("GET", "/api/workspace/templates"),
   archiveUrl: "/api/workspace/archive",
-  upload: (zip: Blob): Promise<{ written: string[] }> =>
+  upload: (zip: Blob): Promise<Written> =>
     call("POST", "/api/workspace/archive", { body: zip, headers: { "content-type": "application/zip" } }),
 };
 
 export const runs = {
-  run: (pkg: string, executable: string): Promise<LaunchGroup> =>
-    call("POST", "/api/run", json({ package: pkg, executable })),
-  launch: (pkg: string, file: string): Promise<LaunchGroup> =>
-    call("POST", "/api/launch", json({ package: pkg, file, args: {} })),
-  stop: (id: string): Promise<LaunchGroup> => call("DELETE", `/api/launches/${encodeURIComponent(id)}`),
+  run: (pkg: string, executable: string): Promise<LaunchGroupOut> =>
+    call("POST", "/api/run", json<RunRequest>({ package: pkg, executable })),
+  launch: (pkg: string, file: string): Promise<LaunchGroupOut> =>
+    call("POST", "/api/launch", json<LaunchRequest>({ package: pkg, file, args: {} })),
+  stop: (id: string): Promise<LaunchGroupOut> => call("DELETE", `/api/launches/${encodeURIComponent(id)}`),
   outputSocket: (id: string): WebSocket =>
     new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/ws/launches/${encodeURIComponent(id)}/output`),
 };

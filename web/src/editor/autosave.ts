@@ -3,6 +3,7 @@
 // next edit or Retry saves again. A save the server refuses because the file changed elsewhere
 // (412: another tab, or an editor on disk) stops autosave and offers the choice: their version
 // (reload) or mine (overwrite theirs). Nothing is ever overwritten silently.
+import type { StaleSave } from "../protocol.gen";
 import { ApiError, workspace } from "./api";
 import type { CodeEditor } from "./editor";
 
@@ -101,7 +102,7 @@ export class OpenFile {
     } catch (exc) {
       if (path !== this.path) return;
       if (exc instanceof ApiError && exc.status === 412) {
-        const body = exc.body as { etag?: unknown } | null;
+        const body = exc.body as Partial<StaleSave> | null;
         this.theirs = typeof body?.etag === "string" ? body.etag : null;
         this.set("conflict", exc.detail);
       } else {

@@ -4,7 +4,8 @@
 // changed on disk reloads in the editor when nothing here is unsaved.
 import Split from "split.js";
 import * as actions from "./actions";
-import { ApiError, workspace, type Entry } from "./api";
+import type { WorkspaceEntry } from "../protocol.gen";
+import { ApiError, workspace } from "./api";
 import { OpenFile, type SaveState } from "./autosave";
 import { CodeEditor } from "./editor";
 import { OutputPane } from "./output";
@@ -159,7 +160,7 @@ export function mountCodeView(host: HTMLElement, lab: CodeViewHost): CodeViewHan
 
   let version = "";
   let polling = false;
-  async function refresh(force = false): Promise<Entry[]> {
+  async function refresh(force = false): Promise<WorkspaceEntry[]> {
     if (polling && !force) return tree.paths;
     polling = true;
     try {

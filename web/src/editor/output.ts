@@ -4,7 +4,7 @@
 // traceback the student's frames show and the lab's own frames (rclpy, the launcher: files outside
 // the workspace) fold behind a toggle right after its first line, so the student's line is not
 // buried under them. The page keeps the last MAX_LINES lines; older ones scroll away.
-import type { ExitFrame, LineFrame, WaitingFrame } from "./frames";
+import type { ExitFrame, LineFrame, WaitingFrame } from "../protocol.gen";
 
 const MAX_LINES = 2000;
 const LOG_LEVEL = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;

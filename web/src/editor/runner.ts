@@ -1,8 +1,9 @@
 // Run the open file as its package's node (POST /api/run, as `ros2 run`) or, for a launch file,
 // launch it (POST /api/launch, as `ros2 launch`); stream its output over the run's socket; Stop
 // (DELETE, which is Ctrl-C and then the end after a grace period). One run at a time from here.
-import { ApiError, runs, workspace, type Entry } from "./api";
-import { parseFrame, type OutputFrame } from "./frames";
+import type { OutputFrame, WorkspaceEntry } from "../protocol.gen";
+import { ApiError, runs, workspace } from "./api";
+import { parseFrame } from "./frames";
 import type { OutputPane } from "./output";
 
 const LAUNCH_FILE = /(^|\/)launch\/[^/]+$|\.launch(\.(xml|py|yaml))?$/;
@@ -21,7 +22,7 @@ const dirOf = (path: string): string => path.slice(0, Math.max(0, path.lastIndex
 
 /** The file's package: the nearest folder above it with a package.xml (its <name>), else the
  * folder right under src/ (a folder without a package.xml, as the lab's simple rule runs it). */
-async function packageOf(path: string, entries: Entry[]): Promise<{ name: string; dir: string } | null> {
+async function packageOf(path: string, entries: WorkspaceEntry[]): Promise<{ name: string; dir: string } | null> {
   const files = new Set(entries.filter((e) => e.kind === "file").map((e) => e.path));
   for (let dir = dirOf(path); dir; dir = dirOf(dir)) {
     if (files.has(`${dir}/package.xml`)) {
@@ -34,7 +35,7 @@ async function packageOf(path: string, entries: Entry[]): Promise<{ name: string
 }
 
 /** What Run would start for ``path``, or why it cannot (an Error's message). */
-export async function targetOf(path: string, entries: Entry[]): Promise<Target> {
+export async function targetOf(path: string, entries: WorkspaceEntry[]): Promise<Target> {
   const pkg = await packageOf(path, entries);
   if (pkg === null) throw new Error(`${path} is in no package: put it under src/<package>/`);
   const file = path.slice(path.lastIndexOf("/") + 1);

@@ -1,16 +1,16 @@
 // The workspace's packages and files as a tree: folders fold, a click on a file opens it, the
 // open file is marked. The tree is drawn again from each listing the server gives (the poll in
 // main.ts asks for one whenever the workspace's version may have changed).
-import type { Entry } from "./api";
+import type { WorkspaceEntry } from "../protocol.gen";
 
 export interface TreeActions {
   open(path: string): void;
   select(path: string): void;
 }
 
-interface Node { entry: Entry; children: Node[] }
+interface Node { entry: WorkspaceEntry; children: Node[] }
 
-const nest = (entries: Entry[]): Node[] => {
+const nest = (entries: WorkspaceEntry[]): Node[] => {
   const roots: Node[] = [];
   const dirs = new Map<string, Node>();
   for (const entry of [...entries].sort((a, b) => a.path.localeCompare(b.path))) {
@@ -36,7 +36,7 @@ export class FileTree {
   selected: string | null = null;
   private opened: string | null = null;
   private readonly folded = new Set<string>();
-  private entries: Entry[] = [];
+  private entries: WorkspaceEntry[] = [];
 
   constructor(private readonly actions: TreeActions) {
     this.element.className = "tree";
@@ -44,11 +44,11 @@ export class FileTree {
     this.element.setAttribute("aria-label", "Workspace files");
   }
 
-  get paths(): Entry[] {
+  get paths(): WorkspaceEntry[] {
     return this.entries;
   }
 
-  show(entries: Entry[]): void {
+  show(entries: WorkspaceEntry[]): void {
     this.entries = entries;
     if (this.selected !== null && !entries.some((e) => e.path === this.selected)) this.selected = null;
     this.draw();

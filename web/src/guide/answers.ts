@@ -3,7 +3,8 @@
 // size against the server's limit, and a line that says what is saved: "saved at 14:02:11",
 // "saving…", "not saved: ..." (the server's words; the text stays in the box). An answer saved
 // elsewhere (another tab) replaces the box's text only while the box has no unsaved change.
-import { ANSWER_LIMIT_BYTES, answerUrl, errorOf, type Question } from "./contract";
+import type { AnswerBody, Question } from "../protocol.gen";
+import { ANSWER_LIMIT_BYTES, answerUrl, errorOf } from "./contract";
 
 const SAVE_AFTER_MS = 1000;
 const utf8 = new TextEncoder();
@@ -71,7 +72,7 @@ export function answerBox(question: Question, onSaved: (q: Question) => void): A
     saving = (async () => {
       try {
         const reply = await fetch(answerUrl(question.id), {
-          method: "PUT", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ text }),
+          method: "PUT", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ text } satisfies AnswerBody),
         });
         if (!reply.ok) { show("failed", await errorOf(reply)); return; }
         const q = await reply.json() as Question;

@@ -5,7 +5,8 @@
 // the frame is copied right after the scene is drawn into it, in the same task (scene.afterFrame),
 // onto a 2D canvas no wider than MAX_WIDTH_PX; that copy is encoded afterwards.
 import { scene } from "../lab/scene";
-import { CAPTURED_CHECKPOINT, CAPTURE_LIMIT_BYTES, captureUrl, errorOf, type Checkpoints } from "./contract";
+import type { Checkpoints } from "../protocol.gen";
+import { CAPTURED_CHECKPOINT, CAPTURE_LIMIT_BYTES, captureUrl, errorOf } from "./contract";
 import { progress } from "./progress";
 
 const MAX_WIDTH_PX = 1280;

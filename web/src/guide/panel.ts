@@ -8,7 +8,8 @@
 // sees them.
 import { LAYOUT_EVENT } from "../lab/layout";
 import { answerBox, type AnswerBox } from "./answers";
-import { reportUrl, type Checkpoint, type Checkpoints, type Question, type Step } from "./contract";
+import type { Checkpoint, Checkpoints, Question, Step } from "../protocol.gen";
+import { reportUrl } from "./contract";
 import { graphFigure, type GraphFigure } from "./graph";
 import { progress } from "./progress";
 import { GUIDE_CSS } from "./style";

@@ -3,7 +3,8 @@
 // change goes to the listeners with what was known before (null the first time), so that the
 // guide redraws and the capture sees a checkpoint turn done.
 import { notify, type Listeners } from "../lab/listeners";
-import { CHECKPOINTS_URL, errorOf, type Checkpoints } from "./contract";
+import type { Checkpoints } from "../protocol.gen";
+import { CHECKPOINTS_URL, errorOf } from "./contract";
 
 const POLL_MS = 1000;
 const RETRY_MS = 5000;  // after an error: the server restarting, or a lab without checkpoints
