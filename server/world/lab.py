@@ -9,6 +9,7 @@ from __future__ import annotations
 import asyncio
 import dataclasses
 import time
+from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -27,6 +28,7 @@ from node_runtime.msgs import Message, get_type
 from node_runtime.transport.config import ZenohSettings
 from node_runtime.transport.remote_graph import RemoteGraph
 from server.host.introspection.merged import topic_views
+from server.host.processes.sandbox import StudentCodeRefusedError, probe
 from server.host.processes.start_pacing import StartPacer, default_slots
 from server.host.settings import Settings
 from server.packages.rocketship.controls import RocketControls
@@ -53,6 +55,12 @@ if TYPE_CHECKING:
 
 
 class Lab:
+    """One world, its parts built here. A class's world is given what the class's worlds share
+    (``executors``, ``node_budget``, ``start_pacer``, the physics among ``devices``), its progress so
+    far, its ``label`` (its name, on its nodes' console lines) and ``sandbox_unreachable``: what to
+    say instead when a sandbox could be built here but cannot reach the graph's router (a world
+    worker away from the class's router)."""
+
     def __init__(
         self,
         settings: Settings,
@@ -62,29 +70,39 @@ class Lab:
         progress: Progress | None = None,
         node_budget: NodeBudget | None = None,
         start_pacer: StartPacer | None = None,
+        label: str | None = None,
+        devices: Mapping[str, Any] | None = None,
+        sandbox_unreachable: StudentCodeRefusedError | None = None,
     ) -> None:
         self.settings = settings
         limits = settings.limits
         self.bus = Bus(clock or SystemClock())
+        self.bus.label = label  # its nodes' console lines carry it (node_runtime/console.py)
         self.executor = Executor(self.bus)
         # A class server's worlds share one task that runs their executors; alone, the lab has its own.
         self.executors = executors
+        self._sandbox_unreachable = sandbox_unreachable
         self.packages = PackageIndex(workspace=settings.lab.workspace)
         self.packages.interfaces(log_problems=True)  # a student's own .msg/.srv types, with no build
-        self.launcher = Launcher(self.bus, self.packages)
-        self.launcher.all_processes = settings.lab.node_processes == "all"
-        self.launcher.confined = settings.confines_paths
-        if not settings.confines_paths:  # a launch file's ros2 commands: this lab's CLI, as its user
-            host = settings.listen.host
-            url = f"http://{f'[{host}]' if ':' in host else host}:{settings.listen.port}"
-            self.launcher.commands.cli = LabCli(url, settings.listen.token)
         # Node processes starting at once on this server's cores: a class server's worlds share
         # one pacer. ``ros2lab run`` asks it before it starts (GET /api/zenoh/join?start=true);
         # where the server serves others, the page's runs of students' files wait for it too.
         self.start_pacer = start_pacer or StartPacer(default_slots(), clock=self.bus.clock.now)
-        if settings.confines_paths:
-            self.launcher.start_pacer = self.start_pacer
+        cli = None
+        if not settings.confines_paths:  # a launch file's ros2 commands: this lab's CLI, as its user
+            host = settings.listen.host
+            url = f"http://{f'[{host}]' if ':' in host else host}:{settings.listen.port}"
+            cli = LabCli(url, settings.listen.token)
+        self.launcher = Launcher(
+            self.bus,
+            self.packages,
+            all_processes=settings.lab.node_processes == "all",
+            confined=settings.confines_paths,
+            cli=cli,
+            start_pacer=self.start_pacer if settings.confines_paths else None,
+        )
         self.keyboard = KeyboardDevice()
+        self.bus.devices.update(devices or {})
         self.bus.devices["keyboard"] = self.keyboard
         self.key_deadman = KeyDeadMan(self.keyboard, self.bus, limits.deadman_s)
         self.key_frames = RateLimit(self.bus.clock, limits.key_frames_hz, limits.key_frames_burst)
@@ -141,15 +159,20 @@ class Lab:
             from server.services.launch.student_code import for_lab
 
             socket = self.zenoh.settings.process_socket if self.zenoh is not None else None
-            self.launcher.sandbox = for_lab(self.settings, socket)
-            if self.zenoh is not None:
+            sandbox = for_lab(self.settings, socket)
+            refused = isinstance(sandbox, StudentCodeRefusedError)
+            # A sandbox could be built here, and it is the router that is out of its reach: say so.
+            if refused and self._sandbox_unreachable is not None and probe() is None:
+                sandbox = self._sandbox_unreachable
+            if self.zenoh is None:
+                self.launcher.use_graph(None, sandbox)
+            else:
                 zenoh = self.zenoh.settings
-                self.launcher.transport = ProcessTransport(
-                    self.zenoh.router_endpoint(), zenoh.domain_id, zenoh.login
-                )
                 remote = self.zenoh.bridge.remote
-                self.launcher.on_process_start.append(
-                    lambda p: remote.name_session(p.command.zid, f"process {p.pid}")
+                self.launcher.use_graph(
+                    ProcessTransport(self.zenoh.router_endpoint(), zenoh.domain_id, zenoh.login),
+                    sandbox,
+                    lambda p: remote.name_session(p.command.zid, f"process {p.pid}"),
                 )
         if self.settings.lab.viewer:
             from server.peripherals.viewer.display import Display

@@ -50,9 +50,9 @@ class LaunchedCommand:
 class CommandRunner:
     """Starts a launch's commands; ``cli`` None: this lab runs none (a server that serves others)."""
 
-    def __init__(self, supervisor: Supervisor, timers: Callable[[], Node]) -> None:
+    def __init__(self, supervisor: Supervisor, timers: Callable[[], Node], cli: LabCli | None = None) -> None:
         self.supervisor = supervisor
-        self.cli: LabCli | None = None
+        self.cli = cli
         self._timers = timers
         self.running: list[LaunchedCommand] = []  # started or waiting, not stopped yet
 

@@ -17,7 +17,7 @@ from server.host.processes.command import node_command, ros_args
 from server.host.processes.sandbox import INSIDE_ROUTER, Sandbox, StudentCodeRefusedError
 from server.host.processes.start_pacing import StartPacer
 from server.host.processes.supervisor import ProcessNode, Supervisor
-from server.services.launch.commands import CommandRunner, LaunchedCommand
+from server.services.launch.commands import CommandRunner, LabCli, LaunchedCommand
 from server.services.launch.description import LaunchDescription, NodeAction
 from server.services.launch.python_launch import RunPython
 from server.services.launch.python_process import PythonLaunchProcess
@@ -99,26 +99,54 @@ class LaunchedNode:
 
 
 class Launcher:
-    def __init__(self, bus: Bus, packages: PackageIndex, respawn_policy: RespawnPolicy | None = None) -> None:
+    """Starts a lab's launches. ``all_processes``: every lab node in its own process too (but the
+    device nodes); ``confined``: includes and ``$(env)`` kept to the world's own packages
+    (``parse_launch``); ``cli``: the CLI a launch file's ros2 commands run as (None: none run);
+    ``start_pacer``: students' node processes start at their turn (a class: sixty "Run"s at once
+    must not take the worlds' cores; None: at once). Where node processes find the graph, and how
+    students' files run, come once the lab's graph is up (``use_graph``)."""
+
+    def __init__(
+        self,
+        bus: Bus,
+        packages: PackageIndex,
+        respawn_policy: RespawnPolicy | None = None,
+        *,
+        all_processes: bool = False,
+        confined: bool = False,
+        cli: LabCli | None = None,
+        start_pacer: StartPacer | None = None,
+    ) -> None:
         self.bus = bus
         self.packages = packages
         self.respawn_policy = respawn_policy or RespawnPolicy()
         self.launched: list[LaunchedNode] = []
         bus.crash_handlers.append(self._on_crash)
         self.transport: ProcessTransport | None = None  # set once the app's graph is on Zenoh
-        self.all_processes = False  # every lab node in its own process too (but the device nodes)
-        self.confined = False  # includes and $(env) kept to the world's own packages (parse_launch)
+        self.all_processes = all_processes
+        self.confined = confined
         self.supervisor = Supervisor(bus, self._on_process_exit)
-        self.commands = CommandRunner(self.supervisor, self._timer_node)  # a launch file's ros2 commands
+        self.commands = CommandRunner(self.supervisor, self._timer_node, cli)  # a launch file's ros2 commands
         # Students' files on a server that serves others: in this sandbox, or refused (why).
         self.sandbox: Sandbox | StudentCodeRefusedError | None = None
-        self.on_process_start: list[Callable[[ProcessNode], None]] = []
-        # Students' node processes start at their turn on a server that serves others (a class:
-        # sixty "Run"s at once must not take the worlds' cores), None: at once.
-        self.start_pacer: StartPacer | None = None
+        self._on_process_start: Callable[[ProcessNode], None] | None = None
+        self.start_pacer = start_pacer
         self._timers: Node | None = None  # a hidden node for the respawns' and waiting starts' timers
         # Told of every launch file's nodes once started (server/world/checkpoints watches launches).
         self.on_launch: list[Callable[[LaunchDescription, list[LaunchedNode]], None]] = []
+
+    def use_graph(
+        self,
+        transport: ProcessTransport | None,
+        sandbox: Sandbox | StudentCodeRefusedError | None,
+        on_process_start: Callable[[ProcessNode], None] | None = None,
+    ) -> None:
+        """The lab's graph is up (or could not open): where node processes find it (None: not on
+        Zenoh), how students' files run (in ``sandbox``, refused and why, or None: as the server's
+        user), and who is told of each node process that starts."""
+        self.transport = transport
+        self.sandbox = sandbox
+        self._on_process_start = on_process_start
 
     def parse(self, path: str | Path, args: Mapping[str, str] | None = None) -> LaunchDescription:
         return parse_launch(
@@ -213,8 +241,8 @@ class Launcher:
 
     def _spawn(self, process: ProcessNode) -> None:
         self.supervisor.spawn(process)
-        for hook in self.on_process_start:
-            hook(process)
+        if self._on_process_start is not None:
+            self._on_process_start(process)
 
     def _start_later(self, entry: LaunchedNode, process: ProcessNode, wait_s: float) -> None:
         """Start ``process`` at its turn (asking the pacer again then), unless stopped before."""
