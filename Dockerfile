@@ -27,11 +27,11 @@ RUN apt-get update && apt-get install -y --no-install-recommends bubblewrap libs
 # ROS 2's interface definitions (std_msgs, geometry_msgs ...), from its wheels on PyPI
 # (node_runtime/ros_wheels.py; the wheels are not installed, and not kept in the image).
 RUN TELEOP_CACHE=/tmp/teleop-cache python -m node_runtime.ros_wheels && rm -rf /tmp/teleop-cache
-# state/ and workspaces/ exist and are the lab user's, so the named volumes docker-compose.yml
+# state/, workspaces/ and bags/ (--bag-dir's default, ./bags) exist and are the lab user's, so the named volumes docker-compose.yml
 # mounts there start as theirs (a new volume takes the folder's owner).
 # (Importing the messages once keeps their parsed definitions, which the lab user could not write.)
 RUN pip install --no-cache-dir -e . && python -c "import node_runtime.msgs" && useradd --create-home lab \
- && mkdir -p /app/state /app/workspaces && chown lab:lab /app/state /app/workspaces
+ && mkdir -p /app/state /app/workspaces /app/bags && chown lab:lab /app/state /app/workspaces /app/bags
 USER lab
 EXPOSE 8000 7447 8765
 HEALTHCHECK --interval=10s --timeout=3s --start-period=10s \
