@@ -2,7 +2,8 @@
 
 One lab, or on a class server (``--classroom``) the world the caller's token names: a student's
 own world, or for the instructor the world named by ``X-Lab-World`` (or ``?world=``). No valid
-token is 401, another student's world 403; a student's writes are rate-limited per world (429).
+token is 401, another student's world 403; a student's writes are rate-limited per world (429):
+the classroom's refusals (server/classroom/errors.py), which api/errors.py answers.
 """
 
 from __future__ import annotations
@@ -13,9 +14,10 @@ from fastapi import Depends, Request, Response, WebSocket, WebSocketException, s
 from fastapi.responses import RedirectResponse
 from starlette.requests import HTTPConnection
 
-from api.errors import CloseCode, close_reason
+from api.errors import close_reason, refusal_close_code
 from server.base.access import bearer_token, token_matches
-from server.classroom import Classroom, ClassroomError, ClassServer, Grant
+from server.classroom import Classroom, ClassroomError, Grant
+from server.classroom.errors import NotAuthenticatedError, WorldElsewhereError
 from server.world.lab import Lab
 
 TOKEN_COOKIE = "lab_token"
@@ -43,8 +45,8 @@ def token_of(conn: HTTPConnection) -> str | None:
 def grant_of(conn: HTTPConnection, classroom: Classroom) -> Grant:
     grant = classroom.grant(token_of(conn))
     if grant is None:
-        raise ClassroomError(
-            401, "join the class first: no valid token (lab_token cookie or Authorization: Bearer)"
+        raise NotAuthenticatedError(
+            "join the class first: no valid token (lab_token cookie or Authorization: Bearer)"
         )
     return grant
 
@@ -56,22 +58,18 @@ def lab_of(conn: HTTPConnection) -> Lab:
         lab = cast(Lab, conn.app.state.lab)
         lab_token = lab.settings.listen.token
         if lab_token is not None and not token_matches(token_of(conn), lab_token):
-            raise ClassroomError(401, "this lab needs its token: open the link the server printed "
-                                      "(/?token=...), or send Authorization: Bearer")  # fmt: skip
+            raise NotAuthenticatedError("this lab needs its token: open the link the server printed "
+                                        "(/?token=...), or send Authorization: Bearer")  # fmt: skip
         return lab
     grant = grant_of(conn, classroom)
     asked = conn.headers.get(WORLD_HEADER) or conn.query_params.get("world")
     world = classroom.world_for(grant, asked)
     if world.lab is None:  # api/middleware/world_proxy.py passes on what acts on a worker's world
         where = world.worker.id if world.worker is not None else "another process"
-        raise ClassroomError(404, f"world {world.name!r} runs on world worker {where!r}: nothing here for it")
+        raise WorldElsewhereError(f"world {world.name!r} runs on world worker {where!r}: nothing here for it")
     writing = conn.scope["type"] == "http" and conn.scope["method"] not in SAFE_METHODS
-    # A world worker's calls come from its class server, which charged the write already.
-    charged = isinstance(classroom, ClassServer)
-    if writing and not grant.is_instructor and charged and not world.writes.take():
-        raise ClassroomError(429, f"too many requests for world {world.name!r}: at most "
-                                  f"{classroom.class_settings.world.writes_hz:g} writes a second",
-                             world.writes.retry_after_s())  # fmt: skip
+    if writing and not grant.is_instructor:
+        classroom.charge_write(world)  # a world worker charges none: its class server did
     return world.lab
 
 
@@ -94,15 +92,11 @@ def keep_token_and_go(path: str, token: str) -> Response:
     return response
 
 
-WS_CODES = {401: CloseCode.UNAUTHORIZED, 403: CloseCode.FORBIDDEN}
-
-
 def _ws_lab(websocket: WebSocket) -> Lab:
     try:
         return lab_of(websocket)
     except ClassroomError as exc:
-        code = WS_CODES.get(exc.status, CloseCode.POLICY_VIOLATION)
-        raise WebSocketException(code, close_reason(str(exc))) from None
+        raise WebSocketException(refusal_close_code(exc), close_reason(str(exc))) from None
 
 
 LabDep = Annotated[Lab, Depends(lab_for_request)]

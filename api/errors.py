@@ -1,9 +1,10 @@
 """The one place where errors become HTTP statuses and WebSocket close codes.
 
-The bus's, the messages', the launcher's and the app's own error types are registered as
-exception handlers here, so route handlers only call the lab and never catch. Anything else is
-a bug: ``ErrorMiddleware`` answers it with a 500 (or closes a WebSocket with 1011) carrying a
-request id, logs it with its traceback under that id, and never sends its text to the client.
+The bus's, the messages', the launcher's, the classroom's and the app's own error types are
+registered as exception handlers here, so route handlers only call the lab and never catch.
+Anything else is a bug: ``ErrorMiddleware`` answers it with a 500 (or closes a WebSocket with
+1011) carrying a request id, logs it with its traceback under that id, and never sends its text
+to the client.
 """
 
 from __future__ import annotations
@@ -34,11 +35,37 @@ from node_runtime.bus import (
 )  # fmt: skip
 from node_runtime.limits import LimitExceededError, ValueLimitError
 from node_runtime.msgs import MessageError, UnknownTypeError
-from server.base.close_codes import CLOSE_FOR_STATUS, refuse_socket
+from server.base.close_codes import CLOSE_FOR_STATUS, HANDSHAKE_REFUSALS, refuse_socket
 from server.base.close_codes import CloseCode as CloseCode  # where the routes import it from
 from server.base.close_codes import close_reason as close_reason  # likewise
-from server.classroom import ClassroomError
-from server.classroom.errors import StudentCodeElsewhereError
+from server.classroom.errors import (
+    AddressLimitError,
+    AtCapacityError,
+    BadHandoverError,
+    BadNameError,
+    ClassFullError,
+    ClassroomError,
+    JoinLapsedError,
+    JoinThroughClassServerError,
+    NameTakenError,
+    NoRoomError,
+    NoSavedProgressError,
+    NotAuthenticatedError,
+    NotHereError,
+    NotYoursError,
+    ProgressOwnedError,
+    RateLimitedError,
+    StudentCodeElsewhereError,
+    UnknownTicketError,
+    UnknownWorldError,
+    WorkerFailedError,
+    WorkerRefusedError,
+    WorkerTimeoutError,
+    WorldElsewhereError,
+    WorldJoinedError,
+    WorldNotNamedError,
+    WrongCodeError,
+)
 from server.host.processes.sandbox import StudentCodeRefusedError
 from server.packages.launch_files import LaunchFileNotFoundError
 from server.peripherals.bag.errors import (
@@ -130,11 +157,40 @@ ERROR_STATUS: tuple[tuple[type[Exception], int], ...] = (
     (ChangedError, status.HTTP_412_PRECONDITION_FAILED),
     (TooLargeError, status.HTTP_413_CONTENT_TOO_LARGE),
     (NotTextError, status.HTTP_415_UNSUPPORTED_MEDIA_TYPE),
+    # The classroom's refusals (server/classroom/errors.py), with Retry-After when one says when.
+    (NotAuthenticatedError, status.HTTP_401_UNAUTHORIZED),
+    (WorldNotNamedError, status.HTTP_400_BAD_REQUEST),
+    (NotYoursError, status.HTTP_403_FORBIDDEN),
+    (WrongCodeError, status.HTTP_403_FORBIDDEN),
+    (JoinThroughClassServerError, status.HTTP_403_FORBIDDEN),
+    (NotHereError, status.HTTP_404_NOT_FOUND),
+    (WorldElsewhereError, status.HTTP_404_NOT_FOUND),
+    (UnknownWorldError, status.HTTP_404_NOT_FOUND),
+    (UnknownTicketError, status.HTTP_404_NOT_FOUND),
+    (NoSavedProgressError, status.HTTP_404_NOT_FOUND),
+    (NameTakenError, status.HTTP_409_CONFLICT),
+    (ProgressOwnedError, status.HTTP_409_CONFLICT),
+    (WorldJoinedError, status.HTTP_409_CONFLICT),
+    (BadNameError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (BadHandoverError, status.HTTP_422_UNPROCESSABLE_CONTENT),
+    (ClassFullError, status.HTTP_429_TOO_MANY_REQUESTS),
+    (AddressLimitError, status.HTTP_429_TOO_MANY_REQUESTS),
+    (RateLimitedError, status.HTTP_429_TOO_MANY_REQUESTS),
+    (AtCapacityError, status.HTTP_503_SERVICE_UNAVAILABLE),
+    (JoinLapsedError, status.HTTP_503_SERVICE_UNAVAILABLE),
+    (NoRoomError, status.HTTP_503_SERVICE_UNAVAILABLE),
+    (WorkerFailedError, status.HTTP_502_BAD_GATEWAY),
+    (WorkerTimeoutError, status.HTTP_504_GATEWAY_TIMEOUT),
+    (WorkerRefusedError, status.HTTP_502_BAD_GATEWAY),  # a client error of the worker's: passed on
 )
 
 
 def status_for(exc: BaseException) -> int | None:
-    """The HTTP status of a known error type, or None for a bug."""
+    """The HTTP status of a known error type, or None for a bug. A world worker's refusal of what
+    the class server passed on keeps the worker's status when it is the caller's fault (4xx)."""
+    answered = exc.answered if isinstance(exc, WorkerRefusedError) else None
+    if answered is not None and answered < status.HTTP_500_INTERNAL_SERVER_ERROR:
+        return answered
     return next((code for kind, code in ERROR_STATUS if isinstance(exc, kind)), None)
 
 
@@ -142,6 +198,14 @@ def close_code(exc: BaseException) -> CloseCode | None:
     """The WebSocket close code of a known error type, or None for a bug."""
     code = status_for(exc)
     return None if code is None else CLOSE_FOR_STATUS[code]
+
+
+def refusal_close_code(exc: ClassroomError) -> CloseCode:
+    """The close code of a classroom refusal at a WebSocket's door: no valid token and not the
+    caller's as the handshake's own refusals close; any other (no world named, none of that name,
+    one that runs on a world worker) a policy violation (1008)."""
+    code = status_for(exc)
+    return CLOSE_FOR_STATUS[code] if code in HANDSHAKE_REFUSALS else CloseCode.POLICY_VIOLATION
 
 
 def _handler(code: int) -> Callable[[Request, Exception], Awaitable[SafeJSONResponse]]:
@@ -183,10 +247,11 @@ async def _http_error(request: Request, exc: Exception) -> Response:
 def register_error_handlers(app: FastAPI) -> None:
     """Every known error type's status, and FastAPI's validation errors; bugs are ``ErrorMiddleware``'s."""
     for kind, code in ERROR_STATUS:
-        app.add_exception_handler(kind, _handler(code))
+        app.add_exception_handler(
+            kind, _classroom_error if issubclass(kind, ClassroomError) else _handler(code)
+        )
     app.add_exception_handler(RequestValidationError, _validation_error)
     app.add_exception_handler(StarletteHTTPException, _http_error)
-    app.add_exception_handler(ClassroomError, _classroom_error)
     app.add_exception_handler(ChangedError, _changed_error)
 
 
@@ -200,8 +265,8 @@ async def _changed_error(_request: Request, exc: Exception) -> SafeJSONResponse:
 
 
 async def _classroom_error(_request: Request, exc: Exception) -> SafeJSONResponse:
-    """A class server's refusal carries its own status (401 no token, 403 another world, ...)."""
-    code = exc.status if isinstance(exc, ClassroomError) else status.HTTP_500_INTERNAL_SERVER_ERROR
+    """A classroom refusal: its status, and ``Retry-After`` when it says when to try again."""
+    code = status_for(exc) or status.HTTP_500_INTERNAL_SERVER_ERROR
     after = exc.retry_after_s if isinstance(exc, ClassroomError) else None
     headers = {"Retry-After": str(max(1, math.ceil(after)))} if after is not None else None
     return SafeJSONResponse({"detail": str(exc)}, status_code=code, headers=headers)

@@ -3,6 +3,7 @@ only its own unit or a lower layer, as docs/architecture.md writes the layers do
 
 from __future__ import annotations
 
+import ast
 from pathlib import Path
 
 import pytest
@@ -90,6 +91,90 @@ def test_architecture_packages_import_no_web_or_api_themselves() -> None:
     assert not [
         e for e in edges if e.source.startswith("server.packages") and e.target.split(".")[0] == "api"
     ]
+
+
+ROLES = frozenset({"ClassServer", "WorldWorker"})  # the classroom's two roles (server/classroom/roles.py)
+ROLE_MODULES = {
+    "server.classroom.class_server": {"ClassServer"},
+    "server.classroom.worker_worlds": {"WorldWorker"},
+}
+CHECKS = frozenset({"isinstance", "issubclass", "type"})
+COMPARISONS = (ast.Is, ast.IsNot, ast.Eq, ast.NotEq)
+
+
+def _names(node: ast.AST) -> set[str]:
+    """Every name an expression spells: ``ClassServer``, ``classroom.WorldWorker``, a tuple of them."""
+    found = set()
+    for sub in ast.walk(node):
+        if isinstance(sub, ast.Name):
+            found.add(sub.id)
+        elif isinstance(sub, ast.Attribute):
+            found.add(sub.attr)
+    return found
+
+
+def _named(node: ast.AST) -> set[str]:
+    """The names a type check, a type comparison, a ``match`` class pattern or an import spells."""
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in CHECKS:
+        return _names(node)
+    if isinstance(node, ast.Compare) and any(isinstance(op, COMPARISONS) for op in node.ops):
+        return _names(node)
+    if isinstance(node, ast.MatchClass):
+        return _names(node.cls)
+    if isinstance(node, ast.ImportFrom):
+        return {alias.name for alias in node.names} | ROLE_MODULES.get(node.module or "", set())
+    if isinstance(node, ast.Import):
+        return set().union(*(ROLE_MODULES.get(alias.name, set()) for alias in node.names))
+    return set()
+
+
+def role_checks(source: str) -> list[str]:
+    """Where ``source`` asks which classroom role it has: ``isinstance``/``issubclass``/``type(...)``
+    naming a role, a comparison with one, a ``match`` pattern of one, or an import of one."""
+    return [
+        f"line {getattr(node, 'lineno', '?')}: {ast.unparse(node)[:100]}"
+        for node in ast.walk(ast.parse(source))
+        if _named(node) & ROLES
+    ]
+
+
+def test_architecture_the_api_never_asks_which_classroom_role_it_serves() -> None:
+    """api/ calls the classroom through its Protocol alone (``Classroom``): no isinstance, issubclass,
+    type() or match on ClassServer or WorldWorker, nor an import of either; where the roles differ,
+    the role's own method answers."""
+    found = {
+        str(path.relative_to(ROOT)): checks
+        for path in sorted((ROOT / "api").rglob("*.py"))
+        if (checks := role_checks(path.read_text(encoding="utf-8")))
+    }
+    assert not found, found
+
+
+@pytest.mark.parametrize(
+    "source",
+    [
+        "if isinstance(classroom, ClassServer): pass",
+        "ok = not isinstance(c, (Lab, classroom.WorldWorker))",
+        "ok = issubclass(kind, ClassServer)",
+        "ok = type(classroom) is WorldWorker",
+        "ok = type(classroom).__name__ == 'x' or type(classroom) == ClassServer",
+        "match classroom:\n    case WorldWorker(): pass",
+        "from server.classroom import Classroom, ClassServer",
+        "from server.classroom.worker_worlds import socket_here",
+        "import server.classroom.class_server",
+    ],
+)
+def test_checker_sees_every_way_of_asking_for_a_role(source: str) -> None:
+    assert role_checks(source), source
+
+
+def test_checker_lets_the_protocol_and_other_checks_be() -> None:
+    source = (
+        "from server.classroom import Classroom, ClassroomError\n"
+        "def f(classroom: Classroom, exc: Exception) -> bool:\n"
+        "    return isinstance(exc, ClassroomError) and classroom.workers is None\n"
+    )
+    assert role_checks(source) == []
 
 
 # The checker itself, on small trees written here: it must see what it is there to see.

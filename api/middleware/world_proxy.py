@@ -28,7 +28,7 @@ from api.deps import SAFE_METHODS, WORLD_HEADER, token_of
 from api.errors import CloseCode, close_reason
 from api.protocol.json_codec import SafeJSONResponse
 from api.websockets.relay import relay
-from server.classroom import Classroom, ClassroomError, ClassServer, Grant, World
+from server.classroom import Classroom, ClassroomError, Grant, World
 from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH
 from server.classroom.workers import WorkerDirectory, WorkerRef, world_call_token
 
@@ -65,8 +65,8 @@ class WorldProxyMiddleware:
         classroom: Classroom | None = None
         if scope["type"] in ("http", "websocket"):
             classroom = getattr(scope["app"].state, "classroom", None)
-        # Only a class server has workers to pass a call on to.
-        if not isinstance(classroom, ClassServer) or classroom.workers is None or not passed_on(scope):
+        # Only a class server has workers to pass a call on to (a world worker's ``workers`` is None).
+        if classroom is None or classroom.workers is None or not passed_on(scope):
             await self.app(scope, receive, send)
             return
         conn = HTTPConnection(scope)

@@ -14,7 +14,6 @@ from starlette.requests import HTTPConnection
 from api.deps import LabDep, classroom_of, grant_of, lab_of
 from api.protocol.responses import NOT_FOUND, TYPE_CONFLICT, UNAUTHORIZED, UNPROCESSABLE, responses
 from api.routes.classroom import ClassroomDep, InstructorDep
-from server.classroom import ClassroomError, ClassServer
 from server.world.checkpoints.catalog import load
 from server.world.checkpoints.class_table import Row, reports_zip, table, table_csv
 from server.world.checkpoints.handover import tag, to_wire
@@ -176,15 +175,13 @@ async def class_checkpoints(
     whose progress is saved but who has not joined since the class server started is listed with
     ``joined`` false (the CSV's last column, ``joined``: ``no``)."""
     names, rows = _rows(request, classroom)
-    saved: list[Row] = []
-    if isinstance(classroom, ClassServer):  # students not joined since it started, as their files keep them
-        saved = [(name, progress, {}) for name, progress in classroom.saved.not_joined(classroom.worlds)]
+    # Students not joined since it started, as their files keep them (a world worker keeps none).
+    saved: list[Row] = [(name, progress, {}) for name, progress in classroom.not_joined()]
     view = table(names, rows, saved)
-    if isinstance(classroom, ClassServer):  # the worlds its world workers host, as they keep them
-        remote, errors = await classroom.worker_checkpoints(names)
-        view["students"] += remote
-        if errors:
-            view["worker_errors"] = errors
+    remote, errors = await classroom.worker_checkpoints(names)  # as its world workers keep them
+    view["students"] += remote
+    if errors:
+        view["worker_errors"] = errors
     if format == "csv":
         return Response(
             table_csv(view), media_type="text/csv; charset=utf-8",
@@ -228,14 +225,12 @@ async def class_reports(request: Request, _: InstructorDep, classroom: Classroom
         watch = world.lab.checkpoints
         json_file, page = signed_files(signer(request), build(watch.progress, watch.lines(), world.name))
         files += [(f"{world.name}.json", json_file), (f"{world.name}.html", page)]
-    if isinstance(classroom, ClassServer):  # as the world workers sign them
-        for name, _saved in classroom.saved.not_joined(classroom.worlds):
-            progress = await classroom.saved.with_captures(name)
-            json_file, page = signed_files(signer(request), build(progress, {}, name))
-            files += [(f"{name}.json", json_file), (f"{name}.html", page)]
-        remote, missing = await classroom.worker_reports()
-        files += remote
-        files += [(f"{name}.unreachable.txt", f"{why}\n".encode()) for name, why in missing.items()]
+    for name, progress in await classroom.not_joined_with_captures():  # a world worker: none
+        json_file, page = signed_files(signer(request), build(progress, {}, name))
+        files += [(f"{name}.json", json_file), (f"{name}.html", page)]
+    remote, missing = await classroom.worker_reports()  # as the world workers sign them
+    files += remote
+    files += [(f"{name}.unreachable.txt", f"{why}\n".encode()) for name, why in missing.items()]
     return Response(
         reports_zip(files), media_type="application/zip",
         headers={"Content-Disposition": 'attachment; filename="checkpoint-reports.zip"'},
@@ -251,7 +246,5 @@ async def release(
     """Give a saved world's progress to the next join under its name, whoever it is (a student who
     lost the cookie that proves it is them): its owner record is set aside, not removed. A world
     joined now is 409; one with no saved progress whose owner is recorded, 404."""
-    if not isinstance(classroom, ClassServer):
-        raise ClassroomError(404, "only a class server keeps whose progress is whose")
-    student = await classroom.saved.release(world, classroom.worlds)
+    student = await classroom.release_progress(world)  # a world worker: 404
     return {"released": world, "student": student}

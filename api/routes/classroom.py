@@ -28,11 +28,8 @@ from api.protocol.responses import (
     responses,
 )
 from node_runtime.transport.acl import Credentials
-from server.classroom import Classroom, ClassroomError, ClassServer, Grant, WorldWorker
+from server.classroom import Classroom, Grant
 from server.classroom.join_queue import JoinWaits
-from server.world.checkpoints.catalog import load as load_checkpoints
-from server.world.checkpoints.handover import from_wire
-from server.world.checkpoints.saved import SavedProgressError
 
 router = APIRouter(prefix="/api/classroom", tags=["classroom"])
 OPEN: dict[str, Any] = {
@@ -237,8 +234,6 @@ async def join(
     at the class's capacity the join waits in a bounded queue (202 with a ticket; 503 when full).
     A name whose saved progress is another student's is 409: only the token given at that
     student's last join (the page's cookie, or a bearer) takes it (docs/checkpoints.md)."""
-    if not isinstance(classroom, ClassServer):
-        raise ClassroomError(403, "this is a world worker: students join through the class server")
     address = request.client.host if request.client is not None else "unknown"
     try:
         world, token = await classroom.join(body.name, body.code, address, token_of(request))
@@ -274,8 +269,7 @@ async def worlds(_: InstructorDep, classroom: ClassroomDep) -> ClassWorlds:
 @router.get("/workers", responses=responses(UNAUTHORIZED, FORBIDDEN))
 async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
     """Where worlds can go: this server's own room, and each world worker that answers now."""
-    directory = classroom.workers if isinstance(classroom, ClassServer) else None
-    started = classroom.local_workers if isinstance(classroom, ClassServer) else None
+    directory, started = classroom.workers, classroom.local_workers  # a world worker has none
     found = await asyncio.to_thread(directory.discover) if directory is not None else []
     return ClassWorkers(
         local={
@@ -293,7 +287,7 @@ async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
 async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
     """The class's own ROS domain (``GET /api/zenoh/join`` without a world gives its login): what is
     bridged from each world, as ROS 2's domain_bridge with a namespace per world."""
-    bridge = classroom.class_graph if isinstance(classroom, ClassServer) else None
+    bridge = classroom.class_graph  # a world worker's is its class server's
     if bridge is None or classroom.settings.lab.zenoh is None:
         raise HTTPException(status.HTTP_404_NOT_FOUND, "this class server has no Zenoh graph of its own")
     return ClassGraph(
@@ -315,17 +309,7 @@ async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
 )
 async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
     """On a world worker: start the world its class server placed here."""
-    if not isinstance(classroom, WorldWorker):
-        raise ClassroomError(404, "only a world worker hosts worlds for a class server")
     login = Credentials(body.zenoh_user, body.zenoh_password or "") if body.zenoh_user is not None else None
-    progress = None
-    if body.progress is not None:
-        try:
-            progress = from_wire(body.progress, load_checkpoints(classroom.settings.lab.checkpoints))
-        except SavedProgressError as exc:
-            raise ClassroomError(
-                422, f"the progress handed over with world {body.world!r} is not one: {exc}"
-            ) from None
     world = await classroom.host(
         body.world,
         body.student,
@@ -334,7 +318,7 @@ async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> 
         body.launch_args,
         login,
         body.router_socket,
-        progress,
+        body.progress,
     )
     return world.describe()
 
@@ -374,10 +358,7 @@ async def kick(
     ),
 ) -> dict[str, str]:
     """Remove a student's world and its workspace; their token stops working at once."""
-    if isinstance(classroom, WorldWorker):
-        world = await classroom.kick(name, remove_workspace=workspace == "remove")
-    else:
-        world = await classroom.kick(name)
+    world = await classroom.kick(name, remove_workspace=workspace == "remove")
     return {"kicked": world.name, "student": world.student}
 
 
@@ -398,10 +379,9 @@ async def broadcast(body: BroadcastRequest, _: InstructorDep, classroom: Classro
             refused[name] = str(exc)
         else:
             reached.append(name)
-    if isinstance(classroom, ClassServer):  # its workers publish in the worlds they host
-        far_reached, far_refused = await classroom.broadcast_on_workers(body.model_dump())
-        reached += far_reached
-        refused |= far_refused
+    far_reached, far_refused = await classroom.broadcast_on_workers(body.model_dump())  # a worker: none
+    reached += far_reached
+    refused |= far_refused
     if refused and not reached:
         raise HTTPException(status.HTTP_422_UNPROCESSABLE_CONTENT, f"no world took the message: {refused}")
     return Broadcast(reached=reached, refused=refused)

@@ -23,7 +23,6 @@ from api.protocol.responses import (
     responses,
 )
 from api.routes.classroom import OPEN, ClassroomDep, InstructorDep, Joined, QueuedJoin, queued
-from server.classroom import ClassroomError, ClassServer
 from server.classroom.join_queue import JoinWaits
 
 router = APIRouter(prefix="/api/classroom", tags=["classroom"])
@@ -92,24 +91,15 @@ class LetThrough(BaseModel):
     count: int = Field(default=1, ge=1, le=100, description="waiting joins to let in past a full verdict")
 
 
-def _server(classroom: object) -> ClassServer:
-    if not isinstance(classroom, ClassServer):
-        raise ClassroomError(404, "this is a world worker: its class server has the class's load and queue")
-    return classroom
-
-
 @router.get("/load", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND))
 async def load(_: InstructorDep, classroom: ClassroomDep) -> ClassLoadOut:
     """The instructor's token only. The class server's load: each place's worlds, CPU and memory,
     the late worlds, the capacity verdict, and the join queue."""
-    server = _server(classroom)
-    places = await server.load.places()
-    capacity = await server.load.capacity()
-    server.queue.expire()
+    places, capacity, queue = await classroom.class_load()
     return ClassLoadOut.model_validate(
         {"capacity": capacity.verdict, "reasons": list(capacity.reasons), "worlds": capacity.worlds,
          "late": capacity.late, "room": capacity.room, "places": [p.describe() for p in places],
-         "queue": server.queue.describe()}
+         "queue": queue}
     )  # fmt: skip
 
 
@@ -126,9 +116,8 @@ async def load(_: InstructorDep, classroom: ClassroomDep) -> ClassLoadOut:
 async def poll(ticket: str, classroom: ClassroomDep, response: Response) -> Joined | JSONResponse:
     """A waiting join asks again (the ticket is its secret): 201 with the world and its token once
     admitted, 202 while it waits, 503 with Retry-After once it waited too long."""
-    server = _server(classroom)
     try:
-        world, token = await server.poll_join(ticket)
+        world, token = await classroom.poll_join(ticket)  # a world worker: 404
     except JoinWaits as waits:
         return queued(waits)
     set_token_cookie(response, token)
@@ -139,6 +128,4 @@ async def poll(ticket: str, classroom: ClassroomDep, response: Response) -> Join
 async def let_through(body: LetThrough, _: InstructorDep, classroom: ClassroomDep) -> QueueOut:
     """The instructor's token only. Let ``count`` waiting joins (oldest first) start their worlds
     though the class is at its capacity; answers the queue."""
-    server = _server(classroom)
-    server.queue.let_in(body.count)
-    return _QUEUE.validate_python(server.queue.describe())
+    return _QUEUE.validate_python(classroom.let_through(body.count))  # a world worker: 404

@@ -12,7 +12,7 @@ from api.deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_reque
 from api.protocol.responses import responses
 from api.protocol.schemas import Health, WorkspaceInfo, ZenohJoin
 from node_runtime.transport.acl import Credentials
-from server.classroom import Classroom, ClassServer
+from server.classroom import Classroom
 from server.host.processes.command import graph_overrides
 from server.host.processes.start_pacing import StartPacer
 from server.host.settings import Settings
@@ -65,8 +65,7 @@ async def zenoh_join(request: Request, start: bool = False) -> dict[str, Any]:
     classroom = classroom_of(request)
     named = request.headers.get(WORLD_HEADER) or request.query_params.get("world")
     if classroom is not None and not named and grant_of(request, classroom).is_instructor:
-        return _paced(classroom.labs.start_pacer if isinstance(classroom, ClassServer) else None, start,
-                      _class_graph_join(classroom))  # fmt: skip
+        return _paced(classroom.start_pacer, start, _class_graph_join(classroom))
     lab = lab_for_request(request)
     link = lab.zenoh
     if link is None:
@@ -108,8 +107,7 @@ def _paced(pacer: StartPacer | None, start: bool, join: dict[str, Any]) -> dict[
 def _class_graph_join(classroom: Classroom) -> dict[str, Any]:
     router = classroom.router_endpoint()
     if (
-        not isinstance(classroom, ClassServer)  # a world worker's class graph is its class server's
-        or classroom.class_graph is None
+        classroom.class_graph is None  # none yet, or a world worker, whose class graph is its class server's
         or router is None
         or classroom.settings.lab.zenoh is None
     ):

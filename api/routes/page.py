@@ -18,7 +18,7 @@ from api.deps import classroom_of, keep_token_and_go, lab_of, token_of
 from api.websockets.relay import relay
 from server.base.access import token_matches
 from server.base.close_codes import CloseCode
-from server.classroom import ClassroomError, ClassServer
+from server.classroom import ClassroomError
 from server.peripherals.viewer.views import PageViews, ViewRegistry
 from server.peripherals.viewer.viser_guard import PROXY_TOKEN_HEADER
 
@@ -137,7 +137,7 @@ def _instructors_view(conn: HTTPConnection) -> tuple[Any, Response | None]:
         return None, Response(
             "open the instructor's link the class server printed", status.HTTP_401_UNAUTHORIZED
         )
-    return (classroom.view if isinstance(classroom, ClassServer) else None), None
+    return classroom.view, None  # None: no view (a world worker has none)
 
 
 @router.get("/instructor/view")

@@ -25,7 +25,6 @@ from api.websockets.budget import spend
 from api.websockets.life import closed_when, closed_when_lab_stops
 from node_runtime.limits import RateLimit
 from server.base.tasks import cancel_and_wait
-from server.classroom import ClassServer
 from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH, world_topic
 from server.services.bridges.rosbridge import RosbridgeSession
 
@@ -54,7 +53,7 @@ async def class_rosbridge(websocket: WebSocket) -> None:
         raise _refused(
             CloseCode.FORBIDDEN, "the class's rosbridge is the instructor's: a student's is /rosbridge"
         )
-    bridges = classroom.bridges if isinstance(classroom, ClassServer) else None
+    bridges = classroom.bridges  # None: not up, or a world worker's (its class server has the class's)
     if bridges is None:
         raise _refused(CloseCode.TRY_AGAIN_LATER, "the class's graph is not up (no Zenoh router)")
     await websocket.accept()

@@ -15,7 +15,12 @@ from collections import Counter
 
 from node_runtime.bus import Clock
 from node_runtime.limits import KeyedRateLimit, RateLimit
-from server.classroom.errors import ClassroomError
+from server.classroom.errors import (
+    AddressLimitError,
+    BadNameError,
+    RateLimitedError,
+    WrongCodeError,
+)
 from server.host.settings import JoinLimits
 
 CODE_ALPHABET = "ABCDEFGHJKLMNPQRSTUVWXYZ23456789"  # no 0/O, 1/I: read aloud or off a projector
@@ -31,11 +36,10 @@ def new_code() -> str:
 
 
 def check_student_name(name: str) -> None:
-    """ClassroomError 422 naming the first character a name may not hold."""
+    """BadNameError naming the first character a name may not hold."""
     for index, char in enumerate(name):
         if unicodedata.category(char) in _NOT_PRINTABLE:
-            raise ClassroomError(
-                422,
+            raise BadNameError(
                 f"the name holds a control character (U+{ord(char):04X} at {index}): "
                 "use letters, digits, spaces and punctuation",
             )
@@ -55,7 +59,7 @@ class Admission:
         self.held: Counter[str] = Counter()  # worlds (and worlds starting) by the address that joined them
 
     def check(self, address: str) -> None:
-        """Before the code is compared: 429 while this address or the class is throttled."""
+        """Before the code is compared: RateLimitedError while this address or the class is throttled."""
         for limit, why in (
             (self.wrong[address], "too many wrong class codes from your address"),
             (self.class_wrong, "too many wrong class codes in this class"),
@@ -65,19 +69,20 @@ class Admission:
             if not limit.ready():
                 limit.refused += 1
                 after = limit.retry_after_s()
-                raise ClassroomError(429, f"{why}: try again in {max(1, round(after))} s", after)
+                raise RateLimitedError(f"{why}: try again in {max(1, round(after))} s", after)
 
-    def wrong_code(self, address: str) -> ClassroomError:
-        """Charge a wrong code to its address and the class; the 403 to answer it with."""
+    def wrong_code(self, address: str) -> WrongCodeError:
+        """Charge a wrong code to its address and the class; the refusal to answer it with."""
         self.wrong[address].take()
         self.class_wrong.take()
-        return ClassroomError(403, "wrong class code")
+        return WrongCodeError("wrong class code")
 
     def hold(self, address: str) -> None:
-        """A world starts for ``address``: 429 over the cap of worlds per address, else charged."""
+        """A world starts for ``address``: AddressLimitError over the cap of worlds per address, else
+        charged."""
         cap = self.limits.max_worlds_per_address
         if cap is not None and self.held[address] >= cap:
-            raise ClassroomError(429, f"at most {cap} worlds per client address in this class")
+            raise AddressLimitError(f"at most {cap} worlds per client address in this class")
         self.joins[address].take()
         self.class_joins.take()
         self.held[address] += 1

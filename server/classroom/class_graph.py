@@ -143,7 +143,7 @@ class ClassGraph:
 
         assert self.router is not None
         if self.workers is not None:
-            self.workers.session = None
+            self.workers.use_session(None)
         if self.bridge is not None:  # it lives on the router's session: built again on the new one
             bridge, self.bridge = self.bridge, None
             try:
@@ -171,7 +171,7 @@ class ClassGraph:
         would find no room on them."""
         assert self.workers is not None
         expected = set(self.workers.last_found)
-        self.workers.session = session
+        self.workers.use_session(session)
         deadline = time.monotonic() + WORKERS_BACK_S
         while expected and time.monotonic() < deadline:
             found = {ref.id for ref in await asyncio.to_thread(self.workers.discover)}

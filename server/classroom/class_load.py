@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Awaitable, Callable
+from typing import Any
 
 from server.classroom.capacity import Capacity, PlaceLoad, judge
 from server.classroom.class_graph import ClassGraph
@@ -19,6 +20,7 @@ SERVER_PLACE = "server"  # the class server itself, among the places worlds run
 FRESH_S = 3 * WATCH_PERIOD_S  # a watch round's answers younger than this stand for the workers now
 
 LoadSource = Callable[[], Awaitable[list[PlaceLoad]]]
+PlaceReport = tuple[list[PlaceLoad], Capacity, dict[str, Any]]  # each place's load, the verdict, the queue
 
 
 class ClassLoad:

@@ -21,8 +21,16 @@ from server.base.tasks import cancel_and_wait
 from server.classroom import remote_checkpoints, remote_worlds
 from server.classroom.admission import Admission, check_student_name, new_code
 from server.classroom.class_graph import ClassGraph
-from server.classroom.class_load import ClassLoad
-from server.classroom.errors import ClassroomError
+from server.classroom.class_load import ClassLoad, PlaceReport
+from server.classroom.errors import (
+    AtCapacityError,
+    BadNameError,
+    ClassFullError,
+    NameTakenError,
+    NotHereError,
+    RateLimitedError,
+    UnknownWorldError,
+)
 from server.classroom.grants import Grants, world_for
 from server.classroom.join_queue import JoinQueue, JoinWaits
 from server.classroom.load import CpuMeter, machine_id
@@ -35,11 +43,14 @@ from server.classroom.workspace_copies import WorkspaceCopies
 from server.classroom.world import World, world_name
 from server.classroom.world import drones as world_drones
 from server.classroom.worlds import WorldLabs
+from server.host.processes.start_pacing import StartPacer
 from server.host.settings import Settings, class_section
 from server.services.workspace.location import remove_world_workspace, world_has_files
 from server.world.checkpoints.catalog import load as load_checkpoints
+from server.world.checkpoints.progress import Progress
 
 if TYPE_CHECKING:
+    from node_runtime.transport.acl import Credentials
     from node_runtime.transport.domain_bridge import DomainBridge
     from server.classroom.class_bridges import ClassBridges
     from server.classroom.workers import WorkerDirectory
@@ -49,7 +60,7 @@ log = logging.getLogger("classroom")
 
 
 class ClassServer:
-    """The worlds of one class, and who may do what in them."""
+    """The worlds of one class, and who may do what in them (a ``Classroom``, roles.py)."""
 
     def __init__(
         self,
@@ -65,9 +76,9 @@ class ClassServer:
         self.code = code or new_code()
         self.grants = Grants(signer)
         self.admission = Admission(self.class_settings.joins, self.clock)
-        self.labs = WorldLabs(settings, self.clock, lambda: self.graph.endpoint())
-        self.labs.process_socket = lambda: self.graph.process_socket()
-        self.graph = ClassGraph(settings, self.labs.worlds, self.grants.instructor_token)
+        worlds: dict[str, World] = {}  # the class's, which its graph shows in the class domain
+        self.graph = ClassGraph(settings, worlds, self.grants.instructor_token)
+        self.labs = WorldLabs(settings, self.clock, self.graph.endpoint, self.graph.process_socket, worlds)
         # This process's and machine's CPU, read every WATCH_PERIOD_S (a watch round): a
         # placement weighs the last seconds.
         self.cpu = CpuMeter(machine=machine_id())
@@ -124,6 +135,10 @@ class ClassServer:
         return self.labs.local_capacity
 
     @property
+    def start_pacer(self) -> StartPacer:
+        return self.labs.start_pacer
+
+    @property
     def zenoh_auth(self) -> ClassAuth:
         """The class's Zenoh logins, from the instructor's token."""
         return self.graph.auth
@@ -141,6 +156,15 @@ class ClassServer:
 
     def get(self, name: str) -> World:
         return self.labs.get(name)
+
+    def charge_write(self, world: World) -> None:
+        """A student's write to ``world``, charged here (its world worker, if any, charges none)."""
+        if not world.writes.take():
+            raise RateLimitedError(
+                f"too many requests for world {world.name!r}: at most "
+                f"{self.class_settings.world.writes_hz:g} writes a second",
+                world.writes.retry_after_s(),
+            )
 
     def charge_reset(self, name: str) -> None:
         self.labs.charge_reset(name)
@@ -214,8 +238,8 @@ class ClassServer:
         if self.queue or (capacity.verdict == "full" and not self.queue.use_let_through()):
             if not self.class_settings.join_queue.size:
                 why = "; ".join(capacity.reasons)
-                raise ClassroomError(503, f"the class server is at its capacity ({why}): try again later",
-                                     self.class_settings.join_queue.retry_after_s)  # fmt: skip
+                raise AtCapacityError(f"the class server is at its capacity ({why}): try again later",
+                                      self.class_settings.join_queue.retry_after_s)  # fmt: skip
             waiting = self.queue.add(student, name, address)
             log.info("%s waits to join (%s)", student, "; ".join(capacity.reasons) or "joins ahead")
             raise JoinWaits(waiting, len(self.queue) - 1)
@@ -240,16 +264,16 @@ class ClassServer:
         try:
             name = world_name(student)
         except ValueError as exc:
-            raise ClassroomError(422, str(exc)) from None
+            raise BadNameError(str(exc)) from None
         if self.labs.taken(name) or self.queue.holds(name):
-            raise ClassroomError(409, f"the name {student!r} is taken in this class (world {name!r})")
+            raise NameTakenError(f"the name {student!r} is taken in this class (world {name!r})")
         if self.labs.full():
-            raise ClassroomError(429, f"the class is full ({self.class_settings.max_worlds} worlds)")
+            raise ClassFullError(f"the class is full ({self.class_settings.max_worlds} worlds)")
         return name
 
     async def _start_world(self, student: str, name: str, address: str) -> tuple[World, str]:
         if self.labs.full():  # a waiting join whose turn came after the class filled up
-            raise ClassroomError(429, f"the class is full ({self.class_settings.max_worlds} worlds)")
+            raise ClassFullError(f"the class is full ({self.class_settings.max_worlds} worlds)")
         domain_id = self.labs.free_domain(self.graph.revoking)
         login = self.graph.login(domain_id)
         self.admission.hold(address)
@@ -291,10 +315,26 @@ class ClassServer:
         log.info("world %s reset", name)
         return world
 
-    async def kick(self, name: str) -> World:
+    async def host(
+        self,
+        name: str,
+        student: str,
+        domain_id: int,
+        launch: str,
+        launch_args: dict[str, str],
+        login: Credentials | None = None,
+        router_socket: str | None = None,
+        progress: Mapping[str, Any] | None = None,
+    ) -> World:
+        """A class server places worlds; it hosts none for another."""
+        raise NotHereError("only a world worker hosts worlds for a class server")
+
+    async def kick(self, name: str, *, remove_workspace: bool = True) -> World:
+        """Remove a student's world; its workspace and progress always go with it, here and on
+        the world worker that hosted it (``remove_workspace`` is a world worker's choice)."""
         world = self.worlds.pop(name, None)
         if world is None:
-            raise ClassroomError(404, f"no world named {name!r}")
+            raise UnknownWorldError(f"no world named {name!r}")
         self.graph.hold(world)  # at once: a join while the world ends must not get its domain
         self.grants.revoke(world)
         self.admission.release(world.address)
@@ -339,6 +379,28 @@ class ClassServer:
     async def broadcast_on_workers(self, body: dict[str, Any]) -> tuple[list[str], dict[str, str]]:
         """The instructor's broadcast, published by each world worker in the worlds it hosts."""
         return await remote_worlds.broadcast(self.workers, self.worlds, body)
+
+    # -- the load and the join queue -----------------------------------------------------------
+    async def class_load(self) -> PlaceReport:
+        """Each place's load, the capacity verdict, and the join queue (its expired joins dropped)."""
+        places = await self.load.places()
+        capacity = await self.load.capacity()
+        self.queue.expire()
+        return places, capacity, self.queue.describe()
+
+    def let_through(self, count: int) -> dict[str, Any]:
+        self.queue.let_in(count)
+        return self.queue.describe()
+
+    # -- students not joined since the start ---------------------------------------------------
+    def not_joined(self) -> list[tuple[str, Progress]]:
+        return self.saved.not_joined(self.worlds)
+
+    async def not_joined_with_captures(self) -> list[tuple[str, Progress]]:
+        return [(name, await self.saved.with_captures(name)) for name, _saved in self.not_joined()]
+
+    async def release_progress(self, name: str) -> str:
+        return await self.saved.release(name, self.worlds)
 
     def drones(
         self, remote: Mapping[str, list[float] | None] | None = None

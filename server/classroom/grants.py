@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from server.classroom.errors import ClassroomError
+from server.classroom.errors import NotYoursError, UnknownWorldError, WorldNotNamedError
 from server.classroom.tokens import Grant, TokenSigner
 from server.classroom.world import World
 
@@ -43,17 +43,17 @@ class Grants:
 
 
 def world_for(grant: Grant, asked: str | None, worlds: Mapping[str, World]) -> World:
-    """The world a call acts on: a student's own (naming another is 403); the instructor's
-    must be named."""
+    """The world a call acts on: a student's own (naming another is NotYoursError); the
+    instructor's must be named."""
     if grant.is_instructor:
         if asked is None:
-            raise ClassroomError(400, "name a world (the X-Lab-World header or ?world=)")
+            raise WorldNotNamedError("name a world (the X-Lab-World header or ?world=)")
         name = asked
     elif asked is not None and asked != grant.world:
-        raise ClassroomError(403, f"your token is for world {grant.world!r}, not {asked!r}")
+        raise NotYoursError(f"your token is for world {grant.world!r}, not {asked!r}")
     else:
         name = grant.world or ""
     world = worlds.get(name)
     if world is None:
-        raise ClassroomError(404, f"no world named {name!r}")
+        raise UnknownWorldError(f"no world named {name!r}")
     return world

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from node_runtime.bus import Clock
-from server.classroom.errors import ClassroomError
+from server.classroom.errors import AtCapacityError, JoinLapsedError, UnknownTicketError
 from server.host.settings import JoinQueueSettings
 
 
@@ -59,12 +59,12 @@ class JoinQueue:
         return any(w.world == world for w in self._waiting)
 
     def add(self, student: str, world: str, address: str) -> Waiting:
-        """A join that must wait: 503 (with ``Retry-After``) when the queue is already full."""
+        """A join that must wait: AtCapacityError (saying when to try again) when the queue is already
+        full."""
         self.expire()
         if len(self._waiting) >= self.settings.size:
             self.refused += 1
-            raise ClassroomError(
-                503,
+            raise AtCapacityError(
                 f"the class server is at its capacity and {len(self._waiting)} joins already wait "
                 f"(at most {self.settings.size}): try again in {self.settings.retry_after_s:g} s",
                 self.settings.retry_after_s,
@@ -76,7 +76,7 @@ class JoinQueue:
 
     def find(self, ticket: str) -> tuple[Waiting, int]:
         """The join holding ``ticket`` and how many wait ahead of it (this poll keeps it alive);
-        404 for a ticket never given, 503 for one dropped, naming why."""
+        UnknownTicketError for a ticket never given, JoinLapsedError for one dropped, naming why."""
         self.expire()
         for ahead, waiting in enumerate(self._waiting):
             if secrets.compare_digest(waiting.ticket, ticket):
@@ -84,8 +84,8 @@ class JoinQueue:
                 return waiting, ahead
         why = self._gone.pop(ticket, None)
         if why is not None:
-            raise ClassroomError(503, why, self.settings.retry_after_s)
-        raise ClassroomError(404, "no join waits with this ticket: join again")
+            raise JoinLapsedError(why, self.settings.retry_after_s)
+        raise UnknownTicketError("no join waits with this ticket: join again")
 
     def remove(self, waiting: Waiting) -> None:
         if waiting in self._waiting:

@@ -19,7 +19,7 @@ from typing import Any
 
 from node_runtime.transport.acl import Credentials
 from server.classroom.class_graph import ClassGraph
-from server.classroom.errors import ClassroomError
+from server.classroom.errors import ClassroomError, NoRoomError, WorkerRefusedError
 from server.classroom.load import Choice, CpuMeter, choose
 from server.classroom.progress_copies import ProgressCopies
 from server.classroom.remote_worlds import on_workers
@@ -102,9 +102,9 @@ class Placement:
             if worlds < ref.max_worlds:
                 choices.append(Choice(worlds / ref.max_worlds, ref, ref.load))
         if not choices:
-            raise ClassroomError(
-                503, f"no room for another world: this server hosts {capacity} itself "
-                     f"(--local-worlds) and {'no world worker has room' if refs else 'no world worker answered'}"
+            raise NoRoomError(
+                f"no room for another world: this server hosts {capacity} itself "
+                f"(--local-worlds) and {'no world worker has room' if refs else 'no world worker answered'}"
             )  # fmt: skip
         best, full = choose(choices)
         if full:
@@ -208,9 +208,11 @@ class Placement:
                             "ending it", ref.id, name)  # fmt: skip
                 try:
                     await workers.checked(ref, "DELETE", f"/api/classroom/worlds/{name}")
-                except ClassroomError as exc:
-                    if exc.status != 404:  # 404: it ended meanwhile
+                except WorkerRefusedError as exc:
+                    if exc.answered != 404:  # the worker has no such world: it ended meanwhile
                         log.warning("world %s on world worker %s: %s", name, ref.id, exc)
+                except ClassroomError as exc:
+                    log.warning("world %s on world worker %s: %s", name, ref.id, exc)
 
     async def _move(self, world: World, why: str, exclude: str | None) -> None:
         """Start a world whose worker is gone again, here or on another worker; its student's

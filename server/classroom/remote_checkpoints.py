@@ -11,7 +11,7 @@ import zipfile
 from collections.abc import Awaitable, Mapping, Sequence
 from typing import Any, TypeVar
 
-from server.classroom.errors import ClassroomError
+from server.classroom.errors import ClassroomError, WorkerFailedError, WorkerTimeoutError
 from server.classroom.remote_worlds import on_workers
 from server.classroom.workers import WorkerDirectory, WorkerRef
 from server.classroom.world import World
@@ -27,8 +27,8 @@ async def _bounded(worker: WorkerRef, call: Awaitable[T], timeout_s: float) -> T
     try:
         return await asyncio.wait_for(call, timeout_s)
     except TimeoutError:
-        raise ClassroomError(
-            504, f"world worker {worker.id!r} did not answer within {timeout_s:g} s"
+        raise WorkerTimeoutError(
+            f"world worker {worker.id!r} did not answer within {timeout_s:g} s"
         ) from None
 
 
@@ -87,16 +87,16 @@ async def checkpoint_rows(
 
 
 def _unzip(worker: WorkerRef, data: bytes, names: Sequence[str]) -> list[tuple[str, bytes]]:
-    """The reports of ``names`` in a worker's zip; ClassroomError for a zip too large to take."""
+    """The reports of ``names`` in a worker's zip; WorkerFailedError for a zip too large to take."""
     wanted = {f"{n}.{ext}" for n in names for ext in ("json", "html")}
     try:
         with zipfile.ZipFile(io.BytesIO(data)) as archive:
             entries = archive.infolist()
             if len(entries) > MAX_ZIP_ENTRIES or sum(e.file_size for e in entries) > MAX_UNZIPPED_BYTES:
-                raise ClassroomError(502, f"world worker {worker.id!r} sent more reports than it can host")
+                raise WorkerFailedError(f"world worker {worker.id!r} sent more reports than it can host")
             return [(e.filename, archive.read(e)) for e in entries if e.filename in wanted]
     except (zipfile.BadZipFile, ValueError) as exc:
-        raise ClassroomError(502, f"world worker {worker.id!r} sent no zip: {exc}") from None
+        raise WorkerFailedError(f"world worker {worker.id!r} sent no zip: {exc}") from None
 
 
 async def report_files(
@@ -110,7 +110,7 @@ async def report_files(
         assert workers is not None
         reply = await _bounded(ref, workers.call(ref, "GET", "/api/classroom/checkpoints/reports"), timeout_s)
         if reply.status_code != 200:
-            raise ClassroomError(502, f"world worker {ref.id!r} answered {reply.status_code}")
+            raise WorkerFailedError(f"world worker {ref.id!r} answered {reply.status_code}")
         return _unzip(ref, reply.content, names)
 
     answers = await asyncio.gather(*(ask(ref, names) for ref, names in asked), return_exceptions=True)

@@ -21,7 +21,7 @@ import logging
 import time
 from collections.abc import Callable, Container
 
-from server.classroom.errors import ClassroomError
+from server.classroom.errors import NoSavedProgressError, ProgressOwnedError, WorldJoinedError
 from server.world.checkpoints.declared import Checkpoint
 from server.world.checkpoints.owner import Owner, OwnerFileError
 from server.world.checkpoints.progress import Progress
@@ -67,18 +67,18 @@ class SavedStudents:
         return progress
 
     async def check(self, name: str, student: str, token: str | None) -> None:
-        """A join as ``student`` into world ``name``: 409 unless there is no progress nor code on
-        disk under that name, or it is nobody's yet, or ``token`` proves the join is its student's."""
+        """A join as ``student`` into world ``name``: ProgressOwnedError unless there is no progress
+        nor code on disk under that name, or it is nobody's yet, or ``token`` proves the join is its student's."""
         try:
             owner = await asyncio.to_thread(self._owner_of_saved, name)
         except OwnerFileError as exc:
-            raise ClassroomError(409, f"the name {student!r} (world {name!r}) has saved progress or code "
-                                      f"whose owner record cannot be read ({exc}): ask the instructor to release "
-                                      "it, or join under another name") from None  # fmt: skip
+            raise ProgressOwnedError(f"the name {student!r} (world {name!r}) has saved progress or code "
+                                     f"whose owner record cannot be read ({exc}): ask the instructor to release "
+                                     "it, or join under another name") from None  # fmt: skip
         if owner is None or owner.proven_by(token):
             return
-        raise ClassroomError(
-            409, f"the name {student!r} (world {name!r}) has saved progress or code that belongs to the "
+        raise ProgressOwnedError(
+            f"the name {student!r} (world {name!r}) has saved progress or code that belongs to the "
             f"student who joined as {owner.student!r} earlier, and this join does not show it is them: "
             "join again from the browser used then (its cookie shows it), ask the instructor to release "
             "it to you, or join under another name",
@@ -100,9 +100,10 @@ class SavedStudents:
 
     async def release(self, name: str, live: Container[str]) -> str:
         """Set aside world ``name``'s owner record: the next join under its name takes its progress.
-        The student it belonged to; 409 for a world joined now, 404 for one with no saved progress."""
+        The student it belonged to; WorldJoinedError for a world joined now, NoSavedProgressError for
+        one with no saved progress."""
         if name in live:
-            raise ClassroomError(409, f"world {name!r} is joined now: its progress is its student's")
+            raise WorldJoinedError(f"world {name!r} is joined now: its progress is its student's")
         try:
             owner = await asyncio.to_thread(self.store.owner, name)
         except OwnerFileError:
@@ -110,7 +111,7 @@ class SavedStudents:
         stamp = time.strftime("%Y%m%dT%H%M%SZ", time.gmtime())
         aside = await asyncio.to_thread(self.store.release, name, stamp)
         if aside is None:
-            raise ClassroomError(404, f"world {name!r} has no saved progress with an owner to release")
+            raise NoSavedProgressError(f"world {name!r} has no saved progress with an owner to release")
         log.info("progress of world %s released (its owner record is now %s)", name, aside.name)
         saved = self._saved.get(name)
         if owner is not None:

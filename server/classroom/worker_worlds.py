@@ -15,15 +15,24 @@ import asyncio
 import dataclasses
 import hmac
 import logging
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from node_runtime.bus import Clock, ExecutorGroup, SystemClock
 from node_runtime.transport.acl import ClassAuth, Credentials
 from node_runtime.transport.socket_relay import SocketRelay, tcp_target
 from server.base.tasks import cancel_and_wait
 from server.classroom.admission import new_code
-from server.classroom.errors import ClassroomError
+from server.classroom.class_load import PlaceReport
+from server.classroom.errors import (
+    BadHandoverError,
+    ClassFullError,
+    JoinThroughClassServerError,
+    NameTakenError,
+    NotHereError,
+    UnknownWorldError,
+)
 from server.classroom.grants import Grants, world_for
 from server.classroom.lateness import late_worlds
 from server.classroom.load import CpuMeter, machine_id
@@ -31,12 +40,24 @@ from server.classroom.tokens import Grant, TokenSigner
 from server.classroom.workers import WATCH_PERIOD_S, worker_api_token, world_of_call_token
 from server.classroom.world import World
 from server.classroom.worlds import WorldLabs
+from server.host.processes.start_pacing import StartPacer
 from server.host.settings import Settings, class_section
 from server.services.workspace.class_mark import read_mark
 from server.services.workspace.location import remove_world_workspace
-from server.world.checkpoints.saved import Snapshot
+from server.world.checkpoints.catalog import load as load_checkpoints
+from server.world.checkpoints.handover import from_wire
+from server.world.checkpoints.progress import Progress
+from server.world.checkpoints.saved import SavedProgressError
+
+if TYPE_CHECKING:
+    from node_runtime.transport.domain_bridge import DomainBridge
+    from server.classroom.class_bridges import ClassBridges
+    from server.classroom.local_workers import LocalWorkers
+    from server.classroom.workers import WorkerDirectory
+    from server.peripherals.viewer.class_view import ClassView
 
 log = logging.getLogger("classroom")
+NO_LOAD_HERE = "this is a world worker: its class server has the class's load and queue"
 
 
 def socket_here(path: str) -> Path | None:
@@ -49,7 +70,8 @@ def socket_here(path: str) -> Path | None:
 
 
 class WorldWorker:
-    """The worlds hosted for one class server; ``settings.worker`` says which and how."""
+    """The worlds hosted for one class server; ``settings.worker`` says which and how (a
+    ``Classroom``, roles.py: what only a class server has or does, it has not or refuses)."""
 
     def __init__(
         self,
@@ -67,12 +89,11 @@ class WorldWorker:
         self.clock: Clock = clock or SystemClock()
         self.code = code or new_code()  # joins go to the class server: nobody is told this one
         self.grants = Grants(signer)
-        self.labs = WorldLabs(settings, self.clock, self.router_endpoint)
-        self.labs.process_socket = lambda: self._router_socket
         # The class router's Unix socket when it is on this machine (the class server says where),
         # else this worker's relay to the router's TCP endpoint (socket_relay.py).
         self._router_socket: Path | None = None
         self._relay: SocketRelay | None = None
+        self.labs = WorldLabs(settings, self.clock, self.router_endpoint, self.router_socket)
         # This process's and machine's CPU: each hello (every WATCH_PERIOD_S) reads it, so a
         # load covers the last seconds.
         self.cpu = CpuMeter(machine=machine_id())
@@ -103,6 +124,10 @@ class WorldWorker:
         return self.labs.local_capacity
 
     @property
+    def start_pacer(self) -> StartPacer:
+        return self.labs.start_pacer
+
+    @property
     def zenoh_auth(self) -> ClassAuth:
         """The class's Zenoh logins, from the instructor's token (held here as the class token)."""
         return ClassAuth(self.role.class_token)
@@ -111,6 +136,32 @@ class WorldWorker:
         """Where worlds and node processes connect: the class's router this worker joined."""
         zenoh = self.settings.lab.zenoh
         return zenoh.connect[0] if zenoh is not None and zenoh.mode != "router" else None
+
+    def router_socket(self) -> Path | None:
+        """Where its worlds' sandboxed nodes reach the class's router: its Unix socket on this
+        machine, or this worker's relay to it (None: neither, so far)."""
+        return self._router_socket
+
+    # -- a class server's own: a world worker has none of them ---------------------------------
+    @property
+    def workers(self) -> WorkerDirectory | None:
+        return None
+
+    @property
+    def local_workers(self) -> LocalWorkers | None:
+        return None
+
+    @property
+    def class_graph(self) -> DomainBridge | None:
+        return None  # its class server's is the class's
+
+    @property
+    def bridges(self) -> ClassBridges | None:
+        return None
+
+    @property
+    def view(self) -> ClassView | None:
+        return None
 
     # -- who is calling ------------------------------------------------------------------------
     def grant(self, token: str | None) -> Grant | None:
@@ -134,6 +185,9 @@ class WorldWorker:
 
     def get(self, name: str) -> World:
         return self.labs.get(name)
+
+    def charge_write(self, world: World) -> None:
+        """Nothing: a student's calls come through the class server, which charged the write."""
 
     def charge_reset(self, name: str) -> None:
         self.labs.charge_reset(name)
@@ -185,6 +239,14 @@ class WorldWorker:
         return self._relay.path
 
     # -- worlds --------------------------------------------------------------------------------
+    async def join(
+        self, student: str, code: str, address: str = "unknown", token: str | None = None
+    ) -> tuple[World, str]:
+        raise JoinThroughClassServerError("this is a world worker: students join through the class server")
+
+    async def poll_join(self, ticket: str) -> tuple[World, str]:
+        raise NotHereError(NO_LOAD_HERE)
+
     async def host(
         self,
         name: str,
@@ -194,24 +256,33 @@ class WorldWorker:
         launch_args: dict[str, str],
         login: Credentials | None = None,
         router_socket: str | None = None,
-        progress: Snapshot | None = None,
+        progress: Mapping[str, Any] | None = None,
     ) -> World:
         """Start the world a class server placed here, in the domain it chose. ``router_socket``:
         the class router's Unix socket, which its students' sandboxed nodes reach when it is on
         this machine (else through this worker's relay to the router's TCP endpoint).
         ``progress``: the class server's copy of the world's progress
-        (server/classroom/progress_copies.py), which it starts with."""
+        (server/classroom/progress_copies.py), in the form server/world/checkpoints/handover.py
+        sends it, which it starts with."""
+        snapshot = None
+        if progress is not None:
+            try:
+                snapshot = from_wire(progress, load_checkpoints(self.settings.lab.checkpoints))
+            except SavedProgressError as exc:
+                raise BadHandoverError(
+                    f"the progress handed over with world {name!r} is not one: {exc}"
+                ) from None
         self.heard_from_class()
         if router_socket is not None:  # the class sandboxes students' nodes: they need a way in
             self._router_socket = socket_here(router_socket) or await self._relayed_socket()
         if self.labs.taken(name):
-            raise ClassroomError(409, f"world {name!r} is already here")
+            raise NameTakenError(f"world {name!r} is already here")
         if self.labs.full():
-            raise ClassroomError(429, f"this worker is full ({self.class_settings.max_worlds} worlds)")
+            raise ClassFullError(f"this worker is full ({self.class_settings.max_worlds} worlds)")
         self.labs.starting[name] = domain_id
         try:
-            if progress is not None:
-                await asyncio.to_thread(self.labs.progress.put, name, progress)
+            if snapshot is not None:
+                await asyncio.to_thread(self.labs.progress.put, name, snapshot)
             lab = await self.labs.start(name, domain_id, (launch, launch_args), login)
         finally:
             del self.labs.starting[name]
@@ -234,7 +305,7 @@ class WorldWorker:
         """End a world the class server removed (with its workspace here) or moved elsewhere."""
         world = self.worlds.pop(name, None)
         if world is None:
-            raise ClassroomError(404, f"no world named {name!r}")
+            raise UnknownWorldError(f"no world named {name!r}")
         self.grants.revoke(world)
         await self._end(world)
         if remove_workspace:  # the student was removed: their progress goes too
@@ -250,6 +321,31 @@ class WorldWorker:
     async def describe_all(self) -> list[dict[str, Any]]:
         """Every world here, as the class server asks for it."""
         return [world.describe() for world in self.worlds.values()]
+
+    async def broadcast_on_workers(self, body: dict[str, Any]) -> tuple[list[str], dict[str, str]]:
+        return [], {}  # no world workers: the worlds here are its own
+
+    # -- what only its class server keeps ------------------------------------------------------
+    async def class_load(self) -> PlaceReport:
+        raise NotHereError(NO_LOAD_HERE)
+
+    def let_through(self, count: int) -> dict[str, Any]:
+        raise NotHereError(NO_LOAD_HERE)
+
+    def not_joined(self) -> list[tuple[str, Progress]]:
+        return []  # its class server lists the saved students
+
+    async def not_joined_with_captures(self) -> list[tuple[str, Progress]]:
+        return []
+
+    async def worker_checkpoints(self, checkpoints: list[str]) -> tuple[list[dict[str, Any]], dict[str, str]]:
+        return [], {}
+
+    async def worker_reports(self) -> tuple[list[tuple[str, bytes]], dict[str, str]]:
+        return [], {}
+
+    async def release_progress(self, name: str) -> str:
+        raise NotHereError("only a class server keeps whose progress is whose")
 
     # -- a class server that goes --------------------------------------------------------------
     def heard_from_class(self) -> None:

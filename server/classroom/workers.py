@@ -30,7 +30,7 @@ from typing import Any
 
 import httpx
 
-from server.classroom.errors import ClassroomError
+from server.classroom.errors import WorkerFailedError, WorkerRefusedError
 from server.classroom.load import CpuLoad
 from server.services.workspace.class_mark import MAX_MARK_CHARS
 
@@ -187,6 +187,10 @@ class WorkerDirectory:
         self.hello_timeout_s = hello_timeout_s
         self.http = httpx.AsyncClient(timeout=WORKER_CALL_TIMEOUT_S, trust_env=False)
 
+    def use_session(self, session: Any) -> None:
+        """The router's session once it opened again (None: while it opens again, nobody is asked)."""
+        self.session = session
+
     def discover(self) -> list[WorkerRef]:
         """Every worker that answers a fresh hello in time (blocking: call it in a thread)."""
         if self.session is None:  # the router is opening again (class_router.py): nobody to ask
@@ -221,7 +225,7 @@ class WorkerDirectory:
         content: bytes | None = None,
     ) -> httpx.Response:
         """One call to a worker's API as its instructor, with a JSON ``body`` or raw ``content``;
-        ClassroomError 502 if it cannot answer."""
+        WorkerFailedError if it cannot answer."""
         headers = {"Authorization": f"Bearer {ref.token}"}
         if world is not None:
             headers["X-Lab-World"] = world
@@ -232,8 +236,8 @@ class WorkerDirectory:
                 method, ref.url + path, headers=headers, json=body, content=content
             )
         except httpx.HTTPError as exc:
-            raise ClassroomError(
-                502, f"world worker {ref.id!r} did not answer: {exc or type(exc).__name__}"
+            raise WorkerFailedError(
+                f"world worker {ref.id!r} did not answer: {exc or type(exc).__name__}"
             ) from None
 
     async def checked(
@@ -246,8 +250,7 @@ class WorkerDirectory:
                 detail = reply.json().get("detail")
             except ValueError:
                 detail = reply.text[:200]
-            status = reply.status_code if reply.status_code < 500 else 502
-            raise ClassroomError(status, f"world worker {ref.id!r}: {detail}")
+            raise WorkerRefusedError(f"world worker {ref.id!r}: {detail}", reply.status_code)
         return reply.json()
 
     async def close(self) -> None:

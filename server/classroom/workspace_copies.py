@@ -26,7 +26,7 @@ import logging
 from collections.abc import Mapping
 from pathlib import Path
 
-from server.classroom.errors import ClassroomError
+from server.classroom.errors import ClassroomError, WorkerFailedError
 from server.classroom.workers import WorkerDirectory, WorkerRef
 from server.classroom.world import World
 from server.host.settings import WorkspaceLimits
@@ -66,17 +66,17 @@ class WorkspaceCopies:
 
     async def hand_over(self, workers: WorkerDirectory, ref: WorkerRef, world: str) -> None:
         """Give ``world``, started on ``ref``, the class's copy of its files (nothing to do on a
-        worker that shares the folder); ClassroomError 502 if the worker did not take them."""
+        worker that shares the folder); WorkerFailedError if the worker did not take them."""
         if self.shares(ref):
             return
         try:  # no more than the worker takes in an upload: a larger zip is refused there anyway
             data = await asyncio.to_thread(pack, self.files(world), self.limits.max_body_bytes)
         except (OSError, WorkspaceFileError) as exc:
-            raise ClassroomError(502, f"world {world!r}'s files could not be read: {exc}") from None
+            raise WorkerFailedError(f"world {world!r}'s files could not be read: {exc}") from None
         reply = await workers.call(ref, "POST", f"{ARCHIVE_PATH}?replace=true", world=world, content=data)
         if reply.status_code != 200:
-            raise ClassroomError(502, f"world worker {ref.id!r} did not take world {world!r}'s files: "
-                                      f"{reply.status_code} {reply.text[:200]}")  # fmt: skip
+            raise WorkerFailedError(f"world worker {ref.id!r} did not take world {world!r}'s files: "
+                                    f"{reply.status_code} {reply.text[:200]}")  # fmt: skip
         self._handed[world] = ref.id
         self._copied.pop(world, None)
 
@@ -107,7 +107,7 @@ class WorkspaceCopies:
             return
         reply = await workers.call(ref, "GET", ARCHIVE_PATH, world=name)
         if reply.status_code != 200:
-            raise ClassroomError(502, f"the archive: {reply.status_code} {reply.text[:200]}")
+            raise WorkerFailedError(f"the archive: {reply.status_code} {reply.text[:200]}")
         if self._handed.get(name) != ref.id:  # it moved while its files were on their way
             return
         await asyncio.to_thread(replace, self.files(name), reply.content)

@@ -17,9 +17,13 @@ from node_runtime.bus import Clock, ExecutorGroup
 from node_runtime.limits import RateLimit
 from node_runtime.transport.acl import Credentials
 from node_runtime.transport.config import ZenohSettings
-from server.classroom.errors import ClassroomError, StudentCodeElsewhereError
+from server.classroom.errors import (
+    ClassFullError,
+    RateLimitedError,
+    StudentCodeElsewhereError,
+    UnknownWorldError,
+)
 from server.classroom.world import World
-from server.host.processes.sandbox import StudentCodeRefusedError, probe
 from server.host.processes.start_pacing import (
     MachineStartPacer,
     StartPacer,
@@ -39,17 +43,25 @@ Launch = tuple[str, dict[str, str]]  # a launch file and its arguments
 
 
 class WorldLabs:
-    """The worlds by name, those starting, and the labs of those that run here. ``endpoint``
-    says where a world's graph connects now (None: no Zenoh)."""
+    """The worlds by name (``worlds``, shared with whoever shows them), those starting, and the
+    labs of those that run here. ``endpoint`` says where a world's graph connects now (None: no
+    Zenoh), ``process_socket`` the router's Unix socket on this machine for the worlds' sandboxed
+    nodes (None: none here)."""
 
-    def __init__(self, settings: Settings, clock: Clock, endpoint: Callable[[], str | None]) -> None:
+    def __init__(
+        self,
+        settings: Settings,
+        clock: Clock,
+        endpoint: Callable[[], str | None],
+        process_socket: Callable[[], Path | None],
+        worlds: dict[str, World] | None = None,
+    ) -> None:
         self.settings = settings
         self.class_settings = class_section(settings)
         self.clock = clock  # every world's, the physics' and the limits'
         self.endpoint = endpoint
-        # The router's Unix socket on this machine for the worlds' sandboxed nodes (None: none here).
-        self.process_socket: Callable[[], Path | None] = lambda: None
-        self.worlds: dict[str, World] = {}
+        self.process_socket = process_socket
+        self.worlds: dict[str, World] = worlds if worlds is not None else {}
         self.starting: dict[str, int] = {}  # world → its ROS domain, while it starts
         self.physics = SharedQuadrotorPhysics(clock)
         self.simple_physics = SharedSimpleSim(clock)  # the worlds flown with simple:=true
@@ -62,7 +74,7 @@ class WorldLabs:
     def get(self, name: str) -> World:
         world = self.worlds.get(name)
         if world is None:
-            raise ClassroomError(404, f"no world named {name!r}")
+            raise UnknownWorldError(f"no world named {name!r}")
         return world
 
     def taken(self, name: str) -> bool:
@@ -93,23 +105,23 @@ class WorldLabs:
         free = (d for d in range(1, MAX_DOMAIN_ID + 1) if d not in taken)
         domain = next(free, None)
         if domain is None:
-            raise ClassroomError(429, f"every ROS domain (1..{MAX_DOMAIN_ID}) is taken")
+            raise ClassFullError(f"every ROS domain (1..{MAX_DOMAIN_ID}) is taken")
         return domain
 
     def charge_reset(self, name: str) -> None:
-        """A student's reset: one of their world's few resets, and one of its writes (429 over
-        either, which charges neither)."""
+        """A student's reset: one of their world's few resets, and one of its writes
+        (RateLimitedError over either, which charges neither)."""
         world = self.get(name)
         limits, resets = self.class_settings.world, world.reset_limit
         if resets is not None and not resets.ready():
             resets.refused += 1
-            raise ClassroomError(
-                429, f"too many resets of world {name!r}: at most {limits.resets_burst} in a row, "
+            raise RateLimitedError(
+                f"too many resets of world {name!r}: at most {limits.resets_burst} in a row, "
                 f"then one in {1 / limits.resets_hz:g} s", resets.retry_after_s(),
             )  # fmt: skip
         if not world.writes.take():
-            raise ClassroomError(429, f"too many requests for world {name!r}: at most "
-                                      f"{limits.writes_hz:g} writes a second", world.writes.retry_after_s())  # fmt: skip
+            raise RateLimitedError(f"too many requests for world {name!r}: at most "
+                                   f"{limits.writes_hz:g} writes a second", world.writes.retry_after_s())  # fmt: skip
         if resets is not None:
             resets.take()
 
@@ -123,10 +135,16 @@ class WorldLabs:
     ) -> Lab:
         """Start world ``name``'s lab in ``domain_id`` (the class's launch unless ``launch``), with
         ``progress`` (a reset's), else the one its files keep."""
-        settings = self._world_settings(name, domain_id, launch, login)
+        socket = self.process_socket()
+        settings = self._world_settings(name, domain_id, launch, login, socket)
         if progress is None:
             checkpoints = load_checkpoints(self.settings.lab.checkpoints)
             progress = await asyncio.to_thread(self.progress.open, name, checkpoints)
+        # On a world worker without the class router's socket, a sandbox that could be built here
+        # cannot reach the router: its refusal says so.
+        away = (
+            StudentCodeElsewhereError(name) if self.settings.worker is not None and socket is None else None
+        )
         lab = Lab(
             settings,
             self.clock,
@@ -134,15 +152,11 @@ class WorldLabs:
             progress=progress,
             node_budget=self.node_budget,
             start_pacer=self.start_pacer,
-        )
-        lab.bus.label = name  # its nodes' console lines carry its name (node_runtime/console.py)
-        lab.bus.devices["quadrotor_physics"] = self.physics  # every world's drone in one batch
-        lab.bus.devices["simple_sim_physics"] = self.simple_physics
+            label=name,  # its nodes' console lines carry its name
+            devices={"quadrotor_physics": self.physics, "simple_sim_physics": self.simple_physics},
+            sandbox_unreachable=away,
+        )  # every world's drone stepped in one batch, by the shared physics
         await lab.start()
-        # On a world worker a sandbox could be built, but not reach the class's router: say so (409).
-        refused = isinstance(lab.launcher.sandbox, StudentCodeRefusedError)
-        if refused and self.settings.worker is not None and self.process_socket() is None and probe() is None:
-            lab.launcher.sandbox = StudentCodeElsewhereError(name)
         return lab
 
     async def remove_progress(self, name: str) -> None:
@@ -162,7 +176,7 @@ class WorldLabs:
         world.lab = await self.start(world.name, world.domain_id, launch, world.login, progress)
 
     def _world_settings(
-        self, name: str, domain_id: int, launch: Launch | None, login: Credentials | None
+        self, name: str, domain_id: int, launch: Launch | None, login: Credentials | None, socket: Path | None
     ) -> Settings:
         endpoint = self.endpoint()
         zenoh = None
@@ -171,7 +185,7 @@ class WorldLabs:
             zenoh = ZenohSettings(
                 mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file,
                 login=login, samples_hz=self.class_settings.world.samples_hz,
-                process_socket=self.process_socket(),
+                process_socket=socket,
             )  # fmt: skip
         file, args = (
             launch if launch is not None else (self.settings.lab.launch, self.settings.lab.launch_args)

@@ -172,7 +172,7 @@ class FakeWorkers:
 
 def test_worker_rows_are_those_of_the_worlds_each_worker_hosts_for_this_class_else_unreachable() -> None:
     from node_runtime.limits import RateLimit
-    from server.classroom.errors import ClassroomError
+    from server.classroom.errors import WorkerFailedError
     from server.classroom.remote_checkpoints import checkpoint_rows
     from server.classroom.workers import WorkerRef
     from server.classroom.world import World
@@ -189,7 +189,7 @@ def test_worker_rows_are_those_of_the_worlds_each_worker_hosts_for_this_class_el
     }
     stray = {**row, "name": "Old", "world": "old"}  # a world that worker hosts, not for this class now
     workers = FakeWorkers({
-        "w1": {"checkpoints": [], "students": [row, stray]}, "w2": ClassroomError(502, "gone"), "w3": None,
+        "w1": {"checkpoints": [], "students": [row, stray]}, "w2": WorkerFailedError("gone"), "w3": None,
         "w4": "not a table",
     })  # fmt: skip
     worlds = {"cy": world("cy", "w1"), "dee": world("dee", "w2"), "eve": world("eve", "w3"),

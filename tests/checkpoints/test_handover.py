@@ -14,7 +14,7 @@ from typing import Any
 
 import pytest
 
-from server.classroom.errors import ClassroomError
+from server.classroom.errors import WorkerFailedError
 from server.classroom.progress_copies import PROGRESS_PATH, ProgressCopies
 from server.classroom.workers import WorkerRef
 from server.classroom.world import World
@@ -123,7 +123,7 @@ class Workers:
                       body: Any = None) -> Any:  # fmt: skip
         assert (method, path) == ("POST", PROGRESS_PATH)
         if self.down:
-            raise ClassroomError(502, f"world worker {ref.id!r} did not answer")
+            raise WorkerFailedError(f"world worker {ref.id!r} did not answer")
         self.asked.append(dict(body["known"]))
         return {"worlds": {name: {"tag": tag(p), "progress": to_wire(Snapshot.of(p))}
                            for name, p in self.hosted.items() if body["known"].get(name) != tag(p)}}  # fmt: skip

@@ -6,9 +6,11 @@ from __future__ import annotations
 
 import pytest
 
+from api.errors import status_for
 from node_runtime.bus import Bus, ManualClock, Node
 from server.classroom import ClassroomError
 from server.classroom.capacity import NEAR_CORES, PlaceLoad, judge
+from server.classroom.errors import AtCapacityError, JoinLapsedError, UnknownTicketError
 from server.classroom.join_queue import JoinQueue
 from server.classroom.lateness import LATE_TICK_S, RECENT_TICKS, STALLED_S, timer_late
 from server.classroom.load import PROCESS_FULL_CORES, CpuLoad, CpuMeter, resident_mb
@@ -94,7 +96,8 @@ def test_the_queue_is_oldest_first_and_refuses_past_its_size_with_retry_after() 
     bob = q.add("Bob", "bob", "10.0.0.2")
     with pytest.raises(ClassroomError) as refused:
         q.add("Cy", "cy", "10.0.0.3")
-    assert (refused.value.status, refused.value.retry_after_s) == (503, 15.0)
+    assert isinstance(refused.value, AtCapacityError)
+    assert (status_for(refused.value), refused.value.retry_after_s) == (503, 15.0)
     assert "2 joins already wait (at most 2)" in str(refused.value)
     assert q.find(bob.ticket)[1] == 1 and q.find(ada.ticket)[1] == 0
     assert q.holds("ada") and not q.holds("cy")
@@ -114,15 +117,17 @@ def test_a_join_that_waits_too_long_or_stops_polling_leaves_with_503_naming_why(
         q.find(polled.ticket)  # Ada's page polls; Bob's was closed
     with pytest.raises(ClassroomError) as gone:
         q.find(silent.ticket)
-    assert gone.value.status == 503 and "not polled for 10 s" in str(gone.value)
+    assert isinstance(gone.value, JoinLapsedError)
+    assert status_for(gone.value) == 503 and "not polled for 10 s" in str(gone.value)
     clock.advance(16.0)  # 61 s since Ada joined the queue
     with pytest.raises(ClassroomError) as timed_out:
         q.find(polled.ticket)
-    assert timed_out.value.status == 503 and "for 60 s while your join waited" in str(timed_out.value)
+    assert isinstance(timed_out.value, JoinLapsedError)
+    assert status_for(timed_out.value) == 503 and "for 60 s while your join waited" in str(timed_out.value)
     assert len(q) == 0
     with pytest.raises(ClassroomError) as unknown:
         q.find("never-given")
-    assert unknown.value.status == 404
+    assert isinstance(unknown.value, UnknownTicketError) and status_for(unknown.value) == 404
 
 
 def test_the_instructor_lets_a_given_count_through() -> None:
