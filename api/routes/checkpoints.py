@@ -8,10 +8,22 @@ import re
 from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter, Depends, Path, Query, Request, Response
-from pydantic import BaseModel, ConfigDict, Field, StringConstraints
+from pydantic import TypeAdapter
 from starlette.requests import HTTPConnection
 
 from api.deps import LabDep, classroom_of, grant_of, lab_of
+from api.protocol.checkpoints import (
+    AnswerBody,
+    Captured,
+    Checkpoints,
+    ClassCheckpoints,
+    KnownCopies,
+    ProgressCopies,
+    Question,
+    Released,
+    Report,
+    VerifyResult,
+)
 from api.protocol.responses import NOT_FOUND, TYPE_CONFLICT, UNAUTHORIZED, UNPROCESSABLE, responses
 from api.routes.classroom import ClassroomDep, InstructorDep
 from server.world.checkpoints.catalog import load
@@ -36,26 +48,8 @@ LARGE_BODIES = (
     (re.compile(r"/api/checkpoints/verify"), MAX_REPORT_BODY),
     (re.compile(r"/api/classroom/host"), MAX_HOST_BODY),
 )
-WorldName = Annotated[str, StringConstraints(max_length=32)]
-Tag = Annotated[str, StringConstraints(max_length=64)]
-
-
-class AnswerBody(BaseModel):
-    text: str = Field(description="the answer, at most 8 KiB of UTF-8")
-
-
-class KnownCopies(BaseModel):
-    model_config = ConfigDict(strict=True, extra="forbid")
-    known: dict[WorldName, Tag] = Field(
-        default_factory=dict, max_length=256,
-        description="the tag of the copy the caller has of each world's progress",
-    )  # fmt: skip
-
-
-class VerifyResult(BaseModel):
-    valid: bool
-    reason: str = Field(description="valid, edited, signed by another server, or not a report")
-    student: str | None
+QUESTION = TypeAdapter(Question)
+CLASS_TABLE = TypeAdapter(ClassCheckpoints)
 
 
 def signer(conn: HTTPConnection) -> ReportSigner:
@@ -77,40 +71,46 @@ def _world_name(lab: Lab) -> str | None:
         **responses(UNAUTHORIZED),
         204: {"description": "nothing changed since the version `since` names"},
     },
-    response_model=None,
+    response_model=Checkpoints,
 )
 async def checkpoints(
     lab: LabDep, since: Annotated[int | None, Query(ge=0)] = None
-) -> dict[str, Any] | Response:
+) -> Checkpoints | Response:
     """Every checkpoint with its state, time, steps, live progress and evidence; the questions and
     answers. ``version`` rises on any change: with ``?since=`` it, nothing new is a 204."""
     watch = lab.checkpoints
     lines, running = watch.lines(), watch.running()
     if since is not None and since == watch.version:
         return Response(status_code=204)
-    return world_view(watch.progress, lines, watch.version, running)
+    return Checkpoints.model_validate(world_view(watch.progress, lines, watch.version, running))
 
 
 @router.put("/answers/{question}", responses=responses(UNAUTHORIZED, NOT_FOUND, 413, body=True))
-async def answer(question: str, body: AnswerBody, lab: LabDep) -> dict[str, Any]:
+async def answer(question: str, body: AnswerBody, lab: LabDep) -> Question:
     """Save the answer to ``question`` (q1, q2, q3, final); over 8 KiB is a 413 and changes nothing."""
     progress = lab.checkpoints.progress
     progress.answer(question, body.text)
-    return next(q for q in world_view(progress, {}, 0)["questions"] if q["id"] == question)
+    return QUESTION.validate_python(
+        next(q for q in world_view(progress, {}, 0)["questions"] if q["id"] == question)
+    )
 
 
 @router.post("/{name}/capture", responses=responses(UNAUTHORIZED, NOT_FOUND, 413, UNPROCESSABLE))
-async def capture(name: str, request: Request, lab: LabDep) -> dict[str, Any]:
+async def capture(name: str, request: Request, lab: LabDep) -> Captured:
     """The page's PNG capture of its 3D view (at most 2 MiB), kept as checkpoint ``name``'s picture."""
     lab.checkpoints.progress.capture(name, await request.body())
-    return {"checkpoint": name, "captured": True}
+    return Captured(checkpoint=name, captured=True)
 
 
 @router.get(
     "/report",
     responses={
         **responses(UNAUTHORIZED),
-        200: {"description": "the signed report", "content": {"text/html": {}, "application/json": {}}},
+        200: {
+            "model": Report,
+            "description": "the signed report: its HTML page, or (?format=json) its JSON",
+            "content": {"text/html": {}, "application/json": {}},
+        },
     },
     response_class=Response,
 )
@@ -165,11 +165,11 @@ def _rows(request: Request, classroom: ClassroomDep) -> tuple[list[str], list[An
             "content": {"application/json": {}, "text/csv": {}},
         },
     },
-    response_model=None,
+    response_model=ClassCheckpoints,
 )
 async def class_checkpoints(
     request: Request, _: InstructorDep, classroom: ClassroomDep, format: Literal["json", "csv"] = "json"
-) -> dict[str, Any] | Response:
+) -> ClassCheckpoints | Response:
     """Student × checkpoint, with the times each was done, and the answers; ``?format=csv``. A
     world on a world worker that does not answer in time has every cell ``unreachable``. A student
     whose progress is saved but who has not joined since the class server started is listed with
@@ -187,11 +187,11 @@ async def class_checkpoints(
             table_csv(view), media_type="text/csv; charset=utf-8",
             headers={"Content-Disposition": 'attachment; filename="checkpoints.csv"'},
         )  # fmt: skip
-    return view
+    return CLASS_TABLE.validate_python(view)
 
 
 @class_router.post("/progress", responses=responses(UNAUTHORIZED, 403, body=True))
-async def progress_copies(body: KnownCopies, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+async def progress_copies(body: KnownCopies, _: InstructorDep, classroom: ClassroomDep) -> ProgressCopies:
     """The progress of each world hosted here whose tag is not the one ``known`` gives: what a
     class server copies from its world workers (server/classroom/progress_copies.py), each as
     ``{"tag", "progress": {"progress": <the progress file>, "captures": {checkpoint: base64}}}``."""
@@ -203,7 +203,7 @@ async def progress_copies(body: KnownCopies, _: InstructorDep, classroom: Classr
         now = tag(progress)
         if body.known.get(world.name) != now:
             changed[world.name] = {"tag": now, "progress": to_wire(Snapshot.of(progress))}
-    return {"worlds": changed}
+    return ProgressCopies.model_validate({"worlds": changed})
 
 
 @class_router.get(
@@ -242,9 +242,9 @@ async def release(
     _: InstructorDep,
     classroom: ClassroomDep,
     world: Annotated[str, Path(pattern=r"^[a-z][a-z0-9_]{0,31}$", description="the world's name")],
-) -> dict[str, str]:
+) -> Released:
     """Give a saved world's progress to the next join under its name, whoever it is (a student who
     lost the cookie that proves it is them): its owner record is set aside, not removed. A world
     joined now is 409; one with no saved progress whose owner is recorded, 404."""
     student = await classroom.release_progress(world)  # a world worker: 404
-    return {"released": world, "student": student}
+    return Released(released=world, student=student)

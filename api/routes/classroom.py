@@ -7,15 +7,29 @@ In the OpenAPI document of a class server only (api.routes.build_router); on an 
 from __future__ import annotations
 
 import asyncio
-from typing import Annotated, Any, Literal, Required
+from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter, Depends, HTTPException, Query, Request, Response, status
 from fastapi.responses import JSONResponse
-from pydantic import BaseModel, ConfigDict, Field, model_validator, with_config
-from typing_extensions import TypedDict
+from pydantic import TypeAdapter
 
 from api.deps import TOKEN_COOKIE, classroom_of, grant_of, set_token_cookie, token_of
 from api.errors import status_for
+from api.protocol.classroom import (
+    Broadcast,
+    BroadcastRequest,
+    ClassGraph,
+    ClassWorkers,
+    ClassWorld,
+    ClassWorlds,
+    HostRequest,
+    Joined,
+    JoinRequest,
+    Kicked,
+    Me,
+    QueuedJoin,
+    ResetWorlds,
+)
 from api.protocol.responses import (
     BAD_GATEWAY,
     FORBIDDEN,
@@ -27,6 +41,7 @@ from api.protocol.responses import (
     UNPROCESSABLE,
     responses,
 )
+from api.protocol.schemas import Status
 from node_runtime.transport.acl import Credentials
 from server.classroom import Classroom, Grant
 from server.classroom.join_queue import JoinWaits
@@ -37,60 +52,8 @@ OPEN: dict[str, Any] = {
 }  # OpenAPI: a route that needs no token (api/openapi.py adds the rest's)
 
 
-class JoinRequest(BaseModel):
-    model_config = ConfigDict(strict=True, extra="forbid")
-    name: str = Field(min_length=1, max_length=64, examples=["Ada Lovelace"])
-    code: str = Field(min_length=1, max_length=16, examples=["K7PX2M"])
-
-
-class BroadcastRequest(BaseModel):
-    model_config = ConfigDict(strict=True, extra="forbid")
-    topic: str = Field(min_length=1, max_length=256, examples=["/uav/input/position"])
-    msg: dict[str, Any] = Field(examples=[{"x": 5.0, "y": 5.0, "z": 10.0}])
-    type: str | None = Field(default=None, max_length=128, examples=["geometry_msgs/msg/Vector3"])
-
-
-class HostRequest(BaseModel):
-    """A class server placing a world on this world worker."""
-
-    model_config = ConfigDict(strict=True, extra="forbid")
-    world: str = Field(min_length=1, max_length=32, pattern=r"^[a-z_][a-z0-9_]*$")
-    student: str = Field(min_length=1, max_length=64)
-    domain_id: int = Field(ge=1, le=232)
-    launch: str = Field(min_length=1, max_length=256)
-    launch_args: dict[str, str] = Field(default_factory=dict, max_length=32)
-    # The world's own Zenoh login, drawn by the class server (its graph joins the router with it).
-    zenoh_user: str | None = Field(None, min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_-]+$")
-    zenoh_password: str | None = Field(None, min_length=1, max_length=64, pattern=r"^[A-Za-z0-9]+$")
-    # The class router's Unix socket: a worker on its machine runs the world's students' nodes
-    # in a sandbox that reaches the router there.
-    router_socket: str | None = Field(None, min_length=2, max_length=256, pattern=r"^/[A-Za-z0-9_./-]+$")
-    # The class server's copy of the world's progress, for a worker whose own folder lacks it
-    # (server/world/checkpoints/handover.py's form).
-    progress: dict[str, Any] | None = None
-
-    @model_validator(mode="after")
-    def _login_whole(self) -> HostRequest:
-        if (self.zenoh_user is None) != (self.zenoh_password is None):
-            raise ValueError("zenoh_user and zenoh_password come together")
-        return self
-
-
-class Joined(BaseModel):
-    world: str = Field(examples=["ada_lovelace"])
-    student: str = Field(examples=["Ada Lovelace"])
-    token: str = Field(description="this world's bearer token; the page keeps it in an HTTP-only cookie")
-
-
-class QueuedJoin(BaseModel):
-    ticket: str = Field(description="the join's secret: ask again with GET /api/classroom/join/{ticket}")
-    ahead: int = Field(description="joins waiting ahead of this one")
-    student: str
-    poll_s: float = Field(description="ask again this often, or the join leaves the queue")
-    why: str = Field(description="why it waits")
-
-
 POLL_S = 2.0  # how often a waiting join page asks again
+CLASS_WORLD = TypeAdapter(ClassWorld)
 
 
 def queued(waits: JoinWaits) -> JSONResponse:
@@ -99,94 +62,6 @@ def queued(waits: JoinWaits) -> JSONResponse:
     body = QueuedJoin(ticket=waits.waiting.ticket, ahead=waits.ahead, student=waits.waiting.student,
                       poll_s=POLL_S, why=why)  # fmt: skip
     return JSONResponse(body.model_dump(), status_code=status.HTTP_202_ACCEPTED)
-
-
-class Me(BaseModel):
-    role: Literal["student", "instructor"]
-    world: str | None = Field(description="the student's world; none for the instructor")
-    name: str
-    class_code: str | None = Field(default=None, description="only for the instructor")
-
-
-class RocketState(TypedDict):
-    phase: str
-    altitude_m: float
-
-
-@with_config(ConfigDict(extra="allow"))
-class ClassWorld(TypedDict, total=False):
-    """One world as the instructor's page shows it; the lab's own figures only while it runs,
-    and a world on a world worker as its worker reports them."""
-
-    world: Required[str]
-    student: Required[str]
-    worker: Required[str | None]  # the world worker hosting it; null on this server
-    lost: Required[str | None]  # why it cannot be reached now
-    worker_error: str  # why its world worker did not answer
-    keys_held: list[str]
-    rocket: RocketState | None
-    drone: list[float] | None  # x, y, z (m); null before the first fix
-    crashed_nodes: list[str]
-
-
-class ClassWorlds(BaseModel):
-    class_code: str
-    max_worlds: int
-    worlds: list[ClassWorld] = Field(
-        description="each world: student, where it runs, keys held, rocket phase, drone, crashed nodes"
-    )
-
-
-class ClassWorkers(BaseModel):
-    local: dict[str, Any] = Field(
-        description="this server's own worlds, how many it takes, and its CPU (process_cores: this process's "
-        "CPU over the last window in cores; host_busy: the machine's busy share; machine: a digest of its "
-        "boot id; saturated: the process uses 0.85 core or the machine is 90 % busy. No new world goes to a "
-        "full process while another place has room, nor to a busy machine while another machine has room)"
-    )
-    workers: list[dict[str, Any]] = Field(
-        description="each world worker that answers now, with its load: worlds, max_worlds and cpu, as for local"
-    )
-    started_here: list[dict[str, Any]] = Field(
-        default_factory=list,
-        description="the world workers this server started on its machine (--workers): id, pid (null while "
-        "down), restarts, and given_up once it kept dying",
-    )
-    spread: dict[str, int] | None = Field(
-        default=None,
-        description="with --workers auto: another world worker on this machine each at_worlds worlds, at most "
-        "up_to (the machine's spare cores); null when workers start only as --workers N said",
-    )
-
-
-class ClassGraph(BaseModel):
-    domain_id: int = Field(description="the class's own ROS domain, where every world shows under /<world>")
-    topics: dict[str, list[str]] = Field(
-        description="by world, each bridged topic or service: 'out' (the world publishes it; 'out*' while "
-        "something in the class domain subscribes, so it crosses now), 'in' (the world subscribes to it) "
-        "or 'srv' (the world serves it; a call in the class domain goes to that world's server)",
-        examples=[
-            {"ada": ["in /ada/uav/input/position", "out* /ada/uav/sensors/gps", "srv /ada/rocket/reset"]}
-        ],
-    )
-    samples_out: int = Field(description="samples passed from worlds into the class domain")
-    samples_in: int = Field(description="samples passed from the class domain into worlds")
-    dropped: int = Field(description="samples dropped (no rmw_zenoh attachment, or a watcher too slow)")
-    calls: int = Field(description="service calls in the class domain answered by a world's server")
-    names_refused: dict[str, int] = Field(
-        description="by world, its entities not bridged because their name is not a fully qualified ROS "
-        "name (or their type is not a plain type name): 'm/uav/sensors/gps' in world ada would be /adam/...",
-        examples=[{"ada": 1}],
-    )
-    calls_refused: int = Field(
-        description="service calls refused: no rmw_zenoh attachment, a key pattern instead of one service, "
-        "or too many waiting on one world"
-    )
-
-
-class Broadcast(BaseModel):
-    reached: list[str]
-    refused: dict[str, str] = Field(description="world: why its graph refused the message")
 
 
 def _classroom(request: Request) -> Classroom:
@@ -244,10 +119,10 @@ async def join(
 
 
 @router.post("/leave", responses=responses(), openapi_extra=OPEN)
-async def leave(response: Response) -> dict[str, str]:
+async def leave(response: Response) -> Status:
     """Forget this browser's token (the world stays until the instructor removes it)."""
     response.delete_cookie(TOKEN_COOKIE, path="/")
-    return {"status": "left"}
+    return Status(status="left")
 
 
 @router.get("/me", responses=responses(UNAUTHORIZED))
@@ -271,15 +146,17 @@ async def workers(_: InstructorDep, classroom: ClassroomDep) -> ClassWorkers:
     """Where worlds can go: this server's own room, and each world worker that answers now."""
     directory, started = classroom.workers, classroom.local_workers  # a world worker has none
     found = await asyncio.to_thread(directory.discover) if directory is not None else []
-    return ClassWorkers(
-        local={
-            "worlds": classroom.hosted_here,
-            "max_worlds": classroom.local_capacity,
-            "cpu": classroom.cpu.read().describe(),
-        },
-        workers=[ref.describe() for ref in found],
-        started_here=started.describe() if started is not None else [],
-        spread=started.describe_spread() if started is not None else None,
+    return ClassWorkers.model_validate(
+        {
+            "local": {
+                "worlds": classroom.hosted_here,
+                "max_worlds": classroom.local_capacity,
+                "cpu": classroom.cpu.read().describe(),
+            },
+            "workers": [ref.describe() for ref in found],
+            "started_here": started.describe() if started is not None else [],
+            "spread": started.describe_spread() if started is not None else None,
+        }
     )
 
 
@@ -307,7 +184,7 @@ async def class_graph(_: InstructorDep, classroom: ClassroomDep) -> ClassGraph:
     status_code=status.HTTP_201_CREATED,
     responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, TYPE_CONFLICT, TOO_MANY, body=True),
 )
-async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> dict[str, Any]:
+async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> ClassWorld:
     """On a world worker: start the world its class server placed here."""
     login = Credentials(body.zenoh_user, body.zenoh_password or "") if body.zenoh_user is not None else None
     world = await classroom.host(
@@ -320,13 +197,13 @@ async def host(body: HostRequest, _: InstructorDep, classroom: ClassroomDep) -> 
         body.router_socket,
         body.progress,
     )
-    return world.describe()
+    return CLASS_WORLD.validate_python(world.describe())
 
 
 @router.post(
     "/worlds/{name}/reset", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, TOO_MANY, BAD_GATEWAY)
 )
-async def reset_world(name: str, grant: GrantDep, classroom: ClassroomDep) -> dict[str, Any]:
+async def reset_world(name: str, grant: GrantDep, classroom: ClassroomDep) -> ClassWorld:
     """Start a world over (every node, the 3D view): the instructor any, a student their own, as
     one of their writes and at most ``world_resets_hz`` a second."""
     if not grant.is_instructor and grant.world != name:
@@ -336,16 +213,16 @@ async def reset_world(name: str, grant: GrantDep, classroom: ClassroomDep) -> di
     if not grant.is_instructor:
         classroom.charge_reset(name)
     world = await classroom.reset(name)
-    return world.describe()
+    return CLASS_WORLD.validate_python(world.describe())
 
 
 @router.post("/reset", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, BAD_GATEWAY))
-async def reset_all(_: InstructorDep, classroom: ClassroomDep) -> dict[str, list[str]]:
+async def reset_all(_: InstructorDep, classroom: ClassroomDep) -> ResetWorlds:
     """Start every world over; answers the worlds reset."""
     names = list(classroom.worlds)
     for name in names:
         await classroom.reset(name)
-    return {"reset": names}
+    return ResetWorlds(reset=names)
 
 
 @router.delete("/worlds/{name}", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND))
@@ -356,10 +233,10 @@ async def kick(
     workspace: Literal["remove"] | None = Query(
         None, description="a world worker: remove the world's workspace too (the class server always does)"
     ),
-) -> dict[str, str]:
+) -> Kicked:
     """Remove a student's world and its workspace; their token stops working at once."""
     world = await classroom.kick(name, remove_workspace=workspace == "remove")
-    return {"kicked": world.name, "student": world.student}
+    return Kicked(kicked=world.name, student=world.student)
 
 
 @router.post("/broadcast", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND, UNPROCESSABLE, body=True))

@@ -5,14 +5,12 @@ server/classroom/capacity.py and docs/classroom.md."""
 
 from __future__ import annotations
 
-from typing import Literal
-
 from fastapi import APIRouter, Response, status
 from fastapi.responses import JSONResponse
-from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
-from typing_extensions import TypedDict
+from pydantic import TypeAdapter
 
 from api.deps import set_token_cookie
+from api.protocol.classroom import ClassLoadOut, Joined, LetThrough, QueuedJoin, QueueOut
 from api.protocol.responses import (
     BAD_GATEWAY,
     FORBIDDEN,
@@ -22,73 +20,11 @@ from api.protocol.responses import (
     UNAUTHORIZED,
     responses,
 )
-from api.routes.classroom import OPEN, ClassroomDep, InstructorDep, Joined, QueuedJoin, queued
+from api.routes.classroom import OPEN, ClassroomDep, InstructorDep, queued
 from server.classroom.join_queue import JoinWaits
 
 router = APIRouter(prefix="/api/classroom", tags=["classroom"])
-
-
-class CpuOut(TypedDict):
-    process_cores: float  # the process's CPU over its last window, in cores
-    host_busy: float | None  # the machine's busy share (steal included)
-    cores: int
-    machine: str | None
-    rss_mb: float | None  # the process's resident memory, MiB
-    saturated: bool
-
-
-class PlaceOut(TypedDict):
-    place: str  # "server" (this process) or a world worker's id
-    worlds: int
-    max_worlds: int
-    late: int | None  # None: a worker that did not say
-    cpu: CpuOut | None
-
-
-class WaitingOut(TypedDict):
-    student: str
-    world: str
-    waited_s: float
-
-
-class QueueOut(TypedDict):
-    waiting: list[WaitingOut]
-    size: int
-    wait_s: float
-    let_through: int
-    admitted: int
-    refused: int
-
-
 _QUEUE = TypeAdapter(QueueOut)
-
-
-class ClassLoadOut(BaseModel):
-    capacity: Literal["ok", "near", "full"] = Field(
-        description="ok; near: a place's CPU is busy, a world is late or little room is left (joins still "
-        "go ahead); full: no place has room, or every place with room is saturated and a quarter of the "
-        "worlds are late (new joins wait in the queue)"
-    )
-    reasons: list[str] = Field(description="why the verdict is near or full, one line each")
-    worlds: int = Field(description="worlds in the class")
-    late: int = Field(
-        description="worlds late now: a timer of theirs ran over 50 ms after its deadline (median of its "
-        "last 20 calls) or is 1 s overdue now (a stalled loop)"
-    )
-    room: int = Field(description="worlds that fit by count, over every place and the class's max_worlds")
-    places: list[PlaceOut] = Field(
-        description="each place worlds run: 'server' (this process) or a world worker's id, with worlds, "
-        "max_worlds, late and cpu (process_cores in cores, host_busy share, cores, rss_mb in MiB, saturated)"
-    )
-    queue: QueueOut = Field(
-        description="joins waiting (student, world, waited_s), the queue's size and wait_s, let_through "
-        "(joins the instructor let past a full verdict), admitted and refused so far"
-    )
-
-
-class LetThrough(BaseModel):
-    model_config = ConfigDict(strict=True, extra="forbid")
-    count: int = Field(default=1, ge=1, le=100, description="waiting joins to let in past a full verdict")
 
 
 @router.get("/load", responses=responses(UNAUTHORIZED, FORBIDDEN, NOT_FOUND))

@@ -9,14 +9,13 @@ so the class server reads each one from its own disk, also while the world's wor
 from __future__ import annotations
 
 import asyncio
-from typing import Any
 
 from fastapi import APIRouter, Response
-from fastapi.responses import JSONResponse
 
 from api.protocol.responses import FORBIDDEN, NOT_FOUND, UNAUTHORIZED, UNPROCESSABLE, responses
+from api.protocol.workspace import FileText, WorkspaceTree
 from api.routes.classroom import ClassroomDep, InstructorDep
-from api.routes.workspace import ZIP, WorkspaceTree, files_of, tree_body, zip_response
+from api.routes.workspace import ZIP, files_of, tree_body, zip_response
 from server.classroom import Classroom, World
 from server.services.workspace.files import WorkspaceFiles
 from server.services.workspace.location import world_workspace
@@ -42,13 +41,14 @@ async def world_tree(name: str, _: InstructorDep, classroom: ClassroomDep) -> Wo
 
 
 @router.get("/worlds/{name}/workspace/files/{path:path}", responses=FILE_REFUSED)
-async def world_file(name: str, path: str, _: InstructorDep, classroom: ClassroomDep) -> Any:
-    """One file of a student's workspace, read-only."""
+async def world_file(
+    name: str, path: str, _: InstructorDep, classroom: ClassroomDep, response: Response
+) -> FileText:
+    """One file of a student's workspace, read-only (its version also in the ``ETag`` header)."""
     files = workspace_of(classroom, classroom.get(name))
     found = await asyncio.to_thread(files.read, path)
-    return JSONResponse(
-        {"path": found.path, "text": found.text, "etag": found.etag}, headers={"ETag": f'"{found.etag}"'}
-    )
+    response.headers["ETag"] = f'"{found.etag}"'
+    return FileText(path=found.path, text=found.text, etag=found.etag)
 
 
 @router.get(

@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Any
 
 from fastapi import APIRouter, HTTPException, Request, status
 
 from api.deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_request, token_of
 from api.protocol.responses import responses
-from api.protocol.schemas import Health, WorkspaceInfo, ZenohJoin
+from api.protocol.schemas import Health, Status, WorkspaceInfo, ZenohJoin, ZenohStatus
 from node_runtime.transport.acl import Credentials
 from server.classroom import Classroom
 from server.host.processes.command import graph_overrides
@@ -25,36 +24,36 @@ router = APIRouter(prefix="/api", tags=["lab"], responses=responses())
 STARTED_AT = time.monotonic()
 
 
-@router.get("/health", response_model=Health, openapi_extra={"security": []})
-async def health(request: Request) -> dict[str, Any]:
+@router.get("/health", openapi_extra={"security": []})
+async def health(request: Request) -> Health:
     """The lab's; on a class server without a token, the whole server's (every world summed), so a
     health check needs no secret; with a token, the caller's world. No token is needed."""
     classroom = classroom_of(request)
     if classroom is not None and token_of(request) is None:
         labs = [w.lab for w in classroom.worlds.values() if w.lab is not None]
-        return {
-            "status": "ok",
-            "launch": classroom.settings.lab.launch,
-            "nodes": sum(len(lab.bus.nodes) for lab in labs),
-            "topics": sum(len(lab.bus.topics) for lab in labs),
-            "uptime_s": round(time.monotonic() - STARTED_AT, 3),
-        }
+        return Health(
+            status="ok",
+            launch=classroom.settings.lab.launch,
+            nodes=sum(len(lab.bus.nodes) for lab in labs),
+            topics=sum(len(lab.bus.topics) for lab in labs),
+            uptime_s=round(time.monotonic() - STARTED_AT, 3),
+        )
     # One lab answers without its token too: counts and uptime are not worth one, and a
     # container's health check has none.
     lab = lab_for_request(request) if classroom is not None else request.app.state.lab
-    return {
-        "status": "ok",
-        "launch": lab.settings.lab.launch,
-        "nodes": len(lab.bus.nodes),
-        "topics": len(lab.bus.topics),
-        "uptime_s": round(time.monotonic() - lab.started_at, 3),
-        "zenoh": lab.zenoh.status() if lab.zenoh is not None else None,
-        "zenoh_error": lab.zenoh_error,
-    }
+    return Health(
+        status="ok",
+        launch=lab.settings.lab.launch,
+        nodes=len(lab.bus.nodes),
+        topics=len(lab.bus.topics),
+        uptime_s=round(time.monotonic() - lab.started_at, 3),
+        zenoh=ZenohStatus.model_validate(lab.zenoh.status()) if lab.zenoh is not None else None,
+        zenoh_error=lab.zenoh_error,
+    )
 
 
-@router.get("/zenoh/join", response_model=ZenohJoin, responses=responses(404, 429))
-async def zenoh_join(request: Request, start: bool = False) -> dict[str, Any]:
+@router.get("/zenoh/join", responses=responses(404, 429))
+async def zenoh_join(request: Request, start: bool = False) -> ZenohJoin:
     """Where and how a node process joins this lab's ROS graph on Zenoh: the router, the ROS domain
     and, on a class server, the world's own login (its router lets each world's user into that
     world's domain only). ``env`` is ready to export, for ``ros2lab run`` or a ROS 2 node on rmw_zenoh.
@@ -91,7 +90,7 @@ def retry_after(wait_s: float) -> str:
     return str(max(1, math.ceil(wait_s)))
 
 
-def _paced(pacer: StartPacer | None, start: bool, join: dict[str, Any]) -> dict[str, Any]:
+def _paced(pacer: StartPacer | None, start: bool, join: ZenohJoin) -> ZenohJoin:
     """The join, or 429 with the time of its turn (``Retry-After``) when it is a start the server's
     pacer defers (server/host/processes/start_pacing.py)."""
     wait_s = pacer.admit() if start and pacer is not None else None
@@ -104,7 +103,7 @@ def _paced(pacer: StartPacer | None, start: bool, join: dict[str, Any]) -> dict[
     return join
 
 
-def _class_graph_join(classroom: Classroom) -> dict[str, Any]:
+def _class_graph_join(classroom: Classroom) -> ZenohJoin:
     router = classroom.router_endpoint()
     if (
         classroom.class_graph is None  # none yet, or a world worker, whose class graph is its class server's
@@ -116,30 +115,30 @@ def _class_graph_join(classroom: Classroom) -> dict[str, Any]:
     return _join(router, classroom.settings.lab.zenoh.domain_id, login, _nice(classroom.settings))
 
 
-def _join(router: str, domain_id: int, login: Credentials | None, nice: int | None) -> dict[str, Any]:
-    return {
-        "nice": nice,
-        "router": router,
-        "domain_id": domain_id,
-        "user": login.user if login is not None else None,
-        "password": login.password if login is not None else None,
-        "env": {
+def _join(router: str, domain_id: int, login: Credentials | None, nice: int | None) -> ZenohJoin:
+    return ZenohJoin(
+        nice=nice,
+        router=router,
+        domain_id=domain_id,
+        user=login.user if login is not None else None,
+        password=login.password if login is not None else None,
+        env={
             "ROS_DOMAIN_ID": str(domain_id),
             "ZENOH_CONFIG_OVERRIDE": ";".join(graph_overrides(router, login)),
         },
-    }
+    )
 
 
-@router.get("/workspace", response_model=WorkspaceInfo)
-async def workspace(lab: LabDep) -> dict[str, Any]:
+@router.get("/workspace")
+async def workspace(lab: LabDep) -> WorkspaceInfo:
     """The folder of students' packages this lab runs from, so ``ros2lab run`` on this machine
     finds the same packages (null: the lab has none)."""
     folder = lab.settings.lab.workspace
-    return {"path": str(folder.resolve()) if folder is not None else None}
+    return WorkspaceInfo(path=str(folder.resolve()) if folder is not None else None)
 
 
 @router.post("/rocket/reset", responses=responses(403))
-async def reset_rocket(lab: LabDep) -> dict[str, str]:
+async def reset_rocket(lab: LabDep) -> Status:
     """Put the rocket back on the pad and restart the countdown (the rocket's nodes restart)."""
     lab.rocket.reset()
-    return {"status": "reset"}
+    return Status(status="reset")

@@ -57,7 +57,7 @@ def index_html() -> str:
     return html.replace(VISER_TITLE, LAB_TITLE, 1).replace("</head>", INJECT + "</head>", 1)
 
 
-@router.get("/")
+@router.get("/", response_class=HTMLResponse)
 async def index(request: Request) -> Response:
     classroom = classroom_of(request)
     if classroom is not None:  # a class server: the join form until this browser has a world
@@ -78,7 +78,7 @@ async def index(request: Request) -> Response:
     return HTMLResponse(index_html(), headers={"Cache-Control": "no-cache", **ISOLATED})
 
 
-@router.get("/instructor")
+@router.get("/instructor", response_class=HTMLResponse)
 async def instructor(request: Request, token: str | None = None) -> Response:
     """The instructor's page. Opened once with ``?token=`` (the link the class server prints),
     it keeps the token in an HTTP-only cookie and drops it from the address bar."""
@@ -104,7 +104,7 @@ def _display_of(conn: HTTPConnection) -> Any:
         return None
 
 
-@router.get("/page/poses.worker.js")
+@router.get("/page/poses.worker.js", response_class=Response)
 async def poses_worker() -> Response:
     """The pose stream's worker, with the isolation its page has (a dedicated worker needs its own)."""
     if not POSES_WORKER.is_file():
@@ -140,7 +140,7 @@ def _instructors_view(conn: HTTPConnection) -> tuple[Any, Response | None]:
     return classroom.view, None  # None: no view (a world worker has none)
 
 
-@router.get("/instructor/view")
+@router.get("/instructor/view", response_class=HTMLResponse)
 async def instructor_view(request: Request) -> Response:
     """viser's own page for the class view, shown in a frame of the instructor's page (no key script:
     nothing here flies a drone)."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from fastapi import APIRouter
-from fastapi.responses import FileResponse
+from fastapi.responses import FileResponse, HTMLResponse
 
 router = APIRouter(include_in_schema=False)
 TOOLS_HTML = Path(__file__).resolve().parents[2] / "static" / "tools.html"
@@ -17,7 +17,7 @@ CONTENT_SECURITY_POLICY = (
 )
 
 
-@router.get("/tools")
+@router.get("/tools", response_class=HTMLResponse)
 async def tools_page() -> FileResponse:
     return FileResponse(
         TOOLS_HTML,
