@@ -39,7 +39,7 @@ from api.protocol.classroom import (
     ResetWorlds,
 )
 from api.protocol.frames import ControlFrame, EchoFrame, KeyChannelError, KeyFrame, OutputFrame
-from api.protocol.introspection import GraphOut, NodeDetailOut, NodeSummaryOut, RateOut
+from api.protocol.introspection import GraphOut, KeyManagerParams, NodeDetailOut, NodeSummaryOut, RateOut
 from api.protocol.launches import LaunchGroupOut, LaunchRequest, RunRequest
 from api.protocol.page import PageViews
 from api.protocol.responses import ErrorBody, StaleSave
@@ -97,6 +97,7 @@ SHAPES: tuple[Shape, ...] = (
     Shape(TopicSummary),
     Shape(TopicDetail),
     Shape(RateOut),
+    Shape(KeyManagerParams),  # the page's setpoint prediction, from GET /api/nodes/{name}
     # the editor: /api/workspace/..., /api/run, /api/launch, /api/launches/{id}
     Shape(WorkspaceTree),
     Shape(FileText),

@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, RootModel
+from typing_extensions import TypedDict
 
 from api.protocol.schemas import WATCH
 from server.services.api_node.topic_watch import WatchState
@@ -109,3 +110,15 @@ class TypeDefault(RootModel[dict[str, Any]]):
 class TypeSchema(RootModel[dict[str, Any]]):
     """A JSON Schema (draft 2020-12) of a message type's JSON form, with ROS integer ranges and
     defaults."""
+
+
+class KeyManagerParams(TypedDict):
+    """The drone keyboard manager's parameters the page's setpoint prediction reads from its node
+    (``GET /api/nodes/{name}``'s ``parameters``); server/packages/simple_control/keyboard_manager.py
+    declares them, with their ranges."""
+
+    mode: str  # "lab", "adopt" (a step per press) or "hold" (move while held)
+    step_m: float
+    hold_speed_m_s: float
+    lead_s: float
+    brake_s: float

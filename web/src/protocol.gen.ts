@@ -276,6 +276,15 @@ export interface KeyFrame {
   meta?: boolean;
 }
 
+/** The drone keyboard manager's parameters the page's setpoint prediction reads from its node (``GET /api/nodes/{name}``'s ``parameters``); server/packages/simple_control/keyboard_manager.py declares them, with their ranges. */
+export interface KeyManagerParams {
+  mode: string;
+  step_m: number;
+  hold_speed_m_s: number;
+  lead_s: number;
+  brake_s: number;
+}
+
 export interface Kicked {
   /** the world removed */
   kicked: string;

@@ -2,7 +2,7 @@
 // marker can move in the next frame instead of after the round trip through the bus. It mirrors
 // the drone keyboard manager's rules (server/packages/simple_control/keyboard_manager.py) with its
 // live parameters, read from the REST API; the setpoint the bus then publishes corrects it.
-import type { GraphOut, NodeDetailOut } from "../protocol.gen";
+import type { GraphOut, KeyManagerParams, NodeDetailOut } from "../protocol.gen";
 import { keys } from "./keys";
 import { notify, type Listeners } from "./listeners";
 import type { V3 } from "./pose_ring";
@@ -23,14 +23,6 @@ const SILENT_MS = 3000;  // no setpoint at all since the key: the prediction sta
 // the setpoint from before the key then wins only at EXPIRE_MS, and silence only at SILENT_MS,
 // so the marker does not go back for a moment before it goes forward (a CI run saw that).
 
-/** The keyboard manager's parameters the prediction needs (its node's live parameters). */
-export interface KeyManagerParams {
-  mode: string;  // "lab", "adopt" (a step per press) or "hold" (move while held)
-  step_m: number;
-  hold_speed_m_s: number;
-  lead_s: number;
-  brake_s: number;
-}
 /** A predicted setpoint (m), when it was made (ms), the keydown that made it (none on a keyup), the
  * bus's setpoint then (none yet), and whether a setpoint has come since. */
 export interface Prediction { p: V3; made: number; key: KeyboardEvent | null; from: V3 | null; heard: boolean }
