@@ -10,7 +10,7 @@ import pytest
 from support.app import REPO, App, JsonProcess
 
 # The lab's own definitions, and ROS 2's as the set-up extracted them from its wheels.
-FOLDERS = (REPO / "server" / "msgs" / "interfaces", REPO / "server" / "msgs" / "ros_interfaces")
+FOLDERS = (REPO / "node_runtime" / "msgs" / "interfaces", REPO / "node_runtime" / "msgs" / "ros_interfaces")
 
 
 def definition_file(pkg: str, kind: str, short: str) -> Path:
