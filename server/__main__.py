@@ -192,6 +192,12 @@ def build_parser() -> argparse.ArgumentParser:
         help=f"the students' workspaces, a folder per world (default {shown(workspaces_dir)}); world workers "
              "on other machines need it mounted as their --workspaces-dir for the code view",
     )  # fmt: skip
+    classroom.add_argument(
+        "--class-secret-file", type=Path, metavar="FILE", default=default_of(ClassroomSettings, "class_secret_file"),
+        help="the class secret, shared with the class's world workers (their --class-secret-file): tokens, the "
+             "instructor's too, stay the same when this server starts again, and workers need no token from its "
+             "log (default: a new random secret at each start). Make it once: openssl rand -hex 32 > FILE",
+    )  # fmt: skip
     worker_timeout = default_of(ClassroomSettings, "worker_timeout_s")
     classroom.add_argument(
         "--worker-timeout", type=float, default=worker_timeout, metavar="S",
@@ -267,7 +273,8 @@ def lab_token(arg: str | None) -> str | None:
 
 # Options of the class's section: without --classroom there is no class for them to shape.
 CLASS_ONLY = {"workers": "--workers", "spread_at": "--spread-at", "local_worlds": "--local-worlds",
-              "max_worlds_per_address": "--max-worlds-per-address", "workspaces_dir": "--workspaces-dir"}  # fmt: skip
+              "max_worlds_per_address": "--max-worlds-per-address", "workspaces_dir": "--workspaces-dir",
+              "class_secret_file": "--class-secret-file"}  # fmt: skip
 
 
 def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settings:
@@ -279,6 +286,7 @@ def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settin
             "code": args.class_code, "max_worlds": args.max_worlds, "local_worlds": args.local_worlds,
             "local_workers": args.workers, "spread_at": args.spread_at, "worker_timeout_s": args.worker_timeout,
             "world_log_level": args.world_log_level, "workspaces_dir": args.workspaces_dir,
+            "class_secret_file": args.class_secret_file,
             "joins": {"max_worlds_per_address": args.max_worlds_per_address},
         }  # fmt: skip
     listen = {
@@ -317,6 +325,14 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:  # a Zenoh endpoint or ROS_DOMAIN_ID the session cannot take
         parser.error(str(exc))
     classroom = settings.classroom
+    if classroom is not None and classroom.class_secret_file is not None:
+        from server.classroom.tokens import ClassSecretError, read_class_secret
+
+        try:
+            read_class_secret(classroom.class_secret_file)  # read again by the class server
+        except ClassSecretError as exc:
+            print(f"error: {exc}", file=sys.stderr)
+            return 2
     world_level = classroom.world_log_level if classroom is not None else args.world_log_level
     setup_logging(settings.log_level, classroom=classroom is not None, world_level=world_level)
     error = check_launch(settings)

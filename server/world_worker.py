@@ -7,6 +7,11 @@ where that API is and how many worlds it hosts. Its worlds join the same router 
 domains the class server gives them, so a student's node processes find them as before.
 
     ROS2LAB_TOKEN=<the instructor's token> ros2lab world-worker --connect tcp/127.0.0.1:7447
+    ros2lab world-worker --class-secret-file class-secret --connect tcp/127.0.0.1:7447
+
+The second form reads the class secret its class server was given (``--class-secret-file``) and
+derives the instructor's token from it as the class server does (server/classroom/tokens.py), so
+it needs nothing from the class server's log and still fits after the class server starts again.
 """
 
 from __future__ import annotations
@@ -52,7 +57,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="ros2lab world-worker",
         description="Host worlds for a class server: join its Zenoh router and serve the worlds it places "
-        f"here. The instructor's token comes from ${TOKEN_ENV} (the class server prints it).",
+        f"here. The instructor's token comes from ${TOKEN_ENV} (the class server prints it), or is derived "
+        "from the class secret its class server was given (--class-secret-file).",
     )
     parser.add_argument(
         "--connect",
@@ -67,6 +73,11 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--advertise", metavar="HOST",
         help="the address the class server reaches this worker on (default: --host; needed with 0.0.0.0)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--class-secret-file", type=Path, metavar="FILE",
+        help=f"the class secret file its class server was given (instead of ${TOKEN_ENV}): the instructor's "
+             "token is derived from it, the same after the class server starts again",
     )  # fmt: skip
     parser.add_argument("--id", dest="worker_id", help="this worker's name (default: HOSTNAME-PID)")
     parser.add_argument(
@@ -141,7 +152,7 @@ def _worker_id(asked: str | None) -> str:
     return "".join(c if c.isalnum() or c in "-_" else "_" for c in wid)[:64] or f"worker-{os.getpid()}"
 
 
-def _router_refuses(endpoint: str, class_token: str) -> str | None:
+def _router_refuses(endpoint: str, class_token: str, source: str) -> str | None:
     """Why the class's router would not let this worker in (None: it does), before anything starts."""
     from node_runtime.transport.acl import ClassAuth
     from node_runtime.transport.session import TransportError, open_session
@@ -154,10 +165,35 @@ def _router_refuses(endpoint: str, class_token: str) -> str | None:
         session.close()
     except TransportError as exc:
         return (
-            f"{exc}. Is the class server running there, and {TOKEN_ENV} the instructor's token? Its "
-            "router lets in only the class's own workers."
+            f"{exc}. Is the class server running there, and {source}? Its router lets in only the "
+            "class's own workers."
         )
     return None
+
+
+def _class_token(secret_file: Path | None) -> tuple[str | None, str]:
+    """The instructor's token, from exactly one of $ROS2LAB_TOKEN and the class secret file, and
+    where it came from (for the router's refusal); else None and why not."""
+    from server.classroom.tokens import ClassSecretError, instructor_token, read_class_secret
+
+    from_env = os.environ.get(TOKEN_ENV, "").strip()
+    if secret_file is None:
+        if not from_env:
+            return None, (
+                f"set {TOKEN_ENV} to the instructor's token (in the link the class server printed), or give "
+                "--class-secret-file with the class server's class secret: a worker serves only its own class"
+            )
+        return from_env, f"{TOKEN_ENV} the instructor's token"
+    if from_env:
+        return None, (
+            f"both {TOKEN_ENV} and --class-secret-file are given: use one (the class secret file, "
+            f"when the class server has one; unset {TOKEN_ENV})"
+        )
+    try:
+        secret = read_class_secret(secret_file)
+    except ClassSecretError as exc:
+        return None, str(exc)
+    return instructor_token(secret), f"the class secret file {secret_file} the class server's own"
 
 
 def worker_settings(args: argparse.Namespace, class_token: str, port: int) -> Settings:
@@ -188,10 +224,9 @@ def worker_settings(args: argparse.Namespace, class_token: str, port: int) -> Se
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
-    class_token = os.environ.get(TOKEN_ENV, "").strip()
-    if not class_token:
-        print(f"error: set {TOKEN_ENV} to the instructor's token (in the link the class server printed): "
-              "a worker serves only its own class", file=sys.stderr)  # fmt: skip
+    class_token, source = _class_token(args.class_secret_file)
+    if class_token is None:
+        print(f"error: {source}", file=sys.stderr)
         return 2
     try:
         worker_settings(args, class_token, args.port)  # every rule, before anything is bound
@@ -210,7 +245,7 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         print(f"error: cannot listen on {args.host}:{args.port}: {exc.strerror}", file=sys.stderr)
         return 2
-    refused = _router_refuses(args.connect, class_token)
+    refused = _router_refuses(args.connect, class_token, source)
     if refused:
         sock.close()
         print(f"error: {refused}", file=sys.stderr)

@@ -38,7 +38,7 @@ from server.classroom.local_workers import LocalWorkers, local_workers_for
 from server.classroom.placement import Placement
 from server.classroom.progress_copies import ProgressCopies
 from server.classroom.saved_students import SavedStudents
-from server.classroom.tokens import Grant, TokenSigner
+from server.classroom.tokens import Grant, TokenSigner, read_class_secret
 from server.classroom.workspace_copies import WorkspaceCopies
 from server.classroom.world import World, world_name
 from server.classroom.world import drones as world_drones
@@ -74,7 +74,9 @@ class ClassServer:
         self.class_settings = class_section(settings)
         self.clock: Clock = clock or SystemClock()
         self.code = code or new_code()
-        self.grants = Grants(signer)
+        secret_file = self.class_settings.class_secret_file
+        # The class secret, when given: the same instructor's token at every start (tokens.py).
+        self.grants = Grants(signer or (TokenSigner(read_class_secret(secret_file)) if secret_file else None))
         self.admission = Admission(self.class_settings.joins, self.clock)
         worlds: dict[str, World] = {}  # the class's, which its graph shows in the class domain
         self.graph = ClassGraph(settings, worlds, self.grants.instructor_token)
@@ -230,7 +232,7 @@ class ClassServer:
         if not hmac.compare_digest(code.strip().upper().encode(), self.code.encode()):
             raise self.admission.wrong_code(address)
         check_student_name(student)
-        await self.saved.check(self._free_name(student), student.strip()[:64], token)
+        proven = await self.saved.check(self._free_name(student), student.strip()[:64], token)
         capacity = await self.load.capacity()  # before the name is checked again: no await after it
         name = self._free_name(student)
         student = student.strip()[:64]
@@ -243,7 +245,7 @@ class ClassServer:
             waiting = self.queue.add(student, name, address)
             log.info("%s waits to join (%s)", student, "; ".join(capacity.reasons) or "joins ahead")
             raise JoinWaits(waiting, len(self.queue) - 1)
-        return await self._start_world(student, name, address)
+        return await self._start_world(student, name, address, token if proven else None)
 
     async def poll_join(self, ticket: str) -> tuple[World, str]:
         """A waiting join, asked again: its world and token once it is admitted (oldest first,
@@ -271,7 +273,10 @@ class ClassServer:
             raise ClassFullError(f"the class is full ({self.class_settings.max_worlds} worlds)")
         return name
 
-    async def _start_world(self, student: str, name: str, address: str) -> tuple[World, str]:
+    async def _start_world(
+        self, student: str, name: str, address: str, kept: str | None = None
+    ) -> tuple[World, str]:
+        """``kept``: the token the join proved its student's (grants.py keeps it if it may)."""
         if self.labs.full():  # a waiting join whose turn came after the class filled up
             raise ClassFullError(f"the class is full ({self.class_settings.max_worlds} worlds)")
         domain_id = self.labs.free_domain(self.graph.revoking)
@@ -286,7 +291,7 @@ class ClassServer:
             raise
         finally:
             del self.labs.starting[name]
-        token, grant = self.grants.issue(name, student)
+        token, grant = self.grants.issue(name, student, kept)
         resets = RateLimit(
             self.clock, self.class_settings.world.resets_hz, self.class_settings.world.resets_burst
         )

@@ -4,6 +4,12 @@ Every call carries a signed token (tokens.py). A student's token grants their wo
 world is still theirs: a removed world's token is revoked, and a world of the same name made
 later has a token of its own. The instructor's grant reaches every world, but a call must name
 the world it acts on.
+
+With a class secret, tokens outlive a restart of the class server, but the revoked ones are not
+kept: none needs to be. A student's token grants only a world of this run whose token it is, and
+a join keeps the token it presents only when the world's owner record proves it the student's
+(saved_students.py); removing a world removes that record with its progress and code, so a
+removed world's token never grants again.
 """
 
 from __future__ import annotations
@@ -20,11 +26,23 @@ class Grants:
 
     def __init__(self, signer: TokenSigner | None = None) -> None:
         self.signer = signer or TokenSigner()
-        self.instructor_token, self.instructor = self.signer.issue("instructor", None, "instructor")
+        self.instructor_token, self.instructor = self.signer.issue_instructor()
         self._revoked: set[str] = set()
 
-    def issue(self, world: str, student: str) -> tuple[str, Grant]:
-        """A student's token for ``world``, and its grant."""
+    def issue(self, world: str, student: str, kept: str | None = None) -> tuple[str, Grant]:
+        """A student's token for ``world``, and its grant: ``kept`` itself when it is a genuine
+        token for ``world`` that is not revoked (a token its join proved its student's, by the
+        world's owner record: after a restart of a class server with a class secret, the token
+        their pages hold works again), else a new one."""
+        if kept is not None:
+            grant = self.signer.verify(kept)
+            if (
+                grant is not None
+                and not grant.is_instructor
+                and grant.world == world
+                and grant.token_id not in self._revoked
+            ):
+                return kept, grant
         return self.signer.issue("student", world, student)
 
     def revoke(self, world: World) -> None:

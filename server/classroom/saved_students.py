@@ -66,17 +66,20 @@ class SavedStudents:
         await asyncio.to_thread(read_captures, self.store.world_folder(name), progress)
         return progress
 
-    async def check(self, name: str, student: str, token: str | None) -> None:
+    async def check(self, name: str, student: str, token: str | None) -> bool:
         """A join as ``student`` into world ``name``: ProgressOwnedError unless there is no progress
-        nor code on disk under that name, or it is nobody's yet, or ``token`` proves the join is its student's."""
+        nor code on disk under that name, or it is nobody's yet, or ``token`` proves the join is its student's.
+        Whether ``token`` proved it (a recorded owner's token)."""
         try:
             owner = await asyncio.to_thread(self._owner_of_saved, name)
         except OwnerFileError as exc:
             raise ProgressOwnedError(f"the name {student!r} (world {name!r}) has saved progress or code "
                                      f"whose owner record cannot be read ({exc}): ask the instructor to release "
                                      "it, or join under another name") from None  # fmt: skip
-        if owner is None or owner.proven_by(token):
-            return
+        if owner is None:
+            return False
+        if owner.proven_by(token):
+            return True
         raise ProgressOwnedError(
             f"the name {student!r} (world {name!r}) has saved progress or code that belongs to the "
             f"student who joined as {owner.student!r} earlier, and this join does not show it is them: "

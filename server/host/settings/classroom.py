@@ -106,6 +106,10 @@ class ClassroomSettings(Section):
     # Each world's workspace is the folder of its name in here: kept across resets and restarts of
     # the server, removed when the instructor removes the student.
     workspaces_dir: Path = Path("workspaces")
+    # The class secret, shared with the class's world workers (--class-secret-file): the class server
+    # signs with it, so its tokens, the instructor's too, are the same after a restart. None: a
+    # new random secret at every start.
+    class_secret_file: Path | None = None
 
     @field_validator("max_worlds")
     @classmethod
