@@ -58,8 +58,10 @@ def lab_of(conn: HTTPConnection) -> Lab:
         lab = cast(Lab, conn.app.state.lab)
         lab_token = lab.settings.listen.token
         if lab_token is not None and not token_matches(token_of(conn), lab_token):
-            raise NotAuthenticatedError("this lab needs its token: open the link the server printed "
-                                        "(/?token=...), or send Authorization: Bearer")  # fmt: skip
+            raise NotAuthenticatedError(
+                "this lab needs its token: open the link the server printed "
+                "(/?token=...), or send Authorization: Bearer"
+            )
         return lab
     grant = grant_of(conn, classroom)
     asked = conn.headers.get(WORLD_HEADER) or conn.query_params.get("world")

@@ -32,7 +32,7 @@ from node_runtime.bus import (
     UnknownNodeError,
     UnknownServiceError,
     UnknownTopicError,
-)  # fmt: skip
+)
 from node_runtime.limits import LimitExceededError, ValueLimitError
 from node_runtime.msgs import MessageError, UnknownTypeError
 from server.base.close_codes import CLOSE_FOR_STATUS, HANDSHAKE_REFUSALS, refuse_socket

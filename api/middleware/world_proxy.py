@@ -33,10 +33,24 @@ from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH
 from server.classroom.workers import WorkerDirectory, WorkerRef, world_call_token
 
 # Hop-by-hop headers, and what the class server answers for itself (who the caller is, where from).
-DROP_REQUEST = frozenset({
-    "host", "cookie", "authorization", WORLD_HEADER, "origin", "referer", "connection", "keep-alive",
-    "te", "trailer", "transfer-encoding", "upgrade", "content-length", "proxy-authorization",
-})  # fmt: skip
+DROP_REQUEST = frozenset(
+    {
+        "host",
+        "cookie",
+        "authorization",
+        WORLD_HEADER,
+        "origin",
+        "referer",
+        "connection",
+        "keep-alive",
+        "te",
+        "trailer",
+        "transfer-encoding",
+        "upgrade",
+        "content-length",
+        "proxy-authorization",
+    }
+)
 DROP_RESPONSE = frozenset({"connection", "keep-alive", "transfer-encoding", "set-cookie", "server", "date"})
 WS_OPEN_TIMEOUT_S = 10.0
 # The class server's own sockets: the instructor's rosbridge on the class domain, the class view.
@@ -98,8 +112,10 @@ class WorldProxyMiddleware:
             await _forward_ws(directory, grant, world, world.worker, scope, receive, send)
             return
         if scope["method"] not in SAFE_METHODS and not grant.is_instructor and not world.writes.take():
-            detail = (f"too many requests for world {world.name!r}: at most "
-                      f"{classroom.class_settings.world.writes_hz:g} writes a second")  # fmt: skip
+            detail = (
+                f"too many requests for world {world.name!r}: at most "
+                f"{classroom.class_settings.world.writes_hz:g} writes a second"
+            )
             await SafeJSONResponse({"detail": detail}, status.HTTP_429_TOO_MANY_REQUESTS)(
                 scope, receive, send
             )
@@ -112,8 +128,11 @@ def target(ref: WorkerRef, scope: Scope, websocket: bool) -> str:
     and world. PathChanged if the URL, as a client parses it, would name another path."""
     raw_path = scope.get("raw_path")
     path = raw_path.decode("latin-1") if isinstance(raw_path, bytes) else scope["path"]
-    query = [(k, v) for k, v in parse_qsl(scope["query_string"].decode("latin-1"), keep_blank_values=True)
-             if k not in ("token", "world")]  # fmt: skip
+    query = [
+        (k, v)
+        for k, v in parse_qsl(scope["query_string"].decode("latin-1"), keep_blank_values=True)
+        if k not in ("token", "world")
+    ]
     base = ref.url.replace("http", "ws", 1) if websocket else ref.url
     url = base + path + (f"?{urlencode(query)}" if query else "")
     if httpx.URL(url).raw_path.split(b"?", 1)[0] != path.encode("latin-1"):

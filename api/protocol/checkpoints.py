@@ -22,9 +22,10 @@ class AnswerBody(BaseModel):
 class KnownCopies(BaseModel):
     model_config = ConfigDict(strict=True, extra="forbid")
     known: dict[WorldName, Tag] = Field(
-        default_factory=dict, max_length=256,
+        default_factory=dict,
+        max_length=256,
         description="the tag of the copy the caller has of each world's progress",
-    )  # fmt: skip
+    )
 
 
 class VerifyResult(BaseModel):

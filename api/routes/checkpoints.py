@@ -184,9 +184,10 @@ async def class_checkpoints(
         view["worker_errors"] = errors
     if format == "csv":
         return Response(
-            table_csv(view), media_type="text/csv; charset=utf-8",
+            table_csv(view),
+            media_type="text/csv; charset=utf-8",
             headers={"Content-Disposition": 'attachment; filename="checkpoints.csv"'},
-        )  # fmt: skip
+        )
     return CLASS_TABLE.validate_python(view)
 
 
@@ -232,9 +233,10 @@ async def class_reports(request: Request, _: InstructorDep, classroom: Classroom
     files += remote
     files += [(f"{name}.unreachable.txt", f"{why}\n".encode()) for name, why in missing.items()]
     return Response(
-        reports_zip(files), media_type="application/zip",
+        reports_zip(files),
+        media_type="application/zip",
         headers={"Content-Disposition": 'attachment; filename="checkpoint-reports.zip"'},
-    )  # fmt: skip
+    )
 
 
 @class_router.post("/{world}/release", responses=responses(UNAUTHORIZED, 403, NOT_FOUND, TYPE_CONFLICT))

@@ -59,8 +59,9 @@ CLASS_WORLD = TypeAdapter(ClassWorld)
 def queued(waits: JoinWaits) -> JSONResponse:
     """202 for a join that waits in the queue."""
     why = "the class server is at its capacity" if waits.ahead == 0 else "joins ahead of yours wait"
-    body = QueuedJoin(ticket=waits.waiting.ticket, ahead=waits.ahead, student=waits.waiting.student,
-                      poll_s=POLL_S, why=why)  # fmt: skip
+    body = QueuedJoin(
+        ticket=waits.waiting.ticket, ahead=waits.ahead, student=waits.waiting.student, poll_s=POLL_S, why=why
+    )
     return JSONResponse(body.model_dump(), status_code=status.HTTP_202_ACCEPTED)
 
 

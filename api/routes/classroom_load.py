@@ -33,10 +33,16 @@ async def load(_: InstructorDep, classroom: ClassroomDep) -> ClassLoadOut:
     the late worlds, the capacity verdict, and the join queue."""
     places, capacity, queue = await classroom.class_load()
     return ClassLoadOut.model_validate(
-        {"capacity": capacity.verdict, "reasons": list(capacity.reasons), "worlds": capacity.worlds,
-         "late": capacity.late, "room": capacity.room, "places": [p.describe() for p in places],
-         "queue": queue}
-    )  # fmt: skip
+        {
+            "capacity": capacity.verdict,
+            "reasons": list(capacity.reasons),
+            "worlds": capacity.worlds,
+            "late": capacity.late,
+            "room": capacity.room,
+            "places": [p.describe() for p in places],
+            "queue": queue,
+        }
+    )
 
 
 @router.get(

@@ -73,8 +73,10 @@ async def index(request: Request) -> Response:
                 return Response("that link's token is not this lab's", status.HTTP_403_FORBIDDEN)
             return keep_token_and_go("/", asked)
         if not token_matches(token_of(request), lab_token):
-            return Response("this lab needs its token: open the link the server printed (/?token=...)",
-                            status.HTTP_401_UNAUTHORIZED)  # fmt: skip
+            return Response(
+                "this lab needs its token: open the link the server printed (/?token=...)",
+                status.HTTP_401_UNAUTHORIZED,
+            )
     return HTMLResponse(index_html(), headers={"Cache-Control": "no-cache", **ISOLATED})
 
 
@@ -150,8 +152,11 @@ async def instructor_view(request: Request) -> Response:
     if view is None:
         return Response("the 3D view is off (--no-viewer)", status.HTTP_404_NOT_FOUND)
     # Framed by the instructor's page only, never by another site's.
-    headers = {"Cache-Control": "no-cache", "Content-Security-Policy": "frame-ancestors 'self'",
-               "X-Frame-Options": "SAMEORIGIN"}  # fmt: skip
+    headers = {
+        "Cache-Control": "no-cache",
+        "Content-Security-Policy": "frame-ancestors 'self'",
+        "X-Frame-Options": "SAMEORIGIN",
+    }
     return HTMLResponse(viser_html(), headers=headers)
 
 

@@ -160,10 +160,15 @@ async def rename(body: RenameRequest, lab: LabDep) -> Renamed:
 async def new_package(body: PackageRequest, lab: LabDep) -> PackageCreated:
     """A package in ``src/<name>`` with the files ``ros2 pkg create`` writes (409 if taken)."""
     spec = PackageSpec(
-        name=body.name, build_type=body.build_type, node_name=body.node_name, dependencies=list(body.dependencies),
-        description=body.description or PackageSpec.description, license=body.license or PackageSpec.license,
-        maintainer_name="student", maintainer_email="student@todo.todo",
-    )  # fmt: skip
+        name=body.name,
+        build_type=body.build_type,
+        node_name=body.node_name,
+        dependencies=list(body.dependencies),
+        description=body.description or PackageSpec.description,
+        license=body.license or PackageSpec.license,
+        maintainer_name="student",
+        maintainer_email="student@todo.todo",
+    )
     created = await asyncio.to_thread(create_package, files_of(lab), spec)
     return PackageCreated(name=created.name, path=created.path, files=created.files)
 
