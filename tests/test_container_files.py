@@ -42,6 +42,7 @@ COMPOSE_VARIABLES = (
     "CLASS_HOST",
     "MAX_WORLDS",
     "WORKER_MAX_WORLDS",
+    "CLASS_SECRET_FILE",
     TOKEN_ENV,
 )
 
@@ -180,7 +181,7 @@ def test_the_class_server_listens_in_its_container_as_a_class_with_its_state_on_
     assert classroom["restart"] == "unless-stopped"
 
 
-def test_a_class_worker_joins_the_class_router_with_the_token_from_the_environment() -> None:
+def test_a_class_worker_joins_the_class_router_by_the_services_name() -> None:
     config = resolved_class()
     classroom, worker = config["services"]["classroom"], config["services"]["worker"]
     argv = worker_argv(worker["command"])
@@ -193,10 +194,30 @@ def test_a_class_worker_joins_the_class_router_with_the_token_from_the_environme
         settings.listen.host == "0.0.0.0"
         and settings.worker.url == f"http://172.18.0.5:{settings.listen.port}"
     )
-    assert worker["environment"] == {TOKEN_ENV: None}  # by name: the value is where compose runs, not here
+    assert TOKEN_ENV not in (worker.get("environment") or {})  # nothing from the class server's log
     assert TOKEN_ENV not in " ".join(worker["command"])
     assert worker["depends_on"] == {"classroom": {"condition": "service_healthy"}}
     assert worker["restart"] == "unless-stopped"
+
+
+def test_both_class_services_read_the_class_secret_from_the_file_the_operator_made() -> None:
+    config = resolved_class()
+    (secret,) = config["secrets"].values()
+    name = next(iter(config["secrets"]))
+    # The operator's file beside compose.class.yml, never in the image's build context or in git.
+    assert Path(secret["file"]) == COMPOSE_CLASS.parent / "class-secret", secret
+    for ignored in (".dockerignore", ".gitignore"):
+        assert "class-secret" in (REPO / ignored).read_text().split(), ignored
+    services = config["services"]
+    server = server_settings(services["classroom"]["command"])
+    read = {
+        "classroom": server.classroom.class_secret_file,
+        "worker": Path(option(worker_argv(services["worker"]["command"]), "--class-secret-file")),
+    }
+    for service, path in read.items():
+        (mounted,) = services[service]["secrets"]
+        assert mounted["source"] == name and "target" not in mounted, mounted  # at /run/secrets/<name>
+        assert path == Path("/run/secrets") / name, (service, path)
 
 
 def test_each_class_services_health_check_asks_its_own_port() -> None:

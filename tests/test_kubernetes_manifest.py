@@ -9,6 +9,7 @@ tests/classroom/test_class_deployment.py runs, but for the names of the cluster.
 from __future__ import annotations
 
 import re
+from pathlib import PurePosixPath
 from typing import Any
 
 import kubernetes_validate
@@ -144,14 +145,38 @@ def test_the_class_server_starts_as_a_class_with_its_state_and_workspaces_on_vol
     assert server["spec"]["replicas"] == 1
 
 
-def test_a_worker_takes_the_class_token_from_the_manifests_secret_and_names_itself_by_its_pod() -> None:
+def secret_file_of(workload: dict[str, Any]) -> tuple[str, dict[str, Any]]:
+    """Where the pod's container reads the class secret file (its --class-secret-file), and the
+    volume mounted there."""
+    c = container(workload)
+    path = PurePosixPath(option(expanded(c), "--class-secret-file"))
+    mounts = [m for m in c.get("volumeMounts", []) if path.is_relative_to(m["mountPath"])]
+    assert len(mounts) == 1, (path, c.get("volumeMounts"))
+    (mount,) = mounts
+    assert mount.get("readOnly") is True, mount
+    (volume,) = [v for v in workload["spec"]["template"]["spec"]["volumes"] if v["name"] == mount["name"]]
+    return str(path.relative_to(mount["mountPath"])), volume
+
+
+def test_both_workloads_read_the_class_secret_file_from_the_manifests_secret() -> None:
     secret = the("Secret")
+    assert "data" not in secret and "stringData" not in secret  # made once by the operator, never here
+    for workload in (the("StatefulSet"), the("Deployment")):
+        inside, volume = secret_file_of(workload)
+        assert volume["secret"]["secretName"] == secret["metadata"]["name"], volume
+        assert {"key": "class-secret", "path": inside} in volume["secret"]["items"], volume
+        c = container(workload)
+        assert TOKEN_ENV not in {e["name"] for e in c.get("env", [])}  # nothing from the class server's log
+    # Both parse it as theirs: the class server's settings and the worker's command.
+    server = server_settings(expanded(container(the("StatefulSet"))))
+    assert server.classroom.class_secret_file == PurePosixPath("/run/secrets/class-secret")
     assert (
-        "data" not in secret and "stringData" not in secret
-    )  # the class server's token, set after it starts
+        option(expanded(container(the("Deployment"))), "--class-secret-file") == "/run/secrets/class-secret"
+    )
+
+
+def test_a_worker_names_itself_by_its_pod() -> None:
     c = container(the("Deployment"))
-    (token,) = [e for e in c["env"] if e["name"] == TOKEN_ENV]
-    assert token["valueFrom"]["secretKeyRef"] == {"name": secret["metadata"]["name"], "key": TOKEN_ENV}
     settings = worker_settings(expanded(c))
     assert settings.worker.url == f"http://{POD_IP}:{port_named(c, 'http')}" == f"http://{POD_IP}:8100"
     assert settings.worker.id == POD_NAME and settings.listen.host == "0.0.0.0"
