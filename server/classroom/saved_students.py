@@ -7,7 +7,8 @@ workspace (the class's workspaces folder, the student's code). A join under a na
 either takes them when they are nobody's yet (no owner record: released by the instructor, or kept
 before owners were recorded) or when the join presents the token its student was given last (the
 join page's cookie, which outlives a restart of the class server though the token no longer grants
-anything): server/world/checkpoints/owner.py. Any other join under that name is refused with 409, and
+anything): server/world/checkpoints/owner.py. A join whose token its world's owner record proves
+keeps that token (grants.py): with a class secret, a student's token works again after a restart. Any other join under that name is refused with 409, and
 nothing changes. A join that starts a world records its student as the owner at once, so code
 written before any progress is theirs too. The instructor releases a student's progress and code
 (their owner record is set aside, never removed) for a student who lost their cookie: the next join
@@ -51,8 +52,11 @@ class SavedStudents:
         saved = await asyncio.to_thread(read_saved, self.store.folder, self._checkpoints())
         self._saved = {s.world: s.progress for s in saved}
         if saved:
-            log.info("progress of %d student(s) not joined since the start: %s", len(saved),
-                     ", ".join(s.world for s in saved))  # fmt: skip
+            log.info(
+                "progress of %d student(s) not joined since the start: %s",
+                len(saved),
+                ", ".join(s.world for s in saved),
+            )
 
     def not_joined(self, live: Container[str]) -> list[tuple[str, Progress]]:
         """The saved students, by world, who have no world now."""
@@ -73,11 +77,13 @@ class SavedStudents:
         try:
             owner = await asyncio.to_thread(self._owner_of_saved, name)
         except OwnerFileError as exc:
-            raise ProgressOwnedError(f"the name {student!r} (world {name!r}) has saved progress or code "
-                                     f"whose owner record cannot be read ({exc}): ask the instructor to release "
-                                     "it, or join under another name") from None  # fmt: skip
-        if owner is None:
-            return False
+            raise ProgressOwnedError(
+                f"the name {student!r} (world {name!r}) has saved progress or code "
+                f"whose owner record cannot be read ({exc}): ask the instructor to release "
+                "it, or join under another name"
+            ) from None
+        if owner is None:  # nothing kept, or nobody's: the token proves its student's only by a record
+            return token is not None and await asyncio.to_thread(self._recorded_for, name, token)
         if owner.proven_by(token):
             return True
         raise ProgressOwnedError(
@@ -85,13 +91,21 @@ class SavedStudents:
             f"student who joined as {owner.student!r} earlier, and this join does not show it is them: "
             "join again from the browser used then (its cookie shows it), ask the instructor to release "
             "it to you, or join under another name",
-        )  # fmt: skip
+        )
 
     def _owner_of_saved(self, name: str) -> Owner | None:
         """Whose world ``name``'s saved progress and code are; None when it has neither, or they
         are nobody's."""
         kept = self.store.has_progress(name) or self._has_code(name)
         return self.store.owner(name) if kept else None
+
+    def _recorded_for(self, name: str, token: str) -> bool:
+        """Whether world ``name``'s owner record, kept or not, is ``token``'s. Blocking."""
+        try:
+            owner = self.store.owner(name)
+        except OwnerFileError:
+            return False
+        return owner is not None and owner.proven_by(token)
 
     async def claim(self, name: str, student: str, token: str) -> None:
         """``student`` joined world ``name`` with ``token``: its progress is theirs from now on."""

@@ -3,7 +3,8 @@ the progress as ``student.json``: their name as they typed it and the SHA-256 of
 class server gave them.
 
 A world is named after what its student types, and two people can type the same name; a class
-server's tokens do not outlive it (server/classroom/tokens.py draws a new secret at each start). So
+server's tokens do not outlive it (server/classroom/tokens.py draws a new secret at each start,
+unless the class server is given a class secret). So
 after a restart the token a student's browser still holds (the join page's cookie) is what tells
 them apart: a join under a name whose progress is on disk takes that progress only when it
 presents the token whose hash is recorded here. A hash, not the token: the file grants nothing.
