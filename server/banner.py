@@ -58,12 +58,16 @@ def classroom_banner(settings: Settings, code: str, instructor_token: str) -> st
         )
     if router is not None:
         endpoint = router.listen[0].replace("0.0.0.0", "<this machine's address>")
-        lines.append(f"More cores or machines: ROS2LAB_TOKEN=<the instructor's token> ros2lab {cli.WORKER_VERB} "
-                     f"--connect {endpoint}")  # fmt: skip
+        lines.append(
+            f"More cores or machines: ROS2LAB_TOKEN=<the instructor's token> ros2lab {cli.WORKER_VERB} "
+            f"--connect {endpoint}"
+        )
     level = settings.classroom.world_log_level
     if level != "debug":
-        lines.append(f"This console shows the worlds' node lines at {level} and above, each under its world's "
-                     "name; every line is on its world's /rosout (--world-log-level to change)")  # fmt: skip
+        lines.append(
+            f"This console shows the worlds' node lines at {level} and above, each under its world's "
+            "name; every line is on its world's /rosout (--world-log-level to change)"
+        )
     return "\n".join(lines)
 
 
@@ -72,16 +76,22 @@ def print_lab_lines(settings: Settings) -> None:
     listen, zenoh = settings.listen, settings.lab.zenoh
     print(banner(listen.host, listen.port, settings.lab.launch), flush=True)
     if listen.token is not None and settings.classroom is None:
-        print(f"This lab needs its token: open http://{shown_host(listen.host)}:{listen.port}/?token={listen.token} "
-              "(bridges: ?token= or Authorization: Bearer)", flush=True)  # fmt: skip
+        print(
+            f"This lab needs its token: open http://{shown_host(listen.host)}:{listen.port}/?token={listen.token} "
+            "(bridges: ?token= or Authorization: Bearer)",
+            flush=True,
+        )
     if zenoh is not None:
         wide = [e for e in zenoh.listen if not is_loopback(e)] if zenoh.mode == "router" else []
         where = ", ".join(zenoh.listen) if zenoh.mode == "router" else "router " + ", ".join(zenoh.connect)
         domains = "a ROS domain per world (1, 2, ...)" if settings.classroom else f"domain {zenoh.domain_id}"
         print(f"ROS graph on Zenoh ({where}, {domains})", flush=True)
         if wide:
-            print(f"note: Zenoh listens on {', '.join(wide)}: other machines with the login can join this graph "
-                  "(GET /api/zenoh/join with the token gives it; see docs/zenoh.md)", flush=True)  # fmt: skip
+            print(
+                f"note: Zenoh listens on {', '.join(wide)}: other machines with the login can join this graph "
+                "(GET /api/zenoh/join with the token gives it; see docs/zenoh.md)",
+                flush=True,
+            )
 
 
 def student_code_line(settings: Settings) -> str | None:
@@ -89,8 +99,10 @@ def student_code_line(settings: Settings) -> str | None:
     if not settings.confines_paths:
         return None
     if not settings.sandboxes_students:
-        return ("warning: --student-code unsandboxed: students' nodes run as this server's user, with "
-                "everything it can read and reach (tokens, other workspaces, the network)")  # fmt: skip
+        return (
+            "warning: --student-code unsandboxed: students' nodes run as this server's user, with "
+            "everything it can read and reach (tokens, other workspaces, the network)"
+        )
     from server.host.processes.sandbox import StudentCodeRefusedError, probe
 
     why = probe()
@@ -99,6 +111,8 @@ def student_code_line(settings: Settings) -> str | None:
     from server.host.processes.sandbox import memory_layer
 
     limits = settings.sandbox
-    return (f"Students' nodes run sandboxed (bubblewrap, seccomp, no capability, the workspace read-only, "
-            f"no network but their world's graph; {limits.memory_mib} MiB counted {memory_layer()}, "
-            f"{limits.processes} processes, nice {limits.nice})")  # fmt: skip
+    return (
+        f"Students' nodes run sandboxed (bubblewrap, seccomp, no capability, the workspace read-only, "
+        f"no network but their world's graph; {limits.memory_mib} MiB counted {memory_layer()}, "
+        f"{limits.processes} processes, nice {limits.nice})"
+    )

@@ -69,9 +69,13 @@ class ClassBridges:
         holders of ``token``. A port that is taken is left out with a warning."""
         lab = settings.lab
         zenoh = ZenohSettings(
-            mode="client", listen=(), connect=(router,), domain_id=domain_id, login=login,
+            mode="client",
+            listen=(),
+            connect=(router,),
+            domain_id=domain_id,
+            login=login,
             config_file=lab.zenoh.config_file if lab.zenoh is not None else None,
-        )  # fmt: skip
+        )
         bus = Bus(clock)
         link = await ZenohLink.open(bus, zenoh)
         with bus.activate():

@@ -85,9 +85,14 @@ class ClassGraph:
 
             try:
                 self.bridges = await ClassBridges.open(
-                    self.settings, clock, executors, endpoint, zenoh.domain_id,
-                    self.auth.class_credentials(), self.instructor_token,
-                )  # fmt: skip
+                    self.settings,
+                    clock,
+                    executors,
+                    endpoint,
+                    zenoh.domain_id,
+                    self.auth.class_credentials(),
+                    self.instructor_token,
+                )
             except TransportError as exc:
                 log.warning("the class's Foxglove and rosbridge ports not opened: %s", exc)
         return True
@@ -162,8 +167,10 @@ class ClassGraph:
             return
         if self.workers is not None:
             await self._workers_back(session)
-        log.info("Zenoh logins of ROS domains %s revoked: the class's router opened again",
-                 ", ".join(map(str, sorted(domains))))  # fmt: skip
+        log.info(
+            "Zenoh logins of ROS domains %s revoked: the class's router opened again",
+            ", ".join(map(str, sorted(domains))),
+        )
 
     async def _workers_back(self, session: Any) -> None:
         """Until the workers found before the router opened again answer on the new one (their
@@ -179,8 +186,11 @@ class ClassGraph:
                 return
             await asyncio.sleep(0.1)
         if expected:
-            log.warning("world workers %s did not answer within %g s of the router opening again",
-                        ", ".join(sorted(expected - self.workers.last_found)), WORKERS_BACK_S)  # fmt: skip
+            log.warning(
+                "world workers %s did not answer within %g s of the router opening again",
+                ", ".join(sorted(expected - self.workers.last_found)),
+                WORKERS_BACK_S,
+            )
 
     def _open_bridge(self, session: Any) -> None:
         from node_runtime.transport.domain_bridge import DomainBridge

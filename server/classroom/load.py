@@ -102,9 +102,12 @@ class CpuLoad:
         ):
             rss = None  # an older worker's hello, or a garbled one: the CPU still counts
         return cls(
-            float(process), None if host is None else float(host), cores, machine,
+            float(process),
+            None if host is None else float(host),
+            cores,
+            machine,
             None if rss is None else float(rss),
-        )  # fmt: skip
+        )
 
 
 def machine_id() -> str | None:

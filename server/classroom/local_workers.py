@@ -115,13 +115,29 @@ class LocalWorkers:
 
     def _command(self, child: _Child) -> list[str]:
         command = [
-            sys.executable, "-m", "server", "world-worker", "--connect", self.router, "--id", child.worker_id,
-            "--max-worlds", str(self.max_worlds), "--bag-dir", str(self.bag_dir.resolve()),
-            "--state-dir", str(self.state_dir.resolve()),
-            "--log-level", self.log_level, "--world-log-level", self.world_log_level,
-            "--parent-pid", str(os.getpid()),
-            "--start-slots", str(machine_slots_file(self.state_dir).resolve()),
-        ]  # fmt: skip
+            sys.executable,
+            "-m",
+            "server",
+            "world-worker",
+            "--connect",
+            self.router,
+            "--id",
+            child.worker_id,
+            "--max-worlds",
+            str(self.max_worlds),
+            "--bag-dir",
+            str(self.bag_dir.resolve()),
+            "--state-dir",
+            str(self.state_dir.resolve()),
+            "--log-level",
+            self.log_level,
+            "--world-log-level",
+            self.world_log_level,
+            "--parent-pid",
+            str(os.getpid()),
+            "--start-slots",
+            str(machine_slots_file(self.state_dir).resolve()),
+        ]
         if self.workspace is not None:
             command += ["--workspace", str(self.workspace.resolve())]
         return [*command, "--workspaces-dir", str(self.workspaces_dir.resolve())]
@@ -145,13 +161,21 @@ class LocalWorkers:
                     continue
                 code = child.proc.returncode
                 if child.restarts >= MAX_RESTARTS:
-                    log.error("world worker %s ended (exit %s) and has been started %d times: left down",
-                              child.worker_id, code, child.restarts + 1)  # fmt: skip
+                    log.error(
+                        "world worker %s ended (exit %s) and has been started %d times: left down",
+                        child.worker_id,
+                        code,
+                        child.restarts + 1,
+                    )
                     child.given_up = True
                     continue
                 child.restarts += 1
-                log.warning("world worker %s ended (exit %s): starting it again; its worlds start again "
-                            "once the class server finds it gone", child.worker_id, code)  # fmt: skip
+                log.warning(
+                    "world worker %s ended (exit %s): starting it again; its worlds start again "
+                    "once the class server finds it gone",
+                    child.worker_id,
+                    code,
+                )
                 self._spawn(child)
 
     async def stop(self) -> None:
@@ -173,10 +197,18 @@ def local_workers_for(settings: Settings, endpoint: str, class_token: str) -> Lo
     if klass.workers_at_start == 0 and spare == 0:
         return None
     return LocalWorkers(
-        klass.workers_at_start, endpoint, class_token, klass.max_worlds, settings.lab.workspace,
-        klass.workspaces_dir, settings.lab.bag_dir, world_log_level=klass.world_log_level,
-        state_dir=settings.lab.state_dir, spread_at=klass.spread_at if klass.auto_workers else None, spare=spare,
-    )  # fmt: skip
+        klass.workers_at_start,
+        endpoint,
+        class_token,
+        klass.max_worlds,
+        settings.lab.workspace,
+        klass.workspaces_dir,
+        settings.lab.bag_dir,
+        world_log_level=klass.world_log_level,
+        state_dir=settings.lab.state_dir,
+        spread_at=klass.spread_at if klass.auto_workers else None,
+        spare=spare,
+    )
 
 
 def _end_all(procs: list[subprocess.Popen[bytes]]) -> None:

@@ -105,7 +105,7 @@ class Placement:
             raise NoRoomError(
                 f"no room for another world: this server hosts {capacity} itself "
                 f"(--local-worlds) and {'no world worker has room' if refs else 'no world worker answered'}"
-            )  # fmt: skip
+            )
         best, full = choose(choices)
         if full:
             log.warning(
@@ -119,8 +119,13 @@ class Placement:
         assert self.graph.workers is not None
         self._hosting.add((ref.id, name))
         try:
-            body: dict[str, Any] = {"world": name, "student": student, "domain_id": domain_id,
-                    "launch": self.settings.lab.launch, "launch_args": self.settings.lab.launch_args}  # fmt: skip
+            body: dict[str, Any] = {
+                "world": name,
+                "student": student,
+                "domain_id": domain_id,
+                "launch": self.settings.lab.launch,
+                "launch_args": self.settings.lab.launch_args,
+            }
             if login is not None:  # the world's own login: its graph joins the router with it
                 body |= {"zenoh_user": login.user, "zenoh_password": login.password}
             socket = self.graph.process_socket()
@@ -170,9 +175,11 @@ class Placement:
             for ref in answered
             if ref.hosted is not None
             for name, world in worlds.items()
-            if world.worker is not None and world.worker.id == ref.id and world.placed_at < asked_at
+            if world.worker is not None
+            and world.worker.id == ref.id
+            and world.placed_at < asked_at
             and name not in ref.hosted
-        }  # fmt: skip
+        }
         await self._end_strays(answered)
         if self.copies is not None:
             await self.copies.refresh(workers, worlds, answered)
@@ -204,8 +211,11 @@ class Placement:
             ours = {name for name, w in worlds.items() if w.worker is not None and w.worker.id == ref.id}
             placing = {name for wid, name in self._hosting if wid == ref.id}
             for name in sorted((ref.hosted or frozenset()) - ours - placing - set(self.labs.starting)):
-                log.warning("world worker %s still hosts world %s, which this class does not count there: "
-                            "ending it", ref.id, name)  # fmt: skip
+                log.warning(
+                    "world worker %s still hosts world %s, which this class does not count there: ending it",
+                    ref.id,
+                    name,
+                )
                 try:
                     await workers.checked(ref, "DELETE", f"/api/classroom/worlds/{name}")
                 except WorkerRefusedError as exc:

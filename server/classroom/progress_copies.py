@@ -55,8 +55,11 @@ class ProgressCopies:
         """Ask each worker that answered this round, and keeps progress in its own folder, for
         what changed in its worlds; copy it. A worker that cannot answer is asked again next round."""
         answering = {ref.id for ref in answered}
-        asked = [(ref, names) for ref, names in on_workers(worlds).values()
-                 if ref.id in answering and not self.shares(ref)]  # fmt: skip
+        asked = [
+            (ref, names)
+            for ref, names in on_workers(worlds).values()
+            if ref.id in answering and not self.shares(ref)
+        ]
         await asyncio.gather(*(self._refresh_one(workers, worlds, ref, names) for ref, names in asked))
 
     async def _refresh_one(

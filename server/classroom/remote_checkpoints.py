@@ -43,8 +43,14 @@ def _why(worker: WorkerRef, exc: BaseException) -> str:
 
 def unreachable_row(world: World, checkpoints: Sequence[str], reason: str) -> dict[str, Any]:
     cells = {name: {"state": UNREACHABLE, "done_at": None} for name in checkpoints}
-    return {"name": world.student, "world": world.name, "cells": cells, "answers": {}, "joined": True,
-            "unreachable": reason}  # fmt: skip
+    return {
+        "name": world.student,
+        "world": world.name,
+        "cells": cells,
+        "answers": {},
+        "joined": True,
+        "unreachable": reason,
+    }
 
 
 def _remote(worlds: Mapping[str, World]) -> list[World]:

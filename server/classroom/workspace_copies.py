@@ -75,8 +75,10 @@ class WorkspaceCopies:
             raise WorkerFailedError(f"world {world!r}'s files could not be read: {exc}") from None
         reply = await workers.call(ref, "POST", f"{ARCHIVE_PATH}?replace=true", world=world, content=data)
         if reply.status_code != 200:
-            raise WorkerFailedError(f"world worker {ref.id!r} did not take world {world!r}'s files: "
-                                    f"{reply.status_code} {reply.text[:200]}")  # fmt: skip
+            raise WorkerFailedError(
+                f"world worker {ref.id!r} did not take world {world!r}'s files: "
+                f"{reply.status_code} {reply.text[:200]}"
+            )
         self._handed[world] = ref.id
         self._copied.pop(world, None)
 

@@ -117,11 +117,14 @@ class WorldLabs:
             resets.refused += 1
             raise RateLimitedError(
                 f"too many resets of world {name!r}: at most {limits.resets_burst} in a row, "
-                f"then one in {1 / limits.resets_hz:g} s", resets.retry_after_s(),
-            )  # fmt: skip
+                f"then one in {1 / limits.resets_hz:g} s",
+                resets.retry_after_s(),
+            )
         if not world.writes.take():
-            raise RateLimitedError(f"too many requests for world {name!r}: at most "
-                                   f"{limits.writes_hz:g} writes a second", world.writes.retry_after_s())  # fmt: skip
+            raise RateLimitedError(
+                f"too many requests for world {name!r}: at most {limits.writes_hz:g} writes a second",
+                world.writes.retry_after_s(),
+            )
         if resets is not None:
             resets.take()
 
@@ -183,10 +186,15 @@ class WorldLabs:
         if endpoint is not None:
             config_file = self.settings.lab.zenoh.config_file if self.settings.lab.zenoh is not None else None
             zenoh = ZenohSettings(
-                mode="client", listen=(), connect=(endpoint,), domain_id=domain_id, config_file=config_file,
-                login=login, samples_hz=self.class_settings.world.samples_hz,
+                mode="client",
+                listen=(),
+                connect=(endpoint,),
+                domain_id=domain_id,
+                config_file=config_file,
+                login=login,
+                samples_hz=self.class_settings.world.samples_hz,
                 process_socket=socket,
-            )  # fmt: skip
+            )
         file, args = (
             launch if launch is not None else (self.settings.lab.launch, self.settings.lab.launch_args)
         )

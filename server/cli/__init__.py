@@ -43,10 +43,19 @@ __all__ = ["VERBS", "build_parser", "main"]
 
 # The module that adds each verb's parser (``launch`` adds ``launch``'s verbs).
 VERB_MODULES = {
-    "topic": "topic", "node": "node", "service": "service", "param": "param", "action": "action",
-    "launch": "launch", "run": "run", "pkg": "pkg", "interface": "interface", "bag": "bag", "env": "env",
+    "topic": "topic",
+    "node": "node",
+    "service": "service",
+    "param": "param",
+    "action": "action",
+    "launch": "launch",
+    "run": "run",
+    "pkg": "pkg",
+    "interface": "interface",
+    "bag": "bag",
+    "env": "env",
     "report": "report",
-}  # fmt: skip
+}
 
 
 def verb_of(argv: list[str]) -> str | None:

@@ -75,8 +75,14 @@ def _call(client: LabClient, service: str, srv_type: str, request: dict[str, Any
     return client.post("/api/services/" + service.lstrip("/"), body, timeout_s=timeout_s + 5.0)["response"]
 
 
-def _echo_feedback(client: LabClient, topic: str, type_name: str, goal_id: list[int], opened: threading.Event,
-                   out: queue.Queue[str]) -> None:  # fmt: skip
+def _echo_feedback(
+    client: LabClient,
+    topic: str,
+    type_name: str,
+    goal_id: list[int],
+    opened: threading.Event,
+    out: queue.Queue[str],
+) -> None:
     """Each feedback message of this goal, as ros2 prints it, into ``out`` (a thread's work)."""
     try:
         for frame in client.subscribe(topic, {"type": type_name}, opened):
@@ -143,8 +149,11 @@ def _result(client: LabClient, name: str, action_type: str, goal_id: list[int], 
     def ask() -> None:
         while True:
             try:
-                box.put(_call(client, name + "/_action/get_result", action_type + "_GetResult",
-                              {"goal_id": {"uuid": goal_id}}, RESULT_WAIT_S))  # fmt: skip
+                request = {"goal_id": {"uuid": goal_id}}
+                answer = _call(
+                    client, name + "/_action/get_result", action_type + "_GetResult", request, RESULT_WAIT_S
+                )
+                box.put(answer)
                 return
             except ApiError as exc:
                 if exc.status != 504:
@@ -175,8 +184,12 @@ def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
     p = sub.add_parser("info", parents=[common], help="Print information about an action")
     p.add_argument("action_name", help="Name of the ROS action to get info (e.g. '/fibonacci')")
     p.add_argument("-t", "--show-types", action="store_true", help="Additionally show the action type")
-    p.add_argument("-c", "--count", action="store_true",
-                   help="Only display the number of action clients and action servers")  # fmt: skip
+    p.add_argument(
+        "-c",
+        "--count",
+        action="store_true",
+        help="Only display the number of action clients and action servers",
+    )
     p.set_defaults(handler=action_info)
 
     p = sub.add_parser("send_goal", parents=[common], help="Send an action goal")

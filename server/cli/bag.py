@@ -49,8 +49,10 @@ def bag_record(
     folder.mkdir(parents=True)
     client.download(f"/api/bag/recordings/{name}/download", folder / summary["file"])
     client.download(f"/api/bag/recordings/{name}/metadata.yaml", folder / "metadata.yaml")
-    print(f"[INFO] [rosbag2_recorder]: Recorded {summary['messages']} messages on "
-          f"{len(summary['counts'])} topics into '{folder}'")  # fmt: skip
+    print(
+        f"[INFO] [rosbag2_recorder]: Recorded {summary['messages']} messages on "
+        f"{len(summary['counts'])} topics into '{folder}'"
+    )
     if summary["dropped"]:
         print(f"[WARN] [rosbag2_recorder]: {summary['dropped']} messages were dropped (the disk fell behind)")
     return 0

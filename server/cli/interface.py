@@ -38,8 +38,10 @@ def _names(kind: str) -> list[str]:
     """The types of one kind (an action's own messages and services are not listed, as in ROS)."""
     definitions = catalog.definitions()
     found: dict[str, list[str]] = {
-        "msg": list(definitions.messages), "srv": list(definitions.services), "action": list(definitions.actions),
-    }  # fmt: skip
+        "msg": list(definitions.messages),
+        "srv": list(definitions.services),
+        "action": list(definitions.actions),
+    }
     return sorted(n for n in found[kind] if f"/{kind}/" in n)
 
 

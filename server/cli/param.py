@@ -240,8 +240,13 @@ def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
         p: argparse.ArgumentParser = sub.add_parser(name, parents=[common], help=help_text)
         p.add_argument("node_name", nargs="?" if node_optional else None, help="Name of the ROS node")
         if not node_optional:
-            p.add_argument("--timeout", metavar="N", type=float, default=1.0,
-                           help="Wait for N seconds until node becomes available (default 1 sec)")  # fmt: skip
+            p.add_argument(
+                "--timeout",
+                metavar="N",
+                type=float,
+                default=1.0,
+                help="Wait for N seconds until node becomes available (default 1 sec)",
+            )
         p.set_defaults(handler=handler)
         return p
 
@@ -260,5 +265,8 @@ def add_parser(verbs: Any, common: argparse.ArgumentParser) -> None:
     verb("dump", "Show all of the parameters of a node in a YAML file format", param_dump)
     p = verb("load", "Load parameter file for a node", param_load)
     p.add_argument("parameter_file", help="Parameter file")
-    p.add_argument("--no-use-wildcard", action="store_true",
-                   help="Do not load parameters in the '/**' namespace into the node")  # fmt: skip
+    p.add_argument(
+        "--no-use-wildcard",
+        action="store_true",
+        help="Do not load parameters in the '/**' namespace into the node",
+    )

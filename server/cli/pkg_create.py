@@ -29,8 +29,13 @@ def _maintainer_email(name: str, given: str | None) -> str:
     git = shutil.which("git")
     if git is not None:
         try:
-            found = subprocess.run([git, "config", "user.email"], capture_output=True, text=True,
-                                   timeout=GIT_TIMEOUT_S, check=False).stdout.strip()  # fmt: skip
+            found = subprocess.run(
+                [git, "config", "user.email"],
+                capture_output=True,
+                text=True,
+                timeout=GIT_TIMEOUT_S,
+                check=False,
+            ).stdout.strip()
         except (OSError, subprocess.TimeoutExpired):
             found = ""
         if found:
@@ -48,15 +53,23 @@ def create(args: argparse.Namespace, _client: LabClient) -> int:
         print(refusal, file=sys.stderr)
         return 1
     spec = PackageSpec(
-        name=args.package_name, build_type=args.build_type, description=args.description, license=args.license,
-        maintainer_name=args.maintainer_name, maintainer_email=_maintainer_email(args.maintainer_name, args.maintainer_email),
-        dependencies=list(args.dependencies), node_name=args.node_name,
-    )  # fmt: skip
+        name=args.package_name,
+        build_type=args.build_type,
+        description=args.description,
+        license=args.license,
+        maintainer_name=args.maintainer_name,
+        maintainer_email=_maintainer_email(args.maintainer_name, args.maintainer_email),
+        dependencies=list(args.dependencies),
+        node_name=args.node_name,
+    )
     destination = Path(args.destination_directory)
     package_dir = destination / spec.name
     if package_dir.exists():
-        print(f"\nAborted!\nThe directory already exists: {package_dir}\nEither remove the directory or choose a "
-              "different destination directory or package name", file=sys.stderr)  # fmt: skip
+        print(
+            f"\nAborted!\nThe directory already exists: {package_dir}\nEither remove the directory or choose a "
+            "different destination directory or package name",
+            file=sys.stderr,
+        )
         return 1
     print("going to create a new package")
     print("package name:", spec.name)
@@ -78,8 +91,14 @@ def create(args: argparse.Namespace, _client: LabClient) -> int:
 def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
     p = sub.add_parser("create", parents=[common], help="Create a new ROS 2 package")
     p.add_argument("package_name", help="The package name")
-    p.add_argument("--package-format", "--package_format", type=int, default=3, choices=[3],
-                   help="The package.xml format.")  # fmt: skip
+    p.add_argument(
+        "--package-format",
+        "--package_format",
+        type=int,
+        default=3,
+        choices=[3],
+        help="The package.xml format.",
+    )
     p.add_argument(
         "--description", default="TODO: Package description", help="The description given in the package.xml"
     )
@@ -89,8 +108,12 @@ def add_parser(sub: Any, common: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--destination-directory", default=".", help="Directory where to create the package directory"
     )
-    p.add_argument("--build-type", default="ament_cmake", choices=["ament_cmake", "ament_python"],
-                   help="The build type to process the package with")  # fmt: skip
+    p.add_argument(
+        "--build-type",
+        default="ament_cmake",
+        choices=["ament_cmake", "ament_python"],
+        help="The build type to process the package with",
+    )
     p.add_argument("--dependencies", nargs="+", default=[], help="list of dependencies")
     p.add_argument("--maintainer-email", help="email address of the maintainer of this package")
     p.add_argument(

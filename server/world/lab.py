@@ -126,9 +126,13 @@ class Lab:
         self.bags = BagManager(self.bus, settings.lab.bag_dir)  # ros2 bag record / play
         # A class server's worlds share one budget of node processes; alone, the lab has its own.
         self.launch_groups = LaunchGroups(
-            self.launcher, self.packages, limits.max_launch_groups, limits.max_nodes_per_launch,
-            limits.max_running_nodes, node_budget or NodeBudget(limits.max_server_nodes),
-        )  # fmt: skip
+            self.launcher,
+            self.packages,
+            limits.max_launch_groups,
+            limits.max_nodes_per_launch,
+            limits.max_running_nodes,
+            node_budget or NodeBudget(limits.max_server_nodes),
+        )
         # The checkpoints: ``progress`` is the world's so far (kept across a reset), else a new one.
         progress = progress or Progress(load_checkpoints(settings.lab.checkpoints))
         self.checkpoints = CheckpointWatch(

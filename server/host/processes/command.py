@@ -141,8 +141,13 @@ def launch_command(
     process of its own, as a node process runs (node_runtime.process.runner's ``--launch-description``);
     it joins no graph."""
     base = dict(os.environ if env is None else env)
-    child_env = {**base, "PYTHONUNBUFFERED": "1", "PYTHONDONTWRITEBYTECODE": "1",
-                 "ROS_DOMAIN_ID": str(domain_id), PARENT_ENV: str(os.getpid())}  # fmt: skip
+    child_env = {
+        **base,
+        "PYTHONUNBUFFERED": "1",
+        "PYTHONDONTWRITEBYTECODE": "1",
+        "ROS_DOMAIN_ID": str(domain_id),
+        PARENT_ENV: str(os.getpid()),
+    }
     if workspace is not None:
         child_env[WORKSPACE_ENV] = str(workspace.resolve())
     argv = [sys.executable, "-P", "-u", "-m", RUNNER_MODULE, LAUNCH_MODE, str(file.resolve()), request]

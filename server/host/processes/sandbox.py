@@ -93,8 +93,25 @@ def probe() -> str | None:
         return f"no {SETPRIV} to make a node a uid of its own: install Debian's 'util-linux'"
     fd = seccomp_filter.program_fd()
     inside = [*_drop_root(Confinement()), "/bin/true"] if root else ["/bin/true"]
-    argv = [bwrap, *_namespaces(root), "--seccomp", str(fd), "--ro-bind", "/", "/", "--proc", "/proc",
-            "--dev", "/dev", "--size", str(1024 * 1024), "--tmpfs", "/tmp", "--", *inside]  # fmt: skip
+    argv = [
+        bwrap,
+        *_namespaces(root),
+        "--seccomp",
+        str(fd),
+        "--ro-bind",
+        "/",
+        "/",
+        "--proc",
+        "/proc",
+        "--dev",
+        "/dev",
+        "--size",
+        str(1024 * 1024),
+        "--tmpfs",
+        "/tmp",
+        "--",
+        *inside,
+    ]
     try:
         done = subprocess.run(
             argv, capture_output=True, text=True, timeout=PROBE_TIMEOUT_S, check=False, pass_fds=[fd]
@@ -149,8 +166,20 @@ def _namespaces(root: bool) -> list[str]:
 def _drop_root(confinement: Confinement) -> list[str]:
     """setpriv's command prefix: the world's uid and gid, no group, no capability (not even in the
     bounding set), no new privileges."""
-    return [SETPRIV, "--reuid", str(confinement.uid), "--regid", str(confinement.gid), "--clear-groups",
-            "--inh-caps", "-all", "--bounding-set", "-all", "--no-new-privs", "--"]  # fmt: skip
+    return [
+        SETPRIV,
+        "--reuid",
+        str(confinement.uid),
+        "--regid",
+        str(confinement.gid),
+        "--clear-groups",
+        "--inh-caps",
+        "-all",
+        "--bounding-set",
+        "-all",
+        "--no-new-privs",
+        "--",
+    ]
 
 
 def _isolated(argv: list[str]) -> list[str]:
@@ -187,10 +216,21 @@ class Sandbox:
         if ws is not None and root:
             _open_to_read(ws)
         inside = [*(_drop_root(confinement) if root else []), *_isolated(command.argv)]
-        argv = [bwrap, *_namespaces(root), "--die-with-parent", "--new-session", "--as-pid-1",
-                "--seccomp", SECCOMP_FD, "--hostname", "ros2lab-node",
-                *([] if root else ["--uid", str(INSIDE_UID), "--gid", str(INSIDE_UID)]),
-                *self._mounts(ws), "--", *inside]  # fmt: skip
+        argv = [
+            bwrap,
+            *_namespaces(root),
+            "--die-with-parent",
+            "--new-session",
+            "--as-pid-1",
+            "--seccomp",
+            SECCOMP_FD,
+            "--hostname",
+            "ros2lab-node",
+            *([] if root else ["--uid", str(INSIDE_UID), "--gid", str(INSIDE_UID)]),
+            *self._mounts(ws),
+            "--",
+            *inside,
+        ]
         start = _Start(confinement, None if isinstance(counted, str) else counted)
         return NodeCommand(argv, env, command.zid, sandboxed=True, prepare=start.prepare)
 
@@ -205,9 +245,26 @@ class Sandbox:
         # Zenoh's shared memory wants a /dev/shm the node may write: a private one. The private
         # /tmp comes before the binds, so Python or a project that lives below /tmp still shows.
         # Both are capped: a tmpfs's pages are memory, which an rlimit does not count.
-        out += ["--proc", "/proc", "--dev", "/dev", "--perms", "1777", "--size", str(SHM_MIB * MIB),
-                "--tmpfs", "/dev/shm", "--perms", "1777", "--size", str(TMP_MIB * MIB), "--tmpfs", "/tmp",
-                "--dir", "/run"]  # fmt: skip
+        out += [
+            "--proc",
+            "/proc",
+            "--dev",
+            "/dev",
+            "--perms",
+            "1777",
+            "--size",
+            str(SHM_MIB * MIB),
+            "--tmpfs",
+            "/dev/shm",
+            "--perms",
+            "1777",
+            "--size",
+            str(TMP_MIB * MIB),
+            "--tmpfs",
+            "/tmp",
+            "--dir",
+            "/run",
+        ]
         for path in _python_dirs():
             out += [*_parents(path), "--ro-bind", str(path), str(path)]
         out += ["--ro-bind", str(self.socket.parent), SOCKET_DIR]

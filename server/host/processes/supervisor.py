@@ -120,9 +120,13 @@ class Supervisor:
                 prepared = command.prepare(argv, process.label)
                 argv, passed, process.finish = prepared.argv, prepared.pass_fds, prepared.finish
             process.proc = subprocess.Popen(
-                argv, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                stderr=subprocess.STDOUT, pass_fds=[*keep, *passed],
-            )  # fmt: skip
+                argv,
+                env=env,
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.STDOUT,
+                pass_fds=[*keep, *passed],
+            )
         except OSError:
             process.state = "died"
             self.forget(process)
@@ -179,8 +183,14 @@ class Supervisor:
             process.state = "died"
             code = process.exit_code
             level = logging.INFO if code == 0 else logging.ERROR
-            log.log(level, "%s: process has died [pid %s, exit code %s, cmd '%s']", self.bus.tagged(f"[{process.label}]"),
-                    process.pid, code, " ".join(_node_argv(process.command)))  # fmt: skip
+            log.log(
+                level,
+                "%s: process has died [pid %s, exit code %s, cmd '%s']",
+                self.bus.tagged(f"[{process.label}]"),
+                process.pid,
+                code,
+                " ".join(_node_argv(process.command)),
+            )
             self.on_exit(process)
 
     def stop(self, process: ProcessNode, grace_s: float = STOP_GRACE_S) -> None:

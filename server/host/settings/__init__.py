@@ -164,15 +164,25 @@ class Settings(Section):
         if self.classroom is None:
             raise ValueError("only a class server or a world worker has worlds")
         world, limits = self.classroom.world, self.limits
-        lab = self.lab.model_copy(update={
-            "zenoh": zenoh, "foxglove_port": None, "rosbridge_port": None, "bag_dir": self.lab.bag_dir / name,
-            "launch": launch, "launch_args": launch_args, "workspace": self.classroom.workspaces_dir / name,
-        })  # fmt: skip
-        limits = limits.model_copy(update={
-            "max_launch_groups": min(limits.max_launch_groups, world.launches),
-            "max_nodes_per_launch": min(limits.max_nodes_per_launch, world.launch_nodes),
-            "socket_frames_hz": world.socket_frames_hz, "socket_requests_hz": world.socket_requests_hz,
-        })  # fmt: skip
+        lab = self.lab.model_copy(
+            update={
+                "zenoh": zenoh,
+                "foxglove_port": None,
+                "rosbridge_port": None,
+                "bag_dir": self.lab.bag_dir / name,
+                "launch": launch,
+                "launch_args": launch_args,
+                "workspace": self.classroom.workspaces_dir / name,
+            }
+        )
+        limits = limits.model_copy(
+            update={
+                "max_launch_groups": min(limits.max_launch_groups, world.launches),
+                "max_nodes_per_launch": min(limits.max_nodes_per_launch, world.launch_nodes),
+                "socket_frames_hz": world.socket_frames_hz,
+                "socket_requests_hz": world.socket_requests_hz,
+            }
+        )
         return self.model_copy(update={"lab": lab, "limits": limits})
 
     @property

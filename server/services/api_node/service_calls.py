@@ -17,7 +17,7 @@ from node_runtime.bus import (
     TopicTypeError,
     UnknownServiceError,
     validate_topic_name,
-)  # fmt: skip
+)
 from node_runtime.msgs import Message, Service, UnknownTypeError, get_service_type
 from node_runtime.transport.keys import EntityKind
 from node_runtime.transport.remote_graph import RemoteGraph

@@ -44,8 +44,14 @@ class ChannelInfo:
     schema: str
 
     def to_json(self) -> dict[str, Any]:
-        return {"id": self.id, "topic": self.topic, "encoding": "cdr", "schemaName": self.schema_name,
-                "schema": self.schema, "schemaEncoding": "ros2msg"}  # fmt: skip
+        return {
+            "id": self.id,
+            "topic": self.topic,
+            "encoding": "cdr",
+            "schemaName": self.schema_name,
+            "schema": self.schema,
+            "schemaEncoding": "ros2msg",
+        }
 
 
 @dataclass(frozen=True)
@@ -83,9 +89,16 @@ ClientOp = Subscribe | Unsubscribe | Advertise | Unadvertise
 
 # -- to the client ----------------------------------------------------------
 def server_info(name: str, session_id: str, supported_encodings: tuple[str, ...]) -> str:
-    return json.dumps({"op": "serverInfo", "name": name, "capabilities": ["clientPublish"],
-                       "supportedEncodings": list(supported_encodings), "metadata": {},
-                       "sessionId": session_id})  # fmt: skip
+    return json.dumps(
+        {
+            "op": "serverInfo",
+            "name": name,
+            "capabilities": ["clientPublish"],
+            "supportedEncodings": list(supported_encodings),
+            "metadata": {},
+            "sessionId": session_id,
+        }
+    )
 
 
 def status(level: StatusLevel, message: str) -> str:
@@ -131,8 +144,9 @@ def client_op(text: str) -> ClientOp:
         return Advertise(tuple(_client_channel(c) for c in _entries(msg, "channels", dict)))
     if op == "unadvertise":
         return Unadvertise(tuple(_uint32(i) for i in _entries(msg, "channelIds", int)))
-    raise ProtocolError(f"operation {str(op)[:40]!r} is not served here (subscribe, unsubscribe, "
-                        "advertise, unadvertise)")  # fmt: skip
+    raise ProtocolError(
+        f"operation {str(op)[:40]!r} is not served here (subscribe, unsubscribe, advertise, unadvertise)"
+    )
 
 
 def _entries(msg: dict[str, Any], key: str, kind: type) -> list[Any]:
@@ -160,5 +174,6 @@ def _text(entry: dict[str, Any], key: str, default: str | None = None) -> str:
 
 
 def _client_channel(entry: dict[str, Any]) -> ClientChannel:
-    return ClientChannel(_uint(entry, "id"), _text(entry, "topic"), _text(entry, "encoding"),
-                         _text(entry, "schemaName", ""))  # fmt: skip
+    return ClientChannel(
+        _uint(entry, "id"), _text(entry, "topic"), _text(entry, "encoding"), _text(entry, "schemaName", "")
+    )

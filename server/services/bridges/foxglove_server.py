@@ -100,9 +100,14 @@ class FoxgloveServer:
     async def start(self, host: str, port: int) -> int:
         """Listen (OSError if ``port`` is taken); returns the port (useful when asked for 0)."""
         self._server = await serve(
-            self._serve, host, port, select_subprotocol=_select_subprotocol, max_size=MAX_FRAME_BYTES,
-            compression=None, server_header=None,
-        )  # fmt: skip
+            self._serve,
+            host,
+            port,
+            select_subprotocol=_select_subprotocol,
+            max_size=MAX_FRAME_BYTES,
+            compression=None,
+            server_header=None,
+        )
         self.port = int(next(iter(self._server.sockets)).getsockname()[1])
         return self.port
 
@@ -163,8 +168,13 @@ class FoxgloveServer:
             return CloseCode.BAD_REQUEST, "no handshake"
         try:
             headers = single_headers(request.headers.raw_items())
-            check_handshake(f"GET {request.path} HTTP/1.1", headers, self.guard.accepted_hosts,
-                            self.guard.allowed_origins, self.guard.token)  # fmt: skip
+            check_handshake(
+                f"GET {request.path} HTTP/1.1",
+                headers,
+                self.guard.accepted_hosts,
+                self.guard.allowed_origins,
+                self.guard.token,
+            )
         except HandshakeRefused as exc:
             return CLOSE_FOR_STATUS.get(exc.status, CloseCode.BAD_REQUEST), exc.reason
         if len(self.sessions) >= MAX_CLIENTS:

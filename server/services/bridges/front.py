@@ -213,8 +213,12 @@ async def _refuse(
         await _refuse_http(writer, exc)
         return
     accept = base64.b64encode(hashlib.sha1((key + WS_GUID).encode()).digest()).decode()
-    head = ["HTTP/1.1 101 Switching Protocols", "Upgrade: websocket", "Connection: Upgrade",
-            f"Sec-WebSocket-Accept: {accept}"]  # fmt: skip
+    head = [
+        "HTTP/1.1 101 Switching Protocols",
+        "Upgrade: websocket",
+        "Connection: Upgrade",
+        f"Sec-WebSocket-Accept: {accept}",
+    ]
     offered = headers.get("sec-websocket-protocol", "").split(",")[0].strip()
     if offered:  # a client that asked for a subprotocol gets it, so none fails before the close
         head.append(f"Sec-WebSocket-Protocol: {offered}")

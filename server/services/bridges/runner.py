@@ -103,9 +103,14 @@ async def start_rosbridge_front(
         )
         return None
     front = GuardedFront(
-        listen.host, port, listen.port, listen.accepted_hosts, listen.allowed_origins,
-        upstream_path=upstream_path, token=token,
-    )  # fmt: skip
+        listen.host,
+        port,
+        listen.port,
+        listen.accepted_hosts,
+        listen.allowed_origins,
+        upstream_path=upstream_path,
+        token=token,
+    )
     await front.start()
     log.info("rosbridge on ws://%s:%d (and at %s)", listen.host, front.port, upstream_path)
     return front

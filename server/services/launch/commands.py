@@ -100,16 +100,22 @@ class CommandRunner:
         if self.cli.token is not None:
             env[TOKEN_ENV] = self.cli.token
         process = self.supervisor.prepare(
-            NodeCommand(argv, env, new_zid()), entry.action.name or PROGRAM,
-            screen=entry.action.output in SCREEN_OUTPUTS, node_name=None,
-        )  # fmt: skip
+            NodeCommand(argv, env, new_zid()),
+            entry.action.name or PROGRAM,
+            screen=entry.action.output in SCREEN_OUTPUTS,
+            node_name=None,
+        )
         entry.process = process
         try:
             self.supervisor.spawn(process)
         except OSError as exc:
             entry.process, entry.error = None, f"{type(exc).__name__}: {exc}"
-            log.error("%s: command %s failed to start: %s", entry.action.location, " ".join(entry.action.cmd),
-                      entry.error)  # fmt: skip
+            log.error(
+                "%s: command %s failed to start: %s",
+                entry.action.location,
+                " ".join(entry.action.cmd),
+                entry.error,
+            )
 
     def stop(self, entries: list[LaunchedCommand]) -> None:
         """End these commands (those still running) and forget them; one waiting for its timer never starts."""

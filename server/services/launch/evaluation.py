@@ -68,8 +68,13 @@ class Session:
             self.files.append(file)
 
     def description(self, args: Mapping[str, str]) -> LaunchDescription:
-        return LaunchDescription(tuple(self.nodes), MappingProxyType(dict(args)), tuple(self.files),
-                                 tuple(self.messages), tuple(self.commands))  # fmt: skip
+        return LaunchDescription(
+            tuple(self.nodes),
+            MappingProxyType(dict(args)),
+            tuple(self.files),
+            tuple(self.messages),
+            tuple(self.commands),
+        )
 
 
 @dataclass
@@ -286,8 +291,11 @@ class FileEvaluator:
                 continue
             if "from" in child.attrs:
                 if prefix:
-                    raise self._error(child, "<param from=...> loads a file for the whole node: "
-                                             "put it in <node>, not in a <param>")  # fmt: skip
+                    raise self._error(
+                        child,
+                        "<param from=...> loads a file for the whole node: "
+                        "put it in <node>, not in a <param>",
+                    )
                 files.append(self._read_param_file(child, frame))
                 continue
             name = prefix + self._sub(child, "name", frame)

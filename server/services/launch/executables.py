@@ -38,9 +38,13 @@ def command(evaluator: FileEvaluator, element: Element, frame: _Frame) -> Comman
         raise evaluator._error(element, f'output="{output}" is not one of {", ".join(OUTPUTS)}')
     return CommandAction(
         # With shell, the shell's own words (;, &&, |) stay for the launcher to refuse.
-        cmd=(text,) if shell else words, shell=shell, name=evaluator._optional(element, "name", frame),
-        output=output, location=SourceLocation(evaluator.file, element.line), start_delay_s=frame.delay_s,
-    )  # fmt: skip
+        cmd=(text,) if shell else words,
+        shell=shell,
+        name=evaluator._optional(element, "name", frame),
+        output=output,
+        location=SourceLocation(evaluator.file, element.line),
+        start_delay_s=frame.delay_s,
+    )
 
 
 def timer_frame(evaluator: FileEvaluator, element: Element, frame: _Frame) -> _Frame:

@@ -66,8 +66,13 @@ class LaunchGroup:
 
     def running_processes(self) -> int:
         """Its node processes that have not ended (those waiting for their turn to start too)."""
-        return sum(1 for e in self.entries if e.process is not None and e.process.exit_code is None
-                   and e.process.state in ("running", "waiting"))  # fmt: skip
+        return sum(
+            1
+            for e in self.entries
+            if e.process is not None
+            and e.process.exit_code is None
+            and e.process.state in ("running", "waiting")
+        )
 
 
 class NodeBudget:

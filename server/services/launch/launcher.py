@@ -64,12 +64,17 @@ def parse_launch(
     the server's user)."""
     run_python = run_python or PythonLaunchProcess(packages.workspace, confined=confined)
     if not confined:
-        return parse_launch_file(Path(path), args=dict(args or {}), find_package_share=packages.share_dir,
-                                 run_python=run_python)  # fmt: skip
+        return parse_launch_file(
+            Path(path), args=dict(args or {}), find_package_share=packages.share_dir, run_python=run_python
+        )
     return parse_launch_file(
-        Path(path), args=dict(args or {}), find_package_share=packages.share_dir, environ={},
-        roots=packages.roots(), run_python=run_python,
-    )  # fmt: skip
+        Path(path),
+        args=dict(args or {}),
+        find_package_share=packages.share_dir,
+        environ={},
+        roots=packages.roots(),
+        run_python=run_python,
+    )
 
 
 def with_ros_arguments(lab_args: list[str], ros_arguments: tuple[str, ...]) -> list[str]:
@@ -212,13 +217,17 @@ class Launcher:
             raise NoGraphError(str(exe.file or f"{exe.pkg} {exe.name}"))
         self.check_student_code(exe)
         sandbox = self.sandbox if exe.file is not None and isinstance(self.sandbox, Sandbox) else None
+        files = [f.path for f in action.parameter_files]
+        ros = ros_args(action.name, action.namespace, action.parameters, action.remappings, files)
         command = node_command(
-            exe.target, [*action.arguments, *with_ros_arguments(ros_args(
-                action.name, action.namespace, action.parameters, action.remappings,
-                [f.path for f in action.parameter_files]), action.ros_arguments)],
-            router=INSIDE_ROUTER if sandbox else self.transport.router, domain_id=self.transport.domain_id,
-            login=self.transport.login, workspace=self.packages.workspace, env={} if sandbox else None,
-        )  # fmt: skip
+            exe.target,
+            [*action.arguments, *with_ros_arguments(ros, action.ros_arguments)],
+            router=INSIDE_ROUTER if sandbox else self.transport.router,
+            domain_id=self.transport.domain_id,
+            login=self.transport.login,
+            workspace=self.packages.workspace,
+            env={} if sandbox else None,
+        )
         if sandbox is not None:
             command = sandbox.wrap(command, self.packages.workspace)
         process = self.supervisor.prepare(
@@ -246,8 +255,11 @@ class Launcher:
 
     def _start_later(self, entry: LaunchedNode, process: ProcessNode, wait_s: float) -> None:
         """Start ``process`` at its turn (asking the pacer again then), unless stopped before."""
-        log.info("%s: waiting %.1f s for its turn to start (node processes start a few at a time here)",
-                 self.bus.tagged(f"[{process.label}]"), wait_s)  # fmt: skip
+        log.info(
+            "%s: waiting %.1f s for its turn to start (node processes start a few at a time here)",
+            self.bus.tagged(f"[{process.label}]"),
+            wait_s,
+        )
 
         def turn() -> None:
             timer.cancel()
@@ -261,9 +273,14 @@ class Launcher:
                 self._spawn(process)
             except OSError as exc:
                 entry.process, entry.error = None, f"{type(exc).__name__}: {exc}"
-                log.error("%s: node %s (%s %s) failed to start: %s", entry.action.location,
-                          entry.action.name or entry.action.exec, entry.action.pkg, entry.action.exec,
-                          entry.error)  # fmt: skip
+                log.error(
+                    "%s: node %s (%s %s) failed to start: %s",
+                    entry.action.location,
+                    entry.action.name or entry.action.exec,
+                    entry.action.pkg,
+                    entry.action.exec,
+                    entry.error,
+                )
 
         timer = self._timer_node().create_timer(wait_s, turn)
 
@@ -284,14 +301,22 @@ class Launcher:
                 return self._start_process(action, exe, entry)
         except (LookupError, NoGraphError, OSError) as exc:
             entry.node, entry.error = None, f"{type(exc).__name__}: {exc}"
-            log.error("%s: node %s (%s %s) failed to start: %s", action.location, action.name or action.exec,
-                      action.pkg, action.exec, entry.error)  # fmt: skip
+            log.error(
+                "%s: node %s (%s %s) failed to start: %s",
+                action.location,
+                action.name or action.exec,
+                action.pkg,
+                action.exec,
+                entry.error,
+            )
             return entry
         overrides = NodeOverrides(
-            name=action.name, namespace=action.namespace,
-            parameters=dict(action.parameters), remappings=dict(action.remappings),
+            name=action.name,
+            namespace=action.namespace,
+            parameters=dict(action.parameters),
+            remappings=dict(action.remappings),
             files=action.parameter_files,
-        )  # fmt: skip
+        )
         before = list(self.bus.nodes)
         try:
             factory = self.packages.factory(action.pkg, action.exec)
@@ -380,8 +405,11 @@ class Launcher:
         delay = entry.respawn.crashed(entry.action.respawn_delay_s)
         who = self.bus.tagged(who)
         if delay is None:
-            log.error("%s crashed %d times soon after starting; no more respawns", who,
-                      entry.respawn.fast_failures - 1)  # fmt: skip
+            log.error(
+                "%s crashed %d times soon after starting; no more respawns",
+                who,
+                entry.respawn.fast_failures - 1,
+            )
             return
         log.warning("%s crashed; respawning in %.2f s", who, delay)
 

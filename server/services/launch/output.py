@@ -129,8 +129,15 @@ class GroupOutput:
                 frames.append({"type": "dropped", "count": first - seen.sent})
                 seen.sent = first
             for index in range(seen.sent - first, len(lines)):
-                frames.append({"type": "line", "seq": first + index, "node": seen.node, "stream": "stdout",
-                               "text": lines[index]})  # fmt: skip
+                frames.append(
+                    {
+                        "type": "line",
+                        "seq": first + index,
+                        "node": seen.node,
+                        "stream": "stdout",
+                        "text": lines[index],
+                    }
+                )
             seen.sent = printed
             if ended:
                 frames.append(exit_frame(seen.process, seen.node))

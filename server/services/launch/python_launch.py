@@ -50,8 +50,9 @@ def evaluate_python_file(
     file = str(path)
     if not path.is_file():
         raise LaunchFileError(file, 0, "launch file not found")
-    session = Session(find_package_share, os.environ if environ is None else environ, roots,
-                      include_python_with(run))  # fmt: skip
+    session = Session(
+        find_package_share, os.environ if environ is None else environ, roots, include_python_with(run)
+    )
     session.note_file(file)
     evaluation = run(path, args, None)
     included_args: set[str] = set()
@@ -59,8 +60,12 @@ def evaluate_python_file(
     known = {*_strings(evaluation.answer.get("declared")), *included_args}
     for name in args:
         if name not in known:
-            raise LaunchFileError(file, 0, f"argument '{name}' was given but the launch declares no such "
-                                           f"argument{did_you_mean(name, known)}")  # fmt: skip
+            raise LaunchFileError(
+                file,
+                0,
+                f"argument '{name}' was given but the launch declares no such "
+                f"argument{did_you_mean(name, known)}",
+            )
     return session.description(declared)
 
 
@@ -133,8 +138,10 @@ def _include(session: Session, entry: Mapping[str, Any], stack: tuple[Path, ...]
     for name in passed:
         if name not in declared:
             listed = ", ".join(sorted(declared)) or "none"
-            raise LaunchFileError(*at, f"{path} declares no argument '{name}'{did_you_mean(name, declared)} "
-                                       f"(it declares: {listed})")  # fmt: skip
+            raise LaunchFileError(
+                *at,
+                f"{path} declares no argument '{name}'{did_you_mean(name, declared)} (it declares: {listed})",
+            )
     session.note_file(str(path))
     origin = f"the include at {at[0]}:{at[1]}"
     inherited = entry.get("inherited")
@@ -172,25 +179,40 @@ def _node(session: Session, entry: Mapping[str, Any]) -> NodeAction:
     ]
     remappings = tuple((str(a), str(b)) for a, b in _pairs(entry.get("remappings")))
     return NodeAction(
-        pkg=pkg, exec=executable, name=_optional(entry.get("name")), namespace=_optional(entry.get("namespace")),
-        output=cast("str | None", output), respawn=bool(entry.get("respawn")),
+        pkg=pkg,
+        exec=executable,
+        name=_optional(entry.get("name")),
+        namespace=_optional(entry.get("namespace")),
+        output=cast("str | None", output),
+        respawn=bool(entry.get("respawn")),
         respawn_delay_s=max(0.0, float(entry.get("respawn_delay") or 0.0)),
-        start_delay_s=_seconds(entry.get("start_delay")), parameters=tuple(parameters),
-        remappings=_first_wins(remappings), location=location, parameter_files=tuple(files),
-        arguments=tuple(_strings(entry.get("arguments"))), ros_arguments=tuple(_strings(entry.get("ros_arguments"))),
-    )  # fmt: skip
+        start_delay_s=_seconds(entry.get("start_delay")),
+        parameters=tuple(parameters),
+        remappings=_first_wins(remappings),
+        location=location,
+        parameter_files=tuple(files),
+        arguments=tuple(_strings(entry.get("arguments"))),
+        ros_arguments=tuple(_strings(entry.get("ros_arguments"))),
+    )
 
 
 def _command(entry: Mapping[str, Any]) -> CommandAction:
     location = SourceLocation(str(entry.get("file", "")), int(entry.get("line", 0)))
     output = entry.get("output")
     if output is not None and output not in OUTPUTS:
-        raise LaunchFileError(location.file, location.line,
-                              f"ExecuteProcess output='{output}' is not one of {', '.join(OUTPUTS)}")  # fmt: skip
+        raise LaunchFileError(
+            location.file,
+            location.line,
+            f"ExecuteProcess output='{output}' is not one of {', '.join(OUTPUTS)}",
+        )
     return CommandAction(
-        cmd=tuple(_strings(entry.get("cmd"))), shell=bool(entry.get("shell")), name=_optional(entry.get("name")),
-        output=cast("str | None", output), location=location, start_delay_s=_seconds(entry.get("start_delay")),
-    )  # fmt: skip
+        cmd=tuple(_strings(entry.get("cmd"))),
+        shell=bool(entry.get("shell")),
+        name=_optional(entry.get("name")),
+        output=cast("str | None", output),
+        location=location,
+        start_delay_s=_seconds(entry.get("start_delay")),
+    )
 
 
 def _first_wins(remappings: tuple[tuple[str, str], ...]) -> tuple[tuple[str, str], ...]:

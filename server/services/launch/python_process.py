@@ -62,8 +62,9 @@ class PythonLaunchProcess:
             raise LaunchFileError(str(path), 0, OUTSIDE_SANDBOX)
         request = json.dumps({"args": dict(args), "namespace": namespace})
         clean = self.sandbox is not None or self.confined
-        command = launch_command(path, request, domain_id=self.domain_id, env={} if clean else None,
-                                 workspace=self.workspace)  # fmt: skip
+        command = launch_command(
+            path, request, domain_id=self.domain_id, env={} if clean else None, workspace=self.workspace
+        )
         if self.sandbox is not None:
             command = self.sandbox.wrap(command, self.workspace)
         label = f"launch-evaluation-{os.getpid()}-{next(_labels)}"
@@ -78,10 +79,15 @@ class PythonLaunchProcess:
     ) -> int:
         try:
             process = subprocess.Popen(
-                prepared.argv, env=dict(env), stdin=subprocess.DEVNULL, stdout=out, stderr=err,
-                pass_fds=prepared.pass_fds, cwd=path.parent if self.sandbox is None else None,
+                prepared.argv,
+                env=dict(env),
+                stdin=subprocess.DEVNULL,
+                stdout=out,
+                stderr=err,
+                pass_fds=prepared.pass_fds,
+                cwd=path.parent if self.sandbox is None else None,
                 start_new_session=True,
-            )  # fmt: skip
+            )
         finally:
             for fd in prepared.pass_fds:
                 with contextlib.suppress(OSError):

@@ -21,7 +21,14 @@ def for_lab(settings: Settings, socket: Path | None) -> Sandbox | StudentCodeRef
     if why is not None or socket is None:
         return StudentCodeRefusedError(why or "")
     limits = settings.sandbox
-    return Sandbox(socket, Confinement(
-        memory_mib=limits.memory_mib, processes=limits.processes, open_files=limits.open_files,
-        file_size_mib=limits.file_size_mib, cpu_s=limits.cpu_s, nice=limits.nice,
-    ))  # fmt: skip
+    return Sandbox(
+        socket,
+        Confinement(
+            memory_mib=limits.memory_mib,
+            processes=limits.processes,
+            open_files=limits.open_files,
+            file_size_mib=limits.file_size_mib,
+            cpu_s=limits.cpu_s,
+            nice=limits.nice,
+        ),
+    )

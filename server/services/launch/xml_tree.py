@@ -90,8 +90,19 @@ ACTIONS: Mapping[str, str] = MappingProxyType(
         "timer": "timer",
     }
 )
-_NODE_ATTRS = ("pkg", "exec", "type", "name", "namespace", "ns", "output", "respawn", "respawn_delay", "args",
-               "ros_args")  # fmt: skip
+_NODE_ATTRS = (
+    "pkg",
+    "exec",
+    "type",
+    "name",
+    "namespace",
+    "ns",
+    "output",
+    "respawn",
+    "respawn_delay",
+    "args",
+    "ros_args",
+)
 _RULES: Mapping[str, _Rule] = MappingProxyType(
     {
         "launch": _Rule(frozenset({"version"}), children=ACTIONS),

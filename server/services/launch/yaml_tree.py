@@ -62,8 +62,9 @@ class _Reader:
             if key == CHILDREN:
                 element.children.extend(self.entities(value, depth))
             elif key in ELEMENT_LISTS and isinstance(value, yaml.SequenceNode):
-                element.children.extend(self.element(key, item, item.start_mark.line + 1, depth + 1)
-                                        for item in value.value)  # fmt: skip
+                element.children.extend(
+                    self.element(key, item, item.start_mark.line + 1, depth + 1) for item in value.value
+                )
             elif key in element.attrs:
                 self.fail(key_node, f"'{tag}' has '{key}' twice")
             else:

@@ -203,8 +203,10 @@ def _contents(files: WorkspaceFiles, data: bytes) -> dict[str, bytes]:
         chosen = [info for info in infos if _checked(info, limits.max_file_bytes)]
         declared = sum(info.file_size for info in chosen)
         if declared > limits.max_workspace_bytes:
-            raise TooLargeError(f"the zip's files declare {declared} bytes, over the workspace's limit of "
-                                f"{limits.max_workspace_bytes}")  # fmt: skip
+            raise TooLargeError(
+                f"the zip's files declare {declared} bytes, over the workspace's limit of "
+                f"{limits.max_workspace_bytes}"
+            )
         return _read_all(archive, chosen, limits.max_file_bytes, limits.max_workspace_bytes)
 
 

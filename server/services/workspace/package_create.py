@@ -23,8 +23,10 @@ def package_refusal(
 ) -> str | None:
     """What ``ros2 pkg create`` would say against these options, or None."""
     if not NAME.match(name):
-        return (f"Invalid package name '{name}': it must start with a lowercase letter and "
-                "hold only lowercase letters, digits and underscores")  # fmt: skip
+        return (
+            f"Invalid package name '{name}': it must start with a lowercase letter and "
+            "hold only lowercase letters, digits and underscores"
+        )
     if build_type == "ament_python" and name == "test":
         return "Aborted since 'ament_python' packages can't be named 'test'. Please choose a different package name."
     if node_name is not None and not NODE_NAME.match(node_name):

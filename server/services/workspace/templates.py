@@ -129,16 +129,32 @@ FLY_LAUNCH = """<?xml version="1.0"?>
 """
 
 TEMPLATES = (
-    Template("rocket_keyboard_manager", "Keyboard manager (part 1: the rocket)",
-             "Publishes /abort_takeoff as true from the first press of the a key on.",
-             "src/{package}/{package}/keyboard_manager.py", ROCKET_KEYS),
-    Template("drone_keyboard_manager", "Keyboard manager (part 2: the drone)",
-             "Moves the position setpoint on /uav/input/position one metre per arrow key.",
-             "src/{package}/{package}/keyboard_manager.py", DRONE_KEYS),
-    Template("position_publisher", "Position publisher (1 Hz)",
-             "Publishes one goal on /uav/input/position once a second.",
-             "src/{package}/{package}/position_publisher.py", POSITION_PUBLISHER),
-    Template("fly_launch", "Launch file: simulator, keyboard and keyboard manager",
-             "Starts the drone's simulator and controllers, the keyboard node and your keyboard manager.",
-             "src/{package}/launch/fly.launch", FLY_LAUNCH),
-)  # fmt: skip
+    Template(
+        "rocket_keyboard_manager",
+        "Keyboard manager (part 1: the rocket)",
+        "Publishes /abort_takeoff as true from the first press of the a key on.",
+        "src/{package}/{package}/keyboard_manager.py",
+        ROCKET_KEYS,
+    ),
+    Template(
+        "drone_keyboard_manager",
+        "Keyboard manager (part 2: the drone)",
+        "Moves the position setpoint on /uav/input/position one metre per arrow key.",
+        "src/{package}/{package}/keyboard_manager.py",
+        DRONE_KEYS,
+    ),
+    Template(
+        "position_publisher",
+        "Position publisher (1 Hz)",
+        "Publishes one goal on /uav/input/position once a second.",
+        "src/{package}/{package}/position_publisher.py",
+        POSITION_PUBLISHER,
+    ),
+    Template(
+        "fly_launch",
+        "Launch file: simulator, keyboard and keyboard manager",
+        "Starts the drone's simulator and controllers, the keyboard node and your keyboard manager.",
+        "src/{package}/launch/fly.launch",
+        FLY_LAUNCH,
+    ),
+)

@@ -23,12 +23,19 @@ def table(names: Sequence[str], rows: Sequence[Row], saved: Sequence[Row] = ()) 
         cells = {}
         for name in names:
             record = progress.records.get(name)
-            cells[name] = {"state": state(progress, lines, name),
-                           "done_at": iso(record.done_at_s) if record is not None else None}  # fmt: skip
-        students.append({
-            "name": progress.student or world, "world": world, "cells": cells,
-            "answers": {qid: a.text for qid, a in progress.answers.items()}, "joined": joined,
-        })  # fmt: skip
+            cells[name] = {
+                "state": state(progress, lines, name),
+                "done_at": iso(record.done_at_s) if record is not None else None,
+            }
+        students.append(
+            {
+                "name": progress.student or world,
+                "world": world,
+                "cells": cells,
+                "answers": {qid: a.text for qid, a in progress.answers.items()},
+                "joined": joined,
+            }
+        )
     return {"checkpoints": list(names), "students": students}
 
 
@@ -47,11 +54,16 @@ def table_csv(view: dict[str, Any]) -> str:
         ["student", "world", *states, *times, *qids, "joined"]
     )  # "joined" last: columns as before
     for s in view["students"]:
-        writer.writerow([
-            _cell(s["name"]), s["world"], *[s["cells"].get(n, {}).get("state", "") for n in names],
-            *[s["cells"].get(n, {}).get("done_at") or "" for n in names], *[_cell(s["answers"].get(q, "")) for q in qids],
-            "yes" if s.get("joined", True) else "no",
-        ])  # fmt: skip
+        writer.writerow(
+            [
+                _cell(s["name"]),
+                s["world"],
+                *[s["cells"].get(n, {}).get("state", "") for n in names],
+                *[s["cells"].get(n, {}).get("done_at") or "" for n in names],
+                *[_cell(s["answers"].get(q, "")) for q in qids],
+                "yes" if s.get("joined", True) else "no",
+            ]
+        )
     return out.getvalue()
 
 

@@ -125,15 +125,22 @@ CHECKPOINT = Checkpoint(
     name="fly_to_point",
     title="Fly the drone to (5, 5, 10) with positions at 1 Hz",
     steps=(
-        Step("Start the drone's launch.", ("ros2lab launch flightcontroller fly.launch",),
-             running=("/position_controller_node",),
-             already="The drone is already flying (the lab's launch started it): it hovers at (0, 0, 3)."),
-        Step("Publish geometry_msgs/Vector3 (5, 5, 10) on /uav/input/position once a second.",
-             ('ros2lab topic pub -r 1 /uav/input/position geometry_msgs/msg/Vector3 "{x: 5, y: 5, z: 10}"',),
-             page=f"In the {PUBLISHER} panel: topic /uav/input/position, x 5, y 5, z 10, {RATE} 1, "
-                  f"then tick {ENABLED}. Or in the {CODE} view: {NEW_FILE}, Start from "
-                  f"\u201c{POSITION_TEMPLATE}\u201d, fill in its TODOs and press {RUN}."),
+        Step(
+            "Start the drone's launch.",
+            ("ros2lab launch flightcontroller fly.launch",),
+            running=("/position_controller_node",),
+            already="The drone is already flying (the lab's launch started it): it hovers at (0, 0, 3).",
+        ),
+        Step(
+            "Publish geometry_msgs/Vector3 (5, 5, 10) on /uav/input/position once a second.",
+            ('ros2lab topic pub -r 1 /uav/input/position geometry_msgs/msg/Vector3 "{x: 5, y: 5, z: 10}"',),
+            page=(
+                f"In the {PUBLISHER} panel: topic /uav/input/position, x 5, y 5, z 10, {RATE} 1, "
+                f"then tick {ENABLED}. Or in the {CODE} view: {NEW_FILE}, Start from "
+                f"\u201c{POSITION_TEMPLATE}\u201d, fill in its TODOs and press {RUN}."
+            ),
+        ),
         Step("Keep publishing until the drone has held (5, 5, 10) for 3 s.", ()),
     ),
     check=FlyToPointCheck,
-)  # fmt: skip
+)

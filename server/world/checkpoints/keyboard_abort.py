@@ -149,26 +149,51 @@ CHECKPOINT = Checkpoint(
     name="keyboard_abort",
     title="Abort the rocket with your keyboard manager",
     steps=(
-        Step("Write a keyboard manager in your workspace: it subscribes to /keydown and publishes "
-             "std_msgs/Bool true on /abort_takeoff when the key is 'a'.",
-             ("ros2lab pkg create --build-type ament_python rocket_keys",),
-             page=f"In the {CODE} view: {NEW_PACKAGE} (rocket_keys), then {NEW_FILE} in it, Start from "
-                  f"\u201c{ROCKET_TEMPLATE}\u201d, and fill in its TODOs."),
-        Step("Start the rocket's launch.", ("ros2lab launch rocketship rocket.launch",),
-             running=("/CountDownNode", "/MainControllerNode"),
-             already="The rocket is already running (the lab's launch started it): nothing to start."),
-        Step("Run your keyboard manager as its own process.", ("ros2lab run rocket_keys keyboard_manager",),
-             page=f"Open your keyboard_manager.py in the {CODE} view and press {RUN}."),
-        Step("Open the graph and find your node between the keyboard and the rocket's controller.",
-             ("ros2lab node list",), page=f"Open {GRAPH} at the top of the page."),
-        Step("During the countdown, press a: your node aborts the launch and the rocket stays on the pad.",
-             (), page=f"Press {RESET_ROCKET} to start a new countdown, click the 3D view, then press a."),
+        Step(
+            "Write a keyboard manager in your workspace: it subscribes to /keydown and publishes "
+            "std_msgs/Bool true on /abort_takeoff when the key is 'a'.",
+            ("ros2lab pkg create --build-type ament_python rocket_keys",),
+            page=(
+                f"In the {CODE} view: {NEW_PACKAGE} (rocket_keys), then {NEW_FILE} in it, Start from "
+                f"\u201c{ROCKET_TEMPLATE}\u201d, and fill in its TODOs."
+            ),
+        ),
+        Step(
+            "Start the rocket's launch.",
+            ("ros2lab launch rocketship rocket.launch",),
+            running=("/CountDownNode", "/MainControllerNode"),
+            already="The rocket is already running (the lab's launch started it): nothing to start.",
+        ),
+        Step(
+            "Run your keyboard manager as its own process.",
+            ("ros2lab run rocket_keys keyboard_manager",),
+            page=f"Open your keyboard_manager.py in the {CODE} view and press {RUN}.",
+        ),
+        Step(
+            "Open the graph and find your node between the keyboard and the rocket's controller.",
+            ("ros2lab node list",),
+            page=f"Open {GRAPH} at the top of the page.",
+        ),
+        Step(
+            "During the countdown, press a: your node aborts the launch and the rocket stays on the pad.",
+            (),
+            page=f"Press {RESET_ROCKET} to start a new countdown, click the 3D view, then press a.",
+        ),
     ),
     check=KeyboardAbortCheck,
     questions=(
-        Question("q1", "Which nodes and topics does the graph show while the rocket counts down, and which node is yours?", shows_graph=True),
+        Question(
+            "q1",
+            "Which nodes and topics does the graph show while the rocket counts down, "
+            "and which node is yours?",
+            shows_graph=True,
+        ),
         Question("q2", "What does your keyboard manager subscribe to and publish, with which message types?"),
-        Question("q3", "Why does the rocket stay on the pad when /abort_takeoff arrives during the countdown, and what would an abort do after lift-off?"),
+        Question(
+            "q3",
+            "Why does the rocket stay on the pad when /abort_takeoff arrives during the countdown, "
+            "and what would an abort do after lift-off?",
+        ),
     ),
     wants_graph=True,
-)  # fmt: skip
+)

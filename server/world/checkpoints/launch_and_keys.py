@@ -119,19 +119,30 @@ CHECKPOINT = Checkpoint(
     name="launch_and_keys",
     title="One launch file, then fly with the arrow keys",
     steps=(
-        Step("Write a launch file in your workspace that starts the simulator, the keyboard and your "
-             "drone keyboard manager.", ("ros2lab pkg create --build-type ament_python drone_keys",),
-             page=f"In the {CODE} view: {NEW_PACKAGE} (drone_keys), then {NEW_FILE} in it twice: Start "
-                  f"from \u201c{DRONE_TEMPLATE}\u201d, then from \u201c{LAUNCH_TEMPLATE}\u201d; fill "
-                  "in their TODOs."),
-        Step("Start it: one launch starts everything.", ("ros2lab launch drone_keys fly.launch",),
-             page=f"Open your launch file in the {CODE} view and press {RUN}."),
-        Step("Fly with the arrow keys: at least 2 m in x and 2 m in y.", (),
-             page="Click the 3D view, then press the arrow keys."),
+        Step(
+            "Write a launch file in your workspace that starts the simulator, the keyboard and your "
+            "drone keyboard manager.",
+            ("ros2lab pkg create --build-type ament_python drone_keys",),
+            page=(
+                f"In the {CODE} view: {NEW_PACKAGE} (drone_keys), then {NEW_FILE} in it twice: Start "
+                f"from \u201c{DRONE_TEMPLATE}\u201d, then from \u201c{LAUNCH_TEMPLATE}\u201d; fill "
+                "in their TODOs."
+            ),
+        ),
+        Step(
+            "Start it: one launch starts everything.",
+            ("ros2lab launch drone_keys fly.launch",),
+            page=f"Open your launch file in the {CODE} view and press {RUN}.",
+        ),
+        Step(
+            "Fly with the arrow keys: at least 2 m in x and 2 m in y.",
+            (),
+            page="Click the 3D view, then press the arrow keys.",
+        ),
     ),
     check=LaunchAndKeysCheck,
     questions=(
         Question("final", "What does one launch file give you that starting each node by hand did not?"),
     ),
     wants_graph=True,
-)  # fmt: skip
+)

@@ -27,8 +27,10 @@ def _panel(points: list[tuple[float, float]], target: tuple[float, float] | None
     def at(x: float, y: float) -> str:
         return f"{x0 + PAD + (x - lx) / span * PANEL:.1f},{PAD + PANEL - (y - ly) / span * PANEL:.1f}"
 
-    out = [f'<rect x="{x0 + PAD}" y="{PAD}" width="{PANEL}" height="{PANEL}" fill="#f7f7f7" stroke="#999"/>',
-           f'<text x="{x0 + PAD}" y="{PAD - 8}" font-size="13">{escape(label)}</text>']  # fmt: skip
+    out = [
+        f'<rect x="{x0 + PAD}" y="{PAD}" width="{PANEL}" height="{PANEL}" fill="#f7f7f7" stroke="#999"/>',
+        f'<text x="{x0 + PAD}" y="{PAD - 8}" font-size="13">{escape(label)}</text>',
+    ]
     if len(points) > 1:
         out.append(
             f'<polyline fill="none" stroke="#1565c0" stroke-width="2" points="{" ".join(at(*p) for p in points)}"/>'

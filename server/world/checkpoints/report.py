@@ -33,16 +33,26 @@ def build(progress: Progress, lines: Lines, world: str | None) -> dict[str, Any]
     for c in progress.checkpoints:
         record = progress.records.get(c.name)
         evidence = record.evidence if record is not None else None
-        checkpoints.append({
-            "name": c.name, "title": c.title, "state": state(progress, lines, c.name),
-            "done_at": iso(record.done_at_s) if record is not None else None,
-            "times_done": record.times if record is not None else 0,
-            "evidence": evidence, "picture": picture(progress, c.name, evidence),
-        })  # fmt: skip
+        checkpoints.append(
+            {
+                "name": c.name,
+                "title": c.title,
+                "state": state(progress, lines, c.name),
+                "done_at": iso(record.done_at_s) if record is not None else None,
+                "times_done": record.times if record is not None else 0,
+                "evidence": evidence,
+                "picture": picture(progress, c.name, evidence),
+            }
+        )
     return {
-        "kind": KIND, "format": FORMAT, "student": progress.student, "world": world,
-        "generated_at": iso(progress.wall()), "checkpoints": checkpoints, "questions": questions(progress),
-    }  # fmt: skip
+        "kind": KIND,
+        "format": FORMAT,
+        "student": progress.student,
+        "world": world,
+        "generated_at": iso(progress.wall()),
+        "checkpoints": checkpoints,
+        "questions": questions(progress),
+    }
 
 
 def _evidence_html(evidence: dict[str, Any]) -> str:
@@ -73,8 +83,10 @@ def _evidence_html(evidence: dict[str, Any]) -> str:
             f"<td>{escape(str(e.get('by', '')))}</td></tr>"
             for e in timeline[-40:]
         )
-        parts.append(f"<h4>Timeline (s on the lab's clock)</h4><table><tr><th>t</th><th>what</th><th>value</th>"
-                     f"<th>by</th></tr>{rows}</table>")  # fmt: skip
+        parts.append(
+            f"<h4>Timeline (s on the lab's clock)</h4><table><tr><th>t</th><th>what</th><th>value</th>"
+            f"<th>by</th></tr>{rows}</table>"
+        )
     return "".join(parts)
 
 
@@ -92,8 +104,10 @@ def html_page(report: dict[str, Any]) -> bytes:
         when = f" at {escape(c['done_at'])}" if c["done_at"] else ""
         body = _evidence_html(c["evidence"]) if c["evidence"] else ""
         pic = f"<img alt='{escape(c['name'])}' src='{escape(c['picture'])}'>" if c["picture"] else ""
-        sections.append(f"<section><h2>{escape(c['title'])}</h2><p class='{escape(c['state'])}'>"
-                        f"{escape(c['state'].replace('_', ' '))}{when}</p>{pic}{body}</section>")  # fmt: skip
+        sections.append(
+            f"<section><h2>{escape(c['title'])}</h2><p class='{escape(c['state'])}'>"
+            f"{escape(c['state'].replace('_', ' '))}{when}</p>{pic}{body}</section>"
+        )
     answers = "".join(
         f"<section><h3>{escape(q['text'])}</h3><pre>{escape(q['answer']) or '(no answer)'}</pre></section>"
         for q in report["questions"]
@@ -104,9 +118,11 @@ def html_page(report: dict[str, Any]) -> bytes:
         f"<title>Checkpoints: {escape(who)}</title>{META_EMPTY.decode()}<style>{STYLE}</style></head><body>"
         f"<h1>Checkpoints of {escape(who)}</h1><p>Made {escape(str(report['generated_at']))} by the lab's "
         "server, which signed it: <code>ros2lab report verify FILE</code> tells whether it was changed.</p>"
-        + "".join(sections) + "<h2>Answers</h2>" + answers
+        + "".join(sections)
+        + "<h2>Answers</h2>"
+        + answers
         + f'<script type="application/json" id="report">{embedded}</script></body></html>'
-    )  # fmt: skip
+    )
     return page.encode()
 
 

@@ -43,8 +43,12 @@ def read_saved(
             for entry in entries:
                 if _CLASS_WORLD.fullmatch(entry.name) and entry.is_dir(follow_symlinks=False):
                     if len(names) == limit:
-                        log.warning("progress: more than %d worlds in %s; the class table lists %d of them",
-                                    limit, folder, limit)  # fmt: skip
+                        log.warning(
+                            "progress: more than %d worlds in %s; the class table lists %d of them",
+                            limit,
+                            folder,
+                            limit,
+                        )
                         break
                     names.append(entry.name)
     except FileNotFoundError:

@@ -182,8 +182,14 @@ class ProgressStore:
         try:
             taken = decode(raw, progress)
         except SavedProgressError as exc:
-            log.warning("progress of world %s: %s is not a progress file (%s): it starts with none, "
-                        "and the file is kept as %s.corrupt", world, path, exc, path.name)  # fmt: skip
+            log.warning(
+                "progress of world %s: %s is not a progress file (%s): it starts with none, "
+                "and the file is kept as %s.corrupt",
+                world,
+                path,
+                exc,
+                path.name,
+            )
             with contextlib.suppress(OSError):  # set aside for a human to look at, if it can be
                 path.replace(path.with_name(path.name + ".corrupt"))
             return

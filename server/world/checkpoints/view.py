@@ -22,9 +22,12 @@ def questions(progress: Progress) -> list[dict[str, Any]]:
     for checkpoint, question in progress.questions:
         answer = progress.answers[question.id]
         item: dict[str, Any] = {
-            "id": question.id, "checkpoint": checkpoint.name, "text": question.text,
-            "answer": answer.text, "saved_at": iso(answer.saved_at_s),
-        }  # fmt: skip
+            "id": question.id,
+            "checkpoint": checkpoint.name,
+            "text": question.text,
+            "answer": answer.text,
+            "saved_at": iso(answer.saved_at_s),
+        }
         if question.shows_graph:
             item["shows_graph"] = True
         out.append(item)
@@ -49,15 +52,17 @@ def world_view(
     checkpoints = []
     for c in progress.checkpoints:
         record = progress.records.get(c.name)
-        checkpoints.append({
-            "name": c.name,
-            "title": c.title,
-            "state": state(progress, lines, c.name),
-            "done_at": iso(record.done_at_s) if record is not None else None,
-            "times_done": record.times if record is not None else 0,
-            "steps": [step_view(s, running) for s in c.steps],
-            "progress": lines.get(c.name, (False, ""))[1],
-            "evidence": record.evidence if record is not None else None,
-            "has_capture": c.name in progress.captures,
-        })  # fmt: skip
+        checkpoints.append(
+            {
+                "name": c.name,
+                "title": c.title,
+                "state": state(progress, lines, c.name),
+                "done_at": iso(record.done_at_s) if record is not None else None,
+                "times_done": record.times if record is not None else 0,
+                "steps": [step_view(s, running) for s in c.steps],
+                "progress": lines.get(c.name, (False, ""))[1],
+                "evidence": record.evidence if record is not None else None,
+                "has_capture": c.name in progress.captures,
+            }
+        )
     return {"checkpoints": checkpoints, "questions": questions(progress), "version": version}

@@ -144,10 +144,14 @@ class CheckpointWatch:
         except OSError:
             text = ""
         nodes = tuple(
-            ev.LaunchedNode(e.action.pkg, e.action.exec, e.action.name,
-                            self.sources.student_executable(e.action.pkg, e.action.exec))
+            ev.LaunchedNode(
+                e.action.pkg,
+                e.action.exec,
+                e.action.name,
+                self.sources.student_executable(e.action.pkg, e.action.exec),
+            )
             for e in started
-        )  # fmt: skip
+        )
         self.feed(ev.Launch(self.bus.clock.now(), label, text, in_workspace, nodes))
 
     # -- the checks' side ----------------------------------------------------------------------
