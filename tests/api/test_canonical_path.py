@@ -27,8 +27,16 @@ REFUSED = {
     b"api/topics": "must start with /",
     b"http://evil.example/api/topics": "must start with /",
 }
-PLAIN = [b"/", b"/api/topics", b"/api/topics/uav/sensors/gps", b"/api/topics/", b"/static/page.css",
-         b"/api/types/geometry_msgs/msg/Vector3/default", b"/api/nodes/%C3%A9t%C3%A9", b"/a.b/..c/.d"]  # fmt: skip
+PLAIN = [
+    b"/",
+    b"/api/topics",
+    b"/api/topics/uav/sensors/gps",
+    b"/api/topics/",
+    b"/static/page.css",
+    b"/api/types/geometry_msgs/msg/Vector3/default",
+    b"/api/nodes/%C3%A9t%C3%A9",
+    b"/a.b/..c/.d",
+]
 
 
 @pytest.mark.parametrize(("raw", "named"), REFUSED.items())

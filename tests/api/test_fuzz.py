@@ -52,18 +52,43 @@ def with_leaf(template: Any, path: tuple[str, ...], leaf: str) -> str:
 
 # (path, body template) pairs: each a request that would be accepted if its one leaf were sane.
 REST_BODIES: list[tuple[str, str, Any, tuple[str, ...]]] = [
-    ("POST", "/api/publish", {"topic": "/cmd_vel", "type": "std_msgs/msg/Float64", "msg": {"data": 1.0}}, ("msg", "data")),
+    (
+        "POST",
+        "/api/publish",
+        {"topic": "/cmd_vel", "type": "std_msgs/msg/Float64", "msg": {"data": 1.0}},
+        ("msg", "data"),
+    ),
     ("POST", "/api/publish", {"topic": "/countdown", "msg": {"data": 3}}, ("msg", "data")),
-    ("POST", "/api/publish", {"topic": "/uav/input/position", "type": "geometry_msgs/msg/Vector3",
-                              "msg": {"x": 1.0, "y": 2.0, "z": 3.0}}, ("msg", "z")),
+    (
+        "POST",
+        "/api/publish",
+        {
+            "topic": "/uav/input/position",
+            "type": "geometry_msgs/msg/Vector3",
+            "msg": {"x": 1.0, "y": 2.0, "z": 3.0},
+        },
+        ("msg", "z"),
+    ),
     ("POST", "/api/publishers", {"topic": "/countdown", "msg": {"data": 3}, "rate_hz": 1.0}, ("rate_hz",)),
-    ("POST", "/api/publishers", {"topic": "/cmd_vel", "type": "std_msgs/msg/Float64", "msg": {"data": 1.0},
-                                 "rate_hz": 1.0}, ("msg", "data")),
-    ("POST", "/api/run", {"package": "rocketship", "executable": "countdown", "parameters": {"start_delay": 1.0}},
-     ("parameters", "start_delay")),
-    ("POST", "/api/launch", {"package": "rocketship", "file": "rocket.launch", "args": {"start_delay": "1"}},
-     ("args", "start_delay")),
-]  # fmt: skip
+    (
+        "POST",
+        "/api/publishers",
+        {"topic": "/cmd_vel", "type": "std_msgs/msg/Float64", "msg": {"data": 1.0}, "rate_hz": 1.0},
+        ("msg", "data"),
+    ),
+    (
+        "POST",
+        "/api/run",
+        {"package": "rocketship", "executable": "countdown", "parameters": {"start_delay": 1.0}},
+        ("parameters", "start_delay"),
+    ),
+    (
+        "POST",
+        "/api/launch",
+        {"package": "rocketship", "file": "rocket.launch", "args": {"start_delay": "1"}},
+        ("args", "start_delay"),
+    ),
+]
 
 
 TARGETS = ("/cmd_vel", "/countdown", "/uav/input/position")  # quiet in this lab: nothing else publishes there

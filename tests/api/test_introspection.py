@@ -21,12 +21,17 @@ from server.world.lab import Lab
 LAB_NODES = {"/CountDownNode", "/MainControllerNode", "/RocketEngineNode", "/KeyboardManager", "/keyboard"}
 LAB_TOPICS = {"/countdown", "/cmd_vel", "/sensor_vel", "/abort_takeoff", "/keydown", "/keyup"}
 LAB_EDGES = {
-    ("/CountDownNode", "/countdown", "publish"), ("/countdown", "/MainControllerNode", "subscribe"),
-    ("/MainControllerNode", "/cmd_vel", "publish"), ("/cmd_vel", "/RocketEngineNode", "subscribe"),
-    ("/RocketEngineNode", "/sensor_vel", "publish"), ("/keyboard", "/keydown", "publish"),
-    ("/keyboard", "/keyup", "publish"), ("/keydown", "/KeyboardManager", "subscribe"),
-    ("/KeyboardManager", "/abort_takeoff", "publish"), ("/abort_takeoff", "/MainControllerNode", "subscribe"),
-}  # fmt: skip
+    ("/CountDownNode", "/countdown", "publish"),
+    ("/countdown", "/MainControllerNode", "subscribe"),
+    ("/MainControllerNode", "/cmd_vel", "publish"),
+    ("/cmd_vel", "/RocketEngineNode", "subscribe"),
+    ("/RocketEngineNode", "/sensor_vel", "publish"),
+    ("/keyboard", "/keydown", "publish"),
+    ("/keyboard", "/keyup", "publish"),
+    ("/keydown", "/KeyboardManager", "subscribe"),
+    ("/KeyboardManager", "/abort_takeoff", "publish"),
+    ("/abort_takeoff", "/MainControllerNode", "subscribe"),
+}
 WAIT_S = 5.0
 
 
@@ -145,8 +150,11 @@ def test_node_info_main_controller_has_its_endpoints_timer_and_origin(client: Te
         lambda: client.get("/api/nodes/MainControllerNode").json(), lambda i: i["timers"][0]["calls"] > 0
     )
     assert (info["name"], info["namespace"], info["state"], info["crash_reason"]) == (
-        "/MainControllerNode", "/", "active", None,
-    )  # fmt: skip
+        "/MainControllerNode",
+        "/",
+        "active",
+        None,
+    )
     assert {"topic": "/cmd_vel", "type": "std_msgs/msg/Float64", "depth": 1000} in info["publishers"]
     assert {p["topic"] for p in info["publishers"]} == {"/cmd_vel", "/rosout", "/parameter_events"}
     assert {s["topic"] for s in info["subscribers"]} == {"/countdown", "/abort_takeoff"}
@@ -190,8 +198,16 @@ def test_hz_sensor_vel_is_10_hz_on_the_labs_clock() -> None:
 def test_hz_topic_with_no_messages_yet_has_null_rate(client: TestClient) -> None:
     # The countdown waits 5 s before its first message; /keyup has none until a key is released.
     rate = client.get("/api/hz/keyup").json()
-    assert rate == {"topic": "/keyup", "window": 0, "rate_hz": None, "min_s": None, "max_s": None,
-                    "std_dev_s": None, "count": 0, "watch": None}  # fmt: skip
+    assert rate == {
+        "topic": "/keyup",
+        "window": 0,
+        "rate_hz": None,
+        "min_s": None,
+        "max_s": None,
+        "std_dev_s": None,
+        "count": 0,
+        "watch": None,
+    }
 
 
 def test_hz_unknown_topic_is_404(client: TestClient) -> None:
@@ -214,11 +230,15 @@ def test_types_vector3_schema_is_an_object_of_three_numbers(client: TestClient) 
     schema = client.get("/api/types/geometry_msgs/msg/Vector3").json()
     assert schema["$schema"] == "https://json-schema.org/draft/2020-12/schema"
     assert (schema["title"], schema["type"], schema["additionalProperties"]) == (
-        "geometry_msgs/msg/Vector3", "object", False,
-    )  # fmt: skip
+        "geometry_msgs/msg/Vector3",
+        "object",
+        False,
+    )
     assert {k: (v["type"], v["default"]) for k, v in schema["properties"].items()} == {
-        "x": ("number", 0.0), "y": ("number", 0.0), "z": ("number", 0.0),
-    }  # fmt: skip
+        "x": ("number", 0.0),
+        "y": ("number", 0.0),
+        "z": ("number", 0.0),
+    }
 
 
 def test_types_key_schema_code_is_uint16_and_header_nested(client: TestClient) -> None:

@@ -40,8 +40,10 @@ def test_reset_rocket_mid_countdown_counts_down_from_10_again(counting_lab: LabC
 
 def _graph(lab: LabClient) -> dict[str, tuple[str, set[str], set[str]]]:
     """Topic → (type, publishers, subscribers); restarted nodes may come back in another order."""
-    return {t["name"]: (t["type"], set(t["publishers"]), set(t["subscribers"]))
-            for t in lab.http.get("/api/topics").json()}  # fmt: skip
+    return {
+        t["name"]: (t["type"], set(t["publishers"]), set(t["subscribers"]))
+        for t in lab.http.get("/api/topics").json()
+    }
 
 
 def test_reset_rocket_keeps_the_rocket_graph(make_lab: Callable[..., LabClient]) -> None:

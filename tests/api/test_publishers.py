@@ -58,7 +58,12 @@ def test_publishers_post_5_5_10_at_1hz_drone_gets_within_10cm(client: TestClient
     assert response.status_code == 201
     item = response.json()
     assert (item["topic"], item["type"], item["msg"], item["rate_hz"], item["enabled"]) == (
-        POSITION, "geometry_msgs/msg/Vector3", TARGET, 1.0, True)  # fmt: skip
+        POSITION,
+        "geometry_msgs/msg/Vector3",
+        TARGET,
+        1.0,
+        True,
+    )
     assert item["count"] == 1  # the first one goes at once
     started = time.monotonic()
 

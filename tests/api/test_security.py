@@ -29,8 +29,9 @@ def test_websocket_cross_site_origin_refused(rocket_lab: LabClient, url: str, or
 
 @pytest.mark.parametrize("origin", CROSS_SITE)
 def test_publish_cross_site_origin_refused_and_publishes_nothing(rocket_lab: LabClient, origin: str) -> None:
-    response = rocket_lab.http.post("/api/publish", json={"topic": "/countdown", "msg": {"data": 3}},
-                                    headers={"origin": origin})  # fmt: skip
+    response = rocket_lab.http.post(
+        "/api/publish", json={"topic": "/countdown", "msg": {"data": 3}}, headers={"origin": origin}
+    )
 
     assert response.status_code == 403
     assert "cross-site origin" in response.json()["detail"]
@@ -47,8 +48,11 @@ def test_reset_cross_site_origin_refused_and_restarts_nothing(rocket_lab: LabCli
 
 
 def test_publish_same_origin_accepted(rocket_lab: LabClient) -> None:
-    response = rocket_lab.http.post("/api/publish", json={"topic": "/countdown", "msg": {"data": 3}},
-                                    headers={"origin": "http://testserver"})  # fmt: skip
+    response = rocket_lab.http.post(
+        "/api/publish",
+        json={"topic": "/countdown", "msg": {"data": 3}},
+        headers={"origin": "http://testserver"},
+    )
 
     assert response.status_code == 200
     assert rocket_lab.latest("/countdown") == {"data": 3}
@@ -57,8 +61,9 @@ def test_publish_same_origin_accepted(rocket_lab: LabClient) -> None:
 @pytest.mark.parametrize("host", FOREIGN_HOSTS)
 def test_foreign_host_refused_421_on_reads_and_writes(rocket_lab: LabClient, host: str) -> None:
     health = rocket_lab.http.get("/api/health", headers={"host": host})
-    publish = rocket_lab.http.post("/api/publish", json={"topic": "/countdown", "msg": {"data": 3}},
-                                   headers={"host": host})  # fmt: skip
+    publish = rocket_lab.http.post(
+        "/api/publish", json={"topic": "/countdown", "msg": {"data": 3}}, headers={"host": host}
+    )
 
     assert (health.status_code, publish.status_code) == (421, 421)
     assert host in health.json()["detail"]

@@ -95,8 +95,11 @@ def test_publish_abort_before_launch_cmd_vel_never_published(make_lab: Callable[
     aborted.wait_latest(
         "/countdown", lambda m: m["data"] == 0, "reached 0", COUNTDOWN_END_S
     )  # it counts on after an abort
-    wait_until(lambda: control.publish_count("/cmd_vel") >= 3, "the control rocket's /cmd_vel",
-               timeout_s=COUNTDOWN_END_S)  # fmt: skip
+    wait_until(
+        lambda: control.publish_count("/cmd_vel") >= 3,
+        "the control rocket's /cmd_vel",
+        timeout_s=COUNTDOWN_END_S,
+    )
     cmd_vel = aborted.topic("/cmd_vel")
     assert cmd_vel["publish_count"] == 0
     assert cmd_vel["latest"] is None
@@ -131,36 +134,92 @@ def _chunks(total: int) -> Iterator[bytes]:
 
 JSON = {"content-type": "application/json"}
 BAD_PUBLISH = [
-    pytest.param({"content": b'{"topic": "/countdown", "msg": ', "headers": JSON}, 422, "malformed JSON",
-                 id="malformed-json"),
+    pytest.param(
+        {"content": b'{"topic": "/countdown", "msg": ', "headers": JSON},
+        422,
+        "malformed JSON",
+        id="malformed-json",
+    ),
     pytest.param({"content": b"[1, 2]", "headers": JSON}, 422, "valid dictionary", id="not-an-object"),
     pytest.param({"json": {"msg": {"data": 1}}}, 422, '"topic"', id="topic-missing"),
     pytest.param({"json": {"topic": 5, "msg": {"data": 1}}}, 422, '"topic"', id="topic-not-a-string"),
     pytest.param({"json": {"topic": "/countdown", "msg": "7"}}, 422, '"msg"', id="msg-not-an-object"),
-    pytest.param({"json": {"topic": "/countdown", "msg": {"data": 1}, "qos": 1}}, 422, "qos", id="extra-field"),
-    pytest.param({"json": {"topic": "/countdown", "msg": {"data": "ten"}}}, 422, "data: expected an integer",
-                 id="field-wrong-type"),
-    pytest.param({"json": {"topic": "/countdown", "msg": {"data": 2**63}}}, 422, "out of range for int64",
-                 id="field-out-of-range"),
-    pytest.param({"json": {"topic": "/countdown", "msg": {"count": 1}}}, 422, "no field 'count'",
-                 id="unknown-msg-field"),
-    pytest.param({"content": b'{"topic": "/speed", "type": "std_msgs/msg/Float64", "msg": {"data": NaN}}',
-                  "headers": JSON}, 422, "NaN is not a JSON number", id="nan"),
-    pytest.param({"json": {"topic": "/speed", "type": "std_msgs/msg/Float128", "msg": {}}}, 422,
-                 "unknown message type 'std_msgs/msg/Float128'", id="unknown-type"),
-    pytest.param({"json": {"topic": "/bad topic", "type": "std_msgs/msg/Bool", "msg": {}}}, 422,
-                 "invalid topic name '/bad topic'", id="invalid-topic-name"),
-    pytest.param({"json": {"topic": "", "type": "std_msgs/msg/Bool", "msg": {}}}, 422, "must not be empty",
-                 id="empty-topic-name"),
-    pytest.param({"json": {"topic": "/countdown", "type": "std_msgs/msg/Bool", "msg": {"data": True}}}, 409,
-                 "/countdown carries std_msgs/msg/Int64", id="type-conflict"),
-    pytest.param({"json": {"topic": "/speed", "msg": {"data": 1.0}}}, 404, "unknown topic '/speed'",
-                 id="unknown-topic-without-type"),
-    pytest.param({"content": b'{"topic": "/countdown", "msg": {"data": 1}, "pad": "' + b"x" * LIMIT + b'"}',
-                  "headers": JSON}, 413, f"body larger than {LIMIT} bytes", id="oversized"),
-    pytest.param({"content": _chunks(LIMIT + 1024), "headers": JSON}, 413, f"body larger than {LIMIT} bytes",
-                 id="oversized-chunked"),
-]  # fmt: skip
+    pytest.param(
+        {"json": {"topic": "/countdown", "msg": {"data": 1}, "qos": 1}}, 422, "qos", id="extra-field"
+    ),
+    pytest.param(
+        {"json": {"topic": "/countdown", "msg": {"data": "ten"}}},
+        422,
+        "data: expected an integer",
+        id="field-wrong-type",
+    ),
+    pytest.param(
+        {"json": {"topic": "/countdown", "msg": {"data": 2**63}}},
+        422,
+        "out of range for int64",
+        id="field-out-of-range",
+    ),
+    pytest.param(
+        {"json": {"topic": "/countdown", "msg": {"count": 1}}},
+        422,
+        "no field 'count'",
+        id="unknown-msg-field",
+    ),
+    pytest.param(
+        {
+            "content": b'{"topic": "/speed", "type": "std_msgs/msg/Float64", "msg": {"data": NaN}}',
+            "headers": JSON,
+        },
+        422,
+        "NaN is not a JSON number",
+        id="nan",
+    ),
+    pytest.param(
+        {"json": {"topic": "/speed", "type": "std_msgs/msg/Float128", "msg": {}}},
+        422,
+        "unknown message type 'std_msgs/msg/Float128'",
+        id="unknown-type",
+    ),
+    pytest.param(
+        {"json": {"topic": "/bad topic", "type": "std_msgs/msg/Bool", "msg": {}}},
+        422,
+        "invalid topic name '/bad topic'",
+        id="invalid-topic-name",
+    ),
+    pytest.param(
+        {"json": {"topic": "", "type": "std_msgs/msg/Bool", "msg": {}}},
+        422,
+        "must not be empty",
+        id="empty-topic-name",
+    ),
+    pytest.param(
+        {"json": {"topic": "/countdown", "type": "std_msgs/msg/Bool", "msg": {"data": True}}},
+        409,
+        "/countdown carries std_msgs/msg/Int64",
+        id="type-conflict",
+    ),
+    pytest.param(
+        {"json": {"topic": "/speed", "msg": {"data": 1.0}}},
+        404,
+        "unknown topic '/speed'",
+        id="unknown-topic-without-type",
+    ),
+    pytest.param(
+        {
+            "content": b'{"topic": "/countdown", "msg": {"data": 1}, "pad": "' + b"x" * LIMIT + b'"}',
+            "headers": JSON,
+        },
+        413,
+        f"body larger than {LIMIT} bytes",
+        id="oversized",
+    ),
+    pytest.param(
+        {"content": _chunks(LIMIT + 1024), "headers": JSON},
+        413,
+        f"body larger than {LIMIT} bytes",
+        id="oversized-chunked",
+    ),
+]
 
 
 @pytest.mark.parametrize(("request_kwargs", "status", "named"), BAD_PUBLISH)

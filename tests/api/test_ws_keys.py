@@ -15,8 +15,12 @@ from labclient import LabClient, close_within, receive_json_within, wait_until
 from api.errors import CloseCode
 
 KEY_A = 97
-ARROWS = [("ArrowUp", "ArrowUp", 273), ("ArrowDown", "ArrowDown", 274),
-          ("ArrowRight", "ArrowRight", 275), ("ArrowLeft", "ArrowLeft", 276)]  # fmt: skip
+ARROWS = [
+    ("ArrowUp", "ArrowUp", 273),
+    ("ArrowDown", "ArrowDown", 274),
+    ("ArrowRight", "ArrowRight", 275),
+    ("ArrowLeft", "ArrowLeft", 276),
+]
 LSHIFT, RSHIFT, LCTRL = 1, 2, 64  # keyboard_msgs/Key MODIFIER_* bits
 FRAME_LIMIT = 16 * 1024  # Listening.max_ws_frame_bytes
 
@@ -66,8 +70,9 @@ def test_arrow_keys_publish_sdl_codes_273_to_276(rocket_lab: LabClient) -> None:
     ],
     ids=["shift-A", "rshift-A", "ctrl-shift-A", "left-shift-key", "right-shift-key"],
 )
-def test_shift_flags_set_modifier_bits(rocket_lab: LabClient, frame: dict[str, Any], code: int,
-                                       modifiers: int) -> None:  # fmt: skip
+def test_shift_flags_set_modifier_bits(
+    rocket_lab: LabClient, frame: dict[str, Any], code: int, modifiers: int
+) -> None:
     with rocket_lab.http.websocket_connect("/ws/keys") as ws:
         ws.send_json(frame)
         rocket_lab.wait_latest(
@@ -117,10 +122,13 @@ def test_silent_channel_holding_key_gets_it_released(make_lab: Callable[..., Lab
 
 @pytest.mark.parametrize(
     ("frame", "error_names"),
-    [(down("Unidentified"), "unknown key 'Unidentified'"), (down("😀"), "unknown key"),
-     (down("a", shift="yes"), "modifier flag 'shift'")],
+    [
+        (down("Unidentified"), "unknown key 'Unidentified'"),
+        (down("😀"), "unknown key"),
+        (down("a", shift="yes"), "modifier flag 'shift'"),
+    ],
     ids=["unidentified", "emoji", "flag-not-bool"],
-)  # fmt: skip
+)
 def test_unknown_key_gets_error_frame_and_channel_stays_open(
     rocket_lab: LabClient, frame: dict[str, Any], error_names: str
 ) -> None:
@@ -147,9 +155,17 @@ def test_unknown_key_gets_error_frame_and_channel_stays_open(
         ({"bytes": b'{"type": "keydown", "key": "a"}'}, CloseCode.UNSUPPORTED_DATA, "text frames"),
         ({"text": "x" * (FRAME_LIMIT + 1)}, CloseCode.MESSAGE_TOO_BIG, f"larger than {FRAME_LIMIT} bytes"),
     ],
-    ids=["malformed-json", "not-an-object", "unknown-type", "no-key", "bad-location", "unknown-field",
-         "binary", "oversized"],
-)  # fmt: skip
+    ids=[
+        "malformed-json",
+        "not-an-object",
+        "unknown-type",
+        "no-key",
+        "bad-location",
+        "unknown-field",
+        "binary",
+        "oversized",
+    ],
+)
 def test_garbage_frame_closes_with_named_code_and_publishes_nothing(
     rocket_lab: LabClient, message: dict[str, Any], code: CloseCode, reason_names: str
 ) -> None:
