@@ -16,10 +16,17 @@ from support.forked_server import start_server
 
 REPO = Path(__file__).resolve().parents[2]
 CHROMIUM_ARGS = [
-    "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-    "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic",
-    "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-]  # fmt: skip
+    "--headless=new",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+    "--disable-quic",
+    "--use-angle=swiftshader",
+    "--enable-unsafe-swiftshader",
+]
 # About 3 s when quiet; on a loaded 2-core machine, with a page drawing in software, over 30 s.
 SERVER_READY_S = 90.0
 SERVER_STOP_S = 10.0
@@ -45,10 +52,19 @@ class LabServer:
         self.log_path = log_path
         self._log = log_path.open("w")
         self.proc = start_server(
-            ["--host", "127.0.0.1", "--port", str(self.port), "--zenoh-listen", f"tcp/127.0.0.1:{self.zenoh_port}",
-             *own_state(log_path.parent, launch_args), *launch_args],
-            cwd=REPO, log=log_path,
-        )  # fmt: skip
+            [
+                "--host",
+                "127.0.0.1",
+                "--port",
+                str(self.port),
+                "--zenoh-listen",
+                f"tcp/127.0.0.1:{self.zenoh_port}",
+                *own_state(log_path.parent, launch_args),
+                *launch_args,
+            ],
+            cwd=REPO,
+            log=log_path,
+        )
 
     def wait_ready(self, timeout_s: float = SERVER_READY_S) -> None:
         wait_healthy(self.url, self.proc, timeout_s, self.log_tail)

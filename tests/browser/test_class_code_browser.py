@@ -58,10 +58,18 @@ BOB_TEXT = NODE.format(node="copilot", line=BOB_LINE)
 def class_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LabServer]:
     root = tmp_path_factory.mktemp("class_code")
     server = LabServer(
-        ["--classroom", "--class-code", CODE, "--launch", "rocket", "start_delay:=3600",
-         "--workspaces-dir", str(root / "workspaces")],
+        [
+            "--classroom",
+            "--class-code",
+            CODE,
+            "--launch",
+            "rocket",
+            "start_delay:=3600",
+            "--workspaces-dir",
+            str(root / "workspaces"),
+        ],
         root / "server.log",
-    )  # fmt: skip
+    )
     try:
         server.wait_ready()
         yield server
@@ -97,8 +105,9 @@ def open_code_view(page: Page) -> None:
 
 
 def api(server: LabServer, token: str, path: str, **headers: str) -> httpx.Response:
-    return HTTP.get(server.url + path, headers={"Authorization": f"Bearer {token}", **headers},
-                     timeout=HTTP_TIMEOUT_S)  # fmt: skip
+    return HTTP.get(
+        server.url + path, headers={"Authorization": f"Bearer {token}", **headers}, timeout=HTTP_TIMEOUT_S
+    )
 
 
 def write_node(page: Page, package: str, node: str, path: str, text: str) -> None:

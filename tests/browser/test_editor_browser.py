@@ -212,8 +212,10 @@ def test_editor_simple_control_written_run_flown_stopped_and_kept_across_a_reloa
     assert page.locator(f'#teleop-code .tree [data-path="{NODE_FILE}"]').count() == 1
 
     replace_text(page, KEYBOARD_MANAGER)
-    wait_until(lambda: save_state(page) == "saved" and file_text(server, NODE_FILE) == KEYBOARD_MANAGER,
-               "the typed file saved")  # fmt: skip
+    wait_until(
+        lambda: save_state(page) == "saved" and file_text(server, NODE_FILE) == KEYBOARD_MANAGER,
+        "the typed file saved",
+    )
 
     page.get_by_role("button", name="\u25b6 Run").click()
     log_line = page.locator("#teleop-code .output .line.log-info", has_text="keyboard manager ready")
@@ -229,8 +231,11 @@ def test_editor_simple_control_written_run_flown_stopped_and_kept_across_a_reloa
     focus_3d_view(page)
     page.keyboard.press("ArrowRight")  # the marker: the only key of all these that flies
     wait_setpoint(server, (1.0, 0.0, 3.0))
-    wait_until(lambda: math.dist(position(server), (1.0, 0.0, 3.0)) < ARRIVED_M, "the drone 1 m along +x",
-               FLIGHT_WAIT_S)  # fmt: skip
+    wait_until(
+        lambda: math.dist(position(server), (1.0, 0.0, 3.0)) < ARRIVED_M,
+        "the drone 1 m along +x",
+        FLIGHT_WAIT_S,
+    )
     assert setpoint(server) == (1.0, 0.0, 3.0), "a key typed in the editor reached the keyboard"
 
     page.get_by_role("button", name="\u25a0 Stop").click()
@@ -302,8 +307,10 @@ def test_editor_save_failure_keeps_text_and_another_tabs_save_is_a_choice(
         put(server, path, "theirs = 4\n")
         route.fulfill(response=route.fetch())  # this page's save, as it sent it, after theirs
 
-    for choice, mine, expected in [("Overwrite with mine", "mine = 5\n", "mine = 5\n"),
-                                   ("Reload theirs", "mine = 6\n", "theirs = 4\n")]:  # fmt: skip
+    for choice, mine, expected in [
+        ("Overwrite with mine", "mine = 5\n", "mine = 5\n"),
+        ("Reload theirs", "mine = 6\n", "theirs = 4\n"),
+    ]:
         page.route(url, other_tab_first)
         replace_text(page, mine)
         conflict = page.locator("#teleop-code .problem.conflict")

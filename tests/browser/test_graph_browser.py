@@ -110,8 +110,10 @@ def test_main_page_nav_link_opens_tools_in_new_tab_without_taking_focus(page: Pa
     link = page.locator("#teleop-nav-tools")
     link.wait_for(timeout=LOAD_WAIT_MS)
     assert (link.get_attribute("href"), link.get_attribute("target"), link.get_attribute("tabindex")) == (
-        "/tools", "_blank", "-1",
-    )  # fmt: skip
+        "/tools",
+        "_blank",
+        "-1",
+    )
     with page.context.expect_page(timeout=LOAD_WAIT_MS) as new_tab:
         link.click(timeout=LOAD_WAIT_MS)
     new_tab.value.wait_for_load_state(timeout=LOAD_WAIT_MS)

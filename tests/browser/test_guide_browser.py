@@ -170,8 +170,13 @@ def fly_with_publisher_panel(page: Page) -> None:
     (tests/browser/test_teleop_browser.py: each field waits for the server's preview to show it)."""
     page.get_by_text("Message Publisher", exact=True).click()
     assert page.get_by_label("Topic", exact=True).input_value() == "/uav/input/position"
-    for field, value, shown in (("x", "5", "x: 5.0"), ("y", "5", "y: 5.0"), ("z", "10", "z: 10.0"),
-                                ("Rate (Hz)", "2", "at 2 Hz"), ("Rate (Hz)", "1", "at 1 Hz")):  # fmt: skip
+    for field, value, shown in (
+        ("x", "5", "x: 5.0"),
+        ("y", "5", "y: 5.0"),
+        ("z", "10", "z: 10.0"),
+        ("Rate (Hz)", "2", "at 2 Hz"),
+        ("Rate (Hz)", "1", "at 1 Hz"),
+    ):
         page.get_by_label(field, exact=True).fill(value)
         page.wait_for_function("(s) => document.body.innerText.includes(s)", arg=shown)
     page.get_by_label("Enabled", exact=True).check()
@@ -237,8 +242,11 @@ def ros2lab_verify(server: LabServer, report: Path) -> subprocess.CompletedProce
     env = {k: v for k, v in os.environ.items() if k != "ROS2LAB_TOKEN"}
     return subprocess.run(
         [sys.executable, "-m", "server", "report", "verify", str(report), "--url", server.url],
-        capture_output=True, text=True, timeout=CLI_WAIT_S, env=env,
-    )  # fmt: skip
+        capture_output=True,
+        text=True,
+        timeout=CLI_WAIT_S,
+        env=env,
+    )
 
 
 def download(page: Page, selector: str, folder: Path) -> Path:

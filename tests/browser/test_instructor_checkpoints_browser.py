@@ -117,8 +117,11 @@ def test_instructor_table_shows_each_student_where_they_are_with_evidence_answer
         assert ada_cell in {f"cell {ada_state}", "cell done"}, ada_cell  # she may have arrived since
         assert page.locator(cell.format("Bob", "fly_to_point")).get_attribute("class") == "cell not_started"
         assert page.locator("#checkpoints-head th").all_inner_texts() == [
-            "Student", "keyboard_abort", "fly_to_point", "launch_and_keys",
-        ]  # fmt: skip
+            "Student",
+            "keyboard_abort",
+            "fly_to_point",
+            "launch_and_keys",
+        ]
 
         page.locator(cell.format("Ada", "fly_to_point")).click()  # what the server has of it
         page.locator("#evidence-body h3").filter(has_text=re.compile("ada", re.IGNORECASE)).wait_for()
@@ -132,8 +135,9 @@ def test_instructor_table_shows_each_student_where_they_are_with_evidence_answer
         page.select_option("#question", "q1")  # the class's answers side by side
         cards = page.locator("#answers article").all()
         assert sorted((c.locator("h4").inner_text().lower(), c.locator("p").inner_text()) for c in cards) == [
-            ("ada", ADA_ANSWER), ("bob", BOB_ANSWER),
-        ]  # fmt: skip
+            ("ada", ADA_ANSWER),
+            ("bob", BOB_ANSWER),
+        ]
 
         with download(page, "#checkpoints-csv", tmp_path).open(newline="") as table:
             rows = {row["student"].lower(): row for row in csv.DictReader(table)}
@@ -162,11 +166,21 @@ def test_instructor_table_shows_each_student_where_they_are_with_evidence_answer
 FLOWN_AT_S = 1_795_000_000.0  # 2026-11-18, in the afternoon (UTC)
 TRACK = [[FLOWN_AT_S + t, 0.05 * t, 0.05 * t, 3 + 0.07 * t] for t in range(0, 100, 2)]
 EVIDENCE = {
-    "target": [5.0, 5.0, 10.0], "publisher": "/position_publisher", "rate_hz": 1.0, "held_s": 3.02,
-    "setpoints": [{"t_s": FLOWN_AT_S + t, "what": "/uav/input/position", "value": [5.0, 5.0, 10.0],
-                   "by": "/position_publisher"} for t in range(0, 100, 10)],
+    "target": [5.0, 5.0, 10.0],
+    "publisher": "/position_publisher",
+    "rate_hz": 1.0,
+    "held_s": 3.02,
+    "setpoints": [
+        {
+            "t_s": FLOWN_AT_S + t,
+            "what": "/uav/input/position",
+            "value": [5.0, 5.0, 10.0],
+            "by": "/position_publisher",
+        }
+        for t in range(0, 100, 10)
+    ],
     "track": TRACK,
-}  # fmt: skip
+}
 
 
 def test_instructor_evidence_shows_the_flights_picture_and_its_timeline_in_local_time(

@@ -150,9 +150,12 @@ def overlaps(boxes: dict[str, list[float]]) -> list[tuple[str, str]]:
 
 @pytest.mark.parametrize("size", SIZES, ids=[f"{w}x{h}" for w, h in SIZES])
 def test_page_each_view_frames_its_vehicle_and_overlays_never_overlap(
-    chromium: Browser, lab_server: LabServer, size: tuple[int, int], screenshot_dir: Path,
+    chromium: Browser,
+    lab_server: LabServer,
+    size: tuple[int, int],
+    screenshot_dir: Path,
     capsys: pytest.CaptureFixture[str],
-) -> None:  # fmt: skip
+) -> None:
     width, height = size
     send_to(lab_server, HOME_M)  # it flies home while the page loads
     with lab_page(chromium, {"width": width, "height": height}) as page:
@@ -288,8 +291,13 @@ def test_a_late_manager_leaves_the_predicted_marker_until_a_new_setpoint_or_the_
             checks, made = page.evaluate(AGED_PREDICTION_JS, [1500, heard])
             page.wait_for_function(f"() => window.__teleop.predict.checks >= {checks + 2}")
             after[heard] = page.evaluate("window.__teleop.predict.prediction") == made
-    assert stands == [None, True, True, True, False, None, True, False, None, True, False,
-                      None, True, False, None, True, False]  # fmt: skip
+    assert stands == [
+        None, True, True, True, False,
+        None, True, False,
+        None, True, False,
+        None, True, False,
+        None, True, False,
+    ]  # fmt: skip
     assert after == {False: True, True: False}
 
 

@@ -31,8 +31,10 @@ def test_record_button_records_and_the_link_downloads_the_mcap(page: Page, rocke
         "a recording to start",
     )
     name = str(new[0]["name"])
-    wait_until(lambda: any(r["name"] == name and int(r["messages"]) > 20 for r in recordings(rocket_server)),  # type: ignore[call-overload]
-               "the recording to hear the rocket's topics")  # fmt: skip
+    wait_until(
+        lambda: any(r["name"] == name and int(r["messages"]) > 20 for r in recordings(rocket_server)),  # type: ignore[call-overload]
+        "the recording to hear the rocket's topics",
+    )
     page.get_by_role("button", name="Stop recording").click()
     link = page.get_by_role("link", name=f"Download {name}")
     link.wait_for()

@@ -74,8 +74,9 @@ def open_lab_page(page: Page, server: LabServer) -> None:
     # Clicked from the page's script: they slide in, so Playwright's click waits for them to hold still.
     close_all = "() => document.querySelectorAll('.mantine-Notification-closeButton').forEach(b => b.click())"
     page.evaluate(close_all)
-    page.wait_for_function(f"() => ({close_all})() || !document.querySelector('.mantine-Notification-closeButton')",
-                           polling=250)  # fmt: skip
+    page.wait_for_function(
+        f"() => ({close_all})() || !document.querySelector('.mantine-Notification-closeButton')", polling=250
+    )
 
 
 def test_press_a_during_countdown_aborts_and_rocket_stays_on_pad(
@@ -91,8 +92,10 @@ def test_press_a_during_countdown_aborts_and_rocket_stays_on_pad(
     wait_responsive(page)
     countdown_before = topic(rocket_server, "/countdown")["publish_count"]
     assert HTTP.post(f"{rocket_server.url}/api/rocket/reset", timeout=HTTP_TIMEOUT_S).status_code == 200
-    wait_until(lambda: (topic(rocket_server, "/abort_takeoff")["latest"] or {}).get("data") is False,
-               "the fresh KeyboardManager's /abort_takeoff false")  # fmt: skip
+    wait_until(
+        lambda: (topic(rocket_server, "/abort_takeoff")["latest"] or {}).get("data") is False,
+        "the fresh KeyboardManager's /abort_takeoff false",
+    )
 
     def new_countdown(done: Callable[[int], bool]) -> Callable[[], bool]:
         def check() -> bool:
@@ -107,14 +110,21 @@ def test_press_a_during_countdown_aborts_and_rocket_stays_on_pad(
     wait_until(new_countdown(lambda n: 3 <= n <= 9), "the restarted countdown between T-9 and T-3")
     page.keyboard.press("a")
 
-    wait_until(lambda: (topic(rocket_server, "/abort_takeoff")["latest"] or {}).get("data") is True,
-               "/abort_takeoff true")  # fmt: skip
+    wait_until(
+        lambda: (topic(rocket_server, "/abort_takeoff")["latest"] or {}).get("data") is True,
+        "/abort_takeoff true",
+    )
     assert topic(rocket_server, "/keydown")["latest"]["code"] == KEY_A  # the camera did not take the key
-    wait_until(new_countdown(lambda n: n == 0), "the countdown to reach 0 (it counts on after an abort)",
-               COUNTDOWN_S)  # fmt: skip
+    wait_until(
+        new_countdown(lambda n: n == 0), "the countdown to reach 0 (it counts on after an abort)", COUNTDOWN_S
+    )
     sensor_at_zero = topic(rocket_server, "/sensor_vel")["publish_count"]
-    wait_until(lambda: topic(rocket_server, "/sensor_vel")["publish_count"] >= sensor_at_zero + SENSOR_TICKS_AFTER_ZERO,
-               "1.5 s of the lab running after T-0")  # fmt: skip
+    wait_until(
+        lambda: (
+            topic(rocket_server, "/sensor_vel")["publish_count"] >= sensor_at_zero + SENSOR_TICKS_AFTER_ZERO
+        ),
+        "1.5 s of the lab running after T-0",
+    )
 
     cmd_vel = topic(rocket_server, "/cmd_vel")
     assert cmd_vel["publish_count"] == 0

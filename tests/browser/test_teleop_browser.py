@@ -386,9 +386,13 @@ def test_publisher_panel_position_at_1hz_flies_drone_to_5_5_10(
     # A browser sends viser one GUI update per 50 ms and keeps only the newest, so a form filled
     # faster than a person types loses values: each field waits for the server's preview to show it.
     # The preview's whole text is awaited: the guide beside it speaks of (5, 5, 10) at 1 Hz too.
-    for field, value, shown in (("x", "5", "{x: 5.0,"), ("y", "5", "y: 5.0,"), ("z", "10", "z: 10.0} at"),
-                                ("Rate (Hz)", "2", "z: 10.0} at 2 Hz"),
-                                ("Rate (Hz)", "1", "message: {x: 5.0, y: 5.0, z: 10.0} at 1 Hz")):  # fmt: skip
+    for field, value, shown in (
+        ("x", "5", "{x: 5.0,"),
+        ("y", "5", "y: 5.0,"),
+        ("z", "10", "z: 10.0} at"),
+        ("Rate (Hz)", "2", "z: 10.0} at 2 Hz"),
+        ("Rate (Hz)", "1", "message: {x: 5.0, y: 5.0, z: 10.0} at 1 Hz"),
+    ):
         page.get_by_label(field, exact=True).fill(value)
         page.wait_for_function("(s) => document.body.innerText.includes(s)", arg=shown)
     assert "message: {x: 5.0, y: 5.0, z: 10.0} at 1 Hz" in page.evaluate("document.body.innerText")
@@ -399,8 +403,11 @@ def test_publisher_panel_position_at_1hz_flies_drone_to_5_5_10(
     assert [(p["topic"], p["rate_hz"], p["msg"]) for p in publishers] == [
         ("/uav/input/position", 1.0, {"x": 5.0, "y": 5.0, "z": 10.0})
     ]
-    wait_until(lambda: math.dist(position(fly_server), (5.0, 5.0, 10.0)) < ARRIVED_M, "the drone at (5, 5, 10)",
-               FLIGHT_WAIT_S)  # fmt: skip
+    wait_until(
+        lambda: math.dist(position(fly_server), (5.0, 5.0, 10.0)) < ARRIVED_M,
+        "the drone at (5, 5, 10)",
+        FLIGHT_WAIT_S,
+    )
     wait_stopped(fly_server)
     assert math.dist(position(fly_server), (5.0, 5.0, 10.0)) < ARRIVED_M
     assert (

@@ -188,9 +188,10 @@ def test_publisher_flying_the_drone_switches_the_view_to_it_without_a_click(
         publisher = publish(lab_server, FAR_M)
         try:
             wait_until(
-                lambda: math.dist(position(lab_server), FAR_M) < ARRIVED_M, "the drone at (5, 5, 10)",
+                lambda: math.dist(position(lab_server), FAR_M) < ARRIVED_M,
+                "the drone at (5, 5, 10)",
                 FLIGHT_WAIT_S,
-            )  # fmt: skip
+            )
             wait_stopped(lab_server)
             wait_frames(page, 20)  # the follow camera catches up (0.15 s behind the drone)
             seen = page.evaluate(DRONE_ON_SCREEN_JS)
