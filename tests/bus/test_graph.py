@@ -16,7 +16,7 @@ from node_runtime.bus import (
     TopicTypeError,
     UnknownNodeError,
     UnknownTopicError,
-)  # fmt: skip
+)
 from node_runtime.msgs import Float64, Int64, PoseStamped
 
 

@@ -11,7 +11,7 @@ from node_runtime.bus import (
     validate_namespace,
     validate_node_name,
     validate_topic_name,
-)  # fmt: skip
+)
 
 
 # -- topic names ------------------------------------------------------------------------------

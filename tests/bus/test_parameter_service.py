@@ -98,9 +98,12 @@ def test_a_set_in_range_takes_effect_and_one_out_of_range_is_refused_with_the_re
     bus: Bus, executor: Executor, tuned: _Tuned
 ) -> None:
     results = _call(
-        bus, executor, SetParameters, "/lab/tuned/set_parameters",
+        bus,
+        executor,
+        SetParameters,
+        "/lab/tuned/set_parameters",
         parameters=[_param("gain", 4.0), _param("gain", 11.0), _param("label", "rocket")],
-    ).results  # fmt: skip
+    ).results
     assert [r.successful for r in results] == [True, False, True]
     assert "out of range" in results[1].reason and "Max: 10.0" in results[1].reason
     assert tuned.get_parameter("gain").value == 4.0  # the refused 11.0 changed nothing
@@ -131,23 +134,32 @@ def test_a_refused_set_says_why_and_changes_nothing(
 
 def test_an_atomic_set_with_one_refusal_changes_none(bus: Bus, executor: Executor, tuned: _Tuned) -> None:
     refused = _call(
-        bus, executor, SetParametersAtomically, "/lab/tuned/set_parameters_atomically",
+        bus,
+        executor,
+        SetParametersAtomically,
+        "/lab/tuned/set_parameters_atomically",
         parameters=[_param("gain", 2.0), _param("seed", 1)],
-    ).result  # fmt: skip
+    ).result
     assert not refused.successful and "read-only" in refused.reason
     assert tuned.get_parameter("gain").value == 1.5
     wrong_type = _call(
-        bus, executor, SetParametersAtomically, "/lab/tuned/set_parameters_atomically",
+        bus,
+        executor,
+        SetParametersAtomically,
+        "/lab/tuned/set_parameters_atomically",
         parameters=[_param("label", "x"), _param("gain", 2)],  # an integer is no double, as in rclpy
-    ).result  # fmt: skip
+    ).result
     assert not wrong_type.successful
     assert wrong_type.reason == "Wrong parameter type, expected '3' got '2'"
     unchanged = {"use_sim_time": False, "seed": 7, "gain": 1.5, "label": "drone", "limits.low": [1, 2]}
     assert tuned.get_parameters_dict() == unchanged
     accepted = _call(
-        bus, executor, SetParametersAtomically, "/lab/tuned/set_parameters_atomically",
+        bus,
+        executor,
+        SetParametersAtomically,
+        "/lab/tuned/set_parameters_atomically",
         parameters=[_param("gain", 2.0), _param("label", "x")],
-    ).result  # fmt: skip
+    ).result
     assert accepted.successful
     assert tuned.get_parameters_dict()["gain"] == 2.0 and tuned.get_parameter("label").value == "x"
 
@@ -190,28 +202,35 @@ def test_parameter_events_tell_each_declaration_and_each_set_that_took_effect(
     serve_parameters(tuned)
     executor.spin_some()
     assert [_names(e.new_parameters) for e in events] == [
-        ["use_sim_time"], ["seed"], ["gain"], ["label"], ["limits.low"]
-    ]  # fmt: skip
+        ["use_sim_time"],
+        ["seed"],
+        ["gain"],
+        ["label"],
+        ["limits.low"],
+    ]
     assert [from_value_msg(e.new_parameters[0].value) for e in events] == [False, 7, 1.5, "drone", [1, 2]]
     assert (events[0].stamp.sec, events[0].stamp.nanosec) == (12, 500_000_000)
     events.clear()
     clock.set(20.0)
     _call(
-        bus, executor, SetParameters, "/lab/tuned/set_parameters",
+        bus,
+        executor,
+        SetParameters,
+        "/lab/tuned/set_parameters",
         parameters=[_param("gain", 4.0), _param("gain", 11.0), _param("label", "rocket")],
-    )  # fmt: skip
+    )
     _call(
         bus,
         executor,
         SetParametersAtomically,
         "/lab/tuned/set_parameters_atomically",
         parameters=[_param("gain", 2.0), _param("seed", 1)],
-    )  # fmt: skip  (refused: seed is read-only)
+    )  # (refused: seed is read-only)
     executor.spin_some()
     assert [(_names(e.new_parameters), _names(e.changed_parameters)) for e in events] == [
         ([], ["gain"]),
         ([], ["label"]),
-    ]  # fmt: skip  (one event per set that took effect; the refused 11.0 and the atomic set: none)
+    ]  # (one event per set that took effect; the refused 11.0 and the atomic set: none)
     assert from_value_msg(events[0].changed_parameters[0].value) == 4.0
     assert [(e.stamp.sec, list(e.deleted_parameters)) for e in events] == [(20, []), (20, [])]
 
