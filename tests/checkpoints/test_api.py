@@ -115,8 +115,12 @@ def held_at_target(client: TestClient, since: list[float]) -> bool:
 
 
 def test_fly_to_point_by_rest_at_5_hz_is_not_done_and_at_1_hz_is(fly: TestClient) -> None:
-    body = {"topic": "/uav/input/position", "msg": {"x": 5.0, "y": 5.0, "z": 10.0},
-            "type": "geometry_msgs/msg/Vector3", "rate_hz": 5.0}  # fmt: skip
+    body = {
+        "topic": "/uav/input/position",
+        "msg": {"x": 5.0, "y": 5.0, "z": 10.0},
+        "type": "geometry_msgs/msg/Vector3",
+        "rate_hz": 5.0,
+    }
     started = fly.post("/api/publishers", json=body)
     assert started.status_code == 201, started.text
     publisher = started.json()["id"]

@@ -33,10 +33,15 @@ def clock() -> ManualClock:
 def client(clock: ManualClock, tmp_path_factory: pytest.TempPathFactory) -> Iterator[TestClient]:
     settings = Settings(
         listen=Listening(allowed_hosts=("testserver",)),
-        lab=LabSettings(launch="fly", launch_args={"simple": "true"}, viewer=False,
-                        state_dir=tmp_path_factory.mktemp("state"), bag_dir=tmp_path_factory.mktemp("bags")),
+        lab=LabSettings(
+            launch="fly",
+            launch_args={"simple": "true"},
+            viewer=False,
+            state_dir=tmp_path_factory.mktemp("state"),
+            bag_dir=tmp_path_factory.mktemp("bags"),
+        ),
         classroom=ClassroomSettings(code=CODE, max_worlds=2),
-    )  # fmt: skip
+    )
     with TestClient(create_app(settings, clock)) as test_client:
         yield test_client
 
@@ -73,8 +78,12 @@ def advance(client: TestClient, clock: ManualClock, seconds: float) -> None:
 
 
 def publish_to_target(client: TestClient, who: dict[str, str], rate_hz: float) -> None:
-    body = {"topic": "/uav/input/position", "msg": {"x": 5.0, "y": 5.0, "z": 10.0},
-            "type": "geometry_msgs/msg/Vector3", "rate_hz": rate_hz}  # fmt: skip
+    body = {
+        "topic": "/uav/input/position",
+        "msg": {"x": 5.0, "y": 5.0, "z": 10.0},
+        "type": "geometry_msgs/msg/Vector3",
+        "rate_hz": rate_hz,
+    }
     reply = client.post("/api/publishers", json=body, headers=who)
     assert reply.status_code == 201, reply.text
 
@@ -188,12 +197,21 @@ def test_worker_rows_are_those_of_the_worlds_each_worker_hosts_for_this_class_el
         "answers": {},
     }
     stray = {**row, "name": "Old", "world": "old"}  # a world that worker hosts, not for this class now
-    workers = FakeWorkers({
-        "w1": {"checkpoints": [], "students": [row, stray]}, "w2": WorkerFailedError("gone"), "w3": None,
-        "w4": "not a table",
-    })  # fmt: skip
-    worlds = {"cy": world("cy", "w1"), "dee": world("dee", "w2"), "eve": world("eve", "w3"),
-              "fay": world("fay", "w4"), "ada": world("ada", None)}  # fmt: skip
+    workers = FakeWorkers(
+        {
+            "w1": {"checkpoints": [], "students": [row, stray]},
+            "w2": WorkerFailedError("gone"),
+            "w3": None,
+            "w4": "not a table",
+        }
+    )
+    worlds = {
+        "cy": world("cy", "w1"),
+        "dee": world("dee", "w2"),
+        "eve": world("eve", "w3"),
+        "fay": world("fay", "w4"),
+        "ada": world("ada", None),
+    }
     worlds["ada"].lab = object()  # type: ignore[assignment]  # hosted here: the class server's own row
     names = ["fly_to_point", "keyboard_abort"]
     rows, errors = asyncio.run(checkpoint_rows(workers, worlds, names, timeout_s=0.05))  # type: ignore[arg-type]

@@ -35,8 +35,18 @@ CODE = "RST042"
 
 def start(root: Path, run: str, launch: str) -> tuple[App, str]:
     (root / run).mkdir()
-    app = App(root / run, "--classroom", "--class-code", CODE, "--launch", str(root / launch),
-              "--state-dir", str(root / "state"), "--no-foxglove", cwd=root)  # fmt: skip
+    app = App(
+        root / run,
+        "--classroom",
+        "--class-code",
+        CODE,
+        "--launch",
+        str(root / launch),
+        "--state-dir",
+        str(root / "state"),
+        "--no-foxglove",
+        cwd=root,
+    )
     return app, instructor_token(app.log_tail(100_000))
 
 
@@ -132,8 +142,12 @@ def test_a_restarted_class_lists_saved_students_and_gives_their_progress_to_them
             before["ada"]["answers"]["q1"] == "four nodes" and before["bob"]["answers"]["q1"] == "two nodes"
         )
         assert before["bob"]["cells"]["fly_to_point"]["state"] == "not_started"
-        table = HTTP.get(f"{second.url}/api/classroom/checkpoints", params={"format": "csv"},
-                         headers=bearer(teacher), timeout=10)  # fmt: skip
+        table = HTTP.get(
+            f"{second.url}/api/classroom/checkpoints",
+            params={"format": "csv"},
+            headers=bearer(teacher),
+            timeout=10,
+        )
         header = next(csv.reader(io.StringIO(table.text)))
         assert header[:2] == ["student", "world"] and header[-1] == "joined"
         rows = {r["world"]: r for r in csv.DictReader(io.StringIO(table.text))}

@@ -45,10 +45,13 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[TestClient, 
     settings = Settings(
         listen=Listening(allowed_hosts=("testserver",)),
         lab=LabSettings(
-            launch="all", launch_args={"start_delay": "3600", "simple": "true"}, viewer=False,
-            state_dir=root / "state", workspace=workspace,
+            launch="all",
+            launch_args={"start_delay": "3600", "simple": "true"},
+            viewer=False,
+            state_dir=root / "state",
+            workspace=workspace,
         ),
-    )  # fmt: skip
+    )
     with lab_client(settings) as client:
         yield client, workspace
 

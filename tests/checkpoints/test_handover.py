@@ -119,14 +119,20 @@ class Workers:
         self.asked: list[dict[str, str]] = []
         self.down = False
 
-    async def checked(self, ref: WorkerRef, method: str, path: str, *, world: str | None = None,
-                      body: Any = None) -> Any:  # fmt: skip
+    async def checked(
+        self, ref: WorkerRef, method: str, path: str, *, world: str | None = None, body: Any = None
+    ) -> Any:
         assert (method, path) == ("POST", PROGRESS_PATH)
         if self.down:
             raise WorkerFailedError(f"world worker {ref.id!r} did not answer")
         self.asked.append(dict(body["known"]))
-        return {"worlds": {name: {"tag": tag(p), "progress": to_wire(Snapshot.of(p))}
-                           for name, p in self.hosted.items() if body["known"].get(name) != tag(p)}}  # fmt: skip
+        return {
+            "worlds": {
+                name: {"tag": tag(p), "progress": to_wire(Snapshot.of(p))}
+                for name, p in self.hosted.items()
+                if body["known"].get(name) != tag(p)
+            }
+        }
 
 
 def ref(mark: str | None) -> WorkerRef:

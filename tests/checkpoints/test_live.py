@@ -128,8 +128,15 @@ def press(keys: ClientConnection, key: str) -> None:
 
 def wait_for(app: App, condition: Any, what: str, timeout_s: float = 20.0) -> None:
     """Until ``condition`` holds; on failure, the checkpoints as they stand and the app's log."""
-    wait_until(condition, what, timeout_s, poll_s=0.1,
-               detail=lambda: json.dumps(app.get("/api/checkpoints")["checkpoints"], indent=1)[:3000] + app.log_tail(1500))  # fmt: skip
+    wait_until(
+        condition,
+        what,
+        timeout_s,
+        poll_s=0.1,
+        detail=lambda: (
+            json.dumps(app.get("/api/checkpoints")["checkpoints"], indent=1)[:3000] + app.log_tail(1500)
+        ),
+    )
 
 
 def check(app: App, name: str) -> dict[str, Any]:
@@ -164,9 +171,12 @@ def test_checkpoint_1_not_with_the_labs_manager_nor_by_hand_nor_after_lift_off_b
     restart_countdown(app)
     wait_for(
         app,
-        lambda: (press(keys, "a"), "not from a keyboard manager of your workspace" in check(app, "keyboard_abort")["progress"])[1],
+        lambda: (
+            press(keys, "a"),
+            "not from a keyboard manager of your workspace" in check(app, "keyboard_abort")["progress"],
+        )[1],
         "the check to name the lab's manager",
-    )  # fmt: skip
+    )
     assert abort_seen(app)
     assert check(app, "keyboard_abort")["state"] != "done"
     assert app.delete(f"/api/launches/{lab_run['id']}").status_code == 200
@@ -197,14 +207,21 @@ def test_checkpoint_1_not_with_the_labs_manager_nor_by_hand_nor_after_lift_off_b
         30.0,
     )
     wait_for(app, lambda: ((latest(app, "cmd_vel") or {}).get("data") or 0) > 0, "lift-off", 30.0)
-    wait_for(app, lambda: (press(keys, "a"), "lifted off" in check(app, "keyboard_abort")["progress"])[1],
-                 "the student's abort after lift-off seen")  # fmt: skip
+    wait_for(
+        app,
+        lambda: (press(keys, "a"), "lifted off" in check(app, "keyboard_abort")["progress"])[1],
+        "the student's abort after lift-off seen",
+    )
     assert check(app, "keyboard_abort")["state"] != "done"
 
     # The student's process during the countdown: met.
     restart_countdown(app)
-    wait_for(app, lambda: (press(keys, "a"), check(app, "keyboard_abort")["state"] == "done")[1],
-                 "checkpoint 1 done", 20.0)  # fmt: skip
+    wait_for(
+        app,
+        lambda: (press(keys, "a"), check(app, "keyboard_abort")["state"] == "done")[1],
+        "checkpoint 1 done",
+        20.0,
+    )
     evidence = check(app, "keyboard_abort")["evidence"]
     assert evidence["student_node"] == "/StudentAbort" and evidence["student_process"].startswith("process ")
     assert "/StudentAbort" in {n["name"] for n in evidence["graph"]["nodes"]}
@@ -221,11 +238,20 @@ def fly_with_arrows(app: App, keys: ClientConnection, name: str) -> None:
 def test_checkpoint_3_not_with_the_labs_fly_launch_but_with_the_workspaces(
     app: App, keys: ClientConnection
 ) -> None:
-    lab_fly = app.post("/api/launch", {"file": "fly.launch", "package": "flightcontroller",
-                                       "args": {"simple": "true", "keyboard": "false"}})  # fmt: skip
+    lab_fly = app.post(
+        "/api/launch",
+        {
+            "file": "fly.launch",
+            "package": "flightcontroller",
+            "args": {"simple": "true", "keyboard": "false"},
+        },
+    )
     assert lab_fly.status_code == 201, lab_fly.text
-    wait_for(app, lambda: "not a file of your workspace" in check(app, "launch_and_keys")["progress"],
-                 "the check to name the lab's launch")  # fmt: skip
+    wait_for(
+        app,
+        lambda: "not a file of your workspace" in check(app, "launch_and_keys")["progress"],
+        "the check to name the lab's launch",
+    )
     assert app.delete(f"/api/launches/{lab_fly.json()['id']}").status_code == 200
 
     mine = app.post("/api/launch", {"file": "fly_keys.launch", "package": "drone_keys"})
@@ -252,8 +278,9 @@ def test_checkpoint_3_not_with_the_labs_fly_launch_but_with_the_workspaces(
 
 
 def ros2lab(app: App, *args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "server", *args, "--url", app.url],
-                          capture_output=True, text=True, timeout=60)  # fmt: skip
+    return subprocess.run(
+        [sys.executable, "-m", "server", *args, "--url", app.url], capture_output=True, text=True, timeout=60
+    )
 
 
 def test_ros2lab_report_verify_exits_0_when_valid_and_1_when_edited(app: App, tmp_path: Path) -> None:

@@ -108,8 +108,11 @@ def test_a_labs_own_checkpoint_joins_the_three_by_name(
     monkeypatch.syspath_prepend(str(tmp_path))
     checkpoints = load(["my_lab_checks:CLIMB"])
     assert [c.name for c in checkpoints] == ["keyboard_abort", "fly_to_point", "launch_and_keys", "climb"]
-    for bad, says in [("my_lab_checks:NOT_ONE", "not a Checkpoint"), ("my_lab_checks:NOPE", "NOPE"),
-                      ("no_such_module:X", "no_such_module")]:  # fmt: skip
+    for bad, says in [
+        ("my_lab_checks:NOT_ONE", "not a Checkpoint"),
+        ("my_lab_checks:NOPE", "NOPE"),
+        ("no_such_module:X", "no_such_module"),
+    ]:
         with pytest.raises(CheckpointLoadError, match=says):
             load([bad])
     with pytest.raises(CheckpointLoadError, match="taken"):

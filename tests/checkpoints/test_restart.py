@@ -32,8 +32,14 @@ NOTHING = '<?xml version="1.0"?>\n<launch/>\n'  # the restarts only read: no nod
 def start(root: Path, run: str, launch: str = "nothing.launch") -> App:
     (root / run).mkdir()
     return App(
-        root / run, "--launch", str(root / launch), "--state-dir", str(root / "state"), "--no-foxglove", cwd=root
-    )  # fmt: skip
+        root / run,
+        "--launch",
+        str(root / launch),
+        "--state-dir",
+        str(root / "state"),
+        "--no-foxglove",
+        cwd=root,
+    )
 
 
 def checkpoint(app: App, name: str) -> dict[str, Any]:
@@ -45,8 +51,12 @@ def answer(app: App, qid: str) -> str:
 
 
 def meet_fly_to_point(app: App) -> dict[str, Any]:
-    body = {"topic": "/uav/input/position", "msg": {"x": 5.0, "y": 5.0, "z": 10.0},
-            "type": "geometry_msgs/msg/Vector3", "rate_hz": 1.0}  # fmt: skip
+    body = {
+        "topic": "/uav/input/position",
+        "msg": {"x": 5.0, "y": 5.0, "z": 10.0},
+        "type": "geometry_msgs/msg/Vector3",
+        "rate_hz": 1.0,
+    }
     assert app.post("/api/publishers", body).status_code == 201
     found: list[dict[str, Any]] = []
 
@@ -66,8 +76,12 @@ def test_progress_outlives_the_server_process_and_a_spoilt_file_is_none_and_logg
     try:
         saved = HTTP.put(f"{first.url}/api/checkpoints/answers/q1", json={"text": "four nodes"}, timeout=10)
         assert saved.status_code == 200, saved.text
-        captured = HTTP.post(f"{first.url}/api/checkpoints/fly_to_point/capture", content=png,
-                              headers={"content-type": "image/png"}, timeout=10)  # fmt: skip
+        captured = HTTP.post(
+            f"{first.url}/api/checkpoints/fly_to_point/capture",
+            content=png,
+            headers={"content-type": "image/png"},
+            timeout=10,
+        )
         assert captured.status_code == 200, captured.text
         met = meet_fly_to_point(first)
     finally:
@@ -95,8 +109,12 @@ def test_progress_outlives_the_server_process_and_a_spoilt_file_is_none_and_logg
         assert str(folder / PROGRESS_FILE) in third.log_tail(10**6)
         assert (folder / f"{PROGRESS_FILE}.corrupt").exists()
         # It serves as any lab: the next answer is saved in a good file again.
-        assert HTTP.put(f"{third.url}/api/checkpoints/answers/q2", json={"text": "again"},
-                         timeout=10).status_code == 200  # fmt: skip
+        assert (
+            HTTP.put(
+                f"{third.url}/api/checkpoints/answers/q2", json={"text": "again"}, timeout=10
+            ).status_code
+            == 200
+        )
     finally:
         third.stop()
     assert '"again"' in (folder / PROGRESS_FILE).read_text()

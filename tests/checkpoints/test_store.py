@@ -73,8 +73,9 @@ def test_store_a_file_that_is_not_progress_is_logged_set_aside_and_read_as_none(
         caplog.clear()
     # The world goes on: its next change is saved as a good file again.
     progress.answer("final", "one command")
-    assert saved(store, "ada")["answers"] == {"final": {"text": "one command", "saved_at_s": pytest.approx(
-        progress.answers["final"].saved_at_s)}}  # fmt: skip
+    assert saved(store, "ada")["answers"] == {
+        "final": {"text": "one command", "saved_at_s": pytest.approx(progress.answers["final"].saved_at_s)}
+    }
 
 
 def test_store_takes_only_what_the_lab_declares_within_its_limits(store: ProgressStore) -> None:

@@ -88,9 +88,18 @@ def test_sources_a_remote_publisher_the_lab_did_not_start_is_the_students() -> N
     bus = Bus(ManualClock())
     remote = RemoteGraph("0" * 32, 0)
     token = EntityToken(
-        0, ZID, 3, 7, EntityKind.PUBLISHER, "/", "KeyboardManager", topic="/abort_takeoff",
-        dds_type=dds_type_name("std_msgs/msg/Bool"), type_hash=type_hash("std_msgs/msg/Bool"), qos=keep_last(1),
-    )  # fmt: skip
+        0,
+        ZID,
+        3,
+        7,
+        EntityKind.PUBLISHER,
+        "/",
+        "KeyboardManager",
+        topic="/abort_takeoff",
+        dds_type=dds_type_name("std_msgs/msg/Bool"),
+        type_hash=type_hash("std_msgs/msg/Bool"),
+        qos=keep_last(1),
+    )
     sources = Sources(
         Launcher(bus, PackageIndex(workspace=None)), PackageIndex(workspace=None), lambda: remote
     )

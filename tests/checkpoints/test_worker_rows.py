@@ -33,9 +33,22 @@ class Class:
     def __init__(self, root: Path) -> None:
         self.state = root / "state"
         self.app = App(
-            root, "--classroom", "--class-code", CODE, "--launch", "rocket", "--no-foxglove",
-            "--local-worlds", "0", "--workers", "1", "--worker-timeout", "120", "--state-dir", str(self.state),
-        )  # fmt: skip
+            root,
+            "--classroom",
+            "--class-code",
+            CODE,
+            "--launch",
+            "rocket",
+            "--no-foxglove",
+            "--local-worlds",
+            "0",
+            "--workers",
+            "1",
+            "--worker-timeout",
+            "120",
+            "--state-dir",
+            str(self.state),
+        )
         self.teacher = {"Authorization": f"Bearer {instructor_token(self.app.log_tail(10**6))}"}
 
     def join(self, name: str) -> tuple[str, dict[str, str]]:
@@ -75,8 +88,9 @@ def test_worker_world_in_table_csv_and_zip_kept_by_a_reset_removed_with_the_stud
     world, ada = klass.join("Ada")
     worlds = {w["world"]: w for w in klass.teach("GET", "/api/classroom/worlds").json()["worlds"]}
     assert worlds[world]["worker"] == "local-1"
-    put = HTTP.put(f"{klass.app.url}/api/checkpoints/answers/q1", json={"text": "=four nodes"},
-                    headers=ada, timeout=10)  # fmt: skip
+    put = HTTP.put(
+        f"{klass.app.url}/api/checkpoints/answers/q1", json={"text": "=four nodes"}, headers=ada, timeout=10
+    )
     assert put.status_code == 200, put.text
 
     row = klass.row(world)
