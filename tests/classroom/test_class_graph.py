@@ -82,9 +82,17 @@ class Class:
 def school(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     root = tmp_path_factory.mktemp("class_graph")
     app = App(
-        root, "--classroom", "--class-code", CODE, "--launch", "all", "--foxglove-port", str(free_port()),
-        "--rosbridge-port", str(free_port()),
-    )  # fmt: skip
+        root,
+        "--classroom",
+        "--class-code",
+        CODE,
+        "--launch",
+        "all",
+        "--foxglove-port",
+        str(free_port()),
+        "--rosbridge-port",
+        str(free_port()),
+    )
     try:
         school = Class(app)
         for name in ("Ada", "Bob"):
@@ -100,8 +108,11 @@ def ros2lab_env(school: Class, token: str) -> dict[str, str]:
     """What ``eval "$(ros2lab env)"`` would export, with ``token`` as ROS2LAB_TOKEN."""
     done = subprocess.run(
         [sys.executable, "-m", "server", "--url", school.app.url, "env"],
-        env={**os.environ, "ROS2LAB_TOKEN": token}, capture_output=True, text=True, timeout=60,
-    )  # fmt: skip
+        env={**os.environ, "ROS2LAB_TOKEN": token},
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert done.returncode == 0, done.stderr
     exports = [shlex.split(line) for line in done.stdout.splitlines()]
     assert all(words[0] == "export" and len(words) == 2 for words in exports), done.stdout
@@ -113,10 +124,16 @@ def peer(school: Class) -> Iterator[JsonProcess]:
     """The instructor's ROS 2 tool, on the class's own graph, in what ``ros2lab env`` exports."""
     env = ros2lab_env(school, school.instructor)
     peer = JsonProcess(
-        [sys.executable, str(REPO / "tests" / "interop" / "sdk_peer.py"), "--router", school.app.router,
-         "--override", env["ZENOH_CONFIG_OVERRIDE"]],
+        [
+            sys.executable,
+            str(REPO / "tests" / "interop" / "sdk_peer.py"),
+            "--router",
+            school.app.router,
+            "--override",
+            env["ZENOH_CONFIG_OVERRIDE"],
+        ],
         env={"ROS_DOMAIN_ID": env["ROS_DOMAIN_ID"]},
-    )  # fmt: skip
+    )
     try:
         peer.expect(lambda e: e.get("event") == "ready", "the peer to start")
         peer.send(cmd="define", types=definitions(POSE, VECTOR))
@@ -145,8 +162,11 @@ def test_ros2lab_env_exports_the_graph_a_token_joins(school: Class) -> None:
     assert 'user="ros2lab-world-1-' in ada["ZENOH_CONFIG_OVERRIDE"]
     refused = subprocess.run(
         [sys.executable, "-m", "server", "--url", school.app.url, "env"],
-        env={k: v for k, v in os.environ.items() if k != "ROS2LAB_TOKEN"}, capture_output=True, text=True, timeout=60,
-    )  # fmt: skip
+        env={k: v for k, v in os.environ.items() if k != "ROS2LAB_TOKEN"},
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert refused.returncode == 1 and "join the class first" in refused.stderr, refused.stderr
 
 
@@ -181,8 +201,14 @@ def test_the_instructor_watches_one_world_and_flies_it_while_the_other_stays(
     assert "out /bob/uav/sensors/gps" in school.bridged()["bob"]  # Bob's is not watched: it stays home
 
     def ada_goes() -> bool:
-        peer.send(cmd="publish", topic="/ada/uav/input/position", type=VECTOR, hash=rihs(VECTOR),
-                  msg={"x": 5.0, "y": 5.0, "z": 10.0}, node="teacher")  # fmt: skip
+        peer.send(
+            cmd="publish",
+            topic="/ada/uav/input/position",
+            type=VECTOR,
+            hash=rihs(VECTOR),
+            msg={"x": 5.0, "y": 5.0, "z": 10.0},
+            node="teacher",
+        )
         position = school.drone("ada")
         return position is not None and min(position[0], position[1]) > 2.0
 
@@ -206,8 +232,12 @@ def test_the_instructor_calls_one_worlds_service_by_its_name_and_only_that_world
         reply = school.call("POST", "/api/rocket/reset", school.tokens[world])
         assert reply.status_code == 200, reply.text
     for world in ("ada", "bob"):  # both students abort their rockets before lift-off
-        reply = school.call("POST", "/api/publish", school.tokens[world],
-                            json={"topic": "/abort_takeoff", "msg": {"data": True}})  # fmt: skip
+        reply = school.call(
+            "POST",
+            "/api/publish",
+            school.tokens[world],
+            json={"topic": "/abort_takeoff", "msg": {"data": True}},
+        )
         assert reply.status_code == 200, reply.text
     for world in ("ada", "bob"):
         school.app.wait_for(lambda w=world: school.rocket(w) == "aborted", f"{world}'s rocket aborted")
@@ -215,8 +245,14 @@ def test_the_instructor_calls_one_worlds_service_by_its_name_and_only_that_world
         lambda: "srv /ada/rocket/reset" in school.bridged().get("ada", []), "Ada's reset bridged"
     )
     request, response = service_text("std_srvs/srv/Trigger")
-    peer.send(cmd="call", service="/ada/rocket/reset", type="std_srvs/srv/Trigger", request=request,
-              response=response, hash=rihs("std_srvs/srv/Trigger"))  # fmt: skip
+    peer.send(
+        cmd="call",
+        service="/ada/rocket/reset",
+        type="std_srvs/srv/Trigger",
+        request=request,
+        response=response,
+        hash=rihs("std_srvs/srv/Trigger"),
+    )
     reply = peer.expect(lambda e: e.get("event") == "reply", "Ada's world's answer")
     assert reply["msg"] == {"success": True, "message": "rocket back on the pad"}
     assert school.rocket("ada") in ("ready", "counting down")  # back on the pad
@@ -388,9 +424,11 @@ def test_the_class_rosbridge_refuses_a_student_and_another_site(school: Class) -
 def test_a_students_login_does_not_reach_the_class_domain(school: Class) -> None:
     join = school.call("GET", "/api/zenoh/join", school.tokens["ada"]).json()
     settings = ZenohSettings(
-        mode="client", listen=(), connect=(f"tcp/{school.app.router}",),
+        mode="client",
+        listen=(),
+        connect=(f"tcp/{school.app.router}",),
         login=Credentials(join["user"], join["password"]),
-    )  # fmt: skip
+    )
     with zenoh.open(build_config(settings)) as session:
         own = [r for r in session.liveliness().get("@ros2_lv/1/**", timeout=5) if r.ok]
         assert own  # her own world's graph answers her

@@ -153,8 +153,10 @@ def test_a_removed_students_login_is_dropped_refused_and_useless_in_the_next_wor
             assert health["received"] - received <= seq  # his setpoints only, none of Eve's twenty
         assert heard_before.count == cut and not session.info.routers_zid()
         wait_until(lambda: heard_bea.count > bea_cut, "Bea's session back on the router, hearing her GPS")
-        wait_until(lambda: "bea" in school.call("GET", "/api/classroom/graph").json()["topics"],
-                   "Bea's world in the class graph again")  # fmt: skip
+        wait_until(
+            lambda: "bea" in school.call("GET", "/api/classroom/graph").json()["topics"],
+            "Bea's world in the class graph again",
+        )
 
 
 def test_a_name_without_its_leading_slash_does_not_pass_for_another_worlds_topic(school: Class) -> None:
@@ -168,13 +170,27 @@ def test_a_name_without_its_leading_slash_does_not_pass_for_another_worlds_topic
         zid, domain = str(student.zid()), ada["domain_id"]
         declared = []
         for entity_id, (kind, topic) in enumerate(
-            [(EntityKind.PUBLISHER, "m/uav/sensors/gps"), (EntityKind.SUBSCRIPTION, "m/uav/input/position"),
-             (EntityKind.PUBLISHER, "/probe")],  # a valid name, last: once it shows, the others were read
+            [
+                (EntityKind.PUBLISHER, "m/uav/sensors/gps"),
+                (EntityKind.SUBSCRIPTION, "m/uav/input/position"),
+                (EntityKind.PUBLISHER, "/probe"),
+            ],  # a valid name, last: once it shows, the others were read
             start=2,
-        ):  # fmt: skip
+        ):
             dds, rihs = POSE if kind is EntityKind.PUBLISHER else VECTOR
-            token = EntityToken(domain, zid, 1, entity_id, kind, "/", "spoofer", topic=topic, dds_type=dds,
-                                type_hash=rihs, qos=keep_last(10))  # fmt: skip
+            token = EntityToken(
+                domain,
+                zid,
+                1,
+                entity_id,
+                kind,
+                "/",
+                "spoofer",
+                topic=topic,
+                dds_type=dds,
+                type_hash=rihs,
+                qos=keep_last(10),
+            )
             declared.append(student.liveliness().declare_token(token.key))
 
         def graph() -> dict[str, Any]:

@@ -92,8 +92,11 @@ def test_the_class_view_shows_each_worlds_drone_where_its_gps_says(
     client: TestClient, clock: ManualClock
 ) -> None:
     ada, bob = join(client, "Ada"), join(client, "Bob")
-    reply = client.post("/api/publish", headers=auth(ada), json={"topic": "/uav/input/position",
-                                                                   "msg": {"x": 2.0, "y": 1.0, "z": 5.0}})  # fmt: skip
+    reply = client.post(
+        "/api/publish",
+        headers=auth(ada),
+        json={"topic": "/uav/input/position", "msg": {"x": 2.0, "y": 1.0, "z": 5.0}},
+    )
     assert reply.status_code == 200, reply.text
     advance(client, clock, 8.0)
     drones = classroom(client).drones()

@@ -225,8 +225,11 @@ def test_resetting_one_world_leaves_the_other_as_it_was(client: TestClient, cloc
     ada, bob = join(client, "Ada"), join(client, "Bob")
     teacher = classroom(client).instructor_token
     for token in (ada, bob):
-        started = client.post("/api/publishers", headers=auth(token),
-                              json={"topic": "/uav/input/position", "msg": TARGET, "type": VECTOR3, "rate_hz": 1.0})  # fmt: skip
+        started = client.post(
+            "/api/publishers",
+            headers=auth(token),
+            json={"topic": "/uav/input/position", "msg": TARGET, "type": VECTOR3, "rate_hz": 1.0},
+        )
         assert started.status_code == 201, started.text
     advance(client, clock, 3.0)
     ada_before, bob_before = drone(client, ada), drone(client, bob)
@@ -255,13 +258,19 @@ def test_a_removed_students_token_stops_working(client: TestClient) -> None:
 def test_a_broadcast_reaches_every_world(client: TestClient) -> None:
     ada, bob = join(client, "Ada"), join(client, "Bob")
     teacher = classroom(client).instructor_token
-    reply = client.post("/api/classroom/broadcast", headers=auth(teacher),
-                        json={"topic": "/uav/input/position", "msg": TARGET, "type": VECTOR3})  # fmt: skip
+    reply = client.post(
+        "/api/classroom/broadcast",
+        headers=auth(teacher),
+        json={"topic": "/uav/input/position", "msg": TARGET, "type": VECTOR3},
+    )
     assert reply.json() == {"reached": ["ada", "bob"], "refused": {}}
     for token in (ada, bob):
         assert client.get("/api/topics/uav/input/position", headers=auth(token)).json()["publish_count"] == 1
-    wrong = client.post("/api/classroom/broadcast", headers=auth(teacher),
-                        json={"topic": "/uav/input/position", "msg": {"data": 1}, "type": "std_msgs/msg/Int64"})  # fmt: skip
+    wrong = client.post(
+        "/api/classroom/broadcast",
+        headers=auth(teacher),
+        json={"topic": "/uav/input/position", "msg": {"data": 1}, "type": "std_msgs/msg/Int64"},
+    )
     assert wrong.status_code == 422 and "no world took" in wrong.text
 
 
@@ -380,8 +389,11 @@ def fly(others: list[str], simple: bool = False) -> list[tuple[float, float, flo
                             TARGET if name == "Ada" else {"x": -i, "y": 2 * i, "z": 1 + i},
                         )
                     )
-                    reply = client.post("/api/publish", headers=auth(token),
-                                        json={"topic": topic, "msg": msg, "type": VECTOR3})  # fmt: skip
+                    reply = client.post(
+                        "/api/publish",
+                        headers=auth(token),
+                        json={"topic": topic, "msg": msg, "type": VECTOR3},
+                    )
                     assert reply.status_code == 200, reply.text
             advance(client, clock, 0.25)
             track.append(drone(client, tokens["Ada"]))
@@ -401,8 +413,11 @@ def test_a_reset_world_leaves_the_simple_batch_and_comes_back_at_the_origin(cloc
     with TestClient(create_app(class_settings(launch_args=args), clock)) as client:
         ada, bob = join(client, "Ada"), join(client, "Bob")
         for token in (ada, bob):
-            reply = client.post("/api/publish", headers=auth(token),
-                                json={"topic": "/uav/input/position", "msg": TARGET, "type": VECTOR3})  # fmt: skip
+            reply = client.post(
+                "/api/publish",
+                headers=auth(token),
+                json={"topic": "/uav/input/position", "msg": TARGET, "type": VECTOR3},
+            )
             assert reply.status_code == 200, reply.text
         advance(client, clock, 7.0)  # the simple mode's controller waits 5 s, then flies
         assert drone(client, ada)[2] > 1.0 and drone(client, bob)[2] > 1.0

@@ -107,8 +107,12 @@ def adas_talker(app: App, root: Path, tokens: dict[str, str]) -> Iterator[subpro
     env.pop("ROS_DOMAIN_ID", None)
     run = subprocess.Popen(
         [sys.executable, "-m", "server", "--url", app.url, "run", "demo", "talker.py"],
-        cwd=root, env=env, text=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-    )  # fmt: skip
+        cwd=root,
+        env=env,
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
     try:
         yield run
     finally:
@@ -206,8 +210,16 @@ def test_a_worlds_login_reaches_its_own_domain_only(classroom: tuple[App, Path, 
         subscriber = watcher.declare_subscriber("**", lambda sample: heard.append(str(sample.key_expr)))
         with open_on(app, ada) as ada_session, open_on(app, bob) as bob_session:
             # Each world's graph is visible to its own login, and only to it.
-            assert any(str(r.ok.key_expr).startswith("@ros2_lv/1/") for r in ada_session.liveliness().get("@ros2_lv/1/**", timeout=5) if r.ok)  # fmt: skip
-            assert any(str(r.ok.key_expr).startswith("@ros2_lv/2/") for r in bob_session.liveliness().get("@ros2_lv/2/**", timeout=5) if r.ok)  # fmt: skip
+            assert any(
+                str(r.ok.key_expr).startswith("@ros2_lv/1/")
+                for r in ada_session.liveliness().get("@ros2_lv/1/**", timeout=5)
+                if r.ok
+            )
+            assert any(
+                str(r.ok.key_expr).startswith("@ros2_lv/2/")
+                for r in bob_session.liveliness().get("@ros2_lv/2/**", timeout=5)
+                if r.ok
+            )
             assert [r for r in ada_session.liveliness().get("@ros2_lv/2/**", timeout=2) if r.ok] == []
             # Samples in order through the one router: Ada's put in Bob's domain, then a marker in
             # her own. The watcher hears the marker, and nothing before it.

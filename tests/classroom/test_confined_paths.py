@@ -72,9 +72,16 @@ def test_a_student_plays_their_own_bag_and_no_other_path(
     bobs_folder = bags / "bob" / "bobs"
     assert any(bobs_folder.glob("*.mcap"))  # what a student reached by its path before
     tried = [
-        str(bobs_folder), str(next(bobs_folder.glob("*.mcap"))), "../bob/bobs", "bobs",
-        "/etc", "/etc/hostname", "/no/such/folder", "../../nothing-here", str(bags / "bob" / "missing"),
-    ]  # fmt: skip
+        str(bobs_folder),
+        str(next(bobs_folder.glob("*.mcap"))),
+        "../bob/bobs",
+        "bobs",
+        "/etc",
+        "/etc/hostname",
+        "/no/such/folder",
+        "../../nothing-here",
+        str(bags / "bob" / "missing"),
+    ]
     answers = {}
     for path in tried:
         reply = client.post("/api/bag/players", headers=auth(ada), json={"bag": path})
@@ -91,10 +98,15 @@ def test_a_student_launches_the_class_packages_and_no_other_path(client: TestCli
     ada = join(client, "Ada")
     builtin = BUILTIN_PACKAGES / "sensor_simulation" / "launch" / "sensors.launch"
     refused = {
-        str(builtin): None, "/etc/hostname": None, "/no/such.launch": None, "../ada/src/mine/launch/mine.launch": None,
-        "src/mine/launch/missing.launch": None, "../../etc/hostname": "sensor_simulation",
-        "../launch/sensors.launch": "sensor_simulation", "missing.launch": "sensor_simulation",
-    }  # fmt: skip
+        str(builtin): None,
+        "/etc/hostname": None,
+        "/no/such.launch": None,
+        "../ada/src/mine/launch/mine.launch": None,
+        "src/mine/launch/missing.launch": None,
+        "../../etc/hostname": "sensor_simulation",
+        "../launch/sensors.launch": "sensor_simulation",
+        "missing.launch": "sensor_simulation",
+    }
     answers = {}
     for path, package in refused.items():
         body = {"file": path} if package is None else {"file": path, "package": package}

@@ -37,9 +37,13 @@ def clock() -> ManualClock:
 def class_app(clock: ManualClock, **world: Any) -> TestClient:
     """A class of three rocket worlds; ``world`` overrides their WorldLimits."""
     limits: dict[str, Any] = {
-        "writes_hz": 1.0, "writes_burst": WRITES, "launches": LAUNCHES, "resets_hz": 1 / RESET_PERIOD_S,
-        "resets_burst": RESETS, "sockets": SOCKETS,
-    }  # fmt: skip
+        "writes_hz": 1.0,
+        "writes_burst": WRITES,
+        "launches": LAUNCHES,
+        "resets_hz": 1 / RESET_PERIOD_S,
+        "resets_burst": RESETS,
+        "sockets": SOCKETS,
+    }
     settings = Settings(
         listen=Listening(allowed_hosts=("testserver",)),
         lab=LabSettings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False),
@@ -140,9 +144,7 @@ def test_a_reset_loop_is_429_with_retry_after_and_resets_nothing(
 def test_a_reset_is_one_of_the_worlds_writes(client: TestClient) -> None:
     ada = join(client, "Ada")
     for _ in range(WRITES):
-        published = client.post(
-            "/api/publish", json={"topic": "/countdown", "msg": {"data": 3}}, headers=ada
-        )  # fmt: skip
+        published = client.post("/api/publish", json={"topic": "/countdown", "msg": {"data": 3}}, headers=ada)
         assert published.status_code == 200, published.text
     world = classroom(client).worlds["ada"]
 

@@ -175,8 +175,17 @@ def test_a_name_with_a_control_character_is_422_naming_it(
 def test_a_live_class_server_tells_client_addresses_apart(tmp_path: Path) -> None:
     """``--max-worlds-per-address`` and the wrong-code throttle on a real server, each client
     speaking from its own loopback address (Linux answers all of 127.0.0.0/8)."""
-    app = App(tmp_path, "--classroom", "--class-code", CODE, "--launch", "rocket", "--no-foxglove",
-              "--max-worlds-per-address", "1")  # fmt: skip
+    app = App(
+        tmp_path,
+        "--classroom",
+        "--class-code",
+        CODE,
+        "--launch",
+        "rocket",
+        "--no-foxglove",
+        "--max-worlds-per-address",
+        "1",
+    )
     clients = {
         host: httpx.Client(base_url=app.url, transport=httpx.HTTPTransport(local_address=host), timeout=30)
         for host in ("127.0.0.1", "127.0.0.2", "127.0.0.3", "127.0.0.4")

@@ -66,10 +66,23 @@ def start(app: App, token: str, node: str) -> subprocess.Popen[str]:
     env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE")}
     env["ROS2LAB_TOKEN"] = token
     return subprocess.Popen(
-        [ROS2LAB, "--url", app.url, "run", "--workspace",
-         str(REPO / "examples" / "workspace"), *KEYBOARD_MANAGER, "--ros-args", "-r", f"__node:={node}"],
-        env=env, text=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-    )  # fmt: skip
+        [
+            ROS2LAB,
+            "--url",
+            app.url,
+            "run",
+            "--workspace",
+            str(REPO / "examples" / "workspace"),
+            *KEYBOARD_MANAGER,
+            "--ros-args",
+            "-r",
+            f"__node:={node}",
+        ],
+        env=env,
+        text=True,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
 
 
 def test_a_burst_of_twenty_node_starts_joins_every_node_to_its_own_world(
@@ -111,10 +124,17 @@ def test_a_burst_of_twenty_node_starts_joins_every_node_to_its_own_world(
     floor = KEEPS * NOMINAL_HZ * (1.0 - stolen)
     rates = {w: (after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens}
     RESULT.parent.mkdir(parents=True, exist_ok=True)
-    RESULT.write_text(json.dumps({
-        "nodes": len(runs), "all_joined_s": round(took_s, 1), "stolen": round(stolen, 4),
-        "floor_hz": round(floor, 2), "hz": {w: round(hz, 2) for w, hz in sorted(rates.items())},
-    }))  # fmt: skip
+    RESULT.write_text(
+        json.dumps(
+            {
+                "nodes": len(runs),
+                "all_joined_s": round(took_s, 1),
+                "stolen": round(stolen, 4),
+                "floor_hz": round(floor, 2),
+                "hz": {w: round(hz, 2) for w, hz in sorted(rates.items())},
+            }
+        )
+    )
     slow = {world: round(hz, 1) for world, hz in rates.items() if hz < floor}
     assert not slow, (
         f"worlds below {floor:.1f} Hz during the burst ({KEEPS:.0%} of {NOMINAL_HZ:.0f} Hz, less the "

@@ -114,10 +114,14 @@ def raw_ws_open(address: tuple[str, int], path: str, headers: dict[str, str]) ->
     """A WebSocket handshake for ``path`` as given: the status the server answers, and the first
     bytes after the head (a text frame, once it is open)."""
     lines = [
-        f"GET {path} HTTP/1.1", f"Host: {address[0]}:{address[1]}", "Upgrade: websocket",
-        "Connection: Upgrade", "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==", "Sec-WebSocket-Version: 13",
+        f"GET {path} HTTP/1.1",
+        f"Host: {address[0]}:{address[1]}",
+        "Upgrade: websocket",
+        "Connection: Upgrade",
+        "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==",
+        "Sec-WebSocket-Version: 13",
         *(f"{k}: {v}" for k, v in headers.items()),
-    ]  # fmt: skip
+    ]
     with socket.create_connection(address, timeout=READ_S) as sock:
         sock.sendall(("\r\n".join(lines) + "\r\n\r\n").encode("latin-1"))
         data = b""
@@ -210,8 +214,13 @@ def test_a_student_cannot_remove_another_world(klass: Class) -> None:
 
 def test_a_student_cannot_host_a_world_on_the_worker(klass: Class) -> None:
     before = set(klass.worker_worlds())
-    body = {"world": "eve", "student": "Eve", "domain_id": 150, "launch": "rocket",
-            "launch_args": {"start_delay": "3600"}}  # fmt: skip
+    body = {
+        "world": "eve",
+        "student": "Eve",
+        "domain_id": 150,
+        "launch": "rocket",
+        "launch_args": {"start_delay": "3600"},
+    }
     reply = klass.raw("POST", "/api/./classroom/host", klass.tokens["ada"], body)
     assert reply.status == 400, reply.text
     assert set(klass.worker_worlds()) == before  # no world was made

@@ -75,7 +75,7 @@ def class_of_thirty(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[
         str(WORLDS // 2),
         "--workers",
         "0",
-    )  # fmt: skip  (its own worker w1 below, none started as the class grows)
+    )  # (its own worker w1 below, none started as the class grows)
     worker: WorldWorker | None = None
     try:
         instructor = instructor_token(app.log_tail(100_000))

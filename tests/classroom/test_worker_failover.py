@@ -96,8 +96,13 @@ def worker_client(clock: ManualClock) -> Iterator[TestClient]:
 
 
 def host(client: TestClient, world: str, domain_id: int) -> None:
-    body = {"world": world, "student": world.title(), "domain_id": domain_id, "launch": "rocket",
-            "launch_args": {"start_delay": "3600"}}  # fmt: skip
+    body = {
+        "world": world,
+        "student": world.title(),
+        "domain_id": domain_id,
+        "launch": "rocket",
+        "launch_args": {"start_delay": "3600"},
+    }
     reply = client.post("/api/classroom/host", json=body, headers=worker_auth("wm"))
     assert reply.status_code == 201, reply.text
 
@@ -148,9 +153,17 @@ def worker(tmp_path: Path, app: App, instructor: str, wid: str) -> WorldWorker:
     """World worker ``wid`` with a state folder of its own (as on another machine): a world's
     progress on it is its own, and the class server keeps a copy (progress_copies.py)."""
     return WorldWorker(
-        tmp_path, app.router, instructor, wid, "--max-worlds", "1", "--orphan-timeout", str(ORPHAN_TIMEOUT_S),
-        "--state-dir", str(tmp_path / f"state-{wid}"),
-    )  # fmt: skip
+        tmp_path,
+        app.router,
+        instructor,
+        wid,
+        "--max-worlds",
+        "1",
+        "--orphan-timeout",
+        str(ORPHAN_TIMEOUT_S),
+        "--state-dir",
+        str(tmp_path / f"state-{wid}"),
+    )
 
 
 def answer_of(app: App, token: str) -> str | None:
@@ -166,9 +179,18 @@ def failover_class(tmp_path: Path) -> Iterator[tuple[App, dict[str, WorldWorker]
     # Every world on a worker (--local-worlds 0), each worker for one world: a gone worker's world
     # can only go to the other.
     app = App(
-        tmp_path, "--classroom", "--class-code", CODE, "--launch", "fly", "--local-worlds", "0",
-        "--no-foxglove", "--worker-timeout", str(WORKER_TIMEOUT_S),
-    )  # fmt: skip
+        tmp_path,
+        "--classroom",
+        "--class-code",
+        CODE,
+        "--launch",
+        "fly",
+        "--local-worlds",
+        "0",
+        "--no-foxglove",
+        "--worker-timeout",
+        str(WORKER_TIMEOUT_S),
+    )
     workers: dict[str, WorldWorker] = {}
     try:
         instructor = instructor_token(app.log_tail(10**6))
@@ -206,9 +228,11 @@ def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_fr
     # Ada answers a question in her world on the first worker, which keeps it in its own folder;
     # the class server copies it at its next round of hellos.
     answered = HTTP.put(
-        f"{app.url}/api/checkpoints/answers/q1", headers={"Authorization": f"Bearer {token}"},
-        json={"text": "four nodes"}, timeout=30,
-    )  # fmt: skip
+        f"{app.url}/api/checkpoints/answers/q1",
+        headers={"Authorization": f"Bearer {token}"},
+        json={"text": "four nodes"},
+        timeout=30,
+    )
     assert answered.status_code == 200, answered.text
     copy = tmp_path / "state" / "progress" / "ada" / "progress.json"
     wait_until(
@@ -233,9 +257,11 @@ def test_a_gone_workers_world_starts_again_on_another_and_a_gone_class_server_fr
 
     wait_until(gps, "a GPS fix from ada's new world", app.log_tail)
     reply = HTTP.post(
-        f"{app.url}/api/publish", headers={"Authorization": f"Bearer {token}"}, timeout=30,
+        f"{app.url}/api/publish",
+        headers={"Authorization": f"Bearer {token}"},
+        timeout=30,
         json={"topic": "/uav/input/position", "msg": dict(zip("xyz", TARGET, strict=True))},
-    )  # fmt: skip
+    )
     assert reply.status_code == 200, reply.text
 
     def near_target() -> bool:

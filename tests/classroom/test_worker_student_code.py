@@ -80,19 +80,32 @@ def host(
     """Host ``world`` on the worker as the class server does; the student's credential for it."""
     login = server.graph.login(domain_id)
     assert login is not None
-    body: dict[str, Any] = {"world": world, "student": world.title(), "domain_id": domain_id, "launch": "rocket",
-            "launch_args": {"start_delay": "3600"}, "zenoh_user": login.user, "zenoh_password": login.password}  # fmt: skip
+    body: dict[str, Any] = {
+        "world": world,
+        "student": world.title(),
+        "domain_id": domain_id,
+        "launch": "rocket",
+        "launch_args": {"start_delay": "3600"},
+        "zenoh_user": login.user,
+        "zenoh_password": login.password,
+    }
     if socket is not None:
         body["router_socket"] = str(socket)
     auth = {"Authorization": f"Bearer {worker_api_token(server.instructor_token, WORKER)}"}
     reply = worker.post("/api/classroom/host", json=body, headers=auth)
     assert reply.status_code == 201, reply.text
     token = world_call_token(server.instructor_token, WORKER, world)
-    made = worker.post("/api/workspace/packages", headers={"Authorization": f"Bearer {token}"},
-                       json={"name": "hello_pkg", "build_type": "ament_python", "node_name": "hello"})  # fmt: skip
+    made = worker.post(
+        "/api/workspace/packages",
+        headers={"Authorization": f"Bearer {token}"},
+        json={"name": "hello_pkg", "build_type": "ament_python", "node_name": "hello"},
+    )
     assert made.status_code == 201, made.text
-    saved = worker.put("/api/workspace/files/src/hello_pkg/hello_pkg/hello.py", json={"text": node},
-                       headers={"Authorization": f"Bearer {token}"})  # fmt: skip
+    saved = worker.put(
+        "/api/workspace/files/src/hello_pkg/hello_pkg/hello.py",
+        json={"text": node},
+        headers={"Authorization": f"Bearer {token}"},
+    )
     assert saved.status_code == 200, saved.text
     return token
 

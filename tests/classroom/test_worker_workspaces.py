@@ -56,8 +56,13 @@ class Class:
     workers: dict[str, WorldWorker]
 
     def call(self, method: str, path: str, token: str, body: Any = None, **headers: str) -> httpx.Response:
-        return HTTP.request(method, self.app.url + path, json=body, timeout=30,
-                             headers={"Authorization": f"Bearer {token}", **headers})  # fmt: skip
+        return HTTP.request(
+            method,
+            self.app.url + path,
+            json=body,
+            timeout=30,
+            headers={"Authorization": f"Bearer {token}", **headers},
+        )
 
     def worlds(self) -> dict[str, dict[str, Any]]:
         reply = self.call("GET", "/api/classroom/worlds", self.instructor)
@@ -72,9 +77,18 @@ class Class:
         """Start a worker (one world at most) on each folder, and wait until the class finds them."""
         for worker_id, workspaces in folders.items():
             self.workers[worker_id] = WorldWorker(
-                self.workdir, self.app.router, self.instructor, worker_id, "--max-worlds", "1",
-                "--orphan-timeout", str(ORPHAN_TIMEOUT_S), "--workspaces-dir", str(workspaces), cwd=self.workdir,
-            )  # fmt: skip
+                self.workdir,
+                self.app.router,
+                self.instructor,
+                worker_id,
+                "--max-worlds",
+                "1",
+                "--orphan-timeout",
+                str(ORPHAN_TIMEOUT_S),
+                "--workspaces-dir",
+                str(workspaces),
+                cwd=self.workdir,
+            )
         alive = {worker_id for worker_id, worker in self.workers.items() if worker.proc.poll() is None}
         wait_for_workers(self.app.url, self.instructor, alive)
 
@@ -84,10 +98,21 @@ def klass(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     workdir = tmp_path_factory.mktemp("class")
     shared, apart, apart_too = workdir / "workspaces", workdir / "apart", workdir / "apart_too"
     app = App(
-        workdir, "--classroom", "--class-code", CODE, "--launch", "rocket", "--local-worlds", "0",
-        "--no-foxglove", "--worker-timeout", str(WORKER_TIMEOUT_S), "--workspaces-dir", str(shared),
+        workdir,
+        "--classroom",
+        "--class-code",
+        CODE,
+        "--launch",
+        "rocket",
+        "--local-worlds",
+        "0",
+        "--no-foxglove",
+        "--worker-timeout",
+        str(WORKER_TIMEOUT_S),
+        "--workspaces-dir",
+        str(shared),
         cwd=workdir,
-    )  # fmt: skip
+    )
     klass = Class(app, workdir, shared, apart, apart_too, instructor_token(app.log_tail(10**6)), {}, {})
     try:
         klass.add_workers({"wa": shared, "wc": apart})
@@ -136,8 +161,12 @@ def test_a_worker_world_serves_and_runs_its_code_on_the_classs_folder_or_its_own
     wait_until(lambda: not (klass.shared / apart_world / extra).exists(), "the removal copied", 30.0)
 
     # On wa, on the class's folder: a new package, a node saved in it, and Run.
-    made = klass.call("POST", "/api/workspace/packages", token,
-                      {"name": "hello_pkg", "build_type": "ament_python", "node_name": "hello"})  # fmt: skip
+    made = klass.call(
+        "POST",
+        "/api/workspace/packages",
+        token,
+        {"name": "hello_pkg", "build_type": "ament_python", "node_name": "hello"},
+    )
     assert made.status_code == 201, made.text
     saved = klass.call("PUT", f"/api/workspace/files/{NODE_PATH}", token, {"text": NODE})
     assert saved.status_code == 200, saved.text
@@ -156,9 +185,12 @@ def test_a_worker_world_serves_and_runs_its_code_on_the_classs_folder_or_its_own
     assert run.status_code == 201, run.text + klass.workers["wa"].log_tail()
     group = run.json()["id"]
     wait_until(
-        lambda: "hello from hello" in output_of(klass, token, group), "the student's node's line", 60.0,
-        poll_s=0.25, detail=lambda: f"{output_of(klass, token, group)}\n{klass.workers['wa'].log_tail()}",
-    )  # fmt: skip
+        lambda: "hello from hello" in output_of(klass, token, group),
+        "the student's node's line",
+        60.0,
+        poll_s=0.25,
+        detail=lambda: f"{output_of(klass, token, group)}\n{klass.workers['wa'].log_tail()}",
+    )
 
 
 def saved_world(klass: Class, worker: str) -> tuple[str, str, str]:
@@ -179,8 +211,11 @@ def fail_over(klass: Class, world: str, gone: str, to: str, folder: Path) -> Non
     klass.workers[gone].proc.wait(timeout=10)
     moved = wait_until(
         lambda: (w := klass.worlds()[world])["moves"] == 1 and w["lost"] is None and w,
-        f"{world}'s world to move", MOVE_WAIT_S, poll_s=0.25, detail=klass.app.log_tail,
-    )  # fmt: skip
+        f"{world}'s world to move",
+        MOVE_WAIT_S,
+        poll_s=0.25,
+        detail=klass.app.log_tail,
+    )
     assert moved["worker"] == to
 
 

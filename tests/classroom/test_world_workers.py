@@ -290,8 +290,13 @@ def test_a_world_a_worker_hosts_that_the_class_does_not_count_there_is_ended(kla
         w for w in klass.get("/api/classroom/workers", klass.instructor).json()["workers"] if w["id"] == "wb"
     )
     as_class_server = {"Authorization": f"Bearer {worker_api_token(klass.instructor, 'wb')}"}
-    body = {"world": "stray", "student": "Nobody", "domain_id": 200, "launch": "rocket",
-            "launch_args": {"start_delay": "3600"}}  # fmt: skip
+    body = {
+        "world": "stray",
+        "student": "Nobody",
+        "domain_id": 200,
+        "launch": "rocket",
+        "launch_args": {"start_delay": "3600"},
+    }
     placed = HTTP.post(f"{wb['url']}/api/classroom/host", headers=as_class_server, json=body, timeout=60)
     assert placed.status_code == 201, placed.text
 
@@ -310,7 +315,11 @@ def test_a_worker_needs_the_instructors_token(tmp_path: Path) -> None:
     env = {k: v for k, v in os.environ.items() if k != "ROS2LAB_TOKEN"}
     done = subprocess.run(
         [sys.executable, "-m", "server", "world-worker", "--connect", "tcp/127.0.0.1:1"],
-        env=env, capture_output=True, text=True, timeout=60, cwd=tmp_path,
-    )  # fmt: skip
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        cwd=tmp_path,
+    )
     assert done.returncode == 2
     assert "ROS2LAB_TOKEN" in done.stderr
