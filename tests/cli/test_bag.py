@@ -75,10 +75,12 @@ def test_bag_info_layout_is_ros2s(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("TZ", "UTC")  # ros2 bag info prints local time
     time.tzset()
     info = BagInfo(
-        files=["a_0.mcap"], size_bytes=1_300_000, start_ns=1_700_000_000_012_000_000,
+        files=["a_0.mcap"],
+        size_bytes=1_300_000,
+        start_ns=1_700_000_000_012_000_000,
         end_ns=1_700_000_015_500_000_000,
         topics=[("/a", "std_msgs/msg/Bool", 3, "cdr"), ("/b", "std_msgs/msg/Int64", 4, "cdr")],
-    )  # fmt: skip
+    )
     lines = format_info(info).splitlines()
     assert lines[0] == ""
     assert lines[1] == "Files:             a_0.mcap"

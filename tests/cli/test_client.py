@@ -90,9 +90,11 @@ def test_request_timeout_is_a_one_line_error() -> None:
 
 @pytest.mark.parametrize(
     ("base", "ws"),
-    [("http://127.0.0.1:8000", "ws://127.0.0.1:8000/ws/topics/countdown?queue_length=5"),
-     ("https://lab.example/", "wss://lab.example/ws/topics/countdown?queue_length=5"),
-     ("http://host/prefix", "ws://host/prefix/ws/topics/countdown?queue_length=5")],
-)  # fmt: skip
+    [
+        ("http://127.0.0.1:8000", "ws://127.0.0.1:8000/ws/topics/countdown?queue_length=5"),
+        ("https://lab.example/", "wss://lab.example/ws/topics/countdown?queue_length=5"),
+        ("http://host/prefix", "ws://host/prefix/ws/topics/countdown?queue_length=5"),
+    ],
+)
 def test_ws_url_follows_the_http_scheme_and_path(base: str, ws: str) -> None:
     assert LabClient(base).ws_url("/ws/topics/countdown", {"queue_length": 5}) == ws

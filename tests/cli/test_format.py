@@ -39,9 +39,15 @@ def test_message_to_yaml_nested_message_indents_fields_in_order() -> None:
 
 @pytest.mark.parametrize(
     ("value", "line"),
-    [(5.0, "x: 5.0"), (0.1, "x: 0.1"), (1e-7, "x: 1.0e-07"), (1.5e20, "x: 1.5e+20"), (-0.0, "x: -0.0"),
-     (1680.0945851211152, "x: 1680.0945851211152")],
-)  # fmt: skip
+    [
+        (5.0, "x: 5.0"),
+        (0.1, "x: 0.1"),
+        (1e-7, "x: 1.0e-07"),
+        (1.5e20, "x: 1.5e+20"),
+        (-0.0, "x: -0.0"),
+        (1680.0945851211152, "x: 1680.0945851211152"),
+    ],
+)
 def test_message_to_yaml_floats_print_as_ros2_prints_them(value: float, line: str) -> None:
     assert message_to_yaml({"x": value}) == line + "\n"
 
@@ -52,9 +58,14 @@ def test_message_to_yaml_ints_and_bools_are_bare() -> None:
 
 @pytest.mark.parametrize(
     ("text", "line"),
-    [("hello", "data: hello"), ("", "data: ''"), ("Hello World: 1", "data: 'Hello World: 1'"),
-     ("123", "data: '123'"), ("true", "data: 'true'")],
-)  # fmt: skip
+    [
+        ("hello", "data: hello"),
+        ("", "data: ''"),
+        ("Hello World: 1", "data: 'Hello World: 1'"),
+        ("123", "data: '123'"),
+        ("true", "data: 'true'"),
+    ],
+)
 def test_message_to_yaml_strings_quoted_only_where_yaml_needs_it(text: str, line: str) -> None:
     assert message_to_yaml({"data": text}) == line + "\n"
 
@@ -80,9 +91,13 @@ def test_echo_text_field_of_nested_message_prints_that_part_only() -> None:
 
 @pytest.mark.parametrize(
     ("msg", "field", "text"),
-    [({"data": 5.0}, ["data"], "5.0\n---\n"), ({"data": True}, ["data"], "True\n---\n"),
-     ({"data": "a: b"}, ["data"], "a: b\n---\n"), (POSE_STAMPED, ["header", "frame_id"], "world\n---\n")],
-)  # fmt: skip
+    [
+        ({"data": 5.0}, ["data"], "5.0\n---\n"),
+        ({"data": True}, ["data"], "True\n---\n"),
+        ({"data": "a: b"}, ["data"], "a: b\n---\n"),
+        (POSE_STAMPED, ["header", "frame_id"], "world\n---\n"),
+    ],
+)
 def test_echo_text_primitive_field_prints_bare_as_ros2(
     msg: dict[str, Any], field: list[str], text: str
 ) -> None:

@@ -39,8 +39,13 @@ def test_show_student_message_with_constants_bounds_and_nested_types(
     result = interface(capsys, "show", "fleet_interfaces/msg/Telemetry", "--workspace", str(ws))
     assert result.code == 0, result.err
     lines = result.out.splitlines()
-    assert lines[:5] == ["# One vehicle's telemetry.", "uint8 MODE_IDLE=0", "uint8 MODE_FLYING=1",
-                         "int32 MAX_CODES=4", 'string CALLSIGN_PREFIX="uav_"']  # fmt: skip
+    assert lines[:5] == [
+        "# One vehicle's telemetry.",
+        "uint8 MODE_IDLE=0",
+        "uint8 MODE_FLYING=1",
+        "int32 MAX_CODES=4",
+        'string CALLSIGN_PREFIX="uav_"',
+    ]
     assert 'string<=12 callsign "uav_1"' in lines and "int32[<=4] codes" in lines
     counts = lines.index("tutorial_interfaces/Num[] counts")
     assert lines[counts + 1] == "\tint64 num"  # a nested type's definition, one tab in
@@ -65,8 +70,12 @@ def test_package_and_list_and_packages_name_the_students_types(
         ],
     )
     listed = interface(capsys, "list", "--workspace", str(ws)).out.splitlines()
-    assert listed.index("Messages:") < listed.index("    fleet_interfaces/msg/Telemetry") < listed.index(
-        "Services:") < listed.index("    tutorial_interfaces/srv/AddThreeInts")  # fmt: skip
+    assert (
+        listed.index("Messages:")
+        < listed.index("    fleet_interfaces/msg/Telemetry")
+        < listed.index("Services:")
+        < listed.index("    tutorial_interfaces/srv/AddThreeInts")
+    )
     assert "    std_msgs/msg/String" in listed and "    std_srvs/srv/Trigger" in listed
     assert listed.index("Actions:") < listed.index("    custom_action_interfaces/action/Fibonacci")
     assert not any("Fibonacci_" in line for line in listed)  # an action's own types are not listed
@@ -84,10 +93,16 @@ def test_broken_definition_is_one_line_on_stderr_exit_1_and_the_rest_listed(
     capsys: pytest.CaptureFixture[str], tmp_path: Path
 ) -> None:
     folder = tmp_path / "src/broken_interfaces"
-    interface_package(folder, "broken_interfaces", TUTORIAL_CMAKE.replace("tutorial_", "broken_"), {
-        "msg/Num.msg": "int64 num\nuint8 LIMIT=-1\n", "msg/Sphere.msg": "geometry_msgs/Point center\n",
-        "srv/AddThreeInts.srv": "int64 a\n---\nint64 sum\n",
-    })  # fmt: skip
+    interface_package(
+        folder,
+        "broken_interfaces",
+        TUTORIAL_CMAKE.replace("tutorial_", "broken_"),
+        {
+            "msg/Num.msg": "int64 num\nuint8 LIMIT=-1\n",
+            "msg/Sphere.msg": "geometry_msgs/Point center\n",
+            "srv/AddThreeInts.srv": "int64 a\n---\nint64 sum\n",
+        },
+    )
     problem = f"{folder / 'msg/Num.msg'}:2: -1 is out of range for uint8"
     show = interface(capsys, "show", "broken_interfaces/msg/Num", "--workspace", str(tmp_path))
     assert (show.code, show.out, show.err) == (1, "", problem + "\n")

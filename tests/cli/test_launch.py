@@ -31,8 +31,10 @@ def test_launch_request_file_made_absolute_with_arguments(tmp_path: Path) -> Non
 
 def test_launch_request_package_and_file() -> None:
     assert launch_request(["rocketship", "rocket.launch", "a:=b:=c"]) == {
-        "package": "rocketship", "file": "rocket.launch", "args": {"a": "b:=c"},
-    }  # fmt: skip
+        "package": "rocketship",
+        "file": "rocket.launch",
+        "args": {"a": "b:=c"},
+    }
 
 
 @pytest.mark.parametrize("tokens", [[], ["a:=1"], ["p", "f", "extra"], ["f", ":=1"]])

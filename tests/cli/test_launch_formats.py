@@ -184,9 +184,13 @@ def launched(
     [("talker.launch.py", "fmt_py"), ("talker_launch.xml", "fmt_xml"), ("talker_launch.yaml", "fmt_yaml")],
 )
 def test_launch_file_in_each_format_starts_the_named_namespaced_remapped_node(
-    live_server: LiveServer, package: Path, start: Callable[..., Running], ros2lab: Callable[..., Result],
-    file: str, namespace: str,
-) -> None:  # fmt: skip
+    live_server: LiveServer,
+    package: Path,
+    start: Callable[..., Running],
+    ros2lab: Callable[..., Result],
+    file: str,
+    namespace: str,
+) -> None:
     launching = launched(
         live_server, start, ros2lab, f"/{namespace}/talker", f"/{namespace}/announcements", file
     )
@@ -200,8 +204,15 @@ def test_launch_file_in_each_format_starts_the_named_namespaced_remapped_node(
 def test_substitutions_arguments_and_includes_give_namespace_and_topic(
     live_server: LiveServer, package: Path, start: Callable[..., Running], ros2lab: Callable[..., Result]
 ) -> None:
-    launching = launched(live_server, start, ros2lab, "/from_cli/talker", "/from_cli/news",
-                         "example_main.launch.py", "outer_ns:=from_cli")  # fmt: skip
+    launching = launched(
+        live_server,
+        start,
+        ros2lab,
+        "/from_cli/talker",
+        "/from_cli/news",
+        "example_main.launch.py",
+        "outer_ns:=from_cli",
+    )
     assert "[INFO] [launch.user]: namespace is from_cli" in launching.seen
     code, err = launching.interrupt()
     assert (code, err) == (0, ""), err

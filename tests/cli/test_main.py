@@ -48,9 +48,16 @@ def test_cli_url_before_the_verb_and_from_the_environment(live_server: LiveServe
 
 
 @pytest.mark.parametrize(
-    "args", [["topic"], ["topic", "nope"], ["topic", "pub", "/x"], ["topic", "pub", "-r", "0", "/x", "std_msgs/Bool"],
-             ["node", "info"], ["launch"]],
-)  # fmt: skip
+    "args",
+    [
+        ["topic"],
+        ["topic", "nope"],
+        ["topic", "pub", "/x"],
+        ["topic", "pub", "-r", "0", "/x", "std_msgs/Bool"],
+        ["node", "info"],
+        ["launch"],
+    ],
+)
 def test_cli_usage_error_exits_2(args: list[str]) -> None:
     with pytest.raises(SystemExit) as caught:
         cli.main(args)

@@ -11,13 +11,18 @@ from server.cli.message import MessageTextError, filled_message, message_repr, p
 
 @pytest.mark.parametrize(
     ("text", "msg"),
-    [("{x: 5.0, y: 5.0, z: 10.0}", {"x": 5.0, "y": 5.0, "z": 10.0}),
-     ('{"x": 5, "y": 5.5}', {"x": 5, "y": 5.5}),
-     ("data: true", {"data": True}),
-     ("{data: 'Hello World: 1'}", {"data": "Hello World: 1"}),
-     ("{linear: {x: 1.0}, angular: {z: -0.5}}", {"linear": {"x": 1.0}, "angular": {"z": -0.5}}),
-     ("", {}), ("   ", {}), ("{}", {}), ("~", {})],
-)  # fmt: skip
+    [
+        ("{x: 5.0, y: 5.0, z: 10.0}", {"x": 5.0, "y": 5.0, "z": 10.0}),
+        ('{"x": 5, "y": 5.5}', {"x": 5, "y": 5.5}),
+        ("data: true", {"data": True}),
+        ("{data: 'Hello World: 1'}", {"data": "Hello World: 1"}),
+        ("{linear: {x: 1.0}, angular: {z: -0.5}}", {"linear": {"x": 1.0}, "angular": {"z": -0.5}}),
+        ("", {}),
+        ("   ", {}),
+        ("{}", {}),
+        ("~", {}),
+    ],
+)
 def test_parse_message_yaml_or_json_gives_dict(text: str, msg: dict[str, Any]) -> None:
     assert parse_message(text) == msg
 
@@ -35,9 +40,12 @@ def test_parse_message_broken_yaml_says_so() -> None:
 
 @pytest.mark.parametrize(
     ("text", "where"),
-    [("{x: .nan}", "x: nan"), ("{pose: {position: {z: .inf}}}", "pose.position.z: inf"),
-     ("{a: [1, .nan]}", r"a\[1\]: nan")],
-)  # fmt: skip
+    [
+        ("{x: .nan}", "x: nan"),
+        ("{pose: {position: {z: .inf}}}", "pose.position.z: inf"),
+        ("{a: [1, .nan]}", r"a\[1\]: nan"),
+    ],
+)
 def test_parse_message_non_finite_number_refused_with_its_path(text: str, where: str) -> None:
     with pytest.raises(MessageTextError, match=where):
         parse_message(text)

@@ -9,16 +9,26 @@ from server.cli.node import format_node_info
 from .conftest import Result
 
 CRASHED = {
-    "name": "/ns/Talker", "namespace": "/ns", "state": "crashed", "crash_reason": "ZeroDivisionError: division by zero",
-    "publishers": [{"topic": "/rosout", "type": "rcl_interfaces/msg/Log", "depth": 10},
-                   {"topic": "/chatter", "type": "std_msgs/msg/String", "depth": 10}],
-    "subscribers": [{"topic": "/b", "type": "std_msgs/msg/Bool", "depth": 1},
-                    {"topic": "/a", "type": "std_msgs/msg/Int64", "depth": 1},
-                    {"topic": "/a", "type": "std_msgs/msg/Int64", "depth": 5}],
-    "timers": [{"period_s": 0.1, "calls": 42, "lateness_p50_ms": 0.25, "lateness_p99_ms": 3.5},
-               {"period_s": 2.0, "calls": 0, "lateness_p50_ms": None, "lateness_p99_ms": None}],
-    "parameters": {}, "origin": {},
-}  # fmt: skip
+    "name": "/ns/Talker",
+    "namespace": "/ns",
+    "state": "crashed",
+    "crash_reason": "ZeroDivisionError: division by zero",
+    "publishers": [
+        {"topic": "/rosout", "type": "rcl_interfaces/msg/Log", "depth": 10},
+        {"topic": "/chatter", "type": "std_msgs/msg/String", "depth": 10},
+    ],
+    "subscribers": [
+        {"topic": "/b", "type": "std_msgs/msg/Bool", "depth": 1},
+        {"topic": "/a", "type": "std_msgs/msg/Int64", "depth": 1},
+        {"topic": "/a", "type": "std_msgs/msg/Int64", "depth": 5},
+    ],
+    "timers": [
+        {"period_s": 0.1, "calls": 42, "lateness_p50_ms": 0.25, "lateness_p99_ms": 3.5},
+        {"period_s": 2.0, "calls": 0, "lateness_p50_ms": None, "lateness_p99_ms": None},
+    ],
+    "parameters": {},
+    "origin": {},
+}
 
 
 def test_format_node_info_ros2_layout_sorted_without_repeats_then_timers_and_state() -> None:

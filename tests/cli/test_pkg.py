@@ -36,15 +36,38 @@ def expected_tree(package: str) -> tuple[dict[str, str], set[str]]:
     [
         # The handout's own command, as written (and a maintainer, so the file does not depend on who runs it).
         ("simple_control", ["--build-type", "ament_python", "--node-name", "keyboard_manager"]),
-        ("rocket_parts", ["--dependencies", "rclcpp", "std_msgs", "--license", "MIT",
-                          "--description", "Parts of a rocket", "--node-name", "engine"]),
+        (
+            "rocket_parts",
+            [
+                "--dependencies",
+                "rclcpp",
+                "std_msgs",
+                "--license",
+                "MIT",
+                "--description",
+                "Parts of a rocket",
+                "--node-name",
+                "engine",
+            ],
+        ),
     ],
-)  # fmt: skip
+)
 def test_pkg_create_writes_what_ros2_pkg_create_writes(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], package: str, options: list[str]
 ) -> None:
-    code = main(["--url", NO_LAB, "pkg", "create", *options, *MAINTAINER, package, "--destination-directory",
-                 str(tmp_path)])  # fmt: skip
+    code = main(
+        [
+            "--url",
+            NO_LAB,
+            "pkg",
+            "create",
+            *options,
+            *MAINTAINER,
+            package,
+            "--destination-directory",
+            str(tmp_path),
+        ]
+    )
     out = capsys.readouterr().out
     assert code == 0
     files, folders = tree(tmp_path / package)
@@ -90,8 +113,9 @@ def test_pkg_list_executables_and_prefix_print_as_ros2(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     ws = tmp_path / "ws"
-    assert main(["pkg", "create", "--build-type", "ament_python", "--node-name", "talker", "demo", *MAINTAINER,
-                 "--destination-directory", str(ws / "src" / "nested")]) == 0  # fmt: skip
+    nested = ws / "src" / "nested"
+    create = ["pkg", "create", "--build-type", "ament_python", "--node-name", "talker", "demo", *MAINTAINER]
+    assert main([*create, "--destination-directory", str(nested)]) == 0
     capsys.readouterr()
     workspace = ["--workspace", str(ws), "--url", NO_LAB]
     assert main(["pkg", "list", *workspace]) == 0

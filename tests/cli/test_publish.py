@@ -104,12 +104,14 @@ def test_pub_rate_runs_a_server_publisher_until_ctrl_c_then_deletes_it(
 
 @pytest.mark.parametrize(
     ("args", "message"),
-    [(["/abort_takeoff", "std_msgs/msg/Bool", "{dta: true}"], "has no field 'dta'"),
-     (["/abort_takeoff", "std_msgs/msg/Int64", "{data: 1}"], "carries std_msgs/msg/Bool"),
-     (["/abort_takeoff", "std_msgs/msg/Bool", "{data: 3}"], "expected a bool"),
-     (["/abort_takeoff", "std_msgs/msg/Nope", "{}"], "unknown message type"),
-     (["/abort_takeoff", "std_msgs/msg/Bool", "[true]"], "dictionary in YAML format")],
-)  # fmt: skip
+    [
+        (["/abort_takeoff", "std_msgs/msg/Bool", "{dta: true}"], "has no field 'dta'"),
+        (["/abort_takeoff", "std_msgs/msg/Int64", "{data: 1}"], "carries std_msgs/msg/Bool"),
+        (["/abort_takeoff", "std_msgs/msg/Bool", "{data: 3}"], "expected a bool"),
+        (["/abort_takeoff", "std_msgs/msg/Nope", "{}"], "unknown message type"),
+        (["/abort_takeoff", "std_msgs/msg/Bool", "[true]"], "dictionary in YAML format"),
+    ],
+)
 def test_pub_bad_input_exits_1_with_one_line_from_the_server(
     ros2lab: Callable[..., Result], args: list[str], message: str
 ) -> None:

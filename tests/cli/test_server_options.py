@@ -27,9 +27,24 @@ def exits_2(argv: list[str], capsys: pytest.CaptureFixture[str], run: object = m
 
 def test_a_class_servers_options_land_in_its_classroom_section() -> None:
     settings = server_settings(
-        "--classroom", "--class-code", "ABC123", "--max-worlds", "5", "--local-worlds", "2", "--workers", "2",
-        "--worker-timeout", "30", "--max-worlds-per-address", "1", "--world-log-level", "info", "--port", "8100",
-    )  # fmt: skip
+        "--classroom",
+        "--class-code",
+        "ABC123",
+        "--max-worlds",
+        "5",
+        "--local-worlds",
+        "2",
+        "--workers",
+        "2",
+        "--worker-timeout",
+        "30",
+        "--max-worlds-per-address",
+        "1",
+        "--world-log-level",
+        "info",
+        "--port",
+        "8100",
+    )
     klass = settings.classroom
     assert klass is not None and settings.worker is None
     assert (klass.code, klass.max_worlds, klass.local_worlds, klass.local_workers) == ("ABC123", 5, 2, 2)
@@ -44,9 +59,12 @@ def test_a_class_servers_options_land_in_its_classroom_section() -> None:
 
 @pytest.mark.parametrize(
     ("argv", "flag"),
-    [(["--workers", "1"], "--workers"), (["--local-worlds", "0"], "--local-worlds"),
-     (["--max-worlds-per-address", "2"], "--max-worlds-per-address")],
-)  # fmt: skip
+    [
+        (["--workers", "1"], "--workers"),
+        (["--local-worlds", "0"], "--local-worlds"),
+        (["--max-worlds-per-address", "2"], "--max-worlds-per-address"),
+    ],
+)
 def test_a_class_option_without_classroom_is_refused(
     argv: list[str], flag: str, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -56,12 +74,14 @@ def test_a_class_option_without_classroom_is_refused(
 
 @pytest.mark.parametrize(
     ("argv", "message"),
-    [(["--port", "70000"], "listen.port: Input should be less than or equal to 65535"),
-     (["--rosbridge-port", "-1"], "lab.rosbridge_port: Input should be greater than or equal to 0"),
-     (["--classroom", "--worker-timeout", "1"], "--worker-timeout must be in 2..3600 s"),
-     (["--classroom", "--max-worlds", "0"], "--max-worlds must be at least 1"),
-     (["--classroom", "--local-worlds", "1", "--no-zenoh"], "--local-worlds needs --classroom and Zenoh")],
-)  # fmt: skip
+    [
+        (["--port", "70000"], "listen.port: Input should be less than or equal to 65535"),
+        (["--rosbridge-port", "-1"], "lab.rosbridge_port: Input should be greater than or equal to 0"),
+        (["--classroom", "--worker-timeout", "1"], "--worker-timeout must be in 2..3600 s"),
+        (["--classroom", "--max-worlds", "0"], "--max-worlds must be at least 1"),
+        (["--classroom", "--local-worlds", "1", "--no-zenoh"], "--local-worlds needs --classroom and Zenoh"),
+    ],
+)
 def test_the_models_error_is_the_usage_error(
     argv: list[str], message: str, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -102,11 +122,13 @@ def test_a_world_workers_options_land_in_its_sections() -> None:
 
 @pytest.mark.parametrize(
     ("argv", "message"),
-    [(["--host", "0.0.0.0"], "with --host 0.0.0.0, name the address the class server reaches"),
-     (["--max-worlds", "0"], "--max-worlds must be at least 1"),
-     (["--orphan-timeout", "0.5"], "--orphan-timeout must be in 1..3600 s"),
-     (["--port", "70000"], "listen.port: Input should be less than or equal to 65535")],
-)  # fmt: skip
+    [
+        (["--host", "0.0.0.0"], "with --host 0.0.0.0, name the address the class server reaches"),
+        (["--max-worlds", "0"], "--max-worlds must be at least 1"),
+        (["--orphan-timeout", "0.5"], "--orphan-timeout must be in 1..3600 s"),
+        (["--port", "70000"], "listen.port: Input should be less than or equal to 65535"),
+    ],
+)
 def test_a_world_worker_refuses_a_bad_combination_before_it_binds_or_connects(
     argv: list[str], message: str, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
