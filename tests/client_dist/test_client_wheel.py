@@ -64,8 +64,20 @@ def _clean_env(extra: dict[str, str] | None = None) -> dict[str, str]:
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("wheel")
-    run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-w", str(out),
-         str(REPO / "client")], out)  # fmt: skip
+    run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "wheel",
+            "--no-deps",
+            "--no-build-isolation",
+            "-w",
+            str(out),
+            str(REPO / "client"),
+        ],
+        out,
+    )
     (built,) = out.glob("teleop_lab_client-*.whl")
     return built
 
@@ -77,8 +89,21 @@ def laptop(wheel: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     venv.EnvBuilder(with_pip=False, system_site_packages=False).create(root / "venv")
     python = root / "venv" / "bin" / "python"
     # This venv's pip installs into that one (no pip of its own to bootstrap; nothing compiled ahead).
-    run([sys.executable, "-m", "pip", "--python", str(python), "install", "--disable-pip-version-check",
-         "--no-compile", "-q", str(wheel)], root)  # fmt: skip
+    run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "--python",
+            str(python),
+            "install",
+            "--disable-pip-version-check",
+            "--no-compile",
+            "-q",
+            str(wheel),
+        ],
+        root,
+    )
     return python
 
 
@@ -123,8 +148,13 @@ def test_wheel_holds_the_client_and_nothing_of_the_web_server(wheel: Path) -> No
     assert not {"pyproject.toml", "README.md"} & names  # the client folder's own files stay behind
     # Nothing of the web server, the API or the sims.
     assert not [n for n in names if n.split("/")[0] in ("server", "api", "sim")]
-    for app_side in ("server/app.py", "server/world/lab.py", "server/host/settings/__init__.py", "server/host/processes/supervisor.py",
-                     "server/packages/rocketship/keyboard_manager.py"):  # fmt: skip
+    for app_side in (
+        "server/app.py",
+        "server/world/lab.py",
+        "server/host/settings/__init__.py",
+        "server/host/processes/supervisor.py",
+        "server/packages/rocketship/keyboard_manager.py",
+    ):
         assert app_side not in names
     assert not any(
         n.startswith(
@@ -168,9 +198,17 @@ def test_importing_the_client_loads_nothing_of_the_web_server(laptop: Path, tmp_
     assert str(laptop.parents[1]) in out["rclpy"]  # from the fresh venv, not the repository
     # Nothing of the web side is even installed there.
     absent = ["fastapi", "uvicorn", "viser", "starlette", "server", "sim", "api"]
-    missing = run([str(laptop), "-c", "import importlib.util as u, json, sys; "
-                   "print(json.dumps([m for m in sys.argv[1:] if u.find_spec(m) is None]))", *absent],
-                  tmp_path, 60.0)  # fmt: skip
+    missing = run(
+        [
+            str(laptop),
+            "-c",
+            "import importlib.util as u, json, sys; "
+            "print(json.dumps([m for m in sys.argv[1:] if u.find_spec(m) is None]))",
+            *absent,
+        ],
+        tmp_path,
+        60.0,
+    )
     assert json.loads(missing) == absent
 
 
@@ -190,8 +228,14 @@ def test_a_node_file_in_the_client_venv_talks_both_ways_with_a_lab(
     node_file = tmp_path / "relay.py"
     node_file.write_text(RELAY)
     env = _clean_env(lab.get("/api/zenoh/join")["env"])
-    proc = subprocess.Popen([str(laptop), str(node_file)], cwd=tmp_path, env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)  # fmt: skip
+    proc = subprocess.Popen(
+        [str(laptop), str(node_file)],
+        cwd=tmp_path,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
     try:
         lab.wait_for(
             lambda: (
@@ -206,8 +250,10 @@ def test_a_node_file_in_the_client_venv_talks_both_ways_with_a_lab(
             i = 0
             while heard is None and time.monotonic() < deadline:
                 # Until the relay's subscription is matched, as for any new ROS 2 subscription.
-                sent = lab.post("/api/publish", {"topic": "/to_laptop", "msg": {"data": f"hi {i}"},
-                                                 "type": "std_msgs/msg/String"})  # fmt: skip
+                sent = lab.post(
+                    "/api/publish",
+                    {"topic": "/to_laptop", "msg": {"data": f"hi {i}"}, "type": "std_msgs/msg/String"},
+                )
                 assert sent.status_code == 200, sent.text
                 i += 1
                 try:
