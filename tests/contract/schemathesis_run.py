@@ -52,12 +52,31 @@ def live_server(workdir: Path, *args: str) -> Iterator[tuple[str, Path]]:
 
 def schemathesis(url: str, config: str, *extra: str) -> subprocess.CompletedProcess[str]:
     command = [
-        str(SCHEMATHESIS), "--config-file", str(HERE / config), "--no-color",
-        "run", f"{url}/openapi.json", "--checks", "all", "--max-examples", "20",
-        "--max-time", str(RUN_CAP_S - 110), "--workers", "1", "--seed", "20",
-        "--request-timeout", "10", *extra,
-    ]  # fmt: skip
+        str(SCHEMATHESIS),
+        "--config-file",
+        str(HERE / config),
+        "--no-color",
+        "run",
+        f"{url}/openapi.json",
+        "--checks",
+        "all",
+        "--max-examples",
+        "20",
+        "--max-time",
+        str(RUN_CAP_S - 110),
+        "--workers",
+        "1",
+        "--seed",
+        "20",
+        "--request-timeout",
+        "10",
+        *extra,
+    ]
     return subprocess.run(
-        command, capture_output=True, text=True, timeout=RUN_CAP_S, check=False,
+        command,
+        capture_output=True,
+        text=True,
+        timeout=RUN_CAP_S,
+        check=False,
         env={**os.environ, "SCHEMATHESIS_HOOKS": ""},
-    )  # fmt: skip
+    )

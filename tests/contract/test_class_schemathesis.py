@@ -19,14 +19,25 @@ def test_a_class_servers_own_routes_pass_checks_all_with_the_instructors_token(
     broadcasts, fuzzed; ``ignored_auth`` also calls each secured route without the token."""
     workdir = tmp_path_factory.mktemp("schemathesis_class_server")
     with live_server(
-        workdir, "--classroom", "--class-code", CLASS_CODE, "--max-worlds", "3", "--launch", "rocket",
+        workdir,
+        "--classroom",
+        "--class-code",
+        CLASS_CODE,
+        "--max-worlds",
+        "3",
+        "--launch",
+        "rocket",
         "start_delay:=3600",
-    ) as (url, log_path):  # fmt: skip
+    ) as (url, log_path):
         token = instructor_token(log_path.read_text())
         done = schemathesis(
-            url, "schemathesis_classroom.toml", "--include-path-regex", "^/api/classroom/",
-            "--header", f"Authorization: Bearer {token}",
-        )  # fmt: skip
+            url,
+            "schemathesis_classroom.toml",
+            "--include-path-regex",
+            "^/api/classroom/",
+            "--header",
+            f"Authorization: Bearer {token}",
+        )
         assert done.returncode == 0, done.stdout[-6000:] + done.stderr[-2000:]
         # The run covered every route of the class server's own (the document lists 21: the
         # checkpoints' four, the workspaces' three, and the load and join queue's three among them).
