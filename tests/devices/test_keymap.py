@@ -22,13 +22,32 @@ def test_sdl_code_upper_case_letter_is_lower_case_code(key: str, code: int) -> N
 @pytest.mark.parametrize(
     ("key", "code"),
     [
-        (" ", 32), ("Spacebar", 32), ("Enter", 13), ("Escape", 27), ("Backspace", 8), ("Tab", 9),
-        ("Delete", 127), ("ArrowUp", 273), ("ArrowDown", 274), ("ArrowRight", 275), ("ArrowLeft", 276),
-        ("Insert", 277), ("Home", 278), ("End", 279), ("PageUp", 280), ("PageDown", 281),
-        ("F1", 282), ("F2", 283), ("F12", 293), ("F15", 296), ("NumLock", 300), ("CapsLock", 301),
-        ("ScrollLock", 302), ("Pause", 19),
+        (" ", 32),
+        ("Spacebar", 32),
+        ("Enter", 13),
+        ("Escape", 27),
+        ("Backspace", 8),
+        ("Tab", 9),
+        ("Delete", 127),
+        ("ArrowUp", 273),
+        ("ArrowDown", 274),
+        ("ArrowRight", 275),
+        ("ArrowLeft", 276),
+        ("Insert", 277),
+        ("Home", 278),
+        ("End", 279),
+        ("PageUp", 280),
+        ("PageDown", 281),
+        ("F1", 282),
+        ("F2", 283),
+        ("F12", 293),
+        ("F15", 296),
+        ("NumLock", 300),
+        ("CapsLock", 301),
+        ("ScrollLock", 302),
+        ("Pause", 19),
     ],
-)  # fmt: skip
+)
 def test_sdl_code_named_key_maps_to_sdl(key: str, code: int) -> None:
     assert sdl_code(key) == code
 
@@ -41,11 +60,18 @@ def test_sdl_code_printable_ascii_maps_to_itself(key: str, code: int) -> None:
 @pytest.mark.parametrize(
     ("key", "location", "code"),
     [
-        ("Shift", 2, 303), ("Shift", 1, 304), ("Shift", 0, 304), ("Shift", None, 304),
-        ("Control", 2, 305), ("Control", 1, 306), ("Alt", 2, 307), ("Alt", 1, 308),
-        ("Meta", 2, 309), ("Meta", 1, 310),
+        ("Shift", 2, 303),
+        ("Shift", 1, 304),
+        ("Shift", 0, 304),
+        ("Shift", None, 304),
+        ("Control", 2, 305),
+        ("Control", 1, 306),
+        ("Alt", 2, 307),
+        ("Alt", 1, 308),
+        ("Meta", 2, 309),
+        ("Meta", 1, 310),
     ],
-)  # fmt: skip
+)
 def test_sdl_code_sided_modifier_key_location_2_is_right(key: str, location: int | None, code: int) -> None:
     assert sdl_code(key, location=location) == code
 
@@ -53,11 +79,18 @@ def test_sdl_code_sided_modifier_key_location_2_is_right(key: str, location: int
 @pytest.mark.parametrize(
     ("key", "code", "sdl"),
     [
-        ("0", "Numpad0", 256), ("5", "Numpad5", 261), ("9", "Numpad9", 265), (".", "NumpadDecimal", 266),
-        ("/", "NumpadDivide", 267), ("*", "NumpadMultiply", 268), ("-", "NumpadSubtract", 269),
-        ("+", "NumpadAdd", 270), ("Enter", "NumpadEnter", 271), ("=", "NumpadEqual", 272),
+        ("0", "Numpad0", 256),
+        ("5", "Numpad5", 261),
+        ("9", "Numpad9", 265),
+        (".", "NumpadDecimal", 266),
+        ("/", "NumpadDivide", 267),
+        ("*", "NumpadMultiply", 268),
+        ("-", "NumpadSubtract", 269),
+        ("+", "NumpadAdd", 270),
+        ("Enter", "NumpadEnter", 271),
+        ("=", "NumpadEqual", 272),
     ],
-)  # fmt: skip
+)
 def test_sdl_code_numpad_key_maps_to_keypad_code(key: str, code: str, sdl: int) -> None:
     assert sdl_code(key, code=code, location=3) == sdl
 
@@ -90,13 +123,25 @@ def test_modifier_bits_no_flags_is_zero() -> None:
 @pytest.mark.parametrize(
     ("flags", "bits"),
     [
-        ({"lshift": True}, 1), ({"rshift": True}, 2), ({"lctrl": True}, 64), ({"rctrl": True}, 128),
-        ({"lalt": True}, 256), ({"ralt": True}, 512), ({"lmeta": True}, 1024), ({"rmeta": True}, 2048),
-        ({"num": True}, 4096), ({"caps": True}, 8192), ({"mode": True}, 16384),
-        ({"shift": True}, 1), ({"ctrl": True}, 64), ({"alt": True}, 256), ({"meta": True}, 1024),
-        ({"shift": True, "ctrl": True, "num": True}, 1 | 64 | 4096), ({"shift": True, "alt": False}, 1),
+        ({"lshift": True}, 1),
+        ({"rshift": True}, 2),
+        ({"lctrl": True}, 64),
+        ({"rctrl": True}, 128),
+        ({"lalt": True}, 256),
+        ({"ralt": True}, 512),
+        ({"lmeta": True}, 1024),
+        ({"rmeta": True}, 2048),
+        ({"num": True}, 4096),
+        ({"caps": True}, 8192),
+        ({"mode": True}, 16384),
+        ({"shift": True}, 1),
+        ({"ctrl": True}, 64),
+        ({"alt": True}, 256),
+        ({"meta": True}, 1024),
+        ({"shift": True, "ctrl": True, "num": True}, 1 | 64 | 4096),
+        ({"shift": True, "alt": False}, 1),
     ],
-)  # fmt: skip
+)
 def test_modifier_bits_flags_or_to_modifier_constants(flags: dict[str, bool], bits: int) -> None:
     assert modifier_bits(flags) == bits
 
