@@ -99,8 +99,10 @@ def test_server_info_and_channels_with_ros2msg_schemas(lab: TestClient) -> None:
     assert "clientPublish" in info["capabilities"] and "cdr" in info["supportedEncodings"]
     gps = channels["/uav/sensors/gps"]
     assert (gps["encoding"], gps["schemaEncoding"], gps["schemaName"]) == (
-        "cdr", "ros2msg", "geometry_msgs/msg/PoseStamped",
-    )  # fmt: skip
+        "cdr",
+        "ros2msg",
+        "geometry_msgs/msg/PoseStamped",
+    )
     for section in ("MSG: std_msgs/Header", "MSG: builtin_interfaces/Time", "MSG: geometry_msgs/Quaternion"):
         assert section in gps["schema"]
     assert channels["/tf"]["schemaName"] == "tf2_msgs/msg/TFMessage"
@@ -142,8 +144,10 @@ def test_gps_frames_decode_to_the_pose_the_rest_api_reports(lab: TestClient) -> 
     msg, latest = run(scenario())
     position = latest["pose"]["position"]
     assert (msg.pose.position.x, msg.pose.position.y, msg.pose.position.z) == (
-        position["x"], position["y"], position["z"],
-    )  # fmt: skip
+        position["x"],
+        position["y"],
+        position["z"],
+    )
     orientation = latest["pose"]["orientation"]
     assert msg.pose.orientation.w == orientation["w"] and msg.header.frame_id == "world"
 
