@@ -98,9 +98,14 @@ class Peer:
         pub = self.publishers.get(topic)
         if pub is None:
             pub = self.publishers[topic] = self.sdk.ROS2Publisher(
-                topic, type_name, msg_definition=_text(self.session, type_name), node_name=node,
-                router_ip=self.ip, router_port=self.port, type_hash=type_hash,
-            )  # fmt: skip
+                topic,
+                type_name,
+                msg_definition=_text(self.session, type_name),
+                node_name=node,
+                router_ip=self.ip,
+                router_port=self.port,
+                type_hash=type_hash,
+            )
         message = build(self.session.store, type_name, data)
         pub.publish(**{k: getattr(message, k) for k in message.__dataclass_fields__ if k != "__msgtype__"})
 
@@ -112,24 +117,50 @@ class Peer:
             return cls(sum=int(req.a) + int(req.b))
 
         server = self.sdk.ROS2ServiceServer(
-            service, type_name, answer, request_definition=request, response_definition=response,
-            node_name=node, router_ip=self.ip, router_port=self.port, type_hash=type_hash,
-        )  # fmt: skip
+            service,
+            type_name,
+            answer,
+            request_definition=request,
+            response_definition=response,
+            node_name=node,
+            router_ip=self.ip,
+            router_port=self.port,
+            type_hash=type_hash,
+        )
         self.keep.append(server)
 
     def call(self, service: str, type_name: str, type_hash: str, request: str, response: str) -> Any:
         client = self.sdk.ROS2ServiceClient(
-            service, type_name, request_definition=request, response_definition=response,
-            router_ip=self.ip, router_port=self.port, timeout=10.0, type_hash=type_hash,
-        )  # fmt: skip
+            service,
+            type_name,
+            request_definition=request,
+            response_definition=response,
+            router_ip=self.ip,
+            router_port=self.port,
+            timeout=10.0,
+            type_hash=type_hash,
+        )
         self.keep.append(client)
         return to_plain(client.call())
 
 
 PRIMITIVES = {
-    "bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16", "int32", "uint32",
-    "int64", "uint64", "string", "wstring",
-}  # fmt: skip
+    "bool",
+    "byte",
+    "char",
+    "float32",
+    "float64",
+    "int8",
+    "uint8",
+    "int16",
+    "uint16",
+    "int32",
+    "uint32",
+    "int64",
+    "uint64",
+    "string",
+    "wstring",
+}
 
 
 def _references(name: str, text: str) -> set[str]:
@@ -182,9 +213,12 @@ def main() -> int:
                 peer.subscribe(command["topic"], command["type"], command["hash"])
             elif cmd == "publish":
                 peer.publish(
-                    command["topic"], command["type"], command["hash"], command["msg"],
+                    command["topic"],
+                    command["type"],
+                    command["hash"],
+                    command["msg"],
                     command.get("node", "sdk_peer"),
-                )  # fmt: skip
+                )
             elif cmd == "topics":
                 emit(
                     event="topics",
@@ -199,8 +233,14 @@ def main() -> int:
                 emit(event="topic_info", nodes=nodes, types=[] if info is None else info.topic_types)
                 continue
             elif cmd == "serve":
-                peer.serve(command["service"], command["type"], command["hash"], command["request"],
-                           command["response"], command.get("node", "sdk_server"))  # fmt: skip
+                peer.serve(
+                    command["service"],
+                    command["type"],
+                    command["hash"],
+                    command["request"],
+                    command["response"],
+                    command.get("node", "sdk_server"),
+                )
             elif cmd == "call":
                 reply = peer.call(
                     command["service"],

@@ -37,9 +37,14 @@ def app(tmp_path_factory: pytest.TempPathFactory, foxglove_port: int) -> Iterato
     """The rocket alone (a small graph), with the Foxglove server on a port of its own."""
     workdir = tmp_path_factory.mktemp("bridges")  # its ./bags too
     lab = App(
-        workdir, "--launch", "rocket", "start_delay:=3600", "--foxglove-port", str(foxglove_port),
+        workdir,
+        "--launch",
+        "rocket",
+        "start_delay:=3600",
+        "--foxglove-port",
+        str(foxglove_port),
         cwd=workdir,
-    )  # fmt: skip
+    )
     try:
         yield lab
     finally:
@@ -140,8 +145,15 @@ def test_rosapi_names_another_processs_nodes_endpoints_and_services(app: App, sd
     publish(sdk_peer, "/sdk_api", "first")  # a publisher of node /sdk_talker
     sdk_peer.send(cmd="subscribe", topic="/sdk_api_in", type=STRING, hash=rihs(STRING))
     request, response = service_text("std_srvs/srv/Trigger")
-    sdk_peer.send(cmd="serve", service="/sdk_api_srv", type="std_srvs/srv/Trigger", request=request,
-                  response=response, node="sdk_server", hash=rihs("std_srvs/srv/Trigger"))  # fmt: skip
+    sdk_peer.send(
+        cmd="serve",
+        service="/sdk_api_srv",
+        type="std_srvs/srv/Trigger",
+        request=request,
+        response=response,
+        node="sdk_server",
+        hash=rihs("std_srvs/srv/Trigger"),
+    )
     sdk_peer.expect(lambda e: e.get("event") == "done" and e.get("cmd") == "serve", "the server to be up")
     # The subscriber's node as the SDK itself names it (its own graph query, not ours), once its
     # query sees the new subscription.

@@ -17,8 +17,12 @@ def test_sdk_subscriber_receives_countdown_and_the_drone_pose(app: App, sdk_peer
     sdk_peer.send(
         cmd="subscribe", topic="/countdown", type="std_msgs/msg/Int64", hash=rihs("std_msgs/msg/Int64")
     )
-    sdk_peer.send(cmd="subscribe", topic="/uav/sensors/gps", type="geometry_msgs/msg/PoseStamped",
-                  hash=rihs("geometry_msgs/msg/PoseStamped"))  # fmt: skip
+    sdk_peer.send(
+        cmd="subscribe",
+        topic="/uav/sensors/gps",
+        type="geometry_msgs/msg/PoseStamped",
+        hash=rihs("geometry_msgs/msg/PoseStamped"),
+    )
     countdown = sdk_peer.expect(lambda e: e.get("topic") == "/countdown", "a /countdown message")
     assert 0 <= countdown["msg"]["data"] <= 10
     is_gps = lambda e: e.get("topic") == "/uav/sensors/gps"  # noqa: E731
@@ -41,8 +45,13 @@ def test_sdk_publisher_key_a_on_keydown_aborts_the_rocket(app: App, sdk_peer: Js
         latest = app.get("/api/topics/abort_takeoff")["latest"]
         if latest is None or not latest["data"]:
             # The first sample may go out before the routes settle, as with any new ROS 2 publisher.
-            sdk_peer.send(cmd="publish", topic="/keydown", type="keyboard_msgs/msg/Key",
-                          hash=rihs("keyboard_msgs/msg/Key"), msg={"code": 97})  # fmt: skip
+            sdk_peer.send(
+                cmd="publish",
+                topic="/keydown",
+                type="keyboard_msgs/msg/Key",
+                hash=rihs("keyboard_msgs/msg/Key"),
+                msg={"code": 97},
+            )
             return False
         return True
 
@@ -66,17 +75,29 @@ def test_sdk_graph_discovery_lists_our_nodes_and_topics(app: App, sdk_peer: Json
 
 def test_sdk_calls_the_rocket_reset_service(app: App, sdk_peer: JsonProcess) -> None:
     request, response = service_text("std_srvs/srv/Trigger")
-    sdk_peer.send(cmd="call", service="/rocket/reset", type="std_srvs/srv/Trigger", request=request,
-                  response=response, hash=rihs("std_srvs/srv/Trigger"))  # fmt: skip
+    sdk_peer.send(
+        cmd="call",
+        service="/rocket/reset",
+        type="std_srvs/srv/Trigger",
+        request=request,
+        response=response,
+        hash=rihs("std_srvs/srv/Trigger"),
+    )
     reply = sdk_peer.expect(lambda e: e.get("event") == "reply", "the reset service's reply")
     assert reply["msg"] == {"success": True, "message": "rocket back on the pad"}
 
 
 def test_app_calls_a_service_the_sdk_serves(app: App, sdk_peer: JsonProcess) -> None:
     request, response = service_text("example_interfaces/srv/AddTwoInts")
-    sdk_peer.send(cmd="serve", service="/peer/add_two_ints", type="example_interfaces/srv/AddTwoInts",
-                  request=request, response=response, node="sdk_adder",
-                  hash=rihs("example_interfaces/srv/AddTwoInts"))  # fmt: skip
+    sdk_peer.send(
+        cmd="serve",
+        service="/peer/add_two_ints",
+        type="example_interfaces/srv/AddTwoInts",
+        request=request,
+        response=response,
+        node="sdk_adder",
+        hash=rihs("example_interfaces/srv/AddTwoInts"),
+    )
     sdk_peer.expect(lambda e: e.get("event") == "done" and e.get("cmd") == "serve", "the server to be up")
     app.wait_for(
         lambda: any(s["name"] == "/peer/add_two_ints" for s in app.get("/api/services")),
@@ -85,16 +106,24 @@ def test_app_calls_a_service_the_sdk_serves(app: App, sdk_peer: JsonProcess) -> 
     answer = app.post("/api/services/peer/add_two_ints", {"request": {"a": 40, "b": 2}})
     assert answer.status_code == 200, answer.text
     assert answer.json() == {
-        "service": "/peer/add_two_ints", "type": "example_interfaces/srv/AddTwoInts", "response": {"sum": 42},
-    }  # fmt: skip
+        "service": "/peer/add_two_ints",
+        "type": "example_interfaces/srv/AddTwoInts",
+        "response": {"sum": 42},
+    }
 
 
 def test_our_graph_lists_the_sdk_node_and_drops_it_when_its_process_is_killed(
     app: App, sdk_peer: JsonProcess
 ) -> None:
     sdk_peer.send(cmd="define", types=definitions("std_msgs/msg/String"))
-    sdk_peer.send(cmd="publish", topic="/sdk_chatter", type="std_msgs/msg/String", hash=rihs("std_msgs/msg/String"),
-                  msg={"data": "hello"}, node="sdk_talker")  # fmt: skip
+    sdk_peer.send(
+        cmd="publish",
+        topic="/sdk_chatter",
+        type="std_msgs/msg/String",
+        hash=rihs("std_msgs/msg/String"),
+        msg={"data": "hello"},
+        node="sdk_talker",
+    )
 
     def talker() -> list[dict[str, object]]:
         return [n for n in app.get("/api/nodes") if n["name"] == "/sdk_talker"]
@@ -131,8 +160,14 @@ def test_a_topic_only_another_process_uses_can_be_echoed_and_published_to(
 
     with connect(f"ws://127.0.0.1:{app.port}/ws/topics/sdk_echoed?type=std_msgs/msg/String") as echo:
         for i in range(50):  # the first samples may precede the route, as for any new subscription
-            sdk_peer.send(cmd="publish", topic="/sdk_echoed", type="std_msgs/msg/String",
-                          hash=rihs("std_msgs/msg/String"), msg={"data": f"n{i}"}, node="sdk_echo_src")  # fmt: skip
+            sdk_peer.send(
+                cmd="publish",
+                topic="/sdk_echoed",
+                type="std_msgs/msg/String",
+                hash=rihs("std_msgs/msg/String"),
+                msg={"data": f"n{i}"},
+                node="sdk_echo_src",
+            )
             try:
                 frame = json.loads(echo.recv(timeout=0.5))
                 break
@@ -147,8 +182,14 @@ def test_a_publisher_of_another_type_on_our_topic_is_shown_apart_not_merged(
     app: App, sdk_peer: JsonProcess
 ) -> None:
     sdk_peer.send(cmd="define", types=definitions("std_msgs/msg/String"))
-    sdk_peer.send(cmd="publish", topic="/countdown", type="std_msgs/msg/String", hash=rihs("std_msgs/msg/String"),
-                  msg={"data": "ten"}, node="sdk_confused")  # fmt: skip
+    sdk_peer.send(
+        cmd="publish",
+        topic="/countdown",
+        type="std_msgs/msg/String",
+        hash=rihs("std_msgs/msg/String"),
+        msg={"data": "ten"},
+        node="sdk_confused",
+    )
 
     def entries() -> list[dict[str, object]]:
         return [t for t in app.get("/api/topics") if t["name"] == "/countdown"]
