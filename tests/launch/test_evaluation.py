@@ -32,7 +32,9 @@ def test_group_push_ros_namespace_prefixes_nodes_and_includes(write: Write, find
         "inner.launch",
         '<launch><node pkg="demo" exec="inner"/><node pkg="demo" exec="abs" namespace="/top"/></launch>',
     )
-    outer = write("outer.launch", """<launch>
+    outer = write(
+        "outer.launch",
+        """<launch>
       <group>
         <push-ros-namespace namespace="uav"/>
         <node pkg="demo" exec="a"/>
@@ -40,7 +42,8 @@ def test_group_push_ros_namespace_prefixes_nodes_and_includes(write: Write, find
         <node pkg="demo" exec="b" namespace="sub"/>
       </group>
       <node pkg="demo" exec="outside"/>
-    </launch>""")  # fmt: skip
+    </launch>""",
+    )
 
     nodes = parse_launch_file(outer, find_package_share=find_share).nodes
 
@@ -85,16 +88,22 @@ def test_undeclared_arg_given_by_caller_rejected(parse: Parse) -> None:
 
 
 def test_include_args_reach_only_included_file(write: Write, find_share: FindShare) -> None:
-    write("child.launch", """<launch>
+    write(
+        "child.launch",
+        """<launch>
       <arg name="who" default="nobody"/>
       <arg name="level" default="1"/>
       <node pkg="demo" exec="child" name="$(var who)"><param name="level" value="$(var level)"/></node>
-    </launch>""")  # fmt: skip
-    parent = write("parent.launch", """<launch>
+    </launch>""",
+    )
+    parent = write(
+        "parent.launch",
+        """<launch>
       <arg name="who" default="parent"/>
       <include file="child.launch"><arg name="level" value="7"/></include>
       <node pkg="demo" exec="parent" name="$(var who)"/>
-    </launch>""")  # fmt: skip
+    </launch>""",
+    )
 
     description = parse_launch_file(parent, find_package_share=find_share)
 
@@ -106,10 +115,13 @@ def test_include_args_reach_only_included_file(write: Write, find_share: FindSha
 
 def test_include_same_file_twice_allowed_and_listed_once(write: Write, find_share: FindShare) -> None:
     write("leaf.launch", '<launch><arg name="n"/><node pkg="demo" exec="leaf" name="$(var n)"/></launch>')
-    root = write("root.launch", """<launch>
+    root = write(
+        "root.launch",
+        """<launch>
       <include file="$(dirname)/leaf.launch"><arg name="n" value="one"/></include>
       <include file="leaf.launch"><arg name="n" value="two"/></include>
-    </launch>""")  # fmt: skip
+    </launch>""",
+    )
 
     description = parse_launch_file(root, find_package_share=find_share)
 

@@ -148,8 +148,12 @@ def test_using_substitutions_include_arguments_conditions_and_namespaces(package
     assert (Path(sim.location.file).name, sim.location.line) == ("example_substitutions.launch.py", 18)
     (command,) = description.commands  # the ExecuteProcess, its condition true, in the TimerAction
     assert (command.cmd, command.shell, command.name, command.output, command.start_delay_s) == (
-        ("ros2 param set turtlesim2/sim background_r 200",), True, None, "log", 2.0,
-    )  # fmt: skip
+        ("ros2 param set turtlesim2/sim background_r 200",),
+        True,
+        None,
+        "log",
+        2.0,
+    )
     assert (Path(command.location.file).name, command.location.line) == (
         "example_substitutions.launch.py",
         24,
@@ -166,7 +170,10 @@ def test_using_substitutions_include_arguments_conditions_and_namespaces(package
 
 
 def test_groups_scope_namespace_remaps_and_parameters(package: Path) -> None:
-    path = write(package, "groups.launch.py", """
+    path = write(
+        package,
+        "groups.launch.py",
+        """
         import os
         from ament_index_python.packages import get_package_share_directory
         from launch import LaunchDescription
@@ -193,7 +200,8 @@ def test_groups_scope_namespace_remaps_and_parameters(package: Path) -> None:
                      namespace='/absolute'),
                 LogInfo(msg=['home is ', EnvironmentVariable('NO_SUCH_VARIABLE', default_value='unset')]),
             ])
-        """)  # fmt: skip
+        """,
+    )
     (package.parent / "config" / "params.yaml").write_text("/**:\n  ros__parameters:\n    from_file: 7\n")
 
     inner, outer = launch(path).nodes
@@ -209,7 +217,10 @@ def test_groups_scope_namespace_remaps_and_parameters(package: Path) -> None:
 
 
 def test_python_xml_and_yaml_include_each_other(package: Path) -> None:
-    write(package, "leaf.launch.py", """
+    write(
+        package,
+        "leaf.launch.py",
+        """
         from launch import LaunchDescription
         from launch.actions import DeclareLaunchArgument
         from launch.substitutions import LaunchConfiguration
@@ -218,20 +229,32 @@ def test_python_xml_and_yaml_include_each_other(package: Path) -> None:
         def generate_launch_description():
             return LaunchDescription([DeclareLaunchArgument('exe'),
                                       Node(package='demo_launch', executable=LaunchConfiguration('exe'))])
-        """)  # fmt: skip
-    write(package, "middle_launch.xml", """
+        """,
+    )
+    write(
+        package,
+        "middle_launch.xml",
+        """
         <launch>
           <arg name="exe"/>
           <include file="$(dirname)/leaf.launch.py"><arg name="exe" value="$(var exe)_via_xml"/></include>
         </launch>
-        """)  # fmt: skip
-    write(package, "middle_launch.yaml", """
+        """,
+    )
+    write(
+        package,
+        "middle_launch.yaml",
+        """
         launch:
         - arg: {name: exe}
         - arg: {name: suffix, default: ""}
         - node: {pkg: demo_launch, exec: "$(var exe)_in_yaml$(var suffix)"}
-        """)  # fmt: skip
-    top = write(package, "top.launch.py", """
+        """,
+    )
+    top = write(
+        package,
+        "top.launch.py",
+        """
         from launch import LaunchDescription
         from launch.actions import GroupAction, IncludeLaunchDescription
         from launch.launch_description_sources import AnyLaunchDescriptionSource
@@ -249,7 +272,8 @@ def test_python_xml_and_yaml_include_each_other(package: Path) -> None:
                 IncludeLaunchDescription(AnyLaunchDescriptionSource([ThisLaunchFileDir(), '/middle_launch.yaml']),
                                          launch_arguments=[('exe', 'b')]),
             ])
-        """)  # fmt: skip
+        """,
+    )
 
     description = launch(top)
 
@@ -269,17 +293,20 @@ def test_python_xml_and_yaml_include_each_other(package: Path) -> None:
 BROKEN = {
     "forged.launch.py": (  # the answer is a student's code's: not trusted
         "import os\n\ndef generate_launch_description():\n"
-        "    os.write(1, b'{\"found\": [{\"kind\": \"node\", \"pkg\": \"p\", \"exec\": \"x\", "
-        "\"line\": \"not a line\"}]}\\n')\n    os._exit(0)\n",
-        0, "its evaluation did not answer a launch description",
+        '    os.write(1, b\'{"found": [{"kind": "node", "pkg": "p", "exec": "x", '
+        '"line": "not a line"}]}\\n\')\n    os._exit(0)\n',
+        0,
+        "its evaluation did not answer a launch description",
     ),
     "raises.launch.py": (
         "from launch import LaunchDescription\n\ndef generate_launch_description():\n    return 1 / 0\n",
-        4, "ZeroDivisionError: division by zero",
+        4,
+        "ZeroDivisionError: division by zero",
     ),
     "returns_list.launch.py": (
         "def generate_launch_description():\n    return []\n",
-        0, "generate_launch_description() returned list, not a launch.LaunchDescription",
+        0,
+        "generate_launch_description() returned list, not a launch.LaunchDescription",
     ),
     "nothing.launch.py": ("X = 1\n", 0, "it has no generate_launch_description() function"),
     "syntax.launch.py": ("def generate_launch_description(:\n    pass\n", 1, "SyntaxError"),
@@ -288,26 +315,30 @@ BROKEN = {
         "from launch_ros.substitutions import FindPackageShare\n\ndef generate_launch_description():\n"
         "    return LaunchDescription([\n        IncludeLaunchDescription([FindPackageShare('no_such_pkg'), "
         "'/launch/x.launch.py'])])\n",
-        7, "package 'no_such_pkg' not found",
+        7,
+        "package 'no_such_pkg' not found",
     ),
     "unknown_share.launch.py": (
         "from ament_index_python.packages import get_package_share_directory\n\n"
         "def generate_launch_description():\n    get_package_share_directory('no_such_pkg')\n",
-        4, "PackageNotFoundError: \"package 'no_such_pkg' not found",
+        4,
+        "PackageNotFoundError: \"package 'no_such_pkg' not found",
     ),
     "undeclared.launch.py": (
         "from launch import LaunchDescription\nfrom launch_ros.actions import Node\n"
         "from launch.substitutions import LaunchConfiguration\n\ndef generate_launch_description():\n"
         "    return LaunchDescription([Node(package='p', executable=LaunchConfiguration('robto'))])\n",
-        6, "launch configuration 'robto' does not exist",
+        6,
+        "launch configuration 'robto' does not exist",
     ),
     "condition.launch.py": (
         "from launch import LaunchDescription\nfrom launch.actions import LogInfo\n"
         "from launch.conditions import IfCondition\n\ndef generate_launch_description():\n"
         "    return LaunchDescription([LogInfo(msg='x', condition=IfCondition('maybe'))])\n",
-        6, "the condition 'maybe' is not a boolean",
+        6,
+        "the condition 'maybe' is not a boolean",
     ),
-}  # fmt: skip
+}
 
 
 @pytest.mark.parametrize("name", sorted(BROKEN))
@@ -327,15 +358,21 @@ def test_arguments_given_must_be_declared_and_required_ones_given(package: Path)
     write(package, "example_substitutions.launch.py", SUBSTITUTIONS)
     with pytest.raises(LaunchFileError) as caught:
         launch(package / "example_substitutions.launch.py", turtlesim_nss="x")
-    assert "argument 'turtlesim_nss' was given but the launch declares no such argument; " \
-           "did you mean 'turtlesim_ns'?" in caught.value.problem  # fmt: skip
-    path = write(package, "required.launch.py", """
+    assert (
+        "argument 'turtlesim_nss' was given but the launch declares no such argument; "
+        "did you mean 'turtlesim_ns'?" in caught.value.problem
+    )
+    path = write(
+        package,
+        "required.launch.py",
+        """
         from launch import LaunchDescription
         from launch.actions import DeclareLaunchArgument
 
         def generate_launch_description():
             return LaunchDescription([DeclareLaunchArgument('robot', description='which robot')])
-        """)  # fmt: skip
+        """,
+    )
     with pytest.raises(LaunchFileError) as caught:
         launch(path)
     assert (caught.value.line, caught.value.problem) == (
@@ -346,7 +383,10 @@ def test_arguments_given_must_be_declared_and_required_ones_given(package: Path)
 
 def test_a_timer_actions_nodes_start_after_its_period_unless_stopped_first(tmp_path: Path) -> None:
     path = tmp_path / "timed.launch.py"
-    write(tmp_path, "timed.launch.py", """
+    write(
+        tmp_path,
+        "timed.launch.py",
+        """
         from launch import LaunchDescription
         from launch.actions import TimerAction
         from launch_ros.actions import Node
@@ -356,7 +396,8 @@ def test_a_timer_actions_nodes_start_after_its_period_unless_stopped_first(tmp_p
                 Node(package='rocketship', executable='countdown', name='at_once'),
                 TimerAction(period=2.0, actions=[Node(package='rocketship', executable='countdown', name='later')]),
             ])
-        """)  # fmt: skip
+        """,
+    )
     lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, workspace=None)), ManualClock(0.0))
     lab.start_nodes()
 
@@ -384,8 +425,12 @@ def test_a_class_servers_python_launch_outside_the_sandboxs_view_is_refused_at_s
     """A class server evaluates a .launch.py in its worlds' sandbox, which sees the lab's packages
     and the world's workspace only: the server's own --launch elsewhere is one line at start, and a
     single lab (no sandbox) takes the same file."""
-    path = write(tmp_path, "world.launch.py", "from launch import LaunchDescription\n\n"
-                 "def generate_launch_description():\n    return LaunchDescription([])\n")  # fmt: skip
+    path = write(
+        tmp_path,
+        "world.launch.py",
+        "from launch import LaunchDescription\n\n"
+        "def generate_launch_description():\n    return LaunchDescription([])\n",
+    )
     args = ["--launch", str(path), "--no-foxglove"]
 
     problem = check_launch(server_settings("--classroom", "--class-code", "ABC123", *args))
@@ -397,13 +442,17 @@ def test_a_class_servers_python_launch_outside_the_sandboxs_view_is_refused_at_s
 
 
 def test_what_a_launch_file_says_is_kept_to_a_bounded_size(package: Path) -> None:
-    path = write(package, "chatty.launch.py", """
+    path = write(
+        package,
+        "chatty.launch.py",
+        """
         from launch import LaunchDescription
         from launch.actions import LogInfo
 
         def generate_launch_description():
             return LaunchDescription([LogInfo(msg=f'line {i} ' + 'x' * 5000) for i in range(300)])
-        """)  # fmt: skip
+        """,
+    )
 
     messages = launch(path).messages
 

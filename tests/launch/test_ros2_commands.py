@@ -15,16 +15,27 @@ CLI = [sys.executable, "-P", "-m", "server", "--url", URL]
 def test_a_shell_command_of_the_substitutions_tutorial_splits_as_the_shell_splits_it() -> None:
     cmd = ['ros2 service call turtlesim2/spawn turtlesim/srv/Spawn "{x: 2, y: 2, theta: 0.2}"']
     assert cli_argv(cmd, shell=True, url=URL) == [
-        *CLI, "service", "call", "turtlesim2/spawn", "turtlesim/srv/Spawn", "{x: 2, y: 2, theta: 0.2}",
-    ]  # fmt: skip
+        *CLI,
+        "service",
+        "call",
+        "turtlesim2/spawn",
+        "turtlesim/srv/Spawn",
+        "{x: 2, y: 2, theta: 0.2}",
+    ]
 
 
 def test_parts_are_joined_with_spaces_for_a_shell_and_kept_as_they_are_without_one() -> None:
     assert command_words(["ros2 param set", "turtlesim2/sim background_r", "120"], shell=True) == [
-        "ros2", "param", "set", "turtlesim2/sim", "background_r", "120",
-    ]  # fmt: skip
-    assert cli_argv(["/opt/ros/kilted/bin/ros2", "param", "set", "/sim", "background_r", "a b"], shell=False,
-                    url=URL) == [*CLI, "param", "set", "/sim", "background_r", "a b"]  # fmt: skip
+        "ros2",
+        "param",
+        "set",
+        "turtlesim2/sim",
+        "background_r",
+        "120",
+    ]
+    assert cli_argv(
+        ["/opt/ros/kilted/bin/ros2", "param", "set", "/sim", "background_r", "a b"], shell=False, url=URL
+    ) == [*CLI, "param", "set", "/sim", "background_r", "a b"]
 
 
 @pytest.mark.parametrize(

@@ -71,8 +71,11 @@ def test_yaml_nodes_arguments_params_remaps_and_groups(write: Write, find_share:
         "screen",
     )
     assert sim.parameters == (
-        ("start_delay_s", 2.5), ("gains", [1.0, 2.0]), ("gains_named", ["a", "b"]), ("limits.max", 3),
-    )  # fmt: skip
+        ("start_delay_s", 2.5),
+        ("gains", [1.0, 2.0]),
+        ("gains_named", ["a", "b"]),
+        ("limits.max", 3),
+    )
     assert sim.remappings == (("/countdown", "/t2/pose"),)
     assert (sim.location.file, sim.location.line) == (str(path), 10)
     assert (grouped.exec, grouped.name, grouped.namespace) == ("main_controller", None, "/grouped")
@@ -81,8 +84,11 @@ def test_yaml_nodes_arguments_params_remaps_and_groups(write: Write, find_share:
 
 def test_yaml_includes_and_is_included_by_xml_with_arguments(write: Write, find_share: FindShare) -> None:
     write("child_launch.yaml", 'launch:\n- arg: {name: "who"}\n- node: {pkg: "p", exec: "$(var who)"}\n')
-    write("middle.launch.xml", '<launch><include file="$(dirname)/child_launch.yaml">'
-                               '<arg name="who" value="from_xml"/></include></launch>')  # fmt: skip
+    write(
+        "middle.launch.xml",
+        '<launch><include file="$(dirname)/child_launch.yaml">'
+        '<arg name="who" value="from_xml"/></include></launch>',
+    )
     top = write(
         "top_launch.yaml",
         'launch:\n- include:\n    file: "$(dirname)/middle.launch.xml"\n'
@@ -141,6 +147,12 @@ def test_node_args_and_ros_args_reach_the_command_line(write: Write, find_share:
     assert (node.arguments, node.ros_arguments) == (("--flag", "two words"), ("--log-level", "debug"))
     lab_args = ros_args(node.name, node.namespace, node.parameters, node.remappings)
     assert [*node.arguments, *with_ros_arguments(lab_args, node.ros_arguments)] == [
-        "--flag", "two words", "--ros-args", "-r", "__node:=n", "--log-level", "debug",
-    ]  # fmt: skip
+        "--flag",
+        "two words",
+        "--ros-args",
+        "-r",
+        "__node:=n",
+        "--log-level",
+        "debug",
+    ]
     assert with_ros_arguments([], node.ros_arguments) == ["--ros-args", "--log-level", "debug"]
