@@ -36,9 +36,14 @@ SUBPROTOCOLS = ("foxglove.sdk.v1", f"viser-v{viser.__version__}")
 LISTEN = "0A"  # a TCP socket's state in /proc/net/tcp
 # Every WebSocket route of the app, with the way a client names a world or a topic.
 WS_ROUTES = (
-    "/", "/ws/keys", "/ws/topics/countdown", "/ws/launches/run1/output", "/rosbridge", "/class/rosbridge",
+    "/",
+    "/ws/keys",
+    "/ws/topics/countdown",
+    "/ws/launches/run1/output",
+    "/rosbridge",
+    "/class/rosbridge",
     "/instructor/view",
-)  # fmt: skip
+)
 
 
 def process_tree(pid: int) -> list[int]:
@@ -184,9 +189,17 @@ def test_the_route_list_is_every_websocket_route_of_the_app() -> None:
 def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, int, int]]:
     foxglove, rosbridge = free_ports(2)
     app = App(
-        tmp_path_factory.mktemp("every_port_lab"), "--launch", "rocket", "start_delay:=3600", "--token", TOKEN,
-        "--foxglove-port", str(foxglove), "--rosbridge-port", str(rosbridge),
-    )  # fmt: skip
+        tmp_path_factory.mktemp("every_port_lab"),
+        "--launch",
+        "rocket",
+        "start_delay:=3600",
+        "--token",
+        TOKEN,
+        "--foxglove-port",
+        str(foxglove),
+        "--rosbridge-port",
+        str(rosbridge),
+    )
     try:
         yield app, foxglove, rosbridge
     finally:
@@ -214,9 +227,21 @@ def test_every_port_of_a_single_lab_refuses_a_foreign_page(lab: tuple[App, int, 
 def school(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, int, int, str]]:
     foxglove, rosbridge = free_ports(2)
     app = App(
-        tmp_path_factory.mktemp("every_port_class"), "--classroom", "--class-code", "PORTS1", "--launch", "fly",
-        "--workers", "1", "--local-worlds", "1", "--foxglove-port", str(foxglove), "--rosbridge-port", str(rosbridge),
-    )  # fmt: skip
+        tmp_path_factory.mktemp("every_port_class"),
+        "--classroom",
+        "--class-code",
+        "PORTS1",
+        "--launch",
+        "fly",
+        "--workers",
+        "1",
+        "--local-worlds",
+        "1",
+        "--foxglove-port",
+        str(foxglove),
+        "--rosbridge-port",
+        str(rosbridge),
+    )
     try:
         instructor = instructor_token(app.log_tail(10**6))
         wait_for_workers(app.url, instructor, {"local-1"})
