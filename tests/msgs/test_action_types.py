@@ -27,20 +27,25 @@ def test_fibonacci_has_rclpy_shape_and_rosidl_wire_types() -> None:
     )
     impl = fib.Impl
     assert impl.SendGoalService.Request.get_fields_and_field_types() == {
-        "goal_id": "unique_identifier_msgs/msg/UUID", "goal": "example_interfaces/action/Fibonacci_Goal",
-    }  # fmt: skip
+        "goal_id": "unique_identifier_msgs/msg/UUID",
+        "goal": "example_interfaces/action/Fibonacci_Goal",
+    }
     assert impl.SendGoalService.Response.get_fields_and_field_types() == {
-        "accepted": "bool", "stamp": "builtin_interfaces/msg/Time",
-    }  # fmt: skip
+        "accepted": "bool",
+        "stamp": "builtin_interfaces/msg/Time",
+    }
     assert impl.GetResultService.Response.get_fields_and_field_types() == {
-        "status": "int8", "result": "example_interfaces/action/Fibonacci_Result",
-    }  # fmt: skip
+        "status": "int8",
+        "result": "example_interfaces/action/Fibonacci_Result",
+    }
     assert impl.FeedbackMessage.get_fields_and_field_types() == {
-        "goal_id": "unique_identifier_msgs/msg/UUID", "feedback": "example_interfaces/action/Fibonacci_Feedback",
-    }  # fmt: skip
+        "goal_id": "unique_identifier_msgs/msg/UUID",
+        "feedback": "example_interfaces/action/Fibonacci_Feedback",
+    }
     assert (impl.CancelGoalService.TYPE, impl.GoalStatusMessage.TYPE) == (
-        "action_msgs/srv/CancelGoal", "action_msgs/msg/GoalStatusArray",
-    )  # fmt: skip
+        "action_msgs/srv/CancelGoal",
+        "action_msgs/msg/GoalStatusArray",
+    )
     assert "example_interfaces/action/Fibonacci_Goal" not in type_names()  # an action's part, not a message
 
 

@@ -20,7 +20,7 @@ from node_runtime.msgs import (
     String,
     Time,
     Twist,
-)  # fmt: skip
+)
 
 INT64_MIN, INT64_MAX = -(2**63), 2**63 - 1
 

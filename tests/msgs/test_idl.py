@@ -50,9 +50,12 @@ def test_parse_message_constants_of_every_kind() -> None:
         "demo_msgs/msg/C", "uint8 A=3\nint16 B = -2\nfloat32 PI=3.5\nstring S=hello\nbool T=true\n"
     )
     assert [(c.name, c.base, c.value) for c in spec.constants] == [
-        ("A", "uint8", 3), ("B", "int16", -2), ("PI", "float32", 3.5), ("S", "string", "hello"),
+        ("A", "uint8", 3),
+        ("B", "int16", -2),
+        ("PI", "float32", 3.5),
+        ("S", "string", "hello"),
         ("T", "bool", True),
-    ]  # fmt: skip
+    ]
     assert spec.fields == ()
 
 

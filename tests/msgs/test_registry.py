@@ -67,8 +67,12 @@ def test_a_package_s_classes_are_declared_when_one_of_its_types_is_first_asked_f
         [sys.executable, "-c", LAZY_PROBE], capture_output=True, text=True, timeout=60, check=True
     )
     seen = json.loads(done.stdout)
-    assert seen == {"before": False, "marker": "node_runtime.msgs.generated.visualization_msgs",
-                    "srv": "lifecycle_msgs/srv/ChangeState", "after": True}  # fmt: skip
+    assert seen == {
+        "before": False,
+        "marker": "node_runtime.msgs.generated.visualization_msgs",
+        "srv": "lifecycle_msgs/srv/ChangeState",
+        "after": True,
+    }
 
 
 def test_the_parsed_definitions_are_kept_and_parsed_again_when_a_file_changes(

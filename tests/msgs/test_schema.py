@@ -12,8 +12,12 @@ from node_runtime.msgs.idl import parse_message
 from node_runtime.msgs.schema import JSON_SCHEMA_DIALECT, interface_text, type_schema
 
 _JSON_TYPES: dict[str, Any] = {
-    "object": (dict,), "integer": (int,), "number": (int, float), "boolean": (bool,), "string": (str,),
-}  # fmt: skip
+    "object": (dict,),
+    "integer": (int,),
+    "number": (int, float),
+    "boolean": (bool,),
+    "string": (str,),
+}
 
 
 def _violations(schema: dict[str, Any], value: Any, path: str = "$") -> list[str]:
@@ -31,8 +35,11 @@ def _violations(schema: dict[str, Any], value: Any, path: str = "$") -> list[str
         return [f"{path}: not {kind}"]
     if kind == "object":
         extra = [f"{path}.{k}: not allowed" for k in value if k not in schema["properties"]]
-        nested = [_violations(schema["properties"][k], v, f"{path}.{k}") for k, v in value.items()
-                  if k in schema["properties"]]  # fmt: skip
+        nested = [
+            _violations(schema["properties"][k], v, f"{path}.{k}")
+            for k, v in value.items()
+            if k in schema["properties"]
+        ]
         return extra + [v for vs in nested for v in vs]
     out = []
     if "minimum" in schema and value < schema["minimum"]:
@@ -48,8 +55,10 @@ def test_type_schema_vector3_has_three_float_properties_with_zero_defaults() -> 
     schema = type_schema(Vector3)
     assert schema["$schema"] == JSON_SCHEMA_DIALECT
     assert (schema["title"], schema["type"], schema["additionalProperties"]) == (
-        "geometry_msgs/msg/Vector3", "object", False,
-    )  # fmt: skip
+        "geometry_msgs/msg/Vector3",
+        "object",
+        False,
+    )
     assert schema["properties"] == {
         axis: {"type": "number", "description": "float64", "default": 0.0} for axis in "xyz"
     }
@@ -67,9 +76,11 @@ def test_type_schema_key_code_is_uint16_range_and_header_is_a_nested_object() ->
 
 
 def test_type_schema_every_primitive_kind_maps_to_its_json_type_and_range() -> None:
-    every = define_message(parse_message(
-        "test_msgs/msg/Every", "bool flag true\nint8 small -1\nfloat32 ratio 0.5\nstring label 'x'\n"
-    ))  # fmt: skip
+    every = define_message(
+        parse_message(
+            "test_msgs/msg/Every", "bool flag true\nint8 small -1\nfloat32 ratio 0.5\nstring label 'x'\n"
+        )
+    )
     props = type_schema(every)["properties"]
     assert props["flag"] == {"type": "boolean", "description": "bool", "default": True}
     assert (props["small"]["minimum"], props["small"]["maximum"]) == (-128, 127)
@@ -102,8 +113,9 @@ def test_type_schema_arrays_carry_their_sizes_and_bounds() -> None:
     assert (props["few"]["maxItems"], props["few"].get("minItems")) == (3, None)
     assert props["tag"]["maxLength"] == 4
     assert _violations(type_schema(bounded), {"few": [1, 2, 3, 4], "tag": "abcde"}) == [
-        "$.few: too many items", "$.tag: too long",
-    ]  # fmt: skip
+        "$.few: too many items",
+        "$.tag: too long",
+    ]
 
 
 def test_interface_text_nests_each_used_type_one_tab_in_as_ros2_interface_show() -> None:
@@ -117,5 +129,8 @@ def test_interface_text_nests_each_used_type_one_tab_in_as_ros2_interface_show()
 
 def test_interface_text_service_shows_request_separator_response() -> None:
     assert interface_text("example_interfaces/srv/AddTwoInts").splitlines() == [
-        "int64 a", "int64 b", "---", "int64 sum",
-    ]  # fmt: skip
+        "int64 a",
+        "int64 b",
+        "---",
+        "int64 sum",
+    ]

@@ -48,14 +48,27 @@ from node_runtime.msgs.wire import (
     ros_type_name,
     serialize,
     type_hash,
-)  # fmt: skip
+)
 
 # -- REP-2016, written apart from node_runtime.msgs --------------------------------------------------
 _TYPE_IDS = {
-    "nested": 1, "int8": 2, "uint8": 3, "char": 3, "int16": 4, "uint16": 5, "int32": 6, "uint32": 7,
-    "int64": 8, "uint64": 9, "float32": 10, "float64": 11, "bool": 15, "byte": 16, "string": 17,
+    "nested": 1,
+    "int8": 2,
+    "uint8": 3,
+    "char": 3,
+    "int16": 4,
+    "uint16": 5,
+    "int32": 6,
+    "uint32": 7,
+    "int64": 8,
+    "uint64": 9,
+    "float32": 10,
+    "float64": 11,
+    "bool": 15,
+    "byte": 16,
+    "string": 17,
     "wstring": 18,
-}  # fmt: skip
+}
 _BOUNDED_STRING = {"string": 21, "wstring": 22}
 
 
@@ -64,8 +77,12 @@ def _field_type(desc: tuple) -> dict[str, Any]:  # type: ignore[type-arg]
     if kind in (Nodetype.BASE, Nodetype.NAME):
         base, strcap = (detail[0], detail[1]) if kind == Nodetype.BASE else ("nested", 0)
         type_id = _BOUNDED_STRING[base] if strcap and base in _BOUNDED_STRING else _TYPE_IDS[base]
-        return {"type_id": type_id, "capacity": 0, "string_capacity": strcap,
-                "nested_type_name": detail if kind == Nodetype.NAME else ""}  # fmt: skip
+        return {
+            "type_id": type_id,
+            "capacity": 0,
+            "string_capacity": strcap,
+            "nested_type_name": detail if kind == Nodetype.NAME else "",
+        }
     inner, count = detail
     t = _field_type(inner)
     offset = 48 if kind == Nodetype.ARRAY else (96 if count else 144)
@@ -96,14 +113,27 @@ def _action_fields(name: str, text: str) -> dict[str, list[tuple[str, Any]]]:
     goal, result, feedback = re.split(r"^---[ \t]*$", text, flags=re.MULTILINE)
     uuid = "unique_identifier_msgs/UUID goal_id"
     out: dict[str, list[tuple[str, Any]]] = {}
-    for suffix, part in (("_Goal", goal), ("_Result", result), ("_Feedback", feedback),
-                         ("_FeedbackMessage", f"{uuid}\n{name}_Feedback feedback")):  # fmt: skip
+    for suffix, part in (
+        ("_Goal", goal),
+        ("_Result", result),
+        ("_Feedback", feedback),
+        ("_FeedbackMessage", f"{uuid}\n{name}_Feedback feedback"),
+    ):
         out.update(_rosbags_fields(name + suffix, part))
-    out.update(_service_fields(f"{name}_SendGoal", f"{uuid}\n{name}_Goal goal",
-                               "bool accepted\nbuiltin_interfaces/Time stamp"))  # fmt: skip
+    out.update(
+        _service_fields(
+            f"{name}_SendGoal", f"{uuid}\n{name}_Goal goal", "bool accepted\nbuiltin_interfaces/Time stamp"
+        )
+    )
     out.update(_service_fields(f"{name}_GetResult", uuid, f"int8 status\n{name}_Result result"))
-    members = ("_Goal goal", "_Result result", "_Feedback feedback", "_SendGoal send_goal_service",
-               "_GetResult get_result_service", "_FeedbackMessage feedback_message")  # fmt: skip
+    members = (
+        "_Goal goal",
+        "_Result result",
+        "_Feedback feedback",
+        "_SendGoal send_goal_service",
+        "_GetResult get_result_service",
+        "_FeedbackMessage feedback_message",
+    )
     out.update(_rosbags_fields(name, "\n".join(name + m for m in members)))
     return out
 
@@ -204,9 +234,20 @@ def test_dds_type_name_round_trips() -> None:
 
 # -- CDR, written apart ----------------------------------------------------------------------
 _FORMATS = {
-    "bool": "?", "byte": "B", "char": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H",
-    "int32": "i", "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d",
-}  # fmt: skip
+    "bool": "?",
+    "byte": "B",
+    "char": "B",
+    "int8": "b",
+    "uint8": "B",
+    "int16": "h",
+    "uint16": "H",
+    "int32": "i",
+    "uint32": "I",
+    "int64": "q",
+    "uint64": "Q",
+    "float32": "f",
+    "float64": "d",
+}
 
 
 class _Cdr:
@@ -279,10 +320,15 @@ def random_message(cls: type[Message], rng: random.Random) -> Message:
 
 
 ALL_WIRE_TYPES = type_names() + [
-    part.TYPE for name in ("std_srvs/srv/Trigger", "std_srvs/srv/SetBool", "std_srvs/srv/Empty",
-                           "example_interfaces/srv/AddTwoInts")
+    part.TYPE
+    for name in (
+        "std_srvs/srv/Trigger",
+        "std_srvs/srv/SetBool",
+        "std_srvs/srv/Empty",
+        "example_interfaces/srv/AddTwoInts",
+    )
     for part in (get_service_type(name).Request, get_service_type(name).Response)
-]  # fmt: skip
+]
 
 
 def _cls(name: str) -> type[Message]:
