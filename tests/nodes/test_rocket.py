@@ -20,8 +20,11 @@ from server.peripherals.devices.keyboard import KeyboardDevice
 from .conftest import Recorder
 
 TOPICS: dict[str, type[Message]] = {
-    "/countdown": Int64, "/cmd_vel": Float64, "/sensor_vel": Float64, "/abort_takeoff": Bool,
-}  # fmt: skip
+    "/countdown": Int64,
+    "/cmd_vel": Float64,
+    "/sensor_vel": Float64,
+    "/abort_takeoff": Bool,
+}
 LAUNCH_S = 15.0  # 5 s start delay, then 10 → 0 at 1 Hz
 CONTROLLER = "MainControllerNode"
 Record = Callable[[dict[str, type[Message]]], Recorder]

@@ -47,8 +47,15 @@ def test_turtlesim_node_graph_and_first_lines_are_turtlesims(
     executor.spin_some()
     assert node.get_fully_qualified_name() == "/turtlesim"
     assert rec.logs("turtlesim") == ["Starting turtlesim with node name /turtlesim", START]
-    assert {"/spawn", "/kill", "/clear", "/reset", "/turtle1/set_pen", "/turtle1/teleport_absolute",
-            "/turtle1/teleport_relative"} <= set(bus.services)  # fmt: skip
+    assert {
+        "/spawn",
+        "/kill",
+        "/clear",
+        "/reset",
+        "/turtle1/set_pen",
+        "/turtle1/teleport_absolute",
+        "/turtle1/teleport_relative",
+    } <= set(bus.services)
     assert bus.get_topic("/turtle1/cmd_vel").msg_type is Twist
     executor.spin_until(1.0)
     assert len(rec.got["/turtle1/pose"]) == 62  # a frame every 16 ms
@@ -166,8 +173,14 @@ def send_goal(bus: Bus, executor: Executor, theta: float, goal_id: int) -> tuple
     """A rotate_absolute goal to turtle1, as an ActionClient sends it; (its acceptance, its result's future)."""
     impl = RotateAbsolute.Impl
     uuid = UUID(uuid=[goal_id] * 16)
-    accepted = call(bus, executor, impl.SendGoalService, "/turtle1/rotate_absolute/_action/send_goal",
-                    goal_id=uuid, goal=RotateAbsolute.Goal(theta=theta))  # fmt: skip
+    accepted = call(
+        bus,
+        executor,
+        impl.SendGoalService,
+        "/turtle1/rotate_absolute/_action/send_goal",
+        goal_id=uuid,
+        goal=RotateAbsolute.Goal(theta=theta),
+    )
     caller = next(n for n in bus.nodes if n.get_name() == "caller")
     result = caller.create_client(impl.GetResultService, "/turtle1/rotate_absolute/_action/get_result")
     return accepted, result.call_async(impl.GetResultService.Request(goal_id=uuid))
@@ -176,8 +189,12 @@ def send_goal(bus: Bus, executor: Executor, theta: float, goal_id: int) -> tuple
 def test_turtlesim_node_rotate_absolute_turns_to_the_goal_with_feedback(
     bus: Bus, executor: Executor, record: Record
 ) -> None:
-    rec = record({"/turtle1/rotate_absolute/_action/feedback": RotateAbsolute.Impl.FeedbackMessage,
-                  "/turtle1/pose": Pose})  # fmt: skip
+    rec = record(
+        {
+            "/turtle1/rotate_absolute/_action/feedback": RotateAbsolute.Impl.FeedbackMessage,
+            "/turtle1/pose": Pose,
+        }
+    )
     with bus.activate():
         TurtlesimNode()
     accepted, result = send_goal(bus, executor, 1.0, goal_id=7)
@@ -222,11 +239,21 @@ def test_turtlesim_node_rotate_absolute_canceled_stops_the_turtle(
         TurtlesimNode()
     _, result = send_goal(bus, executor, 3.0, goal_id=3)
     executor.spin_for(0.2)
-    unknown = call(bus, executor, CancelGoal, "/turtle1/rotate_absolute/_action/cancel_goal",
-                   goal_info=GoalInfo(goal_id=UUID(uuid=[9] * 16)))  # fmt: skip
+    unknown = call(
+        bus,
+        executor,
+        CancelGoal,
+        "/turtle1/rotate_absolute/_action/cancel_goal",
+        goal_info=GoalInfo(goal_id=UUID(uuid=[9] * 16)),
+    )
     assert (unknown.return_code, unknown.goals_canceling) == (2, [])
-    canceling = call(bus, executor, CancelGoal, "/turtle1/rotate_absolute/_action/cancel_goal",
-                     goal_info=GoalInfo(goal_id=UUID(uuid=[3] * 16)))  # fmt: skip
+    canceling = call(
+        bus,
+        executor,
+        CancelGoal,
+        "/turtle1/rotate_absolute/_action/cancel_goal",
+        goal_info=GoalInfo(goal_id=UUID(uuid=[3] * 16)),
+    )
     assert canceling.return_code == 0 and len(canceling.goals_canceling) == 1
     executor.spin_for(0.1)
     assert result.result().status == GoalStatus.STATUS_CANCELED
