@@ -21,9 +21,13 @@ class NodeProcess:
         env = {**os.environ, "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["tcp/{app.router}"]'}
         self.name = file.name
         self.proc = subprocess.Popen(
-            command or [sys.executable, "-u", str(file), *args], env=env, text=True,
-            cwd=file.parent if command else None, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-        )  # fmt: skip
+            command or [sys.executable, "-u", str(file), *args],
+            env=env,
+            text=True,
+            cwd=file.parent if command else None,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+        )
         self.lines: list[str] = []
         self._changed = threading.Condition()
         self._reader = threading.Thread(target=self._pump, daemon=True)

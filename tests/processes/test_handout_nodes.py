@@ -63,8 +63,14 @@ def test_part2_drone_keyboard_manager_moves_the_setpoint_a_metre_per_press(
         # The file sleeps 10 s in its constructor (for real, in its own process), then publishes.
         def from_student() -> bool:
             topic = app.get("/api/topics/uav/input/position")
-            return any(e["node"] == "/keyboard_manager_node" and e["location"].startswith("process")
-                       for e in topic["endpoints"] if e["kind"] == "publisher") and topic["latest"] is not None  # fmt: skip
+            return (
+                any(
+                    e["node"] == "/keyboard_manager_node" and e["location"].startswith("process")
+                    for e in topic["endpoints"]
+                    if e["kind"] == "publisher"
+                )
+                and topic["latest"] is not None
+            )
 
         app.wait_for(from_student, "the student's node to publish after its sleep", 30.0)
         keys = keys_for(app)
@@ -74,8 +80,12 @@ def test_part2_drone_keyboard_manager_moves_the_setpoint_a_metre_per_press(
             return latest["x"], latest["y"], latest["z"]
 
         app.wait_for(lambda: setpoint() == (0.0, 0.0, 3.0), "the student's first setpoint")
-        for key, expected in [("ArrowRight", (1.0, 0.0, 3.0)), ("ArrowRight", (2.0, 0.0, 3.0)),
-                              ("ArrowUp", (2.0, 1.0, 3.0)), ("ArrowLeft", (1.0, 1.0, 3.0))]:  # fmt: skip
+        for key, expected in [
+            ("ArrowRight", (1.0, 0.0, 3.0)),
+            ("ArrowRight", (2.0, 0.0, 3.0)),
+            ("ArrowUp", (2.0, 1.0, 3.0)),
+            ("ArrowLeft", (1.0, 1.0, 3.0)),
+        ]:
             keys.press(key)
             app.wait_for(lambda e=expected: setpoint() == e, f"the setpoint at {expected}", 5.0)
     finally:

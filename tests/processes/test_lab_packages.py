@@ -29,10 +29,17 @@ def test_lab_packages_a_students_rclpy_beside_the_node_does_not_replace_the_labs
         "print(rclpy.__file__, std_msgs.msg.__file__, server.__file__)\n"
         "if __name__ == '__main__':\n    pass\n"
     )
-    done = subprocess.run([sys.executable, "-P", "-m", "node_runtime.process.runner", str(node)],
-                          cwd=tmp_path, capture_output=True, text=True, timeout=60, check=False)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, "-P", "-m", "node_runtime.process.runner", str(node)],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
     assert done.returncode == 0, done.stderr
     assert all(Path(f).is_relative_to(REPO) for f in done.stdout.split()), done.stdout
-    control = subprocess.run([sys.executable, str(node)], cwd=tmp_path, capture_output=True, text=True,
-                             timeout=60, check=False)  # fmt: skip
+    control = subprocess.run(
+        [sys.executable, str(node)], cwd=tmp_path, capture_output=True, text=True, timeout=60, check=False
+    )
     assert "the student shadow ran" in control.stderr  # plain Python: the student's folder wins

@@ -91,8 +91,11 @@ def test_launch_prints_its_node_processs_output_once_and_its_death(tmp_path: Pat
         cli = subprocess.Popen(
             [sys.executable, "-m", "server", "launch", "faults", "once.launch"],
             env={**os.environ, "TELEOP_URL": app.url, "PYTHONUNBUFFERED": "1"},
-            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path,
-        )  # fmt: skip
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            cwd=tmp_path,
+        )
         (out, reader), seen = lines_of(cli), []
         label = read_until(
             out, seen, r"\[(talky\.py-\d+)\] \[INFO\] \[\d+\.\d+\] \[Talky\]: starting up"

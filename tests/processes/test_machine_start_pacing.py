@@ -78,9 +78,16 @@ def test_a_lock_held_elsewhere_defers_the_start_briefly_and_never_blocks(tmp_pat
 
 @pytest.mark.parametrize(
     "text",
-    ["", "not json", "[]", '{"held": [1e308]}', '{"boot": "another boot", "held": [150.0], "last_turn": 150.0}',
-     '{"boot": "%s", "held": [NaN], "last_turn": null}', '{"boot": "%s", "held": ["x"], "last_turn": null}'],
-)  # fmt: skip
+    [
+        "",
+        "not json",
+        "[]",
+        '{"held": [1e308]}',
+        '{"boot": "another boot", "held": [150.0], "last_turn": 150.0}',
+        '{"boot": "%s", "held": [NaN], "last_turn": null}',
+        '{"boot": "%s", "held": ["x"], "last_turn": null}',
+    ],
+)
 def test_a_slots_file_from_another_boot_or_spoilt_is_a_fresh_start(tmp_path: Path, text: str) -> None:
     from server.host.processes.start_pacing import BOOT_ID
 

@@ -52,9 +52,13 @@ def lifeline() -> Iterator[tuple[int, int]]:
 
 def start(kind: str, read_end: int) -> tuple[subprocess.Popen[str], int]:
     proc = subprocess.Popen(
-        [sys.executable, "-c", NODE, kind], cwd=REPO, stdout=subprocess.PIPE, text=True,
-        env={**os.environ, LIFELINE_ENV: str(read_end)}, pass_fds=[read_end],
-    )  # fmt: skip
+        [sys.executable, "-c", NODE, kind],
+        cwd=REPO,
+        stdout=subprocess.PIPE,
+        text=True,
+        env={**os.environ, LIFELINE_ENV: str(read_end)},
+        pass_fds=[read_end],
+    )
     assert proc.stdout is not None
     node = int(proc.stdout.readline().split()[1])
     assert node != proc.pid  # the node is pid 1's child, not pid 1

@@ -121,8 +121,13 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, Path]]:
     make_workspace(
         root, {"src/param_lab/minimal_param.py": MINIMAL_PARAM, "src/param_lab/guarded.py": GUARDED}
     )
-    app = App(root, "--launch", str(REPO / "server/packages/rocketship/launch/rocket.launch"),
-              "start_delay:=600", cwd=root)  # fmt: skip
+    app = App(
+        root,
+        "--launch",
+        str(REPO / "server/packages/rocketship/launch/rocket.launch"),
+        "start_delay:=600",
+        cwd=root,
+    )
     try:
         yield app, root
     finally:
@@ -153,9 +158,13 @@ def run(lab: tuple[App, Path]) -> Iterator[type[NodeProcess]]:
 def ros2lab(app: App, cwd: Path, *args: str) -> subprocess.CompletedProcess[str]:
     """The CLI as a user runs it, in a process of its own."""
     return subprocess.run(
-        [sys.executable, "-m", "server", "--url", app.url, *args], cwd=cwd, text=True,
-        capture_output=True, timeout=60, check=False,
-    )  # fmt: skip
+        [sys.executable, "-m", "server", "--url", app.url, *args],
+        cwd=cwd,
+        text=True,
+        capture_output=True,
+        timeout=60,
+        check=False,
+    )
 
 
 def param(app: App, *args: str) -> subprocess.CompletedProcess[str]:
@@ -180,8 +189,11 @@ def served(app: App, proc: NodeProcess, node: str) -> None:
             node_entry(app, node) is not None
             and app.post(f"/api/services{node}/list_parameters", body).status_code == 200
         ),
-        f"{node} and its parameter services", START_S, poll_s=0.1, detail=lambda: proc.text[-3000:],
-    )  # fmt: skip
+        f"{node} and its parameter services",
+        START_S,
+        poll_s=0.1,
+        detail=lambda: proc.text[-3000:],
+    )
 
 
 def test_the_tutorial_prints_hello_and_takes_param_set_from_ros2lab(
@@ -224,10 +236,14 @@ def test_refusals_come_back_with_their_reasons(run: type[NodeProcess], lab: tupl
     cases = [
         ("mode", "warp", "Setting parameter failed: mode must be auto or manual\n"),
         ("robot_name", "x", "Setting parameter failed: Trying to set a read-only parameter: robot_name.\n"),
-        ("speed", "11.0", "Setting parameter failed: Parameter speed out of range Min: 0.0, Max: 10.0, value: 11.0\n"),
+        (
+            "speed",
+            "11.0",
+            "Setting parameter failed: Parameter speed out of range Min: 0.0, Max: 10.0, value: 11.0\n",
+        ),
         ("speed", "fast", "Setting parameter failed: Wrong parameter type, expected '3' got '4'\n"),
         ("speed", "5", "Setting parameter failed: Wrong parameter type, expected '3' got '2'\n"),
-    ]  # fmt: skip
+    ]
     for name, value, err in cases:
         done = param(app, "set", "/guarded_node", name, value)
         assert (done.returncode, done.stdout, done.stderr) == (0, "", err)
@@ -282,9 +298,11 @@ def test_dump_loads_back_with_param_load_and_params_file(
     assert param(app, "set", "/guarded_node", "speed", "1.0").returncode == 0
     loaded = param(app, "load", "/guarded_node", str(saved))
     assert loaded.stdout.splitlines() == [
-        "Set parameter gains.p successful", "Set parameter mode successful", "Set parameter speed successful",
+        "Set parameter gains.p successful",
+        "Set parameter mode successful",
+        "Set parameter speed successful",
         "Set parameter use_sim_time successful",
-    ]  # fmt: skip
+    ]
     assert loaded.stderr == (
         "Set parameter robot_name failed: Trying to set a read-only parameter: robot_name.\n"
         "Set parameter start_type_description_service failed: Trying to set a read-only parameter: "

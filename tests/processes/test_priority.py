@@ -25,9 +25,14 @@ PROBE = (
 
 def lowered(*, own_session: bool) -> tuple[int, str]:
     out = subprocess.run(
-        [sys.executable, "-c", PROBE], cwd=REPO, capture_output=True, text=True, timeout=60,
-        start_new_session=own_session, check=True,
-    ).stdout.split()  # fmt: skip
+        [sys.executable, "-c", PROBE],
+        cwd=REPO,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        start_new_session=own_session,
+        check=True,
+    ).stdout.split()
     return int(out[0]), out[1]
 
 

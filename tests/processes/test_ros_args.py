@@ -59,8 +59,12 @@ def test_a_node_started_with_log_level_error_prints_only_errors(tmp_path: Path) 
     script.write_text(NODE)
     done = subprocess.run(
         [sys.executable, str(script), "--ros-args", "--log-level", "error"],
-        env={**os.environ, "ROS2LAB_NO_ZENOH": "1"}, capture_output=True, text=True, timeout=60, check=False,
-    )  # fmt: skip
+        env={**os.environ, "ROS2LAB_NO_ZENOH": "1"},
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
     assert done.returncode == 0, done.stderr
     assert "an error line" in done.stderr and "an info line" not in done.stderr
 

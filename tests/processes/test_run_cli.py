@@ -44,14 +44,25 @@ class Idle(Node):
 @pytest.fixture(scope="module")
 def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, Path]]:
     root = tmp_path_factory.mktemp("run_cli")
-    make_workspace(root, {
-        "src/bad/syntax_error.py": SYNTAX_ERROR, "src/bad/missing_import.py": MISSING_IMPORT,
-        "src/bad/does_nothing.py": DOES_NOTHING,
-    })  # fmt: skip
+    make_workspace(
+        root,
+        {
+            "src/bad/syntax_error.py": SYNTAX_ERROR,
+            "src/bad/missing_import.py": MISSING_IMPORT,
+            "src/bad/does_nothing.py": DOES_NOTHING,
+        },
+    )
     # The rocket launch from the lab's package, with the lab's own keyboard manager (the student's
     # is started here, by ros2lab run).
-    app = App(root, "--launch", str(REPO / "server/packages/rocketship/launch/rocket.launch"),
-              "--workspace", "no_workspace", "start_delay:=600", cwd=root)  # fmt: skip
+    app = App(
+        root,
+        "--launch",
+        str(REPO / "server/packages/rocketship/launch/rocket.launch"),
+        "--workspace",
+        "no_workspace",
+        "start_delay:=600",
+        cwd=root,
+    )
     try:
         yield app, root
     finally:
@@ -68,9 +79,12 @@ def no_student_node_left(lab: tuple[App, Path]) -> None:
 
 def ros2lab(app: App, cwd: Path, *args: str) -> subprocess.Popen[str]:
     return subprocess.Popen(
-        [sys.executable, "-m", "server", "--url", app.url, "run", *args], cwd=cwd, text=True,
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-    )  # fmt: skip
+        [sys.executable, "-m", "server", "--url", app.url, "run", *args],
+        cwd=cwd,
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
 
 
 def finish(proc: subprocess.Popen[str], timeout_s: float = 30.0) -> tuple[int, str, str]:
@@ -129,8 +143,10 @@ def test_a_second_node_of_the_same_name_is_warned_about(lab: tuple[App, Path]) -
     try:
         app.wait_for(lambda: node_entry(app, "/KeyboardManagerNode") is not None, "the first node")
         second = ros2lab(app, root, "rocketship", "keyboard_manager.py")
-        app.wait_for(lambda: len([n for n in app.get("/api/nodes") if n["name"] == "/KeyboardManagerNode"]) == 2,
-                     "both nodes in the graph")  # fmt: skip
+        app.wait_for(
+            lambda: len([n for n in app.get("/api/nodes") if n["name"] == "/KeyboardManagerNode"]) == 2,
+            "both nodes in the graph",
+        )
     finally:
         for proc in (first, second):
             if proc is not None:
@@ -146,8 +162,14 @@ def test_python_file_runs_the_node_from_the_projects_environment(lab: tuple[App,
     file = root / "workspace" / "src" / "rocketship" / "src" / "keyboard_manager.py"
     zid = "1f" + os.urandom(15).hex()
     env = {**os.environ, "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["tcp/{app.router}"];id="{zid}"'}
-    proc = subprocess.Popen([sys.executable, str(file)], cwd=root, env=env, text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)  # fmt: skip
+    proc = subprocess.Popen(
+        [sys.executable, str(file)],
+        cwd=root,
+        env=env,
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
     try:
         app.wait_for(  # this process's node, by its Zenoh session id
             lambda: (node_entry(app, "/KeyboardManagerNode") or {}).get("location") == f"zenoh:{zid[:8]}",
@@ -164,6 +186,12 @@ def test_a_sourced_ros_2_rclpy_is_never_shadowed(tmp_path: Path) -> None:
     real.mkdir(parents=True)
     (real / "__init__.py").write_text("FROM_ROS_2 = True\n")
     env = {**os.environ, "PYTHONPATH": str(tmp_path / "ros")}
-    done = subprocess.run([sys.executable, "-c", "import rclpy; print(getattr(rclpy, 'FROM_ROS_2', False))"],
-                          env=env, capture_output=True, text=True, timeout=30, check=True)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, "-c", "import rclpy; print(getattr(rclpy, 'FROM_ROS_2', False))"],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=30,
+        check=True,
+    )
     assert done.stdout.strip() == "True"

@@ -65,10 +65,26 @@ def ros2lab_run(url: str, workspace: Path, *extra: str, token: str | None = None
     if token is not None:
         env[TOKEN_ENV] = token
     return subprocess.Popen(
-        [sys.executable, "-m", "server", "--url", url, "run", "--workspace", str(workspace),
-         "--join-timeout", str(JOIN_TIMEOUT_S), *extra, "demo", "late_joiner.py"],
-        env=env, text=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "server",
+            "--url",
+            url,
+            "run",
+            "--workspace",
+            str(workspace),
+            "--join-timeout",
+            str(JOIN_TIMEOUT_S),
+            *extra,
+            "demo",
+            "late_joiner.py",
+        ],
+        env=env,
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
 
 
 def refused_within_bound(proc: subprocess.Popen[str]) -> tuple[int, str, float]:
@@ -212,13 +228,17 @@ def test_run_against_a_lab_that_answers_late_joins_the_graph_it_names(
 
 def test_a_node_process_without_its_router_says_so_within_seconds(workspace: Path) -> None:
     env = {
-        **os.environ, "PYTHONUNBUFFERED": "1",
+        **os.environ,
+        "PYTHONUNBUFFERED": "1",
         "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["tcp/127.0.0.1:{free_port()}"]',
-    }  # fmt: skip
+    }
     node = subprocess.Popen(
         [sys.executable, "-m", "node_runtime.process.runner", str(workspace / "src/demo/late_joiner.py")],
-        env=env, text=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-    )  # fmt: skip
+        env=env,
+        text=True,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
     try:
         assert node.stderr is not None
         said, _, _ = select.select([node.stderr], [], [], 60.0)  # bounded: the note comes after 1 s

@@ -46,8 +46,13 @@ def run(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
 
 
 def ros2lab(lab: App, *args: str) -> tuple[int, str, str]:
-    done = subprocess.run([sys.executable, "-m", "server", "--url", lab.url, *args], capture_output=True,
-                          text=True, timeout=CLI_S, check=False)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, "-m", "server", "--url", lab.url, *args],
+        capture_output=True,
+        text=True,
+        timeout=CLI_S,
+        check=False,
+    )
     return done.returncode, done.stdout, done.stderr
 
 
@@ -66,8 +71,14 @@ def test_turtlesim_teleport_then_pose_spawn_and_background(lab: App, run: type[N
     sim.wait_for(
         r"\[turtlesim\]: Spawning turtle \[turtle1\] at x=\[5\.544445\], y=\[5\.544445\], theta=\[0\.0+\]$"
     )
-    code, out, err = ros2lab(lab, "service", "call", "/turtle1/teleport_absolute", "turtlesim/srv/TeleportAbsolute",
-                             "{x: 2.0, y: 3.0, theta: 1.5}")  # fmt: skip
+    code, out, err = ros2lab(
+        lab,
+        "service",
+        "call",
+        "/turtle1/teleport_absolute",
+        "turtlesim/srv/TeleportAbsolute",
+        "{x: 2.0, y: 3.0, theta: 1.5}",
+    )
     assert code == 0 and "response:\nturtlesim.srv.TeleportAbsolute_Response()" in out, out + err
     code, out, err = ros2lab(lab, "topic", "echo", "--once", "/turtle1/pose")
     assert code == 0, err
@@ -82,8 +93,11 @@ def test_turtlesim_teleport_then_pose_spawn_and_background(lab: App, run: type[N
     )
     code, out, err = ros2lab(lab, "topic", "list", "-t")
     assert code == 0, err
-    assert {"/turtle2/pose [turtlesim/msg/Pose]", "/turtle2/cmd_vel [geometry_msgs/msg/Twist]",
-            "/turtle1/color_sensor [turtlesim/msg/Color]"} <= set(out.splitlines())  # fmt: skip
+    assert {
+        "/turtle2/pose [turtlesim/msg/Pose]",
+        "/turtle2/cmd_vel [geometry_msgs/msg/Twist]",
+        "/turtle1/color_sensor [turtlesim/msg/Color]",
+    } <= set(out.splitlines())
 
     assert ros2lab(lab, "param", "get", "/turtlesim", "background_r")[1] == "Integer value is: 69\n"
     code, out, err = ros2lab(lab, "param", "set", "/turtlesim", "background_r", "150")
@@ -95,8 +109,15 @@ def test_turtlesim_teleport_then_pose_spawn_and_background(lab: App, run: type[N
 
     code, out, err = ros2lab(lab, "action", "list", "-t")
     assert "/turtle1/rotate_absolute [turtlesim/action/RotateAbsolute]" in out.splitlines(), out + err
-    code, out, err = ros2lab(lab, "action", "send_goal", "/turtle1/rotate_absolute", "turtlesim/action/RotateAbsolute",
-                             "{theta: -1.5}", "--feedback")  # fmt: skip
+    code, out, err = ros2lab(
+        lab,
+        "action",
+        "send_goal",
+        "/turtle1/rotate_absolute",
+        "turtlesim/action/RotateAbsolute",
+        "{theta: -1.5}",
+        "--feedback",
+    )
     assert code == 0, out + err
     assert "Feedback:\n    remaining: -3.0" in out and out.rstrip().endswith(
         "Goal finished with status: SUCCEEDED"

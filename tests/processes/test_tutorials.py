@@ -18,8 +18,15 @@ STAMP = r"\[\d+\.\d{9}\]"
 @pytest.fixture(scope="module")
 def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[App]:
     root = tmp_path_factory.mktemp("tutorials")
-    app = App(root, "--launch", str(REPO / "server/packages/rocketship/launch/rocket.launch"),
-              "--workspace", "no_workspace", "start_delay:=600", cwd=root)  # fmt: skip
+    app = App(
+        root,
+        "--launch",
+        str(REPO / "server/packages/rocketship/launch/rocket.launch"),
+        "--workspace",
+        "no_workspace",
+        "start_delay:=600",
+        cwd=root,
+    )
     try:
         yield app
     finally:
