@@ -10,9 +10,15 @@ from server.world.lab import Lab
 from .conftest import make_lab, node
 
 LAB_NODES = {
-    "GUI_Controller_Node", "position_controller_node", "velocity_controller_node", "angle_controller_node",
-    "flightgoggles_uav_dynamics", "pressure_node", "keyboard_manager_node", "keyboard",
-}  # fmt: skip
+    "GUI_Controller_Node",
+    "position_controller_node",
+    "velocity_controller_node",
+    "angle_controller_node",
+    "flightgoggles_uav_dynamics",
+    "pressure_node",
+    "keyboard_manager_node",
+    "keyboard",
+}
 LAB_TOPICS = {
     "/uav/input/position": "geometry_msgs/msg/Vector3",
     "/uav/input/velocity": "geometry_msgs/msg/Vector3",

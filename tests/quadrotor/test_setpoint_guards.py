@@ -31,9 +31,12 @@ def _all_nodes_active(lab: Lab) -> bool:
 
 @pytest.mark.parametrize(
     ("asked", "bound"),
-    [((50.0, 0.0, 3.0), (10.0, 0.0, 3.0)), ((-50.0, -20.0, 3.0), (-10.0, -10.0, 3.0)),
-     ((0.0, 0.0, 40.0), (0.0, 0.0, 15.0))],
-)  # fmt: skip
+    [
+        ((50.0, 0.0, 3.0), (10.0, 0.0, 3.0)),
+        ((-50.0, -20.0, 3.0), (-10.0, -10.0, 3.0)),
+        ((0.0, 0.0, 40.0), (0.0, 0.0, 15.0)),
+    ],
+)
 def test_setpoint_outside_arena_clamped_drone_settles_at_the_bound_with_warning(
     asked: tuple[float, float, float], bound: tuple[float, float, float], caplog: pytest.LogCaptureFixture
 ) -> None:

@@ -28,9 +28,11 @@ class SimpleFlight:
         sim = node(self.lab, "SimpleSimNode").sim
         self.true: list[tuple[float, ...]] = []
         self.probe.node.create_subscription(
-            PoseStamped, "/uav/sensors/gps",
-            lambda _msg: self.true.append((self.lab.bus.clock.now(), *sim.state.position_m)), 10_000,
-        )  # fmt: skip
+            PoseStamped,
+            "/uav/sensors/gps",
+            lambda _msg: self.true.append((self.lab.bus.clock.now(), *sim.state.position_m)),
+            10_000,
+        )
         self.lab.executor.spin_until(STEP_AT_S)
         self.lab.publish("/uav/input/position", dict(zip("xyz", TARGET_M, strict=True)), None)
         self.lab.executor.spin_until(30.0)
