@@ -62,8 +62,10 @@ def test_create_cloud_xyz32_from_an_array_and_read_points_numpy() -> None:
     xyz = np.array([[0.0, 1.0, 2.0], [3.0, 4.0, 5.0], [6.0, 7.0, 8.0]], dtype=np.float32)
     cloud = point_cloud2.create_cloud_xyz32(Header(), xyz)
     assert [(f.name, f.offset, f.datatype, f.count) for f in cloud.fields] == [
-        ("x", 0, PointField.FLOAT32, 1), ("y", 4, PointField.FLOAT32, 1), ("z", 8, PointField.FLOAT32, 1)
-    ]  # fmt: skip
+        ("x", 0, PointField.FLOAT32, 1),
+        ("y", 4, PointField.FLOAT32, 1),
+        ("z", 8, PointField.FLOAT32, 1),
+    ]
     assert cloud.point_step == 12 and cloud.width == 3
     assert np.array_equal(point_cloud2.read_points_numpy(cloud), xyz)
     structured = point_cloud2.read_points(cloud)
@@ -83,8 +85,10 @@ def test_skip_nans_drops_points_with_a_nan_in_a_field_read_unless_the_cloud_is_d
 
 
 def test_a_big_endian_cloud_reads_as_its_numbers() -> None:
-    fields = [PointField(name="x", offset=0, datatype=PointField.FLOAT32, count=1),
-              PointField(name="id", offset=4, datatype=PointField.UINT16, count=1)]  # fmt: skip
+    fields = [
+        PointField(name="x", offset=0, datatype=PointField.FLOAT32, count=1),
+        PointField(name="id", offset=4, datatype=PointField.UINT16, count=1),
+    ]
     data = struct.pack(">fHxx", 1.5, 513) + struct.pack(">fHxx", -2.0, 7)
     cloud = PointCloud2(
         height=1, width=2, fields=fields, is_bigendian=True, point_step=8, row_step=16, data=data

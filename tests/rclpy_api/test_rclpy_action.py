@@ -55,13 +55,22 @@ def fibonacci(handle: ServerGoalHandle) -> Any:
 def test_goal_runs_to_its_result_with_feedback_and_status_in_order(node: Node) -> None:
     ActionServer(node, Fibonacci, "fib", fibonacci)
     statuses: list[list[int]] = []
-    node.create_subscription(GoalStatusArray, "fib/_action/status", lambda m: statuses.append(
-        [s.status for s in m.status_list]), 10)  # fmt: skip
+    node.create_subscription(
+        GoalStatusArray,
+        "fib/_action/status",
+        lambda m: statuses.append([s.status for s in m.status_list]),
+        10,
+    )
     client = ActionClient(node, Fibonacci, "fib")
     assert client.wait_for_server(timeout_sec=BOUND_S)
     feedback: list[list[int]] = []
-    handle = spin_until(node, client.send_goal_async(
-        Fibonacci.Goal(order=4), feedback_callback=lambda m: feedback.append(list(m.feedback.partial_sequence))))  # fmt: skip
+    handle = spin_until(
+        node,
+        client.send_goal_async(
+            Fibonacci.Goal(order=4),
+            feedback_callback=lambda m: feedback.append(list(m.feedback.partial_sequence)),
+        ),
+    )
     assert handle.accepted
     answer = spin_until(node, handle.get_result_async())
     assert (answer.status, list(answer.result.sequence)) == (GoalStatus.STATUS_SUCCEEDED, [0, 1, 1, 2, 3])
@@ -80,8 +89,13 @@ def test_goal_callback_rejects_and_the_handle_says_not_accepted(node: Node) -> N
         ran.append(handle.request.order)
         return fibonacci(handle)
 
-    ActionServer(node, Fibonacci, "fib", execute,
-                 goal_callback=lambda g: GoalResponse.REJECT if g.order > 46 else GoalResponse.ACCEPT)  # fmt: skip
+    ActionServer(
+        node,
+        Fibonacci,
+        "fib",
+        execute,
+        goal_callback=lambda g: GoalResponse.REJECT if g.order > 46 else GoalResponse.ACCEPT,
+    )
     client = ActionClient(node, Fibonacci, "fib")
     refused = spin_until(node, client.send_goal_async(Fibonacci.Goal(order=47)))
     assert not refused.accepted
@@ -144,8 +158,14 @@ def test_cancel_accepted_while_executing_on_a_multithreaded_executor(node: Node)
         return Fibonacci.Result(sequence=[1])
 
     group = ReentrantCallbackGroup()
-    ActionServer(node, Fibonacci, "fib", execute, callback_group=group,
-                 cancel_callback=lambda handle: CancelResponse.ACCEPT)  # fmt: skip
+    ActionServer(
+        node,
+        Fibonacci,
+        "fib",
+        execute,
+        callback_group=group,
+        cancel_callback=lambda handle: CancelResponse.ACCEPT,
+    )
     client = ActionClient(node, Fibonacci, "fib", callback_group=group)
     executor = MultiThreadedExecutor(num_threads=3, context=node._rcl_context)
     executor.add_node(node)

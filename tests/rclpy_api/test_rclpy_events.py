@@ -88,9 +88,12 @@ def test_an_incompatible_subscription_is_warned_of_as_rclpy_words_it(
     node = Node("qos_talker", context=context)
     node.create_publisher(String, "chatter", QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT))
     node.create_subscription(
-        String, "chatter", lambda _msg: None, 1,
+        String,
+        "chatter",
+        lambda _msg: None,
+        1,
         event_callbacks=SubscriptionEventCallbacks(use_default_callbacks=False),
-    )  # fmt: skip
+    )
     executor = SingleThreadedExecutor(context=context)
     executor.add_node(node)
     run_ready(executor)

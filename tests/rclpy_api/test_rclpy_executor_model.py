@@ -168,8 +168,9 @@ def test_a_custom_group_is_asked_before_and_told_after_and_a_refused_callback_st
     node = Node("gated", context=context)
     gate = Gate()
     got: list[int] = []
-    sub = node.create_subscription(Int64, "n", lambda m: (got.append(m.data), gate.log.append("ran")), 10,
-                                   callback_group=gate)  # fmt: skip
+    sub = node.create_subscription(
+        Int64, "n", lambda m: (got.append(m.data), gate.log.append("ran")), 10, callback_group=gate
+    )
     pub = node.create_publisher(Int64, "n", 10)
     executor = SingleThreadedExecutor(context=context)
     executor.add_node(node)

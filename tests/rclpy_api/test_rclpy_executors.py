@@ -212,8 +212,9 @@ def test_client_call_from_another_thread_blocks_until_the_spinning_executor_answ
         target=lambda: answered.set_result(client.call(AddTwoInts.Request(a=5, b=6), timeout_sec=BOUND_S))
     )
     caller.start()
-    rclpy.spin_until_future_complete(node, answered, executor=SingleThreadedExecutor(context=context),
-                                     timeout_sec=BOUND_S)  # fmt: skip
+    rclpy.spin_until_future_complete(
+        node, answered, executor=SingleThreadedExecutor(context=context), timeout_sec=BOUND_S
+    )
     caller.join(BOUND_S)
     assert answered.result().sum == 11
 

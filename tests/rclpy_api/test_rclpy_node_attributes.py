@@ -18,10 +18,28 @@ BOUND_S = 10.0  # every wait ends sooner, on a future; this only bounds a broken
 # Names a student plausibly gives attributes, none of them rclpy Node's API (which has, for
 # example, executor, context, handle, publishers and timers as properties of its own).
 STUDENT_NAMES = (
-    "state", "bus", "origin", "crash_reason", "clock", "timer", "publisher", "subscription",
-    "service", "client", "name", "namespace", "logger", "parameters", "node", "count",
-    "publisher_type", "subscription_type", "timer_type", "service_type", "callback_group",
-)  # fmt: skip
+    "state",
+    "bus",
+    "origin",
+    "crash_reason",
+    "clock",
+    "timer",
+    "publisher",
+    "subscription",
+    "service",
+    "client",
+    "name",
+    "namespace",
+    "logger",
+    "parameters",
+    "node",
+    "count",
+    "publisher_type",
+    "subscription_type",
+    "timer_type",
+    "service_type",
+    "callback_group",
+)
 
 
 @pytest.fixture

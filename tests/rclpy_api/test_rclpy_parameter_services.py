@@ -74,9 +74,12 @@ def test_the_params_file_gives_each_node_its_sections_and_p_wins(ctx: rclpy.Cont
 
 def test_overrides_are_declared_automatically_when_asked(ctx: rclpy.Context) -> None:
     node = Node(
-        "arm", namespace="/robots", context=ctx, automatically_declare_parameters_from_overrides=True,
+        "arm",
+        namespace="/robots",
+        context=ctx,
+        automatically_declare_parameters_from_overrides=True,
         parameter_overrides=[Parameter("extra", value="x")],
-    )  # fmt: skip
+    )
     names = node.list_parameters([], 0).names
     assert {"speed", "gains.p", "gains.d", "shared", "extra", "use_sim_time", RCLPY_OWN} == set(names)
     assert node.list_parameters(["gains"], 0).names == ["gains.p", "gains.d"]
@@ -146,10 +149,14 @@ def test_another_node_sets_lists_gets_and_describes_through_the_services(ctx: rc
     caller = Node("caller", context=ctx)
     client = AsyncParameterClient(caller, "guarded")
     assert client.wait_for_services(timeout_sec=2.0)
-    answer = spun(ctx, caller, client.set_parameters([
-        Parameter("mode", value="manual"), Parameter("mode", value="warp"),
-        Parameter("limit", value=11.0), Parameter("name", value="x"), Parameter("nope", value=1),
-    ]))  # fmt: skip
+    changes = [
+        Parameter("mode", value="manual"),
+        Parameter("mode", value="warp"),
+        Parameter("limit", value=11.0),
+        Parameter("name", value="x"),
+        Parameter("nope", value=1),
+    ]
+    answer = spun(ctx, caller, client.set_parameters(changes))
     results = [(r.successful, r.reason) for r in answer.results]
     assert results[0] == (True, "")
     assert results[1] == (False, "no such mode: warp")
@@ -166,7 +173,9 @@ def test_another_node_sets_lists_gets_and_describes_through_the_services(ctx: rc
     assert described[0].name == "limit" and described[0].floating_point_range[0].to_value == 10.0
     types = spun(ctx, caller, client.get_parameter_types(["limit", "name"])).types
     assert list(types) == [Parameter.Type.DOUBLE.value, Parameter.Type.STRING.value]
-    atomic = spun(ctx, caller, client.set_parameters_atomically(
-        [Parameter("limit", value=2.0), Parameter("mode", value="warp")]
-    )).result  # fmt: skip
+    atomic = spun(
+        ctx,
+        caller,
+        client.set_parameters_atomically([Parameter("limit", value=2.0), Parameter("mode", value="warp")]),
+    ).result
     assert (atomic.successful, node.get_parameter("limit").value) == (False, 1.0)  # all or none

@@ -23,12 +23,14 @@ from node_runtime.transport.publishing import wire_qos
 
 
 def test_a_profile_takes_rclpy_keywords_and_compares_by_value() -> None:
-    qos = QoSProfile(depth=1, reliability=QoSReliabilityPolicy.BEST_EFFORT,
-                     durability=QoSDurabilityPolicy.TRANSIENT_LOCAL)  # fmt: skip
+    qos = QoSProfile(
+        depth=1, reliability=QoSReliabilityPolicy.BEST_EFFORT, durability=QoSDurabilityPolicy.TRANSIENT_LOCAL
+    )
     assert QoSReliabilityPolicy is ReliabilityPolicy and QoSDurabilityPolicy is DurabilityPolicy
     assert qos.history == HistoryPolicy.KEEP_LAST and qos.depth == 1
-    assert qos == QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT,
-                             durability=DurabilityPolicy.TRANSIENT_LOCAL)  # fmt: skip
+    assert qos == QoSProfile(
+        depth=1, reliability=ReliabilityPolicy.BEST_EFFORT, durability=DurabilityPolicy.TRANSIENT_LOCAL
+    )
     assert qos != QoSProfile(depth=1)
 
 

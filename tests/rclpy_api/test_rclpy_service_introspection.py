@@ -51,8 +51,15 @@ def test_a_service_and_its_client_publish_each_step_of_a_call(node: Node) -> Non
         entity.configure_introspection(clock, qos_profile_system_default, ServiceIntrospectionState.CONTENTS)
     assert node.count_publishers("/switch/_service_event") == 2
     assert call(executor, client, events, 4).message == "done"
-    steps = sorted((e.info.event_type, e.info.sequence_number, [r.data for r in e.request],
-                    [r.message for r in e.response]) for e in events)  # fmt: skip
+    steps = sorted(
+        (
+            e.info.event_type,
+            e.info.sequence_number,
+            [r.data for r in e.request],
+            [r.message for r in e.response],
+        )
+        for e in events
+    )
     assert steps == [(0, 1, [True], []), (1, 1, [True], []), (2, 1, [], ["done"]), (3, 1, [], ["done"])]
     client_gids = {bytes(e.info.client_gid) for e in events if e.info.event_type in (0, 3)}
     assert len(client_gids) == 1 and len(next(iter(client_gids))) == 16
