@@ -42,13 +42,23 @@ def test_roslib_countdown_abort_topics_and_reset(rosbridge_server: RosbridgeServ
     rosbridge_server.reset_rocket()
     done = subprocess.run(
         [node, str(JS_DIR / "roslib_client.mjs"), rosbridge_server.urls[way]],
-        cwd=JS_DIR, capture_output=True, text=True, timeout=CLIENT_TIMEOUT_S, check=False,
-    )  # fmt: skip
+        cwd=JS_DIR,
+        capture_output=True,
+        text=True,
+        timeout=CLIENT_TIMEOUT_S,
+        check=False,
+    )
     steps = [json.loads(line) for line in done.stdout.splitlines() if line.startswith("{")]
     assert done.returncode == 0, f"{done.stdout}\n{done.stderr}"
     assert [s["step"] for s in steps] == [
-        "connected", "countdown", "aborted", "topics", "reset", "countdown_again", "ok",
-    ]  # fmt: skip
+        "connected",
+        "countdown",
+        "aborted",
+        "topics",
+        "reset",
+        "countdown_again",
+        "ok",
+    ]
     topics = next(s for s in steps if s["step"] == "topics")
     assert topics["types"][topics["topics"].index("/countdown")] == "std_msgs/msg/Int64"
     assert next(s for s in steps if s["step"] == "reset")["message"] == "rocket back on the pad"

@@ -186,9 +186,12 @@ def test_call_service_answers_with_the_request_id(
     session.handle({"op": "call_service", "service": "/absent", "id": "call:2"})
     replies = drain(session)
     assert replies[0] == {
-        "op": "service_response", "service": "do_it", "values": {"success": True, "message": "done"},
-        "result": True, "id": "call:1",
-    }  # fmt: skip
+        "op": "service_response",
+        "service": "do_it",
+        "values": {"success": True, "message": "done"},
+        "result": True,
+        "id": "call:1",
+    }
     assert replies[1]["result"] is False and replies[1]["id"] == "call:2"
     assert "does not exist" in replies[1]["values"]
     assert session.pending_calls == 0
