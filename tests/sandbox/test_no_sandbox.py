@@ -46,8 +46,17 @@ def refusing(tmp_path_factory: pytest.TempPathFactory) -> Iterator[World]:
     (root / "empty_path").mkdir()
     with pytest.MonkeyPatch.context() as patch:
         patch.setenv("PATH", str(root / "empty_path"))  # the server finds no bwrap
-        app = App(root, "--classroom", "--class-code", CODE, "--launch", str(root / "world.launch"),
-                  "--no-foxglove", cwd=root, ready_s=CLASS_READY_S)  # fmt: skip
+        app = App(
+            root,
+            "--classroom",
+            "--class-code",
+            CODE,
+            "--launch",
+            str(root / "world.launch"),
+            "--no-foxglove",
+            cwd=root,
+            ready_s=CLASS_READY_S,
+        )
     try:
         ada = join(app, "Ada")
         package = world_workspace(root, ada) / "src" / "mine"
@@ -90,8 +99,12 @@ def test_no_sandbox_the_labs_own_nodes_still_run(refusing: World) -> None:
     )
     assert reply.status_code == 201, reply.text
     assert "/p2" in {str(n["name"]) for n in refusing.get("/api/nodes").json()}
-    assert HTTP.delete(f"{refusing.app.url}/api/launches/{reply.json()['id']}", headers=refusing.headers(),
-                        timeout=30).status_code == 200  # fmt: skip
+    assert (
+        HTTP.delete(
+            f"{refusing.app.url}/api/launches/{reply.json()['id']}", headers=refusing.headers(), timeout=30
+        ).status_code
+        == 200
+    )
 
 
 def test_no_sandbox_a_python_launch_file_is_not_evaluated(refusing: World) -> None:

@@ -91,8 +91,12 @@ class Student:
 
     def run(self, executable: str) -> str:
         """``POST /api/run`` of a node of the package ``flood``; its group id."""
-        started = HTTP.post(self.app.url + "/api/run", headers=self.headers(), timeout=30.0,
-                            json={"package": "flood", "executable": executable})  # fmt: skip
+        started = HTTP.post(
+            self.app.url + "/api/run",
+            headers=self.headers(),
+            timeout=30.0,
+            json={"package": "flood", "executable": executable},
+        )
         assert started.status_code == 201, started.text
         return str(started.json()["id"])
 
@@ -123,8 +127,19 @@ def join(app: App, name: str) -> Student:
 def klass(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     require_sandbox()
     root = tmp_path_factory.mktemp("flood")
-    app = App(root, "--classroom", "--class-code", CODE, "--launch", "fly", "--workers", "0",
-              "--no-foxglove", cwd=root, ready_s=CLASS_READY_S)  # fmt: skip
+    app = App(
+        root,
+        "--classroom",
+        "--class-code",
+        CODE,
+        "--launch",
+        "fly",
+        "--workers",
+        "0",
+        "--no-foxglove",
+        cwd=root,
+        ready_s=CLASS_READY_S,
+    )
     try:
         ada, bob = join(app, "Ada"), join(app, "Bob")
         package = root / "workspaces" / ada.world / "src" / "flood"
@@ -206,11 +221,20 @@ def test_output_flood_endless_line_is_cut_and_neither_memory_nor_another_world_s
     floor_hz = KEEPS * NOMINAL_HZ * (1.0 - stolen)
     grew_mib = (after["VmHWM"] - before["VmRSS"]) / 1024
     RESULT.parent.mkdir(parents=True, exist_ok=True)
-    RESULT.write_text(json.dumps({
-        "flood": lines[-1], "window_s": round(t1 - t0, 1), "bob_hz": round(rate_hz, 1), "floor_hz": round(floor_hz, 1),
-        "stolen": round(stolen, 4), "rss_before_mib": round(before["VmRSS"] / 1024, 1),
-        "peak_after_mib": round(after["VmHWM"] / 1024, 1), "rss_after_mib": round(after["VmRSS"] / 1024, 1),
-    }))  # fmt: skip
+    RESULT.write_text(
+        json.dumps(
+            {
+                "flood": lines[-1],
+                "window_s": round(t1 - t0, 1),
+                "bob_hz": round(rate_hz, 1),
+                "floor_hz": round(floor_hz, 1),
+                "stolen": round(stolen, 4),
+                "rss_before_mib": round(before["VmRSS"] / 1024, 1),
+                "peak_after_mib": round(after["VmHWM"] / 1024, 1),
+                "rss_after_mib": round(after["VmRSS"] / 1024, 1),
+            }
+        )
+    )
     assert lines == [cut, lines[-1]] and lines[-1].endswith(" MiB") and code == 0, (lines, code)
     assert rate_hz >= floor_hz, f"Bob's world at {rate_hz:.1f} Hz during the flood (floor {floor_hz:.1f})"
     assert grew_mib <= RSS_ROOM_MIB, (

@@ -95,8 +95,18 @@ def join(app: App, name: str) -> World:
 def class_server(root: Path, name: str, *options: str) -> App:
     logs = root / name
     logs.mkdir()
-    return App(logs, "--classroom", "--class-code", CODE, "--launch", str(root / "world.launch"),
-               "--no-foxglove", *options, cwd=root, ready_s=CLASS_READY_S)  # fmt: skip
+    return App(
+        logs,
+        "--classroom",
+        "--class-code",
+        CODE,
+        "--launch",
+        str(root / "world.launch"),
+        "--no-foxglove",
+        *options,
+        cwd=root,
+        ready_s=CLASS_READY_S,
+    )
 
 
 @pytest.fixture(scope="module")
@@ -298,8 +308,12 @@ def test_sandbox_handout_keyboard_manager_runs_and_its_messages_reach_its_world(
 
 
 def put_file(world: World, path: str, text: str) -> None:
-    saved = HTTP.put(f"{world.app.url}/api/workspace/files/{path}", json={"text": text},
-                     headers=world.headers(), timeout=30.0)  # fmt: skip
+    saved = HTTP.put(
+        f"{world.app.url}/api/workspace/files/{path}",
+        json={"text": text},
+        headers=world.headers(),
+        timeout=30.0,
+    )
     assert saved.status_code in (200, 201), saved.text
 
 
@@ -310,9 +324,16 @@ SHADOW = "print('SHADOW RAN as', __import__('os').getuid(), flush=True)\n"
 def test_sandbox_a_shadow_runner_in_the_workspace_never_runs(klass: Class) -> None:
     """``node_runtime/process/runner.py`` (and ``rclpy``, ``std_msgs``) saved at the workspace's root
     and beside the node: the lab's runner and packages run, never these, on both servers."""
-    shadows = ["server/__init__.py", "server/host/processes/__init__.py", "node_runtime/process/runner.py",
-               "rclpy/__init__.py", "std_msgs/__init__.py", "src/probe/rclpy/__init__.py",
-               "src/probe/std_msgs/__init__.py", "src/probe/server/__init__.py"]  # fmt: skip
+    shadows = [
+        "server/__init__.py",
+        "server/host/processes/__init__.py",
+        "node_runtime/process/runner.py",
+        "rclpy/__init__.py",
+        "std_msgs/__init__.py",
+        "src/probe/rclpy/__init__.py",
+        "src/probe/std_msgs/__init__.py",
+        "src/probe/server/__init__.py",
+    ]
     node = (
         "import rclpy\nimport std_msgs.msg\nimport node_runtime.process.runner as runner\n"
         "print('FILES', rclpy.__file__, std_msgs.msg.__file__, runner.__file__, flush=True)\n"

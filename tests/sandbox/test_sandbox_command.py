@@ -29,14 +29,23 @@ def wrapped(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> tuple[list[str],
     node = workspace / "src" / "mine" / "node.py"
     node.write_text("print('hi')\n")
     socket = tmp_path / "router" / "router.sock"
-    command = node_command(node, [], router=INSIDE_ROUTER, env={}, login=Credentials("world-1", "pw"),
-                           domain_id=3, workspace=workspace)  # fmt: skip
+    command = node_command(
+        node,
+        [],
+        router=INSIDE_ROUTER,
+        env={},
+        login=Credentials("world-1", "pw"),
+        domain_id=3,
+        workspace=workspace,
+    )
     out = Sandbox(socket, Confinement()).wrap(command, workspace)
     assert out.sandboxed and out.zid == command.zid
     return out.argv, out.env, workspace
 
 
-def test_sandbox_command_binds_the_workspace_and_the_code_read_only(wrapped: tuple[list[str], dict[str, str], Path]) -> None:  # fmt: skip
+def test_sandbox_command_binds_the_workspace_and_the_code_read_only(
+    wrapped: tuple[list[str], dict[str, str], Path],
+) -> None:
     argv, _env, workspace = wrapped
     read_write, read_only = binds(argv, "--bind"), binds(argv, "--ro-bind")
     assert read_write == {} and read_only[str(workspace)] == str(workspace)
@@ -59,8 +68,9 @@ def test_sandbox_command_as_root_drops_every_capability_and_becomes_the_worlds_u
     monkeypatch.setattr("server.host.processes.sandbox.shutil.which", lambda _name: "/usr/bin/bwrap")
     monkeypatch.setattr("server.host.processes.sandbox.os.geteuid", lambda: 0)
     (tmp_path / "ws").mkdir()
-    command = node_command(tmp_path / "ws" / "n.py", [], router=INSIDE_ROUTER, env={}, domain_id=4,
-                           workspace=tmp_path / "ws")  # fmt: skip
+    command = node_command(
+        tmp_path / "ws" / "n.py", [], router=INSIDE_ROUTER, env={}, domain_id=4, workspace=tmp_path / "ws"
+    )
     argv = Sandbox(tmp_path / "router.sock", Confinement()).wrap(command, tmp_path / "ws").argv
     own, inside = argv[: argv.index("--")], argv[argv.index("--") + 1 :]
     assert own[own.index("--cap-drop") + 1] == "ALL" and "--unshare-user" not in own
@@ -68,11 +78,23 @@ def test_sandbox_command_as_root_drops_every_capability_and_becomes_the_worlds_u
     assert {"--clear-groups", "--no-new-privs"} <= set(inside[: inside.index("--")])
 
 
-def test_sandbox_command_environment_is_only_what_a_node_needs(wrapped: tuple[list[str], dict[str, str], Path]) -> None:  # fmt: skip
+def test_sandbox_command_environment_is_only_what_a_node_needs(
+    wrapped: tuple[list[str], dict[str, str], Path],
+) -> None:
     _argv, env, workspace = wrapped
     assert "ROS2LAB_SERVER_SECRET" not in env and "ROS2LAB_PARENT_PID" not in env
-    assert set(env) == {"PYTHONUNBUFFERED", "PYTHONDONTWRITEBYTECODE", "ROS_DOMAIN_ID", "ZENOH_CONFIG_OVERRIDE", "ROS2LAB_WORKSPACE",
-                        "PATH", "HOME", "TMPDIR", "LANG", LIMITS_ENV}  # fmt: skip
+    assert set(env) == {
+        "PYTHONUNBUFFERED",
+        "PYTHONDONTWRITEBYTECODE",
+        "ROS_DOMAIN_ID",
+        "ZENOH_CONFIG_OVERRIDE",
+        "ROS2LAB_WORKSPACE",
+        "PATH",
+        "HOME",
+        "TMPDIR",
+        "LANG",
+        LIMITS_ENV,
+    }
     assert env["ROS_DOMAIN_ID"] == "3" and env["ROS2LAB_WORKSPACE"] == str(workspace.resolve())
     assert f'connect/endpoints=["{INSIDE_ROUTER}"]' in env["ZENOH_CONFIG_OVERRIDE"]
     assert "world-1" in env["ZENOH_CONFIG_OVERRIDE"]  # its world's login, nothing of the class's

@@ -55,9 +55,12 @@ class Standin:
         (tmp_path / "router").mkdir()
         self.proc = subprocess.Popen(
             [sys.executable, str(Path(__file__).with_name("standin_server.py")), str(workspace), str(node)],
-            cwd=REPO, env={**os.environ, "PYTHONPATH": str(REPO)}, stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE, text=True,
-        )  # fmt: skip
+            cwd=REPO,
+            env={**os.environ, "PYTHONPATH": str(REPO)},
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            text=True,
+        )
         assert self.proc.stdout is not None
         self.bwrap, self.node = (int(v) for v in self.proc.stdout.readline().split())
 

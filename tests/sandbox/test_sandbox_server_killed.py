@@ -74,19 +74,36 @@ def test_sandbox_no_node_outlives_a_sigkilled_class_server(tmp_path: Path) -> No
     require_sandbox()
     (tmp_path / "world.launch").write_text("<launch>\n</launch>\n")
     (tmp_path / "logs").mkdir()
-    app = App(tmp_path / "logs", "--classroom", "--class-code", CODE, "--launch", str(tmp_path / "world.launch"),
-              "--no-foxglove", cwd=tmp_path, ready_s=120.0)  # fmt: skip
+    app = App(
+        tmp_path / "logs",
+        "--classroom",
+        "--class-code",
+        CODE,
+        "--launch",
+        str(tmp_path / "world.launch"),
+        "--no-foxglove",
+        cwd=tmp_path,
+        ready_s=120.0,
+    )
     node_file = ""
     try:
         joined = HTTP.post(f"{app.url}/api/classroom/join", json={"name": "Eve", "code": CODE}, timeout=30)
         assert joined.status_code == 201, joined.text
         headers = {"Authorization": f"Bearer {joined.json()['token']}"}
-        saved = HTTP.put(f"{app.url}/api/workspace/files/src/evil/hostile.py", json={"text": HOSTILE},
-                         headers=headers, timeout=30)  # fmt: skip
+        saved = HTTP.put(
+            f"{app.url}/api/workspace/files/src/evil/hostile.py",
+            json={"text": HOSTILE},
+            headers=headers,
+            timeout=30,
+        )
         assert saved.status_code in (200, 201), saved.text
         node_file = str(tmp_path / "workspaces" / joined.json()["world"] / "src" / "evil" / "hostile.py")
-        started = HTTP.post(f"{app.url}/api/run", json={"package": "evil", "executable": "hostile.py"},
-                            headers=headers, timeout=30)  # fmt: skip
+        started = HTTP.post(
+            f"{app.url}/api/run",
+            json={"package": "evil", "executable": "hostile.py"},
+            headers=headers,
+            timeout=30,
+        )
         assert started.status_code == 201, started.text
         output = f"{app.url}/api/launches/{started.json()['id']}/output"
 
