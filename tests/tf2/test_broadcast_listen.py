@@ -47,8 +47,10 @@ def test_broadcasters_and_listener_use_tf2_ros_topics_and_qos(node: Node) -> Non
     assert (static.pub_tf.topic_name, static.pub_tf.qos.depth) == ("/tf_static", 1)
     assert (static.pub_tf.qos.durability, static.pub_tf.qos.reliability) == (TRANSIENT_LOCAL, RELIABLE)
     assert (listener.tf_sub.topic_name, listener.tf_sub.qos.depth, listener.tf_sub.qos.durability) == (
-        "/tf", 100, VOLATILE
-    )  # fmt: skip
+        "/tf",
+        100,
+        VOLATILE,
+    )
     assert (listener.tf_static_sub.topic_name, listener.tf_static_sub.qos.durability) == (
         "/tf_static",
         TRANSIENT_LOCAL,
@@ -80,8 +82,10 @@ def test_a_static_broadcaster_resends_all_its_frames_and_replaces_a_child_sent_a
     static.sendTransform(stamped("base", "laser", 0.0, (0.5, 0.0, 0.0)))
     spin_until(executor, lambda: len(heard) == 3)
     assert [[t.child_frame_id for t in m.transforms] for m in heard] == [
-        ["laser"], ["laser", "camera", "imu"], ["laser", "camera", "imu"]
-    ]  # fmt: skip
+        ["laser"],
+        ["laser", "camera", "imu"],
+        ["laser", "camera", "imu"],
+    ]
     assert heard[-1].transforms[0].transform.translation.x == 0.5
 
 

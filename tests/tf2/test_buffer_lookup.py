@@ -96,12 +96,18 @@ def test_a_frame_to_itself_is_the_identity_even_unknown() -> None:
 @pytest.mark.parametrize(
     ("t_s", "message"),
     [
-        (13.0, "Lookup would require extrapolation into the future.  Requested time 13.000000 but the "
-               "latest data is at time 12.000000, when looking up transform from frame [robot] to frame [world]"),
-        (9.5, "Lookup would require extrapolation into the past.  Requested time 9.500000 but the "
-              "earliest data is at time 10.000000, when looking up transform from frame [robot] to frame [world]"),
+        (
+            13.0,
+            "Lookup would require extrapolation into the future.  Requested time 13.000000 but the "
+            "latest data is at time 12.000000, when looking up transform from frame [robot] to frame [world]",
+        ),
+        (
+            9.5,
+            "Lookup would require extrapolation into the past.  Requested time 9.500000 but the "
+            "earliest data is at time 10.000000, when looking up transform from frame [robot] to frame [world]",
+        ),
     ],
-)  # fmt: skip
+)
 def test_outside_the_stored_times_is_an_extrapolation_naming_frames_and_times(
     t_s: float, message: str
 ) -> None:
@@ -118,9 +124,14 @@ def test_outside_the_stored_times_is_an_extrapolation_naming_frames_and_times(
 def test_one_stored_time_is_the_only_time_there_is() -> None:
     buffer = Buffer()
     buffer.set_transform(stamped("world", "robot", 4.0), "test")
-    with pytest.raises(ExtrapolationException, match=r"^Lookup would require extrapolation at time 4\.500000, "
-                       r"but only time 4\.000000 is in the buffer, when looking up transform from frame "
-                       r"\[robot\] to frame \[world\]$"):  # fmt: skip
+    with pytest.raises(
+        ExtrapolationException,
+        match=(
+            r"^Lookup would require extrapolation at time 4\.500000, "
+            r"but only time 4\.000000 is in the buffer, when looking up transform from frame "
+            r"\[robot\] to frame \[world\]$"
+        ),
+    ):
         buffer.lookup_transform("world", "robot", at(4.5))
 
 
@@ -132,8 +143,9 @@ def test_an_unknown_frame_is_a_lookup_exception_in_tf2s_words() -> None:
     assert str(caught.value) == '"turtle1" passed to lookupTransform argument source_frame does not exist. '
     assert isinstance(caught.value, TransformException)
     assert buffer.can_transform_core("turtle1", "turtle2", Time()) == (
-        False, 'Invalid frame ID "turtle1" passed to canTransform argument target_frame - frame does not exist'
-    )  # fmt: skip
+        False,
+        'Invalid frame ID "turtle1" passed to canTransform argument target_frame - frame does not exist',
+    )
 
 
 def test_two_trees_without_a_link_are_a_connectivity_exception() -> None:
