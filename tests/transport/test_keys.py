@@ -16,7 +16,7 @@ from node_runtime.transport.keys import (
     mangle,
     parse_qos,
     qos_text,
-)  # fmt: skip
+)
 
 ZID = "ef719c5dcbcb0e27f57de879a132a6ff"
 
@@ -43,8 +43,12 @@ def test_parse_qos_malformed_is_none(text: str) -> None:
 
 
 def test_data_key_is_domain_name_dds_type_and_hash() -> None:
-    key = data_key(0, "/uav/sensors/gps", dds_type_name("geometry_msgs/msg/PoseStamped"),
-                   type_hash("geometry_msgs/msg/PoseStamped"))  # fmt: skip
+    key = data_key(
+        0,
+        "/uav/sensors/gps",
+        dds_type_name("geometry_msgs/msg/PoseStamped"),
+        type_hash("geometry_msgs/msg/PoseStamped"),
+    )
     assert key == (
         "0/uav/sensors/gps/geometry_msgs::msg::dds_::PoseStamped_/"
         "RIHS01_10f3786d7d40fd2b54367835614bff85d4ad3b5dab62bf8bca0cc232d73b4cd8"
@@ -66,9 +70,18 @@ def test_node_token_key_and_round_trip() -> None:
 
 def test_publisher_token_key_and_round_trip() -> None:
     token = EntityToken(
-        0, ZID, 3, 7, EntityKind.PUBLISHER, "/lab", "talker", topic="/chatter",
-        dds_type="std_msgs::msg::dds_::String_", type_hash=type_hash("std_msgs/msg/String"), qos=keep_last(10),
-    )  # fmt: skip
+        0,
+        ZID,
+        3,
+        7,
+        EntityKind.PUBLISHER,
+        "/lab",
+        "talker",
+        topic="/chatter",
+        dds_type="std_msgs::msg::dds_::String_",
+        type_hash=type_hash("std_msgs/msg/String"),
+        qos=keep_last(10),
+    )
     assert token.key == (
         f"@ros2_lv/0/{ZID}/3/7/MP/%/%lab/talker/%chatter/std_msgs::msg::dds_::String_/"
         "RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18/::,10:,:,:,,"
@@ -85,12 +98,18 @@ def test_endpoint_token_without_topic_fields_refuses_to_form() -> None:
 @pytest.mark.parametrize(
     "key",
     [
-        "", "@ros2_lv", f"@ros2_lv/0/{ZID}/1/1/NN/%/%", f"@other/0/{ZID}/1/1/NN/%/%/n",
-        f"@ros2_lv/x/{ZID}/1/1/NN/%/%/n", f"@ros2_lv/0/{ZID}/1/1/XX/%/%/n", f"@ros2_lv/0/{ZID}/1/1/NN/%/%/n/extra",
-        f"@ros2_lv/0/{ZID}/1/2/MP/%/%/n/%t/T/H", f"@ros2_lv/0/{ZID}/1/2/MP/%/%/n/%t/T/H/notqos",
+        "",
+        "@ros2_lv",
+        f"@ros2_lv/0/{ZID}/1/1/NN/%/%",
+        f"@other/0/{ZID}/1/1/NN/%/%/n",
+        f"@ros2_lv/x/{ZID}/1/1/NN/%/%/n",
+        f"@ros2_lv/0/{ZID}/1/1/XX/%/%/n",
+        f"@ros2_lv/0/{ZID}/1/1/NN/%/%/n/extra",
+        f"@ros2_lv/0/{ZID}/1/2/MP/%/%/n/%t/T/H",
+        f"@ros2_lv/0/{ZID}/1/2/MP/%/%/n/%t/T/H/notqos",
         f"@ros2_lv/0/{ZID}//2/MP/%/%/n/%t/T/H/::,:,:,:,,",
     ],
-)  # fmt: skip
+)
 def test_parse_token_malformed_is_none(key: str) -> None:
     assert EntityToken.parse(key) is None
 
