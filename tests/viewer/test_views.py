@@ -44,8 +44,11 @@ def test_views_json_carries_cameras_and_the_followed_vehicle() -> None:
     assert out["suggested"] == "Quadrotor"
     rocket, quad = out["views"]
     assert (rocket["name"], rocket["position"], rocket["look_at"], rocket["follow"]) == (
-        "Rocket", (71.0, -11.0, 9.0), (60.0, 0.0, 7.5), None,
-    )  # fmt: skip
+        "Rocket",
+        (71.0, -11.0, 9.0),
+        (60.0, 0.0, 7.5),
+        None,
+    )
     assert quad["follow"] == {
         "node": "/lab/drone",
         "offset": (0, -5, 2),
