@@ -317,26 +317,55 @@ def interface_package(folder: Path, name: str, cmake: str, files: dict[str, str]
 def tutorial_workspace(ws: Path) -> None:
     """``ws/src``: tutorial_interfaces and fleet_interfaces nested below a folder as a clone leaves
     them, and an ament_python package of nodes that use them."""
-    interface_package(ws / "src/tutorials/tutorial_interfaces", "tutorial_interfaces", TUTORIAL_CMAKE, {
-        "msg/Num.msg": NUM, "msg/Sphere.msg": SPHERE, "srv/AddThreeInts.srv": ADD_THREE_INTS,
-    })  # fmt: skip
-    interface_package(ws / "src/tutorials/fleet_interfaces", "fleet_interfaces", FLEET_CMAKE,
-                      {"msg/Telemetry.msg": TELEMETRY})  # fmt: skip
-    interface_package(ws / "src/tutorials/custom_action_interfaces", "custom_action_interfaces", ACTION_CMAKE,
-                      {"action/Fibonacci.action": FIBONACCI})  # fmt: skip
+    interface_package(
+        ws / "src/tutorials/tutorial_interfaces",
+        "tutorial_interfaces",
+        TUTORIAL_CMAKE,
+        {
+            "msg/Num.msg": NUM,
+            "msg/Sphere.msg": SPHERE,
+            "srv/AddThreeInts.srv": ADD_THREE_INTS,
+        },
+    )
+    interface_package(
+        ws / "src/tutorials/fleet_interfaces",
+        "fleet_interfaces",
+        FLEET_CMAKE,
+        {"msg/Telemetry.msg": TELEMETRY},
+    )
+    interface_package(
+        ws / "src/tutorials/custom_action_interfaces",
+        "custom_action_interfaces",
+        ACTION_CMAKE,
+        {"action/Fibonacci.action": FIBONACCI},
+    )
     students = "from custom_action_interfaces.action import Fibonacci"
     action_nodes = {"fibonacci_server": ACTION_SERVER, "fibonacci_client": ACTION_CLIENT}
-    modules = {"publisher_member_function": NUM_PUBLISHER, "subscriber_member_function": NUM_SUBSCRIBER,
-               "service_member_function": THREE_INTS_SERVICE, "client_member_function": THREE_INTS_CLIENT,
-               "telemetry_publisher": TELEMETRY_PUBLISHER, "telemetry_subscriber": TELEMETRY_SUBSCRIBER,
-               **{m: t.replace("from action_tutorials_interfaces.action import Fibonacci", students)
-                  for m, t in action_nodes.items()}}  # fmt: skip
-    scripts = [f"{short} = py_custom.{module}:main" for short, module in [
-        ("talker", "publisher_member_function"), ("listener", "subscriber_member_function"),
-        ("service", "service_member_function"), ("client", "client_member_function"),
-        ("telemetry_talker", "telemetry_publisher"), ("telemetry_listener", "telemetry_subscriber"),
-        ("fibonacci_server", "fibonacci_server"), ("fibonacci_client", "fibonacci_client"),
-    ]]  # fmt: skip
+    modules = {
+        "publisher_member_function": NUM_PUBLISHER,
+        "subscriber_member_function": NUM_SUBSCRIBER,
+        "service_member_function": THREE_INTS_SERVICE,
+        "client_member_function": THREE_INTS_CLIENT,
+        "telemetry_publisher": TELEMETRY_PUBLISHER,
+        "telemetry_subscriber": TELEMETRY_SUBSCRIBER,
+        **{
+            m: t.replace("from action_tutorials_interfaces.action import Fibonacci", students)
+            for m, t in action_nodes.items()
+        },
+    }
+    scripts = [
+        f"{short} = py_custom.{module}:main"
+        for short, module in [
+            ("talker", "publisher_member_function"),
+            ("listener", "subscriber_member_function"),
+            ("service", "service_member_function"),
+            ("client", "client_member_function"),
+            ("telemetry_talker", "telemetry_publisher"),
+            ("telemetry_listener", "telemetry_subscriber"),
+            ("fibonacci_server", "fibonacci_server"),
+            ("fibonacci_client", "fibonacci_client"),
+        ]
+    ]
     python_package(
         ws / "src/py_custom", "py_custom", scripts, {m: textwrap.dedent(t) for m, t in modules.items()}
     )

@@ -38,8 +38,15 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, Path]]:
     root = tmp_path_factory.mktemp("action_tutorial")
     ws = root / "lab_ws"
     demos_clone(ws)
-    app = App(root, "--launch", str(REPO / "server/packages/rocketship/launch/rocket.launch"),
-              "--workspace", str(ws), "start_delay:=600", cwd=root)  # fmt: skip
+    app = App(
+        root,
+        "--launch",
+        str(REPO / "server/packages/rocketship/launch/rocket.launch"),
+        "--workspace",
+        str(ws),
+        "start_delay:=600",
+        cwd=root,
+    )
     try:
         yield app, root
     finally:
@@ -53,8 +60,12 @@ class Run(NodeProcess):
         self.name = executable
         self.proc = subprocess.Popen(
             [sys.executable, "-u", "-m", "server", "--url", app.url, "run", PACKAGE, executable, *args],
-            cwd=cwd, env=dict(os.environ), text=True, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-        )  # fmt: skip
+            cwd=cwd,
+            env=dict(os.environ),
+            text=True,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+        )
         self.lines: list[str] = []
         self._changed = threading.Condition()
         self._reader = threading.Thread(target=self._pump, daemon=True)
@@ -137,8 +148,18 @@ def test_ros2lab_action_verbs_find_the_server_process_and_send_it_a_goal(
 ) -> None:
     app, root = lab
     server = run("fibonacci_action_server")
-    code, out, err = finish(ros2lab(app, root, "action", "send_goal", "--feedback", "/fibonacci",
-                                    "action_tutorials_interfaces/action/Fibonacci", "{order: 3}"))  # fmt: skip
+    code, out, err = finish(
+        ros2lab(
+            app,
+            root,
+            "action",
+            "send_goal",
+            "--feedback",
+            "/fibonacci",
+            "action_tutorials_interfaces/action/Fibonacci",
+            "{order: 3}",
+        )
+    )
     assert code == 0, err
     goal_id = re.search(r"^Goal accepted with ID: ([0-9a-f]{32})$", out, re.MULTILINE)
     assert goal_id is not None, out
@@ -163,8 +184,10 @@ def test_ros2lab_action_verbs_find_the_server_process_and_send_it_a_goal(
         "    /fibonacci_action_server [action_tutorials_interfaces/action/Fibonacci]\n"
     )
     stopped_cleanly(server)
-    app.wait_for(lambda: not any(s["servers"] for s in app.get("/api/services") if s["name"].startswith("/fib")),
-                 "the server's services gone with its process")  # fmt: skip
+    app.wait_for(
+        lambda: not any(s["servers"] for s in app.get("/api/services") if s["name"].startswith("/fib")),
+        "the server's services gone with its process",
+    )
     code, out, err = finish(ros2lab(app, root, "action", "list"))
     assert (code, out) == (0, ""), err
 
@@ -174,8 +197,11 @@ def test_the_action_is_on_the_wire_as_rmw_zenoh_carries_it(run: type[Run], lab: 
     and sends it a goal: keys, type names and hashes, the attachment and CDR written by hand."""
     app, _root = lab
     server = run("fibonacci_action_server")
-    app.wait_for(lambda: any(s["servers"] for s in app.get("/api/services") if s["name"].startswith("/fib")),
-                 "the server's services in the graph", RUN_S)  # fmt: skip
+    app.wait_for(
+        lambda: any(s["servers"] for s in app.get("/api/services") if s["name"].startswith("/fib")),
+        "the server's services in the graph",
+        RUN_S,
+    )
     config = zenoh.Config()
     config.insert_json5("mode", json.dumps("client"))
     config.insert_json5("connect/endpoints", json.dumps([f"tcp/{app.router}"]))
@@ -191,10 +217,12 @@ def test_the_action_is_on_the_wire_as_rmw_zenoh_carries_it(run: type[Run], lab: 
                     found[match[2]] = (match[1], match[3], match[4])
         pkg = "action_tutorials_interfaces::action::dds_::Fibonacci"
         assert {part: kind_type for part, (*kind_type, _hash) in found.items()} == {
-            "send_goal": ["SS", f"{pkg}_SendGoal_"], "get_result": ["SS", f"{pkg}_GetResult_"],
+            "send_goal": ["SS", f"{pkg}_SendGoal_"],
+            "get_result": ["SS", f"{pkg}_GetResult_"],
             "cancel_goal": ["SS", "action_msgs::srv::dds_::CancelGoal_"],
-            "feedback": ["MP", f"{pkg}_FeedbackMessage_"], "status": ["MP", "action_msgs::msg::dds_::GoalStatusArray_"],
-        }  # fmt: skip
+            "feedback": ["MP", f"{pkg}_FeedbackMessage_"],
+            "status": ["MP", "action_msgs::msg::dds_::GoalStatusArray_"],
+        }
         assert found["cancel_goal"][2] == ROS_REFERENCE_HASHES["action_msgs/srv/CancelGoal"]
         assert found["status"][2] == ROS_REFERENCE_HASHES["action_msgs/msg/GoalStatusArray"]
 
@@ -206,12 +234,19 @@ def test_the_action_is_on_the_wire_as_rmw_zenoh_carries_it(run: type[Run], lab: 
         )
         store.register(get_types_from_msg("bool accepted\nbuiltin_interfaces/Time stamp", "p/msg/Response"))
         types = store.types
-        request = types["p/msg/Request"](types["unique_identifier_msgs/msg/UUID"](np.arange(16, dtype=np.uint8)),
-                                         types["p/msg/Goal"](2))  # fmt: skip
+        request = types["p/msg/Request"](
+            types["unique_identifier_msgs/msg/UUID"](np.arange(16, dtype=np.uint8)), types["p/msg/Goal"](2)
+        )
         key = f"0/fibonacci/_action/send_goal/{pkg}_SendGoal_/RIHS01_{found['send_goal'][2]}"
         attachment = struct.pack("<qqB", 1, time.time_ns(), 16) + bytes(range(100, 116))
-        replies = list(session.get(key, payload=bytes(store.serialize_cdr(request, "p/msg/Request")),
-                                   attachment=attachment, timeout=RUN_S))  # fmt: skip
+        replies = list(
+            session.get(
+                key,
+                payload=bytes(store.serialize_cdr(request, "p/msg/Request")),
+                attachment=attachment,
+                timeout=RUN_S,
+            )
+        )
         assert len(replies) == 1 and replies[0].ok is not None, replies
         answer = store.deserialize_cdr(replies[0].ok.payload.to_bytes(), "p/msg/Response")
         assert answer.accepted and answer.stamp.sec > 0

@@ -25,16 +25,19 @@ def test_nested_packages_are_named_by_their_manifest(tmp_path: Path) -> None:
         "examples_rclpy_minimal_publisher",
         "examples_rclpy_minimal_subscriber",
         "examples_rclpy_executors",
-    }  # fmt: skip; and not "examples", the clone's folder that holds them
+    }  # and not "examples", the clone's folder that holds them
     publisher = found.packages["examples_rclpy_minimal_publisher"]
     assert publisher.path == tmp_path / "src/examples/rclpy/topics/minimal_publisher"
     exe = PackageIndex(workspace=tmp_path).resolve(
         "examples_rclpy_minimal_publisher", "publisher_member_function"
     )
     assert exe.entry_point == EntryPoint(
-        publisher.path, "examples_rclpy_minimal_publisher.publisher_member_function", "main",
-        "publisher_member_function", f"{publisher.path / 'setup.py'}:11",  # the script's own line
-    )  # fmt: skip
+        publisher.path,
+        "examples_rclpy_minimal_publisher.publisher_member_function",
+        "main",
+        "publisher_member_function",
+        f"{publisher.path / 'setup.py'}:11",  # the script's own line
+    )
     assert exe.file == publisher.path / "examples_rclpy_minimal_publisher/publisher_member_function.py"
     assert exe.target == exe.entry_point
     with pytest.raises(ExecutableNotFoundError, match="composed"):  # an ament_python package's modules are
@@ -63,22 +66,29 @@ def test_setup_cfg_and_setup_py_with_a_variable_both_declare_scripts(tmp_path: P
     with pytest.raises(WorkspaceError, match=r"setup\.py:4: console_scripts is not a literal list"):
         PackageIndex(workspace=tmp_path).executables_of("tools")
     (folder / "setup.py").write_text("from setuptools import setup\nsetup()\n")
-    (folder / "setup.cfg").write_text("[metadata]\nname = tools\n\n[options.entry_points]\nconsole_scripts =\n"
-                                      "    go = tools.go:run\n")  # fmt: skip
+    (folder / "setup.cfg").write_text(
+        "[metadata]\nname = tools\n\n[options.entry_points]\nconsole_scripts =\n    go = tools.go:run\n"
+    )
     exe = PackageIndex(workspace=tmp_path).resolve("tools", "go")
     assert exe.entry_point is not None and exe.entry_point.declared_at == f"{folder / 'setup.cfg'}:6"
     assert (exe.entry_point.module, exe.entry_point.function) == ("tools.go", "run")
 
 
 def test_cmake_install_programs_are_the_executables(tmp_path: Path) -> None:
-    write(tmp_path / "src" / "rocketship", {
-        "package.xml": manifest("rocketship", "ament_cmake"),
-        "CMakeLists.txt": "project(rocketship)\n# install(PROGRAMS src/commented_out.py DESTINATION lib)\n"
-                          "install(PROGRAMS\n  src/keyboard_manager.py\n  DESTINATION lib/${PROJECT_NAME} )\n"
-                          "install(PROGRAMS scripts/${PROJECT_NAME}_tool.py DESTINATION lib/${PROJECT_NAME}"
-                          " RENAME tool)\nament_package()\n",
-        "src/keyboard_manager.py": "x = 1\n", "src/not_installed.py": "x = 1\n",
-    })  # fmt: skip
+    write(
+        tmp_path / "src" / "rocketship",
+        {
+            "package.xml": manifest("rocketship", "ament_cmake"),
+            "CMakeLists.txt": (
+                "project(rocketship)\n# install(PROGRAMS src/commented_out.py DESTINATION lib)\n"
+                "install(PROGRAMS\n  src/keyboard_manager.py\n  DESTINATION lib/${PROJECT_NAME} )\n"
+                "install(PROGRAMS scripts/${PROJECT_NAME}_tool.py DESTINATION lib/${PROJECT_NAME}"
+                " RENAME tool)\nament_package()\n"
+            ),
+            "src/keyboard_manager.py": "x = 1\n",
+            "src/not_installed.py": "x = 1\n",
+        },
+    )
     exes = PackageIndex(workspace=tmp_path).executables_of("rocketship")
     assert exes["keyboard_manager.py"].file == tmp_path / "src/rocketship/src/keyboard_manager.py"
     assert exes["tool"].file == tmp_path / "src/rocketship/scripts/rocketship_tool.py"
@@ -97,8 +107,14 @@ def test_the_handouts_files_without_a_manifest_keep_the_simple_rule() -> None:
 
 
 def test_two_packages_with_one_name_is_one_error_naming_both(tmp_path: Path) -> None:
-    write(tmp_path / "src", {"a/dup/package.xml": manifest("dup"), "b/dup/package.xml": manifest("dup"),
-                             "fine/package.xml": manifest("fine")})  # fmt: skip
+    write(
+        tmp_path / "src",
+        {
+            "a/dup/package.xml": manifest("dup"),
+            "b/dup/package.xml": manifest("dup"),
+            "fine/package.xml": manifest("fine"),
+        },
+    )
     index = PackageIndex(workspace=tmp_path)
     with pytest.raises(WorkspaceError) as caught:
         index.executables_of("dup")
@@ -112,11 +128,14 @@ def test_two_packages_with_one_name_is_one_error_naming_both(tmp_path: Path) -> 
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        ("<package format='3'>\n  <name>x</name>\n  <oops>\n</package>\n", r"package\.xml:4: package\.xml does not parse"),
+        (
+            "<package format='3'>\n  <name>x</name>\n  <oops>\n</package>\n",
+            r"package\.xml:4: package\.xml does not parse",
+        ),
         ("<package format='3'>\n</package>\n", r"package\.xml: it has no <name>"),
         ("<manifest><name>x</name></manifest>\n", r"the root element is <manifest>, not <package>"),
     ],
-)  # fmt: skip
+)
 def test_a_manifest_that_cannot_be_read_names_its_file(tmp_path: Path, text: str, message: str) -> None:
     write(tmp_path / "src", {"bad/package.xml": text})
     with pytest.raises(WorkspaceError, match=message):
@@ -141,6 +160,14 @@ def test_a_console_script_runs_through_the_runners_entry_point_mode(tmp_path: Pa
     exe = PackageIndex(workspace=tmp_path).resolve("examples_rclpy_executors", "composed")
     argv = node_command(exe.target, ["--ros-args", "-r", "__node:=n"]).argv
     root = tmp_path / "src/examples/rclpy/executors"
-    assert argv[-8:] == ["--entry-point", str(root), "examples_rclpy_executors.composed:main", "composed",
-                         f"{root / 'setup.py'}:11", "--ros-args", "-r", "__node:=n"]  # fmt: skip
+    assert argv[-8:] == [
+        "--entry-point",
+        str(root),
+        "examples_rclpy_executors.composed:main",
+        "composed",
+        f"{root / 'setup.py'}:11",
+        "--ros-args",
+        "-r",
+        "__node:=n",
+    ]
     assert argv[argv.index("-m") + 1] == "node_runtime.process.runner"

@@ -23,14 +23,25 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, Path]]:
     root = tmp_path_factory.mktemp("colcon_run")
     ws = root / "lab_ws"
     examples_clone(ws)
-    write(ws / "src", {
-        "broken/package.xml": "<package format='3'>\n  <name>broken</name>\n  <oops>\n</package>\n",
-        "one/twin/package.xml": manifest("twin"), "other/twin/package.xml": manifest("twin"),
-    })  # fmt: skip
+    write(
+        ws / "src",
+        {
+            "broken/package.xml": "<package format='3'>\n  <name>broken</name>\n  <oops>\n</package>\n",
+            "one/twin/package.xml": manifest("twin"),
+            "other/twin/package.xml": manifest("twin"),
+        },
+    )
     for leftover in ("build", "install", "log"):  # a real colcon's output: never in the way
         write(ws / leftover, {"examples_rclpy_executors/package.xml": manifest("examples_rclpy_executors")})
-    app = App(root, "--launch", str(REPO / "server/packages/rocketship/launch/rocket.launch"),
-              "--workspace", str(ws), "start_delay:=600", cwd=root)  # fmt: skip
+    app = App(
+        root,
+        "--launch",
+        str(REPO / "server/packages/rocketship/launch/rocket.launch"),
+        "--workspace",
+        str(ws),
+        "start_delay:=600",
+        cwd=root,
+    )
     try:
         yield app, ws
     finally:
@@ -38,8 +49,13 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, Path]]:
 
 
 def ros2lab(app: App, cwd: Path, *args: str) -> subprocess.Popen[str]:
-    return subprocess.Popen([sys.executable, "-m", "server", "--url", app.url, *args], cwd=cwd, text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)  # fmt: skip
+    return subprocess.Popen(
+        [sys.executable, "-m", "server", "--url", app.url, *args],
+        cwd=cwd,
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
 
 
 def finish(proc: subprocess.Popen[str], timeout_s: float = RUN_S) -> tuple[int, str, str]:
@@ -54,8 +70,16 @@ def finish(proc: subprocess.Popen[str], timeout_s: float = RUN_S) -> tuple[int, 
 
 def test_nested_publisher_and_subscriber_talk_as_processes(lab: tuple[App, Path], tmp_path: Path) -> None:
     app, _ws = lab  # run from a folder with no ./workspace: the lab names its own
-    listener = ros2lab(app, tmp_path, "run", "examples_rclpy_minimal_subscriber", "subscriber_member_function",
-                       "--ros-args", "-r", "__node:=ear")  # fmt: skip
+    listener = ros2lab(
+        app,
+        tmp_path,
+        "run",
+        "examples_rclpy_minimal_subscriber",
+        "subscriber_member_function",
+        "--ros-args",
+        "-r",
+        "__node:=ear",
+    )
     talker = ros2lab(app, tmp_path, "run", "examples_rclpy_minimal_publisher", "publisher_member_function")
     try:
         code, out, err = finish(listener)
@@ -67,8 +91,11 @@ def test_nested_publisher_and_subscriber_talk_as_processes(lab: tuple[App, Path]
     heard = re.findall(r"^\[INFO\] \[\d+\.\d+\] \[ear\]: I heard: \"Hello World: (\d+)\"$", err, re.MULTILINE)
     assert len(heard) == 3, err
     assert talker_code == 0, talker_err
-    assert re.search(r"^\[INFO\] \[\d+\.\d+\] \[minimal_publisher\]: Publishing: \"Hello World: 0\"$",
-                     talker_err, re.MULTILINE), talker_err  # fmt: skip
+    assert re.search(
+        r"^\[INFO\] \[\d+\.\d+\] \[minimal_publisher\]: Publishing: \"Hello World: 0\"$",
+        talker_err,
+        re.MULTILINE,
+    ), talker_err
 
 
 def test_composed_process_imports_its_own_packages_modules(lab: tuple[App, Path], tmp_path: Path) -> None:
@@ -95,25 +122,33 @@ def test_pkg_verbs_list_the_labs_workspace(lab: tuple[App, Path], tmp_path: Path
     assert {"examples_rclpy_minimal_publisher", "examples_rclpy_executors", "rocketship"} <= set(names)
     assert names == sorted(names) and "twin" not in names and "broken" not in names
     assert code == 1  # and the two problems, one line each
-    assert sorted(err.splitlines()) == sorted([
-        f"{ws / 'src/broken/package.xml'}:4: package.xml does not parse: mismatched tag",
-        f"{ws / 'src/other/twin/package.xml'}: two packages are named 'twin': {ws / 'src/one/twin'} and "
-        f"{ws / 'src/other/twin'}",
-    ])  # fmt: skip
+    assert sorted(err.splitlines()) == sorted(
+        [
+            f"{ws / 'src/broken/package.xml'}:4: package.xml does not parse: mismatched tag",
+            f"{ws / 'src/other/twin/package.xml'}: two packages are named 'twin': {ws / 'src/one/twin'} and "
+            f"{ws / 'src/other/twin'}",
+        ]
+    )
 
 
 @pytest.mark.parametrize(
     ("package", "executable", "line"),
     [
-        ("examples_rclpy_executors", "listener_missing",
-         r"executors/setup\.py:\d+: console script 'listener_missing = examples_rclpy_executors\.no_such_module:main':"
-         r" no module 'examples_rclpy_executors\.no_such_module'"),
-        ("examples_rclpy_executors", "talker_missing_function",
-         r"executors/setup\.py:\d+: console script .*: .*/talker\.py has no function 'no_such_function'"),
+        (
+            "examples_rclpy_executors",
+            "listener_missing",
+            r"executors/setup\.py:\d+: console script 'listener_missing = examples_rclpy_executors\.no_such_module:main':"
+            r" no module 'examples_rclpy_executors\.no_such_module'",
+        ),
+        (
+            "examples_rclpy_executors",
+            "talker_missing_function",
+            r"executors/setup\.py:\d+: console script .*: .*/talker\.py has no function 'no_such_function'",
+        ),
         ("broken", "anything", r"src/broken/package\.xml:4: package\.xml does not parse: mismatched tag"),
         ("twin", "anything", r"two packages are named 'twin': .*/src/one/twin and .*/src/other/twin"),
     ],
-)  # fmt: skip
+)
 def test_a_package_that_cannot_run_is_one_line_and_the_lab_runs_on(
     lab: tuple[App, Path], tmp_path: Path, package: str, executable: str, line: str
 ) -> None:
@@ -129,8 +164,19 @@ def test_a_package_that_cannot_run_is_one_line_and_the_lab_runs_on(
 
 def test_created_package_runs_at_once(lab: tuple[App, Path], tmp_path: Path) -> None:
     app, ws = lab
-    created = ros2lab(app, tmp_path, "pkg", "create", "--build-type", "ament_python", "--node-name", "keyboard_manager",
-                      "simple_control", "--destination-directory", str(ws / "src"))  # fmt: skip
+    created = ros2lab(
+        app,
+        tmp_path,
+        "pkg",
+        "create",
+        "--build-type",
+        "ament_python",
+        "--node-name",
+        "keyboard_manager",
+        "simple_control",
+        "--destination-directory",
+        str(ws / "src"),
+    )
     code, out, err = finish(created)
     assert code == 0, err
     assert f"creating {ws / 'src/simple_control/simple_control/keyboard_manager.py'}" in out
@@ -139,8 +185,14 @@ def test_created_package_runs_at_once(lab: tuple[App, Path], tmp_path: Path) -> 
 
 
 def test_colcon_is_a_one_line_hint(tmp_path: Path) -> None:
-    done = subprocess.run([sys.executable, "-m", "server", "colcon", "build", "--symlink-install"], cwd=tmp_path,
-                          capture_output=True, text=True, timeout=RUN_S, check=False)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, "-m", "server", "colcon", "build", "--symlink-install"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=RUN_S,
+        check=False,
+    )
     assert done.returncode == 0
     assert (
         len(done.stdout.splitlines()) == 1 and "colcon build" in done.stdout and "not needed" in done.stdout

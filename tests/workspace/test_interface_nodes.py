@@ -52,11 +52,24 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[LiveLab]:
     root = tmp_path_factory.mktemp("interface_nodes")
     ws = root / "ws"
     tutorial_workspace(ws)
-    interface_package(ws / "src/broken_interfaces", "broken_interfaces", BROKEN_CMAKE,
-                      {"msg/Bad.msg": "int32 ok\nint32 LIMIT=1.5\n", "msg/Fine.msg": "int32 fine\n"})  # fmt: skip
+    interface_package(
+        ws / "src/broken_interfaces",
+        "broken_interfaces",
+        BROKEN_CMAKE,
+        {"msg/Bad.msg": "int32 ok\nint32 LIMIT=1.5\n", "msg/Fine.msg": "int32 fine\n"},
+    )
     fox = free_port()
-    app = App(root, "--launch", str(REPO / "server/packages/rocketship/launch/rocket.launch"),
-              "--workspace", str(ws), "--foxglove-port", str(fox), "start_delay:=600", cwd=root)  # fmt: skip
+    app = App(
+        root,
+        "--launch",
+        str(REPO / "server/packages/rocketship/launch/rocket.launch"),
+        "--workspace",
+        str(ws),
+        "--foxglove-port",
+        str(fox),
+        "start_delay:=600",
+        cwd=root,
+    )
     try:
         yield LiveLab(app, ws, fox)
     finally:
@@ -114,13 +127,29 @@ def test_service_between_two_processes_and_called_from_the_cli(run: Any, lab: Li
     server = run("py_custom", "service")
     client = run("py_custom", "client", "2", "3", "4")
     assert client.finish(START_S) == 0, client.text[-2000:]
-    assert re.search(r"\[minimal_client_async\]: Result of add_three_ints: for 2 \+ 3 \+ 4 = 9$", client.text,
-                     re.MULTILINE), client.text  # fmt: skip
+    assert re.search(
+        r"\[minimal_client_async\]: Result of add_three_ints: for 2 \+ 3 \+ 4 = 9$", client.text, re.MULTILINE
+    ), client.text
     server.wait_for(r"\[minimal_service\]: Incoming request$")
     server.wait_for(r"^a: 2 b: 3 c: 4$")
-    call = subprocess.run([sys.executable, "-m", "server", "--url", app.url, "service", "call", "/add_three_ints",
-                           "tutorial_interfaces/srv/AddThreeInts", "{a: 10, b: 20, c: -5}"],
-                          capture_output=True, text=True, timeout=START_S, check=False)  # fmt: skip
+    call = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "server",
+            "--url",
+            app.url,
+            "service",
+            "call",
+            "/add_three_ints",
+            "tutorial_interfaces/srv/AddThreeInts",
+            "{a: 10, b: 20, c: -5}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=START_S,
+        check=False,
+    )
     assert call.returncode == 0, call.stderr
     assert "tutorial_interfaces.srv.AddThreeInts_Response(sum=25)" in call.stdout, call.stdout
     server.wait_for(r"^a: 10 b: 20 c: -5$")
@@ -131,10 +160,14 @@ def test_students_action_between_two_processes(run: Any) -> None:
     server = run("py_custom", "fibonacci_server")
     client = run("py_custom", "fibonacci_client", "--ros-args", "-p", "order:=5")
     assert client.finish(START_S) == 0, client.text[-2000:]
-    assert re.search(r"\[fibonacci_action_client\]: Received feedback: array\('i', \[0, 1, 1, 2\]\)$", client.text,
-                     re.MULTILINE), client.text  # fmt: skip
-    assert re.search(r"\[fibonacci_action_client\]: Result: array\('i', \[0, 1, 1, 2, 3, 5\]\)$", client.text,
-                     re.MULTILINE), client.text  # fmt: skip
+    assert re.search(
+        r"\[fibonacci_action_client\]: Received feedback: array\('i', \[0, 1, 1, 2\]\)$",
+        client.text,
+        re.MULTILINE,
+    ), client.text
+    assert re.search(
+        r"\[fibonacci_action_client\]: Result: array\('i', \[0, 1, 1, 2, 3, 5\]\)$", client.text, re.MULTILINE
+    ), client.text
     server.wait_for(r"\[fibonacci_action_server\]: Executing goal\.\.\.$")
     assert server.interrupt() == 0, server.text[-2000:]
 
@@ -164,15 +197,23 @@ def test_telemetry_echoed_in_foxglove_recorded_and_on_the_wire_with_rosbags_hash
         heard = listener.wait_for(TELEMETRY_HEARD, 2, START_S)
         assert all(m["z"] == m["n"] == m["minus"] for m in heard), [m[0] for m in heard]
 
-        echo = subprocess.run([sys.executable, "-m", "server", "--url", app.url, "topic", "echo", "/telemetry", "--once"],
-                              capture_output=True, text=True, timeout=60, check=False)  # fmt: skip
+        echo = subprocess.run(
+            [sys.executable, "-m", "server", "--url", app.url, "topic", "echo", "/telemetry", "--once"],
+            capture_output=True,
+            text=True,
+            timeout=60,
+            check=False,
+        )
         assert echo.returncode == 0, echo.stderr
         assert "callsign: uav_1" in echo.stdout and "frame_id: map" in echo.stdout, echo.stdout
         assert "- red" in echo.stdout and "mode: 1" in echo.stdout, echo.stdout
 
         channel, frame = asyncio.run(foxglove_first(lab.foxglove_port, "/telemetry"))
         assert (channel["schemaName"], channel["schemaEncoding"], channel["encoding"]) == (
-            "fleet_interfaces/msg/Telemetry", "ros2msg", "cdr")  # fmt: skip
+            "fleet_interfaces/msg/Telemetry",
+            "ros2msg",
+            "cdr",
+        )
         schema = McapSchema(
             id=1, name=channel["schemaName"], encoding="ros2msg", data=channel["schema"].encode()
         )
@@ -181,8 +222,13 @@ def test_telemetry_echoed_in_foxglove_recorded_and_on_the_wire_with_rosbags_hash
 
         recording = app.post("/api/bag/recordings", {"topics": ["/telemetry"], "name": "telemetry"})
         assert recording.status_code == 201, recording.text
-        app.wait_for(lambda: any(r.get("name") == "telemetry" and r.get("messages", 0) >= 2
-                                 for r in app.get("/api/bag/recordings")), "two messages recorded")  # fmt: skip
+        app.wait_for(
+            lambda: any(
+                r.get("name") == "telemetry" and r.get("messages", 0) >= 2
+                for r in app.get("/api/bag/recordings")
+            ),
+            "two messages recorded",
+        )
         assert app.post("/api/bag/recordings/telemetry/stop", {}).status_code == 200
         with lock:
             got = list(samples)
@@ -223,8 +269,12 @@ def test_telemetry_echoed_in_foxglove_recorded_and_on_the_wire_with_rosbags_hash
 
 async def foxglove_first(port: int, topic: str) -> tuple[dict[str, Any], bytes]:
     """A Foxglove client's view of ``topic``: its channel and the payload of its first message."""
-    async with websockets.connect(f"ws://127.0.0.1:{port}", subprotocols=["foxglove.sdk.v1"],
-                                  open_timeout=START_S, max_size=None) as ws, asyncio.timeout(START_S):  # fmt: skip
+    async with (
+        websockets.connect(
+            f"ws://127.0.0.1:{port}", subprotocols=["foxglove.sdk.v1"], open_timeout=START_S, max_size=None
+        ) as ws,
+        asyncio.timeout(START_S),
+    ):
         channel: dict[str, Any] | None = None
         while channel is None:
             frame = await ws.recv()
@@ -257,8 +307,13 @@ def test_broken_definition_is_logged_and_the_lab_and_other_types_work(lab: LiveL
     assert fine.status_code == 200, fine.text
     missing = app.post("/api/publish", {"topic": "/bad", "type": "broken_interfaces/msg/Bad", "msg": {}})
     assert missing.status_code == 422 and "broken_interfaces/msg/Bad" in missing.text  # as any unknown type
-    listed = subprocess.run([sys.executable, "-m", "server", "--url", app.url, "interface", "package", "broken_interfaces"],
-                            capture_output=True, text=True, timeout=60, check=False)  # fmt: skip
+    listed = subprocess.run(
+        [sys.executable, "-m", "server", "--url", app.url, "interface", "package", "broken_interfaces"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
     assert (listed.returncode, listed.stdout, listed.stderr) == (
         1,
         "broken_interfaces/msg/Fine\n",

@@ -56,7 +56,10 @@ def test_tutorial_interfaces_nested_below_src_load_as_types(ws: Path) -> None:
     assert service.Request(a=1, b=2, c=3).to_dict() == {"a": 1, "b": 2, "c": 3}
     assert service.Response().sum == 0
     assert sorted(workspace_interfaces(ws).packages) == [
-        "custom_action_interfaces", "fleet_interfaces", "tutorial_interfaces"]  # fmt: skip
+        "custom_action_interfaces",
+        "fleet_interfaces",
+        "tutorial_interfaces",
+    ]
 
 
 def test_students_action_has_its_parts_wire_types_hash_and_definition(ws: Path) -> None:
@@ -74,8 +77,12 @@ def test_students_action_has_its_parts_wire_types_hash_and_definition(ws: Path) 
 
 def test_bad_action_names_its_file_and_the_line_in_its_section(tmp_path: Path) -> None:
     folder = tmp_path / "src/custom_action_interfaces"
-    interface_package(folder, "custom_action_interfaces", ACTION_CMAKE,
-                      {"action/Fibonacci.action": "int32 order\n---\n# the answer\nNope sequence\n---\n"})  # fmt: skip
+    interface_package(
+        folder,
+        "custom_action_interfaces",
+        ACTION_CMAKE,
+        {"action/Fibonacci.action": "int32 order\n---\n# the answer\nNope sequence\n---\n"},
+    )
     problems = workspace_interfaces(tmp_path).problems
     assert problems == [
         f"{folder / 'action/Fibonacci.action'}:4: unknown type custom_action_interfaces/msg/Nope"
@@ -92,10 +99,13 @@ def test_telemetry_has_its_constants_defaults_and_bounds(ws: Path) -> None:
     msg.codes = [1, 2, 3, 4]
     msg.tags = ["a" * 8]
     for field, value, problem in [
-        ("callsign", "x" * 13, "longer than 12"), ("codes", [1, 2, 3, 4, 5], "more than 4"),
-        ("position", [1.0, 2.0], "exactly 3"), ("tags", ["a" * 9], "longer than 8"),
-        ("mode", 256, "out of range"), ("counts", [get_type("std_msgs/msg/Int64")()], "expected tutorial_interfaces"),
-    ]:  # fmt: skip
+        ("callsign", "x" * 13, "longer than 12"),
+        ("codes", [1, 2, 3, 4, 5], "more than 4"),
+        ("position", [1.0, 2.0], "exactly 3"),
+        ("tags", ["a" * 9], "longer than 8"),
+        ("mode", 256, "out of range"),
+        ("counts", [get_type("std_msgs/msg/Int64")()], "expected tutorial_interfaces"),
+    ]:
         with pytest.raises(MessageError, match=problem):
             setattr(msg, field, value)
 
@@ -114,8 +124,13 @@ def test_rihs01_hashes_equal_rosbags_from_the_definitions(ws: Path) -> None:
 
 def test_cdr_of_telemetry_decodes_with_rosbags_and_round_trips(ws: Path) -> None:
     telemetry, num = get_type("fleet_interfaces/msg/Telemetry"), get_type("tutorial_interfaces/msg/Num")
-    msg = telemetry(callsign="uav_7", position=[1.0, 2.0, 3.0], codes=[7, 8], tags=["red", "lead"],
-                    counts=[num(num=5), num(num=-5)])  # fmt: skip
+    msg = telemetry(
+        callsign="uav_7",
+        position=[1.0, 2.0, 3.0],
+        codes=[7, 8],
+        tags=["red", "lead"],
+        counts=[num(num=5), num(num=-5)],
+    )
     msg.header.frame_id = "map"
     data = serialize(msg)
     store = get_typestore(Stores.ROS2_KILTED)
@@ -152,9 +167,16 @@ def test_definition_error_is_one_line_naming_file_and_line_and_the_rest_loads(
         '"msg/Num.msg"\n  "msg/Sphere.msg"\n  "srv/AddThreeInts.srv"',
         '"msg/Good.msg" "msg/Bad.msg" "msg/Uses.msg"',
     )
-    interface_package(folder, "bad_interfaces", cmake, {
-        "msg/Good.msg": "int32 value\n", "msg/Bad.msg": text, "msg/Uses.msg": "Good good\nBad bad\n",
-    })  # fmt: skip
+    interface_package(
+        folder,
+        "bad_interfaces",
+        cmake,
+        {
+            "msg/Good.msg": "int32 value\n",
+            "msg/Bad.msg": text,
+            "msg/Uses.msg": "Good good\nBad bad\n",
+        },
+    )
     problems = workspace_interfaces(tmp_path).problems
     bad, uses = folder / "msg/Bad.msg", folder / "msg/Uses.msg"
     if kind.startswith("unknown"):  # Bad.msg parses; what it nests is missing
@@ -184,21 +206,34 @@ def test_file_the_cmakelists_names_but_is_missing_names_the_cmakelists_line(tmp_
 
 def test_bad_service_names_its_line_after_the_separator(tmp_path: Path) -> None:
     folder = tmp_path / "src/calc_interfaces"
-    write(folder, {"package.xml": manifest("calc_interfaces", "ament_cmake").replace(
-        "<export>", "<member_of_group>rosidl_interface_packages</member_of_group>\n  <export>"),
-        "srv/Add.srv": "int64 a\n---\nint64 sum\nint64 sum\n", "srv/Twice.srv": "int64 a\n---\n---\n"})  # fmt: skip
+    write(
+        folder,
+        {
+            "package.xml": manifest("calc_interfaces", "ament_cmake").replace(
+                "<export>", "<member_of_group>rosidl_interface_packages</member_of_group>\n  <export>"
+            ),
+            "srv/Add.srv": "int64 a\n---\nint64 sum\nint64 sum\n",
+            "srv/Twice.srv": "int64 a\n---\n---\n",
+        },
+    )
     problems = workspace_interfaces(tmp_path).problems
     assert f"{folder / 'srv/Add.srv'}:4: 'sum' defined twice" in problems
     assert f"{folder / 'srv/Twice.srv'}:3: a service has one '---' line, found 2" in problems
 
 
 def test_member_of_the_group_without_rosidl_call_has_every_file_a_plain_package_none(tmp_path: Path) -> None:
-    write(tmp_path / "src", {
-        "grouped/package.xml": manifest("grouped", "ament_cmake").replace(
-            "<export>", "<member_of_group>rosidl_interface_packages</member_of_group>\n  <export>"),
-        "grouped/msg/Ping.msg": "uint32 seq\n", "grouped/srv/Echo.srv": "string text\n---\nstring text\n",
-        "plain/package.xml": manifest("plain", "ament_cmake"), "plain/msg/Unused.msg": "int32 x\n",
-    })  # fmt: skip
+    write(
+        tmp_path / "src",
+        {
+            "grouped/package.xml": manifest("grouped", "ament_cmake").replace(
+                "<export>", "<member_of_group>rosidl_interface_packages</member_of_group>\n  <export>"
+            ),
+            "grouped/msg/Ping.msg": "uint32 seq\n",
+            "grouped/srv/Echo.srv": "string text\n---\nstring text\n",
+            "plain/package.xml": manifest("plain", "ament_cmake"),
+            "plain/msg/Unused.msg": "int32 x\n",
+        },
+    )
     reader = workspace_interfaces(tmp_path)
     assert list(reader.packages) == ["grouped"] and reader.problems == []
     assert get_type("grouped/msg/Ping")(seq=4).seq == 4
@@ -210,10 +245,14 @@ def test_member_of_the_group_without_rosidl_call_has_every_file_a_plain_package_
 def test_changed_definition_and_new_package_are_read_on_next_lookup(ws: Path) -> None:
     before = type_hash("tutorial_interfaces/msg/Num")
     (ws / "src/tutorials/tutorial_interfaces/msg/Num.msg").write_text("int64 num\nstring label\n")
-    interface_package(ws / "src/later_interfaces", "later_interfaces",
-                      TUTORIAL_CMAKE.replace("tutorial_interfaces", "later_interfaces").replace(
-                          '"msg/Num.msg"\n  "msg/Sphere.msg"\n  "srv/AddThreeInts.srv"', '"msg/Late.msg"'),
-                      {"msg/Late.msg": "tutorial_interfaces/Num num\n"})  # fmt: skip
+    interface_package(
+        ws / "src/later_interfaces",
+        "later_interfaces",
+        TUTORIAL_CMAKE.replace("tutorial_interfaces", "later_interfaces").replace(
+            '"msg/Num.msg"\n  "msg/Sphere.msg"\n  "srv/AddThreeInts.srv"', '"msg/Late.msg"'
+        ),
+        {"msg/Late.msg": "tutorial_interfaces/Num num\n"},
+    )
     late = get_type("later_interfaces/msg/Late")  # not known yet: the lookup reads the workspace again
     assert late().num.label == ""
     assert get_type("tutorial_interfaces/msg/Num")(label="x").label == "x"
@@ -223,12 +262,15 @@ def test_changed_definition_and_new_package_are_read_on_next_lookup(ws: Path) ->
 def test_copy_of_a_labs_own_type_is_the_labs_and_a_different_one_is_refused(tmp_path: Path) -> None:
     key = (REPO / "node_runtime/msgs/interfaces/keyboard_msgs/msg/Key.msg").read_text()
     group = "<member_of_group>rosidl_interface_packages</member_of_group>\n  <export>"
-    write(tmp_path / "src", {
-        "keyboard_msgs/package.xml": manifest("keyboard_msgs", "ament_cmake").replace("<export>", group),
-        "keyboard_msgs/msg/Key.msg": "# the course's copy\n" + key,
-        "std_msgs/package.xml": manifest("std_msgs", "ament_cmake").replace("<export>", group),
-        "std_msgs/msg/Bool.msg": "int32 data\n",
-    })  # fmt: skip
+    write(
+        tmp_path / "src",
+        {
+            "keyboard_msgs/package.xml": manifest("keyboard_msgs", "ament_cmake").replace("<export>", group),
+            "keyboard_msgs/msg/Key.msg": "# the course's copy\n" + key,
+            "std_msgs/package.xml": manifest("std_msgs", "ament_cmake").replace("<export>", group),
+            "std_msgs/msg/Bool.msg": "int32 data\n",
+        },
+    )
     problems = workspace_interfaces(tmp_path).problems
     bool_file = tmp_path / "src/std_msgs/msg/Bool.msg"
     assert problems == [f"{bool_file}: std_msgs/msg/Bool differs from the lab's own; the lab's is used"]
@@ -262,8 +304,15 @@ def run_node_file(ws: Path, source: str) -> subprocess.CompletedProcess[str]:
     node = ws / "node.py"
     node.write_text(textwrap.dedent(source))
     env = {**os.environ, "ROS2LAB_WORKSPACE": str(ws)}
-    return subprocess.run([sys.executable, "-m", "node_runtime.process.runner", str(node)], env=env, cwd=REPO,
-                          capture_output=True, text=True, timeout=60, check=False)  # fmt: skip
+    return subprocess.run(
+        [sys.executable, "-m", "node_runtime.process.runner", str(node)],
+        env=env,
+        cwd=REPO,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
 
 
 def test_node_process_imports_the_workspaces_types(ws: Path) -> None:

@@ -33,8 +33,14 @@ STAMP = r"\[\d+\.\d{9}\]"
 
 
 def ros2lab(*args: str, cwd: Path | None = None) -> tuple[int, str, str]:
-    done = subprocess.run([sys.executable, "-m", "server", *args], capture_output=True, text=True,
-                          timeout=CLI_S, check=False, cwd=cwd)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, "-m", "server", *args],
+        capture_output=True,
+        text=True,
+        timeout=CLI_S,
+        check=False,
+        cwd=cwd,
+    )
     return done.returncode, done.stdout, done.stderr
 
 
@@ -42,8 +48,9 @@ def create_package(src: Path, name: str) -> Path:
     """``ros2 pkg create --build-type ament_python --license Apache-2.0 NAME`` in ``src``, as each page
     starts (python_parameters with ``--dependencies rclpy``)."""
     extra = ["--dependencies", "rclpy"] if name == "python_parameters" else []
-    code, _out, err = ros2lab("pkg", "create", "--build-type", "ament_python", "--license", "Apache-2.0", name,
-                              *extra, cwd=src)  # fmt: skip
+    code, _out, err = ros2lab(
+        "pkg", "create", "--build-type", "ament_python", "--license", "Apache-2.0", name, *extra, cwd=src
+    )
     assert code == 0, err
     return src / name
 
@@ -53,8 +60,13 @@ def tutorial_workspace(ws: Path) -> None:
     src.mkdir(parents=True)
     params = create_package(src, "python_parameters")
     edit_setup_py(params, ("minimal_param_node = python_parameters.python_parameters_node:main",))
-    write_files(params, {"python_parameters/python_parameters_node.py": PARAM_NODE,
-                         "launch/python_parameters_launch.py": PARAM_LAUNCH})  # fmt: skip
+    write_files(
+        params,
+        {
+            "python_parameters/python_parameters_node.py": PARAM_NODE,
+            "launch/python_parameters_launch.py": PARAM_LAUNCH,
+        },
+    )
     example = create_package(src, "py_launch_example")
     edit_setup_py(example)
     write_files(example, {f"launch/my_script_launch.{kind}": text for kind, text in MY_SCRIPT.items()})
@@ -62,8 +74,10 @@ def tutorial_workspace(ws: Path) -> None:
     edit_setup_py(tutorial)
     write_files(tutorial, {f"launch/example_main_launch.{kind}": text for kind, text in EXAMPLE_MAIN.items()})
     write_files(ws, {f"launch/turtlesim_mimic_launch.{kind}": text for kind, text in MIMIC.items()})
-    write_files(tutorial, {f"launch/example_substitutions_launch.{kind}": text
-                           for kind, text in EXAMPLE_SUBSTITUTIONS.items()})  # fmt: skip
+    write_files(
+        tutorial,
+        {f"launch/example_substitutions_launch.{kind}": text for kind, text in EXAMPLE_SUBSTITUTIONS.items()},
+    )
 
 
 @pytest.fixture(scope="module")
@@ -94,8 +108,11 @@ def launch(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
     class Launched(NodeProcess):
         def __init__(self, *arguments: str) -> None:
             command = [sys.executable, "-m", "server", "--url", lab.url, "launch", *arguments]
-            super().__init__(lab, tmp_path / Path(arguments[1] if len(arguments) > 1 else arguments[0]).name,
-                             command=command)  # fmt: skip
+            super().__init__(
+                lab,
+                tmp_path / Path(arguments[1] if len(arguments) > 1 else arguments[0]).name,
+                command=command,
+            )
             started.append(self)
 
         def stop(self) -> None:
@@ -161,17 +178,22 @@ def test_parameters_launch_file_sets_my_parameter_to_earth(lab: App, launch: typ
     ("file", "arguments", "namespace"),
     [
         ("example_main_launch.py", (), "/turtlesim2"),
-        ("example_substitutions_launch.py", ("turtlesim_ns:=turtlesim3", "use_provided_red:=True",
-                                             "new_background_r:=200"), "/turtlesim3"),
+        (
+            "example_substitutions_launch.py",
+            ("turtlesim_ns:=turtlesim3", "use_provided_red:=True", "new_background_r:=200"),
+            "/turtlesim3",
+        ),
         ("example_substitutions_launch.py", (), "/turtlesim1"),
     ],
-)  # fmt: skip
+)
 def test_substitutions_put_turtlesim_in_the_namespace_given(
     lab: App, launch: type[NodeProcess], file: str, arguments: tuple[str, ...], namespace: str
 ) -> None:
     launched = launch("launch_tutorial", file, *arguments)
-    launched.wait_for(rf"^\[turtlesim_node-\d+\] \[INFO\] {STAMP} \[[\w./]+\]: Starting turtlesim with node name "
-                      rf"{namespace}/sim$")  # fmt: skip
+    launched.wait_for(
+        rf"^\[turtlesim_node-\d+\] \[INFO\] {STAMP} \[[\w./]+\]: Starting turtlesim with node name "
+        rf"{namespace}/sim$"
+    )
     topics = graph(lab, "topic")
     assert {
         f"{namespace}/turtle1/pose",
@@ -187,8 +209,16 @@ def param_events(lab: App, tmp_path: Path) -> NodeProcess:
     has shown an event of a node ``/marker`` this publishes until then."""
     cli = [sys.executable, "-m", "server", "--url", lab.url]
     events = NodeProcess(lab, tmp_path / "events", command=[*cli, "topic", "echo", "/parameter_events"])
-    marker = [*cli, "topic", "pub", "-r", "5", "/parameter_events", "rcl_interfaces/msg/ParameterEvent",
-              "{node: /marker}"]  # fmt: skip
+    marker = [
+        *cli,
+        "topic",
+        "pub",
+        "-r",
+        "5",
+        "/parameter_events",
+        "rcl_interfaces/msg/ParameterEvent",
+        "{node: /marker}",
+    ]
     pub = NodeProcess(lab, tmp_path / "marker", command=marker)
     try:
         events.wait_for(r"^node: /marker$")
@@ -205,8 +235,13 @@ def test_substitutions_commands_spawn_turtle2_and_set_the_background_to_120_then
     spawns there."""
     events = param_events(lab, tmp_path)
     try:
-        launched = launch("launch_tutorial", f"example_substitutions_launch.{kind}", f"turtlesim_ns:={namespace}",
-                          "use_provided_red:=True", "new_background_r:=200")  # fmt: skip
+        launched = launch(
+            "launch_tutorial",
+            f"example_substitutions_launch.{kind}",
+            f"turtlesim_ns:={namespace}",
+            "use_provided_red:=True",
+            "new_background_r:=200",
+        )
         # The page: turtle2 spawned by ``ros2 service call``, the background's red at 120 at once
         # by ``ros2 param set``, then at 200 after the TimerAction's two seconds.
         launched.wait_for(r"^\[ros2-\d+\] turtlesim\.srv\.Spawn_Response\(name='turtle2'\)$")
@@ -238,8 +273,10 @@ def test_a_launch_files_command_other_than_ros2_is_refused_and_a_ros2_one_ends_w
     path = ws / "launch" / "touch_launch.py"
     path.write_text(TOUCH_LAUNCH.replace("TOUCHED", str(ws / "touched")))
     launched = launch(str(path))
-    launched.wait_for(rf"^\[ERROR\] \[launch\]: {path}:6: not run: 'touch {ws}/touched': the lab runs only ros2 "
-                      r"commands from a launch file \(as its ros2lab CLI\)$")  # fmt: skip
+    launched.wait_for(
+        rf"^\[ERROR\] \[launch\]: {path}:6: not run: 'touch {ws}/touched': the lab runs only ros2 "
+        r"commands from a launch file \(as its ros2lab CLI\)$"
+    )
     launched.wait_for(r"process started: /talker")
     assert not (ws / "touched").exists()
     wait_until(lambda: echoes(ECHOED), f"the launch's ros2 topic echo {ECHOED} to run")

@@ -26,8 +26,15 @@ RUN_S = 60.0
 def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[App]:
     root = tmp_path_factory.mktemp("tf2_tutorials")
     learning_tf2_py(root / "tf2_ws" / "src")
-    app = App(root, "--launch", str(REPO / "server/packages/rocketship/launch/rocket.launch"),
-              "--workspace", str(root / "tf2_ws"), "start_delay:=600", cwd=root)  # fmt: skip
+    app = App(
+        root,
+        "--launch",
+        str(REPO / "server/packages/rocketship/launch/rocket.launch"),
+        "--workspace",
+        str(root / "tf2_ws"),
+        "start_delay:=600",
+        cwd=root,
+    )
     try:
         yield app
     finally:
@@ -41,8 +48,18 @@ def run(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
 
     class Started(NodeProcess):
         def __init__(self, executable: str, *args: str) -> None:
-            command = [sys.executable, "-u", "-m", "server", "--url", lab.url, "run", "learning_tf2_py",
-                       executable, *args]  # fmt: skip
+            command = [
+                sys.executable,
+                "-u",
+                "-m",
+                "server",
+                "--url",
+                lab.url,
+                "run",
+                "learning_tf2_py",
+                executable,
+                *args,
+            ]
             super().__init__(lab, tmp_path / executable, command=command)
             started.append(self)
 
@@ -52,8 +69,13 @@ def run(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
 
 
 def ros2lab(lab: App, *args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "server", "--url", lab.url, *args], capture_output=True,
-                          text=True, timeout=RUN_S, check=False)  # fmt: skip
+    return subprocess.run(
+        [sys.executable, "-m", "server", "--url", lab.url, *args],
+        capture_output=True,
+        text=True,
+        timeout=RUN_S,
+        check=False,
+    )
 
 
 def publishes(lab: App, topic: str, node: str) -> bool:

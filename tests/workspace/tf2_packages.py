@@ -326,6 +326,8 @@ SCRIPTS = {
 def learning_tf2_py(src: Path) -> None:
     """``src/learning_tf2_py``, as ``ros2 pkg create`` and the pages' steps leave it."""
     python_package(
-        src / "learning_tf2_py", "learning_tf2_py",
-        [f"{name} = learning_tf2_py.{name}:main" for name in SCRIPTS], SCRIPTS,
-    )  # fmt: skip
+        src / "learning_tf2_py",
+        "learning_tf2_py",
+        [f"{name} = learning_tf2_py.{name}:main" for name in SCRIPTS],
+        SCRIPTS,
+    )

@@ -42,8 +42,12 @@ def write(root: Path, files: dict[str, str]) -> None:
 
 
 def python_package(folder: Path, name: str, scripts: list[str], modules: dict[str, str]) -> None:
-    files = {"package.xml": manifest(name), "setup.py": setup_py(name, scripts), f"resource/{name}": "",
-             f"{name}/__init__.py": ""}  # fmt: skip
+    files = {
+        "package.xml": manifest(name),
+        "setup.py": setup_py(name, scripts),
+        f"resource/{name}": "",
+        f"{name}/__init__.py": "",
+    }
     files |= {f"{name}/{module}.py": text for module, text in modules.items()}
     write(folder, files)
 
@@ -181,14 +185,25 @@ def examples_clone(ws: Path) -> None:
     rclpy = ws / "src" / "examples" / "rclpy"
     (ws / "src" / "examples" / "README.md").parent.mkdir(parents=True, exist_ok=True)
     (ws / "src" / "examples" / "README.md").write_text("# ROS 2 examples\n")
-    python_package(rclpy / "topics" / "minimal_publisher", "examples_rclpy_minimal_publisher",
-                   ["publisher_member_function = examples_rclpy_minimal_publisher.publisher_member_function:main"],
-                   {"publisher_member_function": PUBLISHER})  # fmt: skip
-    python_package(rclpy / "topics" / "minimal_subscriber", "examples_rclpy_minimal_subscriber",
-                   ["subscriber_member_function = examples_rclpy_minimal_subscriber.subscriber_member_function:main"],
-                   {"subscriber_member_function": SUBSCRIBER})  # fmt: skip
-    python_package(rclpy / "executors", "examples_rclpy_executors",
-                   ["composed = examples_rclpy_executors.composed:main",
-                    "listener_missing = examples_rclpy_executors.no_such_module:main",
-                    "talker_missing_function = examples_rclpy_executors.talker:no_such_function"],
-                   {"listener": LISTENER, "talker": TALKER, "composed": COMPOSED})  # fmt: skip
+    python_package(
+        rclpy / "topics" / "minimal_publisher",
+        "examples_rclpy_minimal_publisher",
+        ["publisher_member_function = examples_rclpy_minimal_publisher.publisher_member_function:main"],
+        {"publisher_member_function": PUBLISHER},
+    )
+    python_package(
+        rclpy / "topics" / "minimal_subscriber",
+        "examples_rclpy_minimal_subscriber",
+        ["subscriber_member_function = examples_rclpy_minimal_subscriber.subscriber_member_function:main"],
+        {"subscriber_member_function": SUBSCRIBER},
+    )
+    python_package(
+        rclpy / "executors",
+        "examples_rclpy_executors",
+        [
+            "composed = examples_rclpy_executors.composed:main",
+            "listener_missing = examples_rclpy_executors.no_such_module:main",
+            "talker_missing_function = examples_rclpy_executors.talker:no_such_function",
+        ],
+        {"listener": LISTENER, "talker": TALKER, "composed": COMPOSED},
+    )
