@@ -160,8 +160,11 @@ def test_class_the_servers_limit_of_running_nodes_is_429_across_worlds(tmp_path:
     with TestClient(create_app(settings)) as client:
         tokens = [join(client, "Eve"), join(client, "Finn")]
         for token in tokens:
-            made = client.post("/api/workspace/packages", headers=auth(token),
-                               json={"name": "sleepy", "build_type": "ament_python", "node_name": "sleeper"})  # fmt: skip
+            made = client.post(
+                "/api/workspace/packages",
+                headers=auth(token),
+                json={"name": "sleepy", "build_type": "ament_python", "node_name": "sleeper"},
+            )
             assert made.status_code == 201, made.text
             saved = client.put(
                 f"{FILES}/src/sleepy/sleepy/sleeper.py", json={"text": SLEEPER}, headers=auth(token)
@@ -192,8 +195,11 @@ def test_class_a_students_run_and_its_output_are_theirs_alone(tmp_path: Path) ->
     zenoh = ZenohSettings(listen=(f"tcp/127.0.0.1:{free_port()}",))
     with TestClient(create_app(class_settings(workspaces_dir=tmp_path, world=ROOM, zenoh=zenoh))) as client:
         ada, bob = join(client, "Ada"), join(client, "Bob")
-        made = client.post("/api/workspace/packages", headers=auth(ada),
-                           json={"name": "hello", "build_type": "ament_python", "node_name": "hello"})  # fmt: skip
+        made = client.post(
+            "/api/workspace/packages",
+            headers=auth(ada),
+            json={"name": "hello", "build_type": "ament_python", "node_name": "hello"},
+        )
         assert made.status_code == 201, made.text
         saved = client.put(f"{FILES}/src/hello/hello/hello.py", json={"text": HELLO}, headers=auth(ada))
         assert saved.status_code == 200, saved.text
@@ -228,8 +234,11 @@ def test_class_students_runs_at_once_start_at_their_turns_and_the_page_is_told(t
     with TestClient(create_app(class_settings(workspaces_dir=tmp_path, world=ROOM, zenoh=zenoh))) as client:
         tokens = {name: join(client, name.title()) for name in ("ada", "bob")}
         for name, token in tokens.items():
-            made = client.post("/api/workspace/packages", headers=auth(token),
-                               json={"name": "hi", "build_type": "ament_python", "node_name": "hi"})  # fmt: skip
+            made = client.post(
+                "/api/workspace/packages",
+                headers=auth(token),
+                json={"name": "hi", "build_type": "ament_python", "node_name": "hi"},
+            )
             assert made.status_code == 201, made.text
             text = f"def main():\n    print('{name} started', flush=True)\n"
             saved = client.put(f"{FILES}/src/hi/hi/hi.py", json={"text": text}, headers=auth(token))
@@ -237,8 +246,10 @@ def test_class_students_runs_at_once_start_at_their_turns_and_the_page_is_told(t
         pacer = client.app.state.classroom.labs.start_pacer  # type: ignore[attr-defined]
         pacer.slots, pacer.hold_s = 1, 1.0
 
-        runs = {name: client.post("/api/run", json={"package": "hi", "executable": "hi"}, headers=auth(token))
-                for name, token in tokens.items()}  # fmt: skip
+        runs = {
+            name: client.post("/api/run", json={"package": "hi", "executable": "hi"}, headers=auth(token))
+            for name, token in tokens.items()
+        }
         assert [r.status_code for r in runs.values()] == [201, 201], [r.text for r in runs.values()]
         ada, bob = (r.json()["nodes"][0] for r in runs.values())
         assert ada["state"] == "running" and bob["state"] == "waiting", (ada, bob)

@@ -35,8 +35,11 @@ def test_file_modes_saves_folders_and_uploads_are_readable_by_all(tmp_path: Path
     assert mode(workspace / "plain.txt") == 0o600  # the umask holds for what the API does not write
     with lab_client(lab_settings(workspace)) as client:
         assert save(client, "src/pkg/node.py", "print('hi')\n").status_code == 201
-        uploaded = client.post(f"{FILES[: -len('/files')]}/archive", content=zip_of({"src/other/a.py": "x = 1\n"}),
-                               headers={"content-type": "application/zip"})  # fmt: skip
+        uploaded = client.post(
+            f"{FILES[: -len('/files')]}/archive",
+            content=zip_of({"src/other/a.py": "x = 1\n"}),
+            headers={"content-type": "application/zip"},
+        )
         assert uploaded.status_code in (200, 201), uploaded.text
     assert mode(workspace / "src" / "pkg" / "node.py") == 0o644
     assert mode(workspace / "src" / "other" / "a.py") == 0o644

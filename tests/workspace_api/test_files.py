@@ -124,8 +124,14 @@ def test_files_rename_moves_and_refuses_a_taken_target(client: TestClient, works
 def test_files_new_package_writes_what_ros2lab_pkg_create_writes(
     client: TestClient, workspace: Path, tmp_path: Path
 ) -> None:
-    body = {"name": "simple_control", "build_type": "ament_python", "node_name": "keyboard_manager",
-            "dependencies": ["rclpy"], "description": None, "license": None}  # fmt: skip
+    body = {
+        "name": "simple_control",
+        "build_type": "ament_python",
+        "node_name": "keyboard_manager",
+        "dependencies": ["rclpy"],
+        "description": None,
+        "license": None,
+    }
     created = client.post("/api/workspace/packages", json=body)
     assert created.status_code == 201, created.text
     spec = PackageSpec("simple_control", "ament_python", dependencies=["rclpy"], node_name="keyboard_manager")
@@ -133,11 +139,30 @@ def test_files_new_package_writes_what_ros2lab_pkg_create_writes(
     assert created.json()["name"] == "simple_control" and created.json()["path"] == "src/simple_control"
     assert sorted(created.json()["files"]) == expected
     cli = subprocess.run(
-        [sys.executable, "-m", "server", "pkg", "create", "simple_control", "--build-type", "ament_python",
-         "--node-name", "keyboard_manager", "--dependencies", "rclpy", "--maintainer-name", "student",
-         "--maintainer-email", "student@todo.todo"],
-        cwd=tmp_path, capture_output=True, text=True, timeout=60, check=True,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "server",
+            "pkg",
+            "create",
+            "simple_control",
+            "--build-type",
+            "ament_python",
+            "--node-name",
+            "keyboard_manager",
+            "--dependencies",
+            "rclpy",
+            "--maintainer-name",
+            "student",
+            "--maintainer-email",
+            "student@todo.todo",
+        ],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=True,
+    )
     assert "creating" in cli.stdout
     for path in expected:
         relative = path.removeprefix("src/")
@@ -147,8 +172,10 @@ def test_files_new_package_writes_what_ros2lab_pkg_create_writes(
     bad = client.post("/api/workspace/packages", json={**body, "name": "Bad-Name"})
     assert bad.status_code == 422 and "Invalid package name" in bad.json()["detail"]
     assert not (workspace / "src/Bad-Name").exists()
-    cmake = client.post("/api/workspace/packages", json={"name": "cpp_pkg", "build_type": "ament_cmake",
-                                                         "node_name": None, "dependencies": []})  # fmt: skip
+    cmake = client.post(
+        "/api/workspace/packages",
+        json={"name": "cpp_pkg", "build_type": "ament_cmake", "node_name": None, "dependencies": []},
+    )
     assert cmake.status_code == 201 and "src/cpp_pkg/CMakeLists.txt" in cmake.json()["files"]
     assert (workspace / "src/cpp_pkg/include/cpp_pkg").is_dir()
 

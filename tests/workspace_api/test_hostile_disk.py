@@ -127,8 +127,9 @@ def swapping(places: tuple[Path, Path]) -> Iterator[TestClient]:
     with lab_client(lab_settings(workspace)) as client:
         swapper = subprocess.Popen(
             [sys.executable, "-c", SWAPPER, str(target), str(other), str(MAX_SWAPS), str(MAX_S)],
-            stdout=subprocess.PIPE, text=True,
-        )  # fmt: skip
+            stdout=subprocess.PIPE,
+            text=True,
+        )
         assert swapper.stdout is not None
         try:
             assert swapper.stdout.readline() == "swapping\n"

@@ -40,8 +40,12 @@ def folders(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
 
 @pytest.fixture(scope="module")
 def client(folders: tuple[Path, Path]) -> Iterator[TestClient]:
-    files = {"max_file_bytes": MAX_FILE, "max_workspace_bytes": MAX_TOTAL, "max_files": MAX_FILES,
-             "max_body_bytes": MAX_BODY}  # fmt: skip
+    files = {
+        "max_file_bytes": MAX_FILE,
+        "max_workspace_bytes": MAX_TOTAL,
+        "max_files": MAX_FILES,
+        "max_body_bytes": MAX_BODY,
+    }
     with lab_client(lab_settings(folders[0], files=files)) as test_client:
         save(test_client, "src/pkg/kept.py", "kept = True\n")
         yield test_client
@@ -136,8 +140,11 @@ def test_refusals_a_file_at_the_limit_is_saved(client: TestClient) -> None:
 
 
 def test_refusals_a_body_over_the_routes_cap_is_413(client: TestClient, unchanged: None) -> None:
-    reply = client.put(f"{FILES}/src/pkg/huge.py", content=b'{"text": "' + b"x" * MAX_BODY + b'"}',
-                       headers={"content-type": "application/json"})  # fmt: skip
+    reply = client.put(
+        f"{FILES}/src/pkg/huge.py",
+        content=b'{"text": "' + b"x" * MAX_BODY + b'"}',
+        headers={"content-type": "application/json"},
+    )
     refused(reply, 413, f"body larger than {MAX_BODY} bytes")
 
 
@@ -170,8 +177,11 @@ def test_refusals_binary_text_and_files_are_415(
     client: TestClient, folders: tuple[Path, Path], unchanged: None
 ) -> None:
     refused(save(client, "src/pkg/nul.py", "a\x00b"), 415, "NUL")
-    lone_surrogate = client.put(f"{FILES}/src/pkg/surrogate.py", content=b'{"text": "\\ud800"}',
-                                headers={"content-type": "application/json"})  # fmt: skip
+    lone_surrogate = client.put(
+        f"{FILES}/src/pkg/surrogate.py",
+        content=b'{"text": "\\ud800"}',
+        headers={"content-type": "application/json"},
+    )
     refused(lone_surrogate, 415, "not valid Unicode")
 
 
