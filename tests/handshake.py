@@ -14,8 +14,12 @@ async def _send_handshake(
     """Connect to 127.0.0.1:``port`` and send a WebSocket opening handshake with ``headers``."""
     reader, writer = await asyncio.open_connection("127.0.0.1", port)
     lines = [f"GET {path} HTTP/1.1", *(f"{k}: {v}" for k, v in headers)]
-    lines += ["Upgrade: websocket", "Connection: Upgrade", "Sec-WebSocket-Version: 13",
-              "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ=="]  # fmt: skip
+    lines += [
+        "Upgrade: websocket",
+        "Connection: Upgrade",
+        "Sec-WebSocket-Version: 13",
+        "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==",
+    ]
     writer.write(("\r\n".join(lines) + "\r\n\r\n").encode())
     return reader, writer
 

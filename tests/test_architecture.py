@@ -252,8 +252,10 @@ def test_checker_every_kind_of_import_is_seen(tmp_path: Path, source: str, where
 def test_checker_a_package_that_runs_a_higher_layer_is_reported_for_its_importers(tmp_path: Path) -> None:
     """``import top.base.values`` runs ``top/base/__init__.py`` first: what that imports counts."""
     found = fake_check(tmp_path, {**CLEAN, "top/base/__init__.py": "from top import web\n"})
-    assert found == [f"{tmp_path / 'top/base/__init__.py'}:1: top.base (base) imports top.web (web): "
-                     "a lower layer imports a higher one"]  # fmt: skip
+    assert found == [
+        f"{tmp_path / 'top/base/__init__.py'}:1: top.base (base) imports top.web (web): "
+        "a lower layer imports a higher one"
+    ]
 
 
 def test_checker_peers_of_one_layer_may_import_one_another_one_way(tmp_path: Path) -> None:
@@ -261,8 +263,14 @@ def test_checker_peers_of_one_layer_may_import_one_another_one_way(tmp_path: Pat
 
 
 def test_checker_an_import_cycle_between_peers_of_one_layer_is_reported(tmp_path: Path) -> None:
-    found = fake_check(tmp_path, {**CLEAN, "top/store/__init__.py": "from top.logic import run\n",
-                                  "top/logic/core.py": "import top.store\n\ndef run() -> None: ...\n"})  # fmt: skip
+    found = fake_check(
+        tmp_path,
+        {
+            **CLEAN,
+            "top/store/__init__.py": "from top.logic import run\n",
+            "top/logic/core.py": "import top.store\n\ndef run() -> None: ...\n",
+        },
+    )
     assert len(found) == 1
     assert "an import cycle between parts of one layer: top.logic ↔ top.store" in found[0]
 

@@ -25,8 +25,19 @@ def starter() -> Iterator[Starter]:
 
 
 def lab_args(port: int, zenoh_port: int, state: Path) -> list[str]:
-    return ["--host", "127.0.0.1", "--port", str(port), "--zenoh-listen", f"tcp/127.0.0.1:{zenoh_port}",
-            "--state-dir", str(state), "--launch", "rocket", "--no-foxglove"]  # fmt: skip
+    return [
+        "--host",
+        "127.0.0.1",
+        "--port",
+        str(port),
+        "--zenoh-listen",
+        f"tcp/127.0.0.1:{zenoh_port}",
+        "--state-dir",
+        str(state),
+        "--launch",
+        "rocket",
+        "--no-foxglove",
+    ]
 
 
 def alive(pid: int) -> bool:

@@ -17,19 +17,34 @@ from node_runtime.params_file import (
 
 @pytest.mark.parametrize(
     ("text", "value"),
-    [("5", 5), ("2.5", 2.5), ("true", True), ("[1, 2]", [1, 2]), ("hello", "hello"),
-     ("'5'", "5"), ("[1, 'a']", "[1, 'a']"), ("{a: 1}", "{a: 1}")],
-)  # fmt: skip
+    [
+        ("5", 5),
+        ("2.5", 2.5),
+        ("true", True),
+        ("[1, 2]", [1, 2]),
+        ("hello", "hello"),
+        ("'5'", "5"),
+        ("[1, 'a']", "[1, 'a']"),
+        ("{a: 1}", "{a: 1}"),
+    ],
+)
 def test_a_value_is_typed_as_yaml_types_it_and_anything_else_is_its_text(text: str, value: object) -> None:
     assert value_from_text(text) == value and type(value_from_text(text)) is type(value)
 
 
 @pytest.mark.parametrize(
     ("pattern", "name", "matches"),
-    [("/**", "/a/b", True), ("talker", "/talker", True), ("/talker", "/ns/talker", False),
-     ("/ns/talker", "/ns/talker", True), ("/**/talker", "/x/y/talker", True), ("/ns/*", "/ns/a", True),
-     ("/ns/*", "/ns/a/b", False), ("/ns/ta*", "/ns/talker", True)],
-)  # fmt: skip
+    [
+        ("/**", "/a/b", True),
+        ("talker", "/talker", True),
+        ("/talker", "/ns/talker", False),
+        ("/ns/talker", "/ns/talker", True),
+        ("/**/talker", "/x/y/talker", True),
+        ("/ns/*", "/ns/a", True),
+        ("/ns/*", "/ns/a/b", False),
+        ("/ns/ta*", "/ns/talker", True),
+    ],
+)
 def test_node_patterns_match_as_rcl_matches_them(pattern: str, name: str, matches: bool) -> None:
     assert node_matches(pattern, name) is matches
 

@@ -52,8 +52,13 @@ def test_ros_wheels_extract_only_the_definitions_and_rosidls_hashes(tmp_path: Pa
         os.umask(previous)
     assert "0 downloaded, 1 from" in said and "3 files" in said
     files = {p.relative_to(target).as_posix() for p in target.rglob("*") if p.is_file()}
-    assert files == {"demo_msgs/msg/Ping.msg", "demo_msgs/srv/Echo.srv", "demo_msgs/action/Count.action",
-                     ros_wheels.HASHES_FILE, ros_wheels.STAMP_FILE}  # fmt: skip
+    assert files == {
+        "demo_msgs/msg/Ping.msg",
+        "demo_msgs/srv/Echo.srv",
+        "demo_msgs/action/Count.action",
+        ros_wheels.HASHES_FILE,
+        ros_wheels.STAMP_FILE,
+    }
     assert (target / "demo_msgs/msg/Ping.msg").read_text() == "uint32 seq\n"
     # Readable by every user (a sandboxed node runs as another), whatever the umask was.
     assert {p.stat().st_mode & 0o777 for p in [target, *target.rglob("*")] if p.is_dir()} == {0o755}
