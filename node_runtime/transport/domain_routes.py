@@ -1,7 +1,9 @@
 """What the domain bridge is asked to bridge: each world's graph tokens, read into routes.
 
 Zenoh's threads hand every liveliness token of the class's graph to ``RouteTable.record``; the
-bridge's own thread asks ``wanted`` for the routes to declare now. Only an entity of a world the
+bridge's own thread takes the domains whose routes may have changed since it last looked
+(``take_changed``) and asks ``wanted_in`` for each one's routes to declare now, so that a node
+joining one world costs the bridge that world's routes, not the whole class's. Only an entity of a world the
 bridge was told of (``set_world``) is wanted, under a fully qualified ROS name (node_runtime/bus/names.py)
 and a type and hash of plain name characters: ``/ada`` + ``m/uav/sensors/gps`` would otherwise be
 world ``adam``'s GPS. Any other is ignored and counted, by world. What one world's graph can make
@@ -63,7 +65,8 @@ class RouteTable:
         self._lock = threading.Lock()  # guards what Zenoh's threads and the callers change
         self._worlds: dict[int, str] = {}  # ROS domain → world name
         self._endpoints: dict[str, tuple[Route, QoS]] = {}  # token key → what it asks to bridge
-        self._per_domain: Counter[int] = Counter()
+        self._by_domain: dict[int, dict[str, tuple[Route, QoS]]] = {}  # the same, by ROS domain
+        self._changed: set[int] = set()  # domains whose wanted routes may differ from the last look
         self._ignored: set[int] = set()  # domains over a limit, told once
 
     def set_world(self, domain_id: int, name: str) -> None:
@@ -72,10 +75,12 @@ class RouteTable:
             raise ValueError("a world cannot share the class's own domain")
         with self._lock:
             self._worlds[domain_id] = name
+            self._changed.add(domain_id)
 
     def drop_world(self, domain_id: int) -> None:
         with self._lock:
             self._worlds.pop(domain_id, None)
+            self._changed.add(domain_id)
 
     def refused_names(self) -> dict[str, int]:
         """Entities ignored for their names, by world (``domain <d>`` where no world is known)."""
@@ -91,7 +96,11 @@ class RouteTable:
             with self._lock:
                 gone = self._endpoints.pop(key, None)
                 if gone is not None:
-                    self._per_domain[gone[0].domain_id] -= 1
+                    domain_id = gone[0].domain_id
+                    del self._by_domain[domain_id][key]
+                    if not self._by_domain[domain_id]:
+                        del self._by_domain[domain_id]
+                    self._changed.add(domain_id)
             return gone is not None
         token = EntityToken.parse(key)
         if (
@@ -115,30 +124,54 @@ class RouteTable:
         with self._lock:
             if key in self._endpoints:
                 return False
-            if self._per_domain[route.domain_id] >= MAX_TOKENS_PER_DOMAIN:
+            in_domain = self._by_domain.setdefault(route.domain_id, {})
+            if len(in_domain) >= MAX_TOKENS_PER_DOMAIN:
                 self._tell_once(route.domain_id, f"more than {MAX_TOKENS_PER_DOMAIN} graph tokens")
                 return False
-            self._endpoints[key] = (route, token.qos)
-            self._per_domain[route.domain_id] += 1
+            self._endpoints[key] = in_domain[key] = (route, token.qos)
+            self._changed.add(route.domain_id)
         return True
+
+    def touch(self, *domain_ids: int) -> None:
+        """Have these domains looked at again, as if their tokens had changed."""
+        with self._lock:
+            self._changed.update(domain_ids)
+
+    def take_changed(self) -> list[int]:
+        """The domains whose wanted routes may have changed since the last call (a token came or
+        went, a world was named or dropped), in order; each is reported once."""
+        with self._lock:
+            changed, self._changed = sorted(self._changed), set()
+        return changed
+
+    def wanted_in(self, domain_id: int) -> tuple[str | None, dict[Route, QoS]]:
+        """The namespace (``/<world>``; None when no world runs in ``domain_id``) and the routes of
+        that domain to declare now, with the QoS each is declared with, in the order their tokens came."""
+        with self._lock:
+            world = self._worlds.get(domain_id)
+            endpoints = list(self._by_domain.get(domain_id, {}).values()) if world is not None else []
+        if world is None:
+            return None, {}
+        wanted: dict[Route, QoS] = {}
+        for route, qos in endpoints:
+            if route in wanted:
+                continue
+            if len(wanted) >= MAX_ROUTES_PER_WORLD:
+                self._tell_once(domain_id, f"more than {MAX_ROUTES_PER_WORLD} topics")
+                break
+            wanted[route] = qos
+        return f"/{world}", wanted
 
     def wanted(self) -> dict[Route, tuple[str, QoS]]:
         """Every route to declare now, with the namespace (``/<world>``) and QoS it is declared with."""
         with self._lock:
-            worlds = dict(self._worlds)
-            endpoints = list(self._endpoints.values())
-        wanted: dict[Route, tuple[str, QoS]] = {}
-        per_world: Counter[int] = Counter()
-        for route, qos in endpoints:
-            world = worlds.get(route.domain_id)
-            if world is None or route in wanted:
-                continue
-            if per_world[route.domain_id] >= MAX_ROUTES_PER_WORLD:
-                self._tell_once(route.domain_id, f"more than {MAX_ROUTES_PER_WORLD} topics")
-                continue
-            per_world[route.domain_id] += 1
-            wanted[route] = (f"/{world}", qos)
-        return wanted
+            domains = sorted(self._worlds)
+        out: dict[Route, tuple[str, QoS]] = {}
+        for domain_id in domains:
+            namespace, routes = self.wanted_in(domain_id)
+            if namespace is not None:
+                out.update({route: (namespace, qos) for route, qos in routes.items()})
+        return out
 
     def _tell_once(self, domain_id: int, why: str) -> None:
         if domain_id not in self._ignored:

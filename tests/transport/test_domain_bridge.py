@@ -13,7 +13,7 @@ import zenoh
 from support.app import free_port
 from support.wait import wait_until
 
-from node_runtime.transport import domain_crossing, domain_routes
+from node_runtime.transport import domain_bridge, domain_crossing, domain_routes
 from node_runtime.transport.attachment import Attachment
 from node_runtime.transport.config import ZenohSettings
 from node_runtime.transport.domain_bridge import DomainBridge
@@ -260,3 +260,42 @@ def test_a_name_that_is_not_fully_qualified_is_never_bridged_under_another_world
     assert not [t for t in net.class_tokens() if "%ada/domain_bridge/%adam" in t]
     for token in keep:
         token.undeclare()
+
+
+def test_a_token_in_one_world_costs_the_bridge_that_worlds_routes_only(net: Net) -> None:
+    net.bridge.set_world(1, "ada")
+    net.bridge.set_world(2, "bob")
+    keep = [net.declare(EntityKind.PUBLISHER, f"/ada{i}", 10 + i) for i in range(20)]
+    keep.append(net.declare(EntityKind.PUBLISHER, "/first", 2, domain_id=2))
+    wait_until(
+        lambda: len(net.bridge.routes().get("ada", [])) == 20 and "bob" in net.bridge.routes(),
+        "ada's twenty topics and bob's first",
+    )
+    looked = net.bridge.routes_looked_at
+    keep.append(net.declare(EntityKind.PUBLISHER, "/second", 3, domain_id=2))
+    wait_until(lambda: len(net.bridge.routes()["bob"]) == 2, "bob's second topic")
+    # bob's two routes and one mirror were looked at (at most twice, had the token come in two
+    # passes), never ada's twenty: a student's node joining costs their own world's routes.
+    assert 3 <= net.bridge.routes_looked_at - looked <= 6
+    for token in keep:
+        token.undeclare()
+    wait_until(lambda: net.bridge.routes() == {}, "every route gone with its token")
+
+
+def test_declarations_come_in_slices_with_the_interpreter_let_go_between(
+    net: Net, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(domain_bridge, "SLICE", 4)
+    keep = [net.declare(EntityKind.PUBLISHER, f"/t{i}", 10 + i) for i in range(10)]
+    # A marker in a named world, declared after ada's by the same session: once it is bridged,
+    # the bridge has heard all ten of ada's, which wait for their world to be named.
+    net.bridge.set_world(2, "marker")
+    keep.append(net.declare(EntityKind.PUBLISHER, "/marker", 3, domain_id=2))
+    wait_until(lambda: "marker" in net.bridge.routes(), "the marker bridged")
+    pauses = net.bridge.pauses
+    net.bridge.set_world(1, "ada")  # one change: the ten declared in one pass
+    wait_until(lambda: len(net.bridge.routes().get("ada", [])) == 10, "ada's ten topics")
+    assert net.bridge.pauses - pauses == 2  # after the 4th and the 8th
+    for token in keep:
+        token.undeclare()
+    wait_until(lambda: net.bridge.routes() == {}, "every route gone with its token")
