@@ -46,6 +46,7 @@ from node_runtime.transport.remote_graph import RemoteGraph
 from node_runtime.transport.service_link import ServiceLink
 
 log = logging.getLogger("transport")
+MAX_EVENTS_PER_POLL = 256  # graph tokens, service queries and replies handled in one executor pass
 
 
 @dataclass
@@ -290,7 +291,13 @@ class ZenohBridge:
 
     # -- the executor's pass -------------------------------------------------------------------
     def poll(self) -> None:
-        events, samples = self.inbox.take()
+        """Zenoh's hand-ins, on the executor's thread: at most ``MAX_EVENTS_PER_POLL`` events a
+        pass (a class's burst of joins brings hundreds of tokens at once; the rest wait for the
+        next pass, which is asked for, so one pass never holds the loop for all of them), then
+        every sample taken (each topic's are bounded by its keep-last depth)."""
+        events, samples = self.inbox.take(MAX_EVENTS_PER_POLL)
+        if len(events) == MAX_EVENTS_PER_POLL and self.inbox.left():
+            self.bus.wake_threadsafe()
         graph_changed = False
         for event in events:
             kind = event[0]

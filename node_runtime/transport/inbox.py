@@ -49,18 +49,28 @@ class Inbox:
         if wake:
             self._wake()
 
-    def take(self) -> tuple[list[Any], dict[str, list[Any]]]:
-        """Everything queued so far: (events in order, samples by topic in order)."""
+    def take(self, max_events: int | None = None) -> tuple[list[Any], dict[str, list[Any]]]:
+        """What is queued so far: (events in order, at most ``max_events`` of them; samples by
+        topic in order). Events left over stay queued, and the inbox stays pending: the caller
+        takes them on its next pass (and asks for one, see ``left``)."""
         if not self._pending:  # read without the lock: a put that races it wakes the executor again
             return [], {}
         with self._lock:
-            events = list(self._events)
-            self._events.clear()
+            if max_events is None or len(self._events) <= max_events:
+                events = list(self._events)
+                self._events.clear()
+            else:
+                events = [self._events.popleft() for _ in range(max_events)]
             samples = {k: list(q) for k, q in self._samples.items() if q}
             for queue in self._samples.values():
                 queue.clear()
-            self._pending = False
+            self._pending = bool(self._events)
         return events, samples
+
+    def left(self) -> int:
+        """Events still queued (a take that left some over)."""
+        with self._lock:
+            return len(self._events)
 
     def queued(self, key: str) -> int:
         """Samples of ``key`` waiting for the executor."""

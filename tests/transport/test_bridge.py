@@ -5,11 +5,14 @@ from __future__ import annotations
 from types import SimpleNamespace
 from typing import Any
 
+import pytest
+
 from node_runtime.bus import ManualClock, Node
 from node_runtime.msgs import Int64, String, get_service_type
 from node_runtime.msgs.wire import dds_type_name, serialize, type_hash
+from node_runtime.transport import bridge as bridge_module
 from node_runtime.transport.attachment import Attachment
-from node_runtime.transport.keys import RELIABLE, TRANSIENT_LOCAL, EntityKind, data_key
+from node_runtime.transport.keys import RELIABLE, TRANSIENT_LOCAL, EntityKind, EntityToken, data_key
 
 from .conftest import Pair, joined
 
@@ -216,3 +219,26 @@ def test_a_late_transient_local_subscription_gets_its_own_process_history_once(p
     assert late == [2, 3, 4, 5]
     assert volatile == [5]
     assert pair.app.bridge.stats.received == 0
+
+
+def test_a_flood_of_graph_tokens_is_taken_a_bounded_slice_a_pass(
+    pair: Pair, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(bridge_module, "MAX_EVENTS_PER_POLL", 4)
+    side = pair.proc
+    side.executor.spin_some()  # whatever the join brought in, taken first
+    wakes: list[None] = []
+    side.bus.threadsafe_waker = lambda: wakes.append(None)
+    # Ten nodes of another process joining at once, as a class's burst brings them.
+    for i in range(10):
+        token = EntityToken(0, "0a" * 8, i + 1, i + 1, EntityKind.NODE, "/", f"n{i}")
+        side.bridge.inbox.post(("token", token.key, True))
+    wakes.clear()
+    seen = side.bridge.remote
+    before = {n.name for n in seen.nodes()}
+    side.bridge.poll()
+    assert len({n.name for n in seen.nodes()} - before) == 4 and len(wakes) == 1  # the next pass asked for
+    side.bridge.poll()
+    assert len({n.name for n in seen.nodes()} - before) == 8 and len(wakes) == 2
+    side.bridge.poll()  # the last two: nothing left, no pass asked for
+    assert len({n.name for n in seen.nodes()} - before) == 10 and len(wakes) == 2
