@@ -80,6 +80,13 @@ def lab_for_request(request: Request) -> Lab:
     return lab_of(request)
 
 
+async def _lab_dep(request: Request) -> Lab:
+    """``lab_for_request`` on the loop, as the handlers run. FastAPI runs a plain ``def``
+    dependency in its thread pool: every call then went to a thread and came back, two more turns
+    of a loop that a class's worlds keep busy, and it read the classroom's state off the loop."""
+    return lab_of(request)
+
+
 def set_token_cookie(response: Response, token: str) -> None:
     """HTTP-only (no script reads it), same-site (no other site's page sends it)."""
     response.set_cookie(
@@ -94,12 +101,12 @@ def keep_token_and_go(path: str, token: str) -> Response:
     return response
 
 
-def _ws_lab(websocket: WebSocket) -> Lab:
+async def _ws_lab(websocket: WebSocket) -> Lab:
     try:
         return lab_of(websocket)
     except ClassroomError as exc:
         raise WebSocketException(refusal_close_code(exc), close_reason(str(exc))) from None
 
 
-LabDep = Annotated[Lab, Depends(lab_for_request)]
+LabDep = Annotated[Lab, Depends(_lab_dep)]
 WsLabDep = Annotated[Lab, Depends(_ws_lab)]

@@ -6,6 +6,7 @@ on that thread (``portal.call``), and waits on the live lab are bounded polls.
 
 from __future__ import annotations
 
+import threading
 import time
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -13,6 +14,7 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 
+from api import deps
 from node_runtime.bus import ManualClock, Node
 from server.app import create_app
 from server.host.settings import LabSettings, Listening, Settings
@@ -270,3 +272,22 @@ def test_tools_page_is_served_with_its_scripts_and_a_same_origin_only_policy(cli
     assert "default-src 'self'" in response.headers["content-security-policy"]
     for asset in ("build/tools.js", "tools.css", "build/lab.js"):
         assert client.get(f"/static/{asset}").status_code == 200, asset
+
+
+def test_nodes_and_topics_look_the_lab_up_on_the_loop_never_in_the_thread_pool(
+    client: TestClient, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A plain ``def`` dependency runs in FastAPI's thread pool: each call would go to a thread and
+    back, two more turns of a loop a class's worlds keep busy. The lab is found on the loop."""
+    threads: list[threading.Thread] = []
+    find = deps.lab_of
+
+    def recorded(conn: Any) -> Lab:
+        threads.append(threading.current_thread())
+        return find(conn)
+
+    monkeypatch.setattr(deps, "lab_of", recorded)
+    loop_thread = on_loop(client, threading.current_thread)
+    for path in ("/api/nodes", "/api/topics", "/api/graph"):
+        assert client.get(path).status_code == 200
+    assert threads == [loop_thread] * 3
