@@ -58,6 +58,7 @@ import functools
 import json
 import os
 import shutil
+import signal
 import statistics
 import subprocess
 import sys
@@ -419,12 +420,16 @@ def burst(
         pending = dict(wanted)
         joined_at: list[float] = []
         unanswered = 0
+        refused: dict[int, int] = {}  # the node lists answered with an error, by status
         while pending and time.monotonic() - t0 < timeout_s:
             for w in list(pending):
                 try:
                     listed = {n["name"] for n in get(server, tokens[w], "/api/nodes")}
                 except httpx.TimeoutException:  # a starved server: not yet, and counted
                     unanswered += 1
+                    continue
+                except httpx.HTTPStatusError as exc:  # a world worker that did not answer in time: 502
+                    refused[exc.response.status_code] = refused.get(exc.response.status_code, 0) + 1
                     continue
                 if pending[w] <= listed:
                     del pending[w]
@@ -449,6 +454,9 @@ def burst(
         probing.set()
         for thread in starters:
             thread.join(timeout=PROBE_TIMEOUT_S)
+        for run in runs:  # Ctrl-C to every one first: they stop together, not one after another
+            if run.poll() is None:
+                run.send_signal(signal.SIGINT)
         for run in list(runs):
             end(run)
     rates = sorted((after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens)
@@ -469,6 +477,7 @@ def burst(
         "all_joined_s": round(all_joined_s, 1) if all_joined_s is not None else None,
         "not_joined_worlds": sorted(pending),
         "node_lists_unanswered_in_60_s": unanswered,
+        "node_lists_refused": {str(code): n for code, n in sorted(refused.items())},
         "ros2lab_exited_early": exited,
         "worlds_joined_s": {"median": round(statistics.median(joined_at), 1)} if joined_at else None,
         "dynamics_hz": {"median": round(statistics.median(rates), 1), "lowest": round(rates[0], 1)},
