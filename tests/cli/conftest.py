@@ -10,6 +10,7 @@ import os
 import queue
 import signal
 import subprocess
+import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -18,7 +19,6 @@ from pathlib import Path
 from typing import IO, Any
 
 import pytest
-from support import forked_cli
 from support.app import end, free_ports, wait_healthy
 from support.forked_server import ServerProcess, start_server
 from support.http import HTTP
@@ -80,7 +80,7 @@ class Result:
 
 
 def cli_command(*args: str) -> list[str]:
-    return forked_cli.cli_command(*args)
+    return [sys.executable, "-m", "server", *args]
 
 
 def cli_env(url: str) -> dict[str, str]:
