@@ -2,14 +2,17 @@
 
     .venv/bin/python bench/class_burst.py [--worlds 30] [--per-world 2] [--joined-timeout-s 300]
         [--steady-s 30] [--via cli|page] [--starts all-at-once|paced [--starts-over-s 60]]
-        [--probers 10] [--page-clients [--clients-nice N]]
+        [--probers 10] [--cli-nice N] [--page-clients [--clients-nice N]]
 
 A class server (``--classroom --launch fly``, its Zenoh router on a free loopback port) with
 ``--worlds`` students joined, one world each. Then ``--worlds`` × ``--per-world`` ``ros2lab run``
 of the handout's keyboard manager (examples/workspace, rocketship), each with its student's token
 and a node name of its own, all started in the same instant (one barrier releases a thread per
 start), as a class told "run it now" does; ``--starts paced`` spreads them evenly over
-``--starts-over-s`` instead. What is measured:
+``--starts-over-s`` instead. ``--cli-nice 10`` starts each ``ros2lab run`` at that niceness from
+its first instruction (otherwise it runs at the bench's until it lowers itself, after the
+interpreter's start and its first import): they then stand for commands on the students'
+laptops rather than in terminals on the class server. What is measured:
 
 * the time from the first start until every node is in its own world's ``GET /api/nodes``
   (each world polled in turn, every 0.5 s);
@@ -20,7 +23,8 @@ start), as a class told "run it now" does; ``--starts paced`` spreads them evenl
   (``workspace_file``), from a second before the starts until every node is listed; with ``--via
   page`` the starts' own ``POST /api/run`` too (``run``). Per kind: the slowest answer, the p99,
   the median, how many calls, how many took over a second, and errors (a call unanswered in 30 s
-  counts as one, at 30 s);
+  counts as one, at 30 s); and the slowest calls with whose they were and when
+  (``slowest_answers``);
 * every world's dynamics timer rate over that time (``flightgoggles_uav_dynamics``' timer calls,
   read with the world's token before the starts and once all are joined): median and lowest;
 * the class server's CPU (cores) over that time, the share of the machine's CPU time the
@@ -143,9 +147,13 @@ def children(pid: int) -> list[int]:
         return []
 
 
-def start(server: LiveServer, token: str, node: str, env: dict[str, str]) -> subprocess.Popen[bytes]:
-    """``ros2lab run`` of the handout's keyboard manager as ``node``, in the world of ``token``."""
+def start(
+    server: LiveServer, token: str, node: str, env: dict[str, str], nice: int = 0
+) -> subprocess.Popen[bytes]:
+    """``ros2lab run`` of the handout's keyboard manager as ``node``, in the world of ``token``;
+    with ``nice``, at that niceness from its first instruction (coreutils' ``nice`` execs it)."""
     argv = [
+        *(["nice", "-n", str(nice)] if nice else []),
         ROS2LAB,
         "--url",
         server.url,
@@ -185,30 +193,47 @@ def save_manager(server: LiveServer, token: str) -> None:
 class Answers:
     """How long the class server took to answer each kind of call, from any thread."""
 
+    SLOWEST = 8  # the slowest calls kept with who made them and when
+
     def __init__(self) -> None:
         self._lock = threading.Lock()
         self._seconds: dict[str, list[float]] = {}
         self._errors: dict[str, list[str]] = {}
+        self._slowest: list[tuple[float, str, str, float]] = []  # seconds, kind, who, when (monotonic)
+        self.started = time.monotonic()  # ``when`` is given from here: the starts' instant
 
-    def record(self, kind: str, seconds: float, error: str | None = None) -> None:
+    def record(
+        self, kind: str, seconds: float, error: str | None = None, who: str = "", at: float = 0.0
+    ) -> None:
         with self._lock:
             self._seconds.setdefault(kind, []).append(seconds)
             if error is not None:
                 self._errors.setdefault(kind, []).append(error)
+            self._slowest.append((seconds, kind, who, at))
+            self._slowest.sort(reverse=True)
+            del self._slowest[self.SLOWEST :]
 
     def timed(
-        self, kind: str, call: Callable[[], httpx.Response], ok: tuple[int, ...] = (200,)
+        self, kind: str, call: Callable[[], httpx.Response], ok: tuple[int, ...] = (200,), who: str = ""
     ) -> httpx.Response | None:
         """``call``'s answer, recorded under ``kind`` (None, and recorded as its timeout, if none came)."""
-        t0 = time.perf_counter()
+        at, t0 = time.monotonic(), time.perf_counter()
         try:
             reply = call()
         except httpx.HTTPError as exc:
-            self.record(kind, time.perf_counter() - t0, f"{type(exc).__name__}: {exc}"[:200])
+            self.record(kind, time.perf_counter() - t0, f"{type(exc).__name__}: {exc}"[:200], who, at)
             return None
         error = None if reply.status_code in ok else f"{reply.status_code}: {reply.text[:160]}"
-        self.record(kind, time.perf_counter() - t0, error)
+        self.record(kind, time.perf_counter() - t0, error, who, at)
         return reply
+
+    def slowest(self) -> list[dict[str, Any]]:
+        """The slowest calls: how long, which kind, whose, and when (s after the starts)."""
+        with self._lock:
+            return [
+                {"s": round(s, 3), "kind": kind, "student": who, "at_s": round(at - self.started, 1)}
+                for s, kind, who, at in self._slowest
+            ]
 
     def summary(self) -> dict[str, dict[str, Any]]:
         """Per kind: the slowest answer, the p99 (nearest rank), the median, how many calls, how
@@ -242,17 +267,17 @@ class Prober:
         ("workspace_file", f"/api/workspace/files/{MANAGER}"),
     )
 
-    def __init__(self, url: str, token: str, answers: Answers, stop: threading.Event) -> None:
+    def __init__(self, url: str, token: str, answers: Answers, stop: threading.Event, who: str = "") -> None:
         self.client = httpx.Client(
             base_url=url, headers={"Authorization": f"Bearer {token}"}, timeout=PROBE_TIMEOUT_S
         )
-        self.answers, self.stop = answers, stop
+        self.answers, self.stop, self.who = answers, stop, who
         self.thread = threading.Thread(target=self._run, daemon=True)
 
     def _run(self) -> None:
         while not self.stop.is_set():
             for kind, path in self.CALLS:
-                self.answers.timed(kind, lambda path=path: self.client.get(path))
+                self.answers.timed(kind, lambda path=path: self.client.get(path), who=self.who)
                 if self.stop.wait(PROBE_GAP_S):
                     break
         self.client.close()
@@ -268,6 +293,7 @@ def start_in_page(server: LiveServer, token: str, node: str, answers: Answers) -
             json={"package": "rocketship", "executable": "keyboard_manager.py", "name": node},
         ),
         ok=(201,),
+        who=node,
     )
 
 
@@ -388,14 +414,15 @@ def burst(
     starts: str = "all-at-once",
     starts_over_s: float = 60.0,
     probers: int = 10,
+    cli_nice: int = 0,
 ) -> dict[str, Any]:
     wanted = {w: {f"/{w}_node{i}" for i in range(per_world)} for w in tokens}
     for token in tokens.values():  # the Run's file, and the file the probers read
         save_manager(server, token)
     answers, probing = Answers(), threading.Event()
     step = max(1, len(tokens) // max(1, probers)) if probers > 0 else 0
-    probed = list(tokens.values())[::step][:probers] if probers > 0 else []
-    probes = [Prober(server.url, t, answers, probing) for t in probed]
+    probed = list(tokens.items())[::step][:probers] if probers > 0 else []
+    probes = [Prober(server.url, t, answers, probing, who=w) for w, t in probed]
     for probe in probes:
         probe.thread.start()
     time.sleep(1.0)  # each prober's first calls answered before the starts
@@ -412,9 +439,11 @@ def burst(
                 calls.append(functools.partial(start_in_page, server, tokens[w], node, answers))
             else:
                 calls.append(
-                    functools.partial(lambda t, n: runs.append(start(server, t, n, env)), tokens[w], node)
+                    functools.partial(
+                        lambda t, n: runs.append(start(server, t, n, env, cli_nice)), tokens[w], node
+                    )
                 )
-    t0 = time.monotonic()
+    t0 = answers.started = time.monotonic()
     starters = at_times(calls, start_offsets(len(calls), starts, starts_over_s))
     try:
         pending = dict(wanted)
@@ -473,6 +502,7 @@ def burst(
         "via": via,
         "starts": starts,
         "answers": answers.summary(),
+        "slowest_answers": answers.slowest(),
         "probed_students": len(probes),
         "all_joined_s": round(all_joined_s, 1) if all_joined_s is not None else None,
         "not_joined_worlds": sorted(pending),
@@ -525,6 +555,13 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--starts-over-s", type=float, default=60.0, help="with --starts paced")
     parser.add_argument(
+        "--cli-nice",
+        type=int,
+        default=0,
+        help="with --via cli: the niceness each ros2lab run starts at (10: they stand for the students' "
+        "laptops, not terminals on the class server)",
+    )
+    parser.add_argument(
         "--probers",
         type=int,
         default=10,
@@ -559,6 +596,7 @@ def main(argv: list[str] | None = None) -> int:
                 starts=args.starts,
                 starts_over_s=args.starts_over_s,
                 probers=args.probers,
+                cli_nice=args.cli_nice,
             ),
         }
     finally:
