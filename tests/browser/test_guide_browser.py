@@ -21,7 +21,6 @@ import json
 import math
 import os
 import subprocess
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -33,6 +32,7 @@ from labserver import LabServer
 from PIL import Image
 from playwright.sync_api import Browser, Page, Request
 from shots import CanvasShot, assert_drone_seen, find_drone
+from support.forked_cli import cli_command
 from support.http import HTTP
 
 pytestmark = pytest.mark.browser
@@ -241,7 +241,7 @@ def ros2lab_verify(server: LabServer, report: Path) -> subprocess.CompletedProce
     """``ros2lab report verify FILE`` as the student runs it, against the lab (no token)."""
     env = {k: v for k, v in os.environ.items() if k != "ROS2LAB_TOKEN"}
     return subprocess.run(
-        [sys.executable, "-m", "server", "report", "verify", str(report), "--url", server.url],
+        cli_command("report", "verify", str(report), "--url", server.url),
         capture_output=True,
         text=True,
         timeout=CLI_WAIT_S,

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import json
 import subprocess
-import sys
 import textwrap
 from collections.abc import Iterator
 from pathlib import Path
@@ -15,6 +14,7 @@ from typing import Any
 
 import pytest
 from support.app import App
+from support.forked_cli import cli_command
 from support.http import HTTP
 from support.wait import wait_until
 from websockets.sync.client import ClientConnection, connect
@@ -278,9 +278,7 @@ def test_checkpoint_3_not_with_the_labs_fly_launch_but_with_the_workspaces(
 
 
 def ros2lab(app: App, *args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "server", *args, "--url", app.url], capture_output=True, text=True, timeout=60
-    )
+    return subprocess.run(cli_command(*args, "--url", app.url), capture_output=True, text=True, timeout=60)
 
 
 def test_ros2lab_report_verify_exits_0_when_valid_and_1_when_edited(app: App, tmp_path: Path) -> None:

@@ -27,6 +27,7 @@ from mcap.records import Schema as McapSchema
 from mcap_ros2.decoder import DecoderFactory
 from ros_reference import rihs
 from support.app import REPO, App, JsonProcess, free_port, instructor_token
+from support.forked_cli import cli_command
 from support.http import HTTP
 from websockets.sync.client import connect
 
@@ -107,7 +108,7 @@ def school(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
 def ros2lab_env(school: Class, token: str) -> dict[str, str]:
     """What ``eval "$(ros2lab env)"`` would export, with ``token`` as ROS2LAB_TOKEN."""
     done = subprocess.run(
-        [sys.executable, "-m", "server", "--url", school.app.url, "env"],
+        cli_command("--url", school.app.url, "env"),
         env={**os.environ, "ROS2LAB_TOKEN": token},
         capture_output=True,
         text=True,
@@ -161,7 +162,7 @@ def test_ros2lab_env_exports_the_graph_a_token_joins(school: Class) -> None:
     assert 'user="ros2lab-class"' in instructor["ZENOH_CONFIG_OVERRIDE"]
     assert 'user="ros2lab-world-1-' in ada["ZENOH_CONFIG_OVERRIDE"]
     refused = subprocess.run(
-        [sys.executable, "-m", "server", "--url", school.app.url, "env"],
+        cli_command("--url", school.app.url, "env"),
         env={k: v for k, v in os.environ.items() if k != "ROS2LAB_TOKEN"},
         capture_output=True,
         text=True,

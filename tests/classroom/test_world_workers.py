@@ -15,7 +15,6 @@ import math
 import os
 import queue
 import subprocess
-import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -26,6 +25,7 @@ import pytest
 import websockets
 import zenoh
 from support.app import App, WorldWorker, instructor_token, wait_for_workers
+from support.forked_cli import cli_command
 from support.http import HTTP
 
 from api.errors import CloseCode
@@ -314,7 +314,7 @@ def test_a_world_a_worker_hosts_that_the_class_does_not_count_there_is_ended(kla
 def test_a_worker_needs_the_instructors_token(tmp_path: Path) -> None:
     env = {k: v for k, v in os.environ.items() if k != "ROS2LAB_TOKEN"}
     done = subprocess.run(
-        [sys.executable, "-m", "server", "world-worker", "--connect", "tcp/127.0.0.1:1"],
+        cli_command("world-worker", "--connect", "tcp/127.0.0.1:1"),
         env=env,
         capture_output=True,
         text=True,

@@ -10,7 +10,6 @@ import os
 import queue
 import signal
 import subprocess
-import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -19,6 +18,7 @@ from pathlib import Path
 from typing import IO, Any
 
 import pytest
+from support import forked_cli
 from support.app import end, free_ports, wait_healthy
 from support.forked_server import ServerProcess, start_server
 from support.http import HTTP
@@ -80,7 +80,7 @@ class Result:
 
 
 def cli_command(*args: str) -> list[str]:
-    return [sys.executable, "-m", "server", *args]
+    return forked_cli.cli_command(*args)
 
 
 def cli_env(url: str) -> dict[str, str]:

@@ -11,13 +11,13 @@ import queue
 import re
 import signal
 import subprocess
-import sys
 import threading
 import time
 from pathlib import Path
 
 import pytest
 from support.app import App
+from support.forked_cli import cli_command
 from support.http import HTTP
 
 from .conftest import make_workspace
@@ -89,7 +89,7 @@ def test_launch_prints_its_node_processs_output_once_and_its_death(tmp_path: Pat
     reader: threading.Thread | None = None
     try:
         cli = subprocess.Popen(
-            [sys.executable, "-m", "server", "launch", "faults", "once.launch"],
+            cli_command("launch", "faults", "once.launch"),
             env={**os.environ, "TELEOP_URL": app.url, "PYTHONUNBUFFERED": "1"},
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,

@@ -9,12 +9,12 @@ import contextlib
 import io
 import signal
 import subprocess
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 from support.app import REPO, App
+from support.forked_cli import cli_command
 from support.wait import wait_until
 
 from server.cli import main as cli_main
@@ -142,7 +142,7 @@ def run(lab: tuple[App, Path]) -> Iterator[type[NodeProcess]]:
 
     class Started(NodeProcess):
         def __init__(self, exe: str, *args: str) -> None:
-            command = [sys.executable, "-m", "server", "--url", app.url, "run", "param_lab", exe, *args]
+            command = cli_command("--url", app.url, "run", "param_lab", exe, *args)
             super().__init__(app, root / exe, command=command)
             started.append(self)
 
@@ -158,7 +158,7 @@ def run(lab: tuple[App, Path]) -> Iterator[type[NodeProcess]]:
 def ros2lab(app: App, cwd: Path, *args: str) -> subprocess.CompletedProcess[str]:
     """The CLI as a user runs it, in a process of its own."""
     return subprocess.run(
-        [sys.executable, "-m", "server", "--url", app.url, *args],
+        cli_command("--url", app.url, *args),
         cwd=cwd,
         text=True,
         capture_output=True,

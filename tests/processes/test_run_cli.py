@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 from support.app import REPO, App
+from support.forked_cli import cli_command
 
 from .conftest import make_workspace, node_entry
 
@@ -79,7 +80,7 @@ def no_student_node_left(lab: tuple[App, Path]) -> None:
 
 def ros2lab(app: App, cwd: Path, *args: str) -> subprocess.Popen[str]:
     return subprocess.Popen(
-        [sys.executable, "-m", "server", "--url", app.url, "run", *args],
+        cli_command("--url", app.url, "run", *args),
         cwd=cwd,
         text=True,
         stdout=subprocess.PIPE,

@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import re
 import subprocess
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 from support.app import App
+from support.forked_cli import cli_command
 
 from .node_process import NodeProcess
 
@@ -36,7 +36,7 @@ def run(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
 
     class Started(NodeProcess):
         def __init__(self, package: str, executable: str) -> None:
-            command = [sys.executable, "-m", "server", "--url", lab.url, "run", package, executable]
+            command = cli_command("--url", lab.url, "run", package, executable)
             super().__init__(lab, tmp_path / executable, command=command)
             started.append(self)
 
@@ -47,7 +47,7 @@ def run(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
 
 def ros2lab(lab: App, *args: str) -> tuple[int, str, str]:
     done = subprocess.run(
-        [sys.executable, "-m", "server", "--url", lab.url, *args],
+        cli_command("--url", lab.url, *args),
         capture_output=True,
         text=True,
         timeout=CLI_S,

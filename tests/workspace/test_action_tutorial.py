@@ -10,7 +10,6 @@ import os
 import re
 import struct
 import subprocess
-import sys
 import threading
 import time
 from collections.abc import Iterator
@@ -23,6 +22,7 @@ from processes.node_process import NodeProcess
 from ros_reference import ROS_REFERENCE_HASHES
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from support.app import REPO, App
+from support.forked_cli import cli_command
 
 from .action_packages import PACKAGE, demos_clone
 from .test_colcon_run import RUN_S, finish, ros2lab
@@ -59,7 +59,7 @@ class Run(NodeProcess):
     def __init__(self, app: App, cwd: Path, executable: str, *args: str) -> None:
         self.name = executable
         self.proc = subprocess.Popen(
-            [sys.executable, "-u", "-m", "server", "--url", app.url, "run", PACKAGE, executable, *args],
+            cli_command("--url", app.url, "run", PACKAGE, executable, *args, unbuffered=True),
             cwd=cwd,
             env=dict(os.environ),
             text=True,

@@ -6,12 +6,12 @@ from __future__ import annotations
 import re
 import signal
 import subprocess
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 from support.app import REPO, App
+from support.forked_cli import cli_command
 
 from .tutorial_packages import examples_clone, manifest, write
 
@@ -50,7 +50,7 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, Path]]:
 
 def ros2lab(app: App, cwd: Path, *args: str) -> subprocess.Popen[str]:
     return subprocess.Popen(
-        [sys.executable, "-m", "server", "--url", app.url, *args],
+        cli_command("--url", app.url, *args),
         cwd=cwd,
         text=True,
         stdout=subprocess.PIPE,
@@ -186,7 +186,7 @@ def test_created_package_runs_at_once(lab: tuple[App, Path], tmp_path: Path) -> 
 
 def test_colcon_is_a_one_line_hint(tmp_path: Path) -> None:
     done = subprocess.run(
-        [sys.executable, "-m", "server", "colcon", "build", "--symlink-install"],
+        cli_command("colcon", "build", "--symlink-install"),
         cwd=tmp_path,
         capture_output=True,
         text=True,

@@ -10,7 +10,6 @@ import json
 import re
 import struct
 import subprocess
-import sys
 import threading
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -26,6 +25,7 @@ from mcap_ros2.decoder import DecoderFactory
 from processes.node_process import NodeProcess
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from support.app import REPO, App, free_port
+from support.forked_cli import cli_command
 
 from .interface_packages import NUM, TELEMETRY, interface_package, tutorial_workspace
 
@@ -83,7 +83,7 @@ def run(lab: LiveLab, tmp_path: Path) -> Iterator[Any]:
     started: list[NodeProcess] = []
 
     def start(pkg: str, exe: str, *args: str) -> NodeProcess:
-        argv = [sys.executable, "-m", "server", "--url", app.url, "run", pkg, exe, *args]
+        argv = cli_command("--url", app.url, "run", pkg, exe, *args)
         proc = NodeProcess(app, tmp_path / exe, command=argv)
         started.append(proc)
         return proc
@@ -133,10 +133,7 @@ def test_service_between_two_processes_and_called_from_the_cli(run: Any, lab: Li
     server.wait_for(r"\[minimal_service\]: Incoming request$")
     server.wait_for(r"^a: 2 b: 3 c: 4$")
     call = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "server",
+        cli_command(
             "--url",
             app.url,
             "service",
@@ -144,7 +141,7 @@ def test_service_between_two_processes_and_called_from_the_cli(run: Any, lab: Li
             "/add_three_ints",
             "tutorial_interfaces/srv/AddThreeInts",
             "{a: 10, b: 20, c: -5}",
-        ],
+        ),
         capture_output=True,
         text=True,
         timeout=START_S,
@@ -198,7 +195,7 @@ def test_telemetry_echoed_in_foxglove_recorded_and_on_the_wire_with_rosbags_hash
         assert all(m["z"] == m["n"] == m["minus"] for m in heard), [m[0] for m in heard]
 
         echo = subprocess.run(
-            [sys.executable, "-m", "server", "--url", app.url, "topic", "echo", "/telemetry", "--once"],
+            cli_command("--url", app.url, "topic", "echo", "/telemetry", "--once"),
             capture_output=True,
             text=True,
             timeout=60,
@@ -308,7 +305,7 @@ def test_broken_definition_is_logged_and_the_lab_and_other_types_work(lab: LiveL
     missing = app.post("/api/publish", {"topic": "/bad", "type": "broken_interfaces/msg/Bad", "msg": {}})
     assert missing.status_code == 422 and "broken_interfaces/msg/Bad" in missing.text  # as any unknown type
     listed = subprocess.run(
-        [sys.executable, "-m", "server", "--url", app.url, "interface", "package", "broken_interfaces"],
+        cli_command("--url", app.url, "interface", "package", "broken_interfaces"),
         capture_output=True,
         text=True,
         timeout=60,

@@ -8,13 +8,13 @@ turtle they spawn and the background they set are checked too."""
 from __future__ import annotations
 
 import subprocess
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 from processes.node_process import NodeProcess
 from support.app import App
+from support.forked_cli import cli_command
 from support.wait import wait_until
 
 from .launch_tutorials import (
@@ -34,7 +34,7 @@ STAMP = r"\[\d+\.\d{9}\]"
 
 def ros2lab(*args: str, cwd: Path | None = None) -> tuple[int, str, str]:
     done = subprocess.run(
-        [sys.executable, "-m", "server", *args],
+        cli_command(*args),
         capture_output=True,
         text=True,
         timeout=CLI_S,
@@ -107,7 +107,7 @@ def launch(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
 
     class Launched(NodeProcess):
         def __init__(self, *arguments: str) -> None:
-            command = [sys.executable, "-m", "server", "--url", lab.url, "launch", *arguments]
+            command = cli_command("--url", lab.url, "launch", *arguments)
             super().__init__(
                 lab,
                 tmp_path / Path(arguments[1] if len(arguments) > 1 else arguments[0]).name,
@@ -137,7 +137,7 @@ def test_creating_a_launch_file_turtle2_mimics_turtle1(
     launched = launch(str(ws / "launch" / f"turtlesim_mimic_launch.{kind}"))
     launched.wait_for(r"Starting turtlesim with node name /turtlesim2/sim$")
     assert {"/turtlesim1/sim", "/turtlesim2/sim", "/mimic"} <= graph(lab, "node")
-    cli = [sys.executable, "-m", "server", "--url", lab.url]
+    cli = cli_command("--url", lab.url)
     echo = [*cli, "topic", "echo", "/turtlesim2/turtle1/pose", "--field", "linear_velocity"]
     seen = NodeProcess(lab, tmp_path / "echo", command=echo)
     twist = "{linear: {x: 2.0, y: 0.0, z: 0.0}, angular: {x: 0.0, y: 0.0, z: -1.8}}"  # the page's command
@@ -207,7 +207,7 @@ def test_substitutions_put_turtlesim_in_the_namespace_given(
 def param_events(lab: App, tmp_path: Path) -> NodeProcess:
     """``ros2lab topic echo /parameter_events`` (every parameter a node declares or changes), once it
     has shown an event of a node ``/marker`` this publishes until then."""
-    cli = [sys.executable, "-m", "server", "--url", lab.url]
+    cli = cli_command("--url", lab.url)
     events = NodeProcess(lab, tmp_path / "events", command=[*cli, "topic", "echo", "/parameter_events"])
     marker = [
         *cli,

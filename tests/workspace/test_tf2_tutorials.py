@@ -8,13 +8,13 @@ from __future__ import annotations
 import math
 import signal
 import subprocess
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 from processes.node_process import NodeProcess
 from support.app import REPO, App
+from support.forked_cli import cli_command
 
 from .tf2_packages import learning_tf2_py
 
@@ -48,18 +48,9 @@ def run(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
 
     class Started(NodeProcess):
         def __init__(self, executable: str, *args: str) -> None:
-            command = [
-                sys.executable,
-                "-u",
-                "-m",
-                "server",
-                "--url",
-                lab.url,
-                "run",
-                "learning_tf2_py",
-                executable,
-                *args,
-            ]
+            command = cli_command(
+                "--url", lab.url, "run", "learning_tf2_py", executable, *args, unbuffered=True
+            )
             super().__init__(lab, tmp_path / executable, command=command)
             started.append(self)
 
@@ -70,7 +61,7 @@ def run(lab: App, tmp_path: Path) -> Iterator[type[NodeProcess]]:
 
 def ros2lab(lab: App, *args: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        [sys.executable, "-m", "server", "--url", lab.url, *args],
+        cli_command("--url", lab.url, *args),
         capture_output=True,
         text=True,
         timeout=RUN_S,

@@ -6,12 +6,12 @@ from __future__ import annotations
 
 import os
 import subprocess
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 from fastapi.testclient import TestClient
+from support.forked_cli import cli_command
 
 from server.packages.templates import PackageSpec, package_files
 from server.services.workspace.templates import TEMPLATES
@@ -139,10 +139,7 @@ def test_files_new_package_writes_what_ros2lab_pkg_create_writes(
     assert created.json()["name"] == "simple_control" and created.json()["path"] == "src/simple_control"
     assert sorted(created.json()["files"]) == expected
     cli = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "server",
+        cli_command(
             "pkg",
             "create",
             "simple_control",
@@ -156,7 +153,7 @@ def test_files_new_package_writes_what_ros2lab_pkg_create_writes(
             "student",
             "--maintainer-email",
             "student@todo.todo",
-        ],
+        ),
         cwd=tmp_path,
         capture_output=True,
         text=True,
