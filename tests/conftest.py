@@ -10,17 +10,27 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from support.schedule import BROWSER_FOLDER, browser_tests_astray, longest_files_first
+from support.schedule import (
+    BROWSER_FOLDER,
+    TIMING_MARK,
+    browser_tests_astray,
+    longest_files_first,
+    timing_tests_unfound,
+)
 
 from node_runtime.bus import Bus, Executor, ManualClock
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     """The longest files first (support.schedule); a browser test outside tests/browser/ is an
-    error, as the check gate's browser part collects only there."""
+    error, as the check gate's browser part collects only there, and so is a timing test whose file
+    does not say ``pytest.mark.timing``, as its timing part collects only the files that do."""
     astray = browser_tests_astray(items)
     if astray:
         raise pytest.UsageError(f"browser tests belong in {BROWSER_FOLDER}: {astray}")
+    unfound = timing_tests_unfound(items)
+    if unfound:
+        raise pytest.UsageError(f"mark timing tests with pytest.{TIMING_MARK} in their own file: {unfound}")
     items[:] = longest_files_first(items)
 
 

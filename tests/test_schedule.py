@@ -7,7 +7,13 @@ import sys
 from pathlib import Path
 
 import pytest
-from support.schedule import BROWSER_FOLDER, LONGEST_FILES, browser_tests_astray
+from support.schedule import (
+    BROWSER_FOLDER,
+    LONGEST_FILES,
+    TIMING_MARK,
+    browser_tests_astray,
+    timing_tests_unfound,
+)
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -43,8 +49,10 @@ class FakeItem(pytest.Item):
         raise AssertionError("a schedule's stand-in is not a test")
 
 
-def fake_item(session: pytest.Session, nodeid: str, *markers: str) -> FakeItem:
-    item = FakeItem.from_parent(session, name=nodeid, nodeid=nodeid)
+def fake_item(session: pytest.Session, nodeid: str, *markers: str, path: Path | None = None) -> FakeItem:
+    item = FakeItem.from_parent(
+        session, name=nodeid, nodeid=nodeid, path=path or REPO / nodeid.split("::")[0]
+    )
     for marker in markers:
         item.add_marker(marker)
     return item
@@ -59,3 +67,22 @@ def test_a_browser_test_outside_the_browser_folder_is_named_and_one_inside_is_no
     plain = fake_item(session, "tests/api/test_topics.py::test_c")
     assert browser_tests_astray([inside, outside, plain]) == [outside.nodeid]
     assert browser_tests_astray([inside, plain]) == []
+
+
+def test_a_timing_test_whose_file_does_not_say_its_mark_is_named(
+    request: pytest.FixtureRequest, tmp_path: Path
+) -> None:
+    """The gate's timing part collects the files that hold TIMING_MARK; a test marked another way
+    (by a hook, say) would run in no part, and the collection refuses it."""
+    said = tmp_path / "test_said.py"
+    said.write_text(f"pytestmark = pytest.{TIMING_MARK}\n")
+    unsaid = tmp_path / "test_unsaid.py"
+    unsaid.write_text("pytestmark = TIMED\n")
+    session = request.session
+    items = [
+        fake_item(session, "test_said.py::test_a", "timing", path=said),
+        fake_item(session, "test_unsaid.py::test_b", "timing", path=unsaid),
+        fake_item(session, "test_unsaid.py::test_c", path=unsaid),
+    ]
+    assert timing_tests_unfound(items) == ["test_unsaid.py::test_b"]
+    assert timing_tests_unfound(items[:1] + items[2:]) == []

@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from pathlib import Path
 from typing import TypeVar
 
 import pytest
 
-# The browser tests' folder: the check gate's browser part collects only this one.
+# The browser tests' folder: the check gate's browser part collects only this one, and its
+# parallel part all but this one.
 BROWSER_FOLDER = "tests/browser/"
+# What the file of every timing test holds (as ``pytest.mark.timing``): the check gate's timing part
+# collects only the files that hold it (scripts/check greps for it), not the whole suite.
+TIMING_MARK = "mark.timing"
 
 # The test files that take longest in their part of the suite (pytest --durations on this 2-core
 # machine), in that order. The check gate hands out whole files to its workers in collection order
@@ -61,3 +66,18 @@ def browser_tests_astray(items: Sequence[pytest.Item]) -> list[str]:
         for item in items
         if item.get_closest_marker("browser") is not None and not item.nodeid.startswith(BROWSER_FOLDER)
     ]
+
+
+def timing_tests_unfound(items: Sequence[pytest.Item]) -> list[str]:
+    """The timing tests whose file does not hold TIMING_MARK (a mark given some other way): the
+    check gate's timing part would not collect them, and the other parts leave them out."""
+    holds: dict[Path, bool] = {}
+    unfound = []
+    for item in items:
+        if item.get_closest_marker("timing") is None:
+            continue
+        if item.path not in holds:
+            holds[item.path] = TIMING_MARK in item.path.read_text(encoding="utf-8")
+        if not holds[item.path]:
+            unfound.append(item.nodeid)
+    return unfound
