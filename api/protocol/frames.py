@@ -12,7 +12,15 @@ from typing import Annotated, Any, Literal, NotRequired
 from pydantic import Field
 from typing_extensions import TypedDict
 
-from server.services.launch.output import DroppedFrame, EndFrame, ExitFrame, LineFrame, WaitingFrame
+from server.services.launch.output import (
+    DroppedFrame,
+    EndFrame,
+    ExitFrame,
+    JoinedFrame,
+    LineFrame,
+    StartedFrame,
+    WaitingFrame,
+)
 
 __all__ = [
     "ControlFrame",
@@ -20,10 +28,12 @@ __all__ = [
     "EchoFrame",
     "EndFrame",
     "ExitFrame",
+    "JoinedFrame",
     "KeyChannelError",
     "KeyFrame",
     "LineFrame",
     "OutputFrame",
+    "StartedFrame",
     "WaitingFrame",
 ]
 
@@ -79,10 +89,11 @@ class EchoFrame(TypedDict):
 
 
 OutputFrame = Annotated[
-    LineFrame | DroppedFrame | WaitingFrame | ExitFrame | EndFrame,
+    LineFrame | DroppedFrame | WaitingFrame | StartedFrame | JoinedFrame | ExitFrame | EndFrame,
     Field(
         discriminator="type",
         description="A frame of a run's output socket: its lines (the kept ones first), lines lost, "
-        "a node waiting for its turn, each node's exit and, last, the group's end.",
+        "a node waiting for its turn, each node process's start (its pid) and its node's arrival in the "
+        "graph, each node's exit and, last, the group's end.",
     ),
 ]

@@ -2,9 +2,11 @@
 
 Frames (JSON text): ``line`` (``seq``, ``node``, ``stream``, ``text``), ``dropped`` (``count``:
 lines a fast printer lost before this socket read them), ``waiting`` (``node``: a node process
-that waits for its turn to start, on a server that starts a few at a time), ``exit`` (``node``,
-``code`` or ``signal``; neither for one stopped before it started) and, once every node of the group has ended, ``end``, after which the server closes
-the socket (1000). A new socket first gets the lines still kept. The output is read from the
+that waits for its turn to start, on a server that starts a few at a time), ``started``
+(``node``, ``pid``: the process runs), ``joined`` (``node``, ``names``: its node is in the lab's
+graph; the page shows it as starting until then), ``exit`` (``node``, ``code`` or ``signal``;
+neither for one stopped before it started) and, once every node of the group has ended, ``end``,
+after which the server closes the socket (1000). A new socket first gets the lines still kept. The output is read from the
 processes' own bounded buffers every ``POLL_S``, so a flood costs this socket no memory and
 the lab nothing; the lab's frame budget paces the sends. An unknown id closes with 4404; the
 channel takes no messages.
@@ -39,7 +41,7 @@ async def output(websocket: WebSocket, group_id: str, lab: WsLabDep) -> None:
     except UnknownLaunchError as exc:
         await websocket.close(CloseCode.NOT_FOUND, close_reason(str(exc)))
         return
-    reader = GroupOutput(group, lambda: group_id in lab.launch_groups)
+    reader = GroupOutput(group, lambda: group_id in lab.launch_groups, lab.joined_names)
     sender = asyncio.create_task(_send_loop(websocket, reader, lab))
     try:
         async with closed_when_lab_stops(websocket, lab):

@@ -240,6 +240,12 @@ class Lab:
         """Nodes and endpoints of other processes, while the graph is on Zenoh."""
         return self.zenoh.bridge.remote if self.zenoh is not None else None
 
+    def joined_names(self, zid: str) -> list[str]:
+        """The nodes a node process's session (``zid``) has declared in the graph, even if gone
+        since; none while it is starting, or where the graph is not on Zenoh."""
+        remote = self.remote_graph()
+        return remote.names_seen(zid) if remote is not None else []
+
     def topic_type(self, name: str, type_name: str | None) -> type[Message]:
         """The type ``name`` carries: ``type_name`` if given (it must agree with the graph), else the
         type this process or another process uses on it. UnknownTopicError if none does."""

@@ -15,6 +15,7 @@ its own (it reloads it), the others share one.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterator
 from typing import Any
 
@@ -217,11 +218,29 @@ def test_editor_simple_control_written_run_flown_stopped_and_kept_across_a_reloa
         "the typed file saved",
     )
 
+    # Each state the run shows, with whether its node was in the output's "in the graph" note then.
+    page.evaluate(
+        """() => {
+          const state = document.querySelector('#teleop-code .run-state');
+          window.__runStates = [];
+          new MutationObserver(() => window.__runStates.push([state.dataset.state,
+            document.querySelectorAll('#teleop-code .output .note.joined').length]))
+            .observe(state, { attributes: true, attributeFilter: ['data-state'] });
+        }"""
+    )
     page.get_by_role("button", name="\u25b6 Run").click()
     log_line = page.locator("#teleop-code .output .line.log-info", has_text="keyboard manager ready")
     log_line.wait_for(timeout=RUN_WAIT_S * 1000)
     assert "[KeyboardManagerNode]" in log_line.inner_text()
     assert NODE in nodes(server)
+    # Starting until its node is in the graph, as the output says; running from then on.
+    page.locator('#teleop-code .run-state[data-state="running"]').wait_for(timeout=RUN_WAIT_S * 1000)
+    states = page.evaluate("window.__runStates")
+    assert states[0] == ["starting", 0] and states[-1] == ["running", 1], states
+    assert [s for s, _ in states] == ["starting"] * (len(states) - 1) + ["running"], states
+    started = page.locator("#teleop-code .output .note.started").inner_text()
+    assert re.fullmatch(r"\[INFO\] \[[\w.-]+\]: process started with pid \[\d+\]", started), started
+    assert page.locator("#teleop-code .output .note.joined").inner_text().endswith(f"in the graph: {NODE}")
     wait_setpoint(server, (0.0, 0.0, 3.0))
 
     # Arrows typed in the editor move its cursor, never the drone.

@@ -72,7 +72,7 @@ def test_a_deferred_start_waits_with_no_pid_and_starts_at_its_turn(lab: Lab) -> 
     assert second.describe()["nodes"][0]["state"] == "running" and started(lab, second.id)
     assert (lab.launcher.start_pacer.admitted, lab.launcher.start_pacer.deferred) == (2, 1)  # type: ignore[union-attr]
 
-    reader = GroupOutput(second, lambda: second.id in lab.launch_groups)
+    reader = GroupOutput(second, lambda: second.id in lab.launch_groups, lab.joined_names)
     process = second.entries[0].process
     wait_until(lambda: process.output()[1] >= 1, "the second sleeper's first line")
     assert [f["text"] for f in reader.poll() if f["type"] == "line"] == ["sleeper up"]
@@ -81,7 +81,7 @@ def test_a_deferred_start_waits_with_no_pid_and_starts_at_its_turn(lab: Lab) -> 
 def test_a_start_stopped_while_it_waits_never_starts_and_its_output_says_so(lab: Lab) -> None:
     lab.launch_groups.run("pacing", "sleeper.py")
     second = lab.launch_groups.run("pacing", "sleeper.py")
-    reader = GroupOutput(second, lambda: second.id in lab.launch_groups)
+    reader = GroupOutput(second, lambda: second.id in lab.launch_groups, lab.joined_names)
     process = second.entries[0].process
     assert process is not None
     assert reader.poll() == [{"type": "waiting", "node": process.label}]

@@ -129,6 +129,31 @@ def test_run_output_streams_lines_then_stop_ends_with_an_exit(client: TestClient
         assert closing["type"] == "websocket.close" and closing["code"] == 1000
 
 
+def test_run_output_says_when_the_process_started_and_when_its_node_joined(client: TestClient) -> None:
+    group = run(client, "talker")
+    try:
+        with client.websocket_connect(f"/ws/launches/{group}/output") as ws:
+            frames = frames_until(ws, lambda f: f["type"] == "joined")
+        kinds = [f["type"] for f in frames]
+        assert kinds.count("started") == 1 and kinds.index("started") < kinds.index("joined")
+        started, joined = frames[kinds.index("started")], frames[-1]
+        assert joined == {"type": "joined", "node": started["node"], "names": ["/talker"]}
+        # The pid is the process's: the graph places the node there.
+        nodes = {n["name"]: n for n in client.get("/api/nodes").json()}
+        assert nodes["/talker"]["location"] == f"process {started['pid']}"
+    finally:
+        assert client.delete(f"/api/launches/{group}").status_code == 200
+
+
+def test_run_output_a_process_with_no_node_starts_and_never_joins(client: TestClient) -> None:
+    group = run(client, "quick")  # prints and exits: no rclpy, no node in the graph
+    with client.websocket_connect(f"/ws/launches/{group}/output") as ws:
+        frames = frames_until(ws, lambda f: f["type"] == "end")  # the end is the marker: nothing after
+    kinds = [f["type"] for f in frames]
+    assert kinds[0] == "started" and "joined" not in kinds and kinds[-2:] == ["exit", "end"]
+    assert client.delete(f"/api/launches/{group}").status_code == 200
+
+
 def test_run_output_a_late_socket_gets_the_kept_lines_and_the_exit_code(client: TestClient) -> None:
     group = run(client, "quick")
 

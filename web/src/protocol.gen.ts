@@ -245,6 +245,13 @@ export interface Joined {
   token: string;
 }
 
+/** A node process's session declared its node(s) in the lab's graph: ``names``, fully qualified. */
+export interface JoinedFrame {
+  type: "joined";
+  node: string;
+  names: string[];
+}
+
 /** The server's only frame on this channel: why a frame did nothing. */
 export interface KeyChannelError {
   type: "error";
@@ -371,8 +378,8 @@ export interface NodeSummaryOut {
   respawn?: RespawnOut | null;
 }
 
-/** A frame of a run's output socket: its lines (the kept ones first), lines lost, a node waiting for its turn, each node's exit and, last, the group's end. */
-export type OutputFrame = LineFrame | DroppedFrame | WaitingFrame | ExitFrame | EndFrame;
+/** A frame of a run's output socket: its lines (the kept ones first), lines lost, a node waiting for its turn, each node process's start (its pid) and its node's arrival in the graph, each node's exit and, last, the group's end. */
+export type OutputFrame = LineFrame | DroppedFrame | WaitingFrame | StartedFrame | JoinedFrame | ExitFrame | EndFrame;
 
 export interface PackageCreated {
   name: string;
@@ -535,6 +542,13 @@ export interface StaleSave {
   detail: string;
   /** the file's version now; null: it is gone */
   etag: string | null;
+}
+
+/** A node process started (its interpreter runs; its node is not in the graph yet). */
+export interface StartedFrame {
+  type: "started";
+  node: string;
+  pid: number;
 }
 
 /** What a control that only acts answers: what it did. */

@@ -6,7 +6,9 @@ how many it printed in all, so a reader that fell behind learns how many lines i
 in the process's output (``seq``), and once the process has ended and every line is read, its
 exit. A process that waits for its turn to start (server/host/processes/start_pacing.py) is first a
 ``waiting`` frame; one stopped before it started ends with an exit frame of no code and no
-signal. A group has ended when each of its processes has and no node of it runs any more (a node
+signal. A process that starts is a ``started`` frame with its pid (what ``ros2 launch`` logs as
+"process started with pid"), then, once its Zenoh session has declared a node in the lab's graph,
+a ``joined`` frame with the node's name: until then a page shows it as starting. A group has ended when each of its processes has and no node of it runs any more (a node
 with ``respawn`` keeps it open while the group is not stopped).
 
 The supervisor merges a process's stderr into its stdout (as a terminal shows them), so every
@@ -50,6 +52,23 @@ class WaitingFrame(TypedDict):
     node: str
 
 
+class StartedFrame(TypedDict):
+    """A node process started (its interpreter runs; its node is not in the graph yet)."""
+
+    type: Literal["started"]
+    node: str
+    pid: int
+
+
+class JoinedFrame(TypedDict):
+    """A node process's session declared its node(s) in the lab's graph: ``names``, fully
+    qualified."""
+
+    type: Literal["joined"]
+    node: str
+    names: list[str]
+
+
 class ExitFrame(TypedDict):
     """A node process ended: its exit code, or the signal that ended it; neither for one stopped
     before it started."""
@@ -66,7 +85,9 @@ class EndFrame(TypedDict):
     type: Literal["end"]
 
 
-Frame = LineFrame | DroppedFrame | WaitingFrame | ExitFrame | EndFrame
+Frame = LineFrame | DroppedFrame | WaitingFrame | StartedFrame | JoinedFrame | ExitFrame | EndFrame
+# The nodes a node process's session (its Zenoh id) has declared in the lab's graph, or none yet.
+JoinedNames = Callable[[str], list[str]]
 
 
 @dataclass
@@ -76,6 +97,8 @@ class _Seen:
     sent: int = 0  # lines of its output sent (or counted as dropped)
     exited: bool = False  # its exit frame sent
     waiting: bool = False  # its waiting frame sent
+    started: bool = False  # its started frame sent
+    joined: bool = False  # its joined frame sent
 
 
 def exit_frame(process: ProcessNode, node: str) -> ExitFrame:
@@ -91,11 +114,12 @@ def exit_frame(process: ProcessNode, node: str) -> ExitFrame:
 
 class GroupOutput:
     """One reader's place in a group's output. ``running`` says whether the group is still in its
-    lab (not stopped)."""
+    lab (not stopped); ``joined`` which nodes a session has declared in the lab's graph."""
 
-    def __init__(self, group: LaunchGroup, running: Callable[[], bool]) -> None:
+    def __init__(self, group: LaunchGroup, running: Callable[[], bool], joined: JoinedNames) -> None:
         self.group = group
         self.running = running
+        self.joined = joined
         self._seen: list[_Seen] = []
         self.ended = False
 
@@ -123,6 +147,7 @@ class GroupOutput:
                     seen.exited = True
                 continue
             ended = seen.process.exit_code is not None  # read first: once set, every line is kept
+            frames.extend(self._arrival(seen))
             lines, printed = seen.process.output()
             first = printed - len(lines)
             if seen.sent < first:
@@ -146,6 +171,19 @@ class GroupOutput:
             frames.append({"type": "end"})
             self.ended = True
         return frames
+
+    def _arrival(self, seen: _Seen) -> list[Frame]:
+        """Its started frame, then its joined frame once its session has a node in the graph."""
+        process, out = seen.process, list[Frame]()
+        if not seen.started and process.proc is not None:
+            out.append({"type": "started", "node": seen.node, "pid": process.proc.pid})
+            seen.started = True
+        if not seen.joined and process.exit_code is None:
+            names = self.joined(process.command.zid)
+            if names:
+                out.append({"type": "joined", "node": seen.node, "names": names})
+                seen.joined = True
+        return out
 
     def _finished(self) -> bool:
         if not all(s.exited for s in self._seen):

@@ -128,7 +128,7 @@ export function mountCodeView(host: HTMLElement, lab: CodeViewHost): CodeViewHan
       runState.dataset.state = state;
       runState.textContent = state === "idle" ? "" : `${label} \u2014 ${state}`;
       runB.disabled = file.path === null || state === "running" || state === "starting" || state === "stopping";
-      stopB.disabled = state !== "running";
+      stopB.disabled = !runner.stoppable;
     },
   });
   stopB.disabled = true;

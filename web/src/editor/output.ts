@@ -4,7 +4,7 @@
 // traceback the student's frames show and the lab's own frames (rclpy, the launcher: files outside
 // the workspace) fold behind a toggle right after its first line, so the student's line is not
 // buried under them. The page keeps the last MAX_LINES lines; older ones scroll away.
-import type { ExitFrame, LineFrame, WaitingFrame } from "../protocol.gen";
+import type { ExitFrame, JoinedFrame, LineFrame, StartedFrame, WaitingFrame } from "../protocol.gen";
 
 const MAX_LINES = 2000;
 const LOG_LEVEL = /^\[(DEBUG|INFO|WARN|ERROR|FATAL)\]/;
@@ -128,6 +128,15 @@ export class OutputPane {
 
   waiting(frame: WaitingFrame): void {
     this.note(`[${frame.node}] waiting for its turn to start: this server starts a few node processes at a time`, "waiting");
+  }
+
+  /** As ros2 launch logs it. */
+  started(frame: StartedFrame): void {
+    this.note(`[INFO] [${frame.node}]: process started with pid [${frame.pid}]`, "started");
+  }
+
+  joined(frame: JoinedFrame): void {
+    this.note(`[${frame.node}] in the graph: ${frame.names.join(", ")}`, "joined");
   }
 
   exit(frame: ExitFrame): void {

@@ -1,6 +1,9 @@
 // Run the open file as its package's node (POST /api/run, as `ros2 run`) or, for a launch file,
 // launch it (POST /api/launch, as `ros2 launch`); stream its output over the run's socket; Stop
 // (DELETE, which is Ctrl-C and then the end after a grace period). One run at a time from here.
+// The run is "starting" until each of its node processes has its node in the graph (the socket's
+// joined frame) or has ended: on a busy class server a start may wait for its turn, and a node
+// process takes a second or more to join.
 import type { OutputFrame, WorkspaceEntry } from "../protocol.gen";
 import { ApiError, runs, workspace } from "./api";
 import { parseFrame } from "./frames";
@@ -60,6 +63,8 @@ export class Runner {
   private socket: WebSocket | null = null;
   private lastSeq = -1;
   private nodes = new Set<string>();
+  private arriving = new Set<string>();  // node processes not in the graph yet, nor ended
+  private told = new Set<string>();  // started and joined frames shown (a new socket sends them again)
   private label = "";
 
   constructor(private readonly output: OutputPane, private readonly view: RunView) {}
@@ -74,13 +79,16 @@ export class Runner {
     if (this.state === "starting" || this.state === "running" || this.state === "stopping") return;
     const command = `ros2 ${target.kind} ${target.pkg} ${target.name}`;
     this.output.clear(`$ ${command}`);
+    this.id = null;
     this.set("starting", command);
     try {
       const group = target.kind === "launch" ? await runs.launch(target.pkg, target.name) : await runs.run(target.pkg, target.name);
       this.id = group.id;
       this.lastSeq = -1;
       this.nodes.clear();
-      this.set("running");
+      this.told.clear();
+      this.arriving = new Set(group.nodes.flatMap((n) => (n.process !== null && n.error === null ? [n.process] : [])));
+      this.set(this.arriving.size ? "starting" : "running");
       this.connect(group.id);
     } catch (exc) {
       this.output.note(exc instanceof ApiError ? `refused: ${exc.message}` : String(exc), "error");
@@ -88,15 +96,22 @@ export class Runner {
     }
   }
 
+  /** Whether Stop applies: a run the server has, starting or running. */
+  get stoppable(): boolean {
+    return this.id !== null && (this.state === "running" || this.state === "starting");
+  }
+
   async stop(): Promise<void> {
-    if (this.id === null || this.state !== "running") return;
+    const id = this.id;
+    if (id === null || !this.stoppable) return;
+    const was = this.state;
     this.set("stopping");
     try {
-      await runs.stop(this.id);
+      await runs.stop(id);
     } catch (exc) {
       if (exc instanceof ApiError && exc.status === 404) { this.ended(); return; }
       this.output.note(`Stop failed: ${exc instanceof ApiError ? exc.message : String(exc)}`, "error");
-      this.set("running");
+      this.set(was);
     }
   }
 
@@ -133,12 +148,33 @@ export class Runner {
       case "waiting":
         this.output.waiting(frame);
         return;
+      case "started":
+        if (this.tell(frame)) this.output.started(frame);
+        return;
+      case "joined":
+        if (this.tell(frame)) this.output.joined(frame);
+        this.arrived(frame.node);
+        return;
       case "exit":
         this.output.exit(frame);
+        this.arrived(frame.node);
         return;
       case "end":
         this.ended();
     }
+  }
+
+  /** Whether this start or arrival is news (not one a reconnected socket sends again). */
+  private tell(frame: { type: string; node: string }): boolean {
+    const key = `${frame.type} ${frame.node}`;
+    if (this.told.has(key)) return false;
+    this.told.add(key);
+    return true;
+  }
+
+  /** A node process joined the graph or ended: the run is running once none is still arriving. */
+  private arrived(node: string): void {
+    if (this.arriving.delete(node) && !this.arriving.size && this.state === "starting") this.set("running");
   }
 
   private ended(): void {

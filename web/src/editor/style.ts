@@ -55,6 +55,9 @@ export const CSS = `
   #teleop-code .output .note.error, #teleop-code .output .note.failed { color: #ff8a80; }
   #teleop-code .output .note.dropped { color: #ffd166; }
   #teleop-code .output .note.waiting { color: #9ecbff; }
+  #teleop-code .output .note.started { font-style: normal; }
+  #teleop-code .output .note.joined { color: #a5d6a7; }
+  #teleop-code .run-state[data-state="starting"] { color: #9ecbff; }
   #teleop-code .output a.traceback { color: #8ab4f8; }
   #teleop-code .output details.lab-frames { color: #999; margin-left: 2ch; }
   #teleop-code .output details.lab-frames > summary { cursor: pointer; font-style: italic; }
