@@ -20,6 +20,12 @@ from server.peripherals.viewer.plots import TimePlot
 CMD_PERIOD_S = 0.1  # MainControllerNode publishes /cmd_vel at 10 Hz
 PAD_XY = (60.0, 0.0)  # the rocket stands apart from the quadrotor's arena
 REDRAW_HZ = 30.0
+# What a page redraws for: the rocket's pose when it moved this far in the scene (under the
+# display's ceiling a climbing rocket moves a fraction of a millimetre a frame, which no one
+# sees), and the readouts (numbers to read, not to watch) at most this often, a change of
+# phase, status or countdown at once. Each message makes every open page draw its 3D view.
+MOVE_MIN_M = 0.005
+READOUT_PERIOD_S = 0.2
 # From the south-east, close enough that the rocket stands a quarter of the view's height, and
 # high enough to keep its whole (squeezed) flight, pad to ceiling, in the picture.
 CAMERA_OFFSET_M, CAMERA_LOOK_AT_Z_M = (11.0, -11.0, 9.0), 7.5
@@ -165,18 +171,38 @@ class RocketScene:
             )
         reset.on_click(lambda _event: display.call_in_app(on_reset))
         self._display = display
+        self._height: float | None = None  # the scene height last sent
+        self._read: tuple[str, str, int | None] | None = None  # phase, status, countdown last shown
+        self._read_at = -float("inf")
+        self.stale = False  # readouts held back: the next redraw sends them, changed or not
 
-    def draw(self, t: RocketTracker) -> None:
+    def draw(self, t: RocketTracker, now_s: float) -> None:
+        """Send what changed visibly: the pose when it moved, the readouts at most every
+        READOUT_PERIOD_S unless the phase, status or countdown changed."""
         x, y = PAD_XY
+        height = 0.3 + display_height(t.altitude_m)
+        read = (t.phase, t.status_text, t.countdown)
+        readouts = read != self._read or now_s - self._read_at >= READOUT_PERIOD_S
+        self.stale = not readouts
         with self._display.server.atomic():
-            self.rocket.position = (x, y, 0.3 + display_height(t.altitude_m))
+            if self._height is None or abs(height - self._height) >= MOVE_MIN_M:
+                self.rocket.position = (x, y, height)
+                self._height = height
             self.flame.visible = t.phase in ("launched", "abort failed") and t.cmd_vel_m_s > 0
-            self.label.text = f"{t.phase}  {t.altitude_m:,.0f} m" if t.altitude_m else t.phase
+            if readouts:
+                self.label.text = f"{t.phase}  {t.altitude_m:,.0f} m" if t.altitude_m else t.phase
+        if not readouts:
+            return
+        self._read, self._read_at = read, now_s
         self.status.content = f"**{t.status_text}**"
         self.countdown.value = t.countdown if t.countdown is not None else 10
         self.cmd_vel.value = round(t.cmd_vel_m_s, 3)
         self.sensor_vel.value = round(t.sensor_vel_m_s, 3)
         self.altitude.value = round(t.altitude_m, 1)
+
+    def forget_drawn(self) -> None:
+        """The rocket is back on its pad: draw all of it at the next redraw."""
+        self._height, self._read = None, None
 
 
 class RocketViewNode(Node):
@@ -212,9 +238,10 @@ class RocketViewNode(Node):
         self._t0 = self.bus.clock.now()
         if self.scene is not None:
             self.scene.plot.clear()
+            self.scene.forget_drawn()
 
     def redraw(self) -> None:
-        if self.scene is None or self.tracker.version == self._drawn:
+        if self.scene is None or (self.tracker.version == self._drawn and not self.scene.stale):
             return
         self._drawn = self.tracker.version
-        self.scene.draw(self.tracker)
+        self.scene.draw(self.tracker, self.bus.clock.now())

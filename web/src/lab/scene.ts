@@ -16,7 +16,10 @@ const STORE_VIEW = "teleop.view", STORE_FOLLOW = "teleop.follow";
 const DISPLAY_DELAY_MS = 10;  // one pose period behind the stream: between two poses, not past them
 const POSE_STALE_MS = 1000;  // no pose for this long: leave the drone where the server drew it
 const FOLLOW_TAU_S = 0.15;  // the camera's lag behind the drone
-const FOLLOW_SLACK_M = 0.01;  // and how far the drone may wander (hovering) before the camera moves
+// How far the drone may wander (hovering) before the camera moves: each move draws frames for a
+// quarter second, and a hover's drift past 1 cm kept a page drawing 15 frames a second at rest.
+// 5 cm is under 10 pixels at the follow distance on a laptop's screen.
+const FOLLOW_SLACK_M = 0.05;
 // Keep frames coming while the drone moves: more than 5 mm or 0.5 degrees in the last 0.1 s of
 // the pose stream. A hovering drone's jitter (a millimetre or two, back and forth) is not worth
 // a frame, nor the wait that a key pressed then would have behind it.
