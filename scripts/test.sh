@@ -44,6 +44,6 @@ npm ci --prefix tests/js --no-audit --no-fund --loglevel=error >/dev/null
 # (A file or two of the packages' own that is not Python 3 makes compileall exit non-zero.)
 env -u PYTHONDONTWRITEBYTECODE PYTHONPYCACHEPREFIX="$(cd "$VENV" && pwd)/pycache" "$VENV/bin/python" -m compileall \
   -q -j0 "$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')" \
-  server api sim client tests >/dev/null || true
+  server api sim client node_runtime tests >/dev/null || true
 
 exec env TELEOP_VENV="$VENV" bash scripts/check "$@"
