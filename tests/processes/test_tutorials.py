@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 from support.app import REPO, App
+from support.http import HTTP
 
 from .node_process import NodeProcess
 
@@ -126,7 +127,11 @@ def test_a_transient_local_late_joiner_gets_the_sample_published_before_it_came(
     talker = run("latched_publisher.py")
     talker.wait_for(rf'^\[INFO\] {STAMP} \[latched_publisher\]: Published once: "the lab floor"$')
 
-    lab.wait_for(lambda: lab.get("/api/topics/map_name")["endpoints"] != [], "the publisher in the graph")
+    def listed() -> bool:  # 404 until the graph has the publisher's token
+        reply = HTTP.get(f"{lab.url}/api/topics/map_name", timeout=5.0)
+        return reply.status_code == 200 and reply.json()["endpoints"] != []
+
+    lab.wait_for(listed, "the publisher in the graph")
     listener = run("late_subscriber.py")
     listener.wait_for(rf'^\[INFO\] {STAMP} \[late_subscriber\]: Late joiner got: "the lab floor"$')
     stopped_cleanly(listener)
