@@ -19,14 +19,14 @@ import argparse
 import os
 import statistics
 import sys
-import tempfile
 import time
 from collections import Counter
 from pathlib import Path
 from typing import Any
 
+from lab_browser import have_chromium, lab_and_chromium
 from live_server import LiveServer
-from machine import CHROMIUM, CHROMIUM_ARGS, machine_info, save_results
+from machine import machine_info, save_results
 
 VIEWPORT = {"width": 1366, "height": 768}
 WAIT_MS = 90_000
@@ -63,6 +63,11 @@ def process_ticks(pid: int) -> int:
     return int(fields[11]) + int(fields[12])
 
 
+def snapshot(page: Any, server: LiveServer) -> tuple[Counter[str], int, int, float]:
+    """Chromium's ticks by kind, the server's, the page's frames drawn, and when."""
+    return chromium_ticks(), process_ticks(server.proc.pid), page.evaluate(RENDERS_JS), time.monotonic()
+
+
 def one_page(browser: Any, server: LiveServer, watch_s: float) -> dict[str, Any]:
     context = browser.new_context(viewport=VIEWPORT)
     context.add_init_script(VIEW_JS)
@@ -71,19 +76,9 @@ def one_page(browser: Any, server: LiveServer, watch_s: float) -> dict[str, Any]
         page.goto(server.url + "/", timeout=WAIT_MS)
         page.wait_for_function(READY_JS, polling=100, timeout=WAIT_MS)
         time.sleep(SETTLE_S)
-        chrome0, server0, renders0, t0 = (
-            chromium_ticks(),
-            process_ticks(server.proc.pid),
-            page.evaluate(RENDERS_JS),
-            time.monotonic(),
-        )
+        chrome0, server0, renders0, t0 = snapshot(page, server)
         time.sleep(watch_s)
-        chrome1, server1, renders1, t1 = (
-            chromium_ticks(),
-            process_ticks(server.proc.pid),
-            page.evaluate(RENDERS_JS),
-            time.monotonic(),
-        )
+        chrome1, server1, renders1, t1 = snapshot(page, server)
     finally:
         context.close()
     span = t1 - t0
@@ -101,31 +96,19 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--watch-s", type=float, default=20.0)
     args = parser.parse_args(argv)
-    if not Path(CHROMIUM).is_file():
-        print(f"no Chromium at {CHROMIUM}: apt-get install chromium", file=sys.stderr)
+    if not have_chromium():
         return 2
-    from playwright.sync_api import sync_playwright
-
     results: dict[str, Any] = {"machine": machine_info(), "pages": []}
-    with tempfile.TemporaryDirectory() as workdir:
-        server = LiveServer(Path(workdir), "all", "start_delay:=3600")
-        try:
-            with sync_playwright() as playwright:
-                browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
-                try:
-                    for i in range(args.runs):
-                        one = one_page(browser, server, args.watch_s)
-                        results["pages"].append(one)
-                        print(
-                            f"page {i + 1}: Chromium {one['chromium_cores']:.2f} cores "
-                            f"{one['chromium_cores_by_kind']}, server {one['server_cores']:.2f}, "
-                            f"{one['frames_per_s']:.1f} frames/s",
-                            flush=True,
-                        )
-                finally:
-                    browser.close()
-        finally:
-            server.stop()
+    with lab_and_chromium() as (server, browser):
+        for i in range(args.runs):
+            one = one_page(browser, server, args.watch_s)
+            results["pages"].append(one)
+            print(
+                f"page {i + 1}: Chromium {one['chromium_cores']:.2f} cores "
+                f"{one['chromium_cores_by_kind']}, server {one['server_cores']:.2f}, "
+                f"{one['frames_per_s']:.1f} frames/s",
+                flush=True,
+            )
     pages, m = results["pages"], results["machine"]
     print(f"\nmachine: {m['nproc']} CPU(s), {m['cpu_model']}; Python {m['python']}")
     for key in ("chromium_cores", "server_cores", "frames_per_s"):

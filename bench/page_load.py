@@ -18,13 +18,11 @@ from __future__ import annotations
 import argparse
 import statistics
 import sys
-import tempfile
 import time
-from pathlib import Path
 from typing import Any
 
-from live_server import LiveServer
-from machine import CHROMIUM, CHROMIUM_ARGS, machine_info, save_results
+from lab_browser import have_chromium, lab_and_chromium
+from machine import machine_info, save_results
 
 VIEWPORT = {"width": 1000, "height": 650}  # the browser tests' page
 WAIT_MS = 90_000
@@ -73,30 +71,18 @@ def main(argv: list[str] | None = None) -> int:
         "--watch-s", type=float, default=15.0, help="how long each page is watched for stalls"
     )
     args = parser.parse_args(argv)
-    if not Path(CHROMIUM).is_file():
-        print(f"no Chromium at {CHROMIUM}: apt-get install chromium", file=sys.stderr)
+    if not have_chromium():
         return 2
-    from playwright.sync_api import sync_playwright
-
     results: dict[str, Any] = {"machine": machine_info(), "loads": []}
-    with tempfile.TemporaryDirectory() as workdir:
-        server = LiveServer(Path(workdir), "all", "start_delay:=3600")
-        try:
-            with sync_playwright() as playwright:
-                browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
-                try:
-                    for i in range(args.loads):
-                        load = one_load(browser, server.url, args.watch_s)
-                        results["loads"].append(load)
-                        print(
-                            f"load {i + 1}: steady at {load['phases_s']['steady']:.1f} s, "
-                            f"longest stall {load['longest_gap_ms']:.0f} ms",
-                            flush=True,
-                        )
-                finally:
-                    browser.close()
-        finally:
-            server.stop()
+    with lab_and_chromium() as (server, browser):
+        for i in range(args.loads):
+            load = one_load(browser, server.url, args.watch_s)
+            results["loads"].append(load)
+            print(
+                f"load {i + 1}: steady at {load['phases_s']['steady']:.1f} s, "
+                f"longest stall {load['longest_gap_ms']:.0f} ms",
+                flush=True,
+            )
     loads = results["loads"]
     m = results["machine"]
     print(f"\nmachine: {m['nproc']} CPU(s), {m['cpu_model']}; Python {m['python']}")
