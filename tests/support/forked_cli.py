@@ -143,12 +143,10 @@ def _serve(path: str) -> None:
     for name in PRELOAD:
         __import__(name)
     assert threading.active_count() == 1, "a preloaded module started a thread: forks would lose it"
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # a Ctrl-C reaches the children themselves
-    wake_r, wake_w = os.pipe()
-    os.set_blocking(wake_r, False)
-    os.set_blocking(wake_w, False)
-    signal.set_wakeup_fd(wake_w)
-    signal.signal(signal.SIGCHLD, lambda *_: None)
+    # Run as a program, with the repository first on sys.path (below): tests/ is no package there.
+    from tests.support.child_reaping import drain, end_all, reaped, wake_on_child_exit
+
+    wake_r, wake_w = wake_on_child_exit()
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
     listener.bind(path)
     listener.listen(64)
@@ -161,17 +159,11 @@ def _serve(path: str) -> None:
     os.write(1, b"ready\n")
 
     def reap() -> None:
-        while by_pid:
-            try:
-                pid, status = os.waitpid(-1, os.WNOHANG)
-            except ChildProcessError:
-                return
-            if pid == 0:
-                return
+        for pid, code in reaped(by_pid):
             command = by_pid.pop(pid, None)
             if command is not None:
                 command.pid = None
-                command.send({"op": "exit", "code": os.waitstatus_to_exitcode(status)})
+                command.send({"op": "exit", "code": code})
                 drop(command)
 
     def drop(command: _Command) -> None:
@@ -221,18 +213,12 @@ def _serve(path: str) -> None:
     while True:
         for key, _ in selector.select():
             if key.fd == wake_r:
-                with contextlib.suppress(BlockingIOError):
-                    while os.read(wake_r, 512):
-                        pass
+                drain(wake_r)
                 reap()
             elif key.fd == 0:
                 if os.read(0, 512):
                     continue
-                for pid in by_pid:  # the pytest process has gone: end what it left running
-                    os.kill(pid, signal.SIGKILL)
-                while by_pid:
-                    pid, _ = os.waitpid(-1, 0)
-                    by_pid.pop(pid, None)
+                end_all(by_pid)  # the pytest process has gone: end what it left running
                 listener.close()
                 return
             elif key.fileobj is listener:

@@ -88,27 +88,19 @@ def _serve_forks() -> None:
     os.close(null)
     for name in PRELOAD:
         __import__(name)
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # a Ctrl-C reaches the children themselves
-    wake_r, wake_w = os.pipe()
-    os.set_blocking(wake_r, False)
-    os.set_blocking(wake_w, False)
-    signal.set_wakeup_fd(wake_w)
-    signal.signal(signal.SIGCHLD, lambda *_: None)
+    # Run as a program, with the repository first on sys.path (below): tests/ is no package there.
+    from tests.support.child_reaping import drain, end_all, reaped, wake_on_child_exit
+
+    wake_r, wake_w = wake_on_child_exit()
     children: set[int] = set()
 
     def reply(message: dict[str, Any]) -> None:
         os.write(replies, (json.dumps(message) + "\n").encode())
 
     def reap() -> None:
-        while children:
-            try:
-                pid, status = os.waitpid(-1, os.WNOHANG)
-            except ChildProcessError:
-                return
-            if pid == 0:
-                return
+        for pid, code in reaped(children):
             children.discard(pid)
-            reply({"op": "exit", "pid": pid, "code": os.waitstatus_to_exitcode(status)})
+            reply({"op": "exit", "pid": pid, "code": code})
 
     reply({"op": "ready"})
     selector = selectors.DefaultSelector()
@@ -118,21 +110,12 @@ def _serve_forks() -> None:
     while True:
         for key, _ in selector.select():
             if key.fd == wake_r:
-                while True:
-                    try:
-                        if not os.read(wake_r, 512):
-                            break
-                    except BlockingIOError:
-                        break
+                drain(wake_r)
                 reap()
                 continue
             chunk = os.read(0, 65536)
             if not chunk:  # the pytest process has gone: end what it left running
-                for pid in children:
-                    os.kill(pid, signal.SIGKILL)
-                while children:
-                    pid, _ = os.waitpid(-1, 0)
-                    children.discard(pid)
+                end_all(children)
                 return
             pending += chunk
             while b"\n" in pending:
