@@ -75,15 +75,11 @@ def lab_of(conn: HTTPConnection) -> Lab:
     return world.lab
 
 
-def lab_for_request(request: Request) -> Lab:
-    """LabDep: a refusal is a ClassroomError, which api/errors.py answers with its status."""
-    return lab_of(request)
-
-
 async def _lab_dep(request: Request) -> Lab:
-    """``lab_for_request`` on the loop, as the handlers run. FastAPI runs a plain ``def``
-    dependency in its thread pool: every call then went to a thread and came back, two more turns
-    of a loop that a class's worlds keep busy, and it read the classroom's state off the loop."""
+    """LabDep: ``lab_of`` on the loop, as the handlers run (a refusal is a ClassroomError, which
+    api/errors.py answers with its status). FastAPI runs a plain ``def`` dependency in its thread
+    pool: every call then went to a thread and came back, two more turns of a loop that a class's
+    worlds keep busy, and it read the classroom's state off the loop."""
     return lab_of(request)
 
 

@@ -7,7 +7,7 @@ import time
 
 from fastapi import APIRouter, HTTPException, Request, status
 
-from api.deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_for_request, token_of
+from api.deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_of, token_of
 from api.protocol.responses import responses
 from api.protocol.schemas import Health, Status, WorkspaceInfo, ZenohJoin, ZenohStatus
 from node_runtime.transport.acl import Credentials
@@ -40,7 +40,7 @@ async def health(request: Request) -> Health:
         )
     # One lab answers without its token too: counts and uptime are not worth one, and a
     # container's health check has none.
-    lab = lab_for_request(request) if classroom is not None else request.app.state.lab
+    lab = lab_of(request) if classroom is not None else request.app.state.lab
     return Health(
         status="ok",
         launch=lab.settings.lab.launch,
@@ -65,7 +65,7 @@ async def zenoh_join(request: Request, start: bool = False) -> ZenohJoin:
     named = request.headers.get(WORLD_HEADER) or request.query_params.get("world")
     if classroom is not None and not named and grant_of(request, classroom).is_instructor:
         return _paced(classroom.start_pacer, start, _class_graph_join(classroom))
-    lab = lab_for_request(request)
+    lab = lab_of(request)
     link = lab.zenoh
     if link is None:
         why = (
