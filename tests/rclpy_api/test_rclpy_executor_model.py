@@ -245,3 +245,49 @@ def test_an_async_execute_callback_awaits_while_the_single_thread_serves_feedbac
     executor.spin_until_future_complete(task, timeout_sec=BOUND_S)
     assert task.result() == [0, 1, 1, 2, 3]
     assert released == [3, 4, 5]
+
+
+def test_after_a_callback_the_next_wait_blocks_rather_than_turning_once_idle(
+    context: rclpy.Context, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A callback's end wakes the wait set (its group may let another in). The thread that ran it
+    looks again anyway, so that wake must not make its next wait on the bus return at once: an
+    idle turn per callback doubled a 10 Hz node's CPU. Each wait here blocks until the guard is
+    triggered from another thread, and each trigger runs its callback once."""
+    node = Node("ticker", context=context)
+    ran: list[int] = []
+    guard = node.create_guard_condition(lambda: ran.append(len(ran)))
+    executor = SingleThreadedExecutor(context=context)
+    executor.add_node(node)
+    wait_set = context.executor
+    blocked = threading.Event()
+    waits: list[float] = []
+    blocks: list[float | None] = []
+    real_wait, real_block = wait_set._wait, wait_set._cv.wait
+
+    def counted_wait(until_s: float) -> None:
+        waits.append(until_s)
+        real_wait(until_s)
+
+    def counted_block(timeout: float | None = None) -> bool:
+        blocks.append(timeout)
+        blocked.set()
+        return real_block(timeout)
+
+    monkeypatch.setattr(wait_set, "_wait", counted_wait)
+    monkeypatch.setattr(wait_set._cv, "wait", counted_block)
+    triggers = 5
+
+    def trigger() -> None:
+        for _ in range(triggers):
+            assert blocked.wait(BOUND_S)
+            blocked.clear()
+            guard.trigger()
+
+    thread = threading.Thread(target=trigger)
+    thread.start()
+    for _ in range(triggers):
+        executor.spin_once(timeout_sec=BOUND_S)
+    thread.join(BOUND_S)
+    assert ran == list(range(triggers))
+    assert len(waits) == len(blocks) == triggers  # every wait blocked; none was an idle turn
