@@ -55,11 +55,13 @@ def test_echo_throttled_queue_of_one_sends_only_the_newest(rocket_lab: LabClient
 
 
 def test_echo_throttled_without_a_queue_length_sends_the_newest_not_a_backlog(rocket_lab: LabClient) -> None:
-    url = "/ws/topics/laps?type=std_msgs/msg/Int64&throttle_rate=1000"
+    # 4 s between frames: the 29 publishes below fit in it even on a saturated machine (they took
+    # over 1 s there, about 40 ms each, and the echo then rightly sent the newest of the first 25).
+    url = "/ws/topics/laps?type=std_msgs/msg/Int64&throttle_rate=4000"
     with rocket_lab.http.websocket_connect(url) as ws:
         rocket_lab.publish("/laps", {"data": 0})
         assert receive_json_within(ws)["msg"] == {"data": 0}
-        for n in range(1, 30):  # all inside the 1 s the echo now waits
+        for n in range(1, 30):  # all inside the 4 s the echo now waits
             rocket_lab.publish("/laps", {"data": n})
         after_pause = receive_json_within(ws)
         rocket_lab.publish("/laps", {"data": 30})
