@@ -17,14 +17,13 @@ from __future__ import annotations
 import contextlib
 import copy
 import inspect
-import math
 import threading
 from collections.abc import Callable, Iterator
 from typing import Any, cast
 
 from node_runtime.bus import Future as BusFuture
 from node_runtime.bus import Node, Subscription
-from node_runtime.bus.blocking import MAX_WAIT_S, BlockingExecutor
+from node_runtime.bus.blocking import BlockingExecutor
 from node_runtime.bus.graph import Bus
 from node_runtime.bus.services import PendingCall, ServiceServer
 from rclpy.callback_groups import CallbackGroup, GroupedCallback, MutuallyExclusiveCallbackGroup
@@ -190,8 +189,8 @@ class WaitSet(BlockingExecutor):
         """Wait for news (something recorded, a wake) at most ``timeout_s`` (None: 1 s at a time).
         One thread waits on the bus; any other waits for the one that does."""
         if self._collecting.acquire(blocking=False):
-            self._since = since
             try:
+                self._since = since
                 self.spin_once(timeout_s)
             finally:
                 self._since = None
@@ -207,19 +206,13 @@ class WaitSet(BlockingExecutor):
             finally:
                 self._waiters -= 1
 
-    def _wait(self, until_s: float) -> None:
-        """The bus's wait for the collecting thread: it skips the wait only for news that came
-        after its round began. A wake from before (its own callbacks' ends, the entries its own
-        pass recorded) is in what the round already looked at, and would only cost an idle turn."""
+    def _has_news(self) -> bool:
+        """For the collecting thread, only news that came after its round began: a wake from before
+        (its own callbacks' ends, the entries its own pass recorded) is in what the round already
+        looked at, and would only cost an idle turn. Every wake bumps the generation before it
+        notifies under the bus wait's lock, so none falls between this check and the wait."""
         since = self._since
-        if since is None:
-            super()._wait(until_s)
-            return
-        delay = min(until_s, self.next_deadline_s()) - self.bus.clock.now()
-        with self._cv:  # every wake bumps the generation before it notifies, under this lock
-            if self._generation == since and delay > 0:
-                self._cv.wait(min(delay, MAX_WAIT_S) if math.isfinite(delay) else MAX_WAIT_S)
-            self._woken = False
+        return self._woken if since is None else self._generation != since
 
     @contextlib.contextmanager
     def spinning(self) -> Iterator[None]:

@@ -34,11 +34,15 @@ class BlockingExecutor(Executor):
             self._woken = True
             self._cv.notify_all()
 
+    def _has_news(self) -> bool:
+        """Whether a wake-up came that the coming wait must not sleep through (under ``_cv``)."""
+        return self._woken
+
     def _wait(self, until_s: float) -> None:
         """Block until ``until_s`` on the bus clock, the next timer, or a wake-up, whichever is first."""
         delay = min(until_s, self.next_deadline_s()) - self.bus.clock.now()
         with self._cv:
-            if not self._woken and delay > 0:
+            if not self._has_news() and delay > 0:
                 self._cv.wait(min(delay, MAX_WAIT_S) if math.isfinite(delay) else MAX_WAIT_S)
             self._woken = False
 
