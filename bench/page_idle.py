@@ -49,9 +49,7 @@ def chromium_ticks() -> Counter[str]:
             if not argv or b"chrom" not in argv[0]:
                 continue
             kinds = [a[len(b"--type=") :].decode() for a in argv if a.startswith(b"--type=")]
-            stat = Path(f"/proc/{pid}/stat").read_text()
-            fields = stat[stat.rfind(")") + 2 :].split()
-            out[kinds[0] if kinds else "browser"] += int(fields[11]) + int(fields[12])
+            out[kinds[0] if kinds else "browser"] += process_ticks(int(pid))
         except (OSError, IndexError, ValueError):
             continue
     return out
