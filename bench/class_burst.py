@@ -5,7 +5,10 @@
         [--probers 10] [--cli-nice N] [--page-clients [--clients-nice N]]
 
 A class server (``--classroom --launch fly``, its Zenoh router on a free loopback port) with
-``--worlds`` students joined, one world each. Then ``--worlds`` × ``--per-world`` ``ros2lab run``
+``--worlds`` students joined, one world each, one after the other (``joins``: how many were
+admitted, how long the joins took, and at which student the class held a join in its queue for
+a minute, saying it was full; then no more join, and the class is measured with those it
+admitted). Then ``--worlds`` × ``--per-world`` ``ros2lab run``
 of the handout's keyboard manager (examples/workspace, rocketship), each with its student's token
 and a node name of its own, all started in the same instant (one barrier releases a thread per
 start), as a class told "run it now" does; ``--starts paced`` spreads them evenly over
@@ -86,7 +89,7 @@ DYNAMICS = "flightgoggles_uav_dynamics"
 WORKSPACE = REPO / "examples" / "workspace"
 ROS2LAB = str(Path(sys.executable).parent / "ros2lab")
 POLL_S = 0.5
-JOIN_WAIT_S = 120.0  # a join the class queues at its capacity
+JOIN_WAIT_S = 60.0  # a join the class queues at its capacity: held this long, the class is full
 MANAGER = "src/rocketship/src/keyboard_manager.py"
 PROBE_GAP_S = 0.5  # a prober's pause between calls: about a page's polls (tools 1 s, editor 1.5 s)
 PROBE_TIMEOUT_S = 30.0  # a call unanswered so long counts as answered then (and as an error)
@@ -171,12 +174,31 @@ def start(
     )
 
 
-def join(server: LiveServer, name: str) -> tuple[str, str]:
-    """(world, token) of a new student; a join queued at the class's capacity (202) is polled."""
+def join(server: LiveServer, name: str) -> tuple[str, str] | None:
+    """(world, token) of a new student; a join queued at the class's capacity (202) is polled for
+    ``JOIN_WAIT_S``, and None if the class still held it in its queue then (it said it was full)."""
     reply = class_join(server.url, name, CODE, JOIN_WAIT_S, timeout_s=180)
+    if reply.status_code == 202:
+        return None
     if reply.status_code != 201:
         raise RuntimeError(f"{name}'s join answered {reply.status_code}: {reply.text}")
     return reply.json()["world"], reply.json()["token"]
+
+
+def join_class(server: LiveServer, students: int) -> tuple[dict[str, str], dict[str, Any]]:
+    """The students' worlds and tokens, joined one after the other until all are in or the class
+    holds one in its queue past ``JOIN_WAIT_S`` (the class is full: no more join; the held one
+    leaves the queue once nobody polls it). With how the joins went."""
+    tokens: dict[str, str] = {}
+    started = time.monotonic()
+    for i in range(students):
+        joined = join(server, f"student{i:02d}")
+        if joined is None:
+            return tokens, {"admitted": len(tokens), "said_full_at_student": i + 1,
+                            "joins_s": round(time.monotonic() - started, 1)}  # fmt: skip
+        tokens[joined[0]] = joined[1]
+    return tokens, {"admitted": len(tokens), "said_full_at_student": None,
+                    "joins_s": round(time.monotonic() - started, 1)}  # fmt: skip
 
 
 def save_manager(server: LiveServer, token: str) -> None:
@@ -578,13 +600,16 @@ def main(argv: list[str] | None = None) -> int:
     )
     pages: OpenPages | None = None
     try:
-        tokens = dict(join(server, f"student{i:02d}") for i in range(args.worlds))
+        tokens, joins = join_class(server, args.worlds)
+        if joins["said_full_at_student"] is not None:
+            time.sleep(35.0)  # the held join leaves the queue unpolled before the class is measured
         if args.page_clients:
             pages = OpenPages([PageClient(server.url, t) for t in tokens.values()], args.clients_nice)
             pages.open()
         time.sleep(3.0)  # every world flying (and every page open) before the starts
         results = {
             "args": vars(args),
+            "joins": joins,
             **burst(
                 server,
                 tokens,
