@@ -33,7 +33,10 @@ from pathlib import Path
 
 log = logging.getLogger(__name__)
 
-HOLD_S = 1.0  # a handout node's start on an idle 2-core machine: about 0.5 s of CPU, 0.8 s to listed
+# A handout node's sandboxed start on an idle 2-core class: about 0.25 CPU-s, 0.3 s to listed.
+# 0.75 s (where 1 s was set for starts of 0.5 CPU-s) joined a 30-student class's 60 Runs in 51 and
+# 56 s against 62 and 65 s, its worlds 5 to 10 Hz lower while they started (docs/performance.md).
+HOLD_S = 0.75
 GRACE = 0.25  # of hold_s: see StartPacer._admit
 BUSY_WAIT_S = 0.05  # the machine's slots file locked by another process now: ask again this soon
 
