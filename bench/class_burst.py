@@ -190,15 +190,16 @@ def join_class(server: LiveServer, students: int) -> tuple[dict[str, str], dict[
     holds one in its queue past ``JOIN_WAIT_S`` (the class is full: no more join; the held one
     leaves the queue once nobody polls it). With how the joins went."""
     tokens: dict[str, str] = {}
+    said_full: int | None = None
     started = time.monotonic()
     for i in range(students):
         joined = join(server, f"student{i:02d}")
         if joined is None:
-            return tokens, {"admitted": len(tokens), "said_full_at_student": i + 1,
-                            "joins_s": round(time.monotonic() - started, 1)}  # fmt: skip
+            said_full = i + 1
+            break
         tokens[joined[0]] = joined[1]
-    return tokens, {"admitted": len(tokens), "said_full_at_student": None,
-                    "joins_s": round(time.monotonic() - started, 1)}  # fmt: skip
+    took_s = round(time.monotonic() - started, 1)
+    return tokens, {"admitted": len(tokens), "said_full_at_student": said_full, "joins_s": took_s}
 
 
 def save_manager(server: LiveServer, token: str) -> None:

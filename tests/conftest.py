@@ -10,7 +10,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from support.ctrl_c import restore_ctrl_c
+from support.ctrl_c import pytest_configure as pytest_configure  # Ctrl-C back for what the tests start
 from support.schedule import (
     BROWSER_FOLDER,
     TIMING_MARK,
@@ -20,12 +20,6 @@ from support.schedule import (
 )
 
 from node_runtime.bus import Bus, Executor, ManualClock
-
-
-def pytest_configure(config: pytest.Config) -> None:
-    """Ctrl-C back for the processes the tests start, if the suite was started with it ignored
-    (support/ctrl_c.py)."""
-    restore_ctrl_c()
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:

@@ -5,7 +5,7 @@ with SIGINT ignored, and an ignored signal stays ignored in every process starte
 the node processes the tests stop with Ctrl-C, as ROS 2's tools stop them, would never see it, and
 a Python started so does not install its Ctrl-C handler (13 tests failed so in one such run). The
 suite gives SIGINT Python's own handler back; a process it starts then begins with SIGINT at its
-default, as from a terminal. Loaded by tests/conftest.py, and as a plugin (``-p support.ctrl_c``).
+default, as from a terminal. tests/conftest.py takes its hook; ``-p support.ctrl_c`` loads it alone.
 """
 
 from __future__ import annotations
