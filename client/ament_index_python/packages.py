@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from node_runtime.ament.index import PackageIndex
 
-WORKSPACE_ENV = "ROS2LAB_WORKSPACE"  # the node runner's (node_runtime/process/interface_modules.py)
+WORKSPACE_ENV = "ROS2LAB_WORKSPACE"  # the node runner's (node_runtime/ament/workspace.py)
 
 
 class PackageNotFoundError(KeyError):

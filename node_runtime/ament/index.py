@@ -11,12 +11,15 @@ import importlib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from node_runtime.ament.entry_points import EntryPoint
-from node_runtime.ament.interfaces import WorkspaceInterfaces, workspace_interfaces
 from node_runtime.ament.manifest import WorkspaceError
 from node_runtime.ament.workspace import Workspace, WorkspacePackage, find_packages
-from node_runtime.bus import Node
+
+if TYPE_CHECKING:  # both import the message types, which finding an executable never needs
+    from node_runtime.ament.interfaces import WorkspaceInterfaces
+    from node_runtime.bus import Node
 
 
 def _lab_packages() -> Path:
@@ -73,7 +76,6 @@ __all__ = [
     "PackageIndex",
     "PackageNotFoundError",
     "WorkspaceError",
-    "WorkspaceInterfaces",
 ]
 
 
@@ -130,6 +132,8 @@ class PackageIndex:
         (node_runtime.ament.interfaces); None without a workspace."""
         if self.workspace is None:
             return None
+        from node_runtime.ament.interfaces import workspace_interfaces  # the message types: see above
+
         return workspace_interfaces(self.workspace, log_problems=log_problems)
 
     def _student(self, pkg: str) -> WorkspacePackage | None:

@@ -26,6 +26,8 @@ from pathlib import Path
 from node_runtime.ament.entry_points import EntryPoint, cmake_programs, setup_cfg_scripts, setup_py_scripts
 from node_runtime.ament.manifest import MANIFEST, WorkspaceError, read_manifest
 
+# Where a node process finds its workspace (set by whatever starts it: the lab, ``ros2lab run``).
+WORKSPACE_ENV = "ROS2LAB_WORKSPACE"
 SKIP_FILES = {"setup.py", "__init__.py", "conftest.py"}
 NOT_ENTERED = {"build", "install", "log"}  # colcon's own output, next to src/
 IGNORE_MARKER = "COLCON_IGNORE"

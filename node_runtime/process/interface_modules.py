@@ -22,12 +22,12 @@ from types import ModuleType
 from typing import Any
 
 from node_runtime.ament.interfaces import InterfacePackage, WorkspaceInterfaces, workspace_interfaces
+from node_runtime.ament.workspace import WORKSPACE_ENV
 from node_runtime.msgs import catalog
 from node_runtime.msgs._action import action_classes
 from node_runtime.msgs._base import message_class, service_classes
 from node_runtime.msgs.definitions import lab_definitions
 
-WORKSPACE_ENV = "ROS2LAB_WORKSPACE"
 KINDS = ("msg", "srv", "action")
 LAB_PACKAGES = frozenset(n.split("/")[0] for n in [*lab_definitions().messages, *lab_definitions().services])
 

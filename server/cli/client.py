@@ -8,14 +8,15 @@ import os
 import threading
 from collections.abc import Iterator, Mapping
 from pathlib import Path
-from typing import Any, Self
+from typing import TYPE_CHECKING, Any, Self
 from urllib.parse import urlencode, urlsplit, urlunsplit
 
 import httpx
-from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus
-from websockets.sync.client import connect
 
 from server.cli.environment import TOKEN_ENV
+
+if TYPE_CHECKING:
+    from websockets.exceptions import ConnectionClosed
 
 TIMEOUT_S = 10.0
 # The app's close code for "not found", here an unknown topic (api.errors.CloseCode.NOT_FOUND; a test keeps them equal).
@@ -155,6 +156,10 @@ class LabClient:
     ) -> Iterator[dict[str, Any]]:
         """Frames ``{topic, type, msg, received}`` of ``WS /ws/topics/{topic}``, as they come;
         ``opened`` is set once the server accepted the socket (it subscribes as it accepts)."""
+        # Only the echo verbs open a socket: the others (a node's start among them) skip the import.
+        from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus
+        from websockets.sync.client import connect
+
         url = self.ws_url("/ws/topics/" + topic.lstrip("/"), params)
         try:
             with connect(url, open_timeout=TIMEOUT_S, max_size=None, additional_headers=self._headers) as ws:

@@ -14,7 +14,8 @@ import argparse
 import sys
 from typing import Any
 
-from node_runtime.ament.index import PackageIndex, WorkspaceInterfaces
+from node_runtime.ament.index import PackageIndex
+from node_runtime.ament.interfaces import WorkspaceInterfaces
 from node_runtime.msgs import catalog
 from node_runtime.msgs.registry import normalize_type_name
 from node_runtime.msgs.schema import interface_text

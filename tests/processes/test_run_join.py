@@ -136,6 +136,44 @@ def test_run_with_a_token_is_below_the_worlds_before_it_asks_the_lab(
     assert nice == (min(19, own + START_NICE) if token else own)
 
 
+def test_run_asks_the_lab_without_having_imported_message_types_or_websockets(workspace: Path) -> None:
+    """Sixty students' ``ros2lab run`` at once share the class's machine (or their own small
+    ones): until the node starts, the command imports only what finding the file and asking the
+    lab take, not the message types (the node's own process loads them) nor a WebSocket client
+    (only the echo verbs open one). Read from ``python -X importtime`` while it asks a socket that
+    never answers."""
+    with socket.socket() as silent:
+        silent.bind(("127.0.0.1", 0))
+        silent.listen(16)
+        silent.settimeout(60)
+        url = f"http://127.0.0.1:{silent.getsockname()[1]}"
+        env = {
+            k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE", TOKEN_ENV)
+        }
+        argv = ["--url", url, "run", "--workspace", str(workspace), "demo", "late_joiner.py"]
+        proc = subprocess.Popen(
+            [sys.executable, "-X", "importtime", "-m", "server", *argv],
+            env=env,
+            text=True,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+        )
+        try:
+            conn, _ = silent.accept()
+            with conn:
+                conn.settimeout(60)
+                assert conn.recv(4096).startswith(b"GET /api/zenoh/join")  # it is asking now
+        finally:
+            end(proc)
+            _out, err = proc.communicate()
+    imported = {
+        line.rsplit("|", 1)[1].strip() for line in err.splitlines() if line.startswith("import time:")
+    }
+    assert "node_runtime.ament.index" in imported and "httpx" in imported, err[-2000:]  # what it does need
+    heavy = sorted(m for m in imported if m.startswith(("node_runtime.msgs", "websockets", "zenoh")))
+    assert heavy == [], heavy
+
+
 def test_run_where_nothing_listens_is_one_line_and_a_non_zero_exit(workspace: Path) -> None:
     url = f"http://127.0.0.1:{free_port()}"
     code, err, _took = refused_within_bound(ros2lab_run(url, workspace))

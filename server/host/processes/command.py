@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from node_runtime.ament.entry_points import EntryPoint
-from node_runtime.process.interface_modules import WORKSPACE_ENV
+from node_runtime.ament.workspace import WORKSPACE_ENV
 from node_runtime.process.runner import LAUNCH_MODE, PARENT_ENV
 from node_runtime.transport.acl import Credentials, process_config
 from node_runtime.transport.config import DEFAULT_ROUTER_ENDPOINT
