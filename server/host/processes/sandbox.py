@@ -30,12 +30,11 @@ import re
 import shutil
 import subprocess
 import sys
-from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
+from node_runtime.ament.workspace import WORKSPACE_ENV
 from node_runtime.process.confinement import LIMITS_ENV, Confinement
-from node_runtime.process.interface_modules import WORKSPACE_ENV
 from node_runtime.transport.router_socket import SOCKET_NAME, socket_endpoint
 from server.host.processes import cgroups, seccomp_filter
 from server.host.processes.command import RUNNER_MODULE, NodeCommand, PreparedStart
@@ -334,14 +333,17 @@ def _parents(path: Path) -> list[str]:
     return out
 
 
-def _python_dirs() -> Iterator[Path]:
-    """Python's own folders, the venv's and the lab's code, each once (none inside another)."""
+@functools.cache
+def _python_dirs() -> tuple[Path, ...]:
+    """Python's own folders, the venv's and the lab's code, each once (none inside another).
+    The server's own installation: found once (resolving them took a start about a millisecond
+    of the loop, and a class presses Run sixty times at once)."""
     wanted = {Path(sys.base_prefix).resolve(), Path(sys.prefix).resolve()}
     wanted |= {(PROJECT / name).resolve() for name in CLIENT_CODE}
     executable = Path(sys.executable).resolve()
     if not any(executable.is_relative_to(p) for p in wanted):
         wanted.add(executable.parent)
     kept = sorted(p for p in wanted if p.exists())
-    for path in kept:
-        if not any(path != other and path.is_relative_to(other) for other in kept):
-            yield path
+    return tuple(
+        path for path in kept if not any(path != other and path.is_relative_to(other) for other in kept)
+    )
