@@ -42,10 +42,11 @@ laptops rather than in terminals on the class server. What is measured:
 ``--page-clients`` opens a page-like client per student (bench/page_client.py: viser's scene and
 GUI stream, the HUD's pose stream, the key channel's heartbeat) once they have joined, held open
 through the starts and the steady window, and adds each channel's median rate over the steady
-window (``steady.page_hz``): the class as it is with every page open. The clients run in this
-bench's process, on the same cores as the class (``steady.bench_cpu_cores``), where a class's
-pages would run on the students' machines; ``--clients-nice 10`` runs their thread below the
-class's processes, so they take the cores only when the class leaves them free.
+window (``steady.page_hz``): the class as it is with every page open. The clients run in a
+process of the bench's own, on the same cores as the class, where a class's pages would run on
+the students' machines; ``--clients-nice 10`` runs that process below the class's processes, so
+they take the cores only when the class leaves them free (and apart from the bench's timing
+threads, which a paused client would otherwise hold up).
 
 The keyboard manager is saved into each student's workspace through the workspace API before the
 starts (the file the probers read). ``--via page`` starts the nodes as the page's Run does
@@ -82,7 +83,7 @@ sys.path.insert(0, str(REPO))
 import httpx
 from live_server import READER, LiveServer, class_join, end, rss_mib
 from machine import machine_info, save_results
-from page_client import OpenPages, PageClient, median_rates
+from page_client import OpenPages, median_rates
 
 CODE = "BURST1"
 DYNAMICS = "flightgoggles_uav_dynamics"
@@ -380,9 +381,11 @@ def steady(
     before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     if pages is not None:
         pages.mark()
-    own0 = time.process_time()  # this bench's own CPU: the page clients run on the same cores
+    own0 = time.process_time()  # this bench's own CPU, and its page clients': on the same cores
+    pages0 = process_cpu_s(pages.pid) if pages is not None else 0.0
     time.sleep(seconds)
     own1 = time.process_time()
+    pages1 = process_cpu_s(pages.pid) if pages is not None else 0.0
     page_rates, page_errors = pages.rates() if pages is not None else ([], [])
     after = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     cpu1, nodes1 = process_cpu_s(server.proc.pid), tree_cpu_s(nodes)
@@ -403,6 +406,7 @@ def steady(
         "world_workers_cpu_cores": round(workers_s / window_s, 2),
         "stolen": round((steal1 - steal0) / max(1, total1 - total0), 4),
         "bench_cpu_cores": round((own1 - own0) / window_s, 2),
+        "page_clients_cpu_cores": round((pages1 - pages0) / window_s, 2),
         "page_hz": median_rates(page_rates) if pages is not None else None,
         "page_errors": page_errors[:5],
         "rss_mib": class_rss_mib(server, nodes),
@@ -605,7 +609,7 @@ def main(argv: list[str] | None = None) -> int:
         if joins["said_full_at_student"] is not None:
             time.sleep(35.0)  # the held join leaves the queue unpolled before the class is measured
         if args.page_clients:
-            pages = OpenPages([PageClient(server.url, t) for t in tokens.values()], args.clients_nice)
+            pages = OpenPages(server.url, list(tokens.values()), args.clients_nice)
             pages.open()
         time.sleep(3.0)  # every world flying (and every page open) before the starts
         results = {

@@ -26,6 +26,7 @@ import argparse
 import asyncio
 import contextlib
 import json
+import multiprocessing
 import os
 import statistics
 import sys
@@ -207,50 +208,93 @@ class PageClients:
 
 
 class OpenPages:
-    """Many page clients held open on a thread of their own for as long as a bench needs (a
+    """Many page clients held open in a process of their own for as long as a bench needs (a
     burst, then a steady window): ``mark`` starts counting afresh, ``rates`` reads each client's
-    since the mark, ``close`` closes them all."""
+    since the mark, ``close`` closes them all.
 
-    def __init__(self, clients: list[PageClient], nice: int = 0) -> None:
-        self.clients = clients
-        self.nice = nice  # added to the clients' thread's niceness (Linux: per thread)
-        self._loop = asyncio.new_event_loop()
-        self._closed: asyncio.Event | None = None
-        self._thread = threading.Thread(target=self._run, daemon=True)
+    A process, not a thread of the bench's: a bench times the class's answers from its own
+    threads, and a client thread run below them (``nice``) would hold the bench's interpreter lock
+    whenever the scheduler paused it, so every timed call would wait for the pages' thread to run
+    again. The clients (``url``, one per token) are made in that process; it runs ``nice`` below
+    the bench."""
 
-    def _run(self) -> None:
-        if self.nice:
-            os.setpriority(
-                os.PRIO_PROCESS, threading.get_native_id(), os.getpriority(os.PRIO_PROCESS, 0) + self.nice
-            )
-
-        async def every() -> None:
-            self._closed = asyncio.Event()
-            await asyncio.gather(*(c.hold(self._closed) for c in self.clients))
-
-        self._loop.run_until_complete(every())
+    def __init__(self, url: str, tokens: list[str], nice: int = 0) -> None:
+        self.url, self.tokens, self.nice = url, tokens, nice
+        context = multiprocessing.get_context("spawn")  # nothing of the bench's threads goes along
+        self._conn, child = context.Pipe()
+        self._process = context.Process(target=_serve_pages, args=(url, tokens, nice, child), daemon=True)
 
     def open(self) -> None:
-        self._thread.start()
+        self._process.start()
+        self._ask("ready")
 
-    def _on_loop(self, call: Any) -> Any:
-        async def run() -> Any:
-            return call()
+    @property
+    def pid(self) -> int:
+        assert self._process.pid is not None, "not open"
+        return self._process.pid
 
-        return asyncio.run_coroutine_threadsafe(run(), self._loop).result(timeout=30)
+    def _ask(self, what: str, timeout_s: float = 60.0) -> Any:
+        self._conn.send(what)
+        if not self._conn.poll(timeout_s):
+            raise TimeoutError(f"the page clients' process did not answer {what!r} in {timeout_s:g} s")
+        return self._conn.recv()
 
     def mark(self) -> None:
-        self._on_loop(lambda: [c.counts.restart() for c in self.clients])
+        self._ask("mark")
 
     def rates(self) -> tuple[list[dict[str, float]], list[str]]:
         """Each client's rates since the mark, and every channel error so far."""
-        rates: list[dict[str, float]] = self._on_loop(lambda: [c.counts.rates() for c in self.clients])
-        return rates, [e for c in self.clients for e in c.errors]
+        rates, errors = self._ask("rates")
+        return rates, errors
 
     def close(self, timeout_s: float = 30.0) -> None:
-        if self._closed is not None:
-            self._loop.call_soon_threadsafe(self._closed.set)
-        self._thread.join(timeout_s)
+        if self._process.is_alive():
+            with contextlib.suppress(OSError, TimeoutError, EOFError):
+                self._ask("close", timeout_s)
+        self._process.join(timeout_s)
+        if self._process.is_alive():
+            self._process.kill()
+            self._process.join(timeout_s)
+
+
+def _serve_pages(url: str, tokens: list[str], nice: int, conn: Any) -> None:
+    """The page clients' process: holds them open on a loop thread and answers the bench's asks."""
+    if nice:
+        os.nice(nice)
+    clients = [PageClient(url, t) for t in tokens]
+    loop = asyncio.new_event_loop()
+    closed: asyncio.Event | None = None
+
+    async def every() -> None:
+        nonlocal closed
+        closed = asyncio.Event()
+        await asyncio.gather(*(c.hold(closed) for c in clients))
+
+    thread = threading.Thread(target=loop.run_until_complete, args=(every(),), daemon=True)
+    thread.start()
+
+    def on_loop(call: Any) -> Any:
+        async def run() -> Any:
+            return call()
+
+        return asyncio.run_coroutine_threadsafe(run(), loop).result(timeout=30)
+
+    while True:
+        what = conn.recv()
+        if what == "ready":
+            conn.send(None)
+        elif what == "mark":
+            on_loop(lambda: [c.counts.restart() for c in clients])
+            conn.send(None)
+        elif what == "rates":
+            rates = on_loop(lambda: [c.counts.rates() for c in clients])
+            conn.send((rates, [e for c in clients for e in c.errors]))
+        elif what == "close":
+            if closed is not None:
+                loop.call_soon_threadsafe(closed.set)
+            thread.join(30.0)
+            conn.send(None)
+            return
 
 
 def median_rates(rates: list[dict[str, float]]) -> dict[str, float]:
