@@ -169,7 +169,7 @@ class LaunchGroups:
             remappings=tuple((remappings or {}).items()),
             location=SourceLocation(f"<run {pkg} {exe}>", 0),
         )
-        entry = self._launcher.start(action)
+        entry = self._launcher.start(action, exe=resolved)
         self._launcher.launched.append(entry)
         return self._add("run", f"{pkg} {exe}", [entry])
 

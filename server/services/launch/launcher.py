@@ -290,13 +290,17 @@ class Launcher:
                 self._timers = Node("_launch_timers")
         return self._timers
 
-    def start(self, action: NodeAction, entry: LaunchedNode | None = None) -> LaunchedNode:
+    def start(
+        self, action: NodeAction, entry: LaunchedNode | None = None, exe: Executable | None = None
+    ) -> LaunchedNode:
         """Start the node: inside the app, or as its own process (a student's file; every lab node
-        with ``all_processes``). A failure is recorded and logged, and the rest of the graph runs on."""
+        with ``all_processes``). A failure is recorded and logged, and the rest of the graph runs on.
+        ``exe``: what the action names, resolved just now by the caller (a student's package is
+        found on disk: a Run resolves it once, not twice)."""
         entry = entry or LaunchedNode(action)
         entry.starts += 1
         try:
-            exe = self.packages.resolve(action.pkg, action.exec)
+            exe = exe or self.packages.resolve(action.pkg, action.exec)
             if self.runs_as_process(exe):
                 return self._start_process(action, exe, entry)
         except (LookupError, NoGraphError, OSError) as exc:
