@@ -103,6 +103,11 @@ class Student:
         """Where the drone is if it is still (labpage.still: judged on the sim's clock); else None."""
         return still(self.topic)
 
+    def setpoint(self) -> tuple[float, float, float]:
+        """Where the student's keyboard manager last told the drone to go."""
+        v = self.topic("/uav/input/position")["latest"]
+        return v["x"], v["y"], v["z"]
+
     def aborted(self) -> bool:
         return bool((self.topic("/abort_takeoff")["latest"] or {}).get("data"))
 
@@ -178,7 +183,9 @@ def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
     found = re.search(r"/instructor\?token=(\S+)", class_server.log_tail(10**6))
     assert found is not None, "the class server prints the instructor's link once"
     wait_until(lambda: abs(bob.position()[0]) > MOVED_M, "bob's drone away from the origin (the keys test)")
-    ada_before = wait_until(ada.still, "ada's drone to stop after the keys test")
+    # The keys test's presses: Ada's setpoint a metre left of home for each (a reset would show).
+    ada_goal = (HOME_M[0] - PRESSES, HOME_M[1], HOME_M[2])
+    wait_until(lambda: math.dist(ada.setpoint(), ada_goal) < 1e-6, "ada's setpoint after her presses")
     with lab_page(chromium, SMALL) as page:
         page.goto(f"{class_server.url}/instructor?token={found.group(1)}", timeout=LOAD_WAIT_MS)
         page.wait_for_selector("tr[data-world='bob']")
@@ -203,5 +210,12 @@ def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
         page.click("tr[data-world='bob'] button:text-is('Reset')")
         page.wait_for_function("() => document.getElementById('status').textContent === 'reset bob'")
     wait_until(lambda: abs(bob.position()[0]) < STILL_M, "bob's drone back at the origin after the reset")
-    assert math.dist(ada.position(), ada_before) < STILL_M  # Ada's drone hovers where it was
+    # Ada's world kept its state: her setpoint as it was, and her drone stopped there, not at home.
+    # (Her drone may still have been settling when Bob's was reset: judged once it is still.)
+    assert math.dist(ada.setpoint(), ada_goal) < 1e-6
+    wait_until(
+        lambda: (p := ada.still()) is not None and math.dist(p, ada_goal) < STILL_M,
+        "ada's drone still at her setpoint",
+        HOME_WAIT_S,
+    )
     assert ada.aborted()  # and her rocket is still aborted: her world kept its state
