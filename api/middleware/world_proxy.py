@@ -190,7 +190,7 @@ async def _forward_http(
     try:
         response = await directory.http.send(request, stream=True)
     except httpx.HTTPError as exc:
-        detail = f"world {world.name!r} runs on world worker {ref.id!r}, which did not answer: {exc or type(exc).__name__}"
+        detail = f"world {world.name!r} runs on world worker {ref.id!r}, which did not answer: {str(exc) or type(exc).__name__}"
         await SafeJSONResponse({"detail": detail}, status.HTTP_502_BAD_GATEWAY)(scope, receive, send)
         return
     try:

@@ -237,7 +237,7 @@ class WorkerDirectory:
             )
         except httpx.HTTPError as exc:
             raise WorkerFailedError(
-                f"world worker {ref.id!r} did not answer: {exc or type(exc).__name__}"
+                f"world worker {ref.id!r} did not answer: {str(exc) or type(exc).__name__}"
             ) from None
 
     async def checked(
