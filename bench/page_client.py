@@ -219,7 +219,6 @@ class OpenPages:
     the bench."""
 
     def __init__(self, url: str, tokens: list[str], nice: int = 0) -> None:
-        self.url, self.tokens, self.nice = url, tokens, nice
         context = multiprocessing.get_context("spawn")  # nothing of the bench's threads goes along
         self._conn, child = context.Pipe()
         self._process = context.Process(target=_serve_pages, args=(url, tokens, nice, child), daemon=True)

@@ -60,13 +60,17 @@ def workspace(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return make_workspace(tmp_path_factory.mktemp("run_join"), {"src/demo/late_joiner.py": NODE})
 
 
-def ros2lab_run(url: str, workspace: Path, *extra: str, token: str | None = None) -> subprocess.Popen[str]:
+def ros2lab_run(
+    url: str, workspace: Path, *extra: str, token: str | None = None, python: tuple[str, ...] = ()
+) -> subprocess.Popen[str]:
+    """``ros2lab run`` of the late joiner against ``url``; ``python``: options for the interpreter."""
     env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE", TOKEN_ENV)}
     if token is not None:
         env[TOKEN_ENV] = token
     return subprocess.Popen(
         [
             sys.executable,
+            *python,
             "-m",
             "server",
             "--url",
@@ -147,17 +151,7 @@ def test_run_asks_the_lab_without_having_imported_message_types_or_websockets(wo
         silent.listen(16)
         silent.settimeout(60)
         url = f"http://127.0.0.1:{silent.getsockname()[1]}"
-        env = {
-            k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE", TOKEN_ENV)
-        }
-        argv = ["--url", url, "run", "--workspace", str(workspace), "demo", "late_joiner.py"]
-        proc = subprocess.Popen(
-            [sys.executable, "-X", "importtime", "-m", "server", *argv],
-            env=env,
-            text=True,
-            stdout=subprocess.DEVNULL,
-            stderr=subprocess.PIPE,
-        )
+        proc = ros2lab_run(url, workspace, python=("-X", "importtime"))
         try:
             conn, _ = silent.accept()
             with conn:
