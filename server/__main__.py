@@ -180,6 +180,13 @@ def build_parser() -> argparse.ArgumentParser:
         "--spread-at", type=int, default=spread_at, metavar="N",
         help=f"with --workers auto: another world worker each N worlds (default {spread_at})",
     )  # fmt: skip
+    per_core = default_of(ClassroomSettings, "worlds_per_core")
+    classroom.add_argument(
+        "--worlds-per-core", type=int, default=per_core, metavar="N",
+        help="a machine's world budget: N worlds for each of its cores, over the class server and the world "
+             "workers on it; a class whose machines all have theirs queues the next join as full (default "
+             f"{per_core}, about what a core runs with two nodes a student; 0: no budget)",
+    )  # fmt: skip
     world_level = default_of(ClassroomSettings, "world_log_level")
     classroom.add_argument(
         "--world-log-level", default=world_level, choices=list(LEVELS),
@@ -273,6 +280,7 @@ def lab_token(arg: str | None) -> str | None:
 
 # Options of the class's section: without --classroom there is no class for them to shape.
 CLASS_ONLY = {"workers": "--workers", "spread_at": "--spread-at", "local_worlds": "--local-worlds",
+              "worlds_per_core": "--worlds-per-core",
               "max_worlds_per_address": "--max-worlds-per-address", "workspaces_dir": "--workspaces-dir",
               "class_secret_file": "--class-secret-file"}  # fmt: skip
 
@@ -285,6 +293,7 @@ def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settin
         classroom = {
             "code": args.class_code, "max_worlds": args.max_worlds, "local_worlds": args.local_worlds,
             "local_workers": args.workers, "spread_at": args.spread_at, "worker_timeout_s": args.worker_timeout,
+            "worlds_per_core": args.worlds_per_core,
             "world_log_level": args.world_log_level, "workspaces_dir": args.workspaces_dir,
             "class_secret_file": args.class_secret_file,
             "joins": {"max_worlds_per_address": args.max_worlds_per_address},

@@ -27,6 +27,13 @@ class PlaceOut(TypedDict):
     cpu: CpuOut | None
 
 
+class MachineOut(TypedDict):
+    machine: str  # the digest of its boot id ("place:<id>" for a place that names none)
+    worlds: int  # on every place of this machine
+    cores: int
+    budget: int  # worlds per core times cores: past it the machine takes no more worlds
+
+
 class WaitingOut(TypedDict):
     student: str
     world: str
@@ -45,8 +52,8 @@ class QueueOut(TypedDict):
 class ClassLoadOut(BaseModel):
     capacity: Literal["ok", "near", "full"] = Field(
         description="ok; near: a place's CPU is busy, a world is late or little room is left (joins still "
-        "go ahead); full: no place has room, or every place with room is saturated and a quarter of the "
-        "worlds are late (new joins wait in the queue)"
+        "go ahead); full: no place has room by count or by its machine's world budget, or every place with "
+        "room is saturated and a quarter of the worlds are late (new joins wait in the queue)"
     )
     reasons: list[str] = Field(description="why the verdict is near or full, one line each")
     worlds: int = Field(description="worlds in the class")
@@ -54,10 +61,17 @@ class ClassLoadOut(BaseModel):
         description="worlds late now: a timer of theirs ran over 50 ms after its deadline (median of its "
         "last 20 calls) or is 1 s overdue now (a stalled loop)"
     )
-    room: int = Field(description="worlds that fit by count, over every place and the class's max_worlds")
+    room: int = Field(
+        description="worlds that fit by count and by the machines' world budgets, over every place and the "
+        "class's max_worlds"
+    )
     places: list[PlaceOut] = Field(
         description="each place worlds run: 'server' (this process) or a world worker's id, with worlds, "
         "max_worlds, late and cpu (process_cores in cores, host_busy share, cores, rss_mb in MiB, saturated)"
+    )
+    machines: list[MachineOut] = Field(
+        description="each machine's world budget (--worlds-per-core): its worlds over every place on it, its "
+        "cores and its budget; empty without a budget"
     )
     queue: QueueOut = Field(
         description="joins waiting (student, world, waited_s), the queue's size and wait_s, let_through "

@@ -40,6 +40,7 @@ async def load(_: InstructorDep, classroom: ClassroomDep) -> ClassLoadOut:
             "late": capacity.late,
             "room": capacity.room,
             "places": [p.describe() for p in places],
+            "machines": [m.describe() for m in capacity.machines],
             "queue": queue,
         }
     )

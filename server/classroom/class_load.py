@@ -8,7 +8,7 @@ import asyncio
 from collections.abc import Awaitable, Callable
 from typing import Any
 
-from server.classroom.capacity import Capacity, PlaceLoad, judge
+from server.classroom.capacity import SERVER_PLACE, Capacity, PlaceLoad, judge
 from server.classroom.class_graph import ClassGraph
 from server.classroom.lateness import late_worlds
 from server.classroom.load import CpuMeter
@@ -16,7 +16,6 @@ from server.classroom.placement import Placement
 from server.classroom.workers import WATCH_PERIOD_S, WorkerRef
 from server.classroom.worlds import WorldLabs
 
-SERVER_PLACE = "server"  # the class server itself, among the places worlds run
 FRESH_S = 3 * WATCH_PERIOD_S  # a watch round's answers younger than this stand for the workers now
 
 LoadSource = Callable[[], Awaitable[list[PlaceLoad]]]
@@ -45,9 +44,10 @@ class ClassLoad:
     async def capacity(self) -> Capacity:
         """The verdict now; a ``full`` read from the last watch round's answers is read again from
         the workers themselves first (one may have come or freed room since), as placement would."""
-        capacity = judge(await self.places(), self._class_room())
+        per_core = self.labs.class_settings.worlds_per_core
+        capacity = judge(await self.places(), self._class_room(), per_core)
         if capacity.verdict == "full" and self.source == self.measure and self.graph.workers is not None:
-            capacity = judge(await self.measure(fresh=True), self._class_room())
+            capacity = judge(await self.measure(fresh=True), self._class_room(), per_core)
         return capacity
 
     def _class_room(self) -> int:

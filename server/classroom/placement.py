@@ -2,7 +2,7 @@
 their worker goes.
 
 A new world goes where the load is lowest (worlds over capacity), never to a place whose CPU is
-saturated (load.py) while another has room. The class server says hello to its workers every
+saturated (load.py), nor to a machine that has its world budget (budget.py), while another has room. The class server says hello to its workers every
 ``WATCH_PERIOD_S``; the worlds of a worker silent for ``--worker-timeout``, or of one that answers
 but no longer hosts them, start again elsewhere under the same names, domains and tokens. A world a
 worker hosts that the class does not count there (removed or moved while the worker was cut off)
@@ -18,9 +18,11 @@ from collections.abc import Awaitable, Callable
 from typing import Any
 
 from node_runtime.transport.acl import Credentials
+from server.classroom.budget import within_budget
+from server.classroom.capacity import SERVER_PLACE
 from server.classroom.class_graph import ClassGraph
 from server.classroom.errors import ClassroomError, NoRoomError, WorkerRefusedError
-from server.classroom.load import Choice, CpuMeter, choose
+from server.classroom.load import Choice, CpuLoad, CpuMeter, choose
 from server.classroom.progress_copies import ProgressCopies
 from server.classroom.remote_worlds import on_workers
 from server.classroom.workers import WATCH_PERIOD_S, Silence, WorkerRef
@@ -82,31 +84,33 @@ class Placement:
 
     async def _place(self, exclude: str | None = None) -> WorkerRef | None:
         """Where a new world goes: here or the world worker with the lowest load (worlds over
-        capacity), but never a place whose CPU is saturated (``load.py``) while another has room;
+        capacity), but never a place whose CPU is saturated (``load.py``) while another has room,
+        nor one on a machine at its world budget (``budget.py``) while another machine has some;
         on a tie a worker, so the class server keeps its core for the pages. Never on worker
         ``exclude``."""
         capacity = self.labs.local_capacity
         local = self.labs.hosted_here + self._local_starting
-        choices: list[Choice[WorkerRef]] = []
+        here = self.cpu.read()
+        places: list[tuple[str, int, CpuLoad | None]] = [(SERVER_PLACE, local, here)]
+        choices: list[tuple[str, Choice[WorkerRef]]] = []
         if local < capacity:
-            choices.append(Choice(local / max(capacity, 1), None, self.cpu.read()))
+            choices.append((SERVER_PLACE, Choice(local / max(capacity, 1), None, here)))
         workers = self.graph.workers
         refs = await asyncio.to_thread(workers.discover) if workers is not None else []
         on = on_workers(self.labs.worlds)
         for ref in refs:
-            if ref.id == exclude:
-                continue
             ours = len(on[ref.id][1]) if ref.id in on else 0
             placing = sum(1 for wid, _ in self._hosting if wid == ref.id)
             worlds = max(ref.worlds, ours) + placing
-            if worlds < ref.max_worlds:
-                choices.append(Choice(worlds / ref.max_worlds, ref, ref.load))
+            places.append((ref.id, worlds, ref.load))
+            if ref.id != exclude and worlds < ref.max_worlds:
+                choices.append((ref.id, Choice(worlds / ref.max_worlds, ref, ref.load)))
         if not choices:
             raise NoRoomError(
                 f"no room for another world: this server hosts {capacity} itself "
                 f"(--local-worlds) and {'no world worker has room' if refs else 'no world worker answered'}"
             )
-        best, full = choose(choices)
+        best, full = choose(within_budget(choices, places, self.class_settings.worlds_per_core))
         if full:
             log.warning(
                 "every place with room for a new world is saturated (CPU): placing it on the least full"

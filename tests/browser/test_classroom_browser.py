@@ -198,6 +198,10 @@ def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
         )
         assert page.inner_text("#load-verdict") in ("ok", "near", "full")
         assert "MiB" in page.inner_text("#load-places")
+        # and the machine's world budget, which both worlds count against (--worlds-per-core)
+        assert re.search(
+            r"the machine: 2 of its budget of \d+ worlds \(\d+ cores\)", page.inner_text("#load-places")
+        )
         # The 3D view: both worlds listed, and two drones drawn apart (an arena each).
         view = page.frame_locator("#view")
         view.get_by_text("2 worlds").wait_for(timeout=LOAD_WAIT_MS)

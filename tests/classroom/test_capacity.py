@@ -17,8 +17,16 @@ from server.classroom.load import PROCESS_FULL_CORES, CpuLoad, CpuMeter, residen
 from server.host.settings import JoinQueueSettings
 
 
-def place(worlds: int, cores: float, late: int = 0, most: int = 60, name: str = "server") -> PlaceLoad:
-    return PlaceLoad(name, worlds, most, CpuLoad(cores, 0.5, 2, "m1", 300.0), late)
+def place(
+    worlds: int,
+    cores: float,
+    late: int = 0,
+    most: int = 60,
+    name: str = "server",
+    machine: str = "m1",
+    vcpus: int = 2,
+) -> PlaceLoad:
+    return PlaceLoad(name, worlds, most, CpuLoad(cores, 0.5, vcpus, machine, 300.0), late)
 
 
 def test_an_idle_class_is_ok_and_says_no_reason() -> None:
@@ -58,6 +66,43 @@ def test_every_place_at_its_count_is_full_and_little_room_is_near() -> None:
     capacity = judge([place(3, 0.1, most=4)], class_room=10)
     assert (capacity.verdict, capacity.room) == ("near", 1)
     assert capacity.reasons == ("room for 1 more world",)
+
+
+def test_a_machine_at_its_world_budget_is_full_though_its_worlds_keep_time() -> None:
+    # 15 worlds a core on 2 cores, shared by the class server and a worker on the same machine:
+    # idle CPU and no late world (the students' nodes have not started yet) do not hide it.
+    server, worker = place(16, 0.3), place(13, 0.2, name="local-1")
+    capacity = judge([server, worker], class_room=60, per_core=15)
+    assert (capacity.verdict, capacity.room) == ("near", 1)
+    assert [m.describe() for m in capacity.machines] == [
+        {"machine": "m1", "worlds": 29, "cores": 2, "budget": 30}
+    ]
+    capacity = judge([place(16, 0.3), place(14, 0.2, name="local-1")], class_room=60, per_core=15)
+    assert (capacity.verdict, capacity.room) == ("full", 0)
+    assert capacity.reasons == (
+        "every place with room is on a machine at its world budget (15 worlds a core: 30 worlds on 2 cores)",
+    )
+    # No budget (--worlds-per-core 0): the same places by count and CPU alone.
+    unbudgeted = judge([place(16, 0.3), place(14, 0.2, name="local-1")], class_room=60, per_core=0)
+    assert (unbudgeted.verdict, unbudgeted.room, unbudgeted.machines) == ("ok", 60, ())
+
+
+def test_another_machine_with_budget_left_keeps_the_class_open_and_its_room_counts() -> None:
+    spent = place(30, 0.3)
+    other = place(5, 0.2, name="w1", machine="m2", vcpus=4, most=30)
+    capacity = judge([spent, other], class_room=100, per_core=15)
+    # the other machine: 25 left by count, 55 by its budget; the spent one adds nothing
+    assert (capacity.verdict, capacity.room) == ("ok", 25)
+    assert {m.machine: m.room for m in capacity.machines} == {"m1": 0, "m2": 55}
+    # Two places on one machine share its budget: their rooms by count are not added past it.
+    a, b = place(10, 0.2, name="a", machine="m3"), place(10, 0.2, name="b", machine="m3")
+    assert judge([a, b], class_room=100, per_core=12).room == 4
+
+
+def test_a_place_that_reports_no_load_is_not_budgeted() -> None:
+    silent = PlaceLoad("w1", 40, 60, None, None)
+    capacity = judge([silent], class_room=60, per_core=1)
+    assert (capacity.verdict, capacity.room, capacity.machines) == ("ok", 20, ())
 
 
 def test_a_timer_is_late_when_its_recent_calls_ran_late_or_it_is_stalled_now() -> None:

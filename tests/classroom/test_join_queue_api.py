@@ -146,3 +146,42 @@ def test_a_waiting_join_is_refused_with_retry_after_once_it_waited_too_long(
     assert reply.status_code == 503 and int(reply.headers["Retry-After"]) >= 1
     assert "stayed at its capacity for 120 s" in reply.json()["detail"]
     assert set(server(client).worlds) == {"ada"}
+
+
+def test_a_machine_at_its_world_budget_queues_the_next_join_until_a_world_is_removed(
+    clock: ManualClock,
+) -> None:
+    """The budget through the real app, with the class server's own load as it measures it (this
+    machine's cores and boot id, not a fake): one world a core here, so the machine is full after as
+    many joins as it has cores, though no world is late and no node runs."""
+    settings = Settings(
+        listen=Listening(allowed_hosts=("testserver",)),
+        lab=LabSettings(launch="rocket", launch_args={"start_delay": "3600"}, viewer=False),
+        classroom=ClassroomSettings(code=CODE, max_worlds=200, worlds_per_core=1, local_workers=0),
+    )
+    with TestClient(create_app(settings, clock)) as client:
+        classroom = server(client)
+        instructor = bearer(classroom.instructor_token)
+        cores = classroom.cpu.cores
+        worlds = []
+        for i in range(cores):
+            status, joined = join(client, f"Student {i}")
+            assert status == 201
+            worlds.append(joined["world"])
+        status, late = join(client, "Late")
+        assert (status, late["ahead"]) == (202, 0)
+        load = client.get("/api/classroom/load", headers=instructor).json()
+        assert (load["capacity"], load["late"], load["room"]) == ("full", 0, 0)
+        assert load["reasons"] == [
+            "every place with room is on a machine at its world budget "
+            f"(1 worlds a core: {cores} worlds on {cores} cores)"
+        ]
+        (machine,) = load["machines"]
+        assert (machine["worlds"], machine["cores"], machine["budget"]) == (cores, cores, cores)
+        assert machine["machine"] == classroom.cpu.machine  # this machine, named by its boot id
+        assert poll(client, late["ticket"])[0] == 202
+        # A world removed gives its place back: the waiting join is admitted.
+        assert client.delete(f"/api/classroom/worlds/{worlds[0]}", headers=instructor).status_code == 200
+        status, joined = poll(client, late["ticket"])
+        assert status == 201 and joined["world"] == "late"
+        assert len(classroom.worlds) == cores

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 
+from server.classroom.budget import within_budget
 from server.classroom.load import (
     HOST_FULL,
     PROCESS_FULL_CORES,
@@ -140,3 +141,22 @@ def test_a_busy_machine_counts_against_its_places_only_beside_another_machine() 
     wb_busy = Choice(0.6, ref("wb"), CpuLoad(0.3, 0.92, 16, "m2"))
     assert choose([here, wa, wb_busy]) == (here, True)
     assert busy_m1.saturated and not busy_m1.process_full
+
+
+def test_a_new_world_goes_to_a_machine_with_budget_left_while_there_is_one() -> None:
+    # The class server's machine (2 cores, 15 worlds a core) holds 30 worlds over two places; a
+    # worker on another machine is fuller by share but has budget left: it takes the world.
+    here_load, local_load = CpuLoad(0.3, 0.5, 2, "m1"), CpuLoad(0.2, 0.5, 2, "m1")
+    remote = WorkerRef("w2", "http://w2", 20, 24, "token", load=CpuLoad(0.4, 0.5, 2, "m2"))
+    here = Choice(10 / 60, None, here_load)
+    local = Choice(20 / 30, WorkerRef("local-1", "http://l1", 20, 30, "token", load=local_load), local_load)
+    far = Choice(20 / 24, remote, remote.load)
+    places = [("server", 10, here_load), ("local-1", 20, local_load), ("w2", 20, remote.load)]
+    choices = [("server", here), ("local-1", local), ("w2", far)]
+    assert within_budget(choices, places, per_core=15) == [far]
+    assert choose(within_budget(choices, places, per_core=15)) == (far, False)
+    # Without a budget, or with room left on the first machine, the lowest share wins as before.
+    assert choose(within_budget(choices, places, per_core=0)) == (here, False)
+    assert choose(within_budget(choices, places, per_core=16)) == (here, False)
+    # Every machine at its budget (a join the instructor let through): it still goes somewhere.
+    assert within_budget(choices, places, per_core=5) == [here, local, far]

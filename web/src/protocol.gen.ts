@@ -59,7 +59,7 @@ export interface ClassCheckpoints {
 }
 
 export interface ClassLoadOut {
-  /** ok; near: a place's CPU is busy, a world is late or little room is left (joins still go ahead); full: no place has room, or every place with room is saturated and a quarter of the worlds are late (new joins wait in the queue) */
+  /** ok; near: a place's CPU is busy, a world is late or little room is left (joins still go ahead); full: no place has room by count or by its machine's world budget, or every place with room is saturated and a quarter of the worlds are late (new joins wait in the queue) */
   capacity: "ok" | "near" | "full";
   /** why the verdict is near or full, one line each */
   reasons: string[];
@@ -67,10 +67,12 @@ export interface ClassLoadOut {
   worlds: number;
   /** worlds late now: a timer of theirs ran over 50 ms after its deadline (median of its last 20 calls) or is 1 s overdue now (a stalled loop) */
   late: number;
-  /** worlds that fit by count, over every place and the class's max_worlds */
+  /** worlds that fit by count and by the machines' world budgets, over every place and the class's max_worlds */
   room: number;
   /** each place worlds run: 'server' (this process) or a world worker's id, with worlds, max_worlds, late and cpu (process_cores in cores, host_busy share, cores, rss_mb in MiB, saturated) */
   places: PlaceOut[];
+  /** each machine's world budget (--worlds-per-core): its worlds over every place on it, its cores and its budget; empty without a budget */
+  machines: MachineOut[];
   /** joins waiting (student, world, waited_s), the queue's size and wait_s, let_through (joins the instructor let past a full verdict), admitted and refused so far */
   queue: QueueOut;
 }
@@ -343,6 +345,13 @@ export interface LineFrame {
   node: string;
   stream: "stdout" | "stderr";
   text: string;
+}
+
+export interface MachineOut {
+  machine: string;
+  worlds: number;
+  cores: number;
+  budget: number;
 }
 
 export interface NodeDetailOut {

@@ -20,6 +20,9 @@ WORKER_TIMEOUT_S = 20.0
 ORPHAN_TIMEOUT_S = 12.0
 MAX_LOCAL_WORKERS = 32  # --workers: world workers a class server starts on its own machine
 SPREAD_AT_WORLDS = 10  # --workers auto: another world worker on this machine each this many worlds
+# --worlds-per-core: a machine's world budget for each core. 30 students with the handout's two
+# nodes each kept every world near 100 Hz on 2 vCPUs; 45 did not (docs/classroom.md, its sizes).
+WORLDS_PER_CORE = 15
 REFUSAL = "login_required"  # the error type of an app that would listen beyond loopback with no login
 
 WORKERS_RULE = (

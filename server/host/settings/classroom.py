@@ -15,6 +15,7 @@ from server.host.settings.base import (
     SPREAD_AT_WORLDS,
     WORKER_TIMEOUT_S,
     WORKERS_RULE,
+    WORLDS_PER_CORE,
     Section,
     log_level,
 )
@@ -101,6 +102,9 @@ class ClassroomSettings(Section):
     # N at its start, or "auto": one per spare core as the class grows, each ``spread_at`` worlds.
     local_workers: int | Literal["auto"] = "auto"
     spread_at: int = Field(default=SPREAD_AT_WORLDS, ge=1, le=1000)
+    # Worlds a machine runs for each of its cores, over every place on it; a class whose machines
+    # all have theirs queues the next join (server/classroom/budget.py). 0: no budget.
+    worlds_per_core: int = Field(default=WORLDS_PER_CORE, ge=0, le=1000)
     worker_timeout_s: float = WORKER_TIMEOUT_S  # a world worker silent this long is gone: its worlds move
     world_log_level: str = "warning"  # the lowest level of a class world's node lines on the console
     # Each world's workspace is the folder of its name in here: kept across resets and restarts of

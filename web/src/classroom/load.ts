@@ -1,8 +1,8 @@
 // The instructor's load panel: the class server's load every few seconds (GET
-// /api/classroom/load): the capacity verdict, each place's worlds, CPU and memory, the late
-// worlds and the join queue, with a warning line when the class is near or at its capacity and a
+// /api/classroom/load): the capacity verdict, each place's worlds, CPU and memory, each machine's
+// world budget, the late worlds and the join queue, with a warning line when the class is near or at its capacity and a
 // button that lets the oldest waiting join in.
-import type { ClassLoadOut, ErrorBody, LetThrough, PlaceOut } from "../protocol.gen";
+import type { ClassLoadOut, ErrorBody, LetThrough, MachineOut, PlaceOut } from "../protocol.gen";
 
 const REFRESH_MS = 3000;
 const LOAD_URL = "/api/classroom/load";
@@ -24,6 +24,17 @@ function place(p: PlaceOut): string {
   return parts.join(", ");
 }
 
+function machine(m: MachineOut, count: number): string {
+  const which = count > 1 ? `machine ${m.machine.slice(0, 8)}` : "the machine";
+  return `${which}: ${m.worlds} of its budget of ${m.budget} worlds (${m.cores} cores)`;
+}
+
+function line(text: string): HTMLLIElement {
+  const li = document.createElement("li");
+  li.textContent = text;
+  return li;
+}
+
 function draw(load: ClassLoadOut): void {
   const verdict = $("load-verdict");
   verdict.textContent = load.capacity;
@@ -31,11 +42,10 @@ function draw(load: ClassLoadOut): void {
   $("load-summary").textContent =
     `${load.worlds} worlds, ${load.late} late, room for ${load.room} more`;
   const list = $("load-places");
-  list.replaceChildren(...load.places.map((p) => {
-    const li = document.createElement("li");
-    li.textContent = place(p);
-    return li;
-  }));
+  list.replaceChildren(
+    ...load.places.map((p) => line(place(p))),
+    ...load.machines.map((m) => line(machine(m, load.machines.length))),
+  );
   const warning = $("load-warning");
   warning.hidden = load.capacity === "ok";
   warning.textContent = load.capacity === "full"
