@@ -26,6 +26,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Generic, TypeVar
 
+from server.base.cores import usable_cores
+
 Ref = TypeVar("Ref")  # who a place is (placement's WorkerRef); this module needs only its identity
 
 PROCESS_FULL_CORES = 0.85  # a process's worlds share one loop thread: near one core it is full
@@ -128,13 +130,6 @@ def resident_mb() -> float | None:
     return pages * os.sysconf("SC_PAGE_SIZE") / 2**20
 
 
-def _cores() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):
-        return os.cpu_count() or 1
-
-
 class CpuMeter:
     """This process's and its machine's CPU over the last window of at least ``MIN_WINDOW_S``.
     Thread-safe: a worker reads it on Zenoh's thread, the class server on its loop."""
@@ -149,7 +144,7 @@ class CpuMeter:
         rss: Callable[[], float | None] = resident_mb,
     ) -> None:
         self._now, self._process_time, self._host, self._rss = now, process_time, host, rss
-        self.cores = cores if cores is not None else _cores()
+        self.cores = cores if cores is not None else usable_cores()
         self.machine = machine
         self._lock = threading.Lock()
         self._mark = (now(), process_time(), host())

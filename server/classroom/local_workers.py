@@ -29,6 +29,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from server.base.cores import usable_cores
 from server.classroom.worker_control import TOKEN_ENV
 from server.host.processes.start_pacing import machine_slots_file
 from server.host.settings import Settings, class_section
@@ -49,12 +50,8 @@ class _Child:
 
 
 def spare_cores() -> int:
-    """The cores this process may run on, less one for itself."""
-    try:
-        cores = len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):  # no affinity on this platform
-        cores = os.cpu_count() or 1
-    return max(0, cores - 1)
+    """The cores this process may use (its affinity and its CPU quota), less one for itself."""
+    return max(0, usable_cores() - 1)
 
 
 @dataclass

@@ -1,12 +1,15 @@
 """Placement by load: the CPU meter on injected clocks and counters, a hello's load read as
-untrusted input, and the choice among the places with room."""
+untrusted input, the choice among the places with room and the machines' world budgets, and the
+cores a process may use under a container's CPU quota."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
 
+from server.base.cores import usable_cores
 from server.classroom.budget import within_budget
 from server.classroom.load import (
     HOST_FULL,
@@ -160,3 +163,25 @@ def test_a_new_world_goes_to_a_machine_with_budget_left_while_there_is_one() -> 
     assert choose(within_budget(choices, places, per_core=16)) == (here, False)
     # Every machine at its budget (a join the instructor let through): it still goes somewhere.
     assert within_budget(choices, places, per_core=5) == [here, local, far]
+
+
+@pytest.mark.parametrize(
+    ("cpu_max", "most"),
+    [
+        ("max 100000\n", None),  # no quota: the affinity
+        ("150000 100000\n", 2),  # a container's --cpus 1.5: two cores' worth of turns
+        ("50000 100000\n", 1),  # half a core
+        ("100000 100000\n", 1),
+        ("800000 100000\n", None),  # a quota above the affinity does not add cores
+        ("garbled\n", None),
+        ("0 100000\n", None),
+    ],
+)
+def test_the_usable_cores_are_the_affinitys_or_fewer_under_a_cgroup_quota(
+    tmp_path: Path, cpu_max: str, most: int | None
+) -> None:
+    affinity = len(os.sched_getaffinity(0))
+    quota = tmp_path / "cpu.max"
+    quota.write_text(cpu_max)
+    assert usable_cores(quota) == (affinity if most is None else min(affinity, most))
+    assert usable_cores(tmp_path / "absent") == affinity  # a machine without cgroup v2's file

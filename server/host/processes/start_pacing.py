@@ -31,6 +31,8 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from server.base.cores import usable_cores
+
 log = logging.getLogger(__name__)
 
 # A handout node's sandboxed start on an idle 2-core class: about 0.25 CPU-s, 0.3 s to listed.
@@ -48,8 +50,9 @@ def machine_slots_file(state_dir: Path) -> Path:
 
 
 def default_slots() -> int:
-    """One start at a time per core the server does not need (at least one)."""
-    return max(1, (os.cpu_count() or 2) - 1)
+    """One start at a time per core the server does not need (at least one; the cores it may use,
+    as its affinity and CPU quota allow)."""
+    return max(1, usable_cores() - 1)
 
 
 class StartPacer:
