@@ -43,8 +43,15 @@ def classroom_banner(settings: Settings, code: str, instructor_token: str) -> st
             f"rosbridge, every world as /<world>/...: ws://{shown}:{rosbridge}/?token=<the instructor's token>"
         )
     assert settings.classroom is not None
+    from server.base.cores import usable_cores
     from server.classroom.local_workers import spare_cores
 
+    per_core, cores = settings.classroom.worlds_per_core, usable_cores()
+    if per_core:
+        lines.append(
+            f"This machine takes {per_core * cores} worlds ({per_core} a core, {cores} cores: "
+            "--worlds-per-core); past that a join waits in the queue until the instructor lets it in"
+        )
     started, spare = settings.classroom.workers_at_start, spare_cores()
     if started:
         ids = "local-1" if started == 1 else f"local-1..local-{started}"

@@ -22,6 +22,7 @@ from support.http import HTTP
 from support.wait import wait_until
 
 from server.__main__ import main as server_main
+from server.base.cores import usable_cores
 
 CODE = "LOC042"
 GONE_WAIT_S = 30.0  # a worker polls for its parent twice a second; its worlds then end
@@ -100,6 +101,8 @@ def test_a_class_server_starts_its_workers_places_worlds_on_them_and_ends_them_w
     assert "world-worker" in command_line
     assert klass.instructor not in command_line  # the token goes in its environment only
     assert "World workers on this machine: 1" in klass.app.log_tail(10**6)
+    cores = usable_cores()  # this machine's, as the class server reads them (the default budget, 15 a core)
+    assert f"This machine takes {15 * cores} worlds (15 a core, {cores} cores" in klass.app.log_tail(10**6)
 
     tokens = {}
     for name in ("Ada", "Bob"):  # one at a time: each placement sees the one before
