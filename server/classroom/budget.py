@@ -16,11 +16,9 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any, TypeVar
+from typing import Any
 
-from server.classroom.load import Choice, CpuLoad
-
-Ref = TypeVar("Ref")
+from server.classroom.load import Choice, CpuLoad, Ref
 
 
 @dataclass(frozen=True)

@@ -2,11 +2,11 @@
 their worker goes.
 
 A new world goes where the load is lowest (worlds over capacity), never to a place whose CPU is
-saturated (load.py), nor to a machine that has its world budget (budget.py), while another has room. The class server says hello to its workers every
-``WATCH_PERIOD_S``; the worlds of a worker silent for ``--worker-timeout``, or of one that answers
-but no longer hosts them, start again elsewhere under the same names, domains and tokens. A world a
-worker hosts that the class does not count there (removed or moved while the worker was cut off)
-is ended.
+saturated (load.py), nor to a machine that has its world budget (budget.py), while another has
+room. The class server says hello to its workers every ``WATCH_PERIOD_S``; the worlds of a
+worker silent for ``--worker-timeout``, or of one that answers but no longer hosts them, start
+again elsewhere under the same names, domains and tokens. A world a worker hosts that the class
+does not count there (removed or moved while the worker was cut off) is ended.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 // The instructor's load panel: the class server's load every few seconds (GET
 // /api/classroom/load): the capacity verdict, each place's worlds, CPU and memory, each machine's
-// world budget, the late worlds and the join queue, with a warning line when the class is near or at its capacity and a
-// button that lets the oldest waiting join in.
+// world budget, the late worlds and the join queue, with a warning line when the class is near or
+// at its capacity and a button that lets the oldest waiting join in.
 import type { ClassLoadOut, ErrorBody, LetThrough, MachineOut, PlaceOut } from "../protocol.gen";
 
 const REFRESH_MS = 3000;
