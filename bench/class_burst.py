@@ -81,7 +81,7 @@ REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
 import httpx
-from live_server import READER, LiveServer, class_join, end, rss_mib
+from live_server import READER, LiveServer, class_join, cpu_s, end, rss_mib
 from machine import machine_info, save_results
 from page_client import OpenPages, median_rates
 
@@ -101,11 +101,6 @@ def cpu_jiffies() -> tuple[int, int]:
     """(steal, total) jiffies of every CPU so far (/proc/stat's first line)."""
     values = [int(v) for v in Path("/proc/stat").read_text().split("\n", 1)[0].split()[1:9]]
     return values[7], sum(values)
-
-
-def process_cpu_s(pid: int) -> float:
-    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def get(server: LiveServer, token: str, path: str) -> Any:
@@ -365,7 +360,7 @@ def tree_cpu_s(pids: list[int]) -> dict[int, float]:
     out = {}
     for pid in pids:
         with contextlib.suppress(FileNotFoundError, ProcessLookupError):
-            out[pid] = process_cpu_s(pid)
+            out[pid] = cpu_s(pid)
     return out
 
 
@@ -377,18 +372,18 @@ def steady(
     alive throughout); with ``pages``, what each page's channels carried a second."""
     nodes = [p for root in {*roots, server.proc.pid} for p in descendants(root)]  # the workers too
     steal0, total0 = cpu_jiffies()
-    cpu0, nodes0 = process_cpu_s(server.proc.pid), tree_cpu_s(nodes)
+    cpu0, nodes0 = cpu_s(server.proc.pid), tree_cpu_s(nodes)
     before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     if pages is not None:
         pages.mark()
     own0 = time.process_time()  # this bench's own CPU, and its page clients': on the same cores
-    pages0 = process_cpu_s(pages.pid) if pages is not None else 0.0
+    pages0 = cpu_s(pages.pid) if pages is not None else 0.0
     time.sleep(seconds)
     own1 = time.process_time()
-    pages1 = process_cpu_s(pages.pid) if pages is not None else 0.0
+    pages1 = cpu_s(pages.pid) if pages is not None else 0.0
     page_rates, page_errors = pages.rates() if pages is not None else ([], [])
     after = {w: dynamics_calls(server, t) for w, t in tokens.items()}
-    cpu1, nodes1 = process_cpu_s(server.proc.pid), tree_cpu_s(nodes)
+    cpu1, nodes1 = cpu_s(server.proc.pid), tree_cpu_s(nodes)
     steal1, total1 = cpu_jiffies()
     late = sorted(dynamics_lateness_p99_ms(server, t) for t in tokens.values())
     window_s = max(t for _, t in after.values()) - min(t for _, t in before.values())
@@ -454,7 +449,7 @@ def burst(
         probe.thread.start()
     time.sleep(1.0)  # each prober's first calls answered before the starts
     steal0, total0 = cpu_jiffies()
-    cpu0 = process_cpu_s(server.proc.pid)
+    cpu0 = cpu_s(server.proc.pid)
     before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE")}
     runs: list[subprocess.Popen[bytes]] = []
@@ -498,7 +493,7 @@ def burst(
         for probe in probes:
             probe.thread.join(timeout=PROBE_TIMEOUT_S)
         after = {w: dynamics_calls(server, t) for w, t in tokens.items()}
-        cpu1 = process_cpu_s(server.proc.pid)
+        cpu1 = cpu_s(server.proc.pid)
         steal1, total1 = cpu_jiffies()
         window_s = max(t for _, t in after.values()) - min(t for _, t in before.values())
         time.sleep(1.0)

@@ -35,7 +35,7 @@ from typing import Any
 import httpx
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from live_server import READER, FrameReader, LiveServer, class_join, rss_mib
+from live_server import READER, FrameReader, LiveServer, class_join, cpu_s, rss_mib
 from machine import machine_info, save_results
 from page_client import PageClient, PageClients, median_rates
 
@@ -44,12 +44,6 @@ POSE_THROTTLE_MS = 33  # ~30 Hz, the page's pose stream
 ADMIT_WAIT_S = 60.0  # how long a queued join is polled before the bench goes on without it
 WARM_S = 5.0
 DYNAMICS = "flightgoggles_uav_dynamics"
-
-
-def cpu_s(pid: int) -> float:
-    """utime + stime of the process so far, in s."""
-    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def start_workers(

@@ -17,14 +17,13 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import os
 import statistics
 import tempfile
 import time
 from pathlib import Path
 
 import websockets
-from live_server import LiveServer
+from live_server import LiveServer, cpu_s
 from machine import machine_info, save_results
 
 TOPIC = "uav/sensors/gps"
@@ -34,12 +33,6 @@ KINDS = {
     "throttle 20 ms": "throttle_rate=20",
     "throttle 33 ms": "throttle_rate=33",
 }
-TICK_S = 1.0 / os.sysconf("SC_CLK_TCK")
-
-
-def cpu_s(pid: int) -> float:
-    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) * TICK_S
 
 
 async def _clients(url: str, count: int, window_s: float) -> int:

@@ -5,6 +5,7 @@ to a class server, followed through the class's join queue."""
 from __future__ import annotations
 
 import json
+import os
 import signal
 import socket
 import subprocess
@@ -39,6 +40,13 @@ def end(proc: subprocess.Popen[Any], timeout_s: float = STOP_TIMEOUT_S, sig: int
         except subprocess.TimeoutExpired:
             proc.kill()
             proc.wait(timeout=timeout_s)
+
+
+def cpu_s(pid: int) -> float:
+    """utime + stime of the whole process (all its threads) so far, in seconds."""
+    stat = Path(f"/proc/{pid}/stat").read_text()
+    fields = stat[stat.rindex(")") + 2 :].split()  # the command name may hold spaces
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def rss_mib(pid: int) -> float:

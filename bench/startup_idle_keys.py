@@ -35,7 +35,6 @@ from __future__ import annotations
 import argparse
 import asyncio
 import json
-import os
 import statistics
 import subprocess
 import sys
@@ -51,7 +50,7 @@ import httpx
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))  # run as a script from anywhere: the app's packages live at the root
 
-from live_server import end, free_port
+from live_server import cpu_s, end, free_port
 from machine import machine_info
 
 RESULTS = REPO / "bench" / "results"
@@ -63,14 +62,6 @@ AIMS = {"idle_cpu_pct": 5.0, "rss_mb": 150.0, "key_p99_ms": 2.0}  # the aims set
 
 # -- the machine -----------------------------------------------------------------------------
 # -- /proc -----------------------------------------------------------------------------------
-def cpu_seconds(pid: int) -> float:
-    """utime + stime of the whole process (all threads), in seconds."""
-    stat = Path(f"/proc/{pid}/stat").read_text()
-    fields = stat[stat.rindex(")") + 2 :].split()  # the command name may contain spaces
-    utime, stime = int(fields[11]), int(fields[12])  # fields 14 and 15 of proc(5)
-    return (utime + stime) / os.sysconf("SC_CLK_TCK")
-
-
 def rss_mb(pid: int) -> float:
     for line in Path(f"/proc/{pid}/status").read_text().splitlines():
         if line.startswith("VmRSS:"):
@@ -142,9 +133,9 @@ def bench_idle(idle_s: float) -> dict[str, Any]:
         server.wait_ready()
         pid = server.proc.pid
         rss_start = rss_mb(pid)
-        cpu0, wall0 = cpu_seconds(pid), time.monotonic()
+        cpu0, wall0 = cpu_s(pid), time.monotonic()
         time.sleep(idle_s)  # the measurement window itself
-        cpu1, wall1 = cpu_seconds(pid), time.monotonic()
+        cpu1, wall1 = cpu_s(pid), time.monotonic()
         rss_end = rss_mb(pid)
         health = httpx.get(f"{server.url}/api/health", timeout=2.0).json()
     finally:

@@ -68,7 +68,7 @@ from typing import Any
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))  # run as a script from anywhere: the app's packages live at the root
 
-from live_server import FrameReader, LiveServer, end, free_port, rss_mib
+from live_server import FrameReader, LiveServer, cpu_s, end, free_port, rss_mib
 from machine import machine_info, save_results
 
 TOPIC = "/bench_chatter"
@@ -231,13 +231,6 @@ def role_bare_sub(args: argparse.Namespace) -> int:
 
 
 # -- the parent: helpers -----------------------------------------------------------------------
-def cpu_seconds(pid: int) -> float:
-    """utime + stime of the whole process (all threads), in seconds."""
-    stat = Path(f"/proc/{pid}/stat").read_text()
-    fields = stat[stat.rindex(")") + 2 :].split()  # the command name may contain spaces
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
 def child_env(router: str) -> dict[str, str]:
     return {**os.environ, "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["{router}"]', "PYTHONUNBUFFERED": "1"}
 
@@ -293,12 +286,12 @@ def idle_cost(root: Path, warmup_s: float, idle_s: float, rounds: int) -> tuple[
         cpu: dict[str, list[float]] = {k: [] for k in servers}
         rss: dict[str, list[float]] = {k: [] for k in servers}
         for _ in range(rounds):
-            before = {k: cpu_seconds(s.proc.pid) for k, s in servers.items()}
+            before = {k: cpu_s(s.proc.pid) for k, s in servers.items()}
             t0 = time.monotonic()
             time.sleep(idle_s)
             wall = time.monotonic() - t0
             for k, s in servers.items():
-                cpu[k].append(100.0 * (cpu_seconds(s.proc.pid) - before[k]) / wall)
+                cpu[k].append(100.0 * (cpu_s(s.proc.pid) - before[k]) / wall)
                 rss[k].append(rss_mib(s.proc.pid))
         result: dict[str, Any] = {"window_s": idle_s, "rounds": rounds, "warmup_s": warmup_s}
         for k in servers:
