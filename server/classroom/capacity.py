@@ -64,9 +64,8 @@ class Capacity:
     reasons: tuple[str, ...]
     worlds: int
     late: int
-    room: (
-        int  # places for worlds left by count and budget, over every place (capped by the class's max_worlds)
-    )
+    # Places for worlds left by count and budget, over every place (capped by the class's max_worlds).
+    room: int
     machines: tuple[MachineBudget, ...] = ()  # each machine's world budget (none without one)
 
 
