@@ -52,6 +52,8 @@ KEY_RIGHT = 275  # keyboard_msgs/Key code (SDL) of ArrowRight
 HOME_M = (0.0, 0.0, 3.0)  # the keyboard manager's start setpoint
 HOLD_S = 1.0
 BRIEF_HOLD_S = 0.3
+SET_OFF_M = 0.1  # a brief hold goes on until the drone has moved this far: brief_hold
+SET_OFF_WAIT_S = 5.0  # bounded: a hold that never moves it fails the callers' assertions
 HOLD_ATTEMPTS = 3  # a hold the dead-man released (the page stalled) is tried again: see TestHoldMode
 MOVED_M = 0.5  # hold speed 2 m/s for 1 s moves about 2 m; far more than hover jitter
 # How far a hold may take the drone: hold speed 2 m/s (2.2 m/s seen) for as long as the server
@@ -176,13 +178,27 @@ def lost_race_to_deadman(server: LabServer, deadman_before: int, went_s: float) 
 
 
 def brief_hold(page: Page, server: LabServer) -> tuple[float, int, int] | None:
-    """Press ArrowRight and keep it down for BRIEF_HOLD_S; where the drone started, /keyup's count
-    and the dead-man's count before. None if the dead-man already released it (the page stalled):
-    the key is then let go and the drone left to stop, for the caller to hold again."""
+    """Press ArrowRight and keep it down for BRIEF_HOLD_S, and on until the drone has set off;
+    where the drone started, /keyup's count and the dead-man's count before. None if the dead-man
+    already released it (the page stalled): the key is then let go and the drone left to stop, for
+    the caller to hold again.
+
+    Why on until it has set off: on a loaded machine the keyboard manager can be handed the
+    keydown late (its callbacks wait their turn on the world's executor), or the world can run
+    slow. A hold ended then reaches the manager before the drone has moved, and the drone is
+    rightly stopped where it was: the hold never happened, and how its ending stops the drone
+    cannot be seen (a CI run saw a 0.32 s hold end 8 mm left of where it began). The hold is
+    what the caller's test needs first, so it is held until the drone is seen under way
+    (SET_OFF_WAIT_S at most)."""
     x0 = position(server)[0]
     before, deadman_before = keyup_count(server), deadman_releases(server)
     page.keyboard.down("ArrowRight")
     time.sleep(BRIEF_HOLD_S)  # the hold itself
+    deadline = time.monotonic() + SET_OFF_WAIT_S
+    while position(server)[0] <= x0 + SET_OFF_M and time.monotonic() < deadline:
+        if stalled_since(server, deadman_before):
+            break
+        time.sleep(0.02)
     if stalled_since(server, deadman_before):
         page.keyboard.up("ArrowRight")
         wait_stopped(server)
