@@ -1,5 +1,6 @@
-"""A message class's ``__init__`` and ``copy`` written out for its fields, as dataclasses writes its
-methods (messages are built and copied on every publish)."""
+"""A message class's ``__init__``, ``copy`` and ``to_dict`` written out for its fields, as
+dataclasses writes its methods (messages are built and copied on every publish, and turned into
+JSON for every frame of a topic's echo)."""
 
 from __future__ import annotations
 
@@ -25,11 +26,21 @@ def _copy_expression(field: Field, value: str) -> str:
     return f"list({value})" if isinstance(field.kind, str) else f"[v.copy() for v in {value}]"
 
 
+def _json_expression(field: Field, value: str) -> str:
+    """Python source for what ``field.to_json(value)`` returns."""
+    if not field.array:
+        return value if isinstance(field.kind, str) else f"{value}.to_dict()"
+    if field.numeric_array:
+        return f"{value}.tolist()"
+    return f"list({value})" if isinstance(field.kind, str) else f"[v.to_dict() for v in {value}]"
+
+
 def compile_methods(cls: type[Message]) -> None:
-    """``__init__`` and ``copy`` written out for this class's fields, as dataclasses writes its
-    methods: the same results as Message's loops over FIELDS, without their per-field overhead
-    (messages are built and copied on every publish). Slots are set through their descriptors,
-    past the checking ``__setattr__``; values given to ``__init__`` still go through Field.check."""
+    """``__init__``, ``copy`` and ``to_dict`` written out for this class's fields, as dataclasses
+    writes its methods: the same results as Message's loops over FIELDS, without their per-field
+    overhead (messages are built and copied on every publish). Slots are set through their
+    descriptors, past the checking ``__setattr__``; values given to ``__init__`` still go through
+    Field.check."""
     names = [f.name for f in cls.FIELDS]
     if any(keyword.iskeyword(n) or n in ("self", "new") or n.startswith("_") for n in names):
         return  # a name Python would not take as a parameter: the generic methods serve
@@ -41,7 +52,7 @@ def compile_methods(cls: type[Message]) -> None:
         "_sorted": sorted,
         "_type_of": type,
     }
-    params, init_lines, copy_lines = [], [], []
+    params, init_lines, copy_lines, json_items = [], [], [], []
     for i, f in enumerate(cls.FIELDS):
         env[f"_set{i}"] = cls.__dict__[f.name].__set__  # the slot's own setter
         env[f"_check{i}"] = f.check
@@ -61,6 +72,7 @@ def compile_methods(cls: type[Message]) -> None:
             value = f"{f.name} if _type_of({f.name}) is _exact{i} else {value}"  # a field may be named type
         init_lines.append(f"    _set{i}(self, {value})")
         copy_lines.append(f"    _set{i}(new, {_copy_expression(f, 'self.' + f.name)})")
+        json_items.append(f"{f.name!r}: {_json_expression(f, 'self.' + f.name)}")
     lines = [
         f"def __init__(self, {', '.join(['*', *params, '**unknown'] if params else ['**unknown'])}):",
         *init_lines,
@@ -70,10 +82,12 @@ def compile_methods(cls: type[Message]) -> None:
         "    new = _new(type(self))",
         *copy_lines,
         "    return new",
+        "def to_dict(self):",
+        f"    return {{{', '.join(json_items)}}}",
     ]
     source = "\n".join(lines)
     exec(compile(source, f"<{cls.TYPE} methods>", "exec"), env)
-    for name in ("__init__", "copy"):
+    for name in ("__init__", "copy", "to_dict"):
         method: Callable[..., Any] = env[name]
         method.__qualname__ = f"{cls.__qualname__}.{name}"
         setattr(cls, name, method)

@@ -1,5 +1,6 @@
-"""Every message class's written-out ``__init__`` and ``copy`` (msgs/compiled.py) give what Message's
-generic loops over FIELDS give: the same defaults, the same checks, deep copies."""
+"""Every message class's written-out ``__init__``, ``copy`` and ``to_dict`` (msgs/compiled.py) give
+what Message's generic loops over FIELDS give: the same defaults, the same checks, deep copies, the
+same JSON."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import numpy as np
 import pytest
 
 from node_runtime.msgs import Message, PoseStamped, Vector3
-from node_runtime.msgs._base import message_classes
+from node_runtime.msgs._base import message_class, message_classes
 from node_runtime.msgs._field import MessageError
 
 CLASSES = sorted(message_classes().items())
@@ -25,7 +26,7 @@ def generic_new(cls: type[Message], **kwargs: Any) -> Message:
 def test_compiled_defaults_and_copy_equal_the_generic_ones(name: str, cls: type[Message]) -> None:
     made, generic = cls(), generic_new(cls)
     assert made == generic
-    assert made.to_dict() == generic.to_dict()
+    assert made.to_dict() == Message.to_dict(generic)  # a nested message's own is its class's case
     copied = made.copy()
     assert type(copied) is cls
     assert copied == Message.copy(made) == made
@@ -57,3 +58,46 @@ def test_compiled_copy_is_deep() -> None:
     msg.header.stamp.sec = 5
     assert copied.pose.position.x == 1.0
     assert copied.header.stamp.sec == 0
+
+
+def test_compiled_to_dict_puts_each_field_under_its_name_as_json_holds_it() -> None:
+    """Values apart, so that a field under another's name shows; every kind of field: numbers, a
+    string, nested messages, a fixed-size array (numpy), sequences of numbers and of strings
+    (array.array, list) and of messages."""
+    imu = message_class("sensor_msgs/msg/Imu").from_dict(
+        {"header": {"frame_id": "imu"}, "orientation": {"x": 1.0, "y": 2.0, "z": 3.0, "w": 4.0}}
+    )
+    imu.linear_acceleration_covariance = [float(i) for i in range(9)]
+    assert Message.to_dict(imu) == imu.to_dict()
+    shown = imu.to_dict()
+    assert shown["orientation"] == {"x": 1.0, "y": 2.0, "z": 3.0, "w": 4.0}
+    assert shown["header"] == {"stamp": {"sec": 0, "nanosec": 0}, "frame_id": "imu"}
+    assert shown["linear_acceleration_covariance"] == [float(i) for i in range(9)]
+    # numpy's array and numbers are not JSON's: a list of Python floats is
+    assert type(shown["linear_acceleration_covariance"]) is list
+    assert {type(v) for v in shown["linear_acceleration_covariance"]} == {float}
+
+    joints = message_class("sensor_msgs/msg/JointState").from_dict(
+        {"name": ["a", "b"], "position": [0.5, -0.5], "velocity": [1.0], "effort": []}
+    )
+    assert joints.to_dict() == Message.to_dict(joints)
+    assert {k: joints.to_dict()[k] for k in ("name", "position", "velocity", "effort")} == {
+        "name": ["a", "b"],
+        "position": [0.5, -0.5],
+        "velocity": [1.0],
+        "effort": [],
+    }
+    assert type(joints.to_dict()["position"]) is list  # not array.array
+
+    tf = message_class("tf2_msgs/msg/TFMessage").from_dict(
+        {
+            "transforms": [
+                {"child_frame_id": "one"},
+                {"child_frame_id": "two", "transform": {"translation": {"z": 7.0}}},
+            ]
+        }
+    )
+    shown_tf = tf.to_dict()
+    assert shown_tf == Message.to_dict(tf)
+    assert [t["child_frame_id"] for t in shown_tf["transforms"]] == ["one", "two"]
+    assert shown_tf["transforms"][1]["transform"]["translation"] == {"x": 0.0, "y": 0.0, "z": 7.0}
