@@ -9,7 +9,8 @@ import keyword
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from node_runtime.msgs._field import Field
+from node_runtime.msgs._field import MAX_STRING_CHARS, Field
+from node_runtime.msgs.idl import INT_RANGES, STRING_TYPES
 
 if TYPE_CHECKING:
     from node_runtime.msgs._base import Message
@@ -50,7 +51,10 @@ def compile_methods(cls: type[Message]) -> None:
         "_missing": _MISSING,
         "_type": cls.TYPE,
         "_sorted": sorted,
-        "_type_of": type,
+        "_type_of": type,  # builtins by names no field can take: a field may be named type, int or len
+        "_int": int,
+        "_str": str,
+        "_len": len,
     }
     params, init_lines, copy_lines, json_items = [], [], [], []
     for i, f in enumerate(cls.FIELDS):
@@ -69,7 +73,17 @@ def compile_methods(cls: type[Message]) -> None:
         value = f"{initial} if {f.name} is _missing else _check{i}({f.name}, {f.name!r})"
         if f.exact is not None:  # Field.check's first test, inline: a float, a bool, a nested message
             env[f"_exact{i}"] = f.exact
-            value = f"{f.name} if _type_of({f.name}) is _exact{i} else {value}"  # a field may be named type
+            value = f"{f.name} if _type_of({f.name}) is _exact{i} else {value}"
+        elif (
+            not f.array and isinstance(f.kind, str) and f.kind in INT_RANGES
+        ):  # an int in range is kept as it is: check_primitive's test
+            low, high = INT_RANGES[str(f.kind)]
+            value = f"{f.name} if _type_of({f.name}) is _int and {low} <= {f.name} <= {high} else {value}"
+        elif (
+            not f.array and isinstance(f.kind, str) and f.kind in STRING_TYPES
+        ):  # so is a str within its bound
+            bound = MAX_STRING_CHARS if f.string_bound is None else f.string_bound
+            value = f"{f.name} if _type_of({f.name}) is _str and _len({f.name}) <= {bound} else {value}"
         init_lines.append(f"    _set{i}(self, {value})")
         copy_lines.append(f"    _set{i}(new, {_copy_expression(f, 'self.' + f.name)})")
         json_items.append(f"{f.name!r}: {_json_expression(f, 'self.' + f.name)}")

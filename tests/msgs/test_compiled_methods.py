@@ -50,6 +50,33 @@ def test_compiled_init_checks_values_as_setattr_does() -> None:
         Vector3(1.0)  # type: ignore[misc]
 
 
+def test_compiled_init_keeps_ints_and_strings_that_fit_and_refuses_the_rest_as_setattr_does() -> None:
+    """Ints in their type's range and strings within their bound are kept as they are, inline; the
+    rest go to Field.check, which refuses them or converts them as assigning them would."""
+    time_class = message_class("builtin_interfaces/msg/Time")
+    t = time_class(sec=-(2**31), nanosec=2**32 - 1)
+    assert (t.sec, t.nanosec) == (-(2**31), 2**32 - 1)
+    assert type(time_class(sec=np.int64(5)).sec) is int  # numpy's integer, converted as setattr does
+    for bad, problem in (
+        ({"sec": 2**31}, r"^sec: 2147483648 is out of range for int32"),
+        ({"nanosec": -1}, r"^nanosec: -1 is out of range for uint32"),
+        ({"sec": True}, r"^sec: expected an integer"),
+        ({"sec": 1.0}, r"^sec: expected an integer"),
+    ):
+        with pytest.raises(MessageError, match=problem):
+            time_class(**bad)
+        key, value = next(iter(bad.items()))
+        with pytest.raises(MessageError, match=problem):
+            setattr(time_class(), key, value)
+
+    field_type = message_class("type_description_interfaces/msg/FieldType")  # string<=255
+    assert field_type(nested_type_name="n" * 255).nested_type_name == "n" * 255
+    with pytest.raises(MessageError, match=r"^nested_type_name: string longer than 255"):
+        field_type(nested_type_name="n" * 256)
+    with pytest.raises(MessageError, match=r"^frame_id: expected a string"):
+        message_class("std_msgs/msg/Header")(frame_id=b"world")
+
+
 def test_compiled_copy_is_deep() -> None:
     msg = PoseStamped()
     msg.pose.position.x = 1.0
