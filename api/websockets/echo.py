@@ -49,7 +49,8 @@ class EchoNode(Node):
         self.dropped = 0
         self.ready = asyncio.Event()
         qos = QoS(depth=queue_length, durability=durability)
-        self.sub = self.create_subscription(msg_type, topic, self.on_message, qos)
+        # Read only: a message is turned into JSON and never changed, so the topic's one snapshot serves.
+        self.sub = self.create_subscription(msg_type, topic, self.on_message, qos, read_only=True)
 
     def on_message(self, msg: Message) -> None:
         if len(self.outbox) == self.outbox.maxlen:
