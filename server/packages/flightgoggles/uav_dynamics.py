@@ -108,22 +108,24 @@ class UavDynamicsNode(Node):
     def publish_state(self, k: Kinematics) -> None:
         # Each message is built whole from plain floats (no state snapshot's arrays, no default
         # parts made and then replaced): this runs 100 times a second in every world of a class server.
-        stamp = self.get_clock().now().to_msg()
+        # One header for the three: the publishers hand their messages over, and nothing changes a
+        # message after it is published (a subscriber that may gets a copy of its own).
+        header = Header(stamp=self.get_clock().now().to_msg(), frame_id="world")
         x, y, z, vx, vy, vz, qw, qx, qy, qz, wx, wy, wz = k
         gps = PoseStamped(
-            header=Header(stamp=stamp, frame_id="world"),
+            header=header,
             pose=Pose(position=Point(x=x, y=y, z=z), orientation=Quaternion(x=qx, y=qy, z=qz, w=qw)),
         )
         self.gps_pub.publish(gps)
         vel = TwistStamped(
-            header=Header(stamp=stamp, frame_id="world"),
+            header=header,
             twist=Twist(linear=Vector3(x=vx, y=vy, z=vz), angular=Vector3(x=wx, y=wy, z=wz)),
         )
         self.vel_pub.publish(vel)
         roll, pitch, yaw = quat_to_euler_sxyz((qw, qx, qy, qz))
         self.att_pub.publish(Vector3(x=roll, y=pitch, z=yaw))
         tf = TransformStamped(
-            header=Header(stamp=stamp, frame_id="world"),
+            header=header,
             child_frame_id=BODY_FRAME,
             transform=Transform(
                 translation=Vector3(x=x, y=y, z=z), rotation=Quaternion(x=qx, y=qy, z=qz, w=qw)
