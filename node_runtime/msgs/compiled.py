@@ -74,14 +74,12 @@ def compile_methods(cls: type[Message]) -> None:
         if f.exact is not None:  # Field.check's first test, inline: a float, a bool, a nested message
             env[f"_exact{i}"] = f.exact
             value = f"{f.name} if _type_of({f.name}) is _exact{i} else {value}"
-        elif (
-            not f.array and isinstance(f.kind, str) and f.kind in INT_RANGES
-        ):  # an int in range is kept as it is: check_primitive's test
-            low, high = INT_RANGES[str(f.kind)]
+        elif not f.array and isinstance(f.kind, str) and f.kind in INT_RANGES:
+            # an exact int in its type's range is kept as it is: check_primitive's test, inline
+            low, high = INT_RANGES[f.kind]
             value = f"{f.name} if _type_of({f.name}) is _int and {low} <= {f.name} <= {high} else {value}"
-        elif (
-            not f.array and isinstance(f.kind, str) and f.kind in STRING_TYPES
-        ):  # so is a str within its bound
+        elif not f.array and isinstance(f.kind, str) and f.kind in STRING_TYPES:
+            # so is an exact str within its bound
             bound = MAX_STRING_CHARS if f.string_bound is None else f.string_bound
             value = f"{f.name} if _type_of({f.name}) is _str and _len({f.name}) <= {bound} else {value}"
         init_lines.append(f"    _set{i}(self, {value})")
