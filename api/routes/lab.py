@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import time
 
-from fastapi import APIRouter, HTTPException, Request, status
+from fastapi import APIRouter, HTTPException, Query, Request, status
 
 from api.deps import WORLD_HEADER, LabDep, classroom_of, grant_of, lab_of, token_of
 from api.protocol.responses import responses
@@ -13,7 +13,7 @@ from api.protocol.schemas import Health, Status, WorkspaceInfo, ZenohJoin, Zenoh
 from node_runtime.transport.acl import Credentials
 from server.classroom import Classroom
 from server.host.processes.command import graph_overrides
-from server.host.processes.start_pacing import StartPacer
+from server.host.processes.start_pacing import TICKET_CHARS, StartPacer
 from server.host.settings import Settings
 
 # Handlers are ``async def`` on purpose: the bus belongs to the event loop, and a plain ``def``
@@ -53,18 +53,28 @@ async def health(request: Request) -> Health:
 
 
 @router.get("/zenoh/join", responses=responses(404, 429))
-async def zenoh_join(request: Request, start: bool = False) -> ZenohJoin:
+async def zenoh_join(
+    request: Request,
+    start: bool = False,
+    turn: str | None = Query(
+        None,
+        max_length=TICKET_CHARS,
+        description="new: keep this start's turn if it must wait; then the ticket a 429 gave (Start-Turn)",
+    ),
+) -> ZenohJoin:
     """Where and how a node process joins this lab's ROS graph on Zenoh: the router, the ROS domain
     and, on a class server, the world's own login (its router lets each world's user into that
     world's domain only). ``env`` is ready to export, for ``ros2lab run`` or a ROS 2 node on rmw_zenoh.
     The instructor naming no world gets the class's own graph, where every world's topics show
     under its name (``/ada/uav/sensors/gps``). ``start=true`` (as ``ros2lab run`` asks) is a node
     process about to start: such joins are paced (server/host/processes/start_pacing.py), with too
-    many starting at once 429 and ``Retry-After``, after the request's own checks."""
+    many starting at once 429: ``Retry-After`` (whole seconds), ``Retry-After-Ms`` (the wait to the
+    millisecond) and, for a start that asked with ``turn=new``, ``Start-Turn``: the ticket that
+    keeps its turn, to ask again with as ``turn``; after the request's own checks."""
     classroom = classroom_of(request)
     named = request.headers.get(WORLD_HEADER) or request.query_params.get("world")
     if classroom is not None and not named and grant_of(request, classroom).is_instructor:
-        return _paced(classroom.start_pacer, start, _class_graph_join(classroom))
+        return _paced(classroom.start_pacer, start, turn, _class_graph_join(classroom))
     lab = lab_of(request)
     link = lab.zenoh
     if link is None:
@@ -75,7 +85,7 @@ async def zenoh_join(request: Request, start: bool = False) -> ZenohJoin:
         )
         raise HTTPException(status.HTTP_404_NOT_FOUND, f"this lab's graph is not on Zenoh ({why})")
     join = _join(link.router_endpoint(), link.settings.domain_id, link.settings.login, _nice(lab.settings))
-    return _paced(lab.start_pacer, start, join)
+    return _paced(lab.start_pacer, start, turn, join)
 
 
 def _nice(settings: Settings) -> int | None:
@@ -90,15 +100,21 @@ def retry_after(wait_s: float) -> str:
     return str(max(1, math.ceil(wait_s)))
 
 
-def _paced(pacer: StartPacer | None, start: bool, join: ZenohJoin) -> ZenohJoin:
-    """The join, or 429 with the time of its turn (``Retry-After``) when it is a start the server's
-    pacer defers (server/host/processes/start_pacing.py)."""
-    wait_s = pacer.admit() if start and pacer is not None else None
-    if wait_s is not None:
+def _paced(pacer: StartPacer | None, start: bool, ticket: str | None, join: ZenohJoin) -> ZenohJoin:
+    """The join, or 429 with the time of its turn and the ticket that keeps it when it is a start
+    the server's pacer defers (server/host/processes/start_pacing.py)."""
+    turn = pacer.admit(ticket) if start and pacer is not None else None
+    if turn is not None:
+        headers = {
+            "Retry-After": retry_after(turn.wait_s),
+            "Retry-After-Ms": str(math.ceil(turn.wait_s * 1000)),
+        }
+        if turn.ticket is not None:
+            headers["Start-Turn"] = turn.ticket
         raise HTTPException(
             status.HTTP_429_TOO_MANY_REQUESTS,
-            f"too many node processes starting at once on this server; ask again in {wait_s:.1f} s",
-            headers={"Retry-After": retry_after(wait_s)},
+            f"too many node processes starting at once on this server; ask again in {turn.wait_s:.1f} s",
+            headers=headers,
         )
     return join
 

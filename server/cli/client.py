@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-import contextlib
 import json
+import math
 import os
 import threading
 from collections.abc import Iterator, Mapping
@@ -44,10 +44,18 @@ class ApiError(CliError):
     """The server answered with an error status; ``detail`` is its explanation."""
 
     def __init__(
-        self, status: int, detail: str, method: str, path: str, retry_after_s: float | None = None
+        self,
+        status: int,
+        detail: str,
+        method: str,
+        path: str,
+        retry_after_s: float | None = None,
+        turn: str | None = None,
     ) -> None:
         self.status, self.detail, self.method, self.path = status, detail, method, path
-        self.retry_after_s = retry_after_s  # the server's Retry-After (429, 503), in seconds
+        # The server's Retry-After (429, 503), in seconds (from Retry-After-Ms where it gave one).
+        self.retry_after_s = retry_after_s
+        self.turn = turn  # a paced start's ticket (Start-Turn): asked again with, its turn is kept
         if self.no_route:
             super().__init__(
                 f"{method} {path}: HTTP 404: the server has no such endpoint (older than this CLI?)"
@@ -185,10 +193,23 @@ def _api_error(response: httpx.Response, method: str, path: str) -> ApiError:
         detail = describe_detail(response.json().get("detail", response.text))
     except (ValueError, AttributeError):
         detail = response.text.strip() or response.reason_phrase
-    retry_after: float | None = None
-    with contextlib.suppress(ValueError):  # an HTTP date instead of seconds: none
-        retry_after = float(response.headers.get("Retry-After", ""))
-    return ApiError(response.status_code, detail, method, path, retry_after)
+    retry_after = _wait_s(response.headers.get("Retry-After"))  # an HTTP date instead of seconds: none
+    precise_ms = _wait_s(response.headers.get("Retry-After-Ms"))  # the lab's own, to the millisecond
+    if precise_ms is not None:
+        retry_after = precise_ms / 1000
+    return ApiError(
+        response.status_code, detail, method, path, retry_after, response.headers.get("Start-Turn")
+    )
+
+
+def _wait_s(header: str | None) -> float | None:
+    """A header's number of seconds (or milliseconds) to wait; None where it holds none (not a
+    number, NaN, infinite or negative)."""
+    try:
+        value = float(header or "")
+    except ValueError:
+        return None
+    return value if math.isfinite(value) and value >= 0 else None
 
 
 def _closed_error(exc: ConnectionClosed, topic: str) -> CliError:

@@ -5,10 +5,12 @@ A lab that does not answer (nothing listens, or it accepts and never replies, or
 is asked again with a growing pause, for at most ``wait_s`` seconds in all (one request may take
 all that is left: a saturated lab answers slowly, and that answer is good); then one line says
 so and the command ends non-zero. Nothing falls back to another router or domain: a node started
-anyway would join a graph nobody watches. A lab that answers "not yet" (429 with
-``Retry-After``: too many node processes starting at once on it, see
-server/host/processes/start_pacing.py) is asked again after the time it gives, for at most ``queue_s`` seconds; that wait is the lab's own pacing
-and does not count as not answering. Any other error (no Zenoh graph, a bad token) ends at once.
+anyway would join a graph nobody watches. A lab that answers "not yet" (429: too many node
+processes starting at once on it, see server/host/processes/start_pacing.py) is asked again at
+the time it gives (``Retry-After-Ms``, else ``Retry-After``) with the ticket it gave
+(``Start-Turn``; the first ask says ``turn=new``), which keeps this start's turn for it, for at most ``queue_s`` seconds; that
+wait is the lab's own pacing and does not count as not answering. Any other error (no Zenoh
+graph, a bad token) ends at once.
 """
 
 from __future__ import annotations
@@ -31,6 +33,8 @@ NOTE_AFTER_S = 5.0  # a wait this long is said once on stderr
 TOO_MANY = 429
 RETRIED_STATUSES = (502, 503, 504)
 JITTER_S = 0.25  # at most this much added to a "not yet"'s wait: spreads a class's retries
+TURN_CHARS = 64  # a turn's ticket is shorter (the lab refuses a longer one)
+NEW_TURN = "new"  # asked with first: this start comes back with the ticket it is given
 
 
 class JoinError(CliError):
@@ -57,17 +61,23 @@ def join_graph(client: LabClient, pacing: Pacing | None = None, *, start: bool =
     unanswered_since: float | None = None
     pause = FIRST_PAUSE_S
     noted = False
+    turn = NEW_TURN  # then the ticket of the turn the lab keeps for this start
     while True:
         attempted = pacing.clock()
         bound = pacing.wait_s - (attempted - unanswered_since if unanswered_since is not None else 0.0)
+        params = {"start": "true", "turn": turn} if start else None
         try:
             timeout_s = max(0.1, bound)  # a slow answer (a saturated lab) is an answer: wait for it
-            answer: dict[str, Any] = client.get(JOIN_PATH, {"start": "true"} if start else None, timeout_s)
+            answer: dict[str, Any] = client.get(JOIN_PATH, params, timeout_s)
             return answer
         except ApiError as exc:
             if exc.status == TOO_MANY and exc.retry_after_s is not None:
                 unanswered_since, pause = None, FIRST_PAUSE_S
-                delay = exc.retry_after_s + pacing.jitter() * min(exc.retry_after_s, JITTER_S)
+                kept = exc.turn is not None and 0 < len(exc.turn) <= TURN_CHARS
+                turn = exc.turn if kept and exc.turn is not None else NEW_TURN
+                # A kept turn is this start's alone: back at it, not spread like a new start.
+                spread = 0.0 if kept else pacing.jitter() * min(exc.retry_after_s, JITTER_S)
+                delay = exc.retry_after_s + spread
                 if pacing.clock() + delay - started > pacing.queue_s:
                     raise JoinError(
                         f"the lab at {client.base_url} was still pacing node starts after "

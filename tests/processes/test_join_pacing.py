@@ -13,7 +13,7 @@ import pytest
 from api.routes.lab import retry_after
 from server.cli.client import ApiError, LabClient
 from server.cli.join import JoinError, Pacing, join_graph
-from server.host.processes.start_pacing import StartPacer
+from server.host.processes.start_pacing import NEW_TURN, StartPacer, Turn
 
 URL = "http://lab.test"
 JOIN = {"router": "tcp/127.0.0.1:7447", "domain_id": 3, "user": None, "password": None, "env": {}}
@@ -78,14 +78,18 @@ def pacing(clock: ManualClock, **kw: float) -> Pacing:
     return Pacing(clock=clock, sleep=clock.sleep, jitter=lambda: 0.0, say=lambda line: None, **kw)
 
 
+def wait_of(turn: Turn | None) -> float | None:
+    return None if turn is None else turn.wait_s
+
+
 def test_pacer_admits_up_to_its_slots_then_says_when_one_frees() -> None:
     now = [100.0]
     pacer = StartPacer(2, hold_s=1.0, clock=lambda: now[0])
     assert [pacer.admit(), pacer.admit()] == [None, None]
     now[0] += 0.25
-    assert pacer.admit() == pytest.approx(0.75)
-    now[0] += 0.75  # both slots free
-    assert [pacer.admit(), pacer.admit(), pacer.admit()] == [None, None, pytest.approx(1.0)]
+    assert wait_of(pacer.admit()) == pytest.approx(0.75)
+    now[0] += 2.0  # both slots free, and the turn it was told is past
+    assert [wait_of(pacer.admit()) for _ in range(3)] == [None, None, pytest.approx(1.0)]
     assert (pacer.admitted, pacer.deferred) == (4, 2)
     assert (retry_after(0.2), retry_after(1.2)) == ("1", "2")
 
@@ -96,14 +100,15 @@ def test_pacer_gives_each_waiting_start_a_turn_of_its_own() -> None:
     now = [0.0]
     pacer = StartPacer(1, hold_s=1.0, clock=lambda: now[0])
     assert pacer.admit() is None
-    turns = [pacer.admit() for _ in range(3)]
-    assert turns == [pytest.approx(1.0), pytest.approx(2.0), pytest.approx(3.0)]
-    now[0] = 1.0  # the first comes back at its turn: the slot is free
+    turns = [pacer.admit(NEW_TURN) for _ in range(3)]
+    assert [wait_of(t) for t in turns] == [pytest.approx(1.0), pytest.approx(2.0), pytest.approx(3.0)]
+    assert all(t is not None and t.ticket for t in turns) and len({t.ticket for t in turns if t}) == 3
+    now[0] = 1.0  # the first comes back at its turn with its ticket: the slot is free
+    assert pacer.admit(turns[0].ticket if turns[0] else None) is None
+    assert wait_of(pacer.admit()) == pytest.approx(3.0)  # a newcomer waits behind the two told before it
+    now[0] = 20.0  # long after: the turns are given up, the next waits only for the held slot
     assert pacer.admit() is None
-    assert pacer.admit() == pytest.approx(3.0)  # a newcomer waits behind the two told before it
-    now[0] = 10.0  # long after: the turns are past, the next waits only for the held slot
-    assert pacer.admit() is None
-    assert pacer.admit() == pytest.approx(1.0)
+    assert wait_of(pacer.admit()) == pytest.approx(1.0)
 
 
 def test_pacer_refuses_no_slots() -> None:

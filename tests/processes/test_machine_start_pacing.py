@@ -16,7 +16,14 @@ from pathlib import Path
 
 import pytest
 
-from server.host.processes.start_pacing import BUSY_WAIT_S, MachineStartPacer, StartPacer
+from server.host.processes.start_pacing import (
+    BUSY_WAIT_S,
+    MAX_TURNS,
+    NEW_TURN,
+    MachineStartPacer,
+    StartPacer,
+    Turn,
+)
 
 
 class Clock:
@@ -31,13 +38,16 @@ def test_two_processes_share_the_machines_slot_and_turns(tmp_path: Path) -> None
     clock, slots = Clock(), tmp_path / "start-slots"
     server, worker = (MachineStartPacer(slots, 1, hold_s=1.0, clock=clock) for _ in range(2))
     assert server.admit() is None  # the machine's one slot, held for a second
-    assert worker.admit() == pytest.approx(1.0)  # another process sees it held
-    assert server.admit() == pytest.approx(2.0)  # and the turn it gave: the next one is after it
+    first = worker.admit(NEW_TURN)
+    assert first is not None and first.wait_s == pytest.approx(1.0)  # another process sees it held
+    second = server.admit(NEW_TURN)
+    assert second is not None and second.wait_s == pytest.approx(2.0)  # after the turn the other gave
     clock.now += 1.0
-    assert worker.admit() is None  # its turn: the slot freed
-    assert (server.admitted, server.deferred, worker.admitted, worker.deferred) == (1, 1, 1, 1)
+    assert worker.admit(NEW_TURN) is not None  # a newcomer: the slot is set aside for the first turn
+    assert server.admit(first.ticket) is None  # whose ticket, given by the worker, goes here
+    assert (server.admitted, server.deferred, worker.admitted, worker.deferred) == (2, 1, 0, 2)
     clock.now += 1.0
-    assert server.admit() is None
+    assert worker.admit(second.ticket) is None
 
 
 def test_each_process_alone_would_have_let_both_start(tmp_path: Path) -> None:
@@ -58,9 +68,9 @@ def test_a_start_admitted_in_another_process_holds_the_slot_here(tmp_path: Path)
         [sys.executable, "-c", code, str(slots)], capture_output=True, text=True, timeout=60
     )
     assert other.stdout.strip() == "None", other.stderr  # admitted there
-    wait_s = MachineStartPacer(slots, 1, hold_s=60.0).admit()
-    assert wait_s is not None and 50.0 < wait_s <= 60.0  # held here, on the same clock
-    assert MachineStartPacer(slots, 2, hold_s=60.0).admit() is None  # a second slot is free
+    assert MachineStartPacer(slots, 2, hold_s=60.0).admit() is None  # a second slot is free here
+    turn = MachineStartPacer(slots, 1, hold_s=60.0).admit()
+    assert turn is not None and 50.0 < turn.wait_s <= 60.0  # the first held here, on the same clock
 
 
 def test_a_lock_held_elsewhere_defers_the_start_briefly_and_never_blocks(tmp_path: Path) -> None:
@@ -69,7 +79,7 @@ def test_a_lock_held_elsewhere_defers_the_start_briefly_and_never_blocks(tmp_pat
     held = os.open(slots, os.O_RDWR | os.O_CREAT)  # another open file: its flock conflicts with the pacer's
     try:
         fcntl.flock(held, fcntl.LOCK_EX)
-        assert pacer.admit() == BUSY_WAIT_S
+        assert pacer.admit("a ticket") == Turn(BUSY_WAIT_S, "a ticket")  # which it keeps
     finally:
         os.close(held)
     assert pacer.admit() is None  # the lock freed: admitted, the slot was never taken
@@ -86,17 +96,21 @@ def test_a_lock_held_elsewhere_defers_the_start_briefly_and_never_blocks(tmp_pat
         '{"boot": "another boot", "held": [150.0], "last_turn": 150.0}',
         '{"boot": "%s", "held": [NaN], "last_turn": null}',
         '{"boot": "%s", "held": ["x"], "last_turn": null}',
+        '{"boot": "%s", "held": [], "last_turn": null, "turns": {"t": NaN}}',
+        '{"boot": "%s", "held": [], "last_turn": null, "turns": ["t"]}',
+        '{"boot": "%s", "held": [], "last_turn": null, "turns": {%s}}',
     ],
 )
 def test_a_slots_file_from_another_boot_or_spoilt_is_a_fresh_start(tmp_path: Path, text: str) -> None:
     from server.host.processes.start_pacing import BOOT_ID
 
     slots = tmp_path / "start-slots"
-    slots.write_text(text.replace("%s", BOOT_ID))
+    too_many = ", ".join(f'"t{i}": 150.0' for i in range(MAX_TURNS + 1))  # more than it ever writes
+    slots.write_text(text.replace("{%s}", "{" + too_many + "}").replace("%s", BOOT_ID))
     pacer = MachineStartPacer(slots, 1, hold_s=1.0, clock=Clock())
     assert pacer.admit() is None
     written = json.loads(slots.read_text())
-    assert written == {"boot": BOOT_ID, "held": [101.0], "last_turn": None}
+    assert written == {"boot": BOOT_ID, "held": [101.0], "last_turn": None, "turns": {}}
 
 
 def test_a_slots_file_from_this_boot_is_kept(tmp_path: Path) -> None:
@@ -104,8 +118,11 @@ def test_a_slots_file_from_this_boot_is_kept(tmp_path: Path) -> None:
     from server.host.processes.start_pacing import BOOT_ID
 
     slots = tmp_path / "start-slots"
-    slots.write_text(json.dumps({"boot": BOOT_ID, "held": [150.0], "last_turn": None}))
-    assert MachineStartPacer(slots, 1, hold_s=1.0, clock=Clock()).admit() == pytest.approx(50.0)
+    slots.write_text(json.dumps({"boot": BOOT_ID, "held": [150.0], "last_turn": None, "turns": {"t": 99.0}}))
+    pacer = MachineStartPacer(slots, 1, hold_s=1.0, clock=Clock())
+    turn = pacer.admit()
+    assert turn is not None and turn.wait_s == pytest.approx(50.0)
+    assert pacer.admit("t") is None  # the turn kept in the file, claimed late (it was at 99)
 
 
 def test_a_slots_file_that_cannot_be_opened_paces_this_process_alone(
@@ -116,7 +133,8 @@ def test_a_slots_file_that_cannot_be_opened_paces_this_process_alone(
     pacer = MachineStartPacer(blocker / "start-slots", 1, hold_s=1.0, clock=Clock())  # under a file
     with caplog.at_level(logging.WARNING, logger="server.host.processes.start_pacing"):
         assert pacer.admit() is None
-        assert pacer.admit() == pytest.approx(1.0)  # still paced, by this process
+        turn = pacer.admit()
+        assert turn is not None and turn.wait_s == pytest.approx(1.0)  # still paced, by this process
     assert [r.getMessage() for r in caplog.records if "paced by this process alone" in r.getMessage()]
     assert len(caplog.records) == 1  # said once
 
@@ -128,11 +146,13 @@ def test_a_start_back_at_its_turn_just_before_the_slot_frees_goes_rather_than_to
     clock = Clock()
     pacer = StartPacer(1, hold_s=1.0, clock=clock)
     assert pacer.admit() is None  # A, holds until 101
-    turns = [pacer.admit() for _ in range(3)]  # B, C, D wait: turns at 101, 102, 103
-    assert turns == [pytest.approx(1.0), pytest.approx(2.0), pytest.approx(3.0)]
+    b, c, d = (pacer.admit(NEW_TURN) for _ in range(3))  # B, C, D wait: turns at 101, 102, 103
+    assert b is not None and c is not None and d is not None
+    assert [b.wait_s, c.wait_s, d.wait_s] == [pytest.approx(1.0), pytest.approx(2.0), pytest.approx(3.0)]
     clock.now = 101.1  # B comes back 0.1 s late and goes: holds until 102.1
-    assert pacer.admit() is None
+    assert pacer.admit(b.ticket) is None
     clock.now = 102.0  # C back at its turn, 0.1 s before B's slot frees
-    assert pacer.admit() is None
+    assert pacer.admit(c.ticket) is None
     clock.now = 102.5  # a new start, with C's slot held for 0.5 s more, waits
-    assert pacer.admit() == pytest.approx(1.5)  # till 104: after D's turn at 103, in line
+    late = pacer.admit()
+    assert late is not None and late.wait_s == pytest.approx(1.5)  # till 104: after D's turn at 103

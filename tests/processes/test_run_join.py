@@ -247,7 +247,7 @@ def test_run_against_a_lab_that_answers_late_joins_the_graph_it_names(
         )
         (token,) = node_tokens(session, "late_joiner")
         assert token.startswith(f"@ros2_lv/{DOMAIN}/"), token
-        assert lab.asked == ["/api/zenoh/join?start=true"]
+        assert lab.asked == ["/api/zenoh/join?start=true&turn=new"]
         run.send_signal(signal.SIGINT)
         _out, err = run.communicate(timeout=30)
         assert run.returncode == 0, err

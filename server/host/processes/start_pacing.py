@@ -1,22 +1,28 @@
 """How many node processes may start at once on this server. A start is admitted into one of a
 few slots, each held for about as long as a node process takes to import its libraries and join;
-a start that finds every slot held is told the time of its turn, after the starts told to come
-back before it. Two kinds of start ask: ``GET /api/zenoh/join?start=true`` (a node process about
-to start, as ``ros2lab run`` asks; api/routes/lab.py answers a deferred one 429 with
-``Retry-After``, and ``ros2lab run`` waits that long and asks again), and, where the server
-serves others, a student's node the page's Run or Launch starts (server/services/launch/launcher.py
-keeps it waiting, then starts it at its turn). A join without ``start`` (``ros2lab env``, a tool
-reading the router) is never paced. A server process has one pacer: its cores are shared. A
-class server and the world workers it starts on its own machine share one too
-(``MachineStartPacer``): the machine's slots, kept in one small file they all lock, not a set per
-process (a class spread over an 8-core machine would otherwise start 8 × 7 nodes at once).
+a start that finds every slot held is given a turn of its own, after the turns given before it,
+and a ticket that keeps that turn for it: back with the ticket at its turn (or late), it goes on
+the slot its turn set aside, whatever else asked meanwhile. Two kinds of start ask: ``GET
+/api/zenoh/join?start=true`` (a node process about to start, as ``ros2lab run`` asks;
+api/routes/lab.py answers a deferred one 429 with ``Retry-After``, the wait to the millisecond
+and the ticket, and ``ros2lab run`` waits that long and asks again with ``turn=TICKET``), and,
+where the server serves others, a student's node the page's Run or Launch starts
+(server/services/launch/launcher.py keeps it waiting, then starts it at its turn). A join without
+``start`` (``ros2lab env``, a tool reading the router) is never paced. A server process has one
+pacer: its cores are shared. A class server and the world workers it starts on its own machine
+share one too (``MachineStartPacer``): the machine's slots and turns, kept in one small file they
+all lock, not a set per process (a class spread over an 8-core machine would otherwise start
+8 × 7 nodes at once).
 
 Why: a node's start is a burst of CPU (the interpreter, rclpy, the messages, the Zenoh session).
 Sixty of them at once on a 2-core class server (a class told "run it now") share the cores with
 the worlds' loops, and the scheduler gives every runnable process its share: the worlds fell
 behind and a page's WebSocket handshake waited over 10 s. Paced, at most ``slots`` starts share
 the cores with the server at any moment, and a burst is all joined at about ``slots / hold_s``
-starts a second.
+starts a second. Why the ticket: a start told its turn comes back a little after it (HTTP's
+``Retry-After`` is whole seconds, a client's timer and a busy loop are late), when the slot may
+be held by a start that came back before it; without the ticket it was a new start and went to
+the back of the line, and 60 ``ros2lab run`` at once took a third longer than their turns.
 """
 
 from __future__ import annotations
@@ -26,9 +32,11 @@ import json
 import logging
 import math
 import os
+import secrets
 import threading
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 from server.base.cores import usable_cores
@@ -41,6 +49,19 @@ log = logging.getLogger(__name__)
 HOLD_S = 0.75
 GRACE = 0.25  # of hold_s: see StartPacer._admit
 BUSY_WAIT_S = 0.05  # the machine's slots file locked by another process now: ask again this soon
+KEPT_S = 5.0  # a turn is kept this long past its time for its start to come back, then given up
+MAX_TURNS = 256  # turns kept at once; past them a start is told its wait with no ticket
+TICKET_CHARS = 64  # a ticket is shorter: anything longer is not one (the API refuses it)
+NEW_TURN = "new"  # asked with instead of a ticket: a start that will come back with the one it is given
+
+
+@dataclass(frozen=True)
+class Turn:
+    """A start told to wait: ``wait_s`` until its turn, which is kept for it under ``ticket`` (None:
+    none kept, as past ``MAX_TURNS``: it asks again as a new start)."""
+
+    wait_s: float
+    ticket: str | None = None
 
 
 def machine_slots_file(state_dir: Path) -> Path:
@@ -65,36 +86,65 @@ class StartPacer:
             raise ValueError(f"a start pacer needs slots >= 1 and hold_s > 0, got {slots} and {hold_s}")
         self.slots, self.hold_s, self._clock = slots, hold_s, clock
         self._held: list[float] = []  # when each held slot frees, oldest first
-        self._last_turn = -math.inf  # the latest time a deferred start was told to come back at
+        self._last_turn = -math.inf  # the latest turn given to a deferred start
+        self._turns: dict[str, float] = {}  # the turns kept, by ticket
         self.admitted = 0
         self.deferred = 0
         self._lock = threading.Lock()  # the API's joins and the launcher's starts may ask at once
 
-    def admit(self) -> float | None:
-        """None if this start may go ahead now (it holds a slot), else seconds until its turn: when
-        the first slot frees, and after every start told to come back before it (one slot's share
-        of ``hold_s`` apart), so each waiting start asks again about once rather than every time a
-        slot might have freed."""
+    def admit(self, ticket: str | None = None) -> Turn | None:
+        """None if this start may go ahead now (it holds a slot), else its ``Turn``: when the first
+        slot frees, and after every turn given before it (one slot's share of ``hold_s`` apart), so
+        each waiting start asks again about once. ``ticket``: ``NEW_TURN`` for a start that will
+        come back with the ticket it is given, which keeps its turn; a ticket given before, to go
+        at its turn or later (one unknown or given up: a new start's); None for a start that
+        keeps no ticket, as before there were any (see ``_admit``)."""
         with self._lock:
-            return self._admit(self._clock())
+            return self._admit(self._clock(), ticket)
 
-    def _admit(self, now: float) -> float | None:
+    def _admit(self, now: float, ticket: str | None) -> Turn | None:
         # A slot that frees within a quarter of ``hold_s`` counts as free. The start ahead may have
         # been admitted a little late, so its slot frees a little after the next start's turn: that
         # start goes at its turn, not to the back of the line (60 paced starts took 104 s so).
-        self._held = [t for t in self._held if t > now + self.hold_s * GRACE]
-        if len(self._held) < self.slots:
-            self._held.append(now + self.hold_s)
-            self.admitted += 1
+        early = self.hold_s * GRACE
+        self._held = [t for t in self._held if t > now + early]
+        self._turns = {k: t for k, t in self._turns.items() if t + KEPT_S > now}
+        kept = self._turns.get(ticket) if ticket is not None else None
+        if kept is not None:
+            if kept - now > early:  # back before its turn: it keeps it
+                self.deferred += 1
+                return Turn(kept - now, ticket)
+            del self._turns[ticket]  # type: ignore[arg-type]
+            self._go(now)
+            return None
+        # A kept turn's slot is set aside from a quarter hold before it until a hold after it (its
+        # start a little late). A start that keeps no ticket is never given a turn kept for it: it
+        # comes back as a new start, and its own kept turn would then always be in its way.
+        due = sum(1 for t in self._turns.values() if now - self.hold_s < t < now + early)
+        if len(self._held) + due < self.slots:
+            self._go(now)
             return None
         self.deferred += 1
-        self._last_turn = max(self._held[0], self._last_turn + self.hold_s / self.slots)
-        return self._last_turn - now
+        first_free = self._held[0] if self._held else now
+        self._last_turn = max(now, first_free, self._last_turn + self.hold_s / self.slots)
+        if ticket != NEW_TURN and ticket is not None:  # an unknown ticket: a new start that keeps one
+            ticket = NEW_TURN
+        if ticket is None or len(self._turns) >= MAX_TURNS:
+            return Turn(self._last_turn - now)
+        ticket = secrets.token_urlsafe(12)
+        self._turns[ticket] = self._last_turn
+        return Turn(self._last_turn - now, ticket)
+
+    def _go(self, now: float) -> None:
+        self._held.append(now + self.hold_s)
+        self._held.sort()
+        self.admitted += 1
 
 
 class MachineStartPacer(StartPacer):
     """A ``StartPacer`` whose slots every process on this machine that names the same ``path``
-    shares: the held slots and the latest turn live in that file, read and written under an
+    shares: the held slots, the latest turn and the turns kept live in that file (a ticket one
+    process gave goes in any of them), read and written under an
     exclusive ``flock``. The clock must be the machine's (``time.monotonic``: the same in every
     process of one boot), as a time in the file is read by the others.
 
@@ -109,21 +159,21 @@ class MachineStartPacer(StartPacer):
         self.path = path
         self._alone = False  # the file failed once: this process paces itself from then on
 
-    def admit(self) -> float | None:
+    def admit(self, ticket: str | None = None) -> Turn | None:
         with self._lock:
             now = self._clock()
             if self._alone:
-                return self._admit(now)
+                return self._admit(now, ticket)
             try:
-                return self._admit_shared(now)
+                return self._admit_shared(now, ticket)
             except OSError as exc:
                 self._alone = True
                 log.warning(
                     "node starts paced by this process alone: the slots file %s failed: %s", self.path, exc
                 )
-                return self._admit(now)
+                return self._admit(now, ticket)
 
-    def _admit_shared(self, now: float) -> float | None:
+    def _admit_shared(self, now: float, ticket: str | None) -> Turn | None:
         self.path.parent.mkdir(parents=True, exist_ok=True)
         fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o600)
         try:
@@ -131,15 +181,15 @@ class MachineStartPacer(StartPacer):
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except BlockingIOError:
                 self.deferred += 1
-                return BUSY_WAIT_S
-            self._held, self._last_turn = _read_slots(fd)
-            wait_s = self._admit(now)
+                return Turn(BUSY_WAIT_S, ticket)  # a ticket it came with is still good
+            self._held, self._last_turn, self._turns = _read_slots(fd)
+            turn = self._admit(now, ticket)
             last = None if math.isinf(self._last_turn) else self._last_turn
-            text = json.dumps({"boot": BOOT_ID, "held": self._held, "last_turn": last})
+            text = json.dumps({"boot": BOOT_ID, "held": self._held, "last_turn": last, "turns": self._turns})
             os.lseek(fd, 0, os.SEEK_SET)
             os.ftruncate(fd, 0)
             os.write(fd, text.encode())
-            return wait_s
+            return turn
         finally:
             os.close(fd)  # and with it the lock
 
@@ -155,15 +205,17 @@ def _boot_id() -> str:
 BOOT_ID = _boot_id()
 
 
-def _read_slots(fd: int) -> tuple[list[float], float]:
-    """The held slots and the latest turn a slots file holds; none (a fresh state) where it is
-    empty, not what this module writes, or written in another boot."""
+def _read_slots(fd: int) -> tuple[list[float], float, dict[str, float]]:
+    """The held slots, the latest turn and the turns kept that a slots file holds; none (a fresh
+    state) where it is empty, not what this module writes, or written in another boot."""
     try:
         data = json.loads(os.pread(fd, 65536, 0) or b"{}")
         held = sorted(float(t) for t in data["held"])
         last = -math.inf if data["last_turn"] is None else float(data["last_turn"])
-        if data["boot"] != BOOT_ID or not all(math.isfinite(t) for t in [*held, max(last, 0.0)]):
-            return [], -math.inf
-        return held, last
+        turns = {str(k): float(t) for k, t in data.get("turns", {}).items()}
+        times = [*held, max(last, 0.0), *turns.values()]
+        if data["boot"] != BOOT_ID or not all(math.isfinite(t) for t in times) or len(turns) > MAX_TURNS:
+            return [], -math.inf, {}
+        return held, last, turns
     except (ValueError, TypeError, KeyError, AttributeError):
-        return [], -math.inf
+        return [], -math.inf, {}

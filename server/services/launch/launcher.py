@@ -15,7 +15,7 @@ from node_runtime.bus.parameter_service import serve_parameters
 from node_runtime.transport.acl import Credentials
 from server.host.processes.command import node_command, ros_args
 from server.host.processes.sandbox import INSIDE_ROUTER, Sandbox, StudentCodeRefusedError
-from server.host.processes.start_pacing import StartPacer
+from server.host.processes.start_pacing import NEW_TURN, StartPacer, Turn
 from server.host.processes.supervisor import ProcessNode, Supervisor
 from server.services.launch.commands import CommandRunner, LabCli, LaunchedCommand
 from server.services.launch.description import LaunchDescription, NodeAction
@@ -234,15 +234,16 @@ class Launcher:
             command, action.exec, screen=action.output in SCREEN_OUTPUTS, node_name=action.name
         )
         entry.process, entry.node, entry.error = process, None, None
-        wait_s = self.start_pacer.admit() if self.start_pacer is not None and exe.file is not None else None
-        if wait_s is None:
+        pacer = self.start_pacer if exe.file is not None else None
+        turn = pacer.admit(NEW_TURN) if pacer is not None else None
+        if turn is None:
             try:
                 self._spawn(process)
             except OSError:
                 entry.process = None
                 raise
         else:
-            self._start_later(entry, process, wait_s)
+            self._start_later(entry, process, turn)
         if action.respawn:
             entry.respawn = entry.respawn or RespawnBackoff(self.respawn_policy, self.bus.clock)
             entry.respawn.started()
@@ -253,19 +254,20 @@ class Launcher:
         if self._on_process_start is not None:
             self._on_process_start(process)
 
-    def _start_later(self, entry: LaunchedNode, process: ProcessNode, wait_s: float) -> None:
-        """Start ``process`` at its turn (asking the pacer again then), unless stopped before."""
+    def _start_later(self, entry: LaunchedNode, process: ProcessNode, turn: Turn) -> None:
+        """Start ``process`` at its turn (asking the pacer again then, with the turn's ticket),
+        unless stopped before."""
         log.info(
             "%s: waiting %.1f s for its turn to start (node processes start a few at a time here)",
             self.bus.tagged(f"[{process.label}]"),
-            wait_s,
+            turn.wait_s,
         )
 
-        def turn() -> None:
+        def at_turn() -> None:
             timer.cancel()
             if process.state != "waiting" or entry.process is not process:
                 return  # stopped (or started again) while it waited
-            again = self.start_pacer.admit() if self.start_pacer is not None else None
+            again = self.start_pacer.admit(turn.ticket or NEW_TURN) if self.start_pacer is not None else None
             if again is not None:
                 self._start_later(entry, process, again)
                 return
@@ -282,7 +284,7 @@ class Launcher:
                     entry.error,
                 )
 
-        timer = self._timer_node().create_timer(wait_s, turn)
+        timer = self._timer_node().create_timer(turn.wait_s, at_turn)
 
     def _timer_node(self) -> Node:
         if self._timers is None:
