@@ -1,9 +1,14 @@
-"""The lab server's HTTP and WebSocket API as the CLI sees it, with its failures as one-line errors."""
+"""The lab server's HTTP and WebSocket API as the CLI sees it, with its failures as one-line errors
+(server/cli/errors.py).
+
+httpx is imported at the first request, not with this module: ``ros2lab run`` asks the lab for
+its turn with the standard library alone (server/cli/plain_get.py), and httpx's import was most
+of what it spent before it asked.
+"""
 
 from __future__ import annotations
 
 import json
-import math
 import os
 import threading
 from collections.abc import Iterator, Mapping
@@ -11,82 +16,25 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Self
 from urllib.parse import urlencode, urlsplit, urlunsplit
 
-import httpx
-
 from server.cli.environment import TOKEN_ENV
+from server.cli.errors import ApiError, CliError, NoServerError, UnknownTopicError, api_error, describe_detail
 
 if TYPE_CHECKING:
+    import httpx
     from websockets.exceptions import ConnectionClosed
+
+__all__ = [
+    "ApiError",
+    "CliError",
+    "LabClient",
+    "NoServerError",
+    "UnknownTopicError",
+    "describe_detail",
+]
 
 TIMEOUT_S = 10.0
 # The app's close code for "not found", here an unknown topic (api.errors.CloseCode.NOT_FOUND; a test keeps them equal).
 CLOSE_NOT_FOUND = 4404
-# What FastAPI answers for a path no route serves: an older server than this CLI.
-NO_ROUTE_DETAIL = "Not Found"
-
-
-class CliError(Exception):
-    """A failure the CLI reports as one line on stderr, then exits with ``exit_code``."""
-
-    exit_code = 1
-
-
-class NoServerError(CliError):
-    """Nothing listens at the URL (connection refused, unknown host)."""
-
-    exit_code = 2
-
-    def __init__(self, url: str) -> None:
-        super().__init__(f"no lab server at {url} (start it with: bash scripts/run.sh)")
-
-
-class ApiError(CliError):
-    """The server answered with an error status; ``detail`` is its explanation."""
-
-    def __init__(
-        self,
-        status: int,
-        detail: str,
-        method: str,
-        path: str,
-        retry_after_s: float | None = None,
-        turn: str | None = None,
-    ) -> None:
-        self.status, self.detail, self.method, self.path = status, detail, method, path
-        # The server's Retry-After (429, 503), in seconds (from Retry-After-Ms where it gave one).
-        self.retry_after_s = retry_after_s
-        self.turn = turn  # a paced start's ticket (Start-Turn): asked again with, its turn is kept
-        if self.no_route:
-            super().__init__(
-                f"{method} {path}: HTTP 404: the server has no such endpoint (older than this CLI?)"
-            )
-        elif status in (404, 409, 422):
-            super().__init__(detail)
-        else:
-            super().__init__(f"{method} {path}: HTTP {status}: {detail}")
-
-    @property
-    def no_route(self) -> bool:
-        """True when the server has no such endpoint at all (as opposed to no such topic or node)."""
-        return self.status == 404 and self.detail == NO_ROUTE_DETAIL
-
-
-class UnknownTopicError(CliError):
-    """The echo channel was closed because the topic does not exist (and no type was given)."""
-
-
-def describe_detail(detail: Any) -> str:
-    """FastAPI's ``detail``: a string, or a list of validation errors with ``loc`` and ``msg``."""
-    if isinstance(detail, list):
-        parts = []
-        for item in detail:
-            if isinstance(item, Mapping):
-                loc = ".".join(str(p) for p in item.get("loc", ()) if p != "body")
-                parts.append(f"{loc}: {item.get('msg', '')}" if loc else str(item.get("msg", "")))
-            else:
-                parts.append(str(item))
-        return "; ".join(parts)
-    return str(detail)
 
 
 class LabClient:
@@ -96,10 +44,19 @@ class LabClient:
         self.base_url = base_url.rstrip("/")
         # A lab behind --token, or a student's world on a class server: ROS2LAB_TOKEN carries it.
         token = os.environ.get(TOKEN_ENV)
-        self._headers = {"Authorization": f"Bearer {token}"} if token else {}
-        self._http = httpx.Client(
-            base_url=self.base_url, timeout=TIMEOUT_S, transport=transport, headers=self._headers
-        )
+        self.headers = {"Authorization": f"Bearer {token}"} if token else {}
+        self._transport = transport
+        self._client: httpx.Client | None = None
+
+    @property
+    def _http(self) -> httpx.Client:
+        if self._client is None:
+            import httpx
+
+            self._client = httpx.Client(
+                base_url=self.base_url, timeout=TIMEOUT_S, transport=self._transport, headers=self.headers
+            )
+        return self._client
 
     def __enter__(self) -> Self:
         return self
@@ -108,7 +65,8 @@ class LabClient:
         self.close()
 
     def close(self) -> None:
-        self._http.close()
+        if self._client is not None:
+            self._client.close()
 
     def get(self, path: str, params: Mapping[str, Any] | None = None, timeout_s: float | None = None) -> Any:
         extra = {"timeout": timeout_s} if timeout_s is not None else {}
@@ -128,6 +86,8 @@ class LabClient:
 
     def download(self, path: str, dest: Path) -> int:
         """GET ``path`` into the file ``dest``, streamed; returns the bytes written."""
+        import httpx
+
         written = 0
         try:
             with self._http.stream("GET", path) as response:
@@ -144,6 +104,8 @@ class LabClient:
         return written
 
     def _request(self, method: str, path: str, **kwargs: Any) -> Any:
+        import httpx
+
         try:
             response = self._http.request(method, path, **kwargs)
         except httpx.ConnectError:
@@ -170,7 +132,7 @@ class LabClient:
 
         url = self.ws_url("/ws/topics/" + topic.lstrip("/"), params)
         try:
-            with connect(url, open_timeout=TIMEOUT_S, max_size=None, additional_headers=self._headers) as ws:
+            with connect(url, open_timeout=TIMEOUT_S, max_size=None, additional_headers=self.headers) as ws:
                 if opened is not None:
                     opened.set()
                 for frame in ws:
@@ -189,27 +151,9 @@ class LabClient:
 
 
 def _api_error(response: httpx.Response, method: str, path: str) -> ApiError:
-    try:
-        detail = describe_detail(response.json().get("detail", response.text))
-    except (ValueError, AttributeError):
-        detail = response.text.strip() or response.reason_phrase
-    retry_after = _wait_s(response.headers.get("Retry-After"))  # an HTTP date instead of seconds: none
-    precise_ms = _wait_s(response.headers.get("Retry-After-Ms"))  # the lab's own, to the millisecond
-    if precise_ms is not None:
-        retry_after = precise_ms / 1000
-    return ApiError(
-        response.status_code, detail, method, path, retry_after, response.headers.get("Start-Turn")
+    return api_error(
+        response.status_code, response.reason_phrase, response.headers, response.content, method, path
     )
-
-
-def _wait_s(header: str | None) -> float | None:
-    """A header's number of seconds (or milliseconds) to wait; None where it holds none (not a
-    number, NaN, infinite or negative)."""
-    try:
-        value = float(header or "")
-    except ValueError:
-        return None
-    return value if math.isfinite(value) and value >= 0 else None
 
 
 def _closed_error(exc: ConnectionClosed, topic: str) -> CliError:

@@ -22,7 +22,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from server.cli.client import ApiError, CliError, LabClient, NoServerError
+from server.cli.errors import ApiError, CliError, NoServerError
+from server.cli.plain_get import LabGetter
 
 JOIN_PATH = "/api/zenoh/join"
 WAIT_S = 20.0  # for a lab that does not answer
@@ -53,7 +54,7 @@ class Pacing:
     say: Callable[[str], None] = field(default=lambda line: print(line, file=sys.stderr, flush=True))
 
 
-def join_graph(client: LabClient, pacing: Pacing | None = None, *, start: bool = False) -> dict[str, Any]:
+def join_graph(client: LabGetter, pacing: Pacing | None = None, *, start: bool = False) -> dict[str, Any]:
     """The lab's answer to ``GET /api/zenoh/join``, asked until it gives one (see the module);
     ``start``: a node process starts once it has the answer (the lab paces those)."""
     pacing = pacing or Pacing()

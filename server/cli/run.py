@@ -18,7 +18,7 @@ import os
 import signal
 import subprocess
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from node_runtime.ament.index import (
     ExecutableNotFoundError,
@@ -27,13 +27,19 @@ from node_runtime.ament.index import (
     WorkspaceError,
 )
 from node_runtime.process.priority import set_session_group_nice
-from node_runtime.transport.acl import Credentials
 from node_runtime.transport.config import domain_id_from_env
-from server.cli.client import CliError, LabClient
+from server.cli.errors import CliError
 from server.cli.join import WAIT_S, Pacing, join_graph
+from server.cli.plain_get import getter_for
 from server.cli.priority import take_the_labs_nice
 from server.cli.workspace import WORKSPACE_ENV, add_workspace_option, workspace_of
-from server.host.processes.command import node_command
+
+if TYPE_CHECKING:
+    from node_runtime.transport.acl import Credentials
+    from server.cli.client import LabClient
+
+# What the node's command needs (its login, the runner's command line) is imported once the lab
+# gave this start its turn: a class's sixty at once then wait for it having spent little.
 
 STOP_GRACE_S = 10.0
 
@@ -45,6 +51,8 @@ def graph_of(join: dict[str, Any], url: str) -> tuple[str, int, Credentials | No
     if not isinstance(endpoint, str) or not endpoint:
         raise CliError(f"the lab at {url} named no Zenoh router to join; the node was not started")
     domain = join.get("domain_id")
+    from node_runtime.transport.acl import Credentials
+
     user, password = join.get("user"), join.get("password")
     login = Credentials(user, password) if isinstance(user, str) and isinstance(password, str) else None
     return endpoint, domain_id_from_env(default=domain if isinstance(domain, int) else 0), login
@@ -52,11 +60,10 @@ def graph_of(join: dict[str, Any], url: str) -> tuple[str, int, Credentials | No
 
 def run(args: argparse.Namespace, client: LabClient) -> int:
     pacing = Pacing(wait_s=args.join_timeout)
+    lab = getter_for(client.base_url, client.headers, client)  # no httpx to import for an http:// lab
     # With the lab's own workspace, the lab must answer first; a given one is read before asking.
-    join = (
-        None if (args.workspace or os.environ.get(WORKSPACE_ENV)) else join_graph(client, pacing, start=True)
-    )
-    workspace = workspace_of(args, client)
+    join = None if (args.workspace or os.environ.get(WORKSPACE_ENV)) else join_graph(lab, pacing, start=True)
+    workspace = workspace_of(args, lab)
     packages = PackageIndex(workspace=workspace)
     try:
         exe = packages.resolve(args.package_name, args.executable_name)
@@ -69,8 +76,10 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
     except WorkspaceError as exc:
         print(exc, file=sys.stderr)
         return 1
-    join = join or join_graph(client, pacing, start=True)
+    join = join or join_graph(lab, pacing, start=True)
     router, domain_id, login = graph_of(join, client.base_url)
+    from server.host.processes.command import node_command
+
     command = node_command(
         exe.target, list(args.argv), router=router, domain_id=domain_id, login=login, workspace=workspace
     )

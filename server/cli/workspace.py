@@ -10,7 +10,8 @@ import argparse
 import os
 from pathlib import Path
 
-from server.cli.client import CliError, LabClient
+from server.cli.errors import CliError
+from server.cli.plain_get import LabGetter
 
 WORKSPACE_ENV = "ROS2LAB_WORKSPACE"
 FALLBACK = Path("workspace")
@@ -25,7 +26,7 @@ def add_workspace_option(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def lab_workspace(client: LabClient) -> Path | None:
+def lab_workspace(client: LabGetter) -> Path | None:
     """The lab's workspace folder, if the lab says one and it is on this machine."""
     try:
         answer = client.get("/api/workspace")
@@ -35,7 +36,7 @@ def lab_workspace(client: LabClient) -> Path | None:
     return Path(path) if isinstance(path, str) and Path(path).is_dir() else None
 
 
-def workspace_of(args: argparse.Namespace, client: LabClient) -> Path:
+def workspace_of(args: argparse.Namespace, client: LabGetter) -> Path:
     given = getattr(args, "workspace", None) or os.environ.get(WORKSPACE_ENV)
     if given:
         return Path(given)

@@ -140,12 +140,13 @@ def test_run_with_a_token_is_below_the_worlds_before_it_asks_the_lab(
     assert nice == (min(19, own + START_NICE) if token else own)
 
 
-def test_run_asks_the_lab_without_having_imported_message_types_or_websockets(workspace: Path) -> None:
+def test_run_asks_the_lab_without_having_imported_message_types_websockets_or_httpx(workspace: Path) -> None:
     """Sixty students' ``ros2lab run`` at once share the class's machine (or their own small
     ones): until the node starts, the command imports only what finding the file and asking the
-    lab take, not the message types (the node's own process loads them) nor a WebSocket client
-    (only the echo verbs open one). Read from ``python -X importtime`` while it asks a socket that
-    never answers."""
+    lab take, not the message types (the node's own process loads them), a WebSocket client (only
+    the echo verbs open one) nor httpx (the join is a plain GET: server/cli/plain_get.py), nor
+    what the node's command needs (its login, the runner's command line: after its turn). Read
+    from ``python -X importtime`` while it asks a socket that never answers."""
     with socket.socket() as silent:
         silent.bind(("127.0.0.1", 0))
         silent.listen(16)
@@ -163,8 +164,9 @@ def test_run_asks_the_lab_without_having_imported_message_types_or_websockets(wo
     imported = {
         line.rsplit("|", 1)[1].strip() for line in err.splitlines() if line.startswith("import time:")
     }
-    assert "node_runtime.ament.index" in imported and "httpx" in imported, err[-2000:]  # what it does need
-    heavy = sorted(m for m in imported if m.startswith(("node_runtime.msgs", "websockets", "zenoh")))
+    assert {"node_runtime.ament.index", "http.client"} <= imported, err[-2000:]  # what it does need
+    later = ("node_runtime.msgs", "websockets", "zenoh", "httpx", "node_runtime.transport.acl")
+    heavy = sorted(m for m in imported if m.startswith(later) or m == "server.host.processes.command")
     assert heavy == [], heavy
 
 
