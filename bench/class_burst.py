@@ -12,10 +12,12 @@ admitted). Then ``--worlds`` × ``--per-world`` ``ros2lab run``
 of the handout's keyboard manager (examples/workspace, rocketship), each with its student's token
 and a node name of its own, all started in the same instant (one barrier releases a thread per
 start), as a class told "run it now" does; ``--starts paced`` spreads them evenly over
-``--starts-over-s`` instead. ``--cli-nice 10`` starts each ``ros2lab run`` at that niceness from
-its first instruction (otherwise it runs at the bench's until it lowers itself, after the
-interpreter's start and its first import): they then stand for commands on the students'
-laptops rather than in terminals on the class server. What is measured:
+``--starts-over-s`` instead. They are started in one session of their own, apart from the class
+server's (bench/laptops.py), whose scheduling group runs at ``--cli-nice`` (10: they stand for
+commands on the students' laptops, which take the cores only as far as the class leaves them
+free, rather than in terminals on the class server). Until 2026-11-30 each ran at that niceness
+in the bench's session, the class server's, where sixty at nice 10 outweighed it. What is
+measured:
 
 * the time from the first start until every node is in its own world's ``GET /api/nodes``
   (each world polled in turn, every 0.5 s);
@@ -68,7 +70,6 @@ import os
 import shutil
 import signal
 import statistics
-import subprocess
 import sys
 import tempfile
 import threading
@@ -81,7 +82,8 @@ REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
 import httpx
-from live_server import READER, LiveServer, class_join, cpu_s, end, rss_mib
+from laptops import LaptopProcess, Laptops
+from live_server import READER, LiveServer, class_join, cpu_s, rss_mib
 from machine import machine_info, save_results
 from page_client import OpenPages, median_rates
 
@@ -146,13 +148,10 @@ def children(pid: int) -> list[int]:
         return []
 
 
-def start(
-    server: LiveServer, token: str, node: str, env: dict[str, str], nice: int = 0
-) -> subprocess.Popen[bytes]:
-    """``ros2lab run`` of the handout's keyboard manager as ``node``, in the world of ``token``;
-    with ``nice``, at that niceness from its first instruction (coreutils' ``nice`` execs it)."""
+def start(laptops: Laptops, server: LiveServer, token: str, node: str, env: dict[str, str]) -> LaptopProcess:
+    """``ros2lab run`` of the handout's keyboard manager as ``node``, in the world of ``token``,
+    started by ``laptops`` (in their session, at its niceness)."""
     argv = [
-        *(["nice", "-n", str(nice)] if nice else []),
         ROS2LAB,
         "--url",
         server.url,
@@ -161,13 +160,11 @@ def start(
         str(WORKSPACE),
         "rocketship",
         "keyboard_manager.py",
+        "--ros-args",
+        "-r",
+        f"__node:={node}",
     ]
-    return subprocess.Popen(
-        [*argv, "--ros-args", "-r", f"__node:={node}"],
-        env={**env, "ROS2LAB_TOKEN": token},
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-    )
+    return laptops.start(argv, {**env, "ROS2LAB_TOKEN": token})
 
 
 def join(server: LiveServer, name: str) -> tuple[str, str] | None:
@@ -452,7 +449,8 @@ def burst(
     cpu0 = cpu_s(server.proc.pid)
     before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE")}
-    runs: list[subprocess.Popen[bytes]] = []
+    laptops = Laptops(cli_nice) if via == "cli" else None
+    runs: list[LaptopProcess] = []
     calls: list[Callable[[], Any]] = []
     for w, names in wanted.items():
         for name in sorted(names):
@@ -460,9 +458,10 @@ def burst(
             if via == "page":
                 calls.append(functools.partial(start_in_page, server, tokens[w], node, answers))
             else:
+                assert laptops is not None
                 calls.append(
                     functools.partial(
-                        lambda t, n: runs.append(start(server, t, n, env, cli_nice)), tokens[w], node
+                        lambda t, n: runs.append(start(laptops, server, t, n, env)), tokens[w], node
                     )
                 )
     t0 = answers.started = time.monotonic()
@@ -506,10 +505,11 @@ def burst(
         for thread in starters:
             thread.join(timeout=PROBE_TIMEOUT_S)
         for run in runs:  # Ctrl-C to every one first: they stop together, not one after another
-            if run.poll() is None:
-                run.send_signal(signal.SIGINT)
+            run.send_signal(signal.SIGINT)
         for run in list(runs):
-            end(run)
+            run.end()
+        if laptops is not None:
+            laptops.close()
     rates = sorted((after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens)
     rss_summary: dict[str, float] | None = None
     if node_rss:
@@ -580,8 +580,8 @@ def main(argv: list[str] | None = None) -> int:
         "--cli-nice",
         type=int,
         default=0,
-        help="with --via cli: the niceness each ros2lab run starts at (10: they stand for the students' "
-        "laptops, not terminals on the class server)",
+        help="with --via cli: the niceness of the session the ros2lab runs start in, all of them in one "
+        "(10: they stand for the students' laptops, not terminals on the class server; bench/laptops.py)",
     )
     parser.add_argument(
         "--probers",
