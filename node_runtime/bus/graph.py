@@ -7,7 +7,8 @@ import itertools
 import logging
 import threading
 from collections import deque
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Set as AbstractSet
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
@@ -50,7 +51,7 @@ class RemoteTopics(Protocol):
 
     version: int  # moves whenever they change
 
-    def topic_types(self) -> dict[str, set[str]]:
+    def topic_types(self) -> Mapping[str, AbstractSet[str]]:
         """Every topic name another process publishes or subscribes to, with the types it gives."""
         ...
 

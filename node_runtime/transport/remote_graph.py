@@ -8,8 +8,9 @@ given in ROS form (``std_msgs/msg/Bool``), or in DDS form when the name has anot
 from __future__ import annotations
 
 from collections import OrderedDict
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from typing import Any
 
 from node_runtime.msgs.wire import ros_type_name
 from node_runtime.transport.keys import RMW_ZENOH_DEFAULT_QOS, EntityKind, EntityToken, QoS, entity_gid
@@ -52,6 +53,10 @@ class RemoteGraph:
         self._labels: dict[str, str] = {}
         # Node names each session has declared, kept after it is gone (a died process's nodes).
         self._seen: OrderedDict[str, list[str]] = OrderedDict()
+        # What the queries below answered, with the version they answered at: a page's topic and
+        # node lists ask every second, and a class server's loop built each answer anew (a few
+        # milliseconds a call with two nodes, its worlds' ticks waiting meanwhile).
+        self._cache: dict[object, tuple[int, Any]] = {}
 
     def name_session(self, zid: str, label: str) -> None:
         """Say where a session runs (``process 1234``), for the locations the graph shows."""
@@ -106,17 +111,27 @@ class RemoteGraph:
         return (token.node_fqn, token.zid) if token is not None else None
 
     def nodes(self) -> list[RemoteNode]:
-        return sorted(
-            (
-                RemoteNode(t.node_fqn, t.namespace, t.zid, self.location(t.zid))
-                for t in self._tokens.values()
-                if t.kind is EntityKind.NODE
-            ),
-            key=lambda n: (n.name, n.zid),
-        )
+        cached = self._cache.get("nodes")
+        if cached is None or cached[0] != self.version:
+            found = sorted(
+                (
+                    RemoteNode(t.node_fqn, t.namespace, t.zid, self.location(t.zid))
+                    for t in self._tokens.values()
+                    if t.kind is EntityKind.NODE
+                ),
+                key=lambda n: (n.name, n.zid),
+            )
+            cached = self._cache["nodes"] = (self.version, found)
+        return list(cached[1])
 
     def endpoints(self, kinds: Iterable[EntityKind] | None = None) -> list[RemoteEndpoint]:
-        wanted = set(kinds) if kinds is not None else set(EntityKind) - {EntityKind.NODE}
+        wanted = frozenset(kinds) if kinds is not None else frozenset(EntityKind) - {EntityKind.NODE}
+        cached = self._cache.get(wanted)
+        if cached is None or cached[0] != self.version:
+            cached = self._cache[wanted] = (self.version, self._endpoints(wanted))
+        return list(cached[1])
+
+    def _endpoints(self, wanted: frozenset[EntityKind]) -> list[RemoteEndpoint]:
         out = []
         for t in self._tokens.values():
             if t.kind not in wanted or t.topic is None or t.dds_type is None:
@@ -135,12 +150,16 @@ class RemoteGraph:
             )
         return sorted(out, key=lambda e: (e.name, e.kind.value, e.node))
 
-    def topic_types(self) -> dict[str, set[str]]:
-        """Every topic name other sessions publish or subscribe to, with the types they give it."""
-        out: dict[str, set[str]] = {}
-        for e in self.endpoints(_TOPIC_KINDS):
-            out.setdefault(e.name, set()).add(e.type_name)
-        return out
+    def topic_types(self) -> Mapping[str, frozenset[str]]:
+        """Every topic name other sessions publish or subscribe to, with the types they give it
+        (the same mapping until the graph changes: not to be changed by the caller)."""
+        cached = self._cache.get("topic_types")
+        if cached is None or cached[0] != self.version:
+            out: dict[str, set[str]] = {}
+            for e in self.endpoints(_TOPIC_KINDS):
+                out.setdefault(e.name, set()).add(e.type_name)
+            cached = self._cache["topic_types"] = (self.version, {k: frozenset(v) for k, v in out.items()})
+        return cached[1]
 
     def has_server(self, service: str, dds_type: str) -> bool:
         return any(
