@@ -334,3 +334,49 @@ def test_unsubscribing_the_last_client_drops_the_bus_subscription(lab: TestClien
             )
 
     run(scenario())
+
+
+def test_with_no_client_the_graph_is_not_walked_and_a_client_that_comes_gets_what_changed(
+    lab: TestClient, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """While no client is connected the bridge leaves its channels as they are (a class's graph
+    changes with every node that starts, and the sync walked all of it on the worlds' loop); a
+    client that comes gets every topic there is, each advertised once, and new ones live."""
+    bridge = lab.app.state.bridges.foxglove.node  # type: ignore[attr-defined]
+    bus = lab.app.state.lab.bus  # type: ignore[attr-defined]
+    assert not bridge.server.sessions
+    walks, syncs = [0], [0]
+    known_topics, sync = bus.known_topics, bridge.sync
+
+    def counted_walk() -> Any:
+        walks[0] += 1
+        return known_topics()
+
+    def counted_sync() -> None:
+        syncs[0] += 1
+        sync()
+
+    monkeypatch.setattr(bus, "known_topics", counted_walk)
+    monkeypatch.setattr(bridge, "sync", counted_sync)
+    for timer in bridge.timers:  # the timer calls the bound method it was given: give it the counted one
+        monkeypatch.setattr(timer, "callback", counted_sync)
+
+    def publish(topic: str) -> None:
+        made = lab.post(
+            "/api/publish", json={"topic": topic, "msg": {"data": "hi"}, "type": "std_msgs/msg/String"}
+        )
+        assert made.status_code == 200, made.text
+
+    publish("/made_while_nobody_watched")
+    wait_until(lambda: syncs[0] >= 3, "three syncs of the bridge after the topic was made")
+    assert walks[0] == 0 and "/made_while_nobody_watched" not in bridge.channels
+
+    async def scenario() -> tuple[list[str], dict[str, dict[str, Any]]]:
+        async with await connect(lab) as ws:
+            first = (await next_json(ws, "advertise"))["channels"]
+            publish("/made_while_watched")
+            return [c["topic"] for c in first], await channels_until(ws, {"/made_while_watched"})
+
+    first, later = run(scenario())
+    assert "/made_while_nobody_watched" in first and first.count("/made_while_nobody_watched") == 1
+    assert "/made_while_watched" in later and walks[0] >= 2

@@ -53,7 +53,16 @@ class FoxgloveBridgeNode(Node):
     # -- bus → Foxglove ----------------------------------------------------
     def sync(self) -> None:
         """Advertise new topics (this process's, and those only other processes declare, with a
-        type this lab knows), unadvertise vanished ones (or ones that changed type)."""
+        type this lab knows), unadvertise vanished ones (or ones that changed type). Not while the
+        server has no client: the list is brought up to date when one comes (``channel_list``). A
+        class's graph changes with every node that starts, and each sync walked all of it on the
+        loop the worlds tick on (a few milliseconds each, four times a second while a class
+        started its nodes), for channels nobody was there to see."""
+        if self.server is not None and not self.server.sessions:
+            return
+        self._sync_now()
+
+    def _sync_now(self) -> None:
         version = self.bus.topics_version
         if version == self._graph_version:
             return
@@ -75,6 +84,9 @@ class FoxgloveBridgeNode(Node):
                     self.server.advertise(channel)
 
     def channel_list(self) -> list[ChannelInfo]:
+        """Every channel, the list brought up to date first (a client that comes asks this before
+        it is among the server's sessions, so what changed meanwhile is advertised to it once)."""
+        self._sync_now()
         return [channel for channel, _ in self.channels.values()]
 
     def _channel_topic(self, channel_id: int) -> str | None:

@@ -145,9 +145,9 @@ class FoxgloveServer:
             await ws.close(*refusal)
             return
         session = Session(ws)
+        channels = self.source.channel_list()  # before it is a session: its channels once, here
         self.sessions.add(session)
         session.send_control(proto.server_info(self.name, self.session_id, SUPPORTED_ENCODINGS))
-        channels = self.source.channel_list()
         if channels:
             session.send_control(proto.advertise(channels))
         sender = asyncio.create_task(self._send(session))
