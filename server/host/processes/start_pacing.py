@@ -5,7 +5,8 @@ and a ticket that keeps that turn for it: back with the ticket at its turn (or l
 the slot its turn set aside, whatever else asked meanwhile. Two kinds of start ask: ``GET
 /api/zenoh/join?start=true`` (a node process about to start, as ``ros2lab run`` asks;
 api/routes/lab.py answers a deferred one 429 with ``Retry-After``, the wait to the millisecond
-and the ticket, and ``ros2lab run`` waits that long and asks again with ``turn=TICKET``), and,
+and, asked with ``turn=new``, the ticket; ``ros2lab run`` waits that long and asks again with
+``turn=TICKET``), and,
 where the server serves others, a student's node the page's Run or Launch starts
 (server/services/launch/launcher.py keeps it waiting, then starts it at its turn). A join without
 ``start`` (``ros2lab env``, a tool reading the router) is never paced. A server process has one
@@ -109,12 +110,12 @@ class StartPacer:
         early = self.hold_s * GRACE
         self._held = [t for t in self._held if t > now + early]
         self._turns = {k: t for k, t in self._turns.items() if t + KEPT_S > now}
-        kept = self._turns.get(ticket) if ticket is not None else None
-        if kept is not None:
+        if ticket is not None and ticket in self._turns:
+            kept = self._turns[ticket]
             if kept - now > early:  # back before its turn: it keeps it
                 self.deferred += 1
                 return Turn(kept - now, ticket)
-            del self._turns[ticket]  # type: ignore[arg-type]
+            del self._turns[ticket]
             self._go(now)
             return None
         # A kept turn's slot is set aside from a quarter hold before it until a hold after it (its
@@ -127,13 +128,12 @@ class StartPacer:
         self.deferred += 1
         first_free = self._held[0] if self._held else now
         self._last_turn = max(now, first_free, self._last_turn + self.hold_s / self.slots)
-        if ticket != NEW_TURN and ticket is not None:  # an unknown ticket: a new start that keeps one
-            ticket = NEW_TURN
+        # ``NEW_TURN``, or a ticket unknown here (forged, or given up): a start that keeps one.
         if ticket is None or len(self._turns) >= MAX_TURNS:
             return Turn(self._last_turn - now)
-        ticket = secrets.token_urlsafe(12)
-        self._turns[ticket] = self._last_turn
-        return Turn(self._last_turn - now, ticket)
+        given = secrets.token_urlsafe(12)
+        self._turns[given] = self._last_turn
+        return Turn(self._last_turn - now, given)
 
     def _go(self, now: float) -> None:
         self._held.append(now + self.hold_s)
