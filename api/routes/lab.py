@@ -74,7 +74,7 @@ async def zenoh_join(
     classroom = classroom_of(request)
     named = request.headers.get(WORLD_HEADER) or request.query_params.get("world")
     if classroom is not None and not named and grant_of(request, classroom).is_instructor:
-        return _paced(classroom.start_pacer, start, turn, _class_graph_join(classroom))
+        return _paced(classroom.start_pacer, start, turn, "", _class_graph_join(classroom))
     lab = lab_of(request)
     link = lab.zenoh
     if link is None:
@@ -85,7 +85,7 @@ async def zenoh_join(
         )
         raise HTTPException(status.HTTP_404_NOT_FOUND, f"this lab's graph is not on Zenoh ({why})")
     join = _join(link.router_endpoint(), link.settings.domain_id, link.settings.login, _nice(lab.settings))
-    return _paced(lab.start_pacer, start, turn, join)
+    return _paced(lab.start_pacer, start, turn, lab.bus.label or "", join)
 
 
 def _nice(settings: Settings) -> int | None:
@@ -100,10 +100,10 @@ def retry_after(wait_s: float) -> str:
     return str(max(1, math.ceil(wait_s)))
 
 
-def _paced(pacer: StartPacer | None, start: bool, ticket: str | None, join: ZenohJoin) -> ZenohJoin:
+def _paced(pacer: StartPacer | None, start: bool, ticket: str | None, who: str, join: ZenohJoin) -> ZenohJoin:
     """The join, or 429 with the time of its turn and the ticket that keeps it when it is a start
-    the server's pacer defers (server/host/processes/start_pacing.py)."""
-    turn = pacer.admit(ticket) if start and pacer is not None else None
+    the server's pacer defers (server/host/processes/start_pacing.py); ``who``: the world asking."""
+    turn = pacer.admit(ticket, who) if start and pacer is not None else None
     if turn is not None:
         headers = {
             "Retry-After": retry_after(turn.wait_s),

@@ -96,7 +96,9 @@ def test_a_lock_held_elsewhere_defers_the_start_briefly_and_never_blocks(tmp_pat
         '{"boot": "another boot", "held": [150.0], "last_turn": 150.0}',
         '{"boot": "%s", "held": [NaN], "last_turn": null}',
         '{"boot": "%s", "held": ["x"], "last_turn": null}',
-        '{"boot": "%s", "held": [], "last_turn": null, "turns": {"t": NaN}}',
+        '{"boot": "%s", "held": [], "last_turn": null, "turns": {"t": [NaN, "", true]}}',
+        '{"boot": "%s", "held": [], "last_turn": null, "turns": {"t": 150.0}}',
+        '{"boot": "%s", "held": [], "last_turn": null, "turns": {"t": [150.0, 3, true]}}',
         '{"boot": "%s", "held": [], "last_turn": null, "turns": ["t"]}',
         '{"boot": "%s", "held": [], "last_turn": null, "turns": {%s}}',
     ],
@@ -105,7 +107,7 @@ def test_a_slots_file_from_another_boot_or_spoilt_is_a_fresh_start(tmp_path: Pat
     from server.host.processes.start_pacing import BOOT_ID
 
     slots = tmp_path / "start-slots"
-    too_many = ", ".join(f'"t{i}": 150.0' for i in range(MAX_TURNS + 1))  # more than it ever writes
+    too_many = ", ".join(f'"t{i}": [150.0, "", true]' for i in range(MAX_TURNS + 1))  # more than it writes
     slots.write_text(text.replace("{%s}", "{" + too_many + "}").replace("%s", BOOT_ID))
     pacer = MachineStartPacer(slots, 1, hold_s=1.0, clock=Clock())
     assert pacer.admit() is None
@@ -118,7 +120,8 @@ def test_a_slots_file_from_this_boot_is_kept(tmp_path: Path) -> None:
     from server.host.processes.start_pacing import BOOT_ID
 
     slots = tmp_path / "start-slots"
-    slots.write_text(json.dumps({"boot": BOOT_ID, "held": [150.0], "last_turn": None, "turns": {"t": 99.0}}))
+    turns = {"t": [99.0, "", True]}
+    slots.write_text(json.dumps({"boot": BOOT_ID, "held": [150.0], "last_turn": None, "turns": turns}))
     pacer = MachineStartPacer(slots, 1, hold_s=1.0, clock=Clock())
     turn = pacer.admit()
     assert turn is not None and turn.wait_s == pytest.approx(50.0)

@@ -19,7 +19,15 @@ from node_runtime.transport.config import ZenohSettings
 from server.app import create_app
 from server.cli.client import LabClient
 from server.cli.join import TURN_CHARS, Pacing, join_graph
-from server.host.processes.start_pacing import KEPT_S, MAX_TURNS, NEW_TURN, TICKET_CHARS, StartPacer, Turn
+from server.host.processes.start_pacing import (
+    KEPT_S,
+    MAX_TURNS,
+    MAX_WAITING,
+    NEW_TURN,
+    TICKET_CHARS,
+    StartPacer,
+    Turn,
+)
 from server.host.settings import LabSettings, Listening, Settings
 
 HOLD_S = 1.0
@@ -110,7 +118,7 @@ def test_past_the_turns_kept_a_start_is_told_its_wait_with_no_ticket() -> None:
     clock = Clock()
     pacer = StartPacer(1, HOLD_S, clock)
     assert pacer.admit(NEW_TURN) is None
-    turns = [told(pacer.admit(NEW_TURN)) for _ in range(MAX_TURNS + 1)]
+    turns = [told(pacer.admit(NEW_TURN, f"world{i}")) for i in range(MAX_TURNS + 1)]
     assert all(t.ticket for t in turns[:MAX_TURNS]) and turns[-1].ticket is None
     assert turns[-1].wait_s == pytest.approx(MAX_TURNS + 1.0)  # still in line
 
@@ -128,7 +136,7 @@ def burst(
         at, i, ticket = pending.pop(0)
         clock.now = at
         asked += 1
-        turn = pacer.admit(ticket or NEW_TURN if tickets else None)
+        turn = pacer.admit(ticket or NEW_TURN if tickets else None, f"world{i // 2}")  # two each
         if turn is None:
             last = at
             continue
@@ -279,3 +287,34 @@ def test_a_start_that_keeps_no_ticket_is_not_kept_out_by_the_turns_kept() -> Non
     assert pacer.admit(None) is None
     clock.now = 103.2
     assert pacer.admit(d.ticket) is None
+
+
+def test_a_world_asking_in_a_loop_waits_behind_its_own_few_turns_and_moves_no_one_else() -> None:
+    """A student asking to start again and again (with or without ``turn=new``) is given at most
+    ``MAX_WAITING`` turns at once; past them each ask is told the end of the line and moves it
+    not at all, so another world's start is told the turn it would have had anyway."""
+    clock = Clock()
+    pacer = StartPacer(1, HOLD_S, clock)
+    assert pacer.admit(NEW_TURN, "ada") is None  # holds the slot till 101
+    given = [told(pacer.admit(NEW_TURN, "mallory")) for _ in range(MAX_WAITING)]
+    assert all(t.ticket for t in given)
+    flood = [told(pacer.admit(kind, "mallory")) for kind in (NEW_TURN, None) * 50]
+    assert all(t.ticket is None for t in flood)
+    end_of_line = 101.0 + MAX_WAITING * HOLD_S - clock.now
+    assert all(t.wait_s == pytest.approx(end_of_line) for t in flood)
+    bob = told(pacer.admit(NEW_TURN, "bob"))
+    assert bob.wait_s == pytest.approx(end_of_line) and bob.ticket  # behind mallory's few, not the flood
+    clock.now = 101.0
+    assert pacer.admit(given[0].ticket, "bob") is not None  # a ticket goes for the world it was given to
+
+
+def test_without_the_cap_the_same_flood_would_push_the_others_back() -> None:
+    """What the cap keeps: each of a flood's asks, were it given a turn, would put another world's
+    start one turn later (the line as every ask from distinct worlds builds it)."""
+    clock = Clock()
+    pacer = StartPacer(1, HOLD_S, clock)
+    assert pacer.admit(NEW_TURN, "ada") is None
+    for i in range(MAX_WAITING + 100):
+        told(pacer.admit(NEW_TURN, f"world{i}"))  # as many worlds as asks: none over its cap
+    bob = told(pacer.admit(NEW_TURN, "bob"))
+    assert bob.wait_s == pytest.approx(1.0 + (MAX_WAITING + 100) * HOLD_S)

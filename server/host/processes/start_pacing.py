@@ -52,6 +52,10 @@ GRACE = 0.25  # of hold_s: see StartPacer._admit
 BUSY_WAIT_S = 0.05  # the machine's slots file locked by another process now: ask again this soon
 KEPT_S = 5.0  # a turn is kept this long past its time for its start to come back, then given up
 MAX_TURNS = 256  # turns kept at once; past them a start is told its wait with no ticket
+# Turns one world (or one lab's user) may wait for at once. Past them its starts are told when
+# the line ends and are given no turn: a student asking to start in a loop can then push the
+# class's other starts back by this many turns at most, not by one turn for every ask.
+MAX_WAITING = 8
 TICKET_CHARS = 64  # a ticket is shorter: anything longer is not one (the API refuses it)
 NEW_TURN = "new"  # asked with instead of a ticket: a start that will come back with the one it is given
 
@@ -63,6 +67,15 @@ class Turn:
 
     wait_s: float
     ticket: str | None = None
+
+
+@dataclass(frozen=True)
+class Given:
+    """A turn given to a deferred start: when, to which world, and whether it is kept for it."""
+
+    at: float
+    who: str
+    kept: bool
 
 
 def machine_slots_file(state_dir: Path) -> Path:
@@ -88,52 +101,58 @@ class StartPacer:
         self.slots, self.hold_s, self._clock = slots, hold_s, clock
         self._held: list[float] = []  # when each held slot frees, oldest first
         self._last_turn = -math.inf  # the latest turn given to a deferred start
-        self._turns: dict[str, float] = {}  # the turns kept, by ticket
+        # The turns given, by ticket: when, to whom (a world's name), and whether it is kept for
+        # its start (a start that keeps no ticket gets one too, never told it, counted to its world).
+        self._turns: dict[str, Given] = {}
         self.admitted = 0
         self.deferred = 0
         self._lock = threading.Lock()  # the API's joins and the launcher's starts may ask at once
 
-    def admit(self, ticket: str | None = None) -> Turn | None:
+    def admit(self, ticket: str | None = None, who: str = "") -> Turn | None:
         """None if this start may go ahead now (it holds a slot), else its ``Turn``: when the first
         slot frees, and after every turn given before it (one slot's share of ``hold_s`` apart), so
         each waiting start asks again about once. ``ticket``: ``NEW_TURN`` for a start that will
         come back with the ticket it is given, which keeps its turn; a ticket given before, to go
         at its turn or later (one unknown or given up: a new start's); None for a start that
-        keeps no ticket, as before there were any (see ``_admit``)."""
+        keeps no ticket, as before there were any (see ``_admit``). ``who``: the world asking
+        (empty for a lab's own user), whose waiting turns are at most ``MAX_WAITING``."""
         with self._lock:
-            return self._admit(self._clock(), ticket)
+            return self._admit(self._clock(), ticket, who)
 
-    def _admit(self, now: float, ticket: str | None) -> Turn | None:
+    def _admit(self, now: float, ticket: str | None, who: str) -> Turn | None:
         # A slot that frees within a quarter of ``hold_s`` counts as free. The start ahead may have
         # been admitted a little late, so its slot frees a little after the next start's turn: that
         # start goes at its turn, not to the back of the line (60 paced starts took 104 s so).
         early = self.hold_s * GRACE
         self._held = [t for t in self._held if t > now + early]
-        self._turns = {k: t for k, t in self._turns.items() if t + KEPT_S > now}
-        if ticket is not None and ticket in self._turns:
-            kept = self._turns[ticket]
-            if kept - now > early:  # back before its turn: it keeps it
+        self._turns = {k: g for k, g in self._turns.items() if g.at + KEPT_S > now}
+        given = self._turns.get(ticket) if ticket is not None else None
+        if ticket is not None and given is not None and given.kept and given.who == who:
+            if given.at - now > early:  # back before its turn: it keeps it
                 self.deferred += 1
-                return Turn(kept - now, ticket)
+                return Turn(given.at - now, ticket)
             del self._turns[ticket]
             self._go(now)
             return None
         # A kept turn's slot is set aside from a quarter hold before it until a hold after it (its
         # start a little late). A start that keeps no ticket is never given a turn kept for it: it
         # comes back as a new start, and its own kept turn would then always be in its way.
-        due = sum(1 for t in self._turns.values() if now - self.hold_s < t < now + early)
+        due = sum(1 for g in self._turns.values() if g.kept and now - self.hold_s < g.at < now + early)
         if len(self._held) + due < self.slots:
             self._go(now)
             return None
         self.deferred += 1
         first_free = self._held[0] if self._held else now
-        self._last_turn = max(now, first_free, self._last_turn + self.hold_s / self.slots)
+        turn_at = max(now, first_free, self._last_turn + self.hold_s / self.slots)
+        waiting = sum(1 for g in self._turns.values() if g.who == who)
+        if waiting >= MAX_WAITING or len(self._turns) >= MAX_TURNS:
+            return Turn(turn_at - now)  # the end of the line, which it does not move
+        self._last_turn = turn_at
         # ``NEW_TURN``, or a ticket unknown here (forged, or given up): a start that keeps one.
-        if ticket is None or len(self._turns) >= MAX_TURNS:
-            return Turn(self._last_turn - now)
-        given = secrets.token_urlsafe(12)
-        self._turns[given] = self._last_turn
-        return Turn(self._last_turn - now, given)
+        kept = ticket is not None
+        name = secrets.token_urlsafe(12)
+        self._turns[name] = Given(turn_at, who, kept)
+        return Turn(turn_at - now, name if kept else None)
 
     def _go(self, now: float) -> None:
         self._held.append(now + self.hold_s)
@@ -159,21 +178,21 @@ class MachineStartPacer(StartPacer):
         self.path = path
         self._alone = False  # the file failed once: this process paces itself from then on
 
-    def admit(self, ticket: str | None = None) -> Turn | None:
+    def admit(self, ticket: str | None = None, who: str = "") -> Turn | None:
         with self._lock:
             now = self._clock()
             if self._alone:
-                return self._admit(now, ticket)
+                return self._admit(now, ticket, who)
             try:
-                return self._admit_shared(now, ticket)
+                return self._admit_shared(now, ticket, who)
             except OSError as exc:
                 self._alone = True
                 log.warning(
                     "node starts paced by this process alone: the slots file %s failed: %s", self.path, exc
                 )
-                return self._admit(now, ticket)
+                return self._admit(now, ticket, who)
 
-    def _admit_shared(self, now: float, ticket: str | None) -> Turn | None:
+    def _admit_shared(self, now: float, ticket: str | None, who: str) -> Turn | None:
         self.path.parent.mkdir(parents=True, exist_ok=True)
         fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o600)
         try:
@@ -183,9 +202,10 @@ class MachineStartPacer(StartPacer):
                 self.deferred += 1
                 return Turn(BUSY_WAIT_S, ticket)  # a ticket it came with is still good
             self._held, self._last_turn, self._turns = _read_slots(fd)
-            turn = self._admit(now, ticket)
+            turn = self._admit(now, ticket, who)
             last = None if math.isinf(self._last_turn) else self._last_turn
-            text = json.dumps({"boot": BOOT_ID, "held": self._held, "last_turn": last, "turns": self._turns})
+            turns = {k: [g.at, g.who, g.kept] for k, g in self._turns.items()}
+            text = json.dumps({"boot": BOOT_ID, "held": self._held, "last_turn": last, "turns": turns})
             os.lseek(fd, 0, os.SEEK_SET)
             os.ftruncate(fd, 0)
             os.write(fd, text.encode())
@@ -205,17 +225,27 @@ def _boot_id() -> str:
 BOOT_ID = _boot_id()
 
 
-def _read_slots(fd: int) -> tuple[list[float], float, dict[str, float]]:
-    """The held slots, the latest turn and the turns kept that a slots file holds; none (a fresh
+def _read_slots(fd: int) -> tuple[list[float], float, dict[str, Given]]:
+    """The held slots, the latest turn and the turns given that a slots file holds; none (a fresh
     state) where it is empty, not what this module writes, or written in another boot."""
     try:
         data = json.loads(os.pread(fd, 65536, 0) or b"{}")
         held = sorted(float(t) for t in data["held"])
         last = -math.inf if data["last_turn"] is None else float(data["last_turn"])
-        turns = {str(k): float(t) for k, t in data.get("turns", {}).items()}
-        times = [*held, max(last, 0.0), *turns.values()]
+        turns = {str(k): _given(v) for k, v in data.get("turns", {}).items()}
+        times = [*held, max(last, 0.0), *(g.at for g in turns.values())]
         if data["boot"] != BOOT_ID or not all(math.isfinite(t) for t in times) or len(turns) > MAX_TURNS:
             return [], -math.inf, {}
         return held, last, turns
     except (ValueError, TypeError, KeyError, AttributeError):
         return [], -math.inf, {}
+
+
+def _given(entry: object) -> Given:
+    """A turn as the file holds it, ``[at, who, kept]``; ValueError for anything else."""
+    if not isinstance(entry, list) or len(entry) != 3:
+        raise ValueError(f"not a turn: {entry!r}")
+    at, who, kept = entry
+    if not isinstance(who, str) or not isinstance(kept, bool):
+        raise ValueError(f"not a turn: {entry!r}")
+    return Given(float(at), who, kept)

@@ -235,7 +235,7 @@ class Launcher:
         )
         entry.process, entry.node, entry.error = process, None, None
         pacer = self.start_pacer if exe.file is not None else None
-        turn = pacer.admit(NEW_TURN) if pacer is not None else None
+        turn = pacer.admit(NEW_TURN, self.bus.label or "") if pacer is not None else None
         if turn is None:
             try:
                 self._spawn(process)
@@ -267,7 +267,8 @@ class Launcher:
             timer.cancel()
             if process.state != "waiting" or entry.process is not process:
                 return  # stopped (or started again) while it waited
-            again = self.start_pacer.admit(turn.ticket or NEW_TURN) if self.start_pacer is not None else None
+            pacer = self.start_pacer
+            again = pacer.admit(turn.ticket or NEW_TURN, self.bus.label or "") if pacer is not None else None
             if again is not None:
                 self._start_later(entry, process, again)
                 return
