@@ -29,12 +29,16 @@ from pathlib import Path
 
 STOP_TIMEOUT_S = 15.0
 
-# The launcher: leads its session (started with start_new_session), sets its group's niceness,
-# then starts each command it reads (one JSON line) and answers its pid; a thread reaps them.
+# The launcher: leads its session (started with start_new_session), sets its group's niceness
+# (its own, which its children inherit, on a kernel without autogroups), then starts each command
+# it reads (one JSON line) and answers its pid; a thread reaps them.
 LAUNCHER = r"""
 import json, os, subprocess, sys, threading, time
-with open("/proc/self/autogroup", "w") as group:
-    group.write(sys.argv[1])
+try:
+    with open("/proc/self/autogroup", "w") as group:
+        group.write(sys.argv[1])
+except OSError:  # no autogroups: a niceness counts against every process, so each takes this one
+    os.nice(int(sys.argv[1]))
 
 def reap():
     while True:

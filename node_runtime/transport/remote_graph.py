@@ -8,9 +8,9 @@ given in ROS form (``std_msgs/msg/Bool``), or in DDS form when the name has anot
 from __future__ import annotations
 
 from collections import OrderedDict
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
 from node_runtime.msgs.wire import ros_type_name
 from node_runtime.transport.keys import RMW_ZENOH_DEFAULT_QOS, EntityKind, EntityToken, QoS, entity_gid
@@ -36,6 +36,7 @@ class RemoteEndpoint:
     qos: QoS = RMW_ZENOH_DEFAULT_QOS  # the profile its token gives (rclpy's incompatible-QoS events)
 
 
+_T = TypeVar("_T")
 MAX_SESSIONS_REMEMBERED = 1024
 _TOPIC_KINDS = frozenset({EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION})
 
@@ -110,26 +111,30 @@ class RemoteGraph:
         token = self._tokens.get(key) if key is not None else None
         return (token.node_fqn, token.zid) if token is not None else None
 
-    def nodes(self) -> list[RemoteNode]:
-        cached = self._cache.get("nodes")
+    def _answer(self, key: object, build: Callable[[], _T]) -> _T:
+        """``build()``'s answer as of this version of the graph, kept until the graph changes."""
+        cached = self._cache.get(key)
         if cached is None or cached[0] != self.version:
-            found = sorted(
-                (
-                    RemoteNode(t.node_fqn, t.namespace, t.zid, self.location(t.zid))
-                    for t in self._tokens.values()
-                    if t.kind is EntityKind.NODE
-                ),
-                key=lambda n: (n.name, n.zid),
-            )
-            cached = self._cache["nodes"] = (self.version, found)
-        return list(cached[1])
+            cached = self._cache[key] = (self.version, build())
+        answer: _T = cached[1]
+        return answer
+
+    def nodes(self) -> list[RemoteNode]:
+        return list(self._answer("nodes", self._nodes))
+
+    def _nodes(self) -> list[RemoteNode]:
+        return sorted(
+            (
+                RemoteNode(t.node_fqn, t.namespace, t.zid, self.location(t.zid))
+                for t in self._tokens.values()
+                if t.kind is EntityKind.NODE
+            ),
+            key=lambda n: (n.name, n.zid),
+        )
 
     def endpoints(self, kinds: Iterable[EntityKind] | None = None) -> list[RemoteEndpoint]:
         wanted = frozenset(kinds) if kinds is not None else frozenset(EntityKind) - {EntityKind.NODE}
-        cached = self._cache.get(wanted)
-        if cached is None or cached[0] != self.version:
-            cached = self._cache[wanted] = (self.version, self._endpoints(wanted))
-        return list(cached[1])
+        return list(self._answer(wanted, lambda: self._endpoints(wanted)))
 
     def _endpoints(self, wanted: frozenset[EntityKind]) -> list[RemoteEndpoint]:
         out = []
@@ -153,13 +158,13 @@ class RemoteGraph:
     def topic_types(self) -> Mapping[str, frozenset[str]]:
         """Every topic name other sessions publish or subscribe to, with the types they give it
         (the same mapping until the graph changes: not to be changed by the caller)."""
-        cached = self._cache.get("topic_types")
-        if cached is None or cached[0] != self.version:
-            out: dict[str, set[str]] = {}
-            for e in self.endpoints(_TOPIC_KINDS):
-                out.setdefault(e.name, set()).add(e.type_name)
-            cached = self._cache["topic_types"] = (self.version, {k: frozenset(v) for k, v in out.items()})
-        return cached[1]
+        return self._answer("topic_types", self._topic_types)
+
+    def _topic_types(self) -> dict[str, frozenset[str]]:
+        out: dict[str, set[str]] = {}
+        for e in self.endpoints(_TOPIC_KINDS):
+            out.setdefault(e.name, set()).add(e.type_name)
+        return {k: frozenset(v) for k, v in out.items()}
 
     def has_server(self, service: str, dds_type: str) -> bool:
         return any(

@@ -8,9 +8,9 @@ so and the command ends non-zero. Nothing falls back to another router or domain
 anyway would join a graph nobody watches. A lab that answers "not yet" (429: too many node
 processes starting at once on it, see server/host/processes/start_pacing.py) is asked again at
 the time it gives (``Retry-After-Ms``, else ``Retry-After``) with the ticket it gave
-(``Start-Turn``; the first ask says ``turn=new``), which keeps this start's turn for it, for at most ``queue_s`` seconds; that
-wait is the lab's own pacing and does not count as not answering. Any other error (no Zenoh
-graph, a bad token) ends at once.
+(``Start-Turn``; the first ask says ``turn=new``), which keeps this start's turn for it, for at
+most ``queue_s`` seconds; that wait is the lab's own pacing and does not count as not
+answering. Any other error (no Zenoh graph, a bad token) ends at once.
 """
 
 from __future__ import annotations
@@ -74,10 +74,9 @@ def join_graph(client: LabGetter, pacing: Pacing | None = None, *, start: bool =
         except ApiError as exc:
             if exc.status == TOO_MANY and exc.retry_after_s is not None:
                 unanswered_since, pause = None, FIRST_PAUSE_S
-                kept = exc.turn is not None and 0 < len(exc.turn) <= TURN_CHARS
-                turn = exc.turn if kept and exc.turn is not None else NEW_TURN
+                turn = exc.turn if exc.turn and len(exc.turn) <= TURN_CHARS else NEW_TURN
                 # A kept turn is this start's alone: back at it, not spread like a new start.
-                spread = 0.0 if kept else pacing.jitter() * min(exc.retry_after_s, JITTER_S)
+                spread = 0.0 if turn != NEW_TURN else pacing.jitter() * min(exc.retry_after_s, JITTER_S)
                 delay = exc.retry_after_s + spread
                 if pacing.clock() + delay - started > pacing.queue_s:
                     raise JoinError(

@@ -14,10 +14,13 @@ import http.client
 import json
 import socket
 from collections.abc import Mapping
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 from urllib.parse import urlencode, urlsplit
 
 from server.cli.errors import CliError, NoServerError, api_error
+
+if TYPE_CHECKING:
+    from server.cli.client import LabClient
 
 TIMEOUT_S = 10.0  # as LabClient's
 
@@ -63,8 +66,8 @@ class PlainGet:
         raise api_error(response.status, response.reason, response.headers, body, "GET", path)
 
 
-def getter_for(base_url: str, headers: Mapping[str, str], client: LabGetter) -> LabGetter:
-    """A ``PlainGet`` for an ``http://`` lab, else ``client``."""
-    if urlsplit(base_url).scheme == "http":
-        return PlainGet(base_url, headers)
+def getter_for(client: LabClient) -> LabGetter:
+    """A ``PlainGet`` with ``client``'s URL and token for an ``http://`` lab, else ``client``."""
+    if urlsplit(client.base_url).scheme == "http":
+        return PlainGet(client.base_url, client.headers)
     return client

@@ -60,7 +60,7 @@ def graph_of(join: dict[str, Any], url: str) -> tuple[str, int, Credentials | No
 
 def run(args: argparse.Namespace, client: LabClient) -> int:
     pacing = Pacing(wait_s=args.join_timeout)
-    lab = getter_for(client.base_url, client.headers, client)  # no httpx to import for an http:// lab
+    lab = getter_for(client)  # no httpx to import for an http:// lab
     # With the lab's own workspace, the lab must answer first; a given one is read before asking.
     join = None if (args.workspace or os.environ.get(WORKSPACE_ENV)) else join_graph(lab, pacing, start=True)
     workspace = workspace_of(args, lab)

@@ -63,7 +63,8 @@ NEW_TURN = "new"  # asked with instead of a ticket: a start that will come back 
 @dataclass(frozen=True)
 class Turn:
     """A start told to wait: ``wait_s`` until its turn, which is kept for it under ``ticket`` (None:
-    none kept, as past ``MAX_TURNS``: it asks again as a new start)."""
+    none kept, for a start that keeps no ticket or past ``MAX_WAITING`` or ``MAX_TURNS``: it asks
+    again as a new start)."""
 
     wait_s: float
     ticket: str | None = None
