@@ -30,7 +30,10 @@ RUN TELEOP_CACHE=/tmp/teleop-cache python -m node_runtime.ros_wheels && rm -rf /
 # state/, workspaces/ and bags/ (--bag-dir's default, ./bags) exist and are the lab user's, so the named volumes docker-compose.yml
 # mounts there start as theirs (a new volume takes the folder's owner).
 # (Importing the messages once keeps their parsed definitions, which the lab user could not write.)
-RUN pip install --no-cache-dir -e . && python -c "import node_runtime.msgs" && useradd --create-home lab \
+# (The lab's code is compiled here, as pip compiles what it installs: nothing in the image writes
+# bytecode, and each node process would otherwise compile every module of the lab it imports.)
+RUN pip install --no-cache-dir -e . && python -c "import node_runtime.msgs" \
+ && python -m compileall -q node_runtime server sim api client && useradd --create-home lab \
  && mkdir -p /app/state /app/workspaces /app/bags && chown lab:lab /app/state /app/workspaces /app/bags
 USER lab
 EXPOSE 8000 7447 8765

@@ -3,6 +3,7 @@
 # (node_runtime/ros_wheels.py; quick once its cache holds them), then pip-install the project (SPEC: "."
 # or ".[test]") only when pyproject.toml or the checkout's place changed since the last install of
 # that SPEC (the install is editable, so code changes need none). TELEOP_REINSTALL=1 forces it.
+# It compiles the lab's code every time (compile_lab).
 VENV="${TELEOP_VENV:-.venv}"
 if [ ! -x "$VENV/bin/python" ]; then
   PY=""
@@ -27,9 +28,20 @@ ros_interfaces() {  # ROS 2's definitions (std_msgs ...) from PyPI's wheels: nod
   }
 }
 
+# The lab's own code compiled to bytecode beside it (__pycache__, as Python keeps it): a node
+# process runs with PYTHONDONTWRITEBYTECODE (a student's folder gets no __pycache__ in the page's
+# tree), so it never wrote the lab's bytecode, and every node start compiled each lab module it
+# imports again: a node's imports took 0.34 CPU-s so, 0.18 from bytecode. Quick when nothing changed.
+compile_lab() {
+  env -u PYTHONPYCACHEPREFIX "$VENV/bin/python" -m compileall -q -j0 node_runtime server sim api client \
+    >/dev/null 2>&1 ||
+    echo "The lab's code could not be compiled beside it (python -m compileall): its node processes will compile it as they start." >&2
+}
+
 install_once() {
   local spec="$1"
   ros_interfaces
+  compile_lab
   local stamp="$VENV/.installed-$(printf '%s' "$spec" | tr -c 'a-z' '_')"
   local want
   want="$(cksum < pyproject.toml) $(pwd)"
