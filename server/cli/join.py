@@ -19,7 +19,6 @@ import random
 import sys
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import Any
 
 from server.cli.errors import ApiError, CliError, NoServerError
@@ -42,21 +41,39 @@ class JoinError(CliError):
     """The lab did not tell how to join its graph within the bounded wait."""
 
 
-@dataclass
+def _say(line: str) -> None:
+    print(line, file=sys.stderr, flush=True)
+
+
 class Pacing:
-    """The waits of one join; ``clock``, ``sleep`` and ``jitter`` are injected for tests."""
+    """The waits of one join; ``clock``, ``sleep`` and ``jitter`` (0..1, spreads a class's retries)
+    are injected for tests. A plain class: ``dataclasses`` imports ``inspect``, a tenth of the
+    CPU ``ros2lab run`` spends before it asks for its turn (server/cli/plain_get.py)."""
 
-    wait_s: float = WAIT_S
-    queue_s: float = QUEUE_S
-    clock: Callable[[], float] = time.monotonic
-    sleep: Callable[[float], None] = time.sleep
-    jitter: Callable[[], float] = field(default=random.random)  # 0..1, spreads a class's retries
-    say: Callable[[str], None] = field(default=lambda line: print(line, file=sys.stderr, flush=True))
+    def __init__(
+        self,
+        wait_s: float = WAIT_S,
+        queue_s: float = QUEUE_S,
+        clock: Callable[[], float] = time.monotonic,
+        sleep: Callable[[float], None] = time.sleep,
+        jitter: Callable[[], float] = random.random,
+        say: Callable[[str], None] = _say,
+    ) -> None:
+        self.wait_s, self.queue_s = wait_s, queue_s
+        self.clock, self.sleep, self.jitter, self.say = clock, sleep, jitter, say
 
 
-def join_graph(client: LabGetter, pacing: Pacing | None = None, *, start: bool = False) -> dict[str, Any]:
+def join_graph(
+    client: LabGetter,
+    pacing: Pacing | None = None,
+    *,
+    start: bool = False,
+    meanwhile: Callable[[], object] | None = None,
+) -> dict[str, Any]:
     """The lab's answer to ``GET /api/zenoh/join``, asked until it gives one (see the module);
-    ``start``: a node process starts once it has the answer (the lab paces those)."""
+    ``start``: a node process starts once it has the answer (the lab paces those). ``meanwhile``
+    is called once, at the first "not yet", before waiting for the turn (what it takes comes off
+    the wait; what it raises ends the join): ``ros2lab run`` finds its file then."""
     pacing = pacing or Pacing()
     started = pacing.clock()
     unanswered_since: float | None = None
@@ -83,10 +100,15 @@ def join_graph(client: LabGetter, pacing: Pacing | None = None, *, start: bool =
                         f"the lab at {client.base_url} was still pacing node starts after "
                         f"{pacing.queue_s:.0f} s ({exc.detail}); try again later"
                     ) from None
+                if meanwhile is not None:
+                    before = pacing.clock()
+                    meanwhile()
+                    delay -= pacing.clock() - before
+                    meanwhile = None
                 if not noted and pacing.clock() + delay - started >= NOTE_AFTER_S:
                     pacing.say("ros2lab: the lab is starting other nodes first; waiting for its turn ...")
                     noted = True
-                pacing.sleep(delay)
+                pacing.sleep(max(0.0, delay))
                 continue
             if exc.status not in RETRIED_STATUSES:
                 raise

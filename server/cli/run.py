@@ -14,32 +14,27 @@ non-zero exit, and no node starts: nothing falls back to another router or domai
 from __future__ import annotations
 
 import argparse
-import os
 import signal
-import subprocess
 import sys
 from typing import TYPE_CHECKING, Any
 
-from node_runtime.ament.index import (
-    ExecutableNotFoundError,
-    PackageIndex,
-    PackageNotFoundError,
-    WorkspaceError,
-)
-from node_runtime.process.priority import set_session_group_nice
-from node_runtime.transport.config import domain_id_from_env
 from server.cli.errors import CliError
 from server.cli.join import WAIT_S, Pacing, join_graph
 from server.cli.plain_get import getter_for
 from server.cli.priority import take_the_labs_nice
-from server.cli.workspace import WORKSPACE_ENV, add_workspace_option, workspace_of
+from server.cli.workspace import add_workspace_option, workspace_of
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
+    from node_runtime.ament.index import Executable
     from node_runtime.transport.acl import Credentials
     from server.cli.client import LabClient
 
-# What the node's command needs (its login, the runner's command line) is imported once the lab
-# gave this start its turn: a class's sixty at once then wait for it having spent little.
+# A class's sixty ``ros2lab run`` at once share the CPU until each has asked the lab for its turn,
+# and none has asked before all are nearly done: the command asks with little imported, finds
+# its file (the package index) while it waits for its turn, and imports what the node's command
+# needs (its login, the runner's command line, subprocess) once it has the turn.
 
 STOP_GRACE_S = 10.0
 
@@ -52,32 +47,51 @@ def graph_of(join: dict[str, Any], url: str) -> tuple[str, int, Credentials | No
         raise CliError(f"the lab at {url} named no Zenoh router to join; the node was not started")
     domain = join.get("domain_id")
     from node_runtime.transport.acl import Credentials
+    from node_runtime.transport.config import domain_id_from_env
 
     user, password = join.get("user"), join.get("password")
     login = Credentials(user, password) if isinstance(user, str) and isinstance(password, str) else None
     return endpoint, domain_id_from_env(default=domain if isinstance(domain, int) else 0), login
 
 
+class NotFound(Exception):
+    """The package or its executable is not in the workspace: said as ``ros2 run`` says it."""
+
+
+def find(args: argparse.Namespace, lab: Any) -> tuple[Executable, Path]:
+    """The executable ``args`` names, in the workspace it runs from."""
+    from node_runtime.ament.index import (
+        ExecutableNotFoundError,
+        PackageIndex,
+        PackageNotFoundError,
+        WorkspaceError,
+    )
+
+    workspace = workspace_of(args, lab)
+    try:
+        return PackageIndex(workspace=workspace).resolve(args.package_name, args.executable_name), workspace
+    except PackageNotFoundError:
+        raise NotFound(f"Package '{args.package_name}' not found") from None
+    except ExecutableNotFoundError as exc:
+        raise NotFound(f"No executable found: {exc}") from None
+    except WorkspaceError as exc:
+        raise NotFound(str(exc)) from None
+
+
 def run(args: argparse.Namespace, client: LabClient) -> int:
     pacing = Pacing(wait_s=args.join_timeout)
-    lab = getter_for(client)  # no httpx to import for an http:// lab
-    # With the lab's own workspace, the lab must answer first; a given one is read before asking.
-    join = None if (args.workspace or os.environ.get(WORKSPACE_ENV)) else join_graph(lab, pacing, start=True)
-    workspace = workspace_of(args, lab)
-    packages = PackageIndex(workspace=workspace)
-    try:
-        exe = packages.resolve(args.package_name, args.executable_name)
-    except PackageNotFoundError:
-        print(f"Package '{args.package_name}' not found", file=sys.stderr)
-        return 1
-    except ExecutableNotFoundError as exc:
-        print(f"No executable found: {exc}", file=sys.stderr)
-        return 1
-    except WorkspaceError as exc:
+    lab = getter_for(client)  # no HTTP library to import for an http:// lab
+    found: list[tuple[Executable, Path]] = []
+    try:  # the file is found while the start waits for its turn, or after the lab's first answer
+        join = join_graph(lab, pacing, start=True, meanwhile=lambda: found.append(find(args, lab)))
+        exe, workspace = found[0] if found else find(args, lab)
+    except NotFound as exc:
         print(exc, file=sys.stderr)
         return 1
-    join = join or join_graph(lab, pacing, start=True)
     router, domain_id, login = graph_of(join, client.base_url)
+    import subprocess
+
+    from node_runtime.process.priority import set_session_group_nice
     from server.host.processes.command import node_command
 
     command = node_command(

@@ -6,13 +6,14 @@ none where nothing listens, a bounded wait where nothing answers; a lab behind T
 from __future__ import annotations
 
 import socket
+import threading
 from collections.abc import Iterator
 
 import pytest
 from support.app import App, free_port
 
 from server.cli.client import ApiError, CliError, LabClient, NoServerError
-from server.cli.plain_get import PlainGet, getter_for
+from server.cli.plain_get import MAX_ANSWER_BYTES, PlainGet, getter_for
 
 
 @pytest.fixture(scope="module")
@@ -76,3 +77,48 @@ def test_a_lab_behind_tls_is_asked_through_httpx() -> None:
     assert isinstance(plain, PlainGet)
     with pytest.raises(ValueError, match="http://"):
         PlainGet("https://lab.example", {})
+
+
+def answering(reply: bytes) -> tuple[socket.socket, threading.Thread, list[bytes]]:
+    """A stand-in on 127.0.0.1 that reads one request, sends ``reply`` and closes."""
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+    requests: list[bytes] = []
+
+    def serve() -> None:
+        conn, _ = server.accept()
+        with conn:
+            requests.append(conn.recv(65536))
+            conn.sendall(reply)
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    return server, thread, requests
+
+
+def test_what_is_not_an_http_answer_or_is_too_big_is_one_error_not_a_crash() -> None:
+    for reply, match in (
+        (b"SSH-2.0-OpenSSH_9.2\r\n", "not an HTTP answer"),
+        (b"HTTP/1.1 2OO OK\r\n\r\n{}", "not an HTTP answer"),
+        (b"HTTP/1.1 200 OK\r\nContent-Type: application/json\r\n", "not an HTTP answer"),  # cut short
+        (b"HTTP/1.1 200 OK\r\n\r\n" + b" " * (MAX_ANSWER_BYTES + 1), f"over {MAX_ANSWER_BYTES} bytes"),
+    ):
+        server, thread, requests = answering(reply)
+        with server:
+            with pytest.raises(CliError, match=match):
+                PlainGet(f"http://127.0.0.1:{server.getsockname()[1]}", {}).get("/api/health", timeout_s=10)
+            thread.join(timeout=10)
+        assert requests and requests[0].startswith(b"GET /api/health HTTP/1.0\r\n")
+
+
+def test_the_request_carries_its_token_and_a_token_that_would_break_its_headers_is_refused() -> None:
+    server, thread, requests = answering(b'HTTP/1.1 200 OK\r\nContent-Length: 11\r\n\r\n{"ok": true}')
+    with server:
+        url = f"http://127.0.0.1:{server.getsockname()[1]}"
+        assert PlainGet(url, {"Authorization": "Bearer s3cret"}).get("/api/x", {"a": "b c"}) == {"ok": True}
+        thread.join(timeout=10)
+    head = requests[0].decode().split("\r\n")
+    assert head[0] == "GET /api/x?a=b+c HTTP/1.0" and "Authorization: Bearer s3cret" in head
+    with pytest.raises(CliError, match="Authorization header"):
+        PlainGet(url, {"Authorization": "Bearer s3cret\r\nX-Forged: 1"})

@@ -165,3 +165,35 @@ def test_join_ends_at_once_on_an_error_retrying_cannot_mend() -> None:
     with pytest.raises(ApiError, match="not on Zenoh"):
         join_graph(client, pacing(clock))
     assert clock.sleeps == [] and len(client.asked) == 1  # type: ignore[attr-defined]
+
+
+def test_join_does_what_it_was_given_meanwhile_once_at_the_first_not_yet_and_off_the_wait() -> None:
+    """``ros2lab run`` finds its file while its start waits for its turn: once, at the first "not
+    yet", and the time that took is waited less."""
+    clock = ManualClock()
+    client = lab([not_yet("3"), not_yet("3"), ok], clock)
+    done: list[float] = []
+
+    def find() -> None:
+        done.append(clock.now)
+        clock.now += 0.5  # the package index read
+
+    assert join_graph(client, pacing(clock), start=True, meanwhile=find) == JOIN
+    assert done == [0.0] and clock.sleeps == [2.5, 3.0]
+    assert client.asked == [0.0, 3.0, 6.0]  # type: ignore[attr-defined]  # its turns, as without
+
+    admitted = lab([ok], ManualClock())  # a start that goes at once has nothing to do meanwhile
+    assert join_graph(admitted, pacing(ManualClock()), start=True, meanwhile=find) == JOIN
+    assert done == [0.0]
+
+
+def test_join_ends_without_its_turn_when_what_it_did_meanwhile_failed() -> None:
+    clock = ManualClock()
+    client = lab([not_yet("30"), ok], clock)
+
+    def find() -> None:
+        raise LookupError("Package 'nope' not found")
+
+    with pytest.raises(LookupError, match="nope"):
+        join_graph(client, pacing(clock), start=True, meanwhile=find)
+    assert clock.sleeps == [] and len(client.asked) == 1  # type: ignore[attr-defined]

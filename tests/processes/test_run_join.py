@@ -52,6 +52,7 @@ if __name__ == '__main__':
         rclpy.try_shutdown()
 """
 JOIN_TIMEOUT_S = 3.0
+ROS2LAB = "import sys; from server.cli import main; sys.exit(main())"  # what the ros2lab command runs
 DOMAIN = 7
 
 
@@ -61,9 +62,15 @@ def workspace(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 def ros2lab_run(
-    url: str, workspace: Path, *extra: str, token: str | None = None, python: tuple[str, ...] = ()
+    url: str,
+    workspace: Path,
+    *extra: str,
+    token: str | None = None,
+    python: tuple[str, ...] = (),
+    executable: str = "late_joiner.py",
 ) -> subprocess.Popen[str]:
-    """``ros2lab run`` of the late joiner against ``url``; ``python``: options for the interpreter."""
+    """``ros2lab run`` of the late joiner against ``url``, as the ``ros2lab`` command runs it;
+    ``python``: options for the interpreter."""
     env = {k: v for k, v in os.environ.items() if k not in ("ROS_DOMAIN_ID", "ROS2LAB_WORKSPACE", TOKEN_ENV)}
     if token is not None:
         env[TOKEN_ENV] = token
@@ -71,8 +78,8 @@ def ros2lab_run(
         [
             sys.executable,
             *python,
-            "-m",
-            "server",
+            "-c",
+            ROS2LAB,
             "--url",
             url,
             "run",
@@ -82,7 +89,7 @@ def ros2lab_run(
             str(JOIN_TIMEOUT_S),
             *extra,
             "demo",
-            "late_joiner.py",
+            executable,
         ],
         env=env,
         text=True,
@@ -140,13 +147,15 @@ def test_run_with_a_token_is_below_the_worlds_before_it_asks_the_lab(
     assert nice == (min(19, own + START_NICE) if token else own)
 
 
-def test_run_asks_the_lab_without_having_imported_message_types_websockets_or_httpx(workspace: Path) -> None:
+def test_run_asks_the_lab_having_imported_little_more_than_the_interpreter(workspace: Path) -> None:
     """Sixty students' ``ros2lab run`` at once share the class's machine (or their own small
-    ones): until the node starts, the command imports only what finding the file and asking the
-    lab take, not the message types (the node's own process loads them), a WebSocket client (only
-    the echo verbs open one) nor httpx (the join is a plain GET: server/cli/plain_get.py), nor
-    what the node's command needs (its login, the runner's command line: after its turn). Read
-    from ``python -X importtime`` while it asks a socket that never answers."""
+    ones), and none has asked for its turn until all have nearly done what they do first: the
+    command asks the lab over a plain socket (server/cli/plain_get.py) with neither httpx nor the
+    standard library's HTTP client and its email package imported, finds its file (the package
+    index) while it waits for its turn, and imports neither the message types (the node's own
+    process loads them), a WebSocket client (only the echo verbs open one) nor what the node's
+    command needs (its login, the runner's command line, subprocess). Read from ``python -X
+    importtime`` while it asks a socket that never answers."""
     with socket.socket() as silent:
         silent.bind(("127.0.0.1", 0))
         silent.listen(16)
@@ -164,8 +173,20 @@ def test_run_asks_the_lab_without_having_imported_message_types_websockets_or_ht
     imported = {
         line.rsplit("|", 1)[1].strip() for line in err.splitlines() if line.startswith("import time:")
     }
-    assert {"node_runtime.ament.index", "http.client"} <= imported, err[-2000:]  # what it does need
-    later = ("node_runtime.msgs", "websockets", "zenoh", "httpx", "node_runtime.transport.acl")
+    assert {"server.cli.plain_get", "socket"} <= imported, err[-2000:]  # what it does need
+    later = (
+        "node_runtime.msgs",
+        "node_runtime.ament",
+        "websockets",
+        "zenoh",
+        "httpx",
+        "http.client",
+        "email",
+        "ssl",
+        "dataclasses",
+        "subprocess",
+        "node_runtime.transport.acl",
+    )
     heavy = sorted(m for m in imported if m.startswith(later) or m == "server.host.processes.command")
     assert heavy == [], heavy
 
@@ -180,9 +201,11 @@ def test_run_where_nothing_listens_is_one_line_and_a_non_zero_exit(workspace: Pa
 
 
 class LateLab:
-    """A stand-in lab on ``port``: from ``opens_at`` on, it answers the join with ``join``."""
+    """A stand-in lab on ``port``: it answers the join with ``join`` (and ``status``, ``headers``)."""
 
-    def __init__(self, port: int, join: dict[str, Any]) -> None:
+    def __init__(
+        self, port: int, join: dict[str, Any], status: int = 200, headers: dict[str, str] | None = None
+    ) -> None:
         body = json.dumps(join).encode()
         self.asked: list[str] = []
         asked = self.asked
@@ -191,7 +214,9 @@ class LateLab:
             def do_GET(self) -> None:
                 asked.append(self.path)
                 ok = self.path.startswith("/api/zenoh/join")
-                self.send_response(200 if ok else 404)
+                self.send_response(status if ok else 404)
+                for name, value in (headers or {}).items() if ok else ():
+                    self.send_header(name, value)
                 self.send_header("Content-Type", "application/json")
                 payload = body if ok else b'{"detail": "Not Found"}'
                 self.send_header("Content-Length", str(len(payload)))
@@ -208,6 +233,28 @@ class LateLab:
     def close(self) -> None:
         self.server.shutdown()
         self.server.server_close()
+
+
+def test_run_finds_its_file_while_it_waits_for_its_turn_and_a_missing_one_ends_it_at_once(
+    workspace: Path,
+) -> None:
+    """A lab pacing a class's starts gives this one its turn a minute away: the command looks for
+    its file meanwhile, and one that is not there is ros2 run's one line and exit 1 at once, not a
+    minute later (nor is the lab asked again)."""
+    port = free_port()
+    wait = {"Retry-After": "60", "Retry-After-Ms": "60000", "Start-Turn": "kept-for-this-start"}
+    lab = LateLab(port, {"detail": "the lab is starting other nodes first"}, status=429, headers=wait)
+    try:
+        code, err, _took = refused_within_bound(
+            ros2lab_run(f"http://127.0.0.1:{port}", workspace, executable="no_such_node.py")
+        )
+    finally:
+        lab.close()
+    assert code == 1 and err.strip().splitlines() == [
+        "No executable found: package 'demo' has no executable 'no_such_node.py' "
+        "(it has: late_joiner, late_joiner.py)"
+    ], err
+    assert lab.asked == ["/api/zenoh/join?start=true&turn=new"]
 
 
 @pytest.fixture
