@@ -115,11 +115,11 @@ def student_code_line(settings: Settings) -> str | None:
     why = probe()
     if why is not None:
         return f"error: {StudentCodeRefusedError(why)}"
-    from server.host.processes.sandbox import memory_layer
+    from server.host.processes.sandbox import cpu_layer, memory_layer
 
     limits = settings.sandbox
     return (
         f"Students' nodes run sandboxed (bubblewrap, seccomp, no capability, the workspace read-only, "
         f"no network but their world's graph; {limits.memory_mib} MiB counted {memory_layer()}, "
-        f"{limits.processes} processes, nice {limits.nice})"
+        f"{limits.processes} processes, {cpu_layer(limits.nice)})"
     )

@@ -4,11 +4,21 @@ side (a node over its limit ended) is tests/sandbox/test_sandbox.py's, on a live
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
 
-from server.host.processes.cgroups import JOIN_SCRIPT, CgroupParent, NodeCgroup, _folder
+from server.host.processes.cgroups import (
+    CPU_SHARES,
+    CPU_WEIGHT,
+    JOIN_SCRIPT,
+    CgroupParent,
+    NodeCgroup,
+    _cpu_group_version_1,
+    _delegate_version_2,
+    _folder,
+)
 
 
 def test_cgroups_folder_is_the_group_below_its_mounts_root() -> None:
@@ -63,3 +73,39 @@ def test_cgroups_a_group_the_kernel_refuses_halfway_is_not_left_behind(tmp_path:
     with pytest.raises(OSError):
         parent.make("node-3", memory_mib=64, processes=20)
     assert not (tmp_path / "memory" / "node-3").exists()
+
+
+def test_cgroups_version_1_nodes_join_the_servers_one_cpu_group_and_leave_it_standing(tmp_path: Path) -> None:
+    for name in ("memory", "pids", "cpu"):
+        (tmp_path / name).mkdir()
+    stale = tmp_path / "cpu" / "ros2lab-999999999"  # a server long gone (no such pid)
+    stale.mkdir()
+    cpu = _cpu_group_version_1(tmp_path / "cpu")
+    assert cpu == tmp_path / "cpu" / f"ros2lab-{os.getpid()}" and not stale.exists()
+    assert (cpu / "cpu.shares").read_text() == str(CPU_SHARES)
+    parent = CgroupParent(tmp_path / "memory", tmp_path / "pids", 1, cpu, True)
+    group = parent.make("node-4", memory_mib=64, processes=20)
+    assert group.shared == (cpu,)
+    procs = [arg for arg in group.join_prefix() if arg.endswith("cgroup.procs")]
+    assert procs == [str(f / "cgroup.procs") for f in (*group.folders, cpu)]
+    for file in [*cpu.iterdir(), *(p for f in group.folders for p in f.iterdir())]:
+        file.unlink()  # empty, as the kernel's folders are to rmdir
+    group.remove()
+    assert not any(f.exists() for f in group.folders) and cpu.is_dir()  # the others' group stays
+
+
+def test_cgroups_version_1_cpu_group_refused_is_none_and_not_left(tmp_path: Path) -> None:
+    (tmp_path / f"ros2lab-{os.getpid()}").mkdir()
+    (tmp_path / f"ros2lab-{os.getpid()}" / "cpu.shares").mkdir()  # a file the kernel would refuse
+    assert _cpu_group_version_1(tmp_path) is None
+
+
+def test_cgroups_version_2_weighs_the_nodes_folder_where_cpu_is_given(tmp_path: Path) -> None:
+    nodes, weighed = _delegate_version_2(tmp_path)
+    assert weighed and (nodes / "cpu.weight").read_text() == str(CPU_WEIGHT)
+    assert (tmp_path / "cgroup.subtree_control").read_text() == "+cpu"  # after "+memory +pids"
+    refused = tmp_path / "refused"
+    refused.mkdir()
+    (refused / f"ros2lab-{os.getpid()}").mkdir()
+    (refused / f"ros2lab-{os.getpid()}" / "cpu.weight").mkdir()
+    assert _delegate_version_2(refused) == (refused / f"ros2lab-{os.getpid()}", False)

@@ -13,22 +13,36 @@ The groups live in ``ros2lab-<server pid>`` below the server's own group, one pe
 removed as each node ends; a server that finds the folder of a server that is gone ends what is
 left in it and removes it. A node joins its group before anything of it runs: its command starts
 with a shell that writes its own pid into the group's ``cgroup.procs`` and then becomes bubblewrap.
+
+Where the machine also gives the ``cpu`` controller, all of a server's nodes share one CPU group
+(version 1: ``ros2lab-<server pid>`` in the cpu hierarchy, which every node joins too; version 2:
+the folder their groups are made in), weighed as ``CPU_SHARES`` against a nice-0 process group's
+1024. A niceness is not enough for a class: each sandboxed node leads a session of its own, whose
+scheduling group (autogroup) the scheduler weighs apart, so sixty nodes at nice 19 (15 each)
+weighed 900 together, nearly a second server beside the worlds', while they started and while
+they spun. Together in one group they weigh ``CPU_SHARES`` however many they are, and still take
+whatever CPU the worlds leave.
 """
 
 from __future__ import annotations
 
 import contextlib
 import functools
+import logging
 import os
 import signal
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
+log = logging.getLogger(__name__)
+
 PREFIX = "ros2lab-"
 MIB = 1024 * 1024
 REMOVE_TRIES = 10
 REMOVE_WAIT_S = 0.05
+CPU_SHARES = 64  # version 1's cpu.shares of all of a server's nodes together (a nice-0 group: 1024)
+CPU_WEIGHT = 6  # the same for version 2's cpu.weight (its default 100 stands for 1024)
 JOIN_SCRIPT = 'while [ "$1" != -- ]; do echo $$ > "$1" || exit 125; shift; done; shift; exec "$@"'
 
 
@@ -38,6 +52,7 @@ class NodeCgroup:
 
     folders: tuple[Path, ...]
     version: int
+    shared: tuple[Path, ...] = ()  # groups it joins with the server's other nodes (CPU): not its own
 
     def join_prefix(self) -> list[str]:
         """A command prefix that puts the command into these groups, then runs it (exec)."""
@@ -46,7 +61,7 @@ class NodeCgroup:
             "-c",
             JOIN_SCRIPT,
             "ros2lab-cgroup",
-            *(str(f / "cgroup.procs") for f in self.folders),
+            *(str(f / "cgroup.procs") for f in (*self.folders, *self.shared)),
             "--",
         ]
 
@@ -79,18 +94,21 @@ class NodeCgroup:
 @dataclass(frozen=True)
 class CgroupParent:
     """Where this server makes its nodes' groups: version 1's memory and pids folders, or version
-    2's one folder (``pids`` is then the same)."""
+    2's one folder (``pids`` is then the same); ``cpu``: version 1's group every node joins as
+    well, where there is one (version 2's folder is weighed itself: ``cpu_weighed``)."""
 
     memory: Path
     pids: Path
     version: int
+    cpu: Path | None = None
+    cpu_weighed: bool = False  # the nodes' CPU counts as one group's (see the module)
 
     def make(self, name: str, memory_mib: int, processes: int) -> NodeCgroup:
         """A new group ``name`` with these limits (OSError if the kernel refuses one)."""
         folders = tuple(dict.fromkeys([self.memory / name, self.pids / name]))
         stale = NodeCgroup(tuple(f for f in folders if f.exists()), self.version)
         stale.remove()  # one of the same name that a node left behind
-        group = NodeCgroup(folders, self.version)
+        group = NodeCgroup(folders, self.version, (self.cpu,) if self.cpu is not None else ())
         try:
             for folder in folders:
                 folder.mkdir()
@@ -172,6 +190,32 @@ def _version_1(own: dict[str, str], mounts: list[tuple[str, str, str, str]]) -> 
     return (found["memory"], found["pids"]) if len(found) == 2 else None
 
 
+def _version_1_cpu(own: dict[str, str], mounts: list[tuple[str, str, str, str]]) -> Path | None:
+    """This process's group in version 1's cpu hierarchy, if this server may write there."""
+    for root, point, kind, options in mounts:
+        if kind == "cgroup" and "cpu" in options.split(",") and "cpu" in own:
+            folder = _folder(root, point, own["cpu"])
+            if folder is not None and os.access(folder, os.W_OK):
+                return folder
+    return None
+
+
+def _cpu_group_version_1(base: Path) -> Path | None:
+    """All this server's nodes' CPU group below ``base``, weighed ``CPU_SHARES`` (None, and none
+    left, where the kernel refuses it: the nodes then count by their niceness alone)."""
+    folder = base / f"{PREFIX}{os.getpid()}"
+    try:
+        _sweep(base)
+        folder.mkdir(exist_ok=True)
+        (folder / "cpu.shares").write_text(str(CPU_SHARES))
+    except OSError as exc:
+        log.warning("students' nodes not weighed as one CPU group: %s", exc)
+        with contextlib.suppress(OSError):
+            folder.rmdir()
+        return None
+    return folder
+
+
 def _version_2(own: dict[str, str], mounts: list[tuple[str, str, str, str]]) -> Path | None:
     for root, point, kind, _options in mounts:
         if kind != "cgroup2" or "" not in own:
@@ -185,9 +229,10 @@ def _version_2(own: dict[str, str], mounts: list[tuple[str, str, str, str]]) -> 
     return None
 
 
-def _delegate_version_2(folder: Path) -> Path:
+def _delegate_version_2(folder: Path) -> tuple[Path, bool]:
     """Move this server into a leaf of its group and give the group's children memory and pids
-    (OSError where the kernel or another process in the group forbids it)."""
+    (OSError where the kernel or another process in the group forbids it), and cpu where it may:
+    the nodes' folder, and whether its CPU is weighed as ``CPU_WEIGHT``."""
     leaf = folder / f"{PREFIX}{os.getpid()}-server"
     leaf.mkdir(exist_ok=True)
     (leaf / "cgroup.procs").write_text(str(os.getpid()))
@@ -195,7 +240,13 @@ def _delegate_version_2(folder: Path) -> Path:
     nodes = folder / f"{PREFIX}{os.getpid()}"
     nodes.mkdir(exist_ok=True)
     (nodes / "cgroup.subtree_control").write_text("+memory +pids")
-    return nodes
+    try:
+        (folder / "cgroup.subtree_control").write_text("+cpu")
+        (nodes / "cpu.weight").write_text(str(CPU_WEIGHT))
+    except OSError as exc:
+        log.warning("students' nodes not weighed as one CPU group: %s", exc)
+        return nodes, False
+    return nodes, True
 
 
 def _sweep(parent: Path) -> None:
@@ -226,13 +277,15 @@ def parent() -> CgroupParent | str:
                 folder.mkdir(exist_ok=True)
         except OSError as exc:
             return f"cgroup v1 memory and pids folders refuse a group ({exc.strerror})"
-        return CgroupParent(made[0], made[1], 1)
+        cpu_base = _version_1_cpu(own, mounts)
+        cpu = _cpu_group_version_1(cpu_base) if cpu_base is not None else None
+        return CgroupParent(made[0], made[1], 1, cpu, cpu is not None)
     found_2 = _version_2(own, mounts)
     if found_2 is None:
         return "no cgroup with memory and pids controllers that this server may write"
     try:
         _sweep(found_2)
-        nodes = _delegate_version_2(found_2)
+        nodes, weighed = _delegate_version_2(found_2)
     except OSError as exc:
         return f"its cgroup v2 group cannot give memory and pids to groups below it ({exc.strerror})"
-    return CgroupParent(nodes, nodes, 2)
+    return CgroupParent(nodes, nodes, 2, None, weighed)

@@ -133,6 +133,14 @@ def memory_layer() -> str:
     return f"whole, shared memory and tmpfs included (cgroup v{found.version})"
 
 
+def cpu_layer(nice: int) -> str:
+    """How the nodes' CPU is weighed against the worlds here, in a few words (for the banner)."""
+    found = cgroups.parent()
+    if isinstance(found, str) or not found.cpu_weighed:
+        return f"nice {nice}"
+    return f"nice {nice}, all in one CPU group weighed {cgroups.CPU_SHARES} to a process group's 1024"
+
+
 def _namespaces(root: bool) -> list[str]:
     # As root, no user namespace: the node's processes must belong to a uid other than 0 outside too
     # (root's processes are not counted against RLIMIT_NPROC), so setpriv makes it one. bwrap run by
