@@ -7,7 +7,8 @@ countdown an hour away (the rocket stands on its pad, the drone hovers at (0, 0,
   least a set number of pixels, counted by colour classes, in the follow and the arena camera; the
   rocket standing on its pad), and the HUD, viser's notices, the guide, the help overlay and the
   panel never overlap (the panel a strip and the guide folded at 800x600, both open at 1366x768);
-- the follow camera keeps the drone framed as it flies to (5, 5, 10);
+- (the follow camera keeping the drone framed as it flies to (5, 5, 10) is
+  test_workbench_browser.py's, in the same flight as the view's switch to it);
 - a keydown moves the page's setpoint marker within two animation frames, measured in the page;
 - a new page opens on the lab under way, the view chosen is remembered, and keys still fly the
   drone after a switch.
@@ -206,35 +207,6 @@ def test_page_each_view_frames_its_vehicle_and_overlays_never_overlap(
     assert (panel_height <= STRIP_MAX_PX) == (width < NARROW_PX), (
         f"panel {panel_height} px high at {width} px wide"
     )
-
-
-def test_follow_camera_keeps_drone_framed_as_it_flies_to_5_5_10(
-    chromium: Browser, lab_server: LabServer, screenshot_dir: Path, capsys: pytest.CaptureFixture[str]
-) -> None:
-    width, height = 1366, 768
-    with page_at_home(chromium, lab_server, {"width": width, "height": height}) as page:
-        choose(page, "Quadrotor", "follow")
-        fly_to(lab_server, FAR_M)
-        wait_frames(page, 20)  # the camera catches up (it lags the drone by 0.15 s)
-        there = find_drone(
-            CanvasShot.of(page, save_screenshot(page, screenshot_dir, "follow_at_5_5_10.png", capsys))
-        )
-        choose(page, "arena")
-        arena = find_drone(
-            CanvasShot.of(page, save_screenshot(page, screenshot_dir, "arena_at_5_5_10.png", capsys))
-        )
-        canvas = page.evaluate(
-            "(() => { const r = window.__viserMutable.canvas.getBoundingClientRect(); return [r.width, r.height]; })()"
-        )
-    send_to(lab_server, HOME_M)  # the next test waits for it there, while its page loads
-
-    assert_drone_seen(there, "follow at (5, 5, 10)", least(FOLLOW_LEAST, height))
-    assert abs(there.centre[0] - canvas[0] / 2) < CENTRED * canvas[0], (there, canvas)
-    assert abs(there.centre[1] - canvas[1] / 2) < CENTRED * canvas[1], (there, canvas)
-    # Held still, the arena camera sees the drone up and to the right of the hover point, smaller.
-    assert_drone_seen(arena, "arena at (5, 5, 10)")
-    assert arena.centre[0] > canvas[0] / 2 and arena.centre[1] < canvas[1] / 2, (arena, canvas)
-    assert arena.hub_px < there.hub_px
 
 
 # Feeds the page's pose listeners setpoints with chosen arrival times (ms after a prediction made

@@ -10,7 +10,9 @@ full-screen 3D view, and with the code view open the scene was buried):
   the HUD and viser's panel lie inside the scene's pane without overlapping;
 - a REST publisher that flies the drone to (5, 5, 10) while the page shows the rocket switches
   the view to the drone, without a click: the drone's position projects inside the canvas, onto
-  a point where the canvas is topmost, and a screenshot shows the drone there.
+  a point where the canvas is topmost, and a screenshot shows the drone there, kept near the
+  canvas's centre by the follow camera; the still arena camera then shows it up and to the right
+  of the centre, and smaller.
 
 A screenshot of each page goes to artifacts/screenshots when a check fails (see conftest.py).
 """
@@ -39,6 +41,7 @@ EDITOR_LOAD_MS = 60_000
 HOME_M = (0.0, 0.0, 3.0)
 FAR_M = (5.0, 5.0, 10.0)
 ARRIVED_M = 0.3
+CENTRED = 0.15  # in follow, the hub within this fraction of the canvas's size of its centre
 FLIGHT_WAIT_S = 60.0
 ROCKET_RESET_WAIT_MS = 30_000
 # The share of grid points over the window whose topmost element is viser's 3D canvas (viser
@@ -196,6 +199,9 @@ def test_publisher_flying_the_drone_switches_the_view_to_it_without_a_click(
             wait_frames(page, 20)  # the follow camera catches up (0.15 s behind the drone)
             seen = page.evaluate(DRONE_ON_SCREEN_JS)
             png = page.screenshot()
+            page.locator("#teleop-hud").get_by_role("button", name="arena", exact=True).click()
+            wait_frames(page)
+            arena = find_drone(CanvasShot.of(page, page.screenshot()))
         finally:
             HTTP.delete(f"{lab_server.url}/api/publishers/{publisher}", timeout=HTTP_TIMEOUT_S)
             HTTP.post(
@@ -211,3 +217,10 @@ def test_publisher_flying_the_drone_switches_the_view_to_it_without_a_click(
         assert seen["front"] and left <= seen["x"] <= right and top <= seen["y"] <= bottom, seen
         assert seen["topmost"], seen  # no pane or overlay over the drone
         assert_drone_seen(drone, "the drone at (5, 5, 10), followed")
+        size = (right - left, bottom - top)
+        for axis in (0, 1):  # followed, the drone stays near the middle of the scene
+            assert abs(drone.centre[axis] - size[axis] / 2) < CENTRED * size[axis], (drone, size)
+        # Held still, the arena camera sees the drone up and to the right of the hover point, smaller.
+        assert_drone_seen(arena, "the drone at (5, 5, 10), from the arena camera")
+        assert arena.centre[0] > size[0] / 2 and arena.centre[1] < size[1] / 2, (arena, size)
+        assert arena.hub_px < drone.hub_px
