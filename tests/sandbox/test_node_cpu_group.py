@@ -23,7 +23,7 @@ from support.app import REPO
 pytestmark = pytest.mark.timing  # CPU shares on one core: alone, with no other test loading it
 
 NODES = 40
-RUN_S = 3.0
+RUN_S = 1.5
 STAND_IN = r"""
 import json, os, subprocess, sys, time
 from server.host.processes import cgroups
