@@ -31,7 +31,8 @@ ros_interfaces() {  # ROS 2's definitions (std_msgs ...) from PyPI's wheels: nod
 # The lab's own code compiled to bytecode beside it (__pycache__, as Python keeps it): a node
 # process runs with PYTHONDONTWRITEBYTECODE (a student's folder gets no __pycache__ in the page's
 # tree), so it never wrote the lab's bytecode, and every node start compiled each lab module it
-# imports again: a node's imports took 0.34 CPU-s so, 0.18 from bytecode. Quick when nothing changed.
+# imports again: a node's imports took 0.22 CPU-s so, 0.14 to 0.18 from bytecode (bench/start_cpu.py).
+# Quick when nothing changed.
 compile_lab() {
   env -u PYTHONPYCACHEPREFIX "$VENV/bin/python" -m compileall -q -j0 node_runtime server sim api client \
     >/dev/null 2>&1 ||
