@@ -170,6 +170,12 @@ def priority(_arg):
     return f"nice {os.getpriority(os.PRIO_PROCESS, 0)} group {group}"
 
 
+def cgroup(procs):
+    with open(procs, "w") as file:  # a control group's cgroup.procs: this process moves into it
+        file.write(str(os.getpid()))
+    return f"moved into {procs}"
+
+
 CHECKS = {
     "read": read,
     "env": env,
@@ -179,6 +185,7 @@ CHECKS = {
     "memory": memory,
     "write": write,
     "priority": priority,
+    "cgroup": cgroup,
     "status": status,
     "handle": handle,
     "shm": shm,

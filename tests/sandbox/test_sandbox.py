@@ -21,6 +21,7 @@ from support.http import HTTP
 from support.sandbox import require_sandbox
 from support.wait import wait_until
 
+from server.host.processes import cgroups
 from server.host.settings import SandboxSettings
 from server.services.launch.commands import NOT_HERE
 
@@ -257,6 +258,19 @@ def test_sandbox_node_runs_below_the_worlds_with_its_sessions_group(klass: Class
     own = os.getpriority(os.PRIO_PROCESS, 0)
     assert probe_line(klass.ada, "priority") == f"PROBE priority ok nice {min(19, own + nice)} group {group}"
     assert probe_line(klass.cy, "priority").startswith(f"PROBE priority ok nice {own} ")
+
+
+def test_sandbox_node_cannot_leave_the_nodes_cpu_group(klass: Class) -> None:
+    """The nodes' one CPU group weighs them below the worlds (server/host/processes/cgroups.py): a
+    node that moves itself into the group the server runs in would take a session's full share
+    again. It cannot (no /sys inside, not root); run as the server's user, the same write works."""
+    if os.geteuid() != 0:
+        pytest.skip("only root moves a process between control groups: the control would fail")
+    base = cgroups._version_1_cpu(cgroups._own_groups(), cgroups._mounts())
+    if base is None:
+        assert os.environ.get("CI") != "true", "no cgroup v1 cpu hierarchy on the CI machine"
+        pytest.skip("no cgroup v1 cpu hierarchy this process may write")
+    blocked_sandboxed_works_unsandboxed(klass, "cgroup", str(base / "cgroup.procs"))
 
 
 def test_sandbox_node_reaches_its_own_world_only_and_stops(klass: Class) -> None:
