@@ -2,7 +2,7 @@
 (server/cli/errors.py).
 
 httpx is imported at the first request, not with this module: ``ros2lab run`` asks the lab for
-its turn with the standard library alone (server/cli/plain_get.py), and httpx's import was most
+its turn over a plain socket (server/cli/plain_get.py), and httpx's import was most
 of what it spent before it asked.
 """
 

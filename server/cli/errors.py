@@ -1,5 +1,5 @@
 """What the CLI reports as one line: its errors, and an error answer of the lab read into one
-(from its status, headers and body alone, so the standard library's answers are read the same
+(from its status, headers and body alone, so an answer read off a plain socket is read the same
 as httpx's: server/cli/plain_get.py)."""
 
 from __future__ import annotations
@@ -78,7 +78,7 @@ def describe_detail(detail: Any) -> str:
 
 
 class Headers(Protocol):
-    """An answer's headers, read by name whatever its case (httpx's, or ``http.client``'s)."""
+    """An answer's headers, read by name whatever its case (httpx's, or ``plain_get``'s)."""
 
     def get(self, key: str, /) -> str | None: ...
 

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 
 from server.cli.errors import CliError
 from server.cli.join import WAIT_S, Pacing, join_graph
-from server.cli.plain_get import getter_for
+from server.cli.plain_get import LabGetter, getter_for
 from server.cli.priority import take_the_labs_nice
 from server.cli.workspace import add_workspace_option, workspace_of
 
@@ -58,7 +58,7 @@ class NotFound(Exception):
     """The package or its executable is not in the workspace: said as ``ros2 run`` says it."""
 
 
-def find(args: argparse.Namespace, lab: Any) -> tuple[Executable, Path]:
+def find(args: argparse.Namespace, lab: LabGetter) -> tuple[Executable, Path]:
     """The executable ``args`` names, in the workspace it runs from."""
     from node_runtime.ament.index import (
         ExecutableNotFoundError,

@@ -1,7 +1,9 @@
-"""``ros2lab run``'s GETs with the standard library (server/cli/plain_get.py) answer as
+"""``ros2lab run``'s GETs over a plain socket (server/cli/plain_get.py) answer as
 ``LabClient.get``'s do, against the real app in its own process: the same JSON, the same
 one-line errors (the app's detail, its 429's waits and ticket read whatever the headers' case),
-none where nothing listens, a bounded wait where nothing answers; a lab behind TLS keeps httpx."""
+none where nothing listens, a bounded wait where nothing answers; what is not an HTTP answer, or
+is too big, is one error; a token that would break the request's headers is refused before any
+is sent; a lab behind TLS keeps httpx."""
 
 from __future__ import annotations
 

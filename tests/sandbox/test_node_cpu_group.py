@@ -36,7 +36,7 @@ parent = cgroups.parent()
 if grouped and (isinstance(parent, str) or not parent.cpu_weighed):
     print(json.dumps({"why": parent if isinstance(parent, str) else "no cpu controller to weigh nodes"}))
     sys.exit(0)
-groups, procs = [], []
+groups, procs, world = [], [], None
 try:
     for i in range(nodes):
         prefix = []
@@ -52,7 +52,7 @@ try:
 
     print(json.dumps({"world": cpu_s(world.pid), "nodes": sum(cpu_s(p.pid) for p in procs)}))
 finally:  # the worlds' loop first: the nodes' loops then have the CPU to end
-    for p in [*([world] if "world" in dir() else []), *procs]:
+    for p in [*([world] if world is not None else []), *procs]:
         p.kill()
         p.wait()
     for group in groups:
