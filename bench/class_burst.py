@@ -31,7 +31,9 @@ measured:
   counts as one, at 30 s); and the slowest calls with whose they were and when
   (``slowest_answers``);
 * every world's dynamics timer rate over that time (``flightgoggles_uav_dynamics``' timer calls,
-  read with the world's token before the starts and once all are joined): median and lowest;
+  read with the world's token before the starts and once all are joined): median and lowest, and
+  the same split by where the worlds run (``by_place``: "server", the class server's own loop, or
+  a world worker's id, from the instructor's list of worlds);
 * the class server's CPU (cores) over that time, the share of the machine's CPU time the
   hypervisor stole, and the load average;
 * then, one second later, each node process's RSS (the ``runner`` children of the ``ros2lab run``
@@ -67,6 +69,7 @@ import contextlib
 import functools
 import json
 import os
+import re
 import shutil
 import signal
 import statistics
@@ -120,6 +123,42 @@ def dynamics_lateness_p99_ms(server: LiveServer, token: str) -> float:
 def dynamics_calls(server: LiveServer, token: str) -> tuple[int, float]:
     timers = get(server, token, f"/api/nodes/{DYNAMICS}")["timers"]
     return int(timers[0]["calls"]), time.monotonic()
+
+
+def places(server: LiveServer) -> dict[str, str]:
+    """Where each world runs: "server" (the class server's own loop) or its world worker's id, from
+    the instructor's list of worlds (the instructor's link is in the class server's log)."""
+    found = re.search(r"/instructor\?token=(\S+)", server.log_path.read_text())
+    if found is None:
+        raise RuntimeError("the class server printed no instructor's link")
+    listed = get(server, found.group(1), "/api/classroom/worlds")["worlds"]
+    return {w["world"]: w["worker"] or "server" for w in listed}
+
+
+def by_place(
+    rates: dict[str, float], where: dict[str, str], late: dict[str, float] | None = None
+) -> dict[str, dict[str, Any]]:
+    """The dynamics rates (and with ``late``, the tick lateness p99s) of the worlds, split by where
+    they run: which loop kept its time, and which did not."""
+    split: dict[str, dict[str, Any]] = {}
+    for place in sorted(set(where.values())):
+        mine = [w for w in rates if where.get(w) == place]
+        if not mine:
+            continue
+        row: dict[str, Any] = {"worlds": len(mine), "dynamics_hz": summary_of([rates[w] for w in mine], 1)}
+        if late is not None:
+            row["tick_lateness_p99_ms"] = summary_of([late[w] for w in mine], 2, high=True)
+        split[place] = row
+    return split
+
+
+def summary_of(values: list[float], digits: int, high: bool = False) -> dict[str, float]:
+    """Median and the worst (lowest, or with ``high`` largest) of ``values``."""
+    worst = max(values) if high else min(values)
+    return {
+        "median": round(statistics.median(values), digits),
+        ("largest" if high else "lowest"): round(worst, digits),
+    }
 
 
 def is_runner(pid: int) -> bool:
@@ -362,11 +401,17 @@ def tree_cpu_s(pids: list[int]) -> dict[int, float]:
 
 
 def steady(
-    server: LiveServer, tokens: dict[str, str], roots: list[int], seconds: float, pages: OpenPages | None
+    server: LiveServer,
+    tokens: dict[str, str],
+    roots: list[int],
+    seconds: float,
+    pages: OpenPages | None,
+    where: dict[str, str],
 ) -> dict[str, Any]:
-    """The class with every node running, over ``seconds``: each world's dynamics rate, the class
-    server's CPU, the node processes' and the world workers' (of the processes below ``roots``
-    alive throughout); with ``pages``, what each page's channels carried a second."""
+    """The class with every node running, over ``seconds``: each world's dynamics rate and tick
+    lateness (also split by where the worlds run), the class server's CPU, the node processes' and
+    the world workers' (of the processes below ``roots`` alive throughout); with ``pages``, what
+    each page's channels carried a second."""
     nodes = [p for root in {*roots, server.proc.pid} for p in descendants(root)]  # the workers too
     steal0, total0 = cpu_jiffies()
     cpu0, nodes0 = cpu_s(server.proc.pid), tree_cpu_s(nodes)
@@ -382,9 +427,11 @@ def steady(
     after = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     cpu1, nodes1 = cpu_s(server.proc.pid), tree_cpu_s(nodes)
     steal1, total1 = cpu_jiffies()
-    late = sorted(dynamics_lateness_p99_ms(server, t) for t in tokens.values())
+    late_of = {w: dynamics_lateness_p99_ms(server, t) for w, t in tokens.items()}
+    late = sorted(late_of.values())
     window_s = max(t for _, t in after.values()) - min(t for _, t in before.values())
-    rates = sorted((after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens)
+    rate_of = {w: (after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens}
+    rates = sorted(rate_of.values())
     used = {p: nodes1[p] - nodes0[p] for p in nodes1 if p in nodes0}
     node_s = sum(t for p, t in used.items() if is_runner(p))
     workers_s = sum(t for p, t in used.items() if is_worker(p))
@@ -392,6 +439,7 @@ def steady(
         "window_s": round(window_s, 1),
         "dynamics_hz": {"median": round(statistics.median(rates), 1), "lowest": round(rates[0], 1)},
         "tick_lateness_p99_ms": {"median": round(statistics.median(late), 2), "largest": round(late[-1], 2)},
+        "by_place": by_place(rate_of, where, late_of),
         "server_cpu_cores": round((cpu1 - cpu0) / window_s, 2),
         "node_processes": sum(1 for p in nodes1 if is_runner(p)),
         "node_processes_cpu_cores": round(node_s / window_s, 2),
@@ -445,6 +493,7 @@ def burst(
     for probe in probes:
         probe.thread.start()
     time.sleep(1.0)  # each prober's first calls answered before the starts
+    where = places(server)
     steal0, total0 = cpu_jiffies()
     cpu0 = cpu_s(server.proc.pid)
     before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
@@ -499,7 +548,9 @@ def burst(
         roots = [run.pid for run in runs] if runs else [server.proc.pid]
         node_rss = [rss_mib(p) for root in roots for p in descendants(root) if is_runner(p)]
         exited = sum(1 for run in runs if run.poll() is not None)
-        running = steady(server, tokens, roots, steady_s, pages) if steady_s > 0 and not pending else None
+        running = (
+            steady(server, tokens, roots, steady_s, pages, where) if steady_s > 0 and not pending else None
+        )
     finally:
         probing.set()
         for thread in starters:
@@ -510,7 +561,8 @@ def burst(
             run.end()
         if laptops is not None:
             laptops.close()
-    rates = sorted((after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens)
+    rate_of = {w: (after[w][0] - before[w][0]) / (after[w][1] - before[w][1]) for w in tokens}
+    rates = sorted(rate_of.values())
     rss_summary: dict[str, float] | None = None
     if node_rss:
         rss_summary = {
@@ -533,6 +585,7 @@ def burst(
         "ros2lab_exited_early": exited,
         "worlds_joined_s": {"median": round(statistics.median(joined_at), 1)} if joined_at else None,
         "dynamics_hz": {"median": round(statistics.median(rates), 1), "lowest": round(rates[0], 1)},
+        "by_place": by_place(rate_of, where),
         "server_cpu_cores": round((cpu1 - cpu0) / window_s, 2),
         "stolen": round((steal1 - steal0) / max(1, total1 - total0), 4),
         "load_average_after": list(os.getloadavg()),
