@@ -221,6 +221,23 @@ def worker_settings(args: argparse.Namespace, class_token: str, port: int) -> Se
     )
 
 
+def listening_socket(host: str, port: int) -> socket.socket:
+    """The worker's API socket, bound before the app starts (to say where it listens). Made as a
+    TCP socket by name (``IPPROTO_TCP``), as asyncio's own servers make theirs: asyncio turns
+    Nagle's algorithm off only on connections of such a socket, and with it on, every call the
+    class server passed on over a kept-alive connection, and every frame of a page's stream,
+    waited about 40 ms for the class server's delayed acknowledgement before its last bytes left."""
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    sock = socket.socket(family, socket.SOCK_STREAM, socket.IPPROTO_TCP)
+    try:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        sock.bind((host, port))
+    except OSError:
+        sock.close()
+        raise
+    return sock
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -237,11 +254,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.parent_pid is not None and os.getppid() != args.parent_pid:
         print("error: the class server that started this worker is gone", file=sys.stderr)
         return 2
-    family = socket.AF_INET6 if ":" in args.host else socket.AF_INET
-    sock = socket.socket(family, socket.SOCK_STREAM)
-    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
     try:
-        sock.bind((args.host, args.port))
+        sock = listening_socket(args.host, args.port)
     except OSError as exc:
         print(f"error: cannot listen on {args.host}:{args.port}: {exc.strerror}", file=sys.stderr)
         return 2
