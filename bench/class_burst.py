@@ -33,7 +33,10 @@ measured:
 * every world's dynamics timer rate over that time (``flightgoggles_uav_dynamics``' timer calls,
   read with the world's token before the starts and once all are joined): median and lowest, and
   the same split by where the worlds run (``by_place``: "server", the class server's own loop, or
-  a world worker's id, from the instructor's list of worlds);
+  a world worker's id, from the instructor's list of worlds), and each place's loop thread: its
+  share of a core and how long it waited for one while it could run (``loop_threads``,
+  ``waited_ms_per_s``, from the kernel's schedstat: what the machine's other loads cost the
+  worlds' ticks, apart from what the loop itself did);
 * the class server's CPU (cores) over that time, the share of the machine's CPU time the
   hypervisor stole, and the load average;
 * then, one second later, each node process's RSS (the ``runner`` children of the ``ros2lab run``
@@ -178,6 +181,46 @@ def is_worker(pid: int) -> bool:
         return b"world-worker" in Path(f"/proc/{pid}/cmdline").read_bytes()
     except FileNotFoundError:
         return False
+
+
+def loop_threads(server: LiveServer) -> dict[str, int]:
+    """The processes whose main thread runs worlds: the class server's and each world worker's,
+    by place name ("server", or the worker's ``--id``)."""
+    found = {"server": server.proc.pid}
+    for pid in descendants(server.proc.pid):
+        if is_worker(pid):
+            argv = Path(f"/proc/{pid}/cmdline").read_bytes().split(b"\0")
+            found[argv[argv.index(b"--id") + 1].decode()] = pid
+    return found
+
+
+def schedstat(pid: int) -> tuple[float, float] | None:
+    """(seconds run, seconds waited for a core while runnable) of ``pid``'s main thread so far."""
+    try:
+        run_ns, wait_ns, _ = Path(f"/proc/{pid}/task/{pid}/schedstat").read_text().split()
+    except (FileNotFoundError, ProcessLookupError):
+        return None
+    return int(run_ns) / 1e9, int(wait_ns) / 1e9
+
+
+def loop_waits(
+    before: dict[str, tuple[float, float] | None],
+    after: dict[str, tuple[float, float] | None],
+    window_s: float,
+) -> dict[str, dict[str, float]]:
+    """Each loop thread's share of a core over the window and how long it waited for one while it
+    could run (ms a second): what the machine's other loads cost a world's ticks, apart from what
+    its own loop did."""
+    waits: dict[str, dict[str, float]] = {}
+    for place, start in before.items():
+        end = after.get(place)
+        if start is None or end is None:
+            continue
+        waits[place] = {
+            "run_cores": round((end[0] - start[0]) / window_s, 2),
+            "waited_ms_per_s": round(1000 * (end[1] - start[1]) / window_s, 1),
+        }
+    return waits
 
 
 def children(pid: int) -> list[int]:
@@ -416,6 +459,8 @@ def steady(
     steal0, total0 = cpu_jiffies()
     cpu0, nodes0 = cpu_s(server.proc.pid), tree_cpu_s(nodes)
     before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
+    loops = loop_threads(server)
+    sched0 = {place: schedstat(pid) for place, pid in loops.items()}
     if pages is not None:
         pages.mark()
     own0 = time.process_time()  # this bench's own CPU, and its page clients': on the same cores
@@ -426,6 +471,7 @@ def steady(
     page_rates, page_errors = pages.rates() if pages is not None else ([], [])
     after = {w: dynamics_calls(server, t) for w, t in tokens.items()}
     cpu1, nodes1 = cpu_s(server.proc.pid), tree_cpu_s(nodes)
+    sched1 = {place: schedstat(pid) for place, pid in loops.items()}
     steal1, total1 = cpu_jiffies()
     late_of = {w: dynamics_lateness_p99_ms(server, t) for w, t in tokens.items()}
     late = sorted(late_of.values())
@@ -440,6 +486,7 @@ def steady(
         "dynamics_hz": {"median": round(statistics.median(rates), 1), "lowest": round(rates[0], 1)},
         "tick_lateness_p99_ms": {"median": round(statistics.median(late), 2), "largest": round(late[-1], 2)},
         "by_place": by_place(rate_of, where, late_of),
+        "loop_threads": loop_waits(sched0, sched1, window_s),
         "server_cpu_cores": round((cpu1 - cpu0) / window_s, 2),
         "node_processes": sum(1 for p in nodes1 if is_runner(p)),
         "node_processes_cpu_cores": round(node_s / window_s, 2),
@@ -494,6 +541,8 @@ def burst(
         probe.thread.start()
     time.sleep(1.0)  # each prober's first calls answered before the starts
     where = places(server)
+    loops = loop_threads(server)
+    sched0 = {place: schedstat(pid) for place, pid in loops.items()}
     steal0, total0 = cpu_jiffies()
     cpu0 = cpu_s(server.proc.pid)
     before = {w: dynamics_calls(server, t) for w, t in tokens.items()}
@@ -542,6 +591,7 @@ def burst(
             probe.thread.join(timeout=PROBE_TIMEOUT_S)
         after = {w: dynamics_calls(server, t) for w, t in tokens.items()}
         cpu1 = cpu_s(server.proc.pid)
+        sched1 = {place: schedstat(pid) for place, pid in loops.items()}
         steal1, total1 = cpu_jiffies()
         window_s = max(t for _, t in after.values()) - min(t for _, t in before.values())
         time.sleep(1.0)
@@ -586,6 +636,7 @@ def burst(
         "worlds_joined_s": {"median": round(statistics.median(joined_at), 1)} if joined_at else None,
         "dynamics_hz": {"median": round(statistics.median(rates), 1), "lowest": round(rates[0], 1)},
         "by_place": by_place(rate_of, where),
+        "loop_threads": loop_waits(sched0, sched1, window_s),
         "server_cpu_cores": round((cpu1 - cpu0) / window_s, 2),
         "stolen": round((steal1 - steal0) / max(1, total1 - total0), 4),
         "load_average_after": list(os.getloadavg()),
