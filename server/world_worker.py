@@ -224,9 +224,9 @@ def worker_settings(args: argparse.Namespace, class_token: str, port: int) -> Se
 def listening_socket(host: str, port: int) -> socket.socket:
     """The worker's API socket, bound before the app starts (to say where it listens). Made as a
     TCP socket by name (``IPPROTO_TCP``), as asyncio's own servers make theirs: asyncio turns
-    Nagle's algorithm off only on connections of such a socket, and with it on, every call the
-    class server passed on over a kept-alive connection, and every frame of a page's stream,
-    waited about 40 ms for the class server's delayed acknowledgement before its last bytes left."""
+    Nagle's algorithm off only on connections of such a socket, and with it on, the end of every
+    answer to a call the class server passed on over a kept-alive connection waited about 40 ms
+    for the class server's delayed acknowledgement."""
     family = socket.AF_INET6 if ":" in host else socket.AF_INET
     sock = socket.socket(family, socket.SOCK_STREAM, socket.IPPROTO_TCP)
     try:
