@@ -33,7 +33,11 @@ STOP_TIMEOUT_S = 15.0
 # (its own, which its children inherit, on a kernel without autogroups), then starts each command
 # it reads (one JSON line) and answers its pid; a thread reaps them.
 LAUNCHER = r"""
-import json, os, subprocess, sys, threading, time
+import json, os, signal, subprocess, sys, threading, time
+# Ctrl-C at its default, as a terminal's shell starts a command: a bench started in the
+# background inherits SIGINT ignored, and so would every command started here, each then taking
+# the whole stop timeout to end.
+signal.signal(signal.SIGINT, signal.SIG_DFL)
 try:
     with open("/proc/self/autogroup", "w") as group:
         group.write(sys.argv[1])
