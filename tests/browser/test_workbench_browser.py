@@ -41,6 +41,7 @@ EDITOR_LOAD_MS = 60_000
 HOME_M = (0.0, 0.0, 3.0)
 FAR_M = (5.0, 5.0, 10.0)
 ARRIVED_M = 0.3
+VIEW_WAIT_MS = 5000  # the arena button's click to the page's view held still
 CENTRED = 0.15  # in follow, the hub within this fraction of the canvas's size of its centre
 FLIGHT_WAIT_S = 60.0
 ROCKET_RESET_WAIT_MS = 30_000
@@ -200,7 +201,12 @@ def test_publisher_flying_the_drone_switches_the_view_to_it_without_a_click(
             seen = page.evaluate(DRONE_ON_SCREEN_JS)
             png = page.screenshot()
             page.locator("#teleop-hud").get_by_role("button", name="arena", exact=True).click()
-            wait_frames(page)
+            # The page's own state first: the camera held still on the drone's view, then drawn.
+            page.wait_for_function(
+                "() => !window.__teleop.scene.follow && window.__teleop.scene.view.name === 'Quadrotor'",
+                timeout=VIEW_WAIT_MS,
+            )
+            wait_frames(page, 10)
             arena = find_drone(CanvasShot.of(page, page.screenshot()))
         finally:
             HTTP.delete(f"{lab_server.url}/api/publishers/{publisher}", timeout=HTTP_TIMEOUT_S)
