@@ -137,15 +137,26 @@ def test_two_students_have_two_worlds(students: tuple[Student, Student]) -> None
     assert other.status_code == 403
 
 
+def press(student: Student, key: str, sign: int) -> None:
+    """``PRESSES`` presses of ``key``, each once the setpoint has taken the one before: the
+    manager's /keydown subscription keeps one message (depth 1, as the handout's), so two presses
+    that reach it before its world's loop has taken the first (on a loaded machine) make one step."""
+    for done in range(1, PRESSES + 1):
+        student.page.keyboard.press(key)
+        goal = HOME_M[0] + sign * done
+        wait_until(
+            lambda goal=goal: abs(student.setpoint()[0] - goal) < 1e-6,
+            f"{student.world}'s setpoint {done} m along x",
+        )
+
+
 def test_arrow_keys_fly_only_the_students_own_drone(students: tuple[Student, Student]) -> None:
     ada, bob = students
     ada_before, bob_before = ada.position(), bob.position()
-    for _ in range(PRESSES):
-        bob.page.keyboard.press("ArrowRight")
+    press(bob, "ArrowRight", +1)
     wait_until(lambda: bob.position()[0] - bob_before[0] > MOVED_M, "bob's drone to move right")
     assert math.dist(ada.position(), ada_before) < STILL_M  # Ada's drone did not take Bob's keys
-    for _ in range(PRESSES):
-        ada.page.keyboard.press("ArrowLeft")
+    press(ada, "ArrowLeft", -1)
     wait_until(lambda: ada_before[0] - ada.position()[0] > MOVED_M, "ada's drone to move left")
     assert bob.position()[0] - bob_before[0] > MOVED_M  # Bob's is still to the right, not back left
 
