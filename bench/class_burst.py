@@ -72,7 +72,6 @@ import contextlib
 import functools
 import json
 import os
-import re
 import shutil
 import signal
 import statistics
@@ -131,10 +130,7 @@ def dynamics_calls(server: LiveServer, token: str) -> tuple[int, float]:
 def places(server: LiveServer) -> dict[str, str]:
     """Where each world runs: "server" (the class server's own loop) or its world worker's id, from
     the instructor's list of worlds (the instructor's link is in the class server's log)."""
-    found = re.search(r"/instructor\?token=(\S+)", server.log_path.read_text())
-    if found is None:
-        raise RuntimeError("the class server printed no instructor's link")
-    listed = get(server, found.group(1), "/api/classroom/worlds")["worlds"]
+    listed = get(server, server.instructor_token(), "/api/classroom/worlds")["worlds"]
     return {w["world"]: w["worker"] or "server" for w in listed}
 
 
@@ -483,8 +479,8 @@ def steady(
     workers_s = sum(t for p, t in used.items() if is_worker(p))
     return {
         "window_s": round(window_s, 1),
-        "dynamics_hz": {"median": round(statistics.median(rates), 1), "lowest": round(rates[0], 1)},
-        "tick_lateness_p99_ms": {"median": round(statistics.median(late), 2), "largest": round(late[-1], 2)},
+        "dynamics_hz": summary_of(rates, 1),
+        "tick_lateness_p99_ms": summary_of(late, 2, high=True),
         "by_place": by_place(rate_of, where, late_of),
         "loop_threads": loop_waits(sched0, sched1, window_s),
         "server_cpu_cores": round((cpu1 - cpu0) / window_s, 2),
@@ -634,7 +630,7 @@ def burst(
         "node_lists_refused": {str(code): n for code, n in sorted(refused.items())},
         "ros2lab_exited_early": exited,
         "worlds_joined_s": {"median": round(statistics.median(joined_at), 1)} if joined_at else None,
-        "dynamics_hz": {"median": round(statistics.median(rates), 1), "lowest": round(rates[0], 1)},
+        "dynamics_hz": summary_of(rates, 1),
         "by_place": by_place(rate_of, where),
         "loop_threads": loop_waits(sched0, sched1, window_s),
         "server_cpu_cores": round((cpu1 - cpu0) / window_s, 2),

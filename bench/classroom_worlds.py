@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import re
 import signal
 import statistics
 import subprocess
@@ -50,10 +49,7 @@ def start_workers(
     server: LiveServer, count: int, per_worker: int, workdir: Path
 ) -> list[subprocess.Popen[bytes]]:
     """``count`` world workers on the class server's router, each for up to ``per_worker`` worlds."""
-    found = re.search(r"/instructor\?token=(\S+)", server.log_path.read_text())
-    if found is None:
-        raise RuntimeError("the class server printed no instructor's link")
-    token = found.group(1)
+    token = server.instructor_token()
     env = {**os.environ, "ROS2LAB_TOKEN": token, "PYTHONPATH": str(Path(__file__).resolve().parent.parent)}
     procs = [
         subprocess.Popen(

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import signal
 import socket
 import subprocess
@@ -142,6 +143,13 @@ class LiveServer:
 
     def rss_mib(self) -> float:
         return rss_mib(self.proc.pid)
+
+    def instructor_token(self) -> str:
+        """The instructor's token of a class server, from the link it printed when it started."""
+        found = re.search(r"/instructor\?token=(\S+)", self.log_path.read_text())
+        if found is None:
+            raise RuntimeError("the class server printed no instructor's link")
+        return found.group(1)
 
     def log_problems(self) -> list[str]:
         """Lines of the server's log that report an error or a traceback."""

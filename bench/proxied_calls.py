@@ -21,6 +21,7 @@ import statistics
 import sys
 import tempfile
 import time
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
@@ -76,9 +77,7 @@ def main(argv: list[str] | None = None) -> int:
             student.setdefault("server" if place == "server" else "worker", world)
         if set(student) != {"server", "worker"}:
             raise RuntimeError(f"the class did not spread over a worker: {where}")
-        results: dict[str, Any] = {"args": vars(args), "worlds_by_place": {}}
-        for place in where.values():
-            results["worlds_by_place"][place] = results["worlds_by_place"].get(place, 0) + 1
+        results: dict[str, Any] = {"args": vars(args), "worlds_by_place": dict(Counter(where.values()))}
         with httpx.Client(timeout=30.0) as client:
             for place, world in student.items():
                 results[f"world_on_{place}"] = {
