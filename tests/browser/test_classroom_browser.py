@@ -103,10 +103,10 @@ class Student:
         """Where the drone is if it is still (labpage.still: judged on the sim's clock); else None."""
         return still(self.topic)
 
-    def setpoint(self) -> tuple[float, float, float]:
-        """Where the student's keyboard manager last told the drone to go."""
+    def setpoint(self) -> tuple[float, float, float] | None:
+        """Where the student's keyboard manager last told the drone to go (None before it has)."""
         v = self.topic("/uav/input/position")["latest"]
-        return v["x"], v["y"], v["z"]
+        return None if v is None else (v["x"], v["y"], v["z"])
 
     def aborted(self) -> bool:
         return bool((self.topic("/abort_takeoff")["latest"] or {}).get("data"))
@@ -145,7 +145,7 @@ def press(student: Student, key: str, sign: int) -> None:
         student.page.keyboard.press(key)
         goal = HOME_M[0] + sign * done
         wait_until(
-            lambda goal=goal: abs(student.setpoint()[0] - goal) < 1e-6,
+            lambda goal=goal: (at := student.setpoint()) is not None and abs(at[0] - goal) < 1e-6,
             f"{student.world}'s setpoint {done} m along x",
         )
 
@@ -196,7 +196,10 @@ def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
     wait_until(lambda: abs(bob.position()[0]) > MOVED_M, "bob's drone away from the origin (the keys test)")
     # The keys test's presses: Ada's setpoint a metre left of home for each (a reset would show).
     ada_goal = (HOME_M[0] - PRESSES, HOME_M[1], HOME_M[2])
-    wait_until(lambda: math.dist(ada.setpoint(), ada_goal) < 1e-6, "ada's setpoint after her presses")
+    wait_until(
+        lambda: (at := ada.setpoint()) is not None and math.dist(at, ada_goal) < 1e-6,
+        "ada's setpoint after her presses",
+    )
     with lab_page(chromium, SMALL) as page:
         page.goto(f"{class_server.url}/instructor?token={found.group(1)}", timeout=LOAD_WAIT_MS)
         page.wait_for_selector("tr[data-world='bob']")
@@ -227,7 +230,7 @@ def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
     wait_until(lambda: abs(bob.position()[0]) < STILL_M, "bob's drone back at the origin after the reset")
     # Ada's world kept its state: her setpoint as it was, and her drone stopped there, not at home.
     # (Her drone may still have been settling when Bob's was reset: judged once it is still.)
-    assert math.dist(ada.setpoint(), ada_goal) < 1e-6
+    assert (kept := ada.setpoint()) is not None and math.dist(kept, ada_goal) < 1e-6
     wait_until(
         lambda: (p := ada.still()) is not None and math.dist(p, ada_goal) < STILL_M,
         "ada's drone still at her setpoint",
