@@ -21,13 +21,20 @@ TIMING_MARK = "mark.timing"
 # busy after the others finished.
 # Only the schedule depends on this list; tests/test_schedule.py checks that each file exists.
 LONGEST_FILES = (
-    # The browser part's
+    # The browser part's, every file (its two workers take 12 files; one of the longer ones
+    # started last kept a worker busy 20 s after the other finished)
     "tests/browser/test_page_browser.py",
     "tests/browser/test_teleop_browser.py",
     "tests/browser/test_editor_browser.py",
-    "tests/browser/test_classroom_browser.py",
-    "tests/browser/test_class_code_browser.py",
     "tests/browser/test_workbench_browser.py",
+    "tests/browser/test_classroom_browser.py",
+    "tests/browser/test_guide_browser.py",
+    "tests/browser/test_class_code_browser.py",
+    "tests/browser/test_rocket_browser.py",
+    "tests/browser/test_instructor_checkpoints_browser.py",
+    "tests/browser/test_graph_browser.py",
+    "tests/browser/test_world_worker_browser.py",
+    "tests/browser/test_record_browser.py",
     # The parallel part's
     "tests/contract/test_class_schemathesis.py",
     "tests/contract/test_openapi_schemathesis.py",
