@@ -21,8 +21,8 @@ TIMING_MARK = "mark.timing"
 # busy after the others finished.
 # Only the schedule depends on this list; tests/test_schedule.py checks that each file exists.
 LONGEST_FILES = (
-    # The browser part's, every file (its two workers take 12 files; one of the longer ones
-    # started last kept a worker busy 20 s after the other finished)
+    # The browser part's, every file (it has 12 for its workers; one of the longer ones, left off
+    # this list, started last and kept a worker busy 20 s after the other finished)
     "tests/browser/test_page_browser.py",
     "tests/browser/test_teleop_browser.py",
     "tests/browser/test_editor_browser.py",
