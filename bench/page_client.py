@@ -12,7 +12,8 @@ The channels, as the page opens them (web/src/lab):
   ``viser_scene`` (scene nodes and their transforms), ``viser_gui`` (GUI widgets) and
   ``viser_other`` (the rest: theme, backlog markers, ...);
 * ``pose_gps`` and ``pose_setpoint``: the HUD's pose stream, the echoes of ``/uav/sensors/gps``
-  and ``/uav/input/position`` with ``queue_length=10`` (web/src/lab/poses.worker.ts);
+  (its newest message every 20 ms: ``throttle_rate=20``) and ``/uav/input/position``
+  (``queue_length=10``), as web/src/lab/poses.worker.ts opens them;
 * ``keys``: the key channel ``/ws/keys``, sent a heartbeat every 200 ms as the page does
   (``keys_sent``); what it receives (errors only) is ``keys``.
 
@@ -43,6 +44,9 @@ import zstandard
 
 HEARTBEAT_S = 0.2  # web/src/lab/keys.ts: HEARTBEAT_MS
 POSE_TOPICS = {"pose_gps": "uav/sensors/gps", "pose_setpoint": "uav/input/position"}
+# Each echo's query as the page's pose worker opens it: the newest pose every 20 ms
+# (POSE_PERIOD_MS in web/src/lab/pose_ring.ts), every setpoint.
+POSE_QUERIES = {"pose_gps": "throttle_rate=20", "pose_setpoint": "queue_length=10"}
 HEADER_BYTES = 16
 MAX_FRAME_BYTES = 64 * 1024 * 1024
 
@@ -121,7 +125,7 @@ class PageClient:
 
     async def _pose(self, channel: str, topic: str) -> None:
         async with websockets.connect(
-            f"{self.ws}/ws/topics/{topic}?queue_length=10", additional_headers=self.headers
+            f"{self.ws}/ws/topics/{topic}?{POSE_QUERIES[channel]}", additional_headers=self.headers
         ) as ws:
             async for _ in ws:
                 self.counts.channels[channel] += 1

@@ -8,12 +8,12 @@
 // the main thread.
 import type { FollowJson, PageViews, ViewJson } from "../protocol.gen";
 import { notify, type Listeners } from "./listeners";
-import type { V3 } from "./pose_ring";
+import { POSE_PERIOD_MS, type V3 } from "./pose_ring";
 import { poses } from "./poses";
 import { viserMutable, type Object3D, type Renderer, type Scene, type Vec3, type ViserMutable } from "./viser";
 
 const STORE_VIEW = "teleop.view", STORE_FOLLOW = "teleop.follow";
-const DISPLAY_DELAY_MS = 10;  // one pose period behind the stream: between two poses, not past them
+const DISPLAY_DELAY_MS = POSE_PERIOD_MS;  // one pose period behind the stream: between two poses, not past them
 const POSE_STALE_MS = 1000;  // no pose for this long: leave the drone where the server drew it
 const FOLLOW_TAU_S = 0.15;  // the camera's lag behind the drone
 // How far the drone may wander (hovering) before the camera moves: each move draws frames for a
