@@ -65,7 +65,7 @@ NARROW_PX = 1000  # web/src/lab/layout.ts: narrower than this, the panel starts 
 GUIDE_FOLDED_MAX_PX = 40
 ARRIVED_M = 0.15
 FLIGHT_WAIT_S = 40.0
-MIN_POSE_RATE_HZ = 20  # the dynamics publish at 100 Hz; a loaded machine delivers fewer, never none
+MIN_POSE_RATE_HZ = 20  # the page asks for a pose every 20 ms; a loaded machine delivers fewer, never none
 # The scene's environment map (an image-based light) and its lights, as three.js holds them.
 LIGHTING_JS = """() => {
   const scene = window.__viserMutable.scene, lights = [];

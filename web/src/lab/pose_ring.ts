@@ -5,7 +5,7 @@ export const RING = 64;
 /** How often the page takes the drone's pose (ms): it asks the server for the newest
  * /uav/sensors/gps message at most this often (the echo's throttle_rate), about 50 of the
  * dynamics' 100 a second. The page draws the drone between poses at the display's rate, so this
- * loses nothing it shows, and the stream costs a class server half as much per open page. */
+ * loses nothing it shows, and each open page costs the server two thirds of what every pose did. */
 export const POSE_PERIOD_MS = 20;
 export const SLOT = 9;  // stamp (s, sim time), x, y, z (m), w, qx, qy, qz, arrival in the worker (epoch ms)
 export const SETPOINT_SLOT = 4;  // x, y, z (m), arrival (epoch ms): after the ring

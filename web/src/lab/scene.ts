@@ -13,7 +13,9 @@ import { poses } from "./poses";
 import { viserMutable, type Object3D, type Renderer, type Scene, type Vec3, type ViserMutable } from "./viser";
 
 const STORE_VIEW = "teleop.view", STORE_FOLLOW = "teleop.follow";
-const DISPLAY_DELAY_MS = POSE_PERIOD_MS;  // one pose period behind the stream: between two poses, not past them
+// One pose period behind the stream: between two poses, or past the newest by a few ms when a pose
+// comes late (the server's throttle sends them 20 ms apart or a little more), which poseAt carries on.
+const DISPLAY_DELAY_MS = POSE_PERIOD_MS;
 const POSE_STALE_MS = 1000;  // no pose for this long: leave the drone where the server drew it
 const FOLLOW_TAU_S = 0.15;  // the camera's lag behind the drone
 // How far the drone may wander (hovering) before the camera moves: each move draws frames for a
