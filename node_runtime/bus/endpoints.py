@@ -156,6 +156,10 @@ class Timer:
         n = max(self._n + 1, int((now_s - start) / period) + 1)
         while start + n * period <= now_s:
             n += 1
+        bus = self.node._bus
+        bus.timer_calls += 1
+        if n > self._n + 1:  # the calls due between this one and the next were skipped
+            bus.timer_calls_skipped += n - self._n - 1
         self._n = n
         self.next_deadline_s = start + n * period
 

@@ -140,6 +140,10 @@ class Bus:
         self.devices: dict[str, Any] = {}  # hardware the nodes may use: 'keyboard', 'display'
         # A class server's world: its name, which its nodes' log lines carry (None: the lab alone).
         self.label: str | None = None
+        # Timer calls run, and those skipped because a call ran a whole period or more late (a
+        # timer keeps its phase): how well this bus's timers kept their rates, summed.
+        self.timer_calls = 0
+        self.timer_calls_skipped = 0
 
     def tagged(self, text: str) -> str:
         """``text`` for the console, with the world's name in front in a class server."""

@@ -97,6 +97,19 @@ def test_timer_clock_jumps_fires_once_then_keeps_phase(
     assert times == pytest.approx([0.95, 1.0, 1.1, 1.2])
 
 
+def test_timer_calls_skipped_are_counted_on_the_bus(bus: Bus, clock: ManualClock, executor: Executor) -> None:
+    fast = Node("n", context=bus).create_timer(0.1, lambda: None)
+    Node("m", context=bus).create_timer(1.0, lambda: None)
+    executor.spin_until(0.35)  # on time: 0.1, 0.2, 0.3
+    assert (bus.timer_calls, bus.timer_calls_skipped) == (3, 0)
+    clock.set(0.95)  # one call for 0.4, the calls due at 0.5 to 0.9 skipped
+    executor.spin_some()
+    assert (bus.timer_calls, bus.timer_calls_skipped) == (4, 5)
+    executor.spin_until(1.25)  # 1.0 (both timers), 1.1, 1.2: on time again
+    assert (bus.timer_calls, bus.timer_calls_skipped) == (8, 5)
+    assert fast.call_count == 7
+
+
 def test_timer_cancel_stops_calls(bus: Bus, clock: ManualClock, executor: Executor) -> None:
     calls: list[float] = []
     timer = Node("n", context=bus).create_timer(0.5, lambda: calls.append(clock.now()))
