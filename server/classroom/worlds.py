@@ -23,6 +23,7 @@ from server.classroom.errors import (
     StudentCodeElsewhereError,
     UnknownWorldError,
 )
+from server.classroom.lateness import SkippedCalls
 from server.classroom.world import World
 from server.host.processes.start_pacing import (
     MachineStartPacer,
@@ -67,7 +68,11 @@ class WorldLabs:
         self.simple_physics = SharedSimpleSim(clock)  # the worlds flown with simple:=true
         self.executors = ExecutorGroup()
         self.node_budget = NodeBudget(settings.limits.max_server_nodes)  # every world's node processes
-        self.start_pacer = _start_pacer(settings, clock)  # and their starts
+        # and their starts, which yield to these worlds' ticks
+        self.skipped = SkippedCalls(
+            lambda: [w.lab.bus for w in list(self.worlds.values()) if w.lab is not None]
+        )
+        self.start_pacer = _start_pacer(settings, clock, self.skipped.read)
         # Each world's checkpoints and answers, kept in the state folder across restarts.
         self.progress = ProgressStore.in_state_dir(settings.lab.state_dir)
 
@@ -201,11 +206,12 @@ class WorldLabs:
         return self.settings.for_world(name, zenoh, file, args)
 
 
-def _start_pacer(settings: Settings, clock: Clock) -> StartPacer:
+def _start_pacer(settings: Settings, clock: Clock, skipped: Callable[[], float]) -> StartPacer:
     """The class server's node starts and those of the world workers it started on this machine
-    take turns at the machine's slots; a world worker started by hand paces its own."""
+    take turns at the machine's slots; a world worker started by hand paces its own. Each yields
+    to what its worlds' timers ``skipped``, the machine's to what any of its places' skipped."""
     if settings.worker is None:
-        return MachineStartPacer(machine_slots_file(settings.lab.state_dir), default_slots())
+        return MachineStartPacer(machine_slots_file(settings.lab.state_dir), default_slots(), skipped=skipped)
     if settings.worker.start_slots is not None:
-        return MachineStartPacer(settings.worker.start_slots, default_slots())
-    return StartPacer(default_slots(), clock=clock.now)
+        return MachineStartPacer(settings.worker.start_slots, default_slots(), skipped=skipped)
+    return StartPacer(default_slots(), clock=clock.now, skipped=skipped)

@@ -7,12 +7,12 @@ from __future__ import annotations
 import pytest
 
 from api.errors import status_for
-from node_runtime.bus import Bus, ManualClock, Node
+from node_runtime.bus import Bus, Executor, ManualClock, Node
 from server.classroom import ClassroomError
 from server.classroom.capacity import NEAR_CORES, PlaceLoad, judge
 from server.classroom.errors import AtCapacityError, JoinLapsedError, UnknownTicketError
 from server.classroom.join_queue import JoinQueue
-from server.classroom.lateness import LATE_TICK_S, RECENT_TICKS, STALLED_S, timer_late
+from server.classroom.lateness import LATE_TICK_S, RECENT_TICKS, STALLED_S, SkippedCalls, timer_late
 from server.classroom.load import PROCESS_FULL_CORES, CpuLoad, CpuMeter, resident_mb
 from server.host.settings import JoinQueueSettings
 
@@ -128,6 +128,49 @@ def test_a_timer_is_late_when_its_recent_calls_ran_late_or_it_is_stalled_now() -
     assert not timer_late(timer, timer.next_deadline_s)  # the median of the last calls is on time
     timer.cancel()
     assert not timer_late(timer, deadline + 10.0)
+
+
+def test_the_share_of_calls_skipped_is_read_over_the_worlds_of_a_process() -> None:
+    """Two worlds with a 100 Hz tick on a manual clock: on time, nothing skipped; one world's turn
+    held up 50 ms, five of its calls skipped of the calls due to both; a world that joins counts
+    from its first reading, one that leaves counts no more."""
+    clock = ManualClock(0.0)
+    worlds: dict[str, Bus] = {}
+
+    def world(name: str) -> Executor:
+        bus = Bus(clock)
+        Node("dynamics", context=bus).create_timer(0.01, lambda: None)
+        worlds[name] = bus
+        return Executor(bus)
+
+    ada, bob = world("ada"), world("bob")
+    meter = SkippedCalls(lambda: list(worlds.values()), now=clock.now, window_s=0.5)
+    clock.advance(0.005)  # the loop's turns half way between the ticks' deadlines
+    for _ in range(50):  # 0.5 s on time
+        clock.advance(0.01)
+        ada.spin_some(), bob.spin_some()
+    assert meter.read() == 0.0
+    for step in range(50):  # 0.5 s more; ada gets no turn for 50 ms: six calls due, one made
+        clock.advance(0.01)
+        if not 10 <= step < 15:
+            ada.spin_some()
+        bob.spin_some()
+    due = ada.bus.timer_calls_skipped + ada.bus.timer_calls + bob.bus.timer_calls - 100  # since 0.5 s
+    assert ada.bus.timer_calls_skipped == 5 and bob.bus.timer_calls_skipped == 0
+    assert meter.read() == pytest.approx(5 / due)
+    clock.advance(0.1)
+    assert meter.read() == pytest.approx(5 / due)  # read again within the window: the same share
+    clock.advance(0.005)
+    carl = world("carl")  # carl joins after a long start: his first call comes 0.4 s late
+    clock.advance(0.405)
+    carl.spin_some(), ada.spin_some(), bob.spin_some()
+    assert carl.bus.timer_calls_skipped > 0 and ada.bus.timer_calls_skipped > 5
+    del worlds["ada"]  # and ada leaves: neither counts now
+    meter.read()
+    for _ in range(50):
+        clock.advance(0.01)
+        carl.spin_some(), bob.spin_some()
+    assert meter.read() == 0.0  # carl and bob on time since; ada's and carl's start not counted
 
 
 def queue(clock: ManualClock, size: int = 3) -> JoinQueue:

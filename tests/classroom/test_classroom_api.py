@@ -3,6 +3,7 @@ instructor's controls. The worlds run on one manual clock that the tests step.""
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -15,6 +16,7 @@ from api.errors import CloseCode
 from node_runtime.bus import ManualClock
 from server.app import create_app
 from server.classroom import ClassServer
+from server.host.processes.start_pacing import SKIPPED_MOST, MachineStartPacer
 from server.host.settings import ClassroomSettings, LabSettings, Listening, Settings, WorldLimits
 
 CODE = "TEST42"
@@ -465,3 +467,27 @@ def test_leaving_forgets_the_browsers_cookie_and_the_world_stays(client: TestCli
     assert left.status_code == 200 and "lab_token=" in left.headers["set-cookie"]
     assert client.get("/api/classroom/me").status_code == 401
     assert "ada" in classroom(client).worlds
+
+
+def test_the_class_starts_yield_to_its_worlds_skipped_ticks(client: TestClient, clock: ManualClock) -> None:
+    """The class's start pacer reads what its worlds' timers skipped (server/classroom/lateness.py,
+    server/host/processes/start_pacing.py): while every world keeps its ticks a start leaves the
+    turns after it where they were; once one world's loop gave it no turn for half a second, the
+    next start moves them back, and the machine's slots file says how much was skipped."""
+    join(client, "Ada"), join(client, "Bob")
+    labs = classroom(client).labs
+    labs.skipped.window_s = 0.0  # a reading on every ask: the test's clock is the manual one
+    advance(client, clock, 1.0)
+    assert labs.skipped.read() == 0.0  # the worlds counted from here on
+    advance(client, clock, 1.0)
+    pacer = labs.start_pacer
+    pacer.hold_s = 1e-6  # a slot freed again by the next ask: each start here goes at once
+    assert labs.skipped.read() == 0.0 and pacer.admit() is None and pacer.stretched == 0
+    clock.advance(0.5)  # Ada's world gets a turn, Bob's none, after half a second
+    ada = classroom(client).worlds["ada"].lab
+    assert ada is not None and client.portal is not None
+    client.portal.call(ada.executor.spin_some)
+    assert pacer.admit() is None and pacer.stretched == 1
+    assert isinstance(pacer, MachineStartPacer)
+    said = json.loads(pacer.path.read_text())["skipped"]
+    assert max(share for _at, share in said.values()) >= SKIPPED_MOST

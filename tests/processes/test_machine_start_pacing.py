@@ -101,6 +101,10 @@ def test_a_lock_held_elsewhere_defers_the_start_briefly_and_never_blocks(tmp_pat
         '{"boot": "%s", "held": [], "last_turn": null, "turns": {"t": [150.0, 3, true]}}',
         '{"boot": "%s", "held": [], "last_turn": null, "turns": ["t"]}',
         '{"boot": "%s", "held": [], "last_turn": null, "turns": {%s}}',
+        '{"boot": "%s", "held": [], "last_turn": null, "turns": {}, "skipped": {"p": [100.0, 1.5]}}',
+        '{"boot": "%s", "held": [], "last_turn": null, "turns": {}, "skipped": {"p": [NaN, 0.1]}}',
+        '{"boot": "%s", "held": [], "last_turn": null, "turns": {}, "skipped": {"p": 0.1}}',
+        '{"boot": "%s", "held": [], "last_turn": null, "turns": {}, "skipped": ["p"]}',
     ],
 )
 def test_a_slots_file_from_another_boot_or_spoilt_is_a_fresh_start(tmp_path: Path, text: str) -> None:
@@ -112,7 +116,9 @@ def test_a_slots_file_from_another_boot_or_spoilt_is_a_fresh_start(tmp_path: Pat
     pacer = MachineStartPacer(slots, 1, hold_s=1.0, clock=Clock())
     assert pacer.admit() is None
     written = json.loads(slots.read_text())
+    said = written.pop("skipped")
     assert written == {"boot": BOOT_ID, "held": [101.0], "last_turn": None, "turns": {}}
+    assert list(said.values()) == [[100.0, 0.0]]  # what this pacer's worlds skipped (no reading: none)
 
 
 def test_a_slots_file_from_this_boot_is_kept(tmp_path: Path) -> None:

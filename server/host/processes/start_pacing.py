@@ -24,10 +24,21 @@ starts a second. Why the ticket: a start told its turn comes back a little after
 ``Retry-After`` is whole seconds, a client's timer and a busy loop are late), when the slot may
 be held by a start that came back before it; without the ticket it was a new start and went to
 the back of the line, and 60 ``ros2lab run`` at once took 79 and 83 s, 62 and 64 s with it.
+
+The starts also yield to the worlds' ticks. A pacer may be told how many of the calls its
+worlds' timers were due to make they skipped lately (``skipped``: a call a whole period late is
+skipped, as a timer keeps its phase; a class's worlds on the server: server/classroom/lateness.py).
+When a start goes while more than ``SKIPPED_OK`` of them were skipped, the turns after it move
+back, by up to ``MAX_STRETCH - 1`` of one start's share of ``hold_s`` at ``SKIPPED_MOST`` or
+more: a class's sixty starts then take at most a tenth longer, and its worlds lose fewer of their
+ticks while they start. Processes sharing a machine's slots share what they skipped too (the most
+any of them skipped in the last ``SKIPPED_FRESH_S``), as the class server's worlds slow for the
+starts of its world workers' nodes as much as for its own.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import fcntl
 import json
 import logging
@@ -58,6 +69,16 @@ MAX_TURNS = 256  # turns kept at once; past them a start is told its wait with n
 MAX_WAITING = 8
 TICKET_CHARS = 64  # a ticket is shorter: anything longer is not one (the API refuses it)
 NEW_TURN = "new"  # asked with instead of a ticket: a start that will come back with the one it is given
+# The worlds' skipped timer calls, as a share of those due, under which starts go at their full
+# pace, and from which they go at their slowest: the turns then come ``MAX_STRETCH`` times as far
+# apart (sixty starts in 45 s at the full pace, 49.5 s at the slowest). In a class's fly world about
+# a third of the calls are its 100 Hz tick, which skips first (a call 10 ms late; its 50 Hz
+# controllers' 20 ms): 0.5 % of every call is about 1.5 % of the ticks (a world at 98.5 Hz), 1.5 %
+# about 4.5 % (95.5 Hz).
+SKIPPED_OK = 0.005
+SKIPPED_MOST = 0.015
+MAX_STRETCH = 1.1
+SKIPPED_FRESH_S = 2.0  # what another process sharing the slots skipped counts this long after it said so
 
 
 @dataclass(frozen=True)
@@ -85,6 +106,14 @@ def machine_slots_file(state_dir: Path) -> Path:
     return state_dir / "start-slots"
 
 
+def stretch(skipped: float) -> float:
+    """How many times as far apart the turns come when the worlds skipped ``skipped`` of their
+    timer calls: 1 up to ``SKIPPED_OK``, rising evenly to ``MAX_STRETCH`` at ``SKIPPED_MOST``."""
+    if not skipped > SKIPPED_OK:  # NaN too: a reading that says nothing slows nothing
+        return 1.0
+    return 1.0 + (MAX_STRETCH - 1.0) * min(1.0, (skipped - SKIPPED_OK) / (SKIPPED_MOST - SKIPPED_OK))
+
+
 def default_slots() -> int:
     """One start at a time per core the server does not need (at least one; the cores it may use,
     as its affinity and CPU quota allow)."""
@@ -92,14 +121,22 @@ def default_slots() -> int:
 
 
 class StartPacer:
-    """At most ``slots`` starts admitted within any ``hold_s``; ``clock`` is injected for tests."""
+    """At most ``slots`` starts admitted within any ``hold_s`` (longer while the worlds skip their
+    timers' calls: ``skipped`` says what share of them they skipped lately); ``clock`` is injected
+    for tests."""
 
     def __init__(
-        self, slots: int, hold_s: float = HOLD_S, clock: Callable[[], float] = time.monotonic
+        self,
+        slots: int,
+        hold_s: float = HOLD_S,
+        clock: Callable[[], float] = time.monotonic,
+        skipped: Callable[[], float] | None = None,
     ) -> None:
         if slots < 1 or hold_s <= 0:
             raise ValueError(f"a start pacer needs slots >= 1 and hold_s > 0, got {slots} and {hold_s}")
         self.slots, self.hold_s, self._clock = slots, hold_s, clock
+        self.skipped = skipped
+        self.stretched = 0  # starts after which the turns moved back, as the worlds skipped calls
         self._held: list[float] = []  # when each held slot frees, oldest first
         self._last_turn = -math.inf  # the latest turn given to a deferred start
         # The turns given, by ticket: when, to whom (a world's name), and whether it is kept for
@@ -118,9 +155,14 @@ class StartPacer:
         keeps no ticket, as before there were any (see ``_admit``). ``who``: the world asking
         (empty for a lab's own user), whose waiting turns are at most ``MAX_WAITING``."""
         with self._lock:
-            return self._admit(self._clock(), ticket, who)
+            return self._admit(self._clock(), ticket, who, self._own_skipped())
 
-    def _admit(self, now: float, ticket: str | None, who: str) -> Turn | None:
+    def _own_skipped(self) -> float:
+        """The share of calls this process's worlds skipped lately, 0 for no reading (or no share)."""
+        share = self.skipped() if self.skipped is not None else 0.0
+        return share if 0.0 <= share <= 1.0 else 0.0
+
+    def _admit(self, now: float, ticket: str | None, who: str, skipped: float = 0.0) -> Turn | None:
         # A slot that frees within a quarter of ``hold_s`` counts as free. The start ahead may have
         # been admitted a little late, so its slot frees a little after the next start's turn: that
         # start goes at its turn, not to the back of the line (60 paced starts took 104 s so).
@@ -133,14 +175,14 @@ class StartPacer:
                 self.deferred += 1
                 return Turn(given.at - now, ticket)
             del self._turns[ticket]
-            self._go(now)
+            self._go(now, skipped)
             return None
         # A kept turn's slot is set aside from a quarter hold before it until a hold after it (its
         # start a little late). A start that keeps no ticket is never given a turn kept for it: it
         # comes back as a new start, and its own kept turn would then always be in its way.
         due = sum(1 for g in self._turns.values() if g.kept and now - self.hold_s < g.at < now + early)
         if len(self._held) + due < self.slots:
-            self._go(now)
+            self._go(now, skipped)
             return None
         self.deferred += 1
         first_free = self._held[0] if self._held else now
@@ -155,10 +197,17 @@ class StartPacer:
         self._turns[name] = Given(turn_at, who, kept)
         return Turn(turn_at - now, name if kept else None)
 
-    def _go(self, now: float) -> None:
-        self._held.append(now + self.hold_s)
+    def _go(self, now: float, skipped: float) -> None:
+        times = stretch(skipped)
+        self._held.append(now + self.hold_s * times)
         self._held.sort()
         self.admitted += 1
+        if times > 1.0:  # every turn given moves back, in its order: the next start comes later
+            later = (times - 1.0) * self.hold_s / self.slots
+            self._turns = {k: dataclasses.replace(g, at=g.at + later) for k, g in self._turns.items()}
+            if math.isfinite(self._last_turn):
+                self._last_turn += later
+            self.stretched += 1
 
 
 class MachineStartPacer(StartPacer):
@@ -173,27 +222,33 @@ class MachineStartPacer(StartPacer):
     process alone, as a ``StartPacer`` does (logged once)."""
 
     def __init__(
-        self, path: Path, slots: int, hold_s: float = HOLD_S, clock: Callable[[], float] = time.monotonic
+        self,
+        path: Path,
+        slots: int,
+        hold_s: float = HOLD_S,
+        clock: Callable[[], float] = time.monotonic,
+        skipped: Callable[[], float] | None = None,
     ) -> None:
-        super().__init__(slots, hold_s, clock)
+        super().__init__(slots, hold_s, clock, skipped)
         self.path = path
+        self._name = f"{os.getpid()}:{secrets.token_hex(4)}"  # what it says it skipped is kept under this
         self._alone = False  # the file failed once: this process paces itself from then on
 
     def admit(self, ticket: str | None = None, who: str = "") -> Turn | None:
         with self._lock:
-            now = self._clock()
+            now, skipped = self._clock(), self._own_skipped()
             if self._alone:
-                return self._admit(now, ticket, who)
+                return self._admit(now, ticket, who, skipped)
             try:
-                return self._admit_shared(now, ticket, who)
+                return self._admit_shared(now, ticket, who, skipped)
             except OSError as exc:
                 self._alone = True
                 log.warning(
                     "node starts paced by this process alone: the slots file %s failed: %s", self.path, exc
                 )
-                return self._admit(now, ticket, who)
+                return self._admit(now, ticket, who, skipped)
 
-    def _admit_shared(self, now: float, ticket: str | None, who: str) -> Turn | None:
+    def _admit_shared(self, now: float, ticket: str | None, who: str, skipped: float) -> Turn | None:
         self.path.parent.mkdir(parents=True, exist_ok=True)
         fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o600)
         try:
@@ -202,11 +257,17 @@ class MachineStartPacer(StartPacer):
             except BlockingIOError:
                 self.deferred += 1
                 return Turn(BUSY_WAIT_S, ticket)  # a ticket it came with is still good
-            self._held, self._last_turn, self._turns = _read_slots(fd)
-            turn = self._admit(now, ticket, who)
+            self._held, self._last_turn, self._turns, said = _read_slots(fd)
+            # What this process's worlds skipped, beside what the others sharing the slots said lately.
+            said = {k: v for k, v in said.items() if now - SKIPPED_FRESH_S < v[0] <= now}
+            said[self._name] = (now, skipped)
+            turn = self._admit(now, ticket, who, max(share for _at, share in said.values()))
             last = None if math.isinf(self._last_turn) else self._last_turn
             turns = {k: [g.at, g.who, g.kept] for k, g in self._turns.items()}
-            text = json.dumps({"boot": BOOT_ID, "held": self._held, "last_turn": last, "turns": turns})
+            shared = {k: list(v) for k, v in said.items()}
+            text = json.dumps(
+                {"boot": BOOT_ID, "held": self._held, "last_turn": last, "turns": turns, "skipped": shared}
+            )
             os.lseek(fd, 0, os.SEEK_SET)
             os.ftruncate(fd, 0)
             os.write(fd, text.encode())
@@ -226,20 +287,41 @@ def _boot_id() -> str:
 BOOT_ID = _boot_id()
 
 
-def _read_slots(fd: int) -> tuple[list[float], float, dict[str, Given]]:
-    """The held slots, the latest turn and the turns given that a slots file holds; none (a fresh
-    state) where it is empty, not what this module writes, or written in another boot."""
+Said = dict[str, tuple[float, float]]  # by pacer (its process id first): when it said so, the share
+
+
+def _read_slots(fd: int) -> tuple[list[float], float, dict[str, Given], Said]:
+    """The held slots, the latest turn, the turns given and what each process skipped that a slots
+    file holds; none (a fresh state) where it is empty, not what this module writes, or written in
+    another boot."""
     try:
         data = json.loads(os.pread(fd, 65536, 0) or b"{}")
         held = sorted(float(t) for t in data["held"])
         last = -math.inf if data["last_turn"] is None else float(data["last_turn"])
         turns = {str(k): _given(v) for k, v in data.get("turns", {}).items()}
-        times = [*held, max(last, 0.0), *(g.at for g in turns.values())]
-        if data["boot"] != BOOT_ID or not all(math.isfinite(t) for t in times) or len(turns) > MAX_TURNS:
-            return [], -math.inf, {}
-        return held, last, turns
+        said = {str(k): _said(v) for k, v in data.get("skipped", {}).items()}
+        times = [*held, max(last, 0.0), *(g.at for g in turns.values()), *(at for at, _ in said.values())]
+        if (
+            data["boot"] != BOOT_ID
+            or not all(math.isfinite(t) for t in times)
+            or len(turns) > MAX_TURNS
+            or len(said) > MAX_TURNS
+        ):
+            return [], -math.inf, {}, {}
+        return held, last, turns, said
     except (ValueError, TypeError, KeyError, AttributeError):
-        return [], -math.inf, {}
+        return [], -math.inf, {}, {}
+
+
+def _said(entry: object) -> tuple[float, float]:
+    """What a process skipped as the file holds it, ``[at, share]`` with the share in [0, 1];
+    ValueError for anything else."""
+    if not isinstance(entry, list) or len(entry) != 2:
+        raise ValueError(f"not a share skipped: {entry!r}")
+    at, share = float(entry[0]), float(entry[1])
+    if not 0.0 <= share <= 1.0:
+        raise ValueError(f"not a share skipped: {entry!r}")
+    return at, share
 
 
 def _given(entry: object) -> Given:
