@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from node_runtime.bus import ManualClock
 from server.host.processes.start_pacing import (
     MAX_STRETCH,
     NEW_TURN,
@@ -27,14 +28,6 @@ from server.host.processes.start_pacing import (
 HOLD_S = 0.75
 
 
-class Clock:
-    def __init__(self) -> None:
-        self.now = 100.0
-
-    def __call__(self) -> float:
-        return self.now
-
-
 class Share:
     """What the worlds skipped, as a test sets it."""
 
@@ -45,7 +38,7 @@ class Share:
         return self.value
 
 
-def burst(pacer: StartPacer, clock: Clock, count: int) -> list[float]:
+def burst(pacer: StartPacer, clock: ManualClock, count: int) -> list[float]:
     """``count`` starts of as many worlds asked for at once, each back with its ticket whenever it
     is told to come: when each went."""
     went: list[float] = []
@@ -53,20 +46,20 @@ def burst(pacer: StartPacer, clock: Clock, count: int) -> list[float]:
     for i in range(count):
         turn = pacer.admit(NEW_TURN, f"w{i}")
         if turn is None:
-            went.append(clock.now)
+            went.append(clock.now())
         else:
-            waiting.append((clock.now + turn.wait_s, turn.ticket, f"w{i}"))
+            waiting.append((clock.now() + turn.wait_s, turn.ticket, f"w{i}"))
     for _ in range(10 * count):  # bounded: each start comes back a few times at most
         if not waiting:
             break
         waiting.sort(key=lambda w: w[0])
         at, ticket, who = waiting.pop(0)
-        clock.now = max(clock.now, at)
+        clock.set(max(clock.now(), at))
         again = pacer.admit(ticket or NEW_TURN, who)
         if again is None:
-            went.append(clock.now)
+            went.append(clock.now())
         else:
-            waiting.append((clock.now + again.wait_s, again.ticket, who))
+            waiting.append((clock.now() + again.wait_s, again.ticket, who))
     assert not waiting
     return went
 
@@ -79,16 +72,16 @@ def test_stretch_rises_from_the_share_that_is_fine_to_the_most() -> None:
 
 
 def test_worlds_that_keep_their_ticks_start_at_the_full_pace() -> None:
-    clock = Clock()
-    pacer = StartPacer(1, HOLD_S, clock, skipped=Share(SKIPPED_OK))
+    clock = ManualClock(100.0)
+    pacer = StartPacer(1, HOLD_S, clock.now, skipped=Share(SKIPPED_OK))
     went = burst(pacer, clock, 20)
     assert went[-1] - went[0] == pytest.approx(19 * HOLD_S)
     assert pacer.stretched == 0
 
 
 def test_worlds_that_skip_their_ticks_slow_the_starts_down_in_order() -> None:
-    clock, skipped = Clock(), Share(SKIPPED_MOST)
-    pacer = StartPacer(1, HOLD_S, clock, skipped=skipped)
+    clock, skipped = ManualClock(100.0), Share(SKIPPED_MOST)
+    pacer = StartPacer(1, HOLD_S, clock.now, skipped=skipped)
     went = burst(pacer, clock, 20)
     gaps = [b - a for a, b in itertools.pairwise(went)]
     # Each start's turn came later by the stretch of every start before it; a start back at its
@@ -99,38 +92,38 @@ def test_worlds_that_skip_their_ticks_slow_the_starts_down_in_order() -> None:
 
 
 def test_the_starts_take_their_full_pace_again_once_the_worlds_keep_up() -> None:
-    clock, skipped = Clock(), Share(SKIPPED_MOST)
-    pacer = StartPacer(1, HOLD_S, clock, skipped=skipped)
+    clock, skipped = ManualClock(100.0), Share(SKIPPED_MOST)
+    pacer = StartPacer(1, HOLD_S, clock.now, skipped=skipped)
     first = burst(pacer, clock, 10)
     skipped.value = 0.0
-    clock.now += 10.0
+    clock.advance(10.0)
     second = burst(pacer, clock, 10)
     assert first[-1] - first[0] > 9 * HOLD_S * (1.0 + (MAX_STRETCH - 1.0) / 2)
     assert second[-1] - second[0] == pytest.approx(9 * HOLD_S)
 
 
 def test_a_machines_processes_yield_to_what_any_of_them_skipped(tmp_path: Path) -> None:
-    clock, slots = Clock(), tmp_path / "start-slots"
-    server = MachineStartPacer(slots, 1, HOLD_S, clock, skipped=Share(SKIPPED_MOST))
-    worker = MachineStartPacer(slots, 1, HOLD_S, clock, skipped=Share(0.0))
+    clock, slots = ManualClock(100.0), tmp_path / "start-slots"
+    server = MachineStartPacer(slots, 1, HOLD_S, clock.now, skipped=Share(SKIPPED_MOST))
+    worker = MachineStartPacer(slots, 1, HOLD_S, clock.now, skipped=Share(0.0))
     assert server.admit(NEW_TURN, "s") is None  # the server's worlds say what they skipped
     said = json.loads(slots.read_text())["skipped"]
     assert [share for _at, share in said.values()] == [SKIPPED_MOST]
     assert server.stretched == 1
     # The worker's worlds keep up, the server's do not: the worker's starts yield to them too.
-    clock.now += HOLD_S / 2
+    clock.advance(HOLD_S / 2)
     first, second = worker.admit(NEW_TURN, "a"), worker.admit(NEW_TURN, "b")
     assert first is not None and second is not None and first.ticket and second.ticket
-    second_at = clock.now + second.wait_s
-    clock.now += first.wait_s
+    second_at = clock.now() + second.wait_s
+    clock.advance(first.wait_s)
     assert worker.admit(first.ticket, "a") is None  # the first goes at its turn ...
     assert worker.stretched == 1
     early = worker.admit(second.ticket, "b")  # ... and the second's turn moved back
-    assert early is not None and clock.now + early.wait_s == pytest.approx(
+    assert early is not None and clock.now() + early.wait_s == pytest.approx(
         second_at + (MAX_STRETCH - 1) * HOLD_S
     )
     # What the server said counts for SKIPPED_FRESH_S; it has said nothing since: the full pace.
-    clock.now = 100.0 + SKIPPED_FRESH_S + HOLD_S * 2
+    clock.set(100.0 + SKIPPED_FRESH_S + HOLD_S * 2)
     went = burst(worker, clock, 5)
     assert went[-1] - went[0] == pytest.approx(4 * HOLD_S)
     assert worker.stretched == 1
@@ -138,8 +131,8 @@ def test_a_machines_processes_yield_to_what_any_of_them_skipped(tmp_path: Path) 
 
 def test_a_process_that_says_nothing_leaves_the_pace_alone(tmp_path: Path) -> None:
     """The peer of the tests above: the same burst with no reading paces as it always did."""
-    clock = Clock()
-    pacer = MachineStartPacer(tmp_path / "start-slots", 1, HOLD_S, clock)
+    clock = ManualClock(100.0)
+    pacer = MachineStartPacer(tmp_path / "start-slots", 1, HOLD_S, clock.now)
     went = burst(pacer, clock, 10)
     assert went[-1] - went[0] == pytest.approx(9 * HOLD_S)
     assert pacer.stretched == 0
@@ -147,8 +140,8 @@ def test_a_process_that_says_nothing_leaves_the_pace_alone(tmp_path: Path) -> No
 
 @pytest.mark.parametrize("bad", [math.nan, -0.5, 1.5, math.inf])
 def test_a_reading_that_is_no_share_leaves_the_pace_alone(tmp_path: Path, bad: float) -> None:
-    clock = Clock()
-    pacer = MachineStartPacer(tmp_path / "start-slots", 1, HOLD_S, clock, skipped=Share(bad))
+    clock = ManualClock(100.0)
+    pacer = MachineStartPacer(tmp_path / "start-slots", 1, HOLD_S, clock.now, skipped=Share(bad))
     went = burst(pacer, clock, 5)
     assert went[-1] - went[0] == pytest.approx(4 * HOLD_S)
     said = json.loads((tmp_path / "start-slots").read_text())["skipped"]
