@@ -1,22 +1,21 @@
 """Whether a world keeps its time, and how many of its timers' calls a process's worlds skipped.
 
-A world is *late* when one of its timers (its dynamics' tick,
-its controller's, its sensors') ran more than ``LATE_TICK_S`` after its deadline, as a median over
-its last ``RECENT_TICKS`` calls (a timer with fewer calls than that has just started, and its
-first ticks waited for its world's start: not judged yet), or its next call is ``STALLED_S`` overdue now (its loop is
-stalled: what a world worker's hello, answered on Zenoh's thread, can see). The overdue bound is
-longer than a late tick's because a class server reads it on the loop itself, right after a
-join's world start held that loop for a moment: its timers have not caught up yet, though they
-will on the next pass.
+A world is *late* when one of its timers (its dynamics' tick, its controller's, its sensors') ran
+more than ``LATE_TICK_S`` after its deadline, as a median over its last ``RECENT_TICKS`` calls (a
+timer with fewer calls than that has just started, and its first ticks waited for its world's
+start: not judged yet), or its next call is ``STALLED_S`` overdue now (its loop is stalled: what a
+world worker's hello, answered on Zenoh's thread, can see). The overdue bound is longer than a
+late tick's because a class server reads it on the loop itself, right after a join's world start
+held that loop for a moment: its timers have not caught up yet, though they will on the next pass.
 
 The lab already keeps every timer's lateness (``Timer.lateness_s``, what ``ros2 node info``
 shows as percentiles); this reads its newest samples, so the window is each timer's last few
 ticks, not a clock of its own.
 
 ``SkippedCalls`` reads how many calls the timers of a process's worlds skipped lately, as a share
-of the calls due (a call a whole period late is skipped: the timer keeps its phase, and a
-100 Hz tick skipped is a world at 99 Hz); the process's node starts yield to it
-(server/host/processes/start_pacing.py).
+of the calls due (a call a whole period late skips the calls due meanwhile, as the timer keeps
+its phase: a 100 Hz tick skipped once a second is a world at 99 Hz); the process's node starts
+yield to it (server/host/processes/start_pacing.py).
 """
 
 from __future__ import annotations
@@ -75,10 +74,9 @@ class SkippedCalls:
         window_s: float = SKIPPED_WINDOW_S,
     ) -> None:
         self._buses, self._now, self.window_s = buses, now, window_s
-        self._marks: dict[int, tuple[Bus, int, int]] = {}  # by id: the bus, its calls and skipped then
         self._at = now()
         self._share = 0.0
-        self._marks = self._counts()
+        self._marks = self._counts()  # by id: each bus, its calls and those skipped then
 
     def _counts(self) -> dict[int, tuple[Bus, int, int]]:
         return {id(bus): (bus, bus.timer_calls, bus.timer_calls_skipped) for bus in list(self._buses())}
