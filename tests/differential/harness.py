@@ -147,10 +147,29 @@ def _without_frames(lines: list[str]) -> list[str]:
     return kept
 
 
+def _without_destructor_noise(lines: list[str]) -> list[str]:
+    """Less each exception a destructor raised that the interpreter printed and ignored (``Exception
+    ignored in: <function Executor.__del__ ...>``, its traceback and its exception): when the
+    garbage collector finds an object in a cycle is a matter of timing, and ROS 2's rclpy prints one
+    now and then for an executor collected after ``rclpy.shutdown()``."""
+    kept: list[str] = []
+    skipping = False
+    for line in lines:
+        if line.startswith("Exception ignored in: <function ") and ".__del__ at " in line:
+            skipping = True
+        elif skipping and (line == "Traceback (most recent call last):" or line == "  ..."):
+            pass
+        elif skipping:
+            skipping = False  # the exception's own line ends the block
+        else:
+            kept.append(line)
+    return kept
+
+
 def normalise(result: Run) -> list[str]:
     """The lines a user sees, less what legitimately differs, with the exit code last."""
     text = _STAMP.sub(r"[\1] [<stamp>] ", result.output)
-    lines = _without_frames([line.rstrip() for line in text.splitlines()])
+    lines = _without_destructor_noise(_without_frames([line.rstrip() for line in text.splitlines()]))
     while lines and not lines[-1]:
         lines.pop()
     code = "killed" if result.code is None else str(result.code)

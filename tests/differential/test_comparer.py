@@ -65,6 +65,22 @@ def test_tracebacks_compare_by_their_exception_not_by_their_frames() -> None:
     assert problem is not None and "+TypeError: bad" in problem
 
 
+def test_an_exception_a_destructor_raised_and_python_ignored_is_no_difference() -> None:
+    """Seen from ROS 2's rclpy under load: an executor collected after rclpy.shutdown(); its
+    peer, the same exception printed by the program itself, still differs."""
+    said = "MultiThreadedExecutor spin raised: tick 3\n"
+    ignored = (
+        "Exception ignored in: <function Executor.__del__ at 0x7f14c1f03c40>\n"
+        "Traceback (most recent call last):\n"
+        '  File "/a/rclpy/executors.py", line 302, in __del__\n'
+        "rclpy._rclpy_pybind11.InvalidHandle: cannot use Destroyable because destruction was requested\n"
+    )
+    assert normalise(Run(said + ignored + "done\n", 0)) == [said.strip(), "done", "(exit code 0)"]
+    assert compare(Run(said + ignored + "done\n", 0), Run(said + "done\n", 0)) is None
+    raised = ignored.split("\n", 1)[1]  # the traceback without the interpreter's header
+    assert compare(Run(said + raised + "done\n", 0), Run(said + "done\n", 0)) is not None
+
+
 def test_measured_numbers_agree_within_the_tolerance_only() -> None:
     theirs = Run("measured rate: 10.00 Hz\n", 0)
     assert compare(theirs, Run("measured rate: 9.1 Hz\n", 0), tolerance=0.2) is None
