@@ -80,6 +80,10 @@ def create_app(settings: Settings | None = None, clock: Clock | None = None) -> 
         version="0.1.0",
         lifespan=lifespan,
         default_response_class=SafeJSONResponse,
+        # FastAPI's own OpenTelemetry off, whatever the environment says: with
+        # FASTAPI_OTEL_AUTO_CONFIGURE=true it would send request traces to the OTLP endpoint the
+        # environment names (off this machine), or, without the SDK, refuse to start the lab.
+        telemetry={"auto_configure": False, "tracing": False, "metrics": False, "logs": False},
     )
     app.state.classroom = classroom
     app.state.settings = settings
