@@ -15,8 +15,8 @@ from fastapi.testclient import TestClient
 from server.app import create_app
 from server.host.settings import LabSettings, Listening, Settings
 
-# Port 9 (discard) on loopback: were anything sent, it would go nowhere beyond this machine.
 TRIED = "automatic telemetry configuration failed"  # what FastAPI logs when its set-up cannot export
+# Port 9 (discard) on loopback: were anything sent, it would go nowhere beyond this machine.
 OTEL_ENV = {
     "FASTAPI_OTEL_AUTO_CONFIGURE": "true",
     "OTEL_EXPORTER_OTLP_ENDPOINT": "http://127.0.0.1:9",

@@ -26,8 +26,8 @@ be held by a start that came back before it; without the ticket it was a new sta
 the back of the line, and 60 ``ros2lab run`` at once took 79 and 83 s, 62 and 64 s with it.
 
 The starts also yield to the worlds' ticks. A pacer may be told how many of the calls its
-worlds' timers were due to make they skipped lately (``skipped``: a call a whole period late is
-skipped, as a timer keeps its phase; a class's worlds on the server: server/classroom/lateness.py).
+worlds' timers were due to make they skipped lately (``skipped``: a call a whole period late
+skips the calls due meanwhile, as a timer keeps its phase; a class's worlds on the server: server/classroom/lateness.py).
 When a start goes while more than ``SKIPPED_OK`` of them were skipped, the turns after it move
 back, by up to ``MAX_STRETCH - 1`` of one start's share of ``hold_s`` at ``SKIPPED_MOST`` or
 more: a class's sixty starts then take at most a tenth longer, and its worlds lose fewer of their
