@@ -15,6 +15,7 @@ from support.wait import wait_until
 
 from node_runtime.bus import ManualClock
 from node_runtime.limits import LimitExceededError
+from server.host.processes.sandbox import StudentCodeRefusedError
 from server.host.processes.start_pacing import StartPacer
 from server.host.settings import LabLimits, LabSettings, Settings
 from server.services.launch.launcher import ProcessTransport
@@ -149,3 +150,37 @@ def test_the_labs_own_nodes_run_as_processes_start_at_once_while_students_starts
     assert entry.process.pid is not None  # started now, not told to wait for a turn
     assert (pacer.admitted, pacer.deferred) == counts  # and it asked the pacer nothing
     assert waiting.describe()["nodes"][0]["state"] == "waiting"  # the student's start still waits
+
+
+def node_names(lab: Lab) -> set[str]:
+    return {n.fully_qualified_name for n in lab.bus.nodes}
+
+
+def test_a_paced_launcher_has_its_timer_node_before_the_first_start_waits(lab: Lab) -> None:
+    """A class world's Runs wait for their turn on the launcher's hidden timer node: it is made as
+    the world's graph comes up, so sixty Runs in one second make no node on the worlds' loop."""
+    assert "/_launch_timers" not in node_names(lab)  # the fixture's launcher has no graph yet
+    lab.launcher.use_graph(ProcessTransport("tcp/127.0.0.1:9"), None)
+    before = node_names(lab)
+    assert "/_launch_timers" in before
+
+    lab.launch_groups.run("pacing", "sleeper.py")
+    waiting = lab.launch_groups.run("pacing", "sleeper.py")
+    assert waiting.describe()["nodes"][0]["state"] == "waiting"  # its timer is on the node made before
+    assert node_names(lab) == before
+    lab.executor.spin_until(1.0)
+    assert started(lab, waiting.id)
+
+
+def test_a_launcher_that_paces_nothing_makes_no_timer_node_as_its_graph_comes_up(tmp_path: Path) -> None:
+    """Without a pacer (a lab on loopback), or where students' code is refused, no start ever waits
+    for a turn: the graph gets no hidden node for it."""
+    lab = Lab(Settings(lab=LabSettings(launch="rocket", viewer=False, workspace=None)), ManualClock(0.0))
+    try:
+        lab.launcher.use_graph(ProcessTransport("tcp/127.0.0.1:9"), None)
+        assert "/_launch_timers" not in node_names(lab)
+        lab.launcher.start_pacer = StartPacer(1, hold_s=1.0, clock=lab.bus.clock.now)
+        lab.launcher.use_graph(ProcessTransport("tcp/127.0.0.1:9"), StudentCodeRefusedError("no sandbox"))
+        assert "/_launch_timers" not in node_names(lab)
+    finally:
+        lab.launcher.shutdown()
