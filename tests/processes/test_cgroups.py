@@ -18,6 +18,7 @@ from server.host.processes.cgroups import (
     _cpu_group_version_1,
     _delegate_version_2,
     _folder,
+    _idle,
 )
 
 
@@ -109,3 +110,11 @@ def test_cgroups_version_2_weighs_the_nodes_folder_where_cpu_is_given(tmp_path: 
     (refused / f"ros2lab-{os.getpid()}").mkdir()
     (refused / f"ros2lab-{os.getpid()}" / "cpu.weight").mkdir()
     assert _delegate_version_2(refused) == (refused / f"ros2lab-{os.getpid()}", False)
+
+
+def test_cgroups_the_nodes_cpu_group_is_made_idle_where_the_kernel_has_cpu_idle(tmp_path: Path) -> None:
+    """The group is made idle where its folder takes ``cpu.idle``; where the kernel has none (older
+    than 5.15) or refuses it, the group counts by its weight alone (the weight test: test_node_cpu_group)."""
+    assert _idle(tmp_path) and (tmp_path / "cpu.idle").read_text() == "1"
+    (tmp_path / "old" / "cpu.idle").mkdir(parents=True)  # a file the kernel would refuse
+    assert not _idle(tmp_path / "old")

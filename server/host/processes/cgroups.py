@@ -21,7 +21,11 @@ the folder their groups are made in), weighed as ``CPU_SHARES`` against a nice-0
 scheduling group (autogroup) the scheduler weighs apart, so sixty nodes at nice 19 (15 each)
 weighed 900 together, nearly a second server beside the worlds', while they started and while
 they spun. Together in one group they weigh ``CPU_SHARES`` however many they are, and still take
-whatever CPU the worlds leave.
+whatever CPU the worlds leave. Where the kernel offers it (Linux 5.15 and newer, both versions),
+the group is also made idle (``cpu.idle``): it then weighs the least a group can, and a world's
+loop that wakes takes the core from a node at once. A weight alone does not give that: the loops
+are the machine's heaviest threads, run ahead of their fair share, and so waited for a starting
+node's slice to end at many of their ticks.
 """
 
 from __future__ import annotations
@@ -102,6 +106,7 @@ class CgroupParent:
     version: int
     cpu: Path | None = None
     cpu_weighed: bool = False  # the nodes' CPU counts as one group's (see the module)
+    cpu_idle: bool = False  # and that group is idle: a world's loop that wakes takes a node's core
 
     def make(self, name: str, memory_mib: int, processes: int) -> NodeCgroup:
         """A new group ``name`` with these limits (OSError if the kernel refuses one)."""
@@ -216,6 +221,17 @@ def _cpu_group_version_1(base: Path) -> Path | None:
     return folder
 
 
+def _idle(folder: Path) -> bool:
+    """Make the nodes' CPU group idle; False where the kernel has no ``cpu.idle`` (older than 5.15)
+    or refuses it: the group then counts by its weight alone."""
+    try:
+        (folder / "cpu.idle").write_text("1")
+    except OSError as exc:
+        log.info("students' nodes' CPU group not made idle (%s): it counts by its weight", exc)
+        return False
+    return True
+
+
 def _version_2(own: dict[str, str], mounts: list[tuple[str, str, str, str]]) -> Path | None:
     for root, point, kind, _options in mounts:
         if kind != "cgroup2" or "" not in own:
@@ -279,7 +295,7 @@ def parent() -> CgroupParent | str:
             return f"cgroup v1 memory and pids folders refuse a group ({exc.strerror})"
         cpu_base = _version_1_cpu(own, mounts)
         cpu = _cpu_group_version_1(cpu_base) if cpu_base is not None else None
-        return CgroupParent(made[0], made[1], 1, cpu, cpu is not None)
+        return CgroupParent(made[0], made[1], 1, cpu, cpu is not None, cpu is not None and _idle(cpu))
     found_2 = _version_2(own, mounts)
     if found_2 is None:
         return "no cgroup with memory and pids controllers that this server may write"
@@ -288,4 +304,4 @@ def parent() -> CgroupParent | str:
         nodes, weighed = _delegate_version_2(found_2)
     except OSError as exc:
         return f"its cgroup v2 group cannot give memory and pids to groups below it ({exc.strerror})"
-    return CgroupParent(nodes, nodes, 2, None, weighed)
+    return CgroupParent(nodes, nodes, 2, None, weighed, weighed and _idle(nodes))

@@ -138,6 +138,8 @@ def cpu_layer(nice: int) -> str:
     found = cgroups.parent()
     if isinstance(found, str) or not found.cpu_weighed:
         return f"nice {nice}"
+    if found.cpu_idle:
+        return f"nice {nice}, all in one idle CPU group (a world's loop takes their core at once)"
     weight, of = (cgroups.CPU_SHARES, 1024) if found.version == 1 else (cgroups.CPU_WEIGHT, 100)
     return f"nice {nice}, all in one CPU group weighed {weight} to a process group's {of}"
 
