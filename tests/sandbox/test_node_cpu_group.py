@@ -8,8 +8,9 @@ Read on the kernel itself, as root: a stand-in server (a child process calling t
 ``cgroups.parent()`` a server calls) starts one busy loop for the worlds (a session of its own at
 nice 0, as a server's) and forty busy loops for nodes, each leading its own session at nice 19
 with its session's group at 19 too (node_runtime/process/priority.py), all on one CPU, for a few
-seconds: once in the nodes' groups the sandbox puts them in, once without. What the worlds' loop
-gets of that CPU is the ratio of their CPU times, measured in the same run."""
+seconds: in the nodes' groups the sandbox puts them in (idle, where the kernel has ``cpu.idle``),
+in the same groups by the weight alone, and without. What the worlds' loop gets of that CPU is the
+ratio of its CPU time to theirs from its start, measured in the same run."""
 
 from __future__ import annotations
 
@@ -60,7 +61,7 @@ try:
     world = subprocess.Popen(["taskset", "-c", cpu, "sh", "-c", spin], start_new_session=True)
     before = sum(cpu_s(p.pid) for p in procs)  # the nodes' CPU from the world's start on
     time.sleep(run_s)
-    idle = grouped and (parent.cpu or parent.memory).joinpath("cpu.idle").read_text().strip() == "1"
+    idle = grouped and parent.cpu_idle and (parent.cpu or parent.memory).joinpath("cpu.idle").read_text().strip() == "1"
     nodes_s = sum(cpu_s(p.pid) for p in procs) - before
     print(json.dumps({"world": cpu_s(world.pid), "nodes": nodes_s, "idle": idle}))
 finally:  # the worlds' loop first: the nodes' loops then have the CPU to end
