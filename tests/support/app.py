@@ -13,6 +13,7 @@ import socket
 import subprocess
 import threading
 import time
+from collections import deque
 from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
@@ -37,6 +38,9 @@ def _ephemeral_low() -> int:
         return 32768
 
 
+_HANDED_OUT: deque[int] = deque(maxlen=1024)  # the ports free_ports gave lately, newest last
+
+
 def _own_range(low: int, high: int) -> tuple[int, int]:
     """This pytest-xdist worker's share of the ports ``low`` to ``high``: each worker picks from
     its own slice, so a port one worker picked and has not bound yet is never picked by another
@@ -56,7 +60,9 @@ def free_ports(count: int) -> list[int]:
     range: a port the kernel gives out by itself (to a Zenoh session or WebSocket server the app
     binds to port 0, or to any outgoing connection) can then never be one a test hands the app.
     All are held until all are picked, so two never come out the same; each xdist worker picks
-    from a slice of its own."""
+    from a slice of its own; and a port this process handed out lately is not handed out again
+    (a test that picks its bridges' ports, then starts an App that picks its own, once got the
+    same port twice before either was bound: "address already in use")."""
     low, high = _own_range(20000, _ephemeral_low())
     rng = random.Random()
     held: list[socket.socket] = []
@@ -64,16 +70,21 @@ def free_ports(count: int) -> list[int]:
         for _ in range(200 * count):
             if len(held) == count:
                 break
+            port = rng.randrange(low, high) if high > low + count else 0
+            if port in _HANDED_OUT:
+                continue
             sock = socket.socket()
             try:
-                sock.bind(("127.0.0.1", rng.randrange(low, high) if high > low + count else 0))
+                sock.bind(("127.0.0.1", port))
             except OSError:
                 sock.close()
                 continue
             held.append(sock)
         if len(held) < count:
             raise RuntimeError(f"found only {len(held)} of {count} free loopback ports")
-        return [int(sock.getsockname()[1]) for sock in held]
+        ports = [int(sock.getsockname()[1]) for sock in held]
+        _HANDED_OUT.extend(ports)
+        return ports
     finally:
         for sock in held:
             sock.close()
