@@ -9,7 +9,10 @@ manager saved in each student's workspace. Then, for one student whose world the
 runs and one whose world runs on the worker, each of a page's ordinary calls (``GET
 /api/nodes``, ``/api/topics``, ``/api/workspace/files``, the keyboard manager's file, and
 ``/api/health``) ``--calls`` times one after the other over one kept-alive connection, as a page
-makes them: the median and p99 time to the whole answer. Prints the machine and one JSON object, also written to bench/results/proxied_calls.json.
+makes them: the median and p99 time to the whole answer, and what each call cost the class
+server's loop thread (where its own worlds tick): its CPU over the calls (``/proc``'s schedstat),
+less what it takes in as long with no call (measured just before), per call. Prints the machine
+and one JSON object, also written to bench/results/proxied_calls.json.
 """
 
 from __future__ import annotations
@@ -41,20 +44,32 @@ WARM_CALLS = 20
 SETTLE_S = 5.0  # every world flying, the worker's hello answered
 
 
-def timed_calls(client: httpx.Client, url: str, token: str, calls: int) -> dict[str, float]:
-    """``calls`` GETs of ``url`` with ``token``, one after the other: time to the whole answer."""
+def loop_cpu_s(pid: int) -> float:
+    """Seconds the main thread of ``pid`` (a server's loop) has run so far."""
+    return int(Path(f"/proc/{pid}/task/{pid}/schedstat").read_text().split()[0]) / 1e9
+
+
+def timed_calls(client: httpx.Client, url: str, token: str, calls: int, pid: int) -> dict[str, float]:
+    """``calls`` GETs of ``url`` with ``token``, one after the other: time to the whole answer, and
+    the loop CPU of server ``pid`` each took beyond its worlds' own (read over as long just before)."""
     headers = {"Authorization": f"Bearer {token}"}
     for _ in range(WARM_CALLS):
         client.get(url, headers=headers).raise_for_status()
     took: list[float] = []
+    start, cpu0 = time.perf_counter(), loop_cpu_s(pid)
     for _ in range(calls):
         before = time.perf_counter()
         client.get(url, headers=headers).raise_for_status()
         took.append(time.perf_counter() - before)
+    window_s, cpu_s = time.perf_counter() - start, loop_cpu_s(pid) - cpu0
+    quiet0 = loop_cpu_s(pid)
+    time.sleep(window_s)
+    quiet_s = loop_cpu_s(pid) - quiet0
     took.sort()
     return {
         "median_ms": round(1000 * statistics.median(took), 2),
         "p99_ms": round(1000 * took[int(0.99 * (len(took) - 1))], 2),
+        "loop_cpu_ms_per_call": round(1000 * (cpu_s - quiet_s) / calls, 3),
     }
 
 
@@ -81,7 +96,8 @@ def main(argv: list[str] | None = None) -> int:
         with httpx.Client(timeout=30.0) as client:
             for place, world in student.items():
                 results[f"world_on_{place}"] = {
-                    path: timed_calls(client, server.url + path, tokens[world], args.calls) for path in PATHS
+                    path: timed_calls(client, server.url + path, tokens[world], args.calls, server.proc.pid)
+                    for path in PATHS
                 }
     finally:
         server.stop()
