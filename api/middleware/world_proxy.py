@@ -30,6 +30,7 @@ from api.protocol.json_codec import SafeJSONResponse
 from api.websockets.relay import relay
 from server.classroom import Classroom, ClassroomError, Grant, World
 from server.classroom.class_bridges import CLASS_ROSBRIDGE_PATH
+from server.classroom.worker_connections import WorkerCallError
 from server.classroom.workers import WorkerDirectory, WorkerRef, world_call_token
 
 # Hop-by-hop headers, and what the class server answers for itself (who the caller is, where from).
@@ -123,18 +124,28 @@ class WorldProxyMiddleware:
         await _forward_http(directory, grant, world, world.worker, scope, receive, send)
 
 
-def target(ref: WorkerRef, scope: Scope, websocket: bool) -> str:
-    """The worker's URL for this request: the path as sent, the query without the caller's token
-    and world. PathChanged if the URL, as a client parses it, would name another path."""
+def _raw_path(scope: Scope) -> str:
     raw_path = scope.get("raw_path")
-    path = raw_path.decode("latin-1") if isinstance(raw_path, bytes) else scope["path"]
+    return raw_path.decode("latin-1") if isinstance(raw_path, bytes) else str(scope["path"])
+
+
+def request_target(scope: Scope) -> str:
+    """The path as sent and the query without the caller's token and world: what the worker is
+    asked for."""
     query = [
         (k, v)
         for k, v in parse_qsl(scope["query_string"].decode("latin-1"), keep_blank_values=True)
         if k not in ("token", "world")
     ]
+    return _raw_path(scope) + (f"?{urlencode(query)}" if query else "")
+
+
+def target(ref: WorkerRef, scope: Scope, websocket: bool) -> str:
+    """The worker's URL for this request (``request_target`` on the worker's address).
+    PathChanged if the URL, as a client parses it, would name another path."""
     base = ref.url.replace("http", "ws", 1) if websocket else ref.url
-    url = base + path + (f"?{urlencode(query)}" if query else "")
+    url = base + request_target(scope)
+    path = _raw_path(scope)
     if httpx.URL(url).raw_path.split(b"?", 1)[0] != path.encode("latin-1"):
         raise PathChanged(f"the path {path!r} would reach the world worker as another path")
     return url
@@ -186,25 +197,20 @@ async def _forward_http(
     if body is None:
         return
     sent = _headers(scope, credential(directory, grant, world, ref), world)
-    request = directory.http.build_request(scope["method"], url, headers=sent, content=body)
     try:
-        response = await directory.http.send(request, stream=True)
-    except httpx.HTTPError as exc:
-        detail = f"world {world.name!r} runs on world worker {ref.id!r}, which did not answer: {str(exc) or type(exc).__name__}"
+        answer = await directory.connections.request(scope["method"], url, request_target(scope), sent, body)
+    except WorkerCallError as exc:
+        detail = f"world {world.name!r} runs on world worker {ref.id!r}, which did not answer: {exc}"
         await SafeJSONResponse({"detail": detail}, status.HTTP_502_BAD_GATEWAY)(scope, receive, send)
         return
     try:
-        headers = [
-            (k.encode("latin-1"), v.encode("latin-1"))
-            for k, v in response.headers.multi_items()
-            if k.lower() not in DROP_RESPONSE
-        ]
-        await send({"type": "http.response.start", "status": response.status_code, "headers": headers})
-        async for chunk in response.aiter_raw():
+        headers = [(k, v) for k, v in answer.headers if k.decode("latin-1") not in DROP_RESPONSE]
+        await send({"type": "http.response.start", "status": answer.status, "headers": headers})
+        async for chunk in answer.body():
             await send({"type": "http.response.body", "body": chunk, "more_body": True})
         await send({"type": "http.response.body", "body": b"", "more_body": False})
     finally:
-        await response.aclose()
+        await answer.aclose()
 
 
 async def _forward_ws(

@@ -32,6 +32,7 @@ import httpx
 
 from server.classroom.errors import WorkerFailedError, WorkerRefusedError
 from server.classroom.load import CpuLoad
+from server.classroom.worker_connections import WorkerConnections
 from server.services.workspace.class_mark import MAX_MARK_CHARS
 
 CONTROL_PREFIX = "ros2lab/classroom/worker"
@@ -186,6 +187,8 @@ class WorkerDirectory:
         self.class_token = class_token
         self.hello_timeout_s = hello_timeout_s
         self.http = httpx.AsyncClient(timeout=WORKER_CALL_TIMEOUT_S, trust_env=False)
+        # The students' calls passed on to the worlds the workers host (api/middleware/world_proxy.py).
+        self.connections = WorkerConnections(WORKER_CALL_TIMEOUT_S)
 
     def use_session(self, session: Any) -> None:
         """The router's session once it opened again (None: while it opens again, nobody is asked)."""
@@ -254,4 +257,5 @@ class WorkerDirectory:
         return reply.json()
 
     async def close(self) -> None:
+        self.connections.close()
         await self.http.aclose()

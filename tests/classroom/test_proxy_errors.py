@@ -1,26 +1,23 @@
-"""A class server's call to a world worker that fails without a message (a connection reset,
-say) still names what happened in its 502: the error's type stands in for its empty text."""
+"""A class server's call to a world worker that fails names what happened in its 502: the error's
+own words, or its type where it has none (a connection reset, say)."""
 
 from __future__ import annotations
 
 import asyncio
 import json
+import socket
 from types import SimpleNamespace
 from typing import Any
 
-import httpx
 import pytest
 
 from api.middleware.world_proxy import _forward_http
+from server.classroom.worker_connections import WorkerConnections
 from server.classroom.workers import WorkerRef
 
 
-def forwarded(error: httpx.HTTPError) -> tuple[int, str]:
-    """The status and detail the class server answers when the worker's call raises ``error``."""
-
-    def fail(request: httpx.Request) -> httpx.Response:
-        raise error
-
+def forwarded(port: int, monkeypatch: pytest.MonkeyPatch | None = None) -> tuple[int, str]:
+    """The status and detail the class server answers for a call to a worker at ``port``."""
     sent: list[dict[str, Any]] = []
 
     async def receive() -> dict[str, Any]:
@@ -30,21 +27,20 @@ def forwarded(error: httpx.HTTPError) -> tuple[int, str]:
         sent.append(message)
 
     async def go() -> None:
-        async with httpx.AsyncClient(transport=httpx.MockTransport(fail)) as http:
-            directory = SimpleNamespace(http=http, class_token="class-token")
-            ref = WorkerRef(
-                id="local-1", url="http://127.0.0.1:9", worlds=1, max_worlds=30, token="worker-token"
-            )
-            scope = {
-                "type": "http",
-                "method": "PUT",
-                "path": "/api/workspace/files/src/demo/a.py",
-                "raw_path": b"/api/workspace/files/src/demo/a.py",
-                "query_string": b"",
-                "headers": [],
-            }
-            grant = SimpleNamespace(is_instructor=True)
-            await _forward_http(directory, grant, SimpleNamespace(name="ada"), ref, scope, receive, send)  # type: ignore[arg-type]
+        directory = SimpleNamespace(connections=WorkerConnections(30.0), class_token="class-token")
+        ref = WorkerRef(
+            id="local-1", url=f"http://127.0.0.1:{port}", worlds=1, max_worlds=30, token="worker-token"
+        )
+        scope = {
+            "type": "http",
+            "method": "PUT",
+            "path": "/api/workspace/files/src/demo/a.py",
+            "raw_path": b"/api/workspace/files/src/demo/a.py",
+            "query_string": b"",
+            "headers": [],
+        }
+        grant = SimpleNamespace(is_instructor=True)
+        await _forward_http(directory, grant, SimpleNamespace(name="ada"), ref, scope, receive, send)  # type: ignore[arg-type]
 
     asyncio.run(go())
     start = next(m for m in sent if m["type"] == "http.response.start")
@@ -52,15 +48,42 @@ def forwarded(error: httpx.HTTPError) -> tuple[int, str]:
     return start["status"], json.loads(body)["detail"]
 
 
-@pytest.mark.parametrize(
-    ("error", "named"),
-    [
-        (httpx.ReadError(""), "ReadError"),  # a reset: no text of its own
-        (httpx.ConnectError("All connection attempts failed"), "All connection attempts failed"),
-    ],
-    ids=["no message", "a message"],
-)
-def test_a_worker_that_did_not_answer_is_a_502_that_says_how(error: httpx.HTTPError, named: str) -> None:
-    status, detail = forwarded(error)
+def closed_port() -> int:
+    """A loopback port nothing listens on."""
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])
+
+
+PREFIX = "world 'ada' runs on world worker 'local-1', which did not answer: "
+
+
+def test_a_worker_nobody_listens_for_is_a_502_in_the_errors_words() -> None:
+    status, detail = forwarded(closed_port())
     assert status == 502
-    assert detail == f"world 'ada' runs on world worker 'local-1', which did not answer: {named}"
+    assert detail.startswith(PREFIX) and "Connect call failed" in detail
+
+
+def test_a_reset_with_no_words_of_its_own_is_named_by_its_type(monkeypatch: pytest.MonkeyPatch) -> None:
+    async def reset(*_: Any, **__: Any) -> Any:
+        raise ConnectionResetError()  # as a reset reads: no text
+
+    monkeypatch.setattr(asyncio, "open_connection", reset)
+    status, detail = forwarded(closed_port())
+    assert (status, detail) == (502, PREFIX + "ConnectionResetError")
+
+
+def test_a_worker_that_hangs_up_before_its_answer_is_a_502_that_says_so() -> None:
+    async def scenario() -> tuple[int, str]:
+        async def hang_up(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+            await reader.readuntil(b"\r\n\r\n")  # the request's head, then nothing
+            writer.close()
+
+        server = await asyncio.start_server(hang_up, "127.0.0.1", 0)
+        port = server.sockets[0].getsockname()[1]
+        try:
+            return await asyncio.to_thread(forwarded, port)
+        finally:
+            server.close()
+
+    assert asyncio.run(scenario()) == (502, PREFIX + "the worker closed the connection before it answered")
