@@ -3,9 +3,9 @@ with h11 on asyncio's streams.
 
 Every call a student's page makes to a world a worker hosts goes through the class server
 (api/middleware/world_proxy.py), on the loop where the class server's own worlds tick. Through
-httpx each took the loop about 1 ms more than answering a call itself (its connection pool's
-locks and async-library sniffing, its request and response models); most of that is not needed
-to carry one request on and stream its answer back. Here a worker's connections are kept open
+httpx each took that loop about twice what answering a call of its own took (its connection
+pool's locks and async-library sniffing, its request and response models), none of it needed to
+carry one request on and stream its answer back; this way, about half (bench/proxied_calls.py). Here a worker's connections are kept open
 (at most ``MAX_IDLE`` a worker, none idle longer than ``MAX_IDLE_S``, well inside uvicorn's 5 s
 keep-alive, and none its worker has closed), a call goes out on one of them, and the answer's
 body is handed on as it arrives. A connection goes back only after a whole exchange; any other
