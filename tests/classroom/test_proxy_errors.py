@@ -16,7 +16,7 @@ from server.classroom.worker_connections import WorkerConnections
 from server.classroom.workers import WorkerRef
 
 
-def forwarded(port: int, monkeypatch: pytest.MonkeyPatch | None = None) -> tuple[int, str]:
+def forwarded(port: int) -> tuple[int, str]:
     """The status and detail the class server answers for a call to a worker at ``port``."""
     sent: list[dict[str, Any]] = []
 
