@@ -26,6 +26,20 @@ if TYPE_CHECKING:
 T = TypeVar("T")
 
 
+class _Unretrieved:
+    """The exception a future was finished with, and whether anyone has fetched it."""
+
+    __slots__ = ("exc", "fetched")
+
+    def __init__(self, exc: BaseException) -> None:
+        self.exc, self.fetched = exc, False
+
+
+def _report_unretrieved(box: _Unretrieved) -> None:
+    if not box.fetched:
+        print(f"The following exception was never retrieved: {box.exc}", file=sys.stderr)
+
+
 class FutureState(Enum):
     PENDING = "PENDING"
     CANCELLED = "CANCELLED"
@@ -38,14 +52,10 @@ class Future(BusFuture[T]):
     def __init__(self, *, executor: Executor | None = None) -> None:
         super().__init__()
         self._lock = threading.Lock()
-        self._exception_fetched = False
+        self._unretrieved: _Unretrieved | None = None
         self._executor_ref: Callable[[], Executor | None] = _no_executor
         self._wakers: list[Callable[[], None]] = []
         self._set_executor(executor)
-
-    def __del__(self) -> None:
-        if self._exception is not None and not self._exception_fetched:
-            print(f"The following exception was never retrieved: {self._exception}", file=sys.stderr)
 
     def __await__(self) -> Generator[Any, None, T | None]:
         while self._pending():
@@ -65,7 +75,8 @@ class Future(BusFuture[T]):
         return self._done and not self._cancelled
 
     def exception(self) -> BaseException | None:
-        self._exception_fetched = True
+        if self._unretrieved is not None:
+            self._unretrieved.fetched = True
         return self._exception
 
     def result(self) -> T | None:
@@ -87,8 +98,13 @@ class Future(BusFuture[T]):
             if self._done:
                 return
             self._exception = exc
-            self._exception_fetched = False
             self._done = True
+            # As rclpy, a future collected with an exception nobody fetched says so. Only such a
+            # future gets a finaliser: a ``__del__`` on every future (a task per callback, ten a
+            # second in a 10 Hz node) could swallow a Ctrl-C that lands while it runs, as CPython
+            # drops an exception raised in a finaliser ("Exception ignored in").
+            self._unretrieved = _Unretrieved(exc)
+            weakref.finalize(self, _report_unretrieved, self._unretrieved)
         self._finish()
 
     def cancel(self) -> None:
