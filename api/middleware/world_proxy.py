@@ -124,28 +124,18 @@ class WorldProxyMiddleware:
         await _forward_http(directory, grant, world, world.worker, scope, receive, send)
 
 
-def _raw_path(scope: Scope) -> str:
+def target(ref: WorkerRef, scope: Scope, websocket: bool) -> str:
+    """The worker's URL for this request: the path as sent, the query without the caller's token
+    and world. PathChanged if the URL, as a client parses it, would name another path."""
     raw_path = scope.get("raw_path")
-    return raw_path.decode("latin-1") if isinstance(raw_path, bytes) else str(scope["path"])
-
-
-def request_target(scope: Scope) -> str:
-    """The path as sent and the query without the caller's token and world: what the worker is
-    asked for."""
+    path = raw_path.decode("latin-1") if isinstance(raw_path, bytes) else scope["path"]
     query = [
         (k, v)
         for k, v in parse_qsl(scope["query_string"].decode("latin-1"), keep_blank_values=True)
         if k not in ("token", "world")
     ]
-    return _raw_path(scope) + (f"?{urlencode(query)}" if query else "")
-
-
-def target(ref: WorkerRef, scope: Scope, websocket: bool) -> str:
-    """The worker's URL for this request (``request_target`` on the worker's address).
-    PathChanged if the URL, as a client parses it, would name another path."""
     base = ref.url.replace("http", "ws", 1) if websocket else ref.url
-    url = base + request_target(scope)
-    path = _raw_path(scope)
+    url = base + path + (f"?{urlencode(query)}" if query else "")
     if httpx.URL(url).raw_path.split(b"?", 1)[0] != path.encode("latin-1"):
         raise PathChanged(f"the path {path!r} would reach the world worker as another path")
     return url
@@ -198,7 +188,7 @@ async def _forward_http(
         return
     sent = _headers(scope, credential(directory, grant, world, ref), world)
     try:
-        answer = await directory.connections.request(scope["method"], url, request_target(scope), sent, body)
+        answer = await directory.connections.request(scope["method"], url, sent, body)
     except WorkerCallError as exc:
         detail = f"world {world.name!r} runs on world worker {ref.id!r}, which did not answer: {exc}"
         await SafeJSONResponse({"detail": detail}, status.HTTP_502_BAD_GATEWAY)(scope, receive, send)

@@ -5,10 +5,10 @@ Every call a student's page makes to a world a worker hosts goes through the cla
 (api/middleware/world_proxy.py), on the loop where the class server's own worlds tick. Through
 httpx each took that loop about twice what answering a call of its own took (its connection
 pool's locks and async-library sniffing, its request and response models), none of it needed to
-carry one request on and stream its answer back; this way, about half (bench/proxied_calls.py). Here a worker's connections are kept open
-(at most ``MAX_IDLE`` a worker, none idle longer than ``MAX_IDLE_S``, well inside uvicorn's 5 s
-keep-alive, and none its worker has closed), a call goes out on one of them, and the answer's
-body is handed on as it arrives. A connection goes back only after a whole exchange; any other
+carry one request on and stream its answer back; this way, about half (bench/proxied_calls.py).
+A worker's connections are kept open (at most ``MAX_IDLE`` a worker, none idle longer than
+``MAX_IDLE_S``, well inside uvicorn's 5 s keep-alive, and none its worker has closed), a call
+goes out on one of them, and the answer's body is handed on as it arrives. A connection goes back only after a whole exchange; any other
 end (an error, a body left unread, a worker that closes) closes it.
 """
 
@@ -55,9 +55,12 @@ class WorkerAnswer:
     back (or closes it); ``aclose()`` ends it, read or not (always call it)."""
 
     def __init__(
-        self, status: int, headers: list[tuple[bytes, bytes]], body: AsyncGenerator[bytes, None],
+        self,
+        status: int,
+        headers: list[tuple[bytes, bytes]],
+        body: AsyncGenerator[bytes, None],
         release: Callable[[], None],
-    ) -> None:  # fmt: skip
+    ) -> None:
         self.status, self.headers = status, headers
         self._body, self._release = body, release
 
@@ -91,7 +94,9 @@ class WorkerConnections:
         self._origins: dict[tuple[str, int, bool], _Origin] = {}
         self.opened = 0  # connections opened so far (a kept one is opened once)
 
-    def _origin(self, url: str) -> tuple[_Origin, str]:
+    def _origin(self, url: str) -> tuple[_Origin, str, str]:
+        """The worker's address, its ``host[:port]`` and the request target: everything after the
+        address, exactly as written (the path as it was checked, and the query)."""
         parts = urlsplit(url)
         if parts.scheme not in ("http", "https") or not parts.hostname:
             raise WorkerCallError(f"not a worker's address: {url!r}")
@@ -101,7 +106,7 @@ class WorkerConnections:
         origin = self._origins.get(key)
         if origin is None:
             origin = self._origins[key] = _Origin(parts.hostname, port, ssl)
-        return origin, parts.netloc
+        return origin, parts.netloc, url[len(f"{parts.scheme}://{parts.netloc}") :]
 
     async def _connect(self, origin: _Origin) -> _Connection:
         now = self.clock()
@@ -115,12 +120,12 @@ class WorkerConnections:
         return _Connection(reader, writer)
 
     async def request(
-        self, method: str, url: str, target: str, headers: list[tuple[str, str]], body: bytes
+        self, method: str, url: str, headers: list[tuple[str, str]], body: bytes
     ) -> WorkerAnswer:
-        """Send ``method`` ``target`` (the path and query, as checked) to the worker at ``url``
-        with ``headers`` and ``body``; the answer's head, its body to stream. WorkerCallError if
-        the worker cannot be reached or breaks off before its head, within ``timeout_s``."""
-        origin, netloc = self._origin(url)
+        """Send ``method`` ``url`` (its path and query as written) to its worker with ``headers``
+        and ``body``; the answer's head, its body to stream. WorkerCallError if the worker cannot
+        be reached or breaks off before its head, within ``timeout_s``."""
+        origin, netloc, target = self._origin(url)
         try:
             async with asyncio.timeout(self.timeout_s):
                 await origin.open.acquire()

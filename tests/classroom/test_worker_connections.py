@@ -69,7 +69,7 @@ async def serving(worker: Worker) -> AsyncIterator[str]:
 async def call(
     connections: WorkerConnections, url: str, target: str, method: str = "GET", body: bytes = b""
 ) -> tuple[int, dict[bytes, bytes], bytes]:
-    answer = await connections.request(method, url, target, [("x-lab-world", "ada")], body)
+    answer = await connections.request(method, url + target, [("x-lab-world", "ada")], body)
     try:
         data = b"".join([chunk async for chunk in answer.body()])
     finally:
@@ -112,7 +112,7 @@ def test_a_connection_idle_too_long_closed_by_its_worker_or_left_unread_is_not_u
             await call(connections, url, "/close")  # the worker says it closes this one
             assert (await call(connections, url, "/four"))[0] == 201
             assert connections.opened == 3
-            answer = await connections.request("GET", url, "/big", [], b"")
+            answer = await connections.request("GET", url + "/big", [], b"")
             first = await anext(answer.body())
             await answer.aclose()  # read 64 KiB of 1 MiB, then gave up
             assert first == BIG[: len(first)]
