@@ -310,8 +310,13 @@ def test_keydown_moves_setpoint_marker_within_two_animation_frames(
 def test_new_page_opens_on_lab_under_way_remembers_the_view_chosen_and_keys_fly_after_a_switch(
     chromium: Browser, lab_server: LabServer
 ) -> None:
+    # At rest at home before the page opens: the test before left the drone setting off one step
+    # right, and a page that sees it rest and then fly switches its view to it (autoview.ts).
+    fly_to(lab_server, HOME_M)
+    suggested = HTTP.get(f"{lab_server.url}/page/views", timeout=HTTP_TIMEOUT_S).json()["suggested"]
     with page_at_home(chromium, lab_server) as page:
         first = page.evaluate("window.__teleop.scene.view.name")  # the rocket waits on its pad: under way
+        switches = page.evaluate("window.__teleop.autoview.switches")
         isolated = page.evaluate("window.crossOriginIsolated && window.__teleop.poses.shared")
         page.wait_for_function(f"() => window.__teleop.hud.poseRate >= {MIN_POSE_RATE_HZ}")
         choose(page, "Quadrotor")
@@ -339,7 +344,7 @@ def test_new_page_opens_on_lab_under_way_remembers_the_view_chosen_and_keys_fly_
             "the setpoint one step left",
         )
 
-    assert first == "Rocket"
+    assert (suggested, first, switches) == ("Rocket", "Rocket", 0)
     assert isolated is True  # the poses come through the shared ring
     assert (remembered, pressed) == ("Quadrotor", "true")
     assert key["code"] == KEY_LEFT
