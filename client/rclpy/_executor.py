@@ -58,22 +58,29 @@ class _WorkTracker:
 
     def __init__(self) -> None:
         self._running = 0
-        self._condition = threading.Condition()
+        self._waiting = 0  # threads in wait(): a callback's end notifies only when there are any
+        self._lock = threading.Lock()
+        self._idle = threading.Condition(self._lock)
 
     def __enter__(self) -> None:
-        with self._condition:
+        with self._lock:
             self._running += 1
 
     def __exit__(self, *_exc: object) -> None:
-        with self._condition:
+        with self._lock:
             self._running -= 1
-            self._condition.notify_all()
+            if self._waiting and not self._running:
+                self._idle.notify_all()
 
     def wait(self, timeout_sec: float | None = None) -> bool:
         if timeout_sec is not None and timeout_sec < 0:
             timeout_sec = None
-        with self._condition:
-            return self._condition.wait_for(lambda: self._running == 0, timeout_sec)
+        with self._lock:
+            self._waiting += 1
+            try:
+                return self._idle.wait_for(lambda: self._running == 0, timeout_sec)
+            finally:
+                self._waiting -= 1
 
 
 def _never() -> bool:
@@ -85,9 +92,11 @@ def _ranking(nodes: list[Node]) -> Callable[[Ready], tuple[int, int, int, int]]:
     then node by node its timers, subscriptions, guard conditions, clients and services, each
     kind in the order the node made them. (An action client's feedback comes before its result
     here: rclpy takes both in one callback, so a result never overtakes the feedback before it.)"""
-    where = {id(node): i for i, node in enumerate(nodes)}
+    where: dict[int, int] = {}  # filled at the first comparison: a round of one needs none
 
     def rank(ready: Ready) -> tuple[int, int, int, int]:
+        if not where:
+            where.update((id(node), i) for i, node in enumerate(nodes))
         waitable, kind, index = ready.place()
         return (waitable, where.get(id(ready.node), len(where)), kind, index)
 

@@ -19,6 +19,7 @@ import copy
 import inspect
 import threading
 from collections.abc import Callable, Iterator
+from types import CoroutineType
 from typing import Any, cast
 
 from node_runtime.bus import Future as BusFuture
@@ -42,7 +43,7 @@ def call(callback: Callable[..., Any], *args: Any) -> Any:
     """Run ``callback``; the coroutine to await if it is ``async def`` (seen through the node's
     wrappers, which hand on what it returns), else None."""
     result = callback(*args)
-    return result if inspect.iscoroutine(result) else None
+    return result if isinstance(result, CoroutineType) else None  # inspect.iscoroutine
 
 
 def group_of(node: Any, callback: Any) -> CallbackGroup:
@@ -110,7 +111,11 @@ class WaitSet(BlockingExecutor):
         self.wake_core()
 
     def _run(self, node: Node, fn: Callable[..., Any], *args: Any) -> None:  # a due timer
-        timer = next((t for t in getattr(node, "timers", ()) if t.callback is fn), fn)
+        timer: Any = fn
+        for entity in getattr(node, "timers", ()):
+            if entity.callback is fn:
+                timer = entity
+                break
         self.add(Ready(node, timer, group_of(node, fn), lambda: call(fn, *args), once=True))
         self.callbacks_run += 1
 
@@ -150,7 +155,9 @@ class WaitSet(BlockingExecutor):
         out this round, each at most once a round (a subscription ready again waits for the next)."""
         with self._lock:
             candidates = [r for r in self._items if id(r.entity) not in seen]
-        for ready in sorted(candidates, key=rank):
+        if len(candidates) > 1:
+            candidates.sort(key=rank)
+        for ready in candidates:
             if not wanted(ready):
                 continue
             with self._lock:
@@ -178,7 +185,7 @@ class WaitSet(BlockingExecutor):
     def any(self, wanted: Callable[[Ready], bool]) -> bool:
         with self._lock:
             candidates = list(self._items)
-        return any(wanted(r) for r in candidates)
+        return bool(candidates) and any(wanted(r) for r in candidates)
 
     # -- waiting ------------------------------------------------------------------------------
     def generation(self) -> int:

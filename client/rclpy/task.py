@@ -16,6 +16,7 @@ import warnings
 import weakref
 from collections.abc import Callable, Coroutine, Generator
 from enum import Enum
+from types import CoroutineType, FunctionType
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from node_runtime.bus import Future as BusFuture
@@ -116,7 +117,7 @@ class Future(BusFuture[T]):
         self._finish()
 
     def _finish(self) -> None:
-        self._event.set()
+        self._set_event()
         with self._lock:
             callbacks, self._callbacks = self._callbacks, []
             wakers, self._wakers = self._wakers, []
@@ -163,6 +164,14 @@ class Future(BusFuture[T]):
         wake()
 
 
+def _is_coroutine_function(fn: Any) -> bool:
+    """``inspect.iscoroutinefunction``, answered without its calls for a plain ``async def`` (the
+    executor's handler, a task for each callback)."""
+    if type(fn) is FunctionType and fn.__code__.co_flags & inspect.CO_COROUTINE:
+        return True
+    return inspect.iscoroutinefunction(fn)
+
+
 def _no_executor() -> None:
     return None
 
@@ -189,7 +198,7 @@ class Task(Future[T]):
         self._args: tuple[Any, ...] | None = tuple(args or ())
         self._kwargs: dict[str, Any] | None = dict(kwargs or {})
         self._handler: Any = handler
-        if inspect.iscoroutinefunction(handler):
+        if _is_coroutine_function(handler):
             self._handler = handler(*self._args, **self._kwargs)
             self._args = self._kwargs = None
         self._executing = False
@@ -204,7 +213,7 @@ class Task(Future[T]):
             if not self._pending():
                 return
             self._executing = True
-            if inspect.iscoroutine(self._handler):
+            if isinstance(self._handler, CoroutineType):  # inspect.iscoroutine, without its call
                 self._step(self._handler)
             else:
                 try:
@@ -248,7 +257,7 @@ class Task(Future[T]):
         return self._executing
 
     def cancel(self) -> None:
-        if self._pending() and inspect.iscoroutine(self._handler):
+        if self._pending() and isinstance(self._handler, CoroutineType):
             self._handler.close()
         super().cancel()
 

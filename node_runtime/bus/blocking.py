@@ -23,16 +23,22 @@ class BlockingExecutor(Executor):
 
     def __init__(self, bus: Bus) -> None:
         super().__init__(bus)
-        self._cv = threading.Condition()
+        # The condition's own lock is taken directly (a C call, where ``with self._cv`` runs
+        # Python's), and a wake notifies only while a thread sleeps on it: a wake comes with each
+        # message from Zenoh's threads and each callback's end, mostly while no thread sleeps.
+        self._cv_lock = threading.Lock()
+        self._cv = threading.Condition(self._cv_lock)
+        self._sleeping = 0
         self._woken = False
         self.spinning_threads: set[int] = set()
         bus.threadsafe_waker = self.wake
         bus.add_waker(self.wake)
 
     def wake(self) -> None:
-        with self._cv:
+        with self._cv_lock:
             self._woken = True
-            self._cv.notify_all()
+            if self._sleeping:
+                self._cv.notify_all()
 
     def _has_news(self) -> bool:
         """Whether a wake-up came that the coming wait must not sleep through (under ``_cv``)."""
@@ -41,9 +47,13 @@ class BlockingExecutor(Executor):
     def _wait(self, until_s: float) -> None:
         """Block until ``until_s`` on the bus clock, the next timer, or a wake-up, whichever is first."""
         delay = min(until_s, self.next_deadline_s()) - self.bus.clock.now()
-        with self._cv:
+        with self._cv_lock:
             if not self._has_news() and delay > 0:
-                self._cv.wait(min(delay, MAX_WAIT_S) if math.isfinite(delay) else MAX_WAIT_S)
+                self._sleeping += 1
+                try:
+                    self._cv.wait(min(delay, MAX_WAIT_S) if math.isfinite(delay) else MAX_WAIT_S)
+                finally:
+                    self._sleeping -= 1
             self._woken = False
 
     def spin_once(self, timeout_s: float | None = None) -> int:

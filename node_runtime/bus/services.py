@@ -25,6 +25,9 @@ T = TypeVar("T")
 ServiceCallback = Callable[[Any, Any], Any]
 
 
+_EVENT_MADE = threading.Lock()  # two threads that wait on one future share one event
+
+
 class Future(Generic[T]):
     """rclpy's Future: a result (or exception) that arrives later; done callbacks run once it does."""
 
@@ -34,7 +37,9 @@ class Future(Generic[T]):
         self._result: T | None = None
         self._exception: BaseException | None = None
         self._callbacks: list[Callable[[Future[T]], Any]] = []
-        self._event = threading.Event()
+        # Made by the first ``wait``: most futures (an executor's task for each callback) are
+        # never waited on by a thread, and an Event is a condition, a lock and their calls.
+        self._event: threading.Event | None = None
 
     def done(self) -> bool:
         return self._done
@@ -74,11 +79,22 @@ class Future(Generic[T]):
 
     def wait(self, timeout_s: float | None = None) -> bool:
         """Block this thread until done (for a caller on another thread than the executor)."""
-        return self._event.wait(timeout_s)
+        with _EVENT_MADE:
+            if self._event is None:
+                self._event = threading.Event()
+            event = self._event
+        # ``_finish`` marks the future done before it looks for the event: either it sees this
+        # event and sets it, or it was done before this line.
+        return True if self._done else event.wait(timeout_s)
+
+    def _set_event(self) -> None:
+        event = self._event
+        if event is not None:
+            event.set()
 
     def _finish(self) -> None:
         self._done = True
-        self._event.set()
+        self._set_event()
         callbacks, self._callbacks = self._callbacks, []
         for callback in callbacks:
             callback(self)
