@@ -8,8 +8,9 @@ pool's locks and async-library sniffing, its request and response models), none 
 carry one request on and stream its answer back; this way, about half (bench/proxied_calls.py).
 A worker's connections are kept open (at most ``MAX_IDLE`` a worker, none idle longer than
 ``MAX_IDLE_S``, well inside uvicorn's 5 s keep-alive, and none its worker has closed), a call
-goes out on one of them, and the answer's body is handed on as it arrives. A connection goes back only after a whole exchange; any other
-end (an error, a body left unread, a worker that closes) closes it.
+goes out on one of them, and the answer's body is handed on as it arrives. A connection goes back
+only after a whole exchange; any other end (an error, a body left unread, a worker that closes)
+closes it.
 """
 
 from __future__ import annotations
