@@ -87,6 +87,13 @@ def build_parser() -> argparse.ArgumentParser:
         help="another page origin to accept",
     )
     parser.add_argument("--log-level", default=default_of(Settings, "log_level"), choices=list(LEVELS))
+    loop_priority = default_of(Settings, "loop_priority")
+    parser.add_argument(
+        "--loop-priority", choices=choices_of(Settings, "loop_priority"), default=loop_priority,
+        help="realtime: the worlds' loop thread in the kernel's real-time class, before every other thread, "
+             "where the machine allows it (root, CAP_SYS_NICE or ulimit -r 1; else it stays normal); "
+             f"normal: in the fair class with the rest (default {loop_priority})",
+    )  # fmt: skip
     zenoh = parser.add_argument_group(
         "the graph on Zenoh (rmw_zenoh's wire format; ROS_DOMAIN_ID is read from the environment)"
     )
@@ -310,7 +317,7 @@ def settings_of(args: argparse.Namespace, zenoh: ZenohSettings | None) -> Settin
     }  # fmt: skip
     return Settings.model_validate({
         "listen": listen, "lab": lab, "classroom": classroom, "log_level": args.log_level,
-        "sandbox": {"student_code": args.student_code},
+        "loop_priority": args.loop_priority, "sandbox": {"student_code": args.student_code},
     })  # fmt: skip
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import logging
 import socket
 from collections.abc import Callable
 
@@ -11,7 +12,10 @@ from fastapi import FastAPI
 from node_runtime.console import access_log, quiet_uvicorn
 from server.app import create_app
 from server.base.collections_policy import keep_full_collections_short
+from server.base.loop_priority import loop_priority
 from server.host.settings import Settings
+
+log = logging.getLogger("server")
 
 
 def serve(
@@ -24,12 +28,23 @@ def serve(
     binds its port first, to say where it listens), else on the settings' host and port, logging at
     the settings' level. ``announce`` runs once the app exists (the banner that says where to go)."""
     import rich
-    import uvicorn
 
     # viser prints a box with its own loopback port; the page is served on ours, so that box would
     # send a student to a page without the lab's keys and HUD. The app prints nothing else through rich.
     rich.get_console().quiet = True
     keep_full_collections_short()  # a full collection would hold every world's ticks back
+    with loop_priority(settings.loop_priority) as priority:  # this thread runs the worlds' loop
+        # A class's console says what its worlds' loop got; a student's own lab keeps quiet about it.
+        log.log(logging.INFO if settings.classroom is not None else logging.DEBUG, "%s", priority.line())
+        _serve(settings, sock, announce)
+
+
+def _serve(
+    settings: Settings, sock: socket.socket | None, announce: Callable[[FastAPI], None] | None
+) -> None:
+    """``serve``'s app under uvicorn, on the calling thread."""
+    import uvicorn
+
     app = create_app(settings)
     if announce is not None:
         announce(app)

@@ -41,6 +41,7 @@ from server.host.settings import (
     Listening,
     Settings,
     WorkerSettings,
+    choices_of,
     default_of,
     explain,
     shown,
@@ -119,6 +120,13 @@ def build_parser() -> argparse.ArgumentParser:
         help=f"where its worlds' checkpoint progress and the report key are kept (default {shown(state_dir)})",
     )  # fmt: skip
     parser.add_argument("--log-level", default=default_of(Settings, "log_level"), choices=list(LEVELS))
+    loop_priority = default_of(Settings, "loop_priority")
+    parser.add_argument(
+        "--loop-priority", choices=choices_of(Settings, "loop_priority"), default=loop_priority,
+        help="realtime: the worlds' loop thread in the kernel's real-time class, before every other thread, "
+             "where the machine allows it (root, CAP_SYS_NICE or ulimit -r 1; else it stays normal); "
+             f"normal: in the fair class with the rest (default {loop_priority})",
+    )  # fmt: skip
     world_level = default_of(ClassroomSettings, "world_log_level")
     parser.add_argument(
         "--world-log-level", default=world_level, choices=list(LEVELS),
@@ -217,8 +225,11 @@ def worker_settings(args: argparse.Namespace, class_token: str, port: int) -> Se
     classroom = {"max_worlds": args.max_worlds, "world_log_level": args.world_log_level,
                  "workspaces_dir": args.workspaces_dir}  # fmt: skip
     return Settings.model_validate(
-        {"listen": listen, "lab": lab, "classroom": classroom, "worker": worker, "log_level": args.log_level}
-    )
+        {
+            "listen": listen, "lab": lab, "classroom": classroom, "worker": worker, "log_level": args.log_level,
+            "loop_priority": args.loop_priority,
+        }
+    )  # fmt: skip
 
 
 def listening_socket(host: str, port: int) -> socket.socket:

@@ -68,6 +68,7 @@ class LocalWorkers:
     bag_dir: Path
     log_level: str = "warning"
     world_log_level: str = "warning"
+    loop_priority: str = "realtime"  # the class server's --loop-priority: its workers' loops take the same
     state_dir: Path = Path("state")  # the class server's: its worlds' progress and report key, shared
     spread_at: int | None = None  # auto: another worker each this many worlds (None: only ``count``)
     spare: int = 0  # auto: at most this many
@@ -130,6 +131,8 @@ class LocalWorkers:
             self.log_level,
             "--world-log-level",
             self.world_log_level,
+            "--loop-priority",
+            self.loop_priority,
             "--parent-pid",
             str(os.getpid()),
             "--start-slots",
@@ -202,6 +205,7 @@ def local_workers_for(settings: Settings, endpoint: str, class_token: str) -> Lo
         klass.workspaces_dir,
         settings.lab.bag_dir,
         world_log_level=klass.world_log_level,
+        loop_priority=settings.loop_priority,
         state_dir=settings.lab.state_dir,
         spread_at=klass.spread_at if klass.auto_workers else None,
         spare=spare,

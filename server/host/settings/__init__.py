@@ -17,6 +17,7 @@ from pydantic import ValidationError, field_validator, model_validator
 from pydantic_core import PydanticCustomError
 
 from node_runtime.transport.config import ZenohSettings, is_loopback
+from server.base.loop_priority import Scheduling
 from server.host.settings.base import (
     ANY_ADDRESS,
     LOCAL_WORLDS_RULE,
@@ -99,6 +100,9 @@ class Settings(Section):
     worker: WorkerSettings | None = None
     sandbox: SandboxSettings = SandboxSettings()
     log_level: str = "info"  # the app's own console lines and uvicorn's
+    # The thread of the worlds' loop in the kernel's real-time class where the machine allows it
+    # (server/base/loop_priority.py), or left in the fair class with every other thread.
+    loop_priority: Scheduling = "realtime"
 
     @field_validator("log_level")
     @classmethod
