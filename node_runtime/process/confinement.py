@@ -3,7 +3,9 @@
 The sandbox (server/host/processes/sandbox.py) passes them in ``$ROS2LAB_SANDBOX``; the runner applies
 them first thing: rlimits on memory (its data: heap, stacks and private mappings), processes, open
 files, file size and CPU time, and a lower CPU priority than the sims (nice, for its session's
-scheduling group too: node_runtime/process/priority.py). Hard limits go down with the soft ones, so
+scheduling group too: node_runtime/process/priority.py), which it may never raise again: no
+real-time priority and no niceness below its own (``RLIMIT_RTPRIO`` and ``RLIMIT_NICE`` 0, whatever
+the server's were: a server given ``ulimit -r`` for its worlds' loop would otherwise pass it on). Hard limits go down with the soft ones, so
 the node cannot raise them again. Where the machine gives the server no memory cgroup
 (server/host/processes/cgroups.py), which counts shared mappings and tmpfs pages too, the address space
 is limited as well (``RLIMIT_AS``, with room for what Zenoh's threads reserve and never touch).
@@ -65,6 +67,8 @@ class Confinement:
             resource.RLIMIT_NOFILE: self.open_files,
             resource.RLIMIT_FSIZE: self.file_size_mib * MIB,
             resource.RLIMIT_CPU: self.cpu_s,
+            resource.RLIMIT_RTPRIO: 0,  # no real-time class: the worlds' loop goes first
+            resource.RLIMIT_NICE: 0,  # no niceness below what it was given
         }
         if self.address_space_mib:
             limits[resource.RLIMIT_AS] = self.address_space_mib * MIB

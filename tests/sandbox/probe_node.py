@@ -170,6 +170,17 @@ def priority(_arg):
     return f"nice {os.getpriority(os.PRIO_PROCESS, 0)} group {group}"
 
 
+def realtime(_arg):
+    """The class the node started in, then the real-time class taken (the worlds' loop's, above it)."""
+    started = "normal" if os.sched_getscheduler(0) == os.SCHED_OTHER else "real-time"
+    try:
+        os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(1))
+    except OSError as exc:
+        raise OSError(f"started {started}, SCHED_FIFO refused: {exc}") from None
+    os.sched_setscheduler(0, os.SCHED_OTHER, os.sched_param(0))
+    return f"started {started}, took SCHED_FIFO 1"
+
+
 def cgroup(procs):
     with open(procs, "w") as file:  # a control group's cgroup.procs: this process moves into it
         file.write(str(os.getpid()))
@@ -185,6 +196,7 @@ CHECKS = {
     "memory": memory,
     "write": write,
     "priority": priority,
+    "realtime": realtime,
     "cgroup": cgroup,
     "status": status,
     "handle": handle,

@@ -21,6 +21,7 @@ from support.http import HTTP
 from support.sandbox import require_sandbox
 from support.wait import wait_until
 
+from server.base.loop_priority import scheduling_of
 from server.host.processes import cgroups
 from server.host.settings import SandboxSettings
 from server.services.launch.commands import NOT_HERE
@@ -258,6 +259,18 @@ def test_sandbox_node_runs_below_the_worlds_with_its_sessions_group(klass: Class
     own = os.getpriority(os.PRIO_PROCESS, 0)
     assert probe_line(klass.ada, "priority") == f"PROBE priority ok nice {min(19, own + nice)} group {group}"
     assert probe_line(klass.cy, "priority").startswith(f"PROBE priority ok nice {own} ")
+
+
+def test_sandbox_node_starts_below_the_real_time_loop_and_cannot_take_its_class(klass: Class) -> None:
+    """Both class servers run their worlds' loop in the real-time class (server/base/loop_priority.py,
+    as root); a node they start never inherits it. A node on the unsandboxed server runs as the
+    server's user and may take it; a sandboxed one, an ordinary user with no real-time limit
+    (node_runtime/process/confinement.py), may not, so it can never get ahead of the worlds."""
+    for world in (klass.ada, klass.cy):
+        assert scheduling_of(world.app.proc.pid) == "realtime", world.name  # the server's loop thread
+    assert probe_line(klass.cy, "realtime") == "PROBE realtime ok started normal, took SCHED_FIFO 1"
+    line = probe_line(klass.ada, "realtime")
+    assert line.startswith("PROBE realtime blocked started normal, SCHED_FIFO refused"), line
 
 
 def test_sandbox_node_cannot_leave_the_nodes_cpu_group(klass: Class) -> None:
