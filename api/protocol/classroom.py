@@ -16,6 +16,7 @@ class CpuOut(TypedDict):
     cores: int
     machine: str | None
     rss_mb: float | None  # the process's resident memory, MiB
+    loop: Literal["realtime", "normal"] | None  # its worlds' loop thread's scheduling class
     saturated: bool
 
 
@@ -67,7 +68,8 @@ class ClassLoadOut(BaseModel):
     )
     places: list[PlaceOut] = Field(
         description="each place worlds run: 'server' (this process) or a world worker's id, with worlds, "
-        "max_worlds, late and cpu (process_cores in cores, host_busy share, cores, rss_mb in MiB, saturated)"
+        "max_worlds, late and cpu (process_cores in cores, host_busy share, cores, rss_mb in MiB, loop: its "
+        "worlds' loop thread's scheduling class, realtime or normal, saturated)"
     )
     machines: list[MachineOut] = Field(
         description="each machine's world budget (--worlds-per-core): its worlds over every place on it, its "
@@ -209,7 +211,8 @@ class ClassWorkers(BaseModel):
     local: LocalRoom = Field(
         description="this server's own worlds, how many it takes, and its CPU (process_cores: this process's "
         "CPU over the last window in cores; host_busy: the machine's busy share; machine: a digest of its "
-        "boot id; saturated: the process uses 0.85 core or the machine is 90 % busy. No new world goes to a "
+        "boot id; loop: its worlds' loop thread's scheduling class, realtime or normal; saturated: the process "
+        "uses 0.85 core or the machine is 90 % busy. No new world goes to a "
         "full process while another place has room, nor to a busy machine while another machine has room)"
     )
     workers: list[WorkerOut] = Field(

@@ -5,6 +5,8 @@ server weighs before it places a new world on the place with the most room.
   A process's worlds share one event loop, in one Python thread, so near one core it is full
   however many cores the machine has.
 - ``rss_mb``: the process's resident memory now, in MiB, from ``/proc/self/statm`` (None without it).
+- ``loop``: the scheduling class of the process's worlds' loop thread, "realtime" or "normal"
+  (server/base/loop_priority.py; None where it cannot be read).
 - ``host_busy``: the share of the machine's CPU time that was busy over the window, for every
   process, from ``/proc/stat``. Time the hypervisor stole counts as busy: it is capacity this
   machine did not have. None where ``/proc/stat`` is missing.
@@ -27,6 +29,7 @@ from pathlib import Path
 from typing import Any, Generic, TypeVar
 
 from server.base.cores import usable_cores
+from server.base.loop_priority import SCHEDULINGS, Scheduling, scheduling_of
 
 Ref = TypeVar("Ref")  # who a place is (placement's WorkerRef); this module needs only its identity
 
@@ -58,6 +61,7 @@ class CpuLoad:
     cores: int
     machine: str | None = None  # which machine (a digest of its boot id): places on one share its CPU
     rss_mb: float | None = None  # the process's resident memory (MiB); None where not known
+    loop: Scheduling | None = None  # its worlds' loop thread's scheduling class; None where not known
 
     @property
     def process_full(self) -> bool:
@@ -78,6 +82,7 @@ class CpuLoad:
             "cores": self.cores,
             "machine": self.machine,
             "rss_mb": None if self.rss_mb is None else round(self.rss_mb, 1),
+            "loop": self.loop,
             "saturated": self.saturated,
         }
 
@@ -103,12 +108,14 @@ class CpuLoad:
             not isinstance(rss, int | float) or isinstance(rss, bool) or not 0 <= rss < 1e9
         ):
             rss = None  # an older worker's hello, or a garbled one: the CPU still counts
+        loop = body.get("loop")
         return cls(
             float(process),
             None if host is None else float(host),
             cores,
             machine,
             None if rss is None else float(rss),
+            next((s for s in SCHEDULINGS if s == loop), None),
         )
 
 
@@ -131,7 +138,9 @@ def resident_mb() -> float | None:
 
 
 class CpuMeter:
-    """This process's and its machine's CPU over the last window of at least ``MIN_WINDOW_S``.
+    """This process's and its machine's CPU over the last window of at least ``MIN_WINDOW_S``, and
+    the scheduling class of ``loop_thread`` (a native thread id; by default the thread that makes
+    the meter, as the class server and a world worker make theirs on their loop's thread).
     Thread-safe: a worker reads it on Zenoh's thread, the class server on its loop."""
 
     def __init__(
@@ -142,13 +151,15 @@ class CpuMeter:
         cores: int | None = None,
         machine: str | None = None,
         rss: Callable[[], float | None] = resident_mb,
+        loop_thread: int | None = None,
     ) -> None:
         self._now, self._process_time, self._host, self._rss = now, process_time, host, rss
+        self.loop_thread = threading.get_native_id() if loop_thread is None else loop_thread
         self.cores = cores if cores is not None else usable_cores()
         self.machine = machine
         self._lock = threading.Lock()
         self._mark = (now(), process_time(), host())
-        self._load = CpuLoad(0.0, None, self.cores, machine, rss())
+        self._load = CpuLoad(0.0, None, self.cores, machine, rss(), scheduling_of(self.loop_thread))
 
     def read(self) -> CpuLoad:
         with self._lock:
@@ -162,7 +173,8 @@ class CpuMeter:
             if host is not None and host_then is not None and host[1] > host_then[1]:
                 busy = min(1.0, max(0.0, (host[0] - host_then[0]) / (host[1] - host_then[1])))
             cores = max(0.0, cpu - cpu_then) / elapsed
-            self._load = CpuLoad(cores, busy, self.cores, self.machine, self._rss())
+            loop = scheduling_of(self.loop_thread)
+            self._load = CpuLoad(cores, busy, self.cores, self.machine, self._rss(), loop)
             self._mark = (now, cpu, host)
             return self._load
 

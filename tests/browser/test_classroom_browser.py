@@ -27,6 +27,8 @@ from playwright.sync_api import Browser, Page
 from shots import blobs, hub_green
 from support.http import HTTP
 
+from server.base.loop_priority import scheduling_of
+
 # Ada's drone must hover where it stopped (still is judged on the sim's clock, labpage.still) while
 # two pages draw beside it. A world starved of CPU flies slower than real time rather than on stale
 # commands (tests/quadrotor/test_late_ticks.py), so this runs in the browser part with the others.
@@ -212,6 +214,9 @@ def test_the_instructors_page_resets_one_world_and_the_other_keeps_its_state(
         )
         assert page.inner_text("#load-verdict") in ("ok", "near", "full")
         assert "MiB" in page.inner_text("#load-places")
+        # and its worlds' loop's scheduling class, as the kernel has it (real-time, run as root)
+        assert scheduling_of(class_server.proc.pid) == "realtime"
+        assert "real-time loop" in page.inner_text("#load-places")
         # and the machine's world budget, which both worlds count against (--worlds-per-core)
         assert re.search(
             r"the machine: 2 of its budget of \d+ worlds \(\d+ cores\)", page.inner_text("#load-places")

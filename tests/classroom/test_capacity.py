@@ -4,6 +4,8 @@ manual clock: bounded in count and time, oldest first, and what the instructor l
 
 from __future__ import annotations
 
+import threading
+
 import pytest
 
 from api.errors import status_for
@@ -244,3 +246,17 @@ def test_the_meter_reports_this_process_resident_memory_and_a_hello_carries_it()
     assert garbled is not None and garbled.rss_mb is None
     real = resident_mb()
     assert real is not None and real > 10  # this interpreter, from /proc/self/statm
+
+
+def test_the_meter_reports_its_loop_threads_scheduling_class_and_a_hello_carries_it() -> None:
+    meter = CpuMeter(process_time=lambda: 0.0, host=lambda: None, cores=2, rss=lambda: 100.0)
+    assert meter.loop_thread == threading.get_native_id()  # the thread that made it
+    load = meter.read()
+    assert load.loop == "normal" and load.describe()["loop"] == "normal"
+    assert CpuLoad.parse(load.describe()) == load
+    assert CpuLoad.parse({**load.describe(), "loop": "realtime"}).loop == "realtime"  # type: ignore[union-attr]
+    for garbled in ("fifo", 1, None):  # a worker's hello is untrusted: anything else is not known
+        parsed = CpuLoad.parse({**load.describe(), "loop": garbled})
+        assert parsed is not None and parsed.loop is None and parsed.process_cores == load.process_cores
+    gone = CpuMeter(process_time=lambda: 0.0, host=lambda: None, cores=2, loop_thread=-1)
+    assert gone.read().loop is None

@@ -30,6 +30,7 @@ from support.forked_server import start_server
 from support.http import HTTP
 from support.wait import wait_until
 
+from server.base.loop_priority import scheduling_of
 from server.classroom.tokens import instructor_token as derived_instructor_token
 from server.classroom.tokens import read_class_secret
 from server.classroom.worker_control import TOKEN_ENV
@@ -199,6 +200,13 @@ def test_the_compose_class_runs_as_processes_and_a_students_drone_flies_on_a_wor
     wait_until(near_target, "Ada's drone at (5, 5, 10)", FLIGHT_S, poll_s=0.25, detail=klass.logs)
     for process in (klass.server, *klass.workers):
         assert process.proc.poll() is None, process.log_tail()
+    # Each process's worlds' loop (its first thread) runs in the real-time class, as root may, and
+    # the instructor's load says so for each place as the kernel does.
+    loops = {"server": klass.server.proc.pid} | {worker_id(pid): pid for pid in workers}
+    assert {place: scheduling_of(pid) for place, pid in loops.items()} == dict.fromkeys(loops, "realtime")
+    load = HTTP.get(f"{klass.url}/api/classroom/load", headers=instructor_auth, timeout=10).json()
+    said = {p["place"]: p["cpu"]["loop"] for p in load["places"] if p["cpu"] is not None}
+    assert said == dict.fromkeys(loops, "realtime"), load["places"]
 
 
 def test_a_worker_given_another_class_secret_is_refused_by_the_router_naming_its_file(tmp_path: Path) -> None:

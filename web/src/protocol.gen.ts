@@ -69,7 +69,7 @@ export interface ClassLoadOut {
   late: number;
   /** worlds that fit by count and by the machines' world budgets, over every place and the class's max_worlds */
   room: number;
-  /** each place worlds run: 'server' (this process) or a world worker's id, with worlds, max_worlds, late and cpu (process_cores in cores, host_busy share, cores, rss_mb in MiB, saturated) */
+  /** each place worlds run: 'server' (this process) or a world worker's id, with worlds, max_worlds, late and cpu (process_cores in cores, host_busy share, cores, rss_mb in MiB, loop: its worlds' loop thread's scheduling class, realtime or normal, saturated) */
   places: PlaceOut[];
   /** each machine's world budget (--worlds-per-core): its worlds over every place on it, its cores and its budget; empty without a budget */
   machines: MachineOut[];
@@ -123,6 +123,7 @@ export interface CpuOut {
   cores: number;
   machine: string | null;
   rss_mb: number | null;
+  loop: ("realtime" | "normal") | null;
   saturated: boolean;
 }
 

@@ -1,7 +1,8 @@
 // The instructor's load panel: the class server's load every few seconds (GET
-// /api/classroom/load): the capacity verdict, each place's worlds, CPU and memory, each machine's
-// world budget, the late worlds and the join queue, with a warning line when the class is near or
-// at its capacity and a button that lets the oldest waiting join in.
+// /api/classroom/load): the capacity verdict, each place's worlds, CPU, memory and its loop's
+// scheduling class, each machine's world budget, the late worlds and the join queue, with a
+// warning line when the class is near or at its capacity and a button that lets the oldest
+// waiting join in.
 import type { ClassLoadOut, ErrorBody, LetThrough, MachineOut, PlaceOut } from "../protocol.gen";
 
 const REFRESH_MS = 3000;
@@ -18,6 +19,7 @@ function place(p: PlaceOut): string {
     parts.push(`CPU ${cpu.process_cores.toFixed(2)} core`);
     if (cpu.rss_mb !== null) parts.push(`${Math.round(cpu.rss_mb)} MiB`);
     if (cpu.host_busy !== null) parts.push(`machine ${Math.round(cpu.host_busy * 100)} % busy`);
+    if (cpu.loop !== null) parts.push(cpu.loop === "realtime" ? "real-time loop" : "normal-priority loop");
     if (cpu.saturated) parts.push("saturated");
   }
   if (p.late) parts.push(`${p.late} late`);
