@@ -232,6 +232,25 @@ def test_each_class_services_health_check_asks_its_own_port() -> None:
         assert f"http://127.0.0.1:{port}/api/health" in check["test"][-1], (name, check)
 
 
+def test_every_service_may_put_its_loop_in_the_real_time_class_as_the_images_user() -> None:
+    """The image runs as an ordinary user (``USER lab``), who may take the real-time class only up to
+    its RLIMIT_RTPRIO (server/base/loop_priority.py): each service is given 1, and leaves
+    ``--loop-priority`` at realtime."""
+    assert "USER lab" in dockerfile_lines()
+    lab, services = resolved_lab(), resolved_class()["services"]
+    for name, service in (("lab", lab), *services.items()):
+        assert (service.get("ulimits") or {}).get("rtprio") == 1, (name, service.get("ulimits"))
+    worker = worker_settings(
+        swapped(worker_argv(services["worker"]["command"]), {"--advertise": "172.18.0.5"})
+    )
+    for settings in (
+        server_settings(lab["command"]),
+        server_settings(services["classroom"]["command"]),
+        worker,
+    ):
+        assert settings.loop_priority == "realtime"
+
+
 def test_a_class_compose_file_with_a_wrong_key_is_refused_naming_it(tmp_path: Path) -> None:
     """The control: the same check fails on a class file docker-compose cannot use."""
     broken = tmp_path / "compose.class.yml"
