@@ -3,6 +3,7 @@
     .venv/bin/python bench/class_burst.py [--worlds 30] [--per-world 2] [--joined-timeout-s 300]
         [--steady-s 30] [--via cli|page] [--starts all-at-once|paced [--starts-over-s 60]]
         [--probers 10] [--cli-nice N] [--page-clients [--clients-nice N]]
+        [--loop-priority realtime|normal]
 
 A class server (``--classroom --launch fly``, its Zenoh router on a free loopback port) with
 ``--worlds`` students joined, one world each, one after the other (``joins``: how many were
@@ -36,7 +37,9 @@ measured:
   a world worker's id, from the instructor's list of worlds), and each place's loop thread: its
   share of a core and how long it waited for one while it could run (``loop_threads``,
   ``waited_ms_per_s``, from the kernel's schedstat: what the machine's other loads cost the
-  worlds' ticks, apart from what the loop itself did);
+  worlds' ticks, apart from what the loop itself did), and in the steady window below the
+  scheduling class each loop thread ran in (``loop_scheduling``: "realtime" or "normal", as
+  ``--loop-priority``, passed to the class server, and the machine allow);
 * the class server's CPU (cores) over that time, the share of the machine's CPU time the
   hypervisor stole, and the load average;
 * then, one second later, each node process's RSS (the ``runner`` children of the ``ros2lab run``
@@ -91,6 +94,9 @@ from laptops import LaptopProcess, Laptops
 from live_server import READER, LiveServer, class_join, cpu_s, rss_mib
 from machine import machine_info, save_results
 from page_client import OpenPages, median_rates
+
+from server.base.loop_priority import SCHEDULINGS, scheduling_of
+from server.host.settings import Settings, default_of
 
 CODE = "BURST1"
 DYNAMICS = "flightgoggles_uav_dynamics"
@@ -483,6 +489,7 @@ def steady(
         "tick_lateness_p99_ms": summary_of(late, 2, high=True),
         "by_place": by_place(rate_of, where, late_of),
         "loop_threads": loop_waits(sched0, sched1, window_s),
+        "loop_scheduling": {place: scheduling_of(pid) for place, pid in loops.items()},
         "server_cpu_cores": round((cpu1 - cpu0) / window_s, 2),
         "node_processes": sum(1 for p in nodes1 if is_runner(p)),
         "node_processes_cpu_cores": round(node_s / window_s, 2),
@@ -684,6 +691,13 @@ def main(argv: list[str] | None = None) -> int:
         "(10: they stand for the students' laptops, not terminals on the class server; bench/laptops.py)",
     )
     parser.add_argument(
+        "--loop-priority",
+        choices=SCHEDULINGS,
+        default=default_of(Settings, "loop_priority"),
+        help="the class server's --loop-priority (its world workers take the same): its worlds' loop "
+        "threads in the real-time class, or in the fair class with the rest",
+    )
+    parser.add_argument(
         "--probers",
         type=int,
         default=10,
@@ -696,8 +710,9 @@ def main(argv: list[str] | None = None) -> int:
     if args.workers not in ("auto", "0"):
         spread += ["--local-worlds", str(args.local_worlds)]
     server = LiveServer(
-        root, "fly", "--classroom", "--class-code", CODE, "--max-worlds", str(args.worlds), *spread
-    )
+        root, "fly", "--classroom", "--class-code", CODE, "--max-worlds", str(args.worlds), *spread,
+        "--loop-priority", args.loop_priority,
+    )  # fmt: skip
     pages: OpenPages | None = None
     try:
         tokens, joins = join_class(server, args.worlds)
