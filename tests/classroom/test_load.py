@@ -43,7 +43,8 @@ def meter(c: Counters) -> CpuMeter:
 def test_the_meter_reports_cores_used_and_the_machines_busy_share_over_each_window() -> None:
     c = Counters()
     m = meter(c)
-    assert m.read() == CpuLoad(0.0, None, 2)  # nothing measured yet
+    # nothing measured yet; the loop's class is that of the thread that made the meter (this one)
+    assert m.read() == CpuLoad(0.0, None, 2, loop="normal")
     c.t += 2.0
     c.cpu += 1.0  # one CPU-second in two: half a core
     c.busy, c.total = c.busy + 300, c.total + 400
@@ -71,7 +72,7 @@ def test_a_machine_without_proc_stat_is_judged_by_the_process_alone() -> None:
     m = CpuMeter(now=lambda: c.t, process_time=lambda: c.cpu, host=lambda: None, cores=4, rss=lambda: None)
     c.t += 1.0
     c.cpu += 0.2
-    assert m.read() == CpuLoad(pytest.approx(0.2), None, 4)  # type: ignore[arg-type]
+    assert m.read() == CpuLoad(pytest.approx(0.2), None, 4, loop="normal")  # type: ignore[arg-type]
 
 
 @pytest.mark.skipif(not Path("/proc/stat").exists(), reason="Linux's /proc/stat only")
