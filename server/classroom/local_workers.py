@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from server.base.cores import usable_cores
+from server.base.loop_priority import Scheduling
 from server.classroom.worker_control import TOKEN_ENV
 from server.host.processes.start_pacing import machine_slots_file
 from server.host.settings import Settings, class_section
@@ -68,7 +69,7 @@ class LocalWorkers:
     bag_dir: Path
     log_level: str = "warning"
     world_log_level: str = "warning"
-    loop_priority: str = "realtime"  # the class server's --loop-priority: its workers' loops take the same
+    loop_priority: Scheduling = "realtime"  # the class server's --loop-priority: its workers' take the same
     state_dir: Path = Path("state")  # the class server's: its worlds' progress and report key, shared
     spread_at: int | None = None  # auto: another worker each this many worlds (None: only ``count``)
     spare: int = 0  # auto: at most this many
