@@ -142,6 +142,8 @@ export class OutputPane {
   exit(frame: ExitFrame): void {
     const how = frame.signal ? `ended by ${frame.signal}`
       : frame.code === null ? "stopped before it started" : `exited with code ${frame.code}`;
+    // The drops' note may have scrolled away under the lines after it: said again at the end.
+    if (this.dropped > 0 && !this.droppedNote?.isConnected) this.droppedLines(0);
     this.note(`[${frame.node}] ${how}`, frame.code === 0 || frame.signal === "SIGINT" ? "exit" : "exit failed");
   }
 }
