@@ -333,14 +333,19 @@ class TestHoldModePageGone:
                 assert_stopped_promptly(hold_server, x0)
                 if lost_race_to_deadman(hold_server, deadman_before, went_s):
                     continue  # the page took longer to go than the dead-man waits: it may win the race
-                if end == "crash" and stalled_since(hold_server, deadman_before):
+                if stalled_since(hold_server, deadman_before):
                     # A killed page's heartbeats (every 200 ms, when its main thread is free) stop at
                     # once, so the channel's drop has what is left of the dead-man's 0.5 s since the
-                    # last one: a drawing frame or two late, the dead-man may rightly come first.
+                    # last one: a drawing frame or two late, the dead-man may rightly come first. So
+                    # may it for a closed page whose last heartbeat and pagehide came a frame or two
+                    # late on a loaded machine, as the server's loop keeps the dead-man's time to the
+                    # tick (it runs real-time). Held again; a page whose going never released the key
+                    # loses every time and fails below.
                     continue
-                assert not stalled_since(hold_server, deadman_before), "released by the dead-man timer"
                 return
-        pytest.fail(f"in each of {HOLD_ATTEMPTS} holds the page stalled and the dead-man released the key")
+        pytest.fail(
+            f"in each of {HOLD_ATTEMPTS} holds the dead-man released the key before the page's going did"
+        )
 
 
 # -- the rocket on its pad -----------------------------------------------------------------------
