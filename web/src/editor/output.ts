@@ -3,7 +3,8 @@
 // file at that line when it is in the workspace, what a fast printer lost, and each exit. In a
 // traceback the student's frames show and the lab's own frames (rclpy, the launcher: files outside
 // the workspace) fold behind a toggle right after its first line, so the student's line is not
-// buried under them. The page keeps the last MAX_LINES lines; older ones scroll away.
+// buried under them. The page keeps the last MAX_LINES lines; older ones scroll away (what a
+// fast printer lost is said again at its exit if its note went with them).
 import type { ExitFrame, JoinedFrame, LineFrame, StartedFrame, WaitingFrame } from "../protocol.gen";
 
 const MAX_LINES = 2000;
