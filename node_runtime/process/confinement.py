@@ -5,8 +5,9 @@ them first thing: rlimits on memory (its data: heap, stacks and private mappings
 files, file size and CPU time, and a lower CPU priority than the sims (nice, for its session's
 scheduling group too: node_runtime/process/priority.py), which it may never raise again: no
 real-time priority and no niceness below its own (``RLIMIT_RTPRIO`` and ``RLIMIT_NICE`` 0, whatever
-the server's were: a server given ``ulimit -r`` for its worlds' loop would otherwise pass it on). Hard limits go down with the soft ones, so
-the node cannot raise them again. Where the machine gives the server no memory cgroup
+the server's were: a server given ``ulimit -r`` for its worlds' loop would otherwise pass it on).
+Hard limits go down with the soft ones, so the node cannot raise them again. Where the machine
+gives the server no memory cgroup
 (server/host/processes/cgroups.py), which counts shared mappings and tmpfs pages too, the address space
 is limited as well (``RLIMIT_AS``, with room for what Zenoh's threads reserve and never touch).
 
