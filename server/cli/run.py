@@ -1,8 +1,8 @@
 """``run PKG EXEC [--ros-args ...]``: the executable as a child process, as ``ros2 run`` starts it.
 
-Its output streams to this terminal as it comes, Ctrl-C is passed on to it (once: the child has a
-session of its own, so the terminal's Ctrl-C reaches only this command), and its exit code is this
-command's. A class server asks for its node processes to run below its worlds (``nice`` in the
+Its output streams to this terminal as it comes, each Ctrl-C is passed on to it (the child has a
+session of its own, so the terminal's Ctrl-C reaches only this command; one that still runs
+``STOP_GRACE_S`` after the first is killed), and its exit code is this command's. A class server asks for its node processes to run below its worlds (``nice`` in the
 join's answer): the child then takes that niceness, and so does its session's scheduling group
 (node_runtime/process/priority.py), wherever the command runs. It joins the graph of the lab the command talks to (``--url``): the lab tells
 where its Zenoh router listens, its ROS domain and its login (server/cli/join.py: asked again
@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import signal
 import sys
+import time
 from typing import TYPE_CHECKING, Any
 
 from server.cli.errors import CliError
@@ -103,14 +104,17 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
     child = subprocess.Popen(command.argv, env=command.env, start_new_session=True)
     if isinstance(nice, int) and nice > 0:
         set_session_group_nice(child.pid, nice)
-    interrupted = False
+    deadline: float | None = None  # STOP_GRACE_S after the first Ctrl-C
     while True:
         try:
-            return child.wait(timeout=STOP_GRACE_S if interrupted else None)
+            return child.wait(timeout=None if deadline is None else max(0.0, deadline - time.monotonic()))
         except KeyboardInterrupt:
-            if not interrupted:
-                child.send_signal(signal.SIGINT)
-                interrupted = True
+            # Every Ctrl-C reaches the node, as a terminal's each reach a node ``ros2 run`` started: a
+            # second one still stops a node that caught the first, or that was stuck in a lock when
+            # the first came (Python may run its handler only once the lock is free).
+            child.send_signal(signal.SIGINT)
+            if deadline is None:
+                deadline = time.monotonic() + STOP_GRACE_S
         except subprocess.TimeoutExpired:
             child.kill()  # it ignored Ctrl-C for STOP_GRACE_S
             return child.wait()

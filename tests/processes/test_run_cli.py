@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import re
+import select
 import signal
 import subprocess
 import sys
@@ -31,6 +32,21 @@ import no_such_module_for_this_lab
 if __name__ == '__main__':
     rclpy.init()
 """
+CTRL_C_TWICE = """
+import rclpy
+from rclpy.node import Node
+
+
+def main():
+    rclpy.init()
+    node = Node('CtrlCTwice')
+    for which in ('first', 'second'):
+        try:
+            rclpy.spin(node)
+        except KeyboardInterrupt:
+            print(which, 'Ctrl-C', flush=True)
+    rclpy.shutdown()
+"""
 DOES_NOTHING = """
 import rclpy
 from rclpy.node import Node
@@ -51,6 +67,7 @@ def lab(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[App, Path]]:
             "src/bad/syntax_error.py": SYNTAX_ERROR,
             "src/bad/missing_import.py": MISSING_IMPORT,
             "src/bad/does_nothing.py": DOES_NOTHING,
+            "src/bad/ctrl_c_twice.py": CTRL_C_TWICE,
         },
     )
     # The rocket launch from the lab's package, with the lab's own keyboard manager (the student's
@@ -111,6 +128,31 @@ def test_ctrl_c_on_ros2lab_run_ends_the_node_through_its_except_clause(lab: tupl
     assert code == 0, err
     assert "Traceback" not in err
     app.wait_for(lambda: node_entry(app, "/KeyboardManagerNode") is None, "the node to leave the graph", 5.0)
+
+
+def test_each_ctrl_c_reaches_the_node_and_a_second_ends_one_that_caught_the_first(
+    lab: tuple[App, Path],
+) -> None:
+    """As each Ctrl-C in a terminal reaches a node ``ros2 run`` started: the node caught the first
+    and spun on; the second ended it by itself (a kill at the grace's end would be exit -9)."""
+    app, root = lab
+    run = ros2lab(app, root, "bad", "ctrl_c_twice.py")
+    try:
+        app.wait_for(lambda: node_entry(app, "/CtrlCTwice") is not None, "the node in the app's graph")
+        run.send_signal(signal.SIGINT)
+        assert run.stdout is not None
+        ready, _, _ = select.select([run.stdout], [], [], 20.0)
+        assert ready, "the node said nothing of the first Ctrl-C"
+        assert run.stdout.readline() == "first Ctrl-C\n"
+        assert run.poll() is None and node_entry(app, "/CtrlCTwice") is not None  # it spins on
+        run.send_signal(signal.SIGINT)
+    except BaseException:
+        run.kill()  # the node dies with its command
+        run.communicate()
+        raise
+    code, out, err = finish(run)
+    assert code == 0, err
+    assert out == "second Ctrl-C\n", out
 
 
 @pytest.mark.parametrize(
