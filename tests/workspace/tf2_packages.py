@@ -271,7 +271,11 @@ class WaitsForTransform(Node):
 
         self._output_timer = self.create_timer(1.0, self.on_timer)
 
-        self._lock = threading.Lock()
+        # Reentrant: once the frames are there, the timer's next wait_for_transform_async returns a
+        # future already done, whose add_done_callback runs on_tf_ready at once (a future with no
+        # executor runs it in place, in rclpy too), inside on_timer's own `with self._lock`.
+        # examples_tf2_py's plain Lock deadlocks there, a second after its first "Got transform".
+        self._lock = threading.RLock()
         self._tf_future = None
         self._from_frame = None
         self._to_frame = None
