@@ -6,7 +6,9 @@ import contextlib
 import logging
 import socket
 from collections.abc import Callable
+from types import FrameType
 
+import uvicorn
 from fastapi import FastAPI
 
 from node_runtime.console import access_log, quiet_uvicorn
@@ -43,8 +45,6 @@ def _serve(
     settings: Settings, sock: socket.socket | None, announce: Callable[[FastAPI], None] | None
 ) -> None:
     """``serve``'s app under uvicorn, on the calling thread."""
-    import uvicorn
-
     app = create_app(settings)
     if announce is not None:
         announce(app)
@@ -65,4 +65,16 @@ def _serve(
     )
     quiet_uvicorn(level, classroom=classroom)
     with contextlib.suppress(KeyboardInterrupt):
-        uvicorn.Server(config).run(sockets=[sock] if sock is not None else None)
+        _Server(config).run(sockets=[sock] if sock is not None else None)
+
+
+class _Server(uvicorn.Server):
+    """uvicorn's server, save that a second Ctrl-C (or SIGTERM) while it stops does not force the
+    quit. Forced, uvicorn skips the app's own stop (its worlds, its Zenoh session, a class's world
+    workers) and then cancels it half done, and the threads those leave running kept the process
+    alive for good after printing two tracebacks: a student who pressed Ctrl-C twice had to kill
+    it. The stop is bounded without the force: open connections get ``timeout_graceful_shutdown``."""
+
+    def handle_exit(self, sig: int, frame: FrameType | None) -> None:
+        super().handle_exit(sig, frame)
+        self.force_exit = False
