@@ -6,7 +6,9 @@ real app the 429 carries the wait to the millisecond and the ticket, and ``ros2l
 
 from __future__ import annotations
 
+import os
 import random
+import threading
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
@@ -17,9 +19,11 @@ from support.app import free_port
 
 from node_runtime.transport.config import ZenohSettings
 from server.app import create_app
+from server.base.loop_priority import SCHEDULINGS, Scheduling, loop_priority
 from server.cli.client import LabClient
 from server.cli.join import TURN_CHARS, Pacing, join_graph
 from server.host.processes.start_pacing import (
+    FAIR_LOOP_HOLD_S,
     KEPT_S,
     MAX_TURNS,
     MAX_WAITING,
@@ -28,6 +32,7 @@ from server.host.processes.start_pacing import (
     StartPacer,
     Turn,
 )
+from server.host.processes.start_pacing import HOLD_S as PACER_HOLD_S
 from server.host.settings import LabSettings, Listening, Settings
 
 HOLD_S = 1.0
@@ -318,3 +323,24 @@ def test_without_the_cap_the_same_flood_would_push_the_others_back() -> None:
         told(pacer.admit(NEW_TURN, f"world{i}"))  # as many worlds as asks: none over its cap
     bob = told(pacer.admit(NEW_TURN, "bob"))
     assert bob.wait_s == pytest.approx(1.0 + (MAX_WAITING + 100) * HOLD_S)
+
+
+def test_a_pacer_the_worlds_loop_builds_holds_a_slot_shorter_when_that_loop_is_real_time() -> None:
+    """Built on a thread in the real-time class (as the worlds' loop is where the machine allows it)
+    a pacer holds each slot the pacer's ``HOLD_S``; on a thread in the fair class,
+    ``FAIR_LOOP_HOLD_S``: there the starts beside the loop slow the worlds."""
+    if os.geteuid() != 0:
+        pytest.skip("the real-time class needs root or an RLIMIT_RTPRIO here; the suite runs as root")
+    built: dict[str, float] = {}
+
+    def build(scheduling: Scheduling) -> None:
+        with loop_priority(scheduling) as priority:
+            assert priority.scheduling == scheduling, priority.why
+            built[scheduling] = StartPacer(1).hold_s
+
+    for scheduling in SCHEDULINGS:
+        thread = threading.Thread(target=build, args=(scheduling,))
+        thread.start()
+        thread.join(timeout=30)
+    assert built == {"realtime": PACER_HOLD_S, "normal": FAIR_LOOP_HOLD_S}
+    assert PACER_HOLD_S < FAIR_LOOP_HOLD_S

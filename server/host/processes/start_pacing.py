@@ -52,13 +52,20 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from server.base.cores import usable_cores
+from server.base.loop_priority import scheduling_of
 
 log = logging.getLogger(__name__)
 
-# A handout node's sandboxed start on an idle 2-core class: about 0.25 CPU-s, 0.3 s to listed.
-# 0.75 s (where 1 s was set for starts of 0.5 CPU-s) joined a 30-student class's 60 Runs in 51 and
-# 56 s against 62 and 65 s, its worlds 5 to 10 Hz lower while they started (docs/performance.md).
-HOLD_S = 0.75
+# A handout node's start on an idle 2-core class: about 0.2 CPU-s, 0.4 to 0.5 s from its turn to
+# its node. With the worlds' loop in the real-time class (server/base/loop_priority.py) a start
+# beside it no longer slows the worlds, and a slot is held about as long as a start takes: 0.5 s
+# joined a 30-student class's 60 nodes in 31 to 32 s against 45 to 47 s at 0.75 s, from the page
+# or by ``ros2lab run``, every world at 99.5 Hz or more while they started (docs/performance.md).
+HOLD_S = 0.5
+# Where the loop stays in the fair class (an ordinary user's laptop, a pod without the capability)
+# the starts slow the worlds, and a slot is held longer: 0.75 s joined the same class's 60 Runs in
+# 51 and 56 s against 62 and 65 s at 1 s, its worlds 5 to 10 Hz lower while they started.
+FAIR_LOOP_HOLD_S = 0.75
 GRACE = 0.25  # of hold_s: see StartPacer._admit
 BUSY_WAIT_S = 0.05  # the machine's slots file locked by another process now: ask again this soon
 KEPT_S = 5.0  # a turn is kept this long past its time for its start to come back, then given up
@@ -71,7 +78,7 @@ TICKET_CHARS = 64  # a ticket is shorter: anything longer is not one (the API re
 NEW_TURN = "new"  # asked with instead of a ticket: a start that will come back with the one it is given
 # The worlds' skipped timer calls, as a share of those due, under which starts go at their full
 # pace, and from which they go at their slowest: the turns then come ``MAX_STRETCH`` times as far
-# apart (sixty starts in 45 s at the full pace, 49.5 s at the slowest). In a class's fly world about
+# apart (sixty starts in 30 s at the full pace, 33 s at the slowest). In a class's fly world about
 # a third of the calls are its 100 Hz tick, which skips first (a call 10 ms late; its 50 Hz
 # controllers' 20 ms): 0.5 % of every call is about 1.5 % of the ticks (a world at 98.5 Hz), 1.5 %
 # about 4.5 % (95.5 Hz).
@@ -114,6 +121,12 @@ def stretch(skipped: float) -> float:
     return 1.0 + (MAX_STRETCH - 1.0) * min(1.0, (skipped - SKIPPED_OK) / (SKIPPED_MOST - SKIPPED_OK))
 
 
+def loop_hold_s() -> float:
+    """How long a start holds its slot on a pacer the worlds' loop thread builds (a lab's, a class's):
+    ``HOLD_S`` while that thread runs in the real-time class, else ``FAIR_LOOP_HOLD_S``."""
+    return HOLD_S if scheduling_of(0) == "realtime" else FAIR_LOOP_HOLD_S
+
+
 def default_slots() -> int:
     """One start at a time per core the server does not need (at least one; the cores it may use,
     as its affinity and CPU quota allow)."""
@@ -121,17 +134,18 @@ def default_slots() -> int:
 
 
 class StartPacer:
-    """At most ``slots`` starts admitted within any ``hold_s`` (longer while the worlds skip their
-    timers' calls: ``skipped`` says what share of them they skipped lately); ``clock`` is injected
-    for tests."""
+    """At most ``slots`` starts admitted within any ``hold_s`` (None: as the building thread's class
+    allows, ``loop_hold_s``), longer while the worlds skip their timers' calls (``skipped`` says
+    what share of them they skipped lately); ``clock`` is injected for tests."""
 
     def __init__(
         self,
         slots: int,
-        hold_s: float = HOLD_S,
+        hold_s: float | None = None,
         clock: Callable[[], float] = time.monotonic,
         skipped: Callable[[], float] | None = None,
     ) -> None:
+        hold_s = loop_hold_s() if hold_s is None else hold_s
         if slots < 1 or hold_s <= 0:
             raise ValueError(f"a start pacer needs slots >= 1 and hold_s > 0, got {slots} and {hold_s}")
         self.slots, self.hold_s, self._clock = slots, hold_s, clock
@@ -225,7 +239,7 @@ class MachineStartPacer(StartPacer):
         self,
         path: Path,
         slots: int,
-        hold_s: float = HOLD_S,
+        hold_s: float | None = None,
         clock: Callable[[], float] = time.monotonic,
         skipped: Callable[[], float] | None = None,
     ) -> None:
