@@ -2,13 +2,15 @@
 
 Its output streams to this terminal as it comes, each Ctrl-C is passed on to it (the child has a
 session of its own, so the terminal's Ctrl-C reaches only this command; one that still runs
-``STOP_GRACE_S`` after the first is killed), and its exit code is this command's. A class server asks for its node processes to run below its worlds (``nice`` in the
-join's answer): the child then takes that niceness, and so does its session's scheduling group
-(node_runtime/process/priority.py), wherever the command runs. It joins the graph of the lab the command talks to (``--url``): the lab tells
-where its Zenoh router listens, its ROS domain and its login (server/cli/join.py: asked again
-with a bounded backoff while the lab does not answer, and after the time it gives while it paces
-a class's node starts). A lab that does not answer within ``--join-timeout`` is one line and a
-non-zero exit, and no node starts: nothing falls back to another router or domain.
+``STOP_GRACE_S`` after the first is killed), and its exit code is this command's. A class server
+asks for its node processes to run below its worlds (``nice`` in the join's answer): the child
+then takes that niceness, and so does its session's scheduling group
+(node_runtime/process/priority.py), wherever the command runs. It joins the graph of the lab the
+command talks to (``--url``): the lab tells where its Zenoh router listens, its ROS domain and its
+login (server/cli/join.py: asked again with a bounded backoff while the lab does not answer, and
+after the time it gives while it paces a class's node starts). A lab that does not answer within
+``--join-timeout`` is one line and a non-zero exit, and no node starts: nothing falls back to
+another router or domain.
 """
 
 from __future__ import annotations
@@ -109,9 +111,9 @@ def run(args: argparse.Namespace, client: LabClient) -> int:
         try:
             return child.wait(timeout=None if deadline is None else max(0.0, deadline - time.monotonic()))
         except KeyboardInterrupt:
-            # Every Ctrl-C reaches the node, as a terminal's each reach a node ``ros2 run`` started: a
-            # second one still stops a node that caught the first, or that was stuck in a lock when
-            # the first came (Python may run its handler only once the lock is free).
+            # Every Ctrl-C reaches the node, as each one typed in a terminal reaches a node ``ros2
+            # run`` started: a second one still stops a node that caught the first, or whose main
+            # thread sat in a lock when the first came (Python may then never run its handler).
             child.send_signal(signal.SIGINT)
             if deadline is None:
                 deadline = time.monotonic() + STOP_GRACE_S
