@@ -69,11 +69,12 @@ def _serve(
 
 
 class _Server(uvicorn.Server):
-    """uvicorn's server, save that a second Ctrl-C (or SIGTERM) while it stops does not force the
-    quit. Forced, uvicorn skips the app's own stop (its worlds, its Zenoh session, a class's world
-    workers) and then cancels it half done, and the threads those leave running kept the process
-    alive for good after printing two tracebacks: a student who pressed Ctrl-C twice had to kill
-    it. The stop is bounded without the force: open connections get ``timeout_graceful_shutdown``."""
+    """uvicorn's server, save that a Ctrl-C while it stops (after a first Ctrl-C or a SIGTERM) does
+    not force the quit. Forced, uvicorn skips the app's own stop (its worlds, its Zenoh session, a
+    class's world workers) and then cancels it half done, and the threads those leave running kept
+    the process alive for good after printing two tracebacks: a student who pressed Ctrl-C twice had
+    to kill it. The stop is bounded without the force: open connections get
+    ``timeout_graceful_shutdown``."""
 
     def handle_exit(self, sig: int, frame: FrameType | None) -> None:
         super().handle_exit(sig, frame)

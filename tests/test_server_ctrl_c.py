@@ -28,8 +28,9 @@ ENDED_S = 30.0
 def test_a_second_ctrl_c_while_the_server_stops_lets_it_stop_as_the_first_would(
     tmp_path: Path, classroom: bool
 ) -> None:
-    port, zenoh = free_ports(2)
-    args = ["--host", "127.0.0.1", "--port", str(port), "--zenoh-listen", f"tcp/127.0.0.1:{zenoh}"]
+    port, zenoh, foxglove = free_ports(3)
+    args = ["--host", "127.0.0.1", "--port", str(port), "--zenoh-listen", f"tcp/127.0.0.1:{zenoh}",
+            "--foxglove-port", str(foxglove)]  # fmt: skip
     if classroom:
         args += ["--classroom", "--workers", "0"]
     proc = subprocess.Popen(
